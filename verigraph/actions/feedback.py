@@ -1,0 +1,50 @@
+"""Violation feedback: which constraint failed, why, what blocks it and what would fix it."""
+
+from __future__ import annotations
+
+from typing import Any, Literal
+
+from pydantic import BaseModel, Field
+
+ConstraintId = Literal[
+    "unknown_object", "unknown_relation", "same_object", "not_movable", "object_not_clear",
+    "target_full", "target_not_surface", "target_not_container", "would_create_cycle",
+    "already_there", "unknown_side", "side_occupied", "overlap", "execution_failed",
+    "malformed_action",
+]
+
+CONSTRAINT_DESCRIPTIONS: dict[str, str] = {
+    "unknown_object": "the object or target is not in the scene",
+    "unknown_relation": "the relation is not one the scene's relation set R allows for move",
+    "same_object": "an object cannot be put on or in itself",
+    "not_movable": "fixed objects (table, counter, stove, shelf) cannot be moved",
+    "object_not_clear": "something is on or in the object; clear it first",
+    "target_full": "the target already carries as many objects as its capacity allows",
+    "target_not_surface": "`on` needs a target that is a surface",
+    "target_not_container": "`in` needs a target that is a container",
+    "would_create_cycle": "the target rests (directly or indirectly) on the object",
+    "already_there": "the object already stands in that relation to the target",
+    "unknown_side": "tangram: the side index does not exist on that piece, or the object "
+                    "is not a tangram piece",
+    "side_occupied": "tangram: the target side already touches another piece",
+    "overlap": "tangram (sim2d): the moved piece would intersect another piece",
+    "execution_failed": "the simulator or arm did not end in the predicted graph",
+    "malformed_action": "the action does not match the action schema",
+}
+
+
+class Violation(BaseModel):
+    """Feedback for one rejected action (DESIGN section 5)."""
+
+    ok: Literal[False] = False
+    step: int | None = Field(default=None, description="1-based index of the action in the plan")
+    action: dict[str, Any]
+    constraint: ConstraintId
+    message: str
+    blocking: list[str] = Field(default_factory=list,
+                                description="objects that stand in the way")
+    suggestion: str
+
+    def text(self) -> str:
+        where = f"step {self.step}: " if self.step is not None else ""
+        return f"{where}[{self.constraint}] {self.message}. Suggestion: {self.suggestion}"

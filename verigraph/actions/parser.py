@@ -1,0 +1,180 @@
+"""Plan parsing: the text format (one action per line) and JSON plans.
+
+Text, one action per line, `#` starts a comment, `done` ends the plan:
+
+    move(cup, on, table)
+    move(book, shelf)        # move(x, y) means move(x, on, y)
+    align(small_triangle_1, 1, square, 3)
+    done
+
+Errors name the line and column and show the expected form. Parsing is linear in the
+size of the plan.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from typing import Any
+
+from pydantic import ValidationError
+
+from verigraph.actions.model import (
+    ActionAdapter,
+    AlignAction,
+    AnyAction,
+    DoneAction,
+    MoveAction,
+)
+from verigraph.errors import PlanParseError
+
+MOVE_FORM = "move(object, relation, target) or move(object, target)"
+ALIGN_FORM = "align(piece, side, target_piece, target_side)"
+ANY_FORM = f"{MOVE_FORM}, {ALIGN_FORM} or done"
+
+_CALL = re.compile(r"^(?P<name>[A-Za-z_]+)\s*(?:\((?P<args>.*)\))?\s*$")
+_NUMBERING = re.compile(r"^\s*(?:\d+[.)]|-|\*)\s+")
+_NAME = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.\-]*$")
+MAX_NAME = 128
+
+
+def parse_action_text(text: str, line: int = 1) -> AnyAction:
+    """One action in text form, e.g. `move(cup, on, table)`."""
+    body = text.split("#", 1)[0].rstrip()
+    numbering = _NUMBERING.match(body)
+    offset = numbering.end() if numbering else len(body) - len(body.lstrip())
+    stripped = body[offset:]
+    match = _CALL.match(stripped)
+    if not match:
+        raise PlanParseError("not an action", line=line, column=offset + 1, text=text,
+                             expected=ANY_FORM)
+    name = match.group("name").lower()
+    args_text = match.group("args")
+    if name == "done":
+        if args_text not in (None, ""):
+            raise PlanParseError("done takes no arguments", line=line,
+                                 column=offset + match.start("args") + 1, text=text,
+                                 expected="done")
+        return DoneAction()
+    if name not in ("move", "align"):
+        raise PlanParseError(f"unknown action '{name}'", line=line, column=offset + 1,
+                             text=text, expected=ANY_FORM)
+    if args_text is None:
+        raise PlanParseError(f"'{name}' needs arguments in parentheses", line=line,
+                             column=offset + len(match.group("name")) + 1, text=text,
+                             expected=MOVE_FORM if name == "move" else ALIGN_FORM)
+    args_start = offset + match.start("args")
+    args, columns = _split_args(args_text, args_start)
+    for arg, col in zip(args, columns, strict=True):
+        if not arg:
+            raise PlanParseError("empty argument", line=line, column=col + 1, text=text,
+                                 expected=MOVE_FORM if name == "move" else ALIGN_FORM)
+    if name == "move":
+        if len(args) == 2:
+            args = [args[0], "on", args[1]]
+            columns = [columns[0], columns[0], columns[1]]
+        if len(args) != 3:
+            raise PlanParseError(f"move takes 2 or 3 arguments, got {len(args)}", line=line,
+                                 column=args_start + 1, text=text, expected=MOVE_FORM)
+        for arg, col in zip(args, columns, strict=True):
+            _check_name(arg, col, line, text, MOVE_FORM)
+        return MoveAction(object=args[0], relation=args[1].lower(), target=args[2])
+    if len(args) != 4:
+        raise PlanParseError(f"align takes 4 arguments, got {len(args)}", line=line,
+                             column=args_start + 1, text=text, expected=ALIGN_FORM)
+    sides = []
+    for index in (1, 3):
+        try:
+            sides.append(int(args[index]))
+        except ValueError:
+            raise PlanParseError(f"side '{args[index]}' is not a whole number", line=line,
+                                 column=columns[index] + 1, text=text,
+                                 expected=ALIGN_FORM) from None
+    for index in (0, 2):
+        _check_name(args[index], columns[index], line, text, ALIGN_FORM)
+    return AlignAction(object=args[0], side=sides[0], target=args[2], target_side=sides[1])
+
+
+def _split_args(args_text: str, start: int) -> tuple[list[str], list[int]]:
+    """Comma-separated arguments with the 0-based column each starts at."""
+    args, columns = [], []
+    pos = 0
+    for part in args_text.split(","):
+        lead = len(part) - len(part.lstrip())
+        args.append(part.strip().strip("'\""))
+        columns.append(start + pos + lead)
+        pos += len(part) + 1
+    return args, columns
+
+
+def _check_name(arg: str, col: int, line: int, text: str, expected: str) -> None:
+    if len(arg) > MAX_NAME or not _NAME.match(arg):
+        raise PlanParseError(f"'{arg[:40]}' is not a valid object id or relation", line=line,
+                             column=col + 1, text=text, expected=expected)
+
+
+def parse_text_plan(text: str) -> list[AnyAction]:
+    """A text plan; blank lines and comments are skipped; nothing may follow `done`."""
+    actions: list[AnyAction] = []
+    done_line = 0
+    for number, raw in enumerate(text.splitlines(), start=1):
+        if not raw.split("#", 1)[0].strip():
+            continue
+        if done_line:
+            raise PlanParseError(f"action after done (line {done_line})", line=number,
+                                 column=1, text=raw, expected="done as the last action")
+        action = parse_action_text(raw, number)
+        if isinstance(action, DoneAction):
+            done_line = number
+        actions.append(action)
+    return actions
+
+
+def parse_json_plan(data: Any) -> list[AnyAction]:
+    """A JSON plan: a list of action objects (or text actions), or {"actions": [...]}."""
+    if isinstance(data, dict):
+        data = data.get("actions", data.get("plan"))
+    if not isinstance(data, list):
+        raise PlanParseError("a JSON plan is a list of actions or {\"actions\": [...]}",
+                             line=1, column=1, text=str(data)[:80],
+                             expected='[{"action": "move", "object": ..., "relation": "on", '
+                                      '"target": ...}]')
+    actions: list[AnyAction] = []
+    for index, item in enumerate(data):
+        if isinstance(item, str):
+            actions.append(parse_action_text(item, index + 1))
+            continue
+        try:
+            actions.append(ActionAdapter.validate_python(item))
+        except ValidationError as exc:
+            err = exc.errors()[0]
+            loc = ".".join(str(p) for p in err["loc"])
+            raise PlanParseError(f"action {index + 1}: {loc}: {err['msg']}", line=index + 1,
+                                 column=1, text=json.dumps(item)[:120] if isinstance(
+                                     item, dict | list) else str(item)[:120],
+                                 expected='{"action": "move", "object": "cup", "relation": '
+                                          '"on", "target": "table"}') from None
+    return actions
+
+
+def parse_plan(plan: str | list[Any] | dict[str, Any]) -> list[AnyAction]:
+    """Text or JSON (string or already decoded); raises PlanParseError on any problem."""
+    if isinstance(plan, list | dict):
+        actions = parse_json_plan(plan)
+    else:
+        stripped = plan.lstrip()
+        if stripped.startswith(("[", "{")):
+            try:
+                decoded = json.loads(plan)
+            except json.JSONDecodeError as exc:
+                raise PlanParseError(f"invalid JSON: {exc.msg}", line=exc.lineno,
+                                     column=exc.colno, text=plan.splitlines()[exc.lineno - 1]
+                                     if plan.splitlines() else "", expected="a JSON list of "
+                                     "actions") from None
+            actions = parse_json_plan(decoded)
+        else:
+            actions = parse_text_plan(plan)
+    if not actions:
+        raise PlanParseError("the plan is empty", line=1, column=1, text="",
+                             expected=f"at least one action: {ANY_FORM}")
+    return actions

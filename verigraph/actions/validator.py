@@ -1,0 +1,105 @@
+"""Validation and execution semantics (DESIGN section 6, the paper's Algorithm 1 core).
+
+`validate_action` checks one action against the constraints and changes nothing;
+`apply_action` is the graph edit of a valid action; `execute_until_violation` runs a
+list of actions until the first violation, keeping the valid prefix applied.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+
+from pydantic import BaseModel, Field
+
+from verigraph.actions.constraints import MOVE_CHECKS, check_align
+from verigraph.actions.feedback import Violation
+from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
+from verigraph.graph.model import Edge, SceneGraph
+from verigraph.graph.state import WorldState
+
+
+class GraphEdit(BaseModel):
+    """The edges an applied action removed and added."""
+
+    removed: list[Edge] = Field(default_factory=list)
+    added: list[Edge] = Field(default_factory=list)
+
+    def text(self) -> str:
+        parts = [f"-{e.sentence()}" for e in self.removed] + [f"+{e.sentence()}"
+                                                               for e in self.added]
+        return ", ".join(parts)
+
+
+def validate_action(state: WorldState, action: AnyAction, step: int | None = None
+                    ) -> Violation | None:
+    """The first constraint `action` breaks on `state`, or None. Never mutates `state`."""
+    violation: Violation | None = None
+    if isinstance(action, MoveAction):
+        for check in MOVE_CHECKS:
+            violation = check(state, action)
+            if violation is not None:
+                break
+    elif isinstance(action, AlignAction):
+        violation = check_align(state, action)
+    if violation is not None and step is not None:
+        violation.step = step
+    return violation
+
+
+def apply_action(state: WorldState, action: AnyAction) -> GraphEdit:
+    """Apply a validated action in place: the graph edit, nothing else."""
+    if isinstance(action, MoveAction):
+        removed = state.set_support(action.object, action.relation, action.target)
+        return GraphEdit(removed=[removed] if removed else [],
+                         added=[Edge(source=action.object, relation=action.relation,
+                                     target=action.target)])
+    if isinstance(action, AlignAction):
+        removed_contacts = state.detach_contacts(action.object)
+        added = state.add_contact((action.object, action.side),
+                                  (action.target, action.target_side))
+        return GraphEdit(removed=removed_contacts, added=[added])
+    return GraphEdit()
+
+
+class ExecutionResult(BaseModel):
+    """What execute_until_violation returns: the prefix that ran, the graph, the feedback."""
+
+    executed: list[AnyAction]
+    graph: SceneGraph
+    violation: Violation | None = None
+    done: bool = Field(default=False, description="the end token was reached")
+    edits: list[GraphEdit] = Field(default_factory=list)
+
+
+def run_until_violation(state: WorldState, actions: Iterable[AnyAction], *,
+                        first_step: int = 1) -> tuple[list[AnyAction], list[GraphEdit],
+                                                      Violation | None, bool]:
+    """In-place core of execute_until_violation, for callers that keep a WorldState."""
+    executed: list[AnyAction] = []
+    edits: list[GraphEdit] = []
+    for offset, action in enumerate(actions):
+        if isinstance(action, DoneAction):
+            return executed, edits, None, True
+        violation = validate_action(state, action, first_step + offset)
+        if violation is not None:
+            return executed, edits, violation, False
+        edits.append(apply_action(state, action))
+        executed.append(action)
+    return executed, edits, None, False
+
+
+def execute_until_violation(actions: Sequence[AnyAction], graph: SceneGraph | WorldState
+                            ) -> ExecutionResult:
+    """Validate and apply each action in order; stop at the first violation or `done`.
+
+    The input is never modified: a SceneGraph is indexed afresh, a WorldState is copied.
+
+    >>> from verigraph.graph.builtin_scenes import cup_on_book
+    >>> r = execute_until_violation([MoveAction(object="book", target="shelf")], cup_on_book())
+    >>> r.violation.constraint, r.violation.blocking
+    ('object_not_clear', ['cup'])
+    """
+    state = graph.copy() if isinstance(graph, WorldState) else WorldState.from_graph(graph)
+    executed, edits, violation, done = run_until_violation(state, actions)
+    return ExecutionResult(executed=executed, graph=state.to_graph(), violation=violation,
+                           done=done, edits=edits)

@@ -1,0 +1,73 @@
+"""Typed errors that carry the field, the offending value and the fix.
+
+Every failure a user can cause (bad files, bad plans, bad tool arguments) is one of
+these, so the CLI can exit with code 2 and the MCP server can answer with a tool
+error instead of a traceback.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class VeriGraphError(Exception):
+    """Base class: a user-facing error with a field, the value seen and a fix."""
+
+    def __init__(self, message: str, *, field: str | None = None, value: Any = None,
+                 fix: str | None = None) -> None:
+        super().__init__(message)
+        self.message = message
+        self.field = field
+        self.value = value
+        self.fix = fix
+
+    def __str__(self) -> str:
+        text = self.message
+        if self.field:
+            text = f"{self.field}: {text}"
+        if self.fix:
+            text = f"{text} (fix: {self.fix})"
+        return text
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form used by the CLI's --json output and the server."""
+        value = self.value if isinstance(self.value, str | int | float | bool | None) \
+            else repr(self.value)
+        return {"error": type(self).__name__, "message": self.message, "field": self.field,
+                "value": value, "fix": self.fix}
+
+
+class DictionaryError(VeriGraphError):
+    """An object name or property that the dictionary D cannot resolve."""
+
+
+class MalformedGraphError(VeriGraphError):
+    """A scene graph that breaks a well-formedness rule; `problems` lists every one."""
+
+    def __init__(self, problems: list[Any]) -> None:
+        first = problems[0]
+        more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
+        super().__init__(f"{first.message}{more}", field=first.field, value=first.node,
+                         fix=first.fix)
+        self.problems = problems
+
+
+class PlanParseError(VeriGraphError):
+    """A plan line that does not parse; carries line and column (1-based)."""
+
+    def __init__(self, message: str, *, line: int, column: int, text: str,
+                 expected: str) -> None:
+        super().__init__(f"line {line}, column {column}: {message}", field=f"plan line {line}",
+                         value=text, fix=f"write it as {expected}")
+        self.line = line
+        self.column = column
+        self.text = text
+        self.expected = expected
+
+
+class InputFileError(VeriGraphError):
+    """A file that cannot be read or decoded (missing, bad JSON/YAML, wrong shape)."""
+
+
+class GoalError(VeriGraphError):
+    """A goal that cannot be interpreted (unknown predicate, bad graph)."""

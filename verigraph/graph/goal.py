@@ -1,0 +1,190 @@
+"""Goals and the goal check: a graph to match (fully or partially) or a named predicate.
+
+`diff` reports missing/extra nodes and edges. Tangram contacts are compared up to each
+piece's rotational symmetry (square: 4, parallelogram: 2), so a square turned by 90
+degrees still matches.
+"""
+
+from __future__ import annotations
+
+import itertools
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from verigraph.errors import GoalError
+from verigraph.graph.model import Edge, SceneGraph
+from verigraph.graph.state import WorldState
+
+PREDICATES = ("single_stack",)
+EdgeKey = tuple[str, str, str, int | None, int | None]
+
+
+class Goal(BaseModel):
+    """What the planner must reach: a goal graph, a predicate, or both."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    graph: SceneGraph | None = Field(default=None, description="goal scene graph")
+    partial: bool = Field(default=False, description="only the listed edges must hold")
+    predicate: Literal["single_stack"] | None = Field(
+        default=None, description="single_stack: every movable object in one tower")
+    instruction: str | None = Field(default=None, description="the instruction it came from")
+
+    @model_validator(mode="after")
+    def _needs_something(self) -> Goal:
+        if self.graph is None and self.predicate is None:
+            raise ValueError("a goal needs a 'graph' or a 'predicate'")
+        return self
+
+    @classmethod
+    def parse(cls, data: object) -> Goal:
+        """Accept a Goal object, or a bare scene graph (an exact goal)."""
+        if isinstance(data, Goal):
+            return data
+        if isinstance(data, SceneGraph):
+            return cls(graph=data)
+        if isinstance(data, dict) and "nodes" in data and "graph" not in data:
+            partial = bool(data.get("partial", False))
+            graph = {k: v for k, v in data.items() if k != "partial"}
+            return cls(graph=SceneGraph.model_validate(graph), partial=partial)
+        if isinstance(data, str):
+            if data in PREDICATES:
+                return cls(predicate=data)  # type: ignore[arg-type]
+            raise GoalError(f"unknown goal predicate '{data}'", field="goal", value=data,
+                            fix=f"use one of {', '.join(PREDICATES)} or a goal graph")
+        return cls.model_validate(data)
+
+
+class GraphDiff(BaseModel):
+    """How the current graph differs from the goal; `satisfied` when nothing is missing."""
+
+    satisfied: bool
+    missing_nodes: list[str] = Field(default_factory=list)
+    extra_nodes: list[str] = Field(default_factory=list)
+    missing_edges: list[str] = Field(default_factory=list, description="goal edges not holding")
+    extra_edges: list[str] = Field(default_factory=list,
+                                   description="current edges the goal does not have")
+    predicate: str | None = None
+    detail: str | None = None
+
+    def summary(self) -> str:
+        if self.satisfied:
+            return "goal reached"
+        parts = []
+        if self.missing_edges:
+            parts.append("missing: " + "; ".join(self.missing_edges))
+        if self.extra_edges:
+            parts.append("extra: " + "; ".join(self.extra_edges))
+        if self.missing_nodes:
+            parts.append("missing objects: " + ", ".join(self.missing_nodes))
+        if self.extra_nodes:
+            parts.append("extra objects: " + ", ".join(self.extra_nodes))
+        if self.detail:
+            parts.append(self.detail)
+        return "goal not reached: " + " | ".join(parts)
+
+
+def _sentence(key: EdgeKey) -> str:
+    return Edge(source=key[0], relation=key[1], target=key[2], source_side=key[3],
+                target_side=key[4]).sentence()
+
+
+def _symmetric_variants(keys: set[EdgeKey], symmetry: dict[str, tuple[int, int]]
+                        ) -> list[set[EdgeKey]]:
+    """Every relabelling of contact sides under the pieces' rotational symmetries."""
+    pieces = sorted(symmetry)
+    if not pieces:
+        return [keys]
+    variants = []
+    for shifts in itertools.product(*[range(symmetry[p][0]) for p in pieces]):
+        shift = dict(zip(pieces, shifts, strict=True))
+        out = set()
+        for s, rel, t, ss, ts in keys:
+            if rel == "touches":
+                if s in shift:
+                    ss = _rotate(ss, shift[s], *symmetry[s])
+                if t in shift:
+                    ts = _rotate(ts, shift[t], *symmetry[t])
+                out.add(Edge(source=s, relation=rel, target=t, source_side=ss,
+                             target_side=ts).key())
+            else:
+                out.add((s, rel, t, ss, ts))
+        variants.append(out)
+    return variants
+
+
+def _rotate(side: int | None, k: int, order: int, n_sides: int) -> int | None:
+    if side is None:
+        return None
+    return (side + k * (n_sides // order)) % n_sides
+
+
+def diff(current: WorldState, goal_graph: SceneGraph, *, partial: bool = False) -> GraphDiff:
+    """Missing and extra nodes and edges between the current state and a goal graph."""
+    cur_nodes = set(current.objects)
+    goal_nodes = set(goal_graph.node_ids())
+    cur_keys = {e.key() for e in current.edges()}
+    goal_keys = goal_graph.edge_keys()
+    symmetry = {o.id: (o.props.symmetry, o.props.sides or 1) for o in current.objects.values()
+                if o.props.symmetry > 1 and o.props.sides}
+    best: tuple[int, set[EdgeKey], set[EdgeKey]] | None = None
+    for variant in _symmetric_variants(cur_keys, symmetry):
+        missing = goal_keys - variant
+        extra = set() if partial else variant - goal_keys
+        score = len(missing) + len(extra)
+        if best is None or score < best[0]:
+            best = (score, missing, extra)
+        if score == 0:
+            break
+    assert best is not None
+    _, missing_keys, extra_keys = best
+    missing_nodes = sorted(goal_nodes - cur_nodes)
+    extra_nodes = [] if partial else sorted(cur_nodes - goal_nodes)
+    return GraphDiff(
+        satisfied=not (missing_keys or extra_keys or missing_nodes or extra_nodes),
+        missing_nodes=missing_nodes, extra_nodes=extra_nodes,
+        missing_edges=sorted(_sentence(k) for k in missing_keys),
+        extra_edges=sorted(_sentence(k) for k in extra_keys))
+
+
+def towers(state: WorldState) -> list[list[str]]:
+    """Stacks of movable objects standing on fixed objects, bottom first (linear chains)."""
+    result = []
+    for base in state.objects.values():
+        if base.props.movable:
+            continue
+        for obj in state.carried[base.id]:
+            tower = [obj]
+            while len(state.carried[tower[-1]]) == 1:
+                tower.append(next(iter(state.carried[tower[-1]])))
+            result.append(tower)
+    return result
+
+
+def single_stack(state: WorldState) -> GraphDiff:
+    """All movable objects form one tower on a fixed object."""
+    movable = [o.id for o in state.objects.values() if o.props.movable]
+    all_towers = towers(state)
+    tallest = max(all_towers, key=len, default=[])
+    ok = len(all_towers) == 1 and len(tallest) == len(movable)
+    outside = sorted(set(movable) - set(tallest))
+    detail = None if ok else (f"{len(all_towers)} stacks; not in the tallest stack "
+                              f"({' on '.join(reversed(tallest)) or 'none'}): {', '.join(outside)}")
+    return GraphDiff(satisfied=ok, predicate="single_stack", detail=detail)
+
+
+def check_goal(state: WorldState, goal: Goal) -> GraphDiff:
+    """Goal check used by execution, the validator and the server."""
+    result: GraphDiff | None = None
+    if goal.graph is not None:
+        result = diff(state, goal.graph, partial=goal.partial)
+    if goal.predicate == "single_stack":
+        pred = single_stack(state)
+        if result is None:
+            return pred
+        result = result.model_copy(update={
+            "satisfied": result.satisfied and pred.satisfied, "predicate": "single_stack",
+            "detail": pred.detail})
+    assert result is not None
+    return result

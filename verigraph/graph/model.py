@@ -1,0 +1,108 @@
+"""The scene graph G: objects as nodes, support/containment/contact relations as edges.
+
+An edge reads as a sentence, `source relation target` ("cup on book"): the target
+supports or contains the source. Tangram contacts carry the side index on each piece.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import networkx as nx
+from pydantic import BaseModel, ConfigDict, Field
+
+ID_PATTERN = r"^[A-Za-z0-9_][A-Za-z0-9_.\-]*$"
+
+
+class Node(BaseModel):
+    """One object in the scene: a unique id and a label from the dictionary D."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    id: str = Field(min_length=1, max_length=128, pattern=ID_PATTERN,
+                    description="unique in the graph, e.g. red_block or plate_2")
+    label: str = Field(min_length=1, max_length=128, description="a name from the dictionary D")
+    attrs: dict[str, Any] = Field(default_factory=dict,
+                                  description="colour, property overrides (capacity, movable...)")
+
+
+class Edge(BaseModel):
+    """`source relation target`; the target supports, contains or touches the source."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    source: str = Field(min_length=1, max_length=128)
+    relation: str = Field(min_length=1, max_length=32)
+    target: str = Field(min_length=1, max_length=128)
+    source_side: int | None = Field(default=None, ge=0, description="tangram: side of source")
+    target_side: int | None = Field(default=None, ge=0, description="tangram: side of target")
+
+    def sentence(self) -> str:
+        if self.relation == "touches":
+            return f"{self.source}[{self.source_side}] touches {self.target}[{self.target_side}]"
+        return f"{self.source} {self.relation} {self.target}"
+
+    def key(self) -> tuple[str, str, str, int | None, int | None]:
+        """Identity of the edge; tangram contacts are undirected, so they are sorted."""
+        if self.relation == "touches" and (self.target, self.target_side or 0) < (
+                self.source, self.source_side or 0):
+            return (self.target, "touches", self.source, self.target_side, self.source_side)
+        return (self.source, self.relation, self.target, self.source_side, self.target_side)
+
+
+class SceneGraph(BaseModel):
+    """A scene as JSON (DESIGN section 2). Checked by `check_well_formed` before use."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    nodes: list[Node] = Field(default_factory=list)
+    edges: list[Edge] = Field(default_factory=list)
+    dictionary: str | None = Field(
+        default=None, description="built-in dictionary name or a path; none = union of built-ins")
+
+    def node(self, node_id: str) -> Node | None:
+        return next((n for n in self.nodes if n.id == node_id), None)
+
+    def node_ids(self) -> list[str]:
+        return [n.id for n in self.nodes]
+
+    def edge_keys(self) -> set[tuple[str, str, str, int | None, int | None]]:
+        return {e.key() for e in self.edges}
+
+    def sentences(self) -> list[str]:
+        return [e.sentence() for e in self.edges]
+
+    def canonical(self) -> SceneGraph:
+        """Same graph with nodes and edges in a stable order: equal scenes dump equally."""
+        return SceneGraph(nodes=sorted(self.nodes, key=lambda n: n.id),
+                          edges=sorted(self.edges, key=lambda e: tuple(
+                              "" if v is None else str(v) for v in e.key())),
+                          dictionary=self.dictionary)
+
+    def to_networkx(self) -> nx.DiGraph:
+        """Directed graph with node attributes `label`, `attrs` and edge attribute `relation`.
+
+        Tangram contacts become one directed edge per contact (source -> target) with
+        `source_side` and `target_side` attributes.
+        """
+        g = nx.DiGraph(dictionary=self.dictionary)
+        for n in self.nodes:
+            g.add_node(n.id, label=n.label, attrs=dict(n.attrs))
+        for e in self.edges:
+            data: dict[str, Any] = {"relation": e.relation}
+            if e.source_side is not None:
+                data["source_side"] = e.source_side
+            if e.target_side is not None:
+                data["target_side"] = e.target_side
+            g.add_edge(e.source, e.target, **data)
+        return g
+
+    @classmethod
+    def from_networkx(cls, g: nx.DiGraph) -> SceneGraph:
+        """Inverse of `to_networkx`; a missing `label` falls back to the node id."""
+        nodes = [Node(id=str(n), label=str(d.get("label", n)), attrs=dict(d.get("attrs", {})))
+                 for n, d in g.nodes(data=True)]
+        edges = [Edge(source=str(u), target=str(v), relation=str(d.get("relation", "on")),
+                      source_side=d.get("source_side"), target_side=d.get("target_side"))
+                 for u, v, d in g.edges(data=True)]
+        return cls(nodes=nodes, edges=edges, dictionary=g.graph.get("dictionary"))

@@ -1,0 +1,160 @@
+"""WorldState: the indexed, mutable form of a scene graph that the validator works on.
+
+`SceneGraph` is the boundary format (JSON, pydantic); `WorldState` is what actions are
+checked against and applied to. It indexes each object's support and what each object
+carries, so every constraint check costs O(degree) rather than O(graph).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from verigraph.errors import MalformedGraphError
+from verigraph.graph.dictionary import Dictionary, ObjectProperties, load_dictionary
+from verigraph.graph.model import Edge, Node, SceneGraph
+from verigraph.graph.wellformed import check_well_formed, resolve_properties
+
+Side = tuple[str, int]
+
+
+@dataclass(slots=True)
+class ObjectInfo:
+    """One object with its canonical label and resolved properties."""
+
+    id: str
+    label: str
+    props: ObjectProperties
+    attrs: dict[str, object]
+
+
+class WorldState:
+    """Objects, supports (`obj -> (relation, target)`), carried sets and tangram contacts."""
+
+    __slots__ = ("dictionary", "objects", "support", "carried", "contacts", "_fixed_surfaces")
+
+    def __init__(self, dictionary: Dictionary) -> None:
+        self.dictionary = dictionary
+        self.objects: dict[str, ObjectInfo] = {}
+        self.support: dict[str, tuple[str, str]] = {}
+        self.carried: dict[str, dict[str, str]] = {}
+        self.contacts: dict[Side, Side] = {}
+        self._fixed_surfaces: list[str] = []
+
+    @classmethod
+    def from_graph(cls, graph: SceneGraph, dictionary: Dictionary | str | None = None, *,
+                   partial: bool = False) -> WorldState:
+        """Check the graph and index it; raises MalformedGraphError listing every problem."""
+        d = load_dictionary(dictionary if dictionary is not None else graph.dictionary)
+        problems = check_well_formed(graph, d, partial=partial)
+        if problems:
+            raise MalformedGraphError(problems)
+        state = cls(d)
+        resolved = resolve_properties(graph, d, [])
+        for node in graph.nodes:
+            label, props = resolved[node.id]
+            state.objects[node.id] = ObjectInfo(node.id, label, props, dict(node.attrs))
+            state.carried[node.id] = {}
+            if props.surface and not props.movable:
+                state._fixed_surfaces.append(node.id)
+        for edge in graph.edges:
+            if edge.relation == "touches":
+                a: Side = (edge.source, edge.source_side or 0)
+                b: Side = (edge.target, edge.target_side or 0)
+                state.contacts[a] = b
+                state.contacts[b] = a
+            else:
+                state.support[edge.source] = (edge.relation, edge.target)
+                state.carried[edge.target][edge.source] = edge.relation
+        return state
+
+    def copy(self) -> WorldState:
+        """Independent copy (objects are shared: they never change)."""
+        other = WorldState(self.dictionary)
+        other.objects = self.objects
+        other.support = dict(self.support)
+        other.carried = {k: dict(v) for k, v in self.carried.items()}
+        other.contacts = dict(self.contacts)
+        other._fixed_surfaces = self._fixed_surfaces
+        return other
+
+    # -- queries ---------------------------------------------------------------------------
+    @property
+    def fixed_surfaces(self) -> list[str]:
+        return self._fixed_surfaces
+
+    def is_clear(self, obj: str) -> bool:
+        return not self.carried[obj]
+
+    def has_room(self, target: str) -> bool:
+        cap = self.objects[target].props.capacity
+        return cap is None or len(self.carried[target]) < cap
+
+    def supports_chain(self, obj: str) -> list[str]:
+        """Objects below `obj`, nearest first (O(stack height))."""
+        chain = []
+        current = self.support.get(obj)
+        while current is not None:
+            chain.append(current[1])
+            current = self.support.get(current[1])
+        return chain
+
+    def free_place_for(self, obj: str, exclude: set[str] | frozenset[str] = frozenset()
+                       ) -> str | None:
+        """A fixed surface with room for `obj`, used in suggestions (O(fixed surfaces))."""
+        for surface in self._fixed_surfaces:
+            if surface != obj and surface not in exclude and self.has_room(surface):
+                return surface
+        return None
+
+    def side_count(self, obj: str) -> int | None:
+        return self.objects[obj].props.sides
+
+    # -- edits -----------------------------------------------------------------------------
+    def set_support(self, obj: str, relation: str, target: str) -> Edge | None:
+        """Replace obj's support edge; returns the removed edge (or None)."""
+        old = self.support.get(obj)
+        removed = None
+        if old is not None:
+            del self.carried[old[1]][obj]
+            removed = Edge(source=obj, relation=old[0], target=old[1])
+        self.support[obj] = (relation, target)
+        self.carried[target][obj] = relation
+        return removed
+
+    def detach_contacts(self, obj: str) -> list[Edge]:
+        """Remove every tangram contact of `obj` (it is being moved); returns them."""
+        removed = []
+        n_sides = self.side_count(obj) or 0
+        for side in range(n_sides):
+            other = self.contacts.pop((obj, side), None)
+            if other is not None:
+                self.contacts.pop(other, None)
+                removed.append(Edge(source=obj, relation="touches", target=other[0],
+                                    source_side=side, target_side=other[1]))
+        return removed
+
+    def add_contact(self, a: Side, b: Side) -> Edge:
+        self.contacts[a] = b
+        self.contacts[b] = a
+        return Edge(source=a[0], relation="touches", target=b[0], source_side=a[1],
+                    target_side=b[1])
+
+    # -- export ----------------------------------------------------------------------------
+    def edges(self) -> list[Edge]:
+        edges = [Edge(source=o, relation=r, target=t) for o, (r, t) in self.support.items()]
+        seen: set[Side] = set()
+        for a, b in self.contacts.items():
+            if a in seen:
+                continue
+            seen.add(a)
+            seen.add(b)
+            edges.append(Edge(source=a[0], relation="touches", target=b[0], source_side=a[1],
+                              target_side=b[1]))
+        return edges
+
+    def to_graph(self) -> SceneGraph:
+        """Back to the boundary format (canonical labels, stable order)."""
+        nodes = [Node(id=o.id, label=o.label, attrs=dict(o.attrs)) for o in self.objects.values()]
+        name = self.dictionary.name
+        return SceneGraph(nodes=nodes, edges=self.edges(),
+                          dictionary=None if name == "all" else name).canonical()

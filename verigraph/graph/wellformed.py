@@ -1,0 +1,170 @@
+"""Well-formedness rules for scene graphs, each reported with the node it concerns.
+
+A tabletop graph is well formed when ids are unique, labels and relations are known,
+every movable object has exactly one support, supports exist and suit the relation
+(`on` needs a surface, `in` a container), no capacity is exceeded and there is no
+cycle. A partial graph (a goal listing only some edges) skips the completeness rule.
+"""
+
+from __future__ import annotations
+
+from collections import Counter, defaultdict
+
+import networkx as nx
+from pydantic import BaseModel
+
+from verigraph.graph.dictionary import Dictionary, ObjectProperties
+from verigraph.graph.model import Edge, SceneGraph
+
+SUPPORT_RELATIONS = ("on", "in")
+
+
+class GraphProblem(BaseModel):
+    """One broken rule: which rule, which node, what is wrong and how to fix it."""
+
+    rule: str
+    node: str | None
+    field: str
+    message: str
+    fix: str
+
+
+def resolve_properties(graph: SceneGraph, dictionary: Dictionary,
+                       problems: list[GraphProblem]) -> dict[str, tuple[str, ObjectProperties]]:
+    """Map node id -> (canonical label, properties), recording unknown labels as problems."""
+    resolved: dict[str, tuple[str, ObjectProperties]] = {}
+    for i, node in enumerate(graph.nodes):
+        label = dictionary.resolve(node.label)
+        if label is None:
+            near = dictionary.nearest(node.label)
+            problems.append(GraphProblem(
+                rule="unknown_label", node=node.id, field=f"nodes[{i}].label",
+                message=f"node '{node.id}' has label '{node.label}', which is not in the "
+                        f"{dictionary.name} dictionary",
+                fix=f"use a known label such as {', '.join(near or dictionary.names[:5])}"))
+            continue
+        try:
+            props = dictionary.objects[label].overridden(node.attrs)
+        except Exception as exc:  # DictionaryError from a bad override
+            problems.append(GraphProblem(rule="bad_attribute", node=node.id,
+                                         field=f"nodes[{i}].attrs", message=str(exc),
+                                         fix="give property overrides their documented type"))
+            continue
+        resolved.setdefault(node.id, (label, props))
+    return resolved
+
+
+def check_well_formed(graph: SceneGraph, dictionary: Dictionary, *,
+                      partial: bool = False) -> list[GraphProblem]:
+    """Every rule the graph breaks (empty list = well formed). Runs in O(nodes + edges)."""
+    problems: list[GraphProblem] = []
+    counts = Counter(n.id for n in graph.nodes)
+    for node_id, count in counts.items():
+        if count > 1:
+            problems.append(GraphProblem(
+                rule="duplicate_id", node=node_id, field="nodes",
+                message=f"node id '{node_id}' is used {count} times",
+                fix=f"give each object its own id, e.g. {node_id}_2"))
+    resolved = resolve_properties(graph, dictionary, problems)
+    ids = set(counts)
+    supports: dict[str, list[int]] = defaultdict(list)
+    carried: Counter[str] = Counter()
+    support_graph = nx.DiGraph()
+    for i, edge in enumerate(graph.edges):
+        where = f"edges[{i}]"
+        if edge.relation not in dictionary.relations:
+            problems.append(GraphProblem(
+                rule="unknown_relation", node=edge.source, field=f"{where}.relation",
+                message=f"relation '{edge.relation}' ({edge.sentence()}) is not in R = "
+                        f"{{{', '.join(dictionary.relations)}}}",
+                fix=f"use one of {', '.join(dictionary.relations)}"))
+            continue
+        missing = [x for x in (edge.source, edge.target) if x not in ids]
+        if missing:
+            problems.append(GraphProblem(
+                rule="dangling_edge", node=missing[0], field=where,
+                message=f"edge '{edge.sentence()}' names '{missing[0]}', which is not a node",
+                fix=f"add a node with id '{missing[0]}' or remove the edge"))
+            continue
+        if edge.source == edge.target:
+            problems.append(GraphProblem(
+                rule="self_loop", node=edge.source, field=where,
+                message=f"edge '{edge.sentence()}' relates '{edge.source}' to itself",
+                fix="remove the edge"))
+            continue
+        if edge.relation == "touches":
+            problems.extend(_check_sides(edge, where, resolved))
+            continue
+        supports[edge.source].append(i)
+        carried[edge.target] += 1
+        support_graph.add_edge(edge.source, edge.target)
+        target = resolved.get(edge.target)
+        if target is None:
+            continue
+        props = target[1]
+        if edge.relation == "on" and not props.surface:
+            problems.append(GraphProblem(
+                rule="target_not_surface", node=edge.target, field=where,
+                message=f"'{edge.sentence()}': {edge.target} ({target[0]}) is not a surface",
+                fix=f"use '{edge.source} in {edge.target}'" if props.container else
+                    f"put {edge.source} on a surface"))
+        if edge.relation == "in" and not props.container:
+            problems.append(GraphProblem(
+                rule="target_not_container", node=edge.target, field=where,
+                message=f"'{edge.sentence()}': {edge.target} ({target[0]}) is not a container",
+                fix=f"use '{edge.source} on {edge.target}'" if props.surface else
+                    f"put {edge.source} in a container"))
+    for node_id, (label, props) in resolved.items():
+        n_supports = len(supports.get(node_id, ()))
+        if n_supports > 1:
+            problems.append(GraphProblem(
+                rule="multiple_supports", node=node_id, field="edges",
+                message=f"'{node_id}' rests on or in {n_supports} objects; an object has "
+                        "exactly one support",
+                fix=f"keep one of the edges from '{node_id}'"))
+        elif n_supports == 0 and props.movable and not partial and props.sides is None:
+            problems.append(GraphProblem(
+                rule="missing_support", node=node_id, field="edges",
+                message=f"movable object '{node_id}' ({label}) has no support edge",
+                fix=f"add an edge such as {{source: {node_id}, relation: on, target: <surface>}}"))
+        if props.capacity is not None and carried[node_id] > props.capacity and (
+                props.surface or props.container):
+            problems.append(GraphProblem(
+                rule="over_capacity", node=node_id, field="edges",
+                message=f"'{node_id}' carries {carried[node_id]} objects but its capacity is "
+                        f"{props.capacity}",
+                fix=f"move objects off '{node_id}' or raise attrs.capacity"))
+    if support_graph.number_of_edges():
+        try:
+            cycle = nx.find_cycle(support_graph)
+            first = cycle[0][0]
+            loop = " -> ".join([u for u, _ in cycle] + [first])
+            problems.append(GraphProblem(
+                rule="cycle", node=first, field="edges",
+                message=f"support edges form a cycle: {loop}",
+                fix=f"remove one edge of the cycle, e.g. the one from '{first}'"))
+        except nx.NetworkXNoCycle:
+            pass
+    return problems
+
+
+def _check_sides(edge: Edge, where: str, resolved: dict[str, tuple[str, ObjectProperties]]
+                 ) -> list[GraphProblem]:
+    problems = []
+    for node_id, side, name in ((edge.source, edge.source_side, "source_side"),
+                                (edge.target, edge.target_side, "target_side")):
+        info = resolved.get(node_id)
+        if info is None:
+            continue
+        n_sides = info[1].sides
+        if n_sides is None:
+            problems.append(GraphProblem(
+                rule="unknown_side", node=node_id, field=f"{where}.relation",
+                message=f"'{node_id}' ({info[0]}) is not a tangram piece and has no sides",
+                fix="use 'touches' only between tangram pieces"))
+        elif side is None or not 0 <= side < n_sides:
+            problems.append(GraphProblem(
+                rule="unknown_side", node=node_id, field=f"{where}.{name}",
+                message=f"'{edge.sentence()}': {node_id} has sides 0..{n_sides - 1}, got {side}",
+                fix=f"give {name} between 0 and {n_sides - 1}"))
+    return problems
