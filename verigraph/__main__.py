@@ -1,0 +1,5 @@
+import sys
+
+from verigraph.cli import main
+
+sys.exit(main())
