@@ -47,9 +47,12 @@ class MalformedGraphError(VeriGraphError):
     def __init__(self, problems: list[Any]) -> None:
         first = problems[0]
         more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
-        super().__init__(f"{first.message}{more}", field=first.field, value=first.node,
-                         fix=first.fix)
+        super().__init__(f"malformed scene graph: [{first.rule}] {first.message}{more}",
+                         field=first.field, value=first.node, fix=first.fix)
         self.problems = problems
+
+    def to_dict(self) -> dict[str, Any]:
+        return {**super().to_dict(), "problems": [p.model_dump() for p in self.problems]}
 
 
 class PlanParseError(VeriGraphError):

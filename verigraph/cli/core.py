@@ -71,6 +71,8 @@ def _emit_error(exc: VeriGraphError, as_json: bool) -> int:
     if as_json:
         print(json.dumps({"ok": False, **exc.to_dict()}))
     print(f"error: {exc}", file=sys.stderr)
+    for problem in getattr(exc, "problems", [])[1:]:
+        print(f"  also [{problem.rule}] {problem.message} (fix: {problem.fix})", file=sys.stderr)
     return EXIT_BAD_INPUT
 
 

@@ -139,6 +139,11 @@ def ground_plan(state: WorldState, actions: Sequence[AnyAction]) -> list[tuple[s
         if not isinstance(action, MoveAction):
             continue
         x, r2, to = action.object, action.relation, action.target
+        if x not in support:
+            # A fixed object has no support: ground it "from itself", which never holds.
+            out.append((f"move-on-to-{r2}", [names[x], names[x], names[to], "c0", "c0",
+                                             f"c{load[to]}", f"c{load[to] + 1}"]))
+            continue
         r1, frm = support[x]
         if frm == to and r1 != r2:
             out.append((f"reseat-{r1}-to-{r2}", [names[x], names[to]]))
