@@ -2,9 +2,9 @@
 
 import pytest
 
+from scenes import graph
 from verigraph.actions import AlignAction, MoveAction, validate_action
 from verigraph.graph import Edge, Node, SceneGraph, WorldState
-from scenes import graph
 
 
 def kitchen_table() -> WorldState:

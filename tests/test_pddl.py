@@ -3,17 +3,16 @@
 import random
 
 import pytest
+import unified_planning as up  # noqa: E402
+from unified_planning.io import PDDLReader  # noqa: E402
+from unified_planning.shortcuts import PlanValidator, get_environment  # noqa: E402
 
+from scenes import random_blocks
 from verigraph.actions import MoveAction, validate_plan
 from verigraph.errors import GoalError
 from verigraph.graph import Goal, WorldState
 from verigraph.solver import solve
 from verigraph.solver.pddl import domain_pddl, ground_plan, problem_pddl
-from scenes import random_blocks
-
-import unified_planning as up  # noqa: E402
-from unified_planning.io import PDDLReader  # noqa: E402
-from unified_planning.shortcuts import PlanValidator, get_environment  # noqa: E402
 
 get_environment().credits_stream = None
 

@@ -6,11 +6,11 @@ from collections import deque
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from scenes import random_blocks, random_tableware, raw_move, scene_and_seed
 from verigraph.actions import MoveAction, apply_action, validate_action, validate_plan
 from verigraph.graph import Goal, WorldState, check_well_formed
 from verigraph.solver import solve
 from verigraph.solver.search import _Problem
-from scenes import random_blocks, random_tableware, raw_move, scene_and_seed
 
 SETTINGS = settings(max_examples=150, deadline=None,
                     suppress_health_check=[HealthCheck.too_slow])

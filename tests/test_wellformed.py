@@ -2,10 +2,10 @@
 
 import pytest
 
+from scenes import graph
 from verigraph.errors import MalformedGraphError
 from verigraph.graph import Edge, Node, SceneGraph, WorldState, builtin_dictionary
 from verigraph.graph.wellformed import check_well_formed
-from scenes import graph
 
 TW = builtin_dictionary("tableware")
 

@@ -87,7 +87,8 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
     else:
         graph = scene if isinstance(scene, SceneGraph) else scene_from_data(scene)
         state = WorldState.from_graph(graph)
-    actions = plan if _is_parsed(plan) else parse_plan(plan)  # type: ignore[arg-type]
+    actions: list[AnyAction] = (list(plan) if isinstance(plan, list) and _is_parsed(plan)
+                                else parse_plan(plan))
     goal_model = None if goal is None else goal_from_data(goal)
     steps: list[StepReport] = []
     violations: list[Violation] = []
@@ -108,7 +109,7 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
                                                 text=action.text(), violation=violation,
                                                 edit=None))
         if not all_errors:
-            not_checked = sum(1 for a in actions[index:] if not isinstance(a, DoneAction))
+            not_checked = sum(not isinstance(a, DoneAction) for a in actions[index:])
             break
     goal_diff = check_goal(state, goal_model) if goal_model is not None else None
     plan_valid = not violations

@@ -100,9 +100,10 @@ class Dictionary(BaseModel):
         canonical = self.resolve(name)
         if canonical is not None:
             return canonical
+        examples = self.nearest(name) or self.names[:5]
         raise DictionaryError(
             f"'{name}' is not in the {self.name} dictionary", field=field, value=name,
-            fix=f"use a known name such as {', '.join(self.nearest(name)) or ', '.join(self.names[:5])}")
+            fix=f"use a known name such as {', '.join(examples)}")
 
     def nearest(self, name: str, n: int = 3) -> list[str]:
         """Closest canonical names to an unknown one, for suggestions."""
