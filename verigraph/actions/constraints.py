@@ -49,8 +49,8 @@ def check_known_objects(state: WorldState, a: MoveAction) -> Violation | None:
 
 
 def check_relation(state: WorldState, a: MoveAction) -> Violation | None:
-    allowed = [r for r in state.dictionary.relations if r in MOVE_RELATIONS]
-    if a.relation not in allowed:
+    if a.relation not in state.move_relations:
+        allowed = state.move_relations
         fix = ("tangram pieces are placed with align(piece, side, target, target_side)"
                if a.relation == "touches" else f"use one of: {', '.join(allowed)}")
         return _violation(a, "unknown_relation",
@@ -82,6 +82,8 @@ def check_already_there(state: WorldState, a: MoveAction) -> Violation | None:
 
 
 def check_cycle(state: WorldState, a: MoveAction) -> Violation | None:
+    if not state.carried[a.object]:
+        return None  # nothing rests on the object, so nothing below the target can be it
     chain = state.supports_chain(a.target)
     if a.object in chain:
         above = chain[: chain.index(a.object)]

@@ -30,10 +30,12 @@ class ObjectInfo:
 class WorldState:
     """Objects, supports (`obj -> (relation, target)`), carried sets and tangram contacts."""
 
-    __slots__ = ("dictionary", "objects", "support", "carried", "contacts", "_fixed_surfaces")
+    __slots__ = ("dictionary", "move_relations", "objects", "support", "carried", "contacts",
+                 "_fixed_surfaces")
 
     def __init__(self, dictionary: Dictionary) -> None:
         self.dictionary = dictionary
+        self.move_relations = tuple(r for r in dictionary.relations if r in ("on", "in"))
         self.objects: dict[str, ObjectInfo] = {}
         self.support: dict[str, tuple[str, str]] = {}
         self.carried: dict[str, dict[str, str]] = {}
@@ -69,7 +71,9 @@ class WorldState:
 
     def copy(self) -> WorldState:
         """Independent copy (objects are shared: they never change)."""
-        other = WorldState(self.dictionary)
+        other = WorldState.__new__(WorldState)
+        other.dictionary = self.dictionary
+        other.move_relations = self.move_relations
         other.objects = self.objects
         other.support = dict(self.support)
         other.carried = {k: dict(v) for k, v in self.carried.items()}
@@ -110,16 +114,13 @@ class WorldState:
         return self.objects[obj].props.sides
 
     # -- edits -----------------------------------------------------------------------------
-    def set_support(self, obj: str, relation: str, target: str) -> Edge | None:
-        """Replace obj's support edge; returns the removed edge (or None)."""
+    def set_support(self, obj: str, relation: str, target: str) -> None:
+        """Replace obj's support edge (O(1))."""
         old = self.support.get(obj)
-        removed = None
         if old is not None:
             del self.carried[old[1]][obj]
-            removed = Edge(source=obj, relation=old[0], target=old[1])
         self.support[obj] = (relation, target)
         self.carried[target][obj] = relation
-        return removed
 
     def detach_contacts(self, obj: str) -> list[Edge]:
         """Remove every tangram contact of `obj` (it is being moved); returns them."""
