@@ -99,3 +99,8 @@ def test_unreachable_goal_exits_1(tmp_path):
     r = run("solve", "--scene", str(EXAMPLES / "cup_on_book.json"), "--goal", "g.json",
             cwd=tmp_path)
     assert r.returncode == 1 and "fixed" in r.stdout
+
+
+def test_bench_lists_benchmarks_for_an_unknown_name():
+    r = run("bench", "no_such_benchmark")
+    assert r.returncode == 2 and "validate" in r.stderr
