@@ -1,0 +1,66 @@
+"""`verigraph serve`: the MCP server over stdio (default) or streamable HTTP."""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import os
+import sys
+from typing import Any
+
+from verigraph.errors import VeriGraphError
+
+TOKEN_ENV = "VERIGRAPH_TOKEN"
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(
+        "serve", help="run the MCP server (stdio or streamable HTTP)",
+        description="Serve the VeriGraph tools over MCP. stdio is for clients that start "
+                    "the server themselves (Claude Desktop, Claude Code, VS Code, Cursor); "
+                    "http serves stateless streamable HTTP on loopback by default.")
+    p.add_argument("--transport", choices=("stdio", "http"), default="stdio")
+    p.add_argument("--host", default="127.0.0.1",
+                   help="HTTP bind address (default loopback; other addresses need --token)")
+    p.add_argument("--port", type=int, default=8000, help="HTTP port (default 8000)")
+    p.add_argument("--token", default=None,
+                   help=f"require 'Authorization: Bearer TOKEN' on HTTP (default: ${TOKEN_ENV})")
+    p.add_argument("--allow-host", action="append", default=[], metavar="NAME",
+                   help="extra Host/Origin name accepted over HTTP (repeatable)")
+    p.add_argument("--max-body-mib", type=float, default=16.0,
+                   help="largest HTTP request body in MiB (default 16)")
+    p.add_argument("--max-episodes", type=int, default=256,
+                   help="open episodes kept at once (default 256)")
+    p.add_argument("--disable-solve", action="store_true", help="turn the solve tool off")
+    p.add_argument("--log-level", default="WARNING",
+                   choices=("DEBUG", "INFO", "WARNING", "ERROR"), help="stderr log level")
+    p.set_defaults(handler=run_serve)
+
+
+def run_serve(args: argparse.Namespace) -> int:
+    logging.basicConfig(stream=sys.stderr, level=args.log_level,
+                        format="%(asctime)s %(levelname)s %(name)s: %(message)s")
+    from verigraph.server.app import build_server
+    from verigraph.server.http import HttpOptions, serve_http
+    from verigraph.tools.context import ToolConfig
+
+    token = args.token or os.environ.get(TOKEN_ENV) or None
+    if args.transport == "http" and args.host not in ("127.0.0.1", "localhost", "::1") \
+            and not token:
+        raise VeriGraphError(f"refusing to serve on {args.host} without a token",
+                             field="--host", value=args.host,
+                             fix=f"pass --token (or set {TOKEN_ENV}), or bind to 127.0.0.1")
+    if args.max_episodes < 1 or not 0 < args.max_body_mib <= 1024:
+        raise VeriGraphError("limits out of range", field="--max-episodes/--max-body-mib",
+                             value=None, fix="use --max-episodes >= 1 and 0 < --max-body-mib "
+                                             "<= 1024")
+    config = ToolConfig(max_episodes=args.max_episodes, enable_solve=not args.disable_solve)
+    server = build_server(config=config, log_level=args.log_level)
+    if args.transport == "stdio":
+        server.run("stdio")
+        return 0
+    options = HttpOptions(host=args.host, port=args.port, token=token,
+                          max_body_bytes=int(args.max_body_mib * 1024 * 1024),
+                          allowed_hosts=tuple(args.allow_host))
+    serve_http(server, options, log_level=args.log_level)
+    return 0

@@ -1,0 +1,43 @@
+"""The VeriGraph MCP server: tools, resources and prompts over one Toolbox."""
+
+from __future__ import annotations
+
+from typing import Any, Literal
+
+from mcp.server.mcpserver import MCPServer
+
+from verigraph import __version__
+from verigraph.server.prompts import register_prompts
+from verigraph.server.resources import register_resources
+from verigraph.server.tools import ArgumentGate, register_tools
+from verigraph.tools.context import ToolConfig
+from verigraph.tools.registry import Toolbox
+
+INSTRUCTIONS = """\
+VeriGraph checks robot manipulation plans against a scene graph before anything moves.
+Edges read `source relation target` ("cup on book": the book carries the cup).
+1. load_scene (scene_id, graph or image) returns an episode_id; pass it to every call.
+2. Propose at most k actions at a time (move(object, relation, target), align(...),
+   done). validate_action checks one without changing anything; execute_actions runs
+   them until the first violation and returns feedback with a concrete fix.
+3. After t consecutive failed execute_actions calls the episode stops. Call end_episode
+   (the end token) for the verdict. Images: render_scene; to describe a photo with
+   your own vision model use get_scene_image, then submit_scene_graph.
+"""
+
+LogLevel = Literal["DEBUG", "INFO", "WARNING", "ERROR", "CRITICAL"]
+
+
+def build_server(toolbox: Toolbox | None = None, *, config: ToolConfig | None = None,
+                 log_level: LogLevel = "WARNING") -> MCPServer[Any]:
+    """An MCPServer whose tools all run on `toolbox` (a fresh one by default)."""
+    toolbox = toolbox or Toolbox(config=config)
+    server: MCPServer[Any] = MCPServer(
+        "verigraph", title="VeriGraph", version=__version__, instructions=INSTRUCTIONS,
+        description="Scene-graph verifier for LLM robot planning",
+        website_url="https://github.com/verigraph/verigraph",
+        middleware=[ArgumentGate()], log_level=log_level)
+    register_tools(server, toolbox)
+    register_resources(server, toolbox)
+    register_prompts(server, toolbox)
+    return server

@@ -1,0 +1,108 @@
+"""MCP tools as thin wrappers over verigraph.tools: one registration per ToolSpec.
+
+Each wrapper's signature is generated from the tool's pydantic input model, so the
+wire inputSchema and the library's model cannot drift apart. The body validates into
+that model, runs the tool, and returns structured content plus a one-line summary
+(image tools: image content only).
+"""
+
+from __future__ import annotations
+
+import base64
+import inspect
+from collections.abc import Callable
+from typing import Annotated, Any
+
+from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
+from mcp.server.mcpserver import MCPServer
+from mcp.server.mcpserver.exceptions import ToolError
+from mcp.types import CallToolResult, ImageContent, TextContent, ToolAnnotations
+from pydantic import BaseModel, Field, ValidationError
+
+from verigraph.errors import VeriGraphError
+from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
+from verigraph.tools.registry import parse_arguments as parse_tool_arguments
+from verigraph.tools.scenes import ImageResult
+
+
+def to_result(spec: ToolSpec, result: BaseModel | ImageResult) -> CallToolResult:
+    """Structured content + summary text, or image content for the image-only tools."""
+    if isinstance(result, ImageResult):
+        content: list[ImageContent | TextContent] = [ImageContent(
+            type="image", data=base64.b64encode(result.png).decode("ascii"),
+            mime_type=result.mime_type)]
+        if result.text:
+            content.append(TextContent(type="text", text=result.text))
+        return CallToolResult(content=list(content))
+    return CallToolResult(content=[TextContent(type="text", text=spec.summary(result))],
+                          structured_content=result.model_dump(mode="json"))
+
+
+def _parameters(model: type[BaseModel]) -> list[inspect.Parameter]:
+    params = []
+    for name, info in model.model_fields.items():
+        docs = Field(description=info.description, examples=info.examples)
+        annotation: Any = Annotated[(info.annotation, *info.metadata, docs)]
+        default = (inspect.Parameter.empty if info.is_required()
+                   else info.get_default(call_default_factory=True))
+        params.append(inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY,
+                                        annotation=annotation, default=default))
+    return params
+
+
+def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., CallToolResult]:
+    """A function whose signature mirrors `spec.input_model` and which runs the tool."""
+
+    def call(**arguments: Any) -> CallToolResult:
+        try:
+            params = spec.input_model.model_validate(arguments)
+        except ValidationError as exc:
+            raise ToolError(str(argument_error(spec, exc))) from None
+        try:
+            return to_result(spec, toolbox.run(spec, params))
+        except VeriGraphError as exc:
+            raise ToolError(str(exc)) from None
+
+    returns: Any = (Annotated[CallToolResult, spec.output_model] if spec.output_model
+                    else CallToolResult)
+    call.__signature__ = inspect.Signature(  # type: ignore[attr-defined]
+        _parameters(spec.input_model), return_annotation=returns)
+    call.__name__ = spec.name
+    call.__qualname__ = spec.name
+    call.__doc__ = spec.description
+    return call
+
+
+def register_tools(server: MCPServer[Any], toolbox: Toolbox) -> None:
+    """Add every tool in TOOL_SPECS order (the order tools/list reports)."""
+    for spec in TOOL_SPECS:
+        server.add_tool(
+            tool_function(spec, toolbox), name=spec.name, title=spec.title,
+            description=spec.description,
+            annotations=ToolAnnotations(
+                title=spec.title, read_only_hint=spec.read_only,
+                destructive_hint=spec.destructive, idempotent_hint=spec.idempotent,
+                open_world_hint=False))
+
+
+class ArgumentGate:
+    """Server middleware: check tools/call arguments against our models before the SDK.
+
+    The SDK ignores unknown argument names and words type errors for Python readers;
+    this gate rejects misspelt arguments and answers in terms of fields and fixes.
+    """
+
+    async def __call__(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
+                       ) -> HandlerResult:
+        if ctx.method == "tools/call" and ctx.params is not None:
+            name = ctx.params.get("name")
+            spec = TOOLS.get(name) if isinstance(name, str) else None
+            if spec is not None:
+                try:
+                    parse_tool_arguments(spec, ctx.params.get("arguments"))
+                except VeriGraphError as exc:
+                    return CallToolResult(
+                        content=[TextContent(type="text", text=f"Error executing tool "
+                                                               f"{spec.name}: {exc}")],
+                        is_error=True)
+        return await call_next(ctx)

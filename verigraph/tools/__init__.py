@@ -1,0 +1,28 @@
+"""Transport-free tool functions: the one implementation behind the MCP server, the CLI
+and the library.
+
+>>> box = Toolbox()
+>>> state = box.call("load_scene", {"scene_id": "cup_on_book"})
+>>> box.call("validate_action", {"episode_id": state.episode_id,
+...                              "action": "move(book, on, shelf)"}).violation.constraint
+'object_not_clear'
+"""
+
+from verigraph.tools.context import ToolConfig, ToolContext
+from verigraph.tools.errors import (
+    EpisodeLimitError,
+    EpisodeStateError,
+    FeatureUnavailableError,
+    InvalidArgumentsError,
+    ToolArgumentError,
+    UnknownEpisodeError,
+)
+from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec
+from verigraph.tools.scenes import ImageResult
+from verigraph.tools.store import Episode, EpisodeStore, TraceEntry
+
+__all__ = [
+    "TOOLS", "TOOL_SPECS", "Episode", "EpisodeLimitError", "EpisodeStateError", "EpisodeStore",
+    "FeatureUnavailableError", "ImageResult", "InvalidArgumentsError", "ToolArgumentError",
+    "ToolConfig", "ToolContext", "ToolSpec", "Toolbox", "TraceEntry", "UnknownEpisodeError",
+]

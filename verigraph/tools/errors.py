@@ -1,0 +1,42 @@
+"""Errors the tool layer adds to the core ones: episodes, limits and missing subsystems.
+
+They are VeriGraphError subclasses, so every transport reports them the same way:
+the field that was wrong, the value seen, and what to do instead.
+"""
+
+from __future__ import annotations
+
+from verigraph.errors import VeriGraphError
+
+
+class ToolArgumentError(VeriGraphError):
+    """Arguments that do not match a tool's input model (wrong type, unknown name...)."""
+
+
+class UnknownEpisodeError(VeriGraphError):
+    """An episode id that is not (or no longer) in the store."""
+
+    def __init__(self, episode_id: str) -> None:
+        shown = episode_id if len(episode_id) <= 48 else episode_id[:45] + "..."
+        super().__init__(f"no open episode with id '{shown}'", field="episode_id", value=shown,
+                         fix="pass the episode_id returned by load_scene; ended or expired "
+                             "episodes are gone, so call load_scene again to start a new one")
+
+
+class EpisodeLimitError(VeriGraphError):
+    """The store already holds its maximum number of open episodes."""
+
+
+class EpisodeStateError(VeriGraphError):
+    """A call that the episode's current phase does not allow (e.g. executing after t)."""
+
+
+class FeatureUnavailableError(VeriGraphError):
+    """A subsystem (simulator, perception, solver) that is not installed or is disabled."""
+
+
+class InvalidArgumentsError(ToolArgumentError):
+    """Several argument problems at once; the message already names each field."""
+
+    def __str__(self) -> str:
+        return self.message if not self.fix else f"{self.message} (fix: {self.fix})"

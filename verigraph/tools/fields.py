@@ -1,0 +1,112 @@
+"""Input types and conversions shared by several tools.
+
+Actions arrive as JSON objects or as text (`move(cup, on, table)`); scenes as built-in
+ids or graphs; dictionaries by built-in name only (a path would let a remote client
+make the server read its files). Every conversion error names the argument, the
+offending value and the fix.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Annotated, Any
+
+from pydantic import Field
+
+from verigraph.actions.model import Action, AnyAction, DoneAction
+from verigraph.actions.parser import parse_text_plan
+from verigraph.errors import MalformedGraphError, PlanParseError
+from verigraph.graph.builtin_scenes import BUILTIN_GOALS, BUILTIN_SCENES
+from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, Dictionary, load_dictionary
+from verigraph.graph.goal import Goal
+from verigraph.graph.model import SceneGraph
+from verigraph.graph.state import WorldState
+from verigraph.graph.wellformed import GraphProblem
+from verigraph.tools.errors import ToolArgumentError
+
+EpisodeId = Annotated[str, Field(
+    min_length=1, max_length=64, description="the id load_scene returned",
+    examples=["ep_Xq3v9f2PZxk7d1uQm0Cw8g"])]
+ActionText = Annotated[str, Field(
+    min_length=1, max_length=2000,
+    description="text form: move(cup, on, table), move(cup, table), "
+                "align(piece, side, target, target_side) or done")]
+ActionInput = Action | ActionText
+SceneId = Annotated[str, Field(min_length=1, max_length=64,
+                               description=f"built-in scene: {', '.join(BUILTIN_SCENES)}")]
+DictionaryName = Annotated[str, Field(
+    min_length=1, max_length=32,
+    description=f"built-in dictionary: {', '.join(BUILTIN_DICTIONARIES)} or all")]
+ImageData = Annotated[str, Field(
+    min_length=1, max_length=17_000_000,
+    description="base64 PNG or JPEG (a data:image/...;base64, prefix is accepted)")]
+
+
+def action_text(action: AnyAction) -> str:
+    return action.text()
+
+
+def parse_actions(items: Sequence[Any], *, field: str = "actions", indexed: bool = True
+                  ) -> list[AnyAction]:
+    """Models pass through; strings are parsed as text plans (one or more lines each)."""
+    actions: list[AnyAction] = []
+    for index, item in enumerate(items):
+        where = f"{field}[{index}]" if indexed else field
+        if not isinstance(item, str):
+            actions.append(item)
+            continue
+        try:
+            parsed = parse_text_plan(item)
+        except PlanParseError as exc:
+            raise ToolArgumentError(f"{exc.message}: {exc.text[:120]!r}", field=where,
+                                    value=item[:120], fix=exc.fix) from None
+        if not parsed:
+            raise ToolArgumentError("no action in this text (only blanks or comments)",
+                                    field=where, value=item[:120],
+                                    fix="write an action such as move(cup, on, table) or done")
+        actions.extend(parsed)
+    return actions
+
+
+def count_moves(actions: Sequence[AnyAction]) -> int:
+    return sum(1 for a in actions if not isinstance(a, DoneAction))
+
+
+def dictionary_for(name: str | None, *, field: str = "dictionary") -> Dictionary:
+    """A built-in dictionary (or the union for None/"all"); paths are refused."""
+    if name is None or name == "all":
+        return load_dictionary(None)
+    if name not in BUILTIN_DICTIONARIES:
+        raise ToolArgumentError(
+            f"'{name[:64]}' is not a built-in dictionary", field=field, value=name[:64],
+            fix=f"use one of {', '.join(BUILTIN_DICTIONARIES)} or all (dictionary files "
+                "cannot be read through the tool interface)")
+    return load_dictionary(name)
+
+
+def builtin_scene(scene_id: str, *, field: str = "scene_id") -> tuple[SceneGraph, Goal | None]:
+    maker = BUILTIN_SCENES.get(scene_id)
+    if maker is None:
+        raise ToolArgumentError(f"no built-in scene '{scene_id[:64]}'", field=field,
+                                value=scene_id[:64],
+                                fix=f"use one of {', '.join(BUILTIN_SCENES)}, or pass a graph")
+    goal_maker = BUILTIN_GOALS.get(scene_id)
+    return maker(), goal_maker() if goal_maker else None
+
+
+def problems_text(problems: Sequence[GraphProblem], prefix: str) -> str:
+    """Every problem on its own line: field, message, fix."""
+    return "\n".join(f"- {prefix}.{p.field}: {p.message} (fix: {p.fix})" for p in problems)
+
+
+def state_from_graph(graph: SceneGraph, *, field: str = "graph", partial: bool = False
+                     ) -> WorldState:
+    """Index a graph after checking it; all well-formedness problems in one error."""
+    dictionary = dictionary_for(graph.dictionary, field=f"{field}.dictionary")
+    try:
+        return WorldState.from_graph(graph, dictionary, partial=partial)
+    except MalformedGraphError as exc:
+        raise ToolArgumentError(
+            f"the scene graph breaks {len(exc.problems)} rule(s):\n"
+            + problems_text(exc.problems, field), field=field, value=None,
+            fix="correct every listed problem and send the graph again") from None

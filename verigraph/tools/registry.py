@@ -1,0 +1,253 @@
+"""The tool table: names, models, annotations and summaries, in one fixed order.
+
+The MCP server, the CLI and the library all read this table, so a tool is defined
+once. `Toolbox.call(name, arguments)` is the transport-free entry point: it validates
+raw arguments with the tool's input model (reporting every problem with its field and
+fix) and runs the tool.
+"""
+
+from __future__ import annotations
+
+import difflib
+import json
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from pydantic import BaseModel, ValidationError
+
+from verigraph.actions.report import ValidationReport
+from verigraph.tools import acting, episodes, scenes, solving
+from verigraph.tools.context import ToolConfig, ToolContext
+from verigraph.tools.errors import InvalidArgumentsError, ToolArgumentError
+from verigraph.tools.scenes import ImageResult
+
+
+@dataclass(frozen=True)
+class ToolSpec:
+    """One tool: what it takes, what it returns, how it behaves, how to summarise it."""
+
+    name: str
+    title: str
+    description: str
+    input_model: type[BaseModel]
+    output_model: type[BaseModel] | None  # None: an image tool (MCP image content only)
+    run: Callable[[ToolContext, Any], Any]
+    read_only: bool
+    destructive: bool = False
+    idempotent: bool = False
+    summary: Callable[[Any], str] = lambda result: str(result.summary())
+
+
+def _report_summary(report: ValidationReport) -> str:
+    return acting.report_summary(report)
+
+
+TOOL_SPECS: tuple[ToolSpec, ...] = (
+    ToolSpec("load_scene", "Start an episode",
+             "Start a planning episode from a built-in scene id (cup_on_book, three_blocks, "
+             "kitchen_pan), a scene graph, an image, or the sim2d generator. Returns the "
+             "episode_id every other stateful tool takes, the current graph and the goal.",
+             episodes.LoadSceneInput, episodes.EpisodeState, episodes.load_scene,
+             read_only=False),
+    ToolSpec("set_goal", "Set the goal",
+             "Set the episode's goal: a goal graph (partial=true: only the listed edges must "
+             "hold), a predicate (single_stack), a reference image, or an instruction in "
+             "words. An invalid goal changes nothing.",
+             episodes.SetGoalInput, episodes.GoalOutput, episodes.set_goal,
+             read_only=False, idempotent=True),
+    ToolSpec("get_state", "Episode state",
+             "Current scene graph, goal, difference to the goal, executed actions, tau "
+             "(consecutive failed execute_actions calls), k and t.",
+             episodes.EpisodeRef, episodes.EpisodeState, episodes.get_state,
+             read_only=True, idempotent=True),
+    ToolSpec("validate_action", "Check one action",
+             "Check one action (JSON or text such as move(cup, on, table)) on the episode's "
+             "current graph without executing it: the violated constraint with a fix, or "
+             "the edges it would change. Changes nothing.",
+             acting.ValidateActionInput, acting.ActionCheck, acting.validate_action,
+             read_only=True, idempotent=True),
+    ToolSpec("execute_actions", "Execute actions",
+             "Execute at most k actions in order on the episode (and its simulator) until "
+             "the first violation; the valid prefix stays applied. Returns the new graph, "
+             "the violation feedback, tau, whether the threshold t is reached and whether "
+             "the goal holds. Include done (the end token) when the goal is reached.",
+             acting.ExecuteActionsInput, acting.ExecutionOutput, acting.execute_actions,
+             read_only=False, destructive=True),
+    ToolSpec("validate_plan", "Validate a whole plan",
+             "Stateless: check a whole plan (text, one action per line, or a list) from a "
+             "scene id, a graph or an episode's current graph, optionally against a goal. "
+             "Per-step report; stores and changes nothing.",
+             acting.ValidatePlanInput, ValidationReport, acting.validate_plan,
+             read_only=True, idempotent=True, summary=_report_summary),
+    ToolSpec("check_goal", "Check the goal",
+             "Difference between the episode's current graph and its goal (or a goal given "
+             "here): missing and extra edges and objects.",
+             acting.CheckGoalInput, acting.GoalCheck, acting.check_goal,
+             read_only=True, idempotent=True),
+    ToolSpec("generate_scene_graph", "Perceive a scene graph",
+             "Built-in perception: image -> scene graph. When it is not installed the tool "
+             "says so; use get_scene_image and submit_scene_graph with your own vision "
+             "model instead.",
+             scenes.GenerateSceneGraphInput, scenes.SceneGraphSubmission,
+             scenes.generate_scene_graph, read_only=True, idempotent=True),
+    ToolSpec("render_scene", "Render the scene",
+             "PNG image of the episode's scene: the simulator's render when the episode is "
+             "simulated, else a drawing of the scene graph (view=goal draws the goal graph).",
+             scenes.RenderSceneInput, None, scenes.render_scene,
+             read_only=True, idempotent=True),
+    ToolSpec("solve", "Reference plan",
+             "A reference plan by classical search from the episode's current graph (or a "
+             "scene) to its goal, re-checked by the validator. Changes nothing.",
+             solving.SolveInput, solving.SolveOutput, solving.solve,
+             read_only=True, idempotent=True),
+    ToolSpec("get_scene_image", "Scene image and prompt",
+             "The episode's scene image together with the scene-graph generation prompt "
+             "(relations R, dictionary D, task), for your own vision model; answer with "
+             "submit_scene_graph.",
+             scenes.GetSceneImageInput, None, scenes.get_scene_image,
+             read_only=True, idempotent=True),
+    ToolSpec("submit_scene_graph", "Submit a scene graph",
+             "Check a scene graph you wrote for an image against dictionary D and relations "
+             "R: synonyms and spellings are normalised and every problem is reported at "
+             "once. An accepted graph becomes the starting graph of an episode that was "
+             "loaded from an image.",
+             scenes.SubmitSceneGraphInput, scenes.SceneGraphSubmission,
+             scenes.submit_scene_graph, read_only=False, idempotent=True),
+    ToolSpec("end_episode", "End the episode",
+             "The end token: final verdict (goal reached or not, threshold reached), final "
+             "graph and the trace of every execute_actions call. Closes the episode; its id "
+             "stops working.",
+             episodes.EpisodeRef, episodes.EpisodeVerdict, episodes.end_episode,
+             read_only=False, destructive=True),
+)
+TOOLS: dict[str, ToolSpec] = {spec.name: spec for spec in TOOL_SPECS}
+
+
+def _pre_parse(model: type[BaseModel], arguments: Mapping[str, Any]) -> dict[str, Any]:
+    """Decode JSON given as a string for a non-string field (some clients do that)."""
+    fields = model.model_fields
+    parsed = dict(arguments)
+    for key, value in arguments.items():
+        field = fields.get(key)
+        if field is None or field.annotation is str or not isinstance(value, str):
+            continue
+        if not value.lstrip().startswith(("{", "[")):
+            continue
+        try:
+            decoded = json.loads(value)
+        except (ValueError, RecursionError):
+            continue
+        if isinstance(decoded, dict | list):
+            parsed[key] = decoded
+    return parsed
+
+
+def _shown(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+# Path parts pydantic adds for union members and validators; not argument names.
+_UNION_TAGS = ("tagged-union[", "function-", "constrained-", "json-or-python[", "str", "int",
+               "list[", "dict[", "nullable[", "union[", "literal[", "model[")
+
+
+def _clean_path(loc: tuple[int | str, ...]) -> tuple[str, bool]:
+    """`actions.0.tagged-union[...].move.target` -> (`actions[0].target`, True if a union)."""
+    path = ""
+    in_union = False
+    skip_tag = False
+    for part in loc:
+        if isinstance(part, int):
+            path += f"[{part}]"
+            continue
+        if part.startswith(_UNION_TAGS) or part in {"str", "int", "bool"}:
+            in_union = True
+            skip_tag = part.startswith("tagged-union[")
+            continue
+        if skip_tag:  # the discriminator value (move / align / done)
+            skip_tag = False
+            continue
+        path += f".{part}" if path else part
+    return path, in_union
+
+
+def _wrong_union_member(err: Any) -> bool:
+    """For `JSON action | text` unions, drop the member that does not match the input kind."""
+    if err["type"] in ("string_type", "str_type") and isinstance(err.get("input"), dict):
+        return True
+    return err["type"] in ("model_type", "dict_type", "model_attributes_type") and \
+        isinstance(err.get("input"), str)
+
+
+def argument_error(spec: ToolSpec, exc: ValidationError) -> InvalidArgumentsError:
+    """Every problem of the arguments, one per line, each with its field and a fix."""
+    fields = spec.input_model.model_fields
+    lines: list[str] = []
+    first_field: str | None = None
+    for err in exc.errors():
+        path, in_union = _clean_path(err["loc"])
+        top = str(err["loc"][0]) if err["loc"] else ""
+        if in_union and _wrong_union_member(err):
+            continue
+        desc = fields[top].description if top in fields else None
+        if err["type"] == "extra_forbidden" and len(err["loc"]) == 1:
+            near = difflib.get_close_matches(top, list(fields), n=1)
+            hint = f"did you mean '{near[0]}'? " if near else ""
+            line = f"{top}: unknown argument (fix: {hint}this tool takes {', '.join(fields)})"
+        elif err["type"] == "missing" and len(err["loc"]) == 1:
+            line = f"{top}: missing required argument (fix: {desc or 'give it'})"
+        elif not err["loc"]:
+            line = f"arguments: {err['msg'].removeprefix('Value error, ')}"
+        else:
+            fix = f" (fix: {desc})" if desc else ""
+            line = f"{path}: {err['msg']}, got {_shown(err.get('input'))}{fix}"
+        first_field = first_field or top or None
+        if line not in lines:
+            lines.append(line)
+    shown = lines[:8] + ([f"... and {len(lines) - 8} more"] if len(lines) > 8 else [])
+    return InvalidArgumentsError(f"invalid arguments for {spec.name}:\n" + "\n".join(shown),
+                                 field=first_field, value=None)
+
+
+def parse_arguments(spec: ToolSpec, arguments: Mapping[str, Any] | None) -> BaseModel:
+    """The tool's input model from raw JSON arguments, or a ToolArgumentError."""
+    if arguments is not None and not isinstance(arguments, Mapping):
+        raise ToolArgumentError("arguments must be a JSON object", field="arguments",
+                                value=type(arguments).__name__,
+                                fix="send the arguments as an object of name: value")
+    try:
+        return spec.input_model.model_validate(_pre_parse(spec.input_model, arguments or {}))
+    except ValidationError as exc:
+        raise argument_error(spec, exc) from None
+
+
+class Toolbox:
+    """Transport-free tool host: `Toolbox().call("load_scene", {"scene_id": ...})`."""
+
+    def __init__(self, context: ToolContext | None = None, config: ToolConfig | None = None
+                 ) -> None:
+        self.context = context or ToolContext(config or ToolConfig())
+
+    def spec(self, name: str) -> ToolSpec:
+        spec = TOOLS.get(name)
+        if spec is None:
+            near = difflib.get_close_matches(name, list(TOOLS), n=1)
+            raise ToolArgumentError(f"no tool named '{name[:64]}'", field="name",
+                                    value=name[:64],
+                                    fix=(f"did you mean {near[0]}? " if near else "")
+                                    + f"tools: {', '.join(TOOLS)}")
+        return spec
+
+    def call(self, name: str, arguments: Mapping[str, Any] | None = None
+             ) -> BaseModel | ImageResult:
+        """Validate the arguments and run the tool; VeriGraphError on bad input."""
+        spec = self.spec(name)
+        params = parse_arguments(spec, arguments)
+        return self.run(spec, params)
+
+    def run(self, spec: ToolSpec, params: BaseModel) -> BaseModel | ImageResult:
+        """Run a tool on already validated input."""
+        result: BaseModel | ImageResult = spec.run(self.context, params)
+        return result

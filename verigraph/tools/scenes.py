@@ -1,0 +1,240 @@
+"""Scene images and scene graphs: render_scene, get_scene_image, generate_scene_graph,
+submit_scene_graph.
+
+Images come from the simulator when the episode has one, else from the photo the
+episode was loaded from, else from a drawing of the graph. Scene-graph generation
+works with any client: the agent's own vision model reads get_scene_image and answers
+through submit_scene_graph; built-in perception plugs in when verigraph.perception
+exists.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from verigraph.graph.dictionary import Dictionary
+from verigraph.graph.goal import GraphDiff, check_goal, diff
+from verigraph.graph.model import SceneGraph
+from verigraph.graph.state import WorldState
+from verigraph.graph.wellformed import GraphProblem
+from verigraph.tools import optional
+from verigraph.tools.context import ToolContext
+from verigraph.tools.drawing import draw_graph
+from verigraph.tools.errors import ToolArgumentError
+from verigraph.tools.fields import DictionaryName, EpisodeId, ImageData, dictionary_for
+from verigraph.tools.images import decode_image, encode_png
+from verigraph.tools.prompting import scene_graph_prompt
+from verigraph.tools.store import Episode
+from verigraph.tools.submission import Rename, SubmittedGraph, check_submission
+
+Width = Field(default=640, ge=64, le=2048, description="image width in pixels")
+Height = Field(default=480, ge=64, le=2048, description="image height in pixels")
+
+
+@dataclass(frozen=True)
+class ImageResult:
+    """An image tool's answer: PNG bytes and, for get_scene_image, the prompt to use."""
+
+    png: bytes
+    text: str | None = None
+    mime_type: str = "image/png"
+
+
+def _colors(state: WorldState) -> dict[str, str]:
+    return {o.id: o.props.color for o in state.objects.values() if o.props.color}
+
+
+def _picture(episode: Episode, width: int, height: int) -> np.ndarray:
+    """What a camera would show: simulator render, the loaded photo, or a drawing."""
+    render = getattr(episode.world, "render", None)
+    if callable(render):
+        image = render(width=width, height=height)
+        return np.asarray(image, dtype=np.uint8)
+    if episode.image is not None:
+        return episode.image
+    state = episode.require_state()
+    return draw_graph(state.to_graph(), width, height, title="scene graph (drawing)",
+                      colors=_colors(state))
+
+
+# -- render_scene ---------------------------------------------------------------------------
+class RenderSceneInput(BaseModel):
+    """Which episode to picture, and how large."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    episode_id: EpisodeId
+    view: Literal["current", "goal"] = Field(
+        default="current", description="current scene, or a drawing of the goal graph")
+    width: int = Width
+    height: int = Height
+
+
+def render_scene(ctx: ToolContext, params: RenderSceneInput) -> ImageResult:
+    """PNG of the current scene (simulator render when simulated) or of the goal graph."""
+    with ctx.store.use(params.episode_id) as episode:
+        if params.view == "goal":
+            goal = episode.goal
+            if goal is None or goal.graph is None:
+                raise ToolArgumentError("this episode has no goal graph to draw", field="view",
+                                        value="goal", fix="call set_goal with a graph first, "
+                                                          "or use view=current")
+            colors = _colors(episode.state) if episode.state is not None else {}
+            image = draw_graph(goal.graph, params.width, params.height,
+                               title="goal graph (drawing)", colors=colors)
+        else:
+            image = _picture(episode, params.width, params.height)
+    return ImageResult(png=encode_png(image))
+
+
+# -- get_scene_image ------------------------------------------------------------------------
+class GetSceneImageInput(BaseModel):
+    """The episode whose scene the agent should describe, and the task it serves."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    episode_id: EpisodeId
+    task: str | None = Field(default=None, max_length=4000,
+                             description="what the scene graph is for, added to the prompt")
+    width: int = Width
+    height: int = Height
+
+
+def get_scene_image(ctx: ToolContext, params: GetSceneImageInput) -> ImageResult:
+    """The scene image plus the scene-graph generation prompt (D, R, task)."""
+    with ctx.store.use(params.episode_id) as episode:
+        image = _picture(episode, params.width, params.height)
+        dictionary = (episode.state.dictionary if episode.state is not None
+                      else dictionary_for(episode.dictionary_name))
+        task = params.task or episode.instruction
+        prompt = scene_graph_prompt(dictionary, task, episode_id=episode.id)
+    return ImageResult(png=encode_png(image), text=prompt)
+
+
+# -- submit_scene_graph ---------------------------------------------------------------------
+class SubmitSceneGraphInput(BaseModel):
+    """The agent's scene graph for an image, checked against D and R."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    graph: SubmittedGraph = Field(description="nodes with id/label, edges "
+                                              "source/relation/target")
+    episode_id: EpisodeId | None = Field(
+        default=None, description="an episode loaded from an image adopts the graph if it "
+                                  "is accepted; for other episodes it is compared only")
+    dictionary: DictionaryName | None = Field(default=None, description="dictionary D to "
+                                                                        "check against")
+
+
+class SceneGraphSubmission(BaseModel):
+    """Accepted or not, the normalised graph, every problem and every rename."""
+
+    accepted: bool
+    graph: SceneGraph = Field(description="the graph after normalisation")
+    problems: list[GraphProblem]
+    normalised: list[Rename] = Field(description="spellings that were mapped to canonical "
+                                                 "ids, labels and relations")
+    dictionary: str
+    episode_id: str | None = None
+    adopted: bool = Field(default=False, description="the episode now starts from this graph")
+    diff_to_episode: GraphDiff | None = Field(
+        default=None, description="how it differs from the episode's current graph")
+    goal_diff: GraphDiff | None = None
+
+    def summary(self) -> str:
+        if not self.accepted:
+            lines = [f"REJECTED: {len(self.problems)} problem(s)"]
+            lines += [f"- {p.field}: {p.message} (fix: {p.fix})" for p in self.problems[:20]]
+            if len(self.problems) > 20:
+                lines.append(f"- ... and {len(self.problems) - 20} more")
+            return "\n".join(lines)
+        text = f"accepted: {len(self.graph.nodes)} objects, {len(self.graph.edges)} edges"
+        if self.normalised:
+            text += f", {len(self.normalised)} name(s) normalised"
+        if self.adopted:
+            text += f"; episode {self.episode_id} now starts from this graph"
+        elif self.diff_to_episode is not None:
+            text += ("; matches the episode's graph" if self.diff_to_episode.satisfied else
+                     "; differs from the episode's graph: "
+                     + self.diff_to_episode.summary().removeprefix("goal not reached: "))
+        return text
+
+
+def submit_scene_graph(ctx: ToolContext, params: SubmitSceneGraphInput) -> SceneGraphSubmission:
+    """Normalise and check the graph; an accepted graph starts an image episode."""
+    if params.episode_id is None:
+        dictionary = dictionary_for(params.dictionary or params.graph.dictionary)
+        return _checked(params.graph, dictionary)
+    with ctx.store.use(params.episode_id) as episode:
+        name = params.dictionary or params.graph.dictionary or episode.dictionary_name
+        dictionary = (episode.state.dictionary if episode.state is not None and name is None
+                      else dictionary_for(name))
+        result = _checked(params.graph, dictionary)
+        result.episode_id = episode.id
+        if not result.accepted:
+            return result
+        if episode.state is None:
+            state = WorldState.from_graph(result.graph, dictionary)
+            episode.state = state
+            episode.initial_graph = state.to_graph()
+            result.adopted = True
+            if episode.goal is not None:
+                result.goal_diff = check_goal(state, episode.goal)
+        else:
+            submitted = WorldState.from_graph(result.graph, dictionary)
+            result.diff_to_episode = diff(submitted, episode.state.to_graph())
+        return result
+
+
+def _checked(graph: SubmittedGraph, dictionary: Dictionary) -> SceneGraphSubmission:
+    scene, renames, problems = check_submission(graph, dictionary)
+    accepted = not problems
+    if accepted:
+        try:
+            scene = SceneGraph.model_validate(scene.model_dump())
+        except ValidationError as exc:  # limits such as label length
+            err = exc.errors()[0]
+            problems.append(GraphProblem(
+                rule="invalid_value", node=None, field=".".join(map(str, err["loc"])),
+                message=err["msg"], fix="shorten or correct the value"))
+            accepted = False
+    return SceneGraphSubmission(accepted=accepted, graph=scene, problems=problems,
+                                normalised=renames, dictionary=dictionary.name)
+
+
+# -- generate_scene_graph -------------------------------------------------------------------
+class GenerateSceneGraphInput(BaseModel):
+    """An image (or an episode's scene) to turn into a scene graph with built-in perception."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    image: ImageData | None = None
+    episode_id: EpisodeId | None = Field(default=None, description="use this episode's image")
+    dictionary: DictionaryName | None = None
+    task: str | None = Field(default=None, max_length=4000)
+
+    @model_validator(mode="after")
+    def _one_image(self) -> GenerateSceneGraphInput:
+        if (self.image is None) == (self.episode_id is None):
+            raise ValueError("give exactly one of image or episode_id")
+        return self
+
+
+def generate_scene_graph(ctx: ToolContext, params: GenerateSceneGraphInput
+                         ) -> SceneGraphSubmission:
+    """Built-in perception; until it exists, a clear error naming the agent-VLM route."""
+    dictionary = dictionary_for(params.dictionary)
+    if params.image is not None:
+        image = decode_image(params.image)
+    else:
+        assert params.episode_id is not None
+        with ctx.store.use(params.episode_id) as episode:
+            image = _picture(episode, 640, 480)
+    perceive = optional.perception()
+    graph = perceive(image, dictionary=dictionary)
+    submitted = SubmittedGraph.model_validate(graph.model_dump())
+    return _checked(submitted, dictionary)

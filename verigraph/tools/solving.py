@@ -1,0 +1,102 @@
+"""solve: a reference plan by classical search, re-checked by the verifier.
+
+The search itself lives in verigraph.solver; this tool feeds it the episode's current
+graph (or a scene) and goal, and validates the plan it returns, so a solver bug shows
+up as `verified: false` instead of a wrong answer.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from verigraph.actions.model import Action, AnyAction
+from verigraph.actions.report import validate_plan
+from verigraph.graph.goal import Goal
+from verigraph.graph.model import SceneGraph
+from verigraph.graph.state import WorldState
+from verigraph.tools import optional
+from verigraph.tools.context import ToolContext
+from verigraph.tools.episodes import check_goal_against
+from verigraph.tools.errors import FeatureUnavailableError, ToolArgumentError
+from verigraph.tools.fields import EpisodeId, SceneId, builtin_scene, state_from_graph
+
+
+class SolveInput(BaseModel):
+    """Where to plan from (episode, built-in scene or graph) and the goal."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    episode_id: EpisodeId | None = Field(default=None, description="plan from this "
+                                                                   "episode's current graph")
+    scene_id: SceneId | None = None
+    graph: SceneGraph | None = None
+    goal: Goal | None = Field(default=None, description="defaults to the episode's or the "
+                                                        "built-in scene's goal")
+    max_expansions: int = Field(default=200_000, ge=1, le=2_000_000,
+                                description="search budget (nodes expanded)")
+
+    @model_validator(mode="after")
+    def _one_scene(self) -> SolveInput:
+        given = [n for n in ("episode_id", "scene_id", "graph") if getattr(self, n) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of episode_id, scene_id, graph "
+                             f"(got {', '.join(given) or 'none'})")
+        return self
+
+
+class SolveOutput(BaseModel):
+    """The solver's answer and whether the verifier accepts its plan."""
+
+    reachable: bool | None = Field(description="null when the search budget ran out first")
+    plan: list[str] = Field(description="the plan in text form")
+    actions: list[Action] = Field(description="the plan as action objects")
+    length: int
+    reason: str | None = Field(default=None, description="why no plan was found")
+    verified: bool = Field(description="the verifier accepts every step and the goal holds")
+    optimal: bool = Field(default=False, description="no shorter plan exists")
+    expanded: int = Field(default=0, description="search nodes expanded")
+
+    def summary(self) -> str:
+        if self.reachable is None:
+            return f"no plan found within the search budget ({self.expanded} nodes expanded)"
+        if not self.reachable:
+            return f"no plan: {self.reason or 'goal unreachable'}"
+        check = "verified" if self.verified else "NOT verified by the validator"
+        return f"plan of {self.length} action(s), {check}: {'; '.join(self.plan) or '(empty)'}"
+
+
+def solve(ctx: ToolContext, params: SolveInput) -> SolveOutput:
+    if not ctx.config.enable_solve:
+        raise FeatureUnavailableError("solve is disabled on this server", field="solve",
+                                      value=None, fix="plan with validate_action and "
+                                                      "execute_actions feedback instead")
+    search = optional.solver()
+    goal = params.goal
+    state: WorldState
+    if params.episode_id is not None:
+        with ctx.store.use(params.episode_id) as episode:
+            state = episode.require_state().copy()
+            goal = goal or episode.goal
+    elif params.scene_id is not None:
+        graph, builtin_goal = builtin_scene(params.scene_id)
+        state = state_from_graph(graph)
+        goal = goal or builtin_goal
+    else:
+        assert params.graph is not None
+        state = state_from_graph(params.graph)
+    if goal is None:
+        raise ToolArgumentError("there is no goal to solve for", field="goal", value=None,
+                                fix="pass goal, or call set_goal on the episode first")
+    if params.goal is not None:
+        check_goal_against(params.goal, state, field="goal")
+    result: Any = search(state, goal, max_expansions=params.max_expansions)
+    plan: list[AnyAction] = list(result.plan or [])
+    verified = False
+    if result.reachable:
+        verified = validate_plan(state, plan or "done", goal).valid
+    return SolveOutput(reachable=result.reachable, plan=[a.text() for a in plan],
+                       actions=plan, length=len(plan), reason=result.reason,
+                       verified=verified, optimal=bool(getattr(result, "optimal", False)),
+                       expanded=int(getattr(result, "expanded", 0)))

@@ -1,0 +1,166 @@
+"""Episodes: the state behind an `episode_id`, kept in a bounded, thread-safe store.
+
+The MCP protocol has no sessions, so every stateful tool names its episode. Ids come
+from `secrets.token_urlsafe` (unguessable: holding the id is the only way in), the store
+holds at most `max_episodes` (idle ones are evicted first, then a clear error), and
+each episode has its own lock so concurrent HTTP requests on one episode serialise
+while other episodes proceed.
+"""
+
+from __future__ import annotations
+
+import secrets
+import threading
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from pydantic import BaseModel, Field
+
+from verigraph.actions.executor import World
+from verigraph.actions.feedback import Violation
+from verigraph.actions.model import AnyAction
+from verigraph.graph.goal import Goal
+from verigraph.graph.model import SceneGraph
+from verigraph.graph.state import WorldState
+from verigraph.tools.errors import EpisodeLimitError, EpisodeStateError, UnknownEpisodeError
+
+DEFAULT_K = 3
+DEFAULT_T = 5
+DEFAULT_MAX_EPISODES = 256
+DEFAULT_IDLE_TIMEOUT_S = 3600.0
+
+
+class TraceEntry(BaseModel):
+    """One execute_actions call, as Algorithm 1 sees an iteration."""
+
+    call: int = Field(description="1-based index of the execute_actions call")
+    proposed: list[str] = Field(description="actions proposed in this call (text form)")
+    executed: list[str] = Field(description="the valid prefix that was applied")
+    violation: Violation | None = None
+    done: bool = Field(default=False, description="the end token was among the actions")
+    tau: int = Field(description="consecutive failed calls after this one")
+    goal_satisfied: bool | None = None
+
+
+@dataclass(eq=False)
+class Episode:
+    """Mutable state of one planning episode; only touched while its lock is held."""
+
+    id: str
+    state: WorldState | None
+    source: str
+    k: int = DEFAULT_K
+    t: int = DEFAULT_T
+    goal: Goal | None = None
+    instruction: str | None = None
+    world: World | None = None
+    image: np.ndarray | None = None
+    initial_graph: SceneGraph | None = None
+    dictionary_name: str | None = None
+    tau: int = 0
+    calls: int = 0
+    executed: list[AnyAction] = field(default_factory=list)
+    trace: list[TraceEntry] = field(default_factory=list)
+    last_violation: Violation | None = None
+    done: bool = False
+    lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+    last_used: float = 0.0
+
+    @property
+    def threshold_reached(self) -> bool:
+        return self.tau >= self.t
+
+    def require_state(self) -> WorldState:
+        """The current graph, or an error while the episode still waits for one."""
+        if self.state is None:
+            raise EpisodeStateError(
+                "this episode has no scene graph yet (it was loaded from an image)",
+                field="episode_id", value=self.id,
+                fix="call get_scene_image, describe the image as a scene graph and send it "
+                    "with submit_scene_graph(episode_id, graph)")
+        return self.state
+
+
+def new_episode_id() -> str:
+    """128 random bits, URL-safe: usable in resource URIs and impossible to guess."""
+    return "ep_" + secrets.token_urlsafe(16)
+
+
+class EpisodeStore:
+    """In-memory episodes by id, bounded, safe to use from many threads at once."""
+
+    def __init__(self, max_episodes: int = DEFAULT_MAX_EPISODES,
+                 idle_timeout: float = DEFAULT_IDLE_TIMEOUT_S,
+                 clock: Callable[[], float] = time.monotonic) -> None:
+        if max_episodes < 1:
+            raise ValueError("max_episodes must be at least 1")
+        self.max_episodes = max_episodes
+        self.idle_timeout = idle_timeout
+        self._clock = clock
+        self._episodes: dict[str, Episode] = {}
+        self._lock = threading.Lock()
+
+    def __len__(self) -> int:
+        with self._lock:
+            return len(self._episodes)
+
+    def ids(self) -> list[str]:
+        with self._lock:
+            return list(self._episodes)
+
+    def add(self, make: Callable[[str], Episode]) -> Episode:
+        """Insert the episode `make(new_id)` builds; evicts idle episodes when full."""
+        with self._lock:
+            if len(self._episodes) >= self.max_episodes:
+                self._evict_idle()
+            if len(self._episodes) >= self.max_episodes:
+                raise EpisodeLimitError(
+                    f"the server already holds {self.max_episodes} open episodes",
+                    field="load_scene", value=len(self._episodes),
+                    fix="call end_episode on episodes you no longer need (idle episodes are "
+                        f"dropped after {self.idle_timeout:.0f} s), or start the server with a "
+                        "larger --max-episodes")
+            episode_id = new_episode_id()
+            while episode_id in self._episodes:  # pragma: no cover - 2**-128
+                episode_id = new_episode_id()
+            episode = make(episode_id)
+            episode.last_used = self._clock()
+            self._episodes[episode_id] = episode
+            return episode
+
+    def _evict_idle(self) -> None:
+        now = self._clock()
+        stale = [eid for eid, ep in self._episodes.items()
+                 if now - ep.last_used > self.idle_timeout and not ep.lock.locked()]
+        for eid in stale:
+            del self._episodes[eid]
+
+    def _get(self, episode_id: Any) -> Episode:
+        if not isinstance(episode_id, str):
+            raise UnknownEpisodeError(repr(episode_id))
+        with self._lock:
+            episode = self._episodes.get(episode_id)
+        if episode is None:
+            raise UnknownEpisodeError(episode_id)
+        return episode
+
+    @contextmanager
+    def use(self, episode_id: str) -> Iterator[Episode]:
+        """Hold the episode's lock for the duration of one tool call."""
+        episode = self._get(episode_id)
+        with episode.lock:
+            # It may have been ended while we waited for the lock.
+            with self._lock:
+                if self._episodes.get(episode_id) is not episode:
+                    raise UnknownEpisodeError(episode_id)
+            episode.last_used = self._clock()
+            yield episode
+
+    def remove(self, episode_id: str) -> None:
+        """Forget an episode (the caller holds its lock, see `use`)."""
+        with self._lock:
+            self._episodes.pop(episode_id, None)
