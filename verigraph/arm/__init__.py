@@ -1,0 +1,67 @@
+"""The arm adapter: the only way a graph action reaches a robot arm.
+
+The server builds an `ArmWorld` with `open_arm_world(config, graph, confirm=...)` and
+passes it to `verigraph.actions.executor.execute_in_world`, which validates each action
+before `ArmWorld.perform`; the world validates again on the graph it observes, and
+the `ArmController` gate checks, confirms, times and logs every command.
+"""
+
+from verigraph.arm.audit import AuditLog
+from verigraph.arm.config import (
+    DRIVER_NAMES,
+    ArmConfig,
+    CameraView,
+    PyBulletOptions,
+    RosbridgeOptions,
+    XArmOptions,
+    driver_from_executor,
+    load_arm_config,
+    parse_arm_config,
+)
+from verigraph.arm.controller import Approval, ArmController, MotionOutcome
+from verigraph.arm.errors import (
+    ArmBusyError,
+    ArmConfigError,
+    ArmConnectionError,
+    ArmError,
+    ArmMotionError,
+    ArmRefusal,
+    ArmStoppedError,
+    ConfirmationError,
+    InfeasibleMotionError,
+    MotionCancelledError,
+    ObjectNotFoundError,
+    StaleLocationError,
+    UnauthorizedMotionError,
+    UnsafeMotionError,
+)
+from verigraph.arm.factory import make_driver, open_arm_world
+from verigraph.arm.geometry import Box, KeepOutZone
+from verigraph.arm.locators import DeclaredObject, DryRunLocator, LayoutLocator
+from verigraph.arm.models import (
+    ArmStatus,
+    AuditRecord,
+    ConfirmationRequest,
+    DriverStatus,
+    Grasp,
+    ObjectLocation,
+    Placement,
+    Pose,
+)
+from verigraph.arm.protocols import ArmDriver, ConfirmHook, ObjectLocator
+from verigraph.arm.receipt import ValidatedAction, authorize
+from verigraph.arm.world import ArmWorld, RelationCheck
+
+__all__ = [
+    "DRIVER_NAMES", "Approval", "ArmBusyError", "ArmConfig", "ArmConfigError",
+    "ArmConnectionError", "ArmController", "ArmDriver", "ArmError", "ArmMotionError",
+    "ArmRefusal", "ArmStatus", "ArmStoppedError", "ArmWorld", "AuditLog", "AuditRecord", "Box",
+    "CameraView", "ConfirmHook", "ConfirmationError", "ConfirmationRequest", "DeclaredObject",
+    "DriverStatus", "DryRunLocator", "Grasp", "InfeasibleMotionError", "KeepOutZone",
+    "LayoutLocator", "MotionCancelledError", "MotionOutcome", "ObjectLocation",
+    "ObjectLocator", "ObjectNotFoundError", "Placement", "Pose", "PyBulletOptions",
+    "RelationCheck", "RosbridgeOptions", "StaleLocationError", "UnauthorizedMotionError",
+    "UnsafeMotionError", "ValidatedAction", "XArmOptions", "authorize",
+    "driver_from_executor", "load_arm_config", "make_driver", "open_arm_world",
+    "parse_arm_config",
+]

@@ -1,0 +1,205 @@
+"""The arm configuration file (YAML or JSON): driver, host, workspace, limits, mode.
+
+Limits are validated when the file is read, so a configuration that could never move
+safely (home outside the workspace, a speed above its own cap, `real` without an
+audit log) is rejected up front with the field and the fix.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any, Literal, get_args
+
+import yaml
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from verigraph.arm.errors import ArmConfigError
+from verigraph.arm.geometry import Box, KeepOutZone, Point
+from verigraph.arm.models import Pose, RunMode
+
+DriverName = Literal["pybullet", "rosbridge", "xarm"]
+DRIVER_NAMES: tuple[str, ...] = get_args(DriverName)
+PANDA_JOINTS = tuple(f"panda_joint{i}" for i in range(1, 8))
+
+
+class CameraView(BaseModel):
+    """One simulated camera: where it is, where it looks, its image size."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    eye: Point
+    target: Point = (0.45, 0.0, 0.05)
+    fov_deg: float = Field(default=50.0, gt=10, lt=120)
+    width: int = Field(default=400, ge=64, le=1920)
+    height: int = Field(default=300, ge=48, le=1080)
+
+
+class PyBulletOptions(BaseModel):
+    """The simulated Panda: physics pacing and the cameras that serve as locator.
+
+    Two oblique cameras from either front corner: together they see three sides of
+    every box, so even a covered block shows its whole footprint.
+    """
+
+    model_config = ConfigDict(extra="forbid")
+
+    real_time_factor: float | None = Field(
+        default=None, gt=0, description="None: as fast as possible; 1.0: wall-clock pace")
+    time_step_s: float = Field(default=1 / 240, gt=0, le=0.01)
+    cameras: list[CameraView] = Field(
+        default_factory=lambda: [CameraView(eye=(1.1, 0.5, 0.75)),
+                                 CameraView(eye=(1.1, -0.5, 0.75))], min_length=1)
+
+
+class RosbridgeOptions(BaseModel):
+    """ROS 2 through rosbridge: action names, joint names and the kinematic model for IK."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    port: int = Field(default=9090, ge=1, le=65535)
+    trajectory_action: str = "/panda_arm_controller/follow_joint_trajectory"
+    trajectory_action_type: str = "control_msgs/action/FollowJointTrajectory"
+    gripper_action: str = "/panda_hand_controller/gripper_cmd"
+    gripper_action_type: str = "control_msgs/action/GripperCommand"
+    joint_states_topic: str = "/joint_states"
+    joint_names: tuple[str, ...] = PANDA_JOINTS
+    urdf: str = Field(default="franka_panda/panda.urdf",
+                      description="kinematic model for IK: a pybullet_data path or a file")
+    tcp_link: str = "panda_grasptarget"
+    waypoint_spacing_m: float = Field(default=0.01, gt=0, le=0.1)
+    simulated_backend: bool = Field(
+        default=False, description="true only if the ROS side is a simulator (mode sim)")
+
+
+class XArmOptions(BaseModel):
+    """UFACTORY xArm / Lite6 through xarm-python-sdk."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    gripper: Literal["xarm", "lite6", "none"] = "xarm"
+    gripper_open_pulse: int = Field(default=850, ge=0, le=1000)
+    gripper_max_width_m: float = Field(default=0.086, gt=0)
+    set_reduced_boundary: bool = Field(
+        default=True, description="also program the workspace box as the controller's "
+                                  "reduced-mode TCP boundary")
+    roll_deg: float = 180.0
+    pitch_deg: float = 0.0
+    acceleration_mm_s2: float = Field(default=500.0, gt=0)
+
+
+class ArmConfig(BaseModel):
+    """Everything the adapter needs to drive one arm safely."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    driver: DriverName
+    mode: RunMode = Field(default="dry-run", description="dry-run moves nothing")
+    host: str | None = Field(default=None, description="controller address (rosbridge, xarm)")
+    connect_timeout_s: float = Field(default=5.0, gt=0, le=60)
+    motion_timeout_s: float = Field(default=30.0, gt=0, le=600,
+                                    description="per pick or place; on expiry stop + latch")
+    confirm_timeout_s: float = Field(default=120.0, gt=0)
+    max_location_age_s: float = Field(default=2.0, gt=0)
+    workspace: Box = Box(min=(0.2, -0.45, 0.01), max=(0.8, 0.45, 0.65))
+    keep_out: list[KeepOutZone] = Field(default_factory=list)
+    speed_m_s: float = Field(default=0.2, gt=0)
+    max_speed_m_s: float = Field(default=0.25, gt=0)
+    grip_force_n: float = Field(default=20.0, gt=0)
+    max_force_n: float = Field(default=40.0, gt=0)
+    gripper_max_width_m: float = Field(default=0.08, gt=0)
+    approach_height_m: float = Field(default=0.10, gt=0)
+    clearance_m: float = Field(default=0.005, ge=0, le=0.05)
+    max_grasp_depth_m: float = Field(default=0.03, gt=0,
+                                     description="how far below an object's top to grasp")
+    tool_margin_m: float = Field(default=0.01, ge=0,
+                                 description="keep-out zones are grown by this much")
+    home: Pose = Pose(x=0.35, y=0.0, z=0.45)
+    audit_log: Path | None = Field(default=None, description="JSON-lines file, appended to")
+    pybullet: PyBulletOptions = Field(default_factory=PyBulletOptions)
+    rosbridge: RosbridgeOptions = Field(default_factory=RosbridgeOptions)
+    xarm: XArmOptions = Field(default_factory=XArmOptions)
+
+    @model_validator(mode="after")
+    def _consistent(self) -> ArmConfig:
+        if self.speed_m_s > self.max_speed_m_s:
+            raise ValueError(f"speed_m_s ({self.speed_m_s}) exceeds max_speed_m_s "
+                             f"({self.max_speed_m_s})")
+        if self.grip_force_n > self.max_force_n:
+            raise ValueError(f"grip_force_n ({self.grip_force_n}) exceeds max_force_n "
+                             f"({self.max_force_n})")
+        if not self.workspace.contains(self.home.point()):
+            raise ValueError(f"home {self.home.text()} is outside the workspace")
+        for zone in self.keep_out:
+            if zone.contains(self.home.point()):
+                raise ValueError(f"home {self.home.text()} is inside keep-out zone "
+                                 f"'{zone.name}'")
+        if self.mode == "real":
+            if self.driver == "pybullet":
+                raise ValueError("mode 'real' with the pybullet driver: it is a simulator")
+            if self.audit_log is None:
+                raise ValueError("mode 'real' needs an audit_log path")
+        if self.mode == "sim" and self.driver == "xarm":
+            raise ValueError("mode 'sim' with the xarm driver: it drives hardware")
+        if self.mode == "sim" and self.driver == "rosbridge" \
+                and not self.rosbridge.simulated_backend:
+            raise ValueError("mode 'sim' with rosbridge needs rosbridge.simulated_backend: "
+                             "true (the ROS side must be a simulator)")
+        if self.driver in ("rosbridge", "xarm") and self.mode != "dry-run" and not self.host:
+            raise ValueError(f"the {self.driver} driver needs a host")
+        return self
+
+    def with_overrides(self, **changes: Any) -> ArmConfig:
+        """A validated copy with some fields changed (CLI flags, tests)."""
+        return parse_arm_config({**self.model_dump(), **changes})
+
+
+_FIXES = {
+    "driver": f"use one of {', '.join(DRIVER_NAMES)}",
+    "mode": "use dry-run (default, moves nothing), sim or real",
+    "workspace": "give min and max corners as [x, y, z] in metres with min < max",
+    "keep_out": "give each zone a name and min/max corners in metres",
+    "host": "give the controller's address, e.g. host: 192.168.1.185",
+}
+
+
+def parse_arm_config(data: object) -> ArmConfig:
+    """Validate a mapping into an ArmConfig; errors name the field and the fix."""
+    try:
+        return ArmConfig.model_validate(data)
+    except ValidationError as exc:
+        err = exc.errors()[0]
+        loc = ".".join(str(p) for p in err["loc"]) or "config"
+        top = str(err["loc"][0]) if err["loc"] else ""
+        raise ArmConfigError(
+            f"bad arm config: {err['msg']}", field=loc, value=err.get("input"),
+            fix=_FIXES.get(top, "see the arm configuration reference in the README")
+        ) from None
+
+
+def load_arm_config(path: str | Path) -> ArmConfig:
+    """Read an arm configuration from a .yaml/.yml or .json file."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise ArmConfigError(f"cannot read arm config: {exc.strerror}", field="arm config",
+                             value=str(p), fix="give the path of an existing YAML or JSON "
+                                               "file") from None
+    try:
+        data = json.loads(text) if p.suffix == ".json" else yaml.safe_load(text)
+    except (json.JSONDecodeError, yaml.YAMLError) as exc:
+        raise ArmConfigError(f"arm config is not valid {p.suffix.lstrip('.') or 'YAML'}: "
+                             f"{exc}", field="arm config", value=str(p),
+                             fix="fix the syntax at the position shown") from None
+    return parse_arm_config(data)
+
+
+def driver_from_executor(executor: str) -> str:
+    """`arm:pybullet` -> `pybullet`; anything else is an error naming the known drivers."""
+    prefix, _, name = executor.partition(":")
+    if prefix != "arm" or name not in DRIVER_NAMES:
+        raise ArmConfigError(f"unknown arm executor '{executor}'", field="executor",
+                             value=executor,
+                             fix="use " + ", ".join(f"arm:{n}" for n in DRIVER_NAMES))
+    return name

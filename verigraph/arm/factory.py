@@ -1,0 +1,72 @@
+"""Building an ArmWorld from a configuration: the one call the server layer makes.
+
+`open_arm_world(config, graph, confirm=...)` picks the driver by name, builds the
+PyBullet cell from the episode graph when the driver is `pybullet`, connects (never
+in dry-run) and returns the World to hand to `execute_in_world`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from verigraph.arm.audit import AuditLog
+from verigraph.arm.config import DRIVER_NAMES, ArmConfig
+from verigraph.arm.controller import ArmController
+from verigraph.arm.errors import ArmConfigError
+from verigraph.arm.protocols import ArmDriver, ConfirmHook, ObjectLocator
+from verigraph.arm.world import ArmWorld
+from verigraph.graph.model import SceneGraph
+
+
+def open_arm_world(config: ArmConfig, graph: SceneGraph, *, confirm: ConfirmHook | None = None,
+                   locator: ObjectLocator | None = None, driver: ArmDriver | None = None,
+                   audit: AuditLog | None = None) -> ArmWorld:
+    """An ArmWorld for the episode `graph`, connected unless the mode is dry-run.
+
+    `confirm` is asked before every real motion; `locator` is required for drivers
+    without a camera of their own (rosbridge, xarm); `driver` replaces the one named in
+    the config (tests, custom hardware).
+    """
+    on_close: Callable[[], None] | None = None
+    if config.driver not in DRIVER_NAMES:
+        raise ArmConfigError(f"unknown arm driver '{config.driver}'", field="driver",
+                             value=config.driver, fix=f"use one of {', '.join(DRIVER_NAMES)}")
+    if config.driver == "pybullet" and driver is None:
+        from verigraph.arm.drivers.pybullet_panda import PyBulletPandaDriver
+        from verigraph.arm.sim.camera import PyBulletCameraLocator
+        from verigraph.arm.sim.panda_scene import PandaScene
+
+        scene = PandaScene.from_graph(graph, config.pybullet)
+        driver = PyBulletPandaDriver(scene)
+        locator = locator or PyBulletCameraLocator(scene)
+        on_close = scene.close
+    elif driver is None:
+        driver = make_driver(config)
+    if locator is None:
+        raise ArmConfigError(f"the {config.driver} driver has no camera of its own",
+                             field="locator", value=config.driver,
+                             fix="pass an ObjectLocator (a camera pipeline, or a LayoutLocator "
+                                 "for a fixed, measured layout)")
+    controller = ArmController(config, driver, confirm=confirm, audit=audit)
+    try:
+        controller.connect()
+    except BaseException:
+        if on_close is not None:
+            on_close()
+        raise
+    return ArmWorld(graph, controller, locator, on_close=on_close)
+
+
+def make_driver(config: ArmConfig) -> ArmDriver:
+    """The hardware driver named in the config (imports its SDK only now)."""
+    if config.driver == "rosbridge":
+        from verigraph.arm.drivers.rosbridge import RosbridgeDriver
+
+        return RosbridgeDriver(config)
+    if config.driver == "xarm":
+        from verigraph.arm.drivers.xarm import XArmDriver
+
+        return XArmDriver(config)
+    raise ArmConfigError(f"the {config.driver} driver needs a scene, not only a config",
+                         field="driver", value=config.driver,
+                         fix="build it with open_arm_world, which creates the PyBullet cell")
