@@ -1,0 +1,1 @@
+"""PyBullet simulation of a Franka Panda cell: physics scene, kinematics and camera."""
