@@ -9,12 +9,11 @@ from __future__ import annotations
 
 import threading
 
+from verigraph.arm.drivers.sequence import GripStep, Step, home_steps, pick_steps, place_steps
 from verigraph.arm.errors import MotionCancelledError
 from verigraph.arm.models import DriverStatus, Grasp, Placement, Pose
-from verigraph.arm.sim.kinematics import JointTrajectory, Kinematics
+from verigraph.arm.sim.kinematics import Kinematics
 from verigraph.arm.sim.panda_scene import PandaScene
-
-OPEN_FORCE_N = 20.0  # opening needs no grip limit; the Panda finger motors allow 20 N
 
 
 class PyBulletPandaDriver:
@@ -40,16 +39,13 @@ class PyBulletPandaDriver:
                             error="stopped" if self._cancel.is_set() else None)
 
     def home(self, pose: Pose, speed_m_s: float) -> None:
-        self._run([self._lines([pose], speed_m_s)[0]])
+        self._run(home_steps(self._kinematics, self.scene.arm_positions(), pose, speed_m_s))
 
     def pick(self, grasp: Grasp) -> None:
-        to_approach, down, lift = self._lines(grasp.waypoints(), grasp.speed_m_s)
-        self._run([("grip", grasp.open_width_m, grasp.force_n), to_approach, down,
-                   ("grip", 0.0, grasp.force_n), lift])
+        self._run(pick_steps(self._kinematics, self.scene.arm_positions(), grasp))
 
     def place(self, placement: Placement) -> None:
-        to_approach, down, retreat = self._lines(placement.waypoints(), placement.speed_m_s)
-        self._run([to_approach, down, ("grip", placement.open_width_m, OPEN_FORCE_N), retreat])
+        self._run(place_steps(self._kinematics, self.scene.arm_positions(), placement))
         self.scene.settle(0.2)
 
     def stop(self) -> None:
@@ -62,27 +58,15 @@ class PyBulletPandaDriver:
         self._connected = False
         self._kinematics.close()
 
-    def _lines(self, waypoints: list[Pose], speed: float) -> list[JointTrajectory]:
-        """Joint trajectories through `waypoints` from the current pose (all IK up front)."""
-        q = self.scene.arm_positions()
-        here = self._kinematics.fk(q)
-        lines = []
-        for target in waypoints:
-            line = self._kinematics.line(q, here, target, speed)
-            lines.append(line)
-            q, here = line.final, target
-        return lines
-
-    def _run(self, steps: list[JointTrajectory | tuple[str, float, float]]) -> None:
+    def _run(self, steps: list[Step]) -> None:
         if self._cancel.is_set():
             raise MotionCancelledError("the pybullet driver is stopped; reset it first")
         self._moving = True
         try:
             for step in steps:
-                if isinstance(step, JointTrajectory):
-                    self.scene.follow(step, self._cancel)
+                if isinstance(step, GripStep):
+                    self.scene.grip(step.width_m / 2, step.force_n, self._cancel)
                 else:
-                    _, width, force = step
-                    self.scene.grip(width / 2, force, self._cancel)
+                    self.scene.follow(step, self._cancel)
         finally:
             self._moving = False
