@@ -1,0 +1,26 @@
+"""The one small interface every planner backend implements.
+
+A planner turns a `PlannerRequest` into a `PlannerReply`. It never talks to the verifier
+itself: the loop does, so every backend is checked by exactly the same tools.
+"""
+
+from __future__ import annotations
+
+from typing import Protocol, runtime_checkable
+
+from verigraph.agent.models import PlannerReply, PlannerRequest
+
+
+@runtime_checkable
+class Planner(Protocol):
+    """Proposes actions for the current graph; `name` appears in traces and tables."""
+
+    name: str
+
+    def propose(self, request: PlannerRequest) -> PlannerReply:
+        """At most `request.k` actions (or a whole plan when k is None), or the end token."""
+        ...
+
+    def close(self) -> None:
+        """Release connections or subprocesses; a closed planner is not used again."""
+        ...

@@ -1,0 +1,210 @@
+"""`verigraph agent`: run Algorithm 1 as a real MCP client of a VeriGraph server.
+
+It spawns `verigraph serve` over stdio (default) or connects to a streamable-HTTP URL,
+then does everything through the tools (load_scene, set_goal, get_state,
+execute_actions, end_episode), printing each iteration and the verdict.
+Exit codes: 0 goal reached, 1 goal missed, 2 bad input.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import sys
+from pathlib import Path
+from typing import Any
+
+from verigraph.errors import VeriGraphError
+
+GENERATOR = re.compile(r"^(?P<family>[a-z_]+):(?P<seed>\d+)(?::(?P<n>\d+))?$")
+
+
+def register(sub: Any) -> None:
+    from verigraph.agent.factory import PLANNER_NAMES
+    from verigraph.agent.noisy import MISTAKE_KINDS
+    from verigraph.agent.openai_backend import RESPONSE_FORMATS
+
+    p = sub.add_parser(
+        "agent", help="plan with an LLM (or the solver) through the MCP tools, Algorithm 1",
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    task = p.add_argument_group("task")
+    task.add_argument("--scene", required=True,
+                      help="built-in scene id (cup_on_book, three_blocks, kitchen_pan), a scene "
+                           "file (.json/.yaml), or a generated scene FAMILY:SEED[:N] "
+                           "(e.g. blocks:3, needs sim2d)")
+    task.add_argument("--goal", help="goal file (graph, {graph, partial} or {predicate}) or a "
+                                     "predicate name (single_stack); default: the scene's own")
+    task.add_argument("--instruction", help="the task in words, shown to the planner")
+    task.add_argument("--hide-goal-graph", action="store_true",
+                      help="show the planner only the instruction; the verifier still checks "
+                           "the goal graph")
+    task.add_argument("--simulate", action="store_true",
+                      help="also execute actions in the 2D simulator (needs sim2d)")
+    loop = p.add_argument_group("loop (Algorithm 1)")
+    loop.add_argument("--planner", choices=PLANNER_NAMES, default="oracle")
+    loop.add_argument("--mode", choices=("iterative", "direct"), default="iterative")
+    loop.add_argument("--k", type=int, default=3, help="actions per iteration (default 3)")
+    loop.add_argument("--threshold", "-t", type=int, default=5,
+                      help="stop after t consecutive failed iterations (default 5)")
+    loop.add_argument("--done-policy", choices=("verify", "trust"), default="verify",
+                      help="verify: refuse done while the goal does not hold (default); "
+                           "trust: the end token always stops (the paper's literal rule)")
+    loop.add_argument("--max-iterations", type=int, default=60)
+    server = p.add_argument_group("server")
+    server.add_argument("--transport", choices=("stdio", "http"), default="stdio",
+                        help="stdio: spawn `verigraph serve`; http: connect to --url")
+    server.add_argument("--url", help="MCP endpoint for --transport http, e.g. "
+                                      "http://127.0.0.1:8000/mcp")
+    server.add_argument("--token", help="bearer token for --transport http "
+                                        "(default: $VERIGRAPH_TOKEN)")
+    llm = p.add_argument_group("planner backends")
+    llm.add_argument("--noise", type=float, default=0.3, help="noisy: mistake rate per call")
+    llm.add_argument("--seed", type=int, default=0, help="noisy: RNG seed")
+    llm.add_argument("--mistakes", default=",".join(MISTAKE_KINDS),
+                     help=f"noisy: comma-separated kinds ({', '.join(MISTAKE_KINDS)})")
+    llm.add_argument("--base-url", help="openai/anthropic endpoint (default: $OPENAI_BASE_URL "
+                                        "or $ANTHROPIC_BASE_URL, else the public API)")
+    llm.add_argument("--model", help="model name (default: $OPENAI_MODEL / $ANTHROPIC_MODEL)")
+    llm.add_argument("--api-key", help="API key (default: $OPENAI_API_KEY / "
+                                       "$ANTHROPIC_API_KEY); prefer the variable")
+    llm.add_argument("--response-format", choices=RESPONSE_FORMATS,
+                     help="openai: how to ask for JSON (json_schema for OpenAI/vLLM/Ollama, "
+                          "json_object_schema for llama.cpp's server)")
+    llm.add_argument("--free-ids", action="store_true",
+                     help="do not enumerate object ids in the JSON schema")
+    llm.add_argument("--temperature", type=float)
+    llm.add_argument("--max-tokens", type=int)
+    llm.add_argument("--timeout", type=float, help="seconds per LLM request")
+    llm.add_argument("--retries", type=int, help="retries on transient HTTP errors")
+    out = p.add_argument_group("output")
+    out.add_argument("--trace", help="write the episode trace (JSON) to this file")
+    out.add_argument("--trace-prompts", action="store_true", help="keep prompts in the trace")
+    out.add_argument("--quiet", "-q", action="store_true", help="print only the verdict")
+    p.set_defaults(handler=run_agent)
+
+
+def _scene_spec(args: argparse.Namespace) -> dict[str, Any]:
+    from verigraph.graph.builtin_scenes import BUILTIN_SCENES
+    from verigraph.graph.io import load_scene
+
+    load: dict[str, Any] = {}
+    scene = args.scene
+    if Path(scene).is_file():
+        load["graph"] = load_scene(scene).model_dump(mode="json", exclude_none=True)
+    elif scene in BUILTIN_SCENES:
+        load["scene_id"] = scene
+    elif (m := GENERATOR.match(scene)) is not None:
+        gen: dict[str, Any] = {"family": m.group("family"), "seed": int(m.group("seed"))}
+        if m.group("n"):
+            gen["n_objects"] = int(m.group("n"))
+        load["generator"] = gen
+    else:
+        raise VeriGraphError(f"'{scene}' is not a scene file, a built-in scene or FAMILY:SEED",
+                             field="--scene", value=scene,
+                             fix=f"use one of {', '.join(BUILTIN_SCENES)}, a .json/.yaml "
+                                 "scene file, or e.g. blocks:3")
+    if args.simulate:
+        load["simulate"] = True
+    return load
+
+
+def _goal_spec(args: argparse.Namespace) -> dict[str, Any] | None:
+    from verigraph.graph.goal import PREDICATES
+    from verigraph.graph.io import load_goal
+
+    goal: dict[str, Any] = {}
+    if args.goal:
+        if args.goal in PREDICATES:
+            goal["predicate"] = args.goal
+        elif Path(args.goal).is_file():
+            g = load_goal(args.goal)
+            if g.graph is not None:
+                goal["graph"] = g.graph.model_dump(mode="json", exclude_none=True)
+                goal["partial"] = g.partial
+            if g.predicate is not None:
+                goal["predicate"] = g.predicate
+            if g.instruction and not args.instruction:
+                goal["instruction"] = g.instruction
+        else:
+            raise VeriGraphError(f"goal '{args.goal}' is neither a file nor a predicate",
+                                 field="--goal", value=args.goal,
+                                 fix=f"give a goal file or one of {', '.join(PREDICATES)}")
+    if args.instruction:
+        goal["instruction"] = args.instruction
+    return goal or None
+
+
+def _planner_options(args: argparse.Namespace) -> Any:
+    from verigraph.agent.factory import PlannerOptions
+
+    kinds = tuple(k.strip() for k in args.mistakes.split(",") if k.strip())
+    try:
+        return PlannerOptions(
+            noise=args.noise, seed=args.seed, mistakes=kinds, base_url=args.base_url,
+            model=args.model, api_key=args.api_key, response_format=args.response_format,
+            constrain_ids=not args.free_ids, temperature=args.temperature,
+            max_tokens=args.max_tokens, timeout_s=args.timeout, retries=args.retries)
+    except ValueError as exc:
+        raise VeriGraphError(f"bad planner option: {exc}", field="planner options",
+                             fix="see `verigraph agent --help`") from None
+
+
+def _environment(args: argparse.Namespace) -> Any:
+    import os
+
+    from verigraph.agent.environment import McpTools
+
+    if args.transport == "http":
+        if not args.url:
+            raise VeriGraphError("--transport http needs --url", field="--url",
+                                 fix="pass e.g. --url http://127.0.0.1:8000/mcp")
+        return McpTools.http(args.url, token=args.token or os.environ.get("VERIGRAPH_TOKEN"))
+    return McpTools.stdio()
+
+
+def run_agent(args: argparse.Namespace) -> int:
+    from pydantic import ValidationError
+
+    from verigraph.agent.console import header_lines, print_iteration, verdict_line
+    from verigraph.agent.factory import make_planner
+    from verigraph.agent.loop import EpisodeSpec, LoopConfig, run_episode
+
+    try:
+        config = LoopConfig(mode=args.mode, k=args.k, threshold=args.threshold,
+                            done_policy=args.done_policy, max_iterations=args.max_iterations,
+                            record_prompts=args.trace_prompts)
+    except ValidationError as exc:
+        err = exc.errors()[0]
+        name = str(err["loc"][0]) if err["loc"] else "options"
+        raise VeriGraphError(f"{err['msg']}", field=f"--{name.replace('_', '-')}",
+                             value=err.get("input"), fix="see `verigraph agent --help`"
+                             ) from None
+    spec = EpisodeSpec(load=_scene_spec(args), set_goal=_goal_spec(args),
+                       show_goal_graph=not args.hide_goal_graph)
+    planner = make_planner(args.planner, _planner_options(args))
+    out = sys.stdout
+
+    def on_start(trace: Any) -> None:
+        if not args.quiet:
+            out.write("\n".join(header_lines(trace)) + "\n")
+
+    def on_iteration(record: Any) -> None:
+        if not args.quiet:
+            print_iteration(record, out)
+
+    try:
+        env = _environment(args)
+        try:
+            trace = run_episode(env, planner, spec, config, on_iteration=on_iteration,
+                                on_start=on_start)
+        finally:
+            env.close()
+    finally:
+        planner.close()
+    out.write(verdict_line(trace) + "\n")
+    if args.trace:
+        Path(args.trace).write_text(json.dumps(trace.model_dump(mode="json"), indent=2) + "\n")
+        if not args.quiet:
+            out.write(f"trace written to {args.trace}\n")
+    return 0 if trace.success else 1
