@@ -1,0 +1,105 @@
+"""Helpers for the MCP server tests: in-process and subprocess servers, result access."""
+
+from __future__ import annotations
+
+import base64
+import json
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+import cv2
+import numpy as np
+from mcp.types import CallToolResult
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def verigraph_command() -> list[str]:
+    """The installed console script next to this Python, else `python -m verigraph`."""
+    exe = shutil.which("verigraph", path=str(Path(sys.executable).parent))
+    return [exe] if exe else [sys.executable, "-m", "verigraph"]
+
+
+def structured(result: CallToolResult) -> dict[str, Any]:
+    assert not result.is_error, text(result)
+    assert result.structured_content is not None
+    return result.structured_content
+
+
+def text(result: CallToolResult) -> str:
+    return "\n".join(getattr(c, "text", "") for c in result.content)
+
+
+def png_b64(width: int = 32, height: int = 24, color: tuple[int, int, int] = (0, 0, 255)) -> str:
+    image = np.zeros((height, width, 3), dtype=np.uint8)
+    image[:] = color
+    ok, buf = cv2.imencode(".png", image)
+    assert ok
+    return base64.b64encode(buf.tobytes()).decode()
+
+
+def decode_png(data_b64: str) -> np.ndarray:
+    raw = base64.b64decode(data_b64)
+    assert raw[:8] == b"\x89PNG\r\n\x1a\n"
+    image = cv2.imdecode(np.frombuffer(raw, np.uint8), cv2.IMREAD_COLOR)
+    assert image is not None
+    return image
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+@contextmanager
+def http_server(token: str | None = None, extra: list[str] | None = None
+                ) -> Iterator[tuple[str, subprocess.Popen[bytes]]]:
+    """`verigraph serve --transport http` on a free loopback port; yields (url, process)."""
+    port = free_port()
+    env = {k: v for k, v in os.environ.items() if k != "VERIGRAPH_TOKEN"}
+    args = [*verigraph_command(), "serve", "--transport", "http", "--port", str(port)]
+    if token:
+        args += ["--token", token]
+    proc = subprocess.Popen(args + (extra or []), env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE)
+    try:
+        deadline = time.monotonic() + 30
+        while True:
+            if proc.poll() is not None:
+                raise RuntimeError(f"server exited: {proc.stderr.read().decode()[-2000:]}"
+                                   if proc.stderr else "server exited")
+            try:
+                with socket.create_connection(("127.0.0.1", port), timeout=0.2):
+                    break
+            except OSError:
+                if time.monotonic() > deadline:
+                    raise
+                time.sleep(0.1)
+        yield f"http://127.0.0.1:{port}/mcp", proc
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+
+
+def rpc(method: str, params: dict[str, Any] | None = None, request_id: int = 1) -> bytes:
+    body: dict[str, Any] = {"jsonrpc": "2.0", "id": request_id, "method": method}
+    if params is not None:
+        body["params"] = params
+    return json.dumps(body).encode()
+
+
+JSON_HEADERS = {"Content-Type": "application/json",
+                "Accept": "application/json, text/event-stream"}

@@ -1,0 +1,164 @@
+"""render_scene, get_scene_image, submit_scene_graph, generate_scene_graph, image decoding."""
+
+from __future__ import annotations
+
+import base64
+from typing import Any
+
+import cv2
+import numpy as np
+import pytest
+from mcp_helpers import png_b64
+
+from verigraph.graph.builtin_scenes import cup_on_book, three_blocks
+from verigraph.tools import FeatureUnavailableError, ToolArgumentError, Toolbox
+from verigraph.tools.drawing import draw_graph, layout
+from verigraph.tools.images import decode_image, encode_png
+from verigraph.tools.optional import has
+
+NO_PERCEPTION = not has("verigraph.perception", "perceive")
+
+
+def decode(png: bytes) -> np.ndarray:
+    image = cv2.imdecode(np.frombuffer(png, np.uint8), cv2.IMREAD_COLOR)
+    assert image is not None
+    return image
+
+
+def test_layout_puts_each_object_above_its_support() -> None:
+    pos = layout(cup_on_book())
+    assert pos["cup"][1] > pos["book"][1] > pos["desk"][1]
+    assert pos["cup"][0] == pytest.approx(pos["book"][0])
+    assert pos["shelf"][1] == pos["desk"][1]
+    towers = layout(three_blocks())
+    assert towers["red_block"][1] > towers["blue_block"][1] > towers["table"][1]
+
+
+def test_drawing_is_deterministic_and_coloured() -> None:
+    a = draw_graph(cup_on_book(), 320, 240, colors={"desk": "walnut"})
+    b = draw_graph(cup_on_book(), 320, 240, colors={"desk": "walnut"})
+    assert a.shape == (240, 320, 3) and np.array_equal(a, b)
+    assert (a != 255).any()  # something was drawn
+    walnut = np.array([45, 75, 110], dtype=np.uint8)
+    assert (a == walnut).all(axis=2).sum() > 100
+
+
+def test_render_scene_is_a_png_of_the_requested_size() -> None:
+    box = Toolbox()
+    eid = box.call("load_scene", {"scene_id": "cup_on_book"}).episode_id
+    image = box.call("render_scene", {"episode_id": eid, "width": 300, "height": 200})
+    assert image.mime_type == "image/png" and image.text is None
+    assert decode(image.png).shape == (200, 300, 3)
+    goal = box.call("render_scene", {"episode_id": eid, "view": "goal"})
+    assert not np.array_equal(decode(goal.png), decode(box.call(
+        "render_scene", {"episode_id": eid}).png))
+
+
+def test_render_goal_needs_a_goal_graph() -> None:
+    box = Toolbox()
+    eid = box.call("load_scene", {"scene_id": "three_blocks"}).episode_id  # predicate goal
+    with pytest.raises(ToolArgumentError) as err:
+        box.call("render_scene", {"episode_id": eid, "view": "goal"})
+    assert err.value.field == "view"
+
+
+def test_get_scene_image_returns_the_loaded_photo_and_the_prompt() -> None:
+    box = Toolbox()
+    photo = png_b64(40, 30, (0, 255, 0))
+    eid = box.call("load_scene", {"image": photo, "dictionary": "kitchen",
+                                  "instruction": "put the lid on the pot"}).episode_id
+    out = box.call("get_scene_image", {"episode_id": eid})
+    image = decode(out.png)
+    assert image.shape == (30, 40, 3) and (image[..., 1] == 255).all()
+    assert "Dictionary: kitchen" in out.text and "stove" in out.text
+    assert "put the lid on the pot" in out.text and f'episode_id="{eid}"' in out.text
+
+
+def test_submit_normalises_and_reports_every_problem_at_once() -> None:
+    box = Toolbox()
+    graph = {"nodes": [{"id": "Red Block", "label": "cube"}, {"id": "tbl", "label": "Table Top"},
+                       {"id": "x", "label": "unicorn"}, {"id": "b2", "label": "block"},
+                       {"id": "b3", "label": "block"}],
+             "edges": [{"source": "Red Block", "relation": "on top of", "target": "table"},
+                       {"source": "b2", "relation": "beside", "target": "tbl"},
+                       {"source": "b3", "relation": "on", "target": "nowhere"}]}
+    out = box.call("submit_scene_graph", {"graph": graph, "dictionary": "blocks"})
+    assert not out.accepted
+    rules = sorted(p.rule for p in out.problems)
+    assert rules == ["dangling_edge", "missing_support", "missing_support", "unknown_label",
+                     "unknown_relation"]
+    renames = {(r.before, r.after) for r in out.normalised}
+    assert {("Red Block", "red_block"), ("cube", "block"), ("Table Top", "table"),
+            ("on top of", "on"), ("table", "tbl")} <= renames
+    assert "REJECTED: 5 problem(s)" in out.summary()
+
+
+def test_accepted_submission_starts_an_image_episode() -> None:
+    box = Toolbox()
+    eid = box.call("load_scene", {"image": png_b64()}).episode_id
+    graph = {"nodes": [{"id": "desk", "label": "writing desk"}, {"id": "mug", "label": "mug"}],
+             "edges": [{"source": "mug", "relation": "on", "target": "desk"}]}
+    out = box.call("submit_scene_graph", {"episode_id": eid, "graph": graph})
+    assert out.accepted and out.adopted and out.problems == []
+    state = box.call("get_state", {"episode_id": eid})
+    assert not state.awaiting_scene_graph and state.graph.sentences() == ["mug on desk"]
+    ran = box.call("execute_actions", {"episode_id": eid, "actions": ["move(mug, desk)"]})
+    assert ran.violation.constraint == "already_there"
+
+
+def test_rejected_submission_leaves_the_episode_waiting() -> None:
+    box = Toolbox()
+    eid = box.call("load_scene", {"image": png_b64()}).episode_id
+    out = box.call("submit_scene_graph", {"episode_id": eid, "graph": {
+        "nodes": [{"id": "mug", "label": "mug"}], "edges": []}})
+    assert not out.accepted and not out.adopted
+    assert box.call("get_state", {"episode_id": eid}).awaiting_scene_graph
+
+
+def test_submission_for_a_loaded_scene_is_compared_not_adopted() -> None:
+    box = Toolbox()
+    eid = box.call("load_scene", {"scene_id": "cup_on_book"}).episode_id
+    graph = {"nodes": [{"id": n, "label": n} for n in ("desk", "shelf", "book", "cup")],
+             "edges": [{"source": "book", "relation": "on", "target": "desk"},
+                       {"source": "cup", "relation": "on", "target": "desk"}]}
+    out = box.call("submit_scene_graph", {"episode_id": eid, "graph": graph})
+    assert out.accepted and not out.adopted
+    assert out.diff_to_episode.missing_edges == ["cup on book"]
+    assert box.call("get_state", {"episode_id": eid}).graph.sentences() == [
+        "book on desk", "cup on book"]
+
+
+@pytest.mark.skipif(not NO_PERCEPTION, reason="perception installed")
+@pytest.mark.parametrize("args", [{"image": "IMAGE"}, {"episode_id": "EPISODE"}])
+def test_generate_scene_graph_points_to_the_agent_route(args: dict[str, Any]) -> None:
+    box = Toolbox()
+    eid = box.call("load_scene", {"scene_id": "cup_on_book"}).episode_id
+    args = {k: {"IMAGE": png_b64(), "EPISODE": eid}[v] for k, v in args.items()}
+    with pytest.raises(FeatureUnavailableError) as err:
+        box.call("generate_scene_graph", args)
+    assert "not available yet" in str(err.value)
+    assert "get_scene_image" in (err.value.fix or "") and "submit_scene_graph" in err.value.fix
+
+
+@pytest.mark.parametrize("payload, message", [
+    ("not base64 at all!", "not valid base64"),
+    (base64.b64encode(b"GIF89a....").decode(), "not a PNG or JPEG"),
+    ("", "empty"),
+])
+def test_bad_images_name_the_field(payload: str, message: str) -> None:
+    with pytest.raises(ToolArgumentError) as err:
+        decode_image(payload, field="image")
+    assert err.value.field == "image" and message in str(err.value)
+
+
+def test_image_decompression_bomb_is_refused() -> None:
+    png = bytearray(encode_png(np.zeros((4, 4, 3), np.uint8)))
+    png[16:24] = (100_000).to_bytes(4, "big") + (100_000).to_bytes(4, "big")
+    with pytest.raises(ToolArgumentError) as err:
+        decode_image(base64.b64encode(bytes(png)).decode())
+    assert "too large" in str(err.value)
+
+
+def test_data_url_prefix_is_accepted() -> None:
+    image = decode_image("data:image/png;base64," + png_b64(8, 6))
+    assert image.shape == (6, 8, 3)
