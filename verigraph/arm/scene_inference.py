@@ -33,7 +33,7 @@ def _support(obj: ObjectLocation, other: ObjectLocation, props: ObjectProperties
     if not other.footprint_contains(obj.centre[0], obj.centre[1], tol.xy_margin_m):
         return None
     if props.container and other.bottom_z - tol.z_gap_m <= obj.bottom_z < other.top_z - 0.005:
-        return "in", 0.0
+        return "in", -1.0  # inside a container beats resting near a surface
     gap = abs(obj.bottom_z - other.top_z)
     if props.surface and gap <= tol.z_gap_m:
         return "on", gap

@@ -50,11 +50,14 @@ class RosbridgeDriver:
     # -- connection ------------------------------------------------------------------------
     def connect(self, timeout_s: float) -> None:
         o = self.options
+        # The kinematic model first: a joint name it lacks is a config error, found now.
+        self._kinematics = Kinematics(o.urdf, o.tcp_link, o.joint_names)
         ros = roslibpy.Ros(host=self.host, port=o.port)
         try:
             ros.run(timeout=timeout_s)
         except Exception:
             self._abandon(ros)
+            self.disconnect()
             raise ArmConnectionError(
                 f"no rosbridge server answered at ws://{self.host}:{o.port} within "
                 f"{timeout_s} s", field="host", value=f"{self.host}:{o.port}",
@@ -64,7 +67,13 @@ class RosbridgeDriver:
         self._topic = roslibpy.Topic(ros, o.joint_states_topic, "sensor_msgs/msg/JointState")
         self._topic.subscribe(self._on_joint_state)
         if not self._first_state.wait(timeout_s):
+            seen = sorted(self._joint_state)
             self.disconnect()
+            if seen:
+                raise ArmConnectionError(
+                    f"joint states on {o.joint_states_topic} name {seen}, not all of "
+                    f"{list(o.joint_names)}", field="rosbridge.joint_names",
+                    value=list(o.joint_names), fix="set rosbridge.joint_names to the robot's")
             raise ArmConnectionError(
                 f"no joint states on {o.joint_states_topic} within {timeout_s} s",
                 field="rosbridge.joint_states_topic", value=o.joint_states_topic,
@@ -72,7 +81,6 @@ class RosbridgeDriver:
         self._trajectory = roslibpy.ActionClient(ros, o.trajectory_action,
                                                  o.trajectory_action_type)
         self._gripper = roslibpy.ActionClient(ros, o.gripper_action, o.gripper_action_type)
-        self._kinematics = Kinematics(o.urdf, o.tcp_link, o.joint_names)
 
     @staticmethod
     def _abandon(ros: Any) -> None:
