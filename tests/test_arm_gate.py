@@ -31,6 +31,7 @@ from verigraph.arm import (  # noqa: E402
     ArmController,
     ArmWorld,
     ConfirmationRequest,
+    ConfirmHook,
     DeclaredObject,
     KeepOutZone,
     LayoutLocator,
@@ -38,8 +39,10 @@ from verigraph.arm import (  # noqa: E402
     UnauthorizedMotionError,
     ValidatedAction,
     authorize,
+    confirm_scope,
     open_arm_world,
     parse_arm_config,
+    scoped_confirm,
 )
 from verigraph.arm.drivers.xarm import XArmDriver  # noqa: E402
 from verigraph.arm.planning import plan_motion  # noqa: E402
@@ -78,7 +81,8 @@ class Cell:
     def __init__(self, tmp_path: Path, *, mode: str = "real",
                  confirm: Callable[[ConfirmationRequest], object] | None = None,
                  layout: dict[str, DeclaredObject] | None = None, time_scale: float = 0.0,
-                 graph: SceneGraph | None = None, **overrides: object) -> None:
+                 graph: SceneGraph | None = None, hook: ConfirmHook | None = None,
+                 **overrides: object) -> None:
         self.audit_path = tmp_path / "audit.jsonl"
         self.config = parse_arm_config({"driver": "xarm", "mode": mode, "host": "192.168.1.185",
                                         "audit_log": str(self.audit_path), **overrides})
@@ -91,7 +95,8 @@ class Cell:
             return confirm(request) if confirm is not None else True
 
         self.world: ArmWorld = open_arm_world(
-            self.config, self.graph, confirm=ask if confirm is not False else None,
+            self.config, self.graph,
+            confirm=hook or (ask if confirm is not False else None),
             locator=LayoutLocator(layout or LAYOUT),
             driver=XArmDriver(self.config, api_factory=lambda host: self.api))
 
@@ -380,3 +385,26 @@ def test_audit_log_is_append_only_json_lines(tmp_path: Path) -> None:
     assert records[-1]["command"] == "stop" and records[-1]["mode"] == "real"
     pick = next(r for r in records if r["command"] == "pick" and r["outcome"] == "sent")
     assert pick["params"]["object_id"] == "green" and pick["params"]["force_n"] == 20.0
+
+
+def test_request_scoped_confirmation_follows_the_call_into_the_worker_thread(
+        tmp_path: Path) -> None:
+    """The server's wiring: one ArmWorld per episode, one elicitation hook per tool call."""
+    cell = Cell(tmp_path, hook=scoped_confirm)
+    asked: list[str] = []
+
+    async def elicit(request: ConfirmationRequest) -> bool:
+        asked.append(request.motion)
+        return False
+
+    async def tool_call() -> Violation | None:
+        with confirm_scope(elicit):
+            return (await anyio.to_thread.run_sync(cell.run, STACK[:1]))[0]
+
+    declined = anyio.run(tool_call)
+    assert asked == ["move(green, on, red): pick green at (0.400, 0.000, 0.025) m, yaw 0 deg, "
+                     "release it on red at (0.400, -0.120, 0.080) m, yaw 0 deg"]
+    assert declined is not None and "declined" in declined.message
+    outside, _ = cell.run(STACK[:1])  # no scope: this caller has no way to ask
+    assert outside is not None and "cannot ask" in outside.message
+    assert cell.motions() == []

@@ -18,6 +18,7 @@ from verigraph.arm.config import (
     load_arm_config,
     parse_arm_config,
 )
+from verigraph.arm.confirm import confirm_scope, scoped_confirm
 from verigraph.arm.controller import Approval, ArmController, MotionOutcome
 from verigraph.arm.errors import (
     ArmBusyError,
@@ -61,7 +62,7 @@ __all__ = [
     "LayoutLocator", "MotionCancelledError", "MotionOutcome", "ObjectLocation",
     "ObjectLocator", "ObjectNotFoundError", "Placement", "Pose", "PyBulletOptions",
     "RelationCheck", "RosbridgeOptions", "StaleLocationError", "UnauthorizedMotionError",
-    "UnsafeMotionError", "ValidatedAction", "XArmOptions", "authorize",
+    "UnsafeMotionError", "ValidatedAction", "XArmOptions", "authorize", "confirm_scope",
     "driver_from_executor", "load_arm_config", "make_driver", "open_arm_world",
-    "parse_arm_config",
+    "parse_arm_config", "scoped_confirm",
 ]

@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import asyncio
 import inspect
-from collections.abc import Awaitable
+from collections.abc import Awaitable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 
 import anyio
@@ -18,6 +20,36 @@ import anyio.from_thread
 
 from verigraph.arm.models import ConfirmationRequest
 from verigraph.arm.protocols import ConfirmHook
+
+_SCOPED: ContextVar[ConfirmHook | None] = ContextVar("verigraph_arm_confirm", default=None)
+
+
+class NoWayToAsk(Exception):
+    """The current request installed no confirmation hook (its client cannot elicit)."""
+
+
+@contextmanager
+def confirm_scope(hook: ConfirmHook | None) -> Iterator[None]:
+    """Install `hook` for the current request; `scoped_confirm` delegates to it.
+
+    The server opens one scope per tool call with an elicitation hook bound to that
+    call's client. Context variables follow `anyio.to_thread.run_sync` into the
+    worker thread, so the ArmWorld built once per episode asks the right client.
+    """
+    token = _SCOPED.set(hook)
+    try:
+        yield
+    finally:
+        _SCOPED.reset(token)
+
+
+def scoped_confirm(request: ConfirmationRequest) -> bool | Awaitable[bool]:
+    """A ConfirmHook that asks whichever hook the current `confirm_scope` installed."""
+    hook = _SCOPED.get()
+    if hook is None:
+        raise NoWayToAsk("no confirmation hook in this request: the client cannot ask "
+                         "the user")
+    return hook(request)
 
 
 @dataclass(frozen=True, slots=True)
@@ -36,6 +68,8 @@ def ask_confirmation(hook: ConfirmHook | None, request: ConfirmationRequest,
         answer = _wait(reply, timeout_s) if inspect.isawaitable(reply) else reply
     except TimeoutError:
         return ConfirmationAnswer(False, f"no answer within {timeout_s:.0f} s")
+    except NoWayToAsk as exc:
+        return ConfirmationAnswer(False, str(exc))
     except Exception as exc:  # a failing hook must never let the arm move
         return ConfirmationAnswer(False, f"the confirmation hook failed: {exc!r}")
     if answer is True:
