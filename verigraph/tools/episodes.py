@@ -48,6 +48,7 @@ class EpisodeState(BaseModel):
     goal_satisfied: bool | None = Field(description="null when there is no checkable goal")
     goal_diff: GraphDiff | None
     executed: list[str] = Field(description="actions executed so far, in order")
+    calls: int = Field(description="execute_actions calls so far")
     tau: int = Field(description="consecutive failed execute_actions calls")
     t: int = Field(description="threshold: the episode stops when tau reaches t")
     k: int = Field(description="at most k actions per execute_actions call")
@@ -79,8 +80,8 @@ def describe(episode: Episode) -> EpisodeState:
         graph=state.to_graph() if state is not None else None, goal=episode.goal,
         instruction=episode.instruction or (episode.goal.instruction if episode.goal else None),
         goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
-        executed=[a.text() for a in episode.executed], tau=episode.tau, t=episode.t,
-        k=episode.k, threshold_reached=episode.threshold_reached,
+        executed=[a.text() for a in episode.executed], calls=episode.calls, tau=episode.tau,
+        t=episode.t, k=episode.k, threshold_reached=episode.threshold_reached,
         simulated=episode.world is not None, awaiting_scene_graph=state is None,
         dictionary=dictionary.name if dictionary else pending,
         relations=list((dictionary or dictionary_for(pending)).relations),
