@@ -408,3 +408,16 @@ def test_request_scoped_confirmation_follows_the_call_into_the_worker_thread(
     outside, _ = cell.run(STACK[:1])  # no scope: this caller has no way to ask
     assert outside is not None and "cannot ask" in outside.message
     assert cell.motions() == []
+
+
+def test_home_is_gated_like_any_motion(tmp_path: Path) -> None:
+    from verigraph.arm import ArmStoppedError, ConfirmationError
+
+    cell = Cell(tmp_path, confirm=lambda request: False)
+    with pytest.raises(ConfirmationError, match="declined"):
+        cell.world.home()
+    assert cell.motions() == [] and "go home" in cell.asked[0].motion
+    cell.world.stop()
+    with pytest.raises(ArmStoppedError):
+        cell.world.home()
+    assert cell.world.render is None  # no camera of its own to show

@@ -204,3 +204,14 @@ def test_camera_frames_are_written_as_png(tmp_path: Path) -> None:
         assert frame.rgb.shape == (300, 400, 3) and frame.rgb.std() > 10
     finally:
         scene.close()
+
+
+def test_render_and_home(world: ArmWorld) -> None:
+    assert world.render is not None
+    image = world.render(width=160, height=120)
+    assert image.shape == (120, 160, 3) and image.std() > 10
+    world.perform(MoveAction(object="green_block", target="red_block"))
+    assert world.home().status == "done"
+    tcp = world.status().tcp
+    home = world._controller.config.home
+    assert tcp is not None and math.dist(tcp.point(), home.point()) < 0.01

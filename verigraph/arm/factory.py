@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+import numpy as np
+
 from verigraph.arm.audit import AuditLog
 from verigraph.arm.config import DRIVER_NAMES, ArmConfig
 from verigraph.arm.controller import ArmController
@@ -28,18 +30,25 @@ def open_arm_world(config: ArmConfig, graph: SceneGraph, *, confirm: ConfirmHook
     the config (tests, custom hardware).
     """
     on_close: Callable[[], None] | None = None
+    render: Callable[..., np.ndarray] | None = None
     if config.driver not in DRIVER_NAMES:
         raise ArmConfigError(f"unknown arm driver '{config.driver}'", field="driver",
                              value=config.driver, fix=f"use one of {', '.join(DRIVER_NAMES)}")
     if config.driver == "pybullet" and driver is None:
         from verigraph.arm.drivers.pybullet_panda import PyBulletPandaDriver
-        from verigraph.arm.sim.camera import PyBulletCameraLocator
+        from verigraph.arm.sim.camera import PyBulletCameraLocator, capture
         from verigraph.arm.sim.panda_scene import PandaScene
 
         scene = PandaScene.from_graph(graph, config.pybullet)
         driver = PyBulletPandaDriver(scene)
         locator = locator or PyBulletCameraLocator(scene)
         on_close = scene.close
+        view = config.pybullet.cameras[0]
+
+        def render(width: int = view.width, height: int = view.height) -> np.ndarray:
+            camera = view.model_copy(update={"width": width, "height": height})
+            return capture(scene, camera).rgb
+
     elif driver is None:
         driver = make_driver(config)
     if locator is None:
@@ -54,7 +63,7 @@ def open_arm_world(config: ArmConfig, graph: SceneGraph, *, confirm: ConfirmHook
         if on_close is not None:
             on_close()
         raise
-    return ArmWorld(graph, controller, locator, on_close=on_close)
+    return ArmWorld(graph, controller, locator, on_close=on_close, render=render)
 
 
 def make_driver(config: ArmConfig) -> ArmDriver:

@@ -14,6 +14,8 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
+import numpy as np
+
 from verigraph.actions.feedback import ConstraintId, Violation
 from verigraph.actions.model import AlignAction, MoveAction
 from verigraph.arm.controller import ArmController, MotionOutcome
@@ -49,7 +51,8 @@ class ArmWorld:
     def __init__(self, graph: SceneGraph, controller: ArmController, locator: ObjectLocator,
                  *, dictionary: Dictionary | str | None = None,
                  tolerances: InferenceTolerances | None = None,
-                 on_close: Callable[[], None] | None = None) -> None:
+                 on_close: Callable[[], None] | None = None,
+                 render: Callable[..., np.ndarray] | None = None) -> None:
         self._graph = graph.model_copy(update={"edges": []})
         self._dictionary = load_dictionary(dictionary if dictionary is not None
                                            else graph.dictionary)
@@ -60,6 +63,9 @@ class ArmWorld:
         self._on_close = on_close
         self.last_check: RelationCheck | None = None
         self.last_outcome: MotionOutcome | None = None
+        # `render(width=, height=) -> RGB array` when the cell has a camera to show (the
+        # scene tools look for it); None otherwise.
+        self.render = render
 
     # -- World protocol ----------------------------------------------------------------------
     def perform(self, action: MoveAction | AlignAction) -> Violation | None:
@@ -98,6 +104,11 @@ class ArmWorld:
 
     def stop(self, reason: str = "stop requested") -> ArmStatus:
         return self._controller.stop(reason)
+
+    def home(self) -> MotionOutcome:
+        """Go to the configured home pose (confirmed first in real mode)."""
+        approval = self._controller.confirm_home() if self._controller.mode == "real" else None
+        return self._controller.home(approval=approval)
 
     def reset(self) -> ArmStatus:
         return self._controller.reset()
