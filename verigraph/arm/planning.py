@@ -2,8 +2,9 @@
 
 `on` releases the held object `clearance_m` above the target's top (the tool sits at
 the object's grasp height above its bottom, so for a centre grasp that is the
-object's half height); `in` lowers it into the container's opening. Every move runs
-at one transit height that clears the tallest located object with the held one.
+object's half height); `in` lowers it into the container's opening. The arm only
+moves sideways at one transit height that clears the tallest located object with the
+held one under the tool, and goes straight up and down above the object and target.
 """
 
 from __future__ import annotations
@@ -121,7 +122,7 @@ def plan_motion(receipt: ValidatedAction, held: ObjectLocation, target: ObjectLo
     tx, ty = target.centre[0], target.centre[1]
     speed = config.speed_m_s
     grasp = Grasp(object_id=held.object_id,
-                  approach=Pose(x=cx, y=cy, z=held.top_z + config.approach_height_m, yaw=yaw),
+                  approach=Pose(x=cx, y=cy, z=transit_z, yaw=yaw),
                   grasp=Pose(x=cx, y=cy, z=grasp_z, yaw=yaw),
                   lift=Pose(x=cx, y=cy, z=transit_z, yaw=yaw),
                   open_width_m=min(config.gripper_max_width_m, width + 0.03),
