@@ -125,8 +125,13 @@ def _tabletop_mistake(kind: MistakeKind, state: WorldState, upcoming: AnyAction 
         if not loaded:
             return None
         obj = rng.choice(loaded)
-        target = state.free_place_for(obj, {obj, state.support.get(obj, ("", ""))[1]})
-        return MoveAction(object=obj, relation="on", target=target or state.fixed_surfaces[0])
+        below = state.support.get(obj, ("", ""))[1]
+        above = {o for o in state.objects if obj in state.supports_chain(o)}
+        targets = [t for t in state.objects if t not in above | {obj, below}
+                   and state.objects[t].props.surface and state.has_room(t)]
+        if not targets:
+            return None
+        return MoveAction(object=obj, relation="on", target=rng.choice(targets))
     if kind == "full_target":
         full = [o for o in state.objects if not state.has_room(o)
                 and (state.objects[o].props.surface or state.objects[o].props.container)]

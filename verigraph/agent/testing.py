@@ -76,7 +76,8 @@ class RecordedResponseServerForTests:
                 return None
 
         self._server = ThreadingHTTPServer(("127.0.0.1", 0), Handler)
-        self._thread = threading.Thread(target=self._server.serve_forever, daemon=True)
+        self._thread = threading.Thread(target=self._server.serve_forever,
+                                        kwargs={"poll_interval": 0.05}, daemon=True)
 
     @property
     def url(self) -> str:
@@ -114,3 +115,43 @@ def anthropic_tool_use(actions: list[dict[str, Any]] | Any, stop_reason: str = "
                          "input": {"actions": actions} if isinstance(actions, list)
                          else actions}],
             "usage": {"input_tokens": 100, "output_tokens": 20}}
+
+
+class ScriptedPlannerForTests:
+    """A planner that replays fixed replies (a test double for an LLM, named as such).
+
+    Each item is a list of actions, a `PlannerReply`, or an exception to raise; when the
+    script runs out the last item repeats, so "always invalid" is a one-item script.
+    Every request is kept for assertions (what k, feedback and prompt the loop sent).
+    """
+
+    name = "scripted"
+
+    def __init__(self, script: list[Any]) -> None:
+        if not script:
+            raise ValueError("the script needs at least one reply")
+        self.script = list(script)
+        self.requests: list[Any] = []
+        self.closed = False
+
+    def propose(self, request: Any) -> Any:
+        from verigraph.actions.model import ActionAdapter
+        from verigraph.agent.models import PlannerReply
+
+        self.requests.append(request)
+        item = self.script[min(len(self.requests), len(self.script)) - 1]
+        if isinstance(item, BaseException):
+            raise item
+        if isinstance(item, PlannerReply):
+            return item
+        return PlannerReply(actions=[ActionAdapter.validate_python(a) if isinstance(a, dict)
+                                     else _parse_one(a) for a in item])
+
+    def close(self) -> None:
+        self.closed = True
+
+
+def _parse_one(text: str) -> Any:
+    from verigraph.actions.parser import parse_action_text
+
+    return parse_action_text(text)
