@@ -1,0 +1,56 @@
+"""Colour names -> BGR, shared by the renderer and (later) perception.
+
+Each object class draws in its dictionary colour; a node's `attrs.color` overrides it
+(blocks carry their colour there). Unknown names fall back to a fixed grey so that a
+render never depends on anything but the world state.
+"""
+
+from __future__ import annotations
+
+BGR = tuple[int, int, int]
+
+COLORS: dict[str, BGR] = {
+    # furniture
+    "brown": (30, 75, 140),
+    "walnut": (40, 50, 95),
+    "tan": (140, 180, 210),
+    "gray": (150, 150, 150),
+    "black": (35, 35, 35),
+    "wood": (95, 160, 205),
+    # tableware and kitchen objects
+    "white": (245, 245, 245),
+    "blue": (200, 90, 30),
+    "red": (40, 40, 210),
+    "green": (60, 160, 50),
+    "yellow": (40, 210, 240),
+    "orange": (30, 140, 250),
+    "purple": (160, 50, 130),
+    "cyan": (210, 200, 40),
+    "pink": (180, 130, 250),
+    "navy": (110, 40, 20),
+    "silver": (200, 195, 190),
+    "steel": (140, 120, 100),
+    "slate": (120, 100, 70),
+    "teal": (128, 128, 0),
+    "darkgray": (80, 80, 80),
+    "lime": (50, 220, 150),
+    "magenta": (200, 40, 200),
+    "olive": (30, 130, 130),
+    "maroon": (30, 30, 120),
+    "beige": (190, 220, 235),
+}
+FALLBACK: BGR = (120, 120, 120)
+BLOCK_COLORS = ("red", "blue", "green", "yellow", "purple", "orange", "cyan", "pink", "lime",
+                "magenta", "olive", "maroon")
+
+BACKGROUND: BGR = (235, 228, 222)
+FLOOR: BGR = (105, 115, 125)
+OUTLINE: BGR = (25, 25, 25)
+TANGRAM_BACKGROUND: BGR = (250, 250, 250)
+
+
+def bgr(name: str | None) -> BGR:
+    """BGR triple for a colour name (case and spaces ignored), or the fallback grey."""
+    if not name:
+        return FALLBACK
+    return COLORS.get(name.strip().lower().replace(" ", ""), FALLBACK)

@@ -1,0 +1,211 @@
+"""Putting a lifted object down: choose placements, try them in physics, keep one.
+
+Each candidate placement is carried out and settled; if the graph read back is the
+expected one it stays, otherwise the scene is restored and the next is tried. When a
+movable surface has no free spot left, the objects already on it are slid sideways
+together (the arm nudges them; their support does not change) to open one. The arm
+checks candidates in simulation before committing, so in verified mode a placement
+that would topple is never carried out; unverified mode lets physics decide.
+Furniture that looks full because of gaps left by earlier moves has its load pushed
+to the left first.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Literal
+
+from verigraph.sim2d import physics
+from verigraph.sim2d.physics import Pose
+from verigraph.sim2d.placement import (
+    FIXED_GAP,
+    Placement,
+    drop_placement,
+    find_placements,
+    margin,
+    mass_centre,
+    subtree_of,
+)
+from verigraph.sim2d.readback import DirectSupport, read_supports
+from verigraph.sim2d.scene import Snapshot, TabletopScene
+
+CANDIDATES = 3
+SETTLE_SHIFT = 0.5
+SETTLE_TURN = 0.05
+SLIDE_STEP = 1.0
+SLIDE_DEPTH = 0.05
+
+Outcome = Literal["placed", "no_room", "unstable", "dropped"]
+
+
+Slide = tuple[tuple[str, ...], float]
+
+
+@dataclass(frozen=True, slots=True)
+class Plan:
+    """A placement, possibly after sliding groups of objects sideways on their support."""
+
+    placement: Placement
+    slides: tuple[Slide, ...] = field(default=())
+
+
+def _shift(scene: TabletopScene, ids: tuple[str, ...], dx: float) -> None:
+    for obj in ids:
+        pose = physics.pose_of(scene.things[obj].body)
+        scene.put(obj, Pose(pose.x + dx, pose.y, pose.angle))
+
+
+def _slide(scene: TabletopScene, slides: tuple[Slide, ...], sign: float = 1.0) -> None:
+    for ids, dx in slides:
+        _shift(scene, ids, sign * dx)
+
+
+def _apply(scene: TabletopScene, obj: str, plan: Plan) -> None:
+    _slide(scene, plan.slides)
+    scene.put(obj, plan.placement.pose)
+
+
+def _try_slides(scene: TabletopScene, obj: str, relation: str, target: str,
+                supports: dict[str, tuple[str, str]], slides: tuple[Slide, ...]
+                ) -> Plan | None:
+    """Slide, look for a placement, slide back; the plan if one was found."""
+    _slide(scene, slides)
+    try:
+        group = {scene.things[o].body for ids, _ in slides for o in ids}
+        allowed = group | {scene.things[target].body}
+        for body in group:
+            if any(b not in allowed for b in physics.overlaps(scene.space, body, SLIDE_DEPTH)):
+                return None
+        moved, moved_direct = read_supports(scene)
+        if moved != supports:
+            return None
+        for ids, _ in slides:
+            if not _balanced(scene, moved_direct, ids):
+                return None
+        found = find_placements(scene, obj, relation, target, moved, moved_direct, limit=1)
+        return Plan(found[0], slides) if found else None
+    finally:
+        _slide(scene, tuple(reversed(slides)), -1.0)
+
+
+def _stayed(scene: TabletopScene, intended: Snapshot) -> bool:
+    """Nothing slid or tipped noticeably while settling (a tilted stack is not a success
+    even if it still reads as the right graph)."""
+    for obj, (pose, present) in intended.items():
+        if not present:
+            continue
+        now = physics.pose_of(scene.things[obj].body)
+        turn = abs(math.remainder(now.angle - pose.angle, 2 * math.pi))
+        if math.hypot(now.x - pose.x, now.y - pose.y) > SETTLE_SHIFT or turn > SETTLE_TURN:
+            return False
+    return True
+
+
+def _loads(direct: dict[str, DirectSupport], target: str, obj: str) -> list[tuple[str, ...]]:
+    """What rests on `target`: one group (an object and all it carries) per object."""
+    children = [o for o, sup in direct.items() if sup.supporter == target and o != obj]
+    return [tuple(subtree_of(direct, c)) for c in children]
+
+
+def _extent(scene: TabletopScene, ids: tuple[str, ...]) -> tuple[float, float]:
+    bounds = [scene.things[o].bounds() for o in ids]
+    return min(b[0] for b in bounds), max(b[2] for b in bounds)
+
+
+def _balanced(scene: TabletopScene, direct: dict[str, DirectSupport],
+              group: tuple[str, ...]) -> bool:
+    """The group's centre of mass is over the contact of its bottom object."""
+    root = group[0]
+    span = direct[root].span
+    if span is None:
+        return False
+    _, x_com = mass_centre(scene, group)
+    mg = margin(span[1] - span[0])
+    return span[0] + mg <= x_com <= span[1] - mg
+
+
+def _packed(scene: TabletopScene, loads: list[tuple[str, ...]], edge: float, gap: float,
+            direction: float) -> tuple[Slide, ...]:
+    """Push every group towards one edge (direction -1: left, +1: right), keeping order."""
+    slides = []
+    cursor = edge
+    groups = sorted(loads, key=lambda g: -direction * _extent(scene, g)[0])
+    for ids in groups:
+        lo, hi = _extent(scene, ids)
+        near, far = (lo, hi) if direction < 0 else (hi, lo)
+        dx = cursor - near
+        dx = min(0.0, dx) if direction < 0 else max(0.0, dx)
+        if dx:
+            slides.append((ids, dx))
+        cursor = far + dx - direction * gap
+    return tuple(slides)
+
+
+def _slide_plans(scene: TabletopScene, obj: str, relation: str, target: str,
+                 supports: dict[str, tuple[str, str]], direct: dict[str, DirectSupport]
+                 ) -> list[Plan]:
+    """Make room on a crowded surface: push the load to one side (furniture: to the
+    left), or slide a movable surface's whole load sideways as one block."""
+    tgt = scene.things[target]
+    loads = _loads(direct, target, obj)
+    if relation != "on" or not loads:
+        return []
+    left, _, right, _ = tgt.bounds()
+    options: list[tuple[Slide, ...]] = []
+    if tgt.fixed:
+        options.append(_packed(scene, loads, left + FIXED_GAP / 2, FIXED_GAP, -1.0))
+    else:
+        options.append(_packed(scene, loads, left, 0.2, -1.0))
+        options.append(_packed(scene, loads, right, 0.2, 1.0))
+        block = tuple(dict.fromkeys(o for ids in loads for o in ids))
+        reach = (right - left) / 2 + scene.things[obj].spec.width / 2
+        for k in range(1, int(reach / SLIDE_STEP) + 1):
+            options.append(((block, -k * SLIDE_STEP),))
+            options.append(((block, k * SLIDE_STEP),))
+    for slides in options:
+        if not slides:
+            continue
+        plan = _try_slides(scene, obj, relation, target, supports, slides)
+        if plan is not None:
+            return [plan]
+    return []
+
+
+def put_down(scene: TabletopScene, obj: str, relation: str, target: str, *,
+             verify: bool = True) -> Outcome:
+    """Put the lifted `obj` `relation` `target` and settle.
+
+    verify=True: a placement counts only if physics ends with `obj relation target`,
+    everything else unchanged and nothing slid or tipped; otherwise the scene is left
+    as it was (with `obj` still lifted) and the result says why: `no_room` (no
+    candidate at all) or `unstable` (every candidate slid or toppled in simulation).
+    verify=False: the first candidate, or a plain drop over the target, and whatever
+    physics makes of it.
+    """
+    supports, direct = read_supports(scene)
+    plans = [Plan(p) for p in find_placements(scene, obj, relation, target, supports, direct,
+                                              limit=CANDIDATES)]
+    if not plans:
+        plans = _slide_plans(scene, obj, relation, target, supports, direct)
+    if not plans:
+        if verify:
+            return "no_room"
+        scene.put(obj, drop_placement(scene, obj, target).pose)
+        scene.settle()
+        return "dropped"
+    if not verify:
+        _apply(scene, obj, plans[0])
+        scene.settle()
+        return "placed"
+    expected = dict(supports)
+    expected[obj] = (relation, target)
+    lifted = scene.snapshot()
+    for plan in plans:
+        _apply(scene, obj, plan)
+        intended = scene.snapshot()
+        scene.settle()
+        if read_supports(scene)[0] == expected and _stayed(scene, intended):
+            return "placed"
+        scene.restore(lifted)
+    return "unstable"

@@ -1,0 +1,156 @@
+"""OpenCV renderer: a world's current state drawn as a BGR image, nothing else.
+
+Every object is drawn with its own physics outline, filled in its class colour (a
+node's `attrs.color` wins, as for blocks) with a thin dark border; furniture is drawn
+first, the floor is a grey band. Drawing reads poses only and never changes the world,
+so the same state always gives the same pixels. The tabletop camera frames the
+furniture (plus headroom for stacks) so frames of one episode line up.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+import cv2
+import numpy as np
+
+from verigraph.graph.dictionary import builtin_dictionary
+from verigraph.sim2d import palette, physics
+from verigraph.sim2d.bodies import FURNITURE_TOP
+
+if TYPE_CHECKING:
+    from verigraph.sim2d.tabletop import TabletopWorld
+    from verigraph.sim2d.tangram import TangramWorld
+
+SHIFT = 4
+SCALE = 1 << SHIFT
+HEADROOM = 24.0
+MARGIN = 3.0
+
+View = tuple[float, float, float, float]  # x0, y0, x1, y1 in world units
+
+
+class _Camera:
+    """World rectangle -> pixels, uniform scale, centred, y up in the world."""
+
+    def __init__(self, view: View, width: int, height: int) -> None:
+        x0, y0, x1, y1 = view
+        self.s = min(width / (x1 - x0), height / (y1 - y0))
+        self.ox = (width - (x1 - x0) * self.s) / 2 - x0 * self.s
+        self.oy = (height - (y1 - y0) * self.s) / 2 + y1 * self.s
+
+    def points(self, poly: Sequence[tuple[float, float]]) -> np.ndarray:
+        arr = np.asarray(poly, dtype=np.float64)
+        px = (self.ox + arr[:, 0] * self.s) * SCALE
+        py = (self.oy - arr[:, 1] * self.s) * SCALE
+        return np.round(np.stack([px, py], axis=1)).astype(np.int32)
+
+    def pixel(self, x: float, y: float) -> tuple[int, int]:
+        return int(round(self.ox + x * self.s)), int(round(self.oy - y * self.s))
+
+
+def _draw_polys(img: np.ndarray, cam: _Camera, polys: list[list[tuple[float, float]]],
+                color: palette.BGR) -> None:
+    pts = [cam.points(p) for p in polys]
+    cv2.polylines(img, pts, True, palette.OUTLINE, 3, cv2.LINE_8, SHIFT)
+    for p in pts:  # one call per convex part: fillPoly would XOR overlapping parts
+        cv2.fillConvexPoly(img, p, color, cv2.LINE_8, SHIFT)
+
+
+def _label(img: np.ndarray, text: str, at: tuple[int, int]) -> None:
+    cv2.putText(img, text, at, cv2.FONT_HERSHEY_SIMPLEX, 0.4, (20, 20, 20), 1, cv2.LINE_AA)
+
+
+def tabletop_view(world: TabletopWorld) -> View:
+    """Furniture extent with headroom for stacks; grows if something stands higher."""
+    things = [t for t in world.scene.things.values() if t.body.space is not None]
+    fixed = [t.bounds() for t in things if t.fixed] or [t.bounds() for t in things] \
+        or [(0.0, 0.0, 40.0, FURNITURE_TOP)]
+    top = max([b[3] for b in (t.bounds() for t in things)] + [FURNITURE_TOP])
+    x0 = min(b[0] for b in fixed) - MARGIN
+    x1 = max(b[2] for b in fixed) + MARGIN
+    y1 = max(top + MARGIN, FURNITURE_TOP + HEADROOM)
+    return x0, -2.0, x1, y1
+
+
+def render_tabletop(world: TabletopWorld, width: int = 640, height: int = 480, *,
+                    labels: bool = False, view: View | None = None) -> np.ndarray:
+    img = np.empty((height, width, 3), dtype=np.uint8)
+    img[:] = palette.BACKGROUND
+    cam = _Camera(view or tabletop_view(world), width, height)
+    floor_y = cam.pixel(0.0, 0.0)[1]
+    img[max(floor_y, 0):, :] = palette.FLOOR
+    colors = {n.id: n.attrs.get("color") for n in world.nodes}
+    things = sorted(world.scene.things.values(), key=lambda t: not t.fixed)
+    for t in things:
+        if t.body.space is None:
+            continue
+        name = colors.get(t.id) or t.props.color
+        _draw_polys(img, cam, physics.world_polygons(t.body), palette.bgr(
+            name if isinstance(name, str) else None))
+    if labels:
+        for t in things:
+            if t.body.space is None:
+                continue
+            left, _, right, top = t.bounds()
+            x, y = cam.pixel((left + right) / 2, top)
+            if t.fixed:
+                y = cam.pixel(0.0, t.spec.top - 1.5)[1] + 12
+                x = cam.pixel(left + 1.0, 0.0)[0]
+            else:
+                x -= 3 * len(t.id)
+                y -= 4
+            _label(img, t.id, (x, y))
+    return img
+
+
+def render_tangram(world: TangramWorld, width: int = 640, height: int = 480, *,
+                   labels: bool = False) -> np.ndarray:
+    img = np.empty((height, width, 3), dtype=np.uint8)
+    img[:] = palette.TANGRAM_BACKGROUND
+    polys = {n.id: world.vertices(n.id) for n in world.nodes}
+    xs = [x for poly in polys.values() for x, _ in poly] or [0.0, 1.0]
+    ys = [y for poly in polys.values() for _, y in poly] or [0.0, 1.0]
+    m = 2 * MARGIN
+    cam = _Camera((min(xs) - m, min(ys) - m, max(xs) + m, max(ys) + m), width, height)
+    tangram = builtin_dictionary("tangram")
+    for node in world.nodes:
+        name = node.attrs.get("color") or tangram.properties(world.labels[node.id]).color
+        _draw_polys(img, cam, [polys[node.id]], palette.bgr(name if isinstance(name, str)
+                                                             else None))
+    if labels:
+        for node in world.nodes:
+            poly = polys[node.id]
+            cx = sum(x for x, _ in poly) / len(poly)
+            cy = sum(y for _, y in poly) / len(poly)
+            for i in range(len(poly)):
+                (ax, ay), (bx, by) = poly[i], poly[(i + 1) % len(poly)]
+                mx, my = (ax + bx) / 2 * 0.8 + cx * 0.2, (ay + by) / 2 * 0.8 + cy * 0.2
+                px, py = cam.pixel(mx, my)
+                _label(img, str(i), (px - 4, py + 4))
+    return img
+
+
+def side_by_side(images: Sequence[np.ndarray], titles: Sequence[str] | None = None,
+                 gap: int = 8) -> np.ndarray:
+    """Images of equal height next to each other, with optional titles on top."""
+    h = max(i.shape[0] for i in images)
+    band = 28 if titles else 0
+    total = sum(i.shape[1] for i in images) + gap * (len(images) - 1)
+    out = np.full((h + band, total, 3), 255, dtype=np.uint8)
+    x = 0
+    for k, image in enumerate(images):
+        out[band:band + image.shape[0], x:x + image.shape[1]] = image
+        if titles:
+            cv2.putText(out, titles[k], (x + 8, 20), cv2.FONT_HERSHEY_SIMPLEX, 0.6,
+                        (20, 20, 20), 1, cv2.LINE_AA)
+        x += image.shape[1] + gap
+    return out
+
+
+def encode_png(image: np.ndarray) -> bytes:
+    ok, buf = cv2.imencode(".png", image)
+    if not ok:  # pragma: no cover - OpenCV only fails on invalid arrays
+        raise ValueError("PNG encoding failed")
+    return bytes(buf.tobytes())

@@ -1,0 +1,122 @@
+"""Symbolic room check: does a valid move also fit physically? Sizes only, no physics.
+
+The validator's constraints know capacities but not sizes, so some valid moves cannot
+be carried out: a book on a plate that a tray already covers, a kettle into a pot with
+a pan lying across its rim. `room_violation` predicts those from the dictionary widths
+and the simulator's container geometry, conservatively: when it returns None, sim2d
+finds a stable placement (the test suite checks this over many random scenes). It
+explains the failure the way the other constraints do, so a planner can fix the plan.
+
+Rules, with extent(x) = max(width(x), total extent of what x carries):
+- on fixed furniture: always room (furniture is sized for every movable object);
+- on a movable surface: alone, anything (centred); beside a load, the load's extents
+  plus half the object fit within the width (the object may overhang the far edge),
+  and a surface resting on something narrower than itself carries a single object;
+- nothing more on or in an object that shares a crowded surface (it may overhang);
+- in a container: nothing lies across its rim; an object narrower than the opening
+  goes inside if the contents side by side leave room (cutlery may stand upright in an
+  empty narrow container); a wider one rests on the rim if nothing sticks out.
+"""
+
+from __future__ import annotations
+
+from verigraph.actions.feedback import Violation
+from verigraph.actions.model import MoveAction
+from verigraph.graph.state import WorldState
+from verigraph.sim2d.bodies import movable_spec
+
+CLEARANCE = 0.4
+GAP = 0.3
+OVERHANG_MARGIN = 1.0
+
+
+def _width(state: WorldState, obj: str) -> float:
+    return float(state.objects[obj].props.width or 6.0)
+
+
+def extent(state: WorldState, obj: str) -> float:
+    """Horizontal space an object takes with everything it carries."""
+    load = sum(extent(state, c) for c in state.carried[obj])
+    return max(_width(state, obj), load)
+
+
+def _crowded(state: WorldState, support: str) -> bool:
+    """The support's load is wider than it, so something on it may overhang."""
+    load = state.carried[support]
+    if state.objects[support].props.surface and len(load) > 1:
+        used = sum(extent(state, c) for c in load) + GAP * (len(load) - 1)
+        return used > _width(state, support)
+    return False
+
+
+def _inner(state: WorldState, obj: str) -> tuple[float, float]:
+    """Opening width and depth of a movable container in the simulator."""
+    info = state.objects[obj]
+    cavity = movable_spec(info.label, info.props).cavity
+    if cavity is None:
+        return 0.0, 0.0
+    return cavity[1] - cavity[0], cavity[3] - cavity[2]
+
+
+def _fail(action: MoveAction, message: str, blocking: list[str], suggestion: str) -> Violation:
+    return Violation(action=action.model_dump(), constraint="execution_failed",
+                     message=message, blocking=blocking, suggestion=suggestion)
+
+
+def room_violation(state: WorldState, action: MoveAction) -> Violation | None:
+    """Why a (validator-valid) move has no room in the simulator, or None."""
+    obj, rel, target = action.object, action.relation, action.target
+    t = state.objects[target]
+    if not t.props.movable:
+        return None
+    load = sorted(state.carried[target])
+    need = _width(state, obj)
+    below = state.support.get(target)
+    if below is not None and state.objects[below[1]].props.movable and _crowded(state,
+                                                                              below[1]):
+        return _fail(action, f"{target} shares {below[1]} with other objects and may hang "
+                     f"over its edge; more load could tip it", [below[1]],
+                     f"put {obj} somewhere steadier, or give {target} room on {below[1]} "
+                     "first")
+    if rel == "on":
+        width = _width(state, target)
+        used = sum(extent(state, c) for c in load) + GAP * len(load)
+        # With a load, the object goes beside it and may overhang the far edge by up to
+        # half its width (minus a margin); alone, it is centred whatever its size.
+        if load and used + need / 2 + OVERHANG_MARGIN > width:
+            return _fail(action, f"{obj} does not fit on {target}: {target} is {width:g} wide, "
+                         f"{'its load takes ' + f'{used:g}' + ' and ' if load else ''}"
+                         f"{obj} needs {need:g}", load,
+                         f"move {load[0]} off {target} first, or choose a larger target"
+                         if load else "choose a larger target")
+        if load and below is not None and state.objects[below[1]].props.movable and (
+                below[0] == "in" or _width(state, below[1]) < width):
+            return _fail(action, f"{target} rests on the narrower {below[1]}: it can balance "
+                         f"only one object, and it carries {', '.join(load)}", load,
+                         f"put {obj} somewhere steadier, or move {target} onto a wider "
+                         "support first")
+        return None
+    opening, depth = _inner(state, target)
+    rim = [c for c in load if _width(state, c) > opening - CLEARANCE]
+    if rim:
+        return _fail(action, f"{target} is blocked: {rim[0]} lies across its rim or stands "
+                     "in it", rim, f"take {rim[0]} off {target} first")
+    if need <= opening - CLEARANCE:
+        used = sum(_width(state, c) for c in load) + CLEARANCE * (len(load) + 1)
+        if used + need > opening:
+            return _fail(action, f"{obj} does not fit in {target} next to "
+                         f"{', '.join(load)}: the opening is {opening:.1f} wide", load,
+                         f"take {load[0]} out of {target} first")
+        return None
+    info = state.objects[obj]
+    spec = movable_spec(info.label, info.props)
+    if not load and spec.thin and spec.height < opening - CLEARANCE \
+            and spec.width <= 1.6 * depth:
+        return None  # stands upright inside
+    tall = [c for c in load if float(state.objects[c].props.height or 4.0) > depth - 0.2
+            or state.carried[c]]
+    if tall:
+        return _fail(action, f"{obj} is wider than the opening of {target} and would rest "
+                     f"on its rim, but {tall[0]} sticks out of {target}", tall,
+                     f"take {tall[0]} out of {target} first")
+    return None

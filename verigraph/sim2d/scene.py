@@ -1,0 +1,99 @@
+"""The physical state of a tabletop world: a pymunk space and the objects in it by id.
+
+`TabletopScene` owns the space and knows which body is which object; it can save and
+restore every pose, which is how the placement search tries a placement and takes it
+back when the physics does not end where it should.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import pymunk
+
+from verigraph.graph.dictionary import ObjectProperties
+from verigraph.sim2d import physics
+from verigraph.sim2d.bodies import BodySpec
+from verigraph.sim2d.physics import Pose
+
+
+@dataclass(slots=True)
+class Thing:
+    """One object of the scene graph and its body."""
+
+    id: str
+    label: str
+    props: ObjectProperties
+    spec: BodySpec
+    body: pymunk.Body
+    fixed: bool
+
+    def com(self) -> tuple[float, float]:
+        """Centre of mass in world coordinates (furniture: centre of its outline)."""
+        local = self.body.center_of_gravity if not self.fixed else \
+            pymunk.Vec2d(0.0, self.spec.top / 2)
+        p = self.body.local_to_world(local)
+        return float(p.x), float(p.y)
+
+    @property
+    def mass(self) -> float:
+        return 0.0 if self.fixed else float(self.body.mass)
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        """Axis-aligned bounds (left, bottom, right, top) of the body's shapes."""
+        bbs = [s.cache_bb() for s in self.body.shapes]
+        return (min(b.left for b in bbs), min(b.bottom for b in bbs),
+                max(b.right for b in bbs), max(b.top for b in bbs))
+
+
+Snapshot = dict[str, tuple[Pose, bool]]
+
+
+class TabletopScene:
+    """A space with a floor, fixed furniture (static) and movable objects (dynamic)."""
+
+    def __init__(self) -> None:
+        self.space = physics.new_space()
+        self.floor = physics.add_floor(self.space)
+        self.things: dict[str, Thing] = {}
+        self.by_body: dict[pymunk.Body, str] = {}
+
+    def add(self, thing: Thing, *, in_space: bool = True) -> None:
+        self.things[thing.id] = thing
+        self.by_body[thing.body] = thing.id
+        if in_space:
+            physics.add_body(self.space, thing.body)
+
+    def present(self, obj: str) -> bool:
+        return self.things[obj].body.space is not None
+
+    def lift(self, obj: str) -> None:
+        """Take an object out of the world (it is in the gripper)."""
+        body = self.things[obj].body
+        if body.space is not None:
+            physics.remove_body(self.space, body)
+
+    def put(self, obj: str, pose: Pose) -> None:
+        """Put an object back into the world at `pose`, at rest."""
+        body = self.things[obj].body
+        physics.set_pose(body, pose)
+        if body.space is None:
+            physics.add_body(self.space, body)
+            self.space.reindex_shapes_for_body(body)
+
+    def settle(self, max_steps: int = physics.MAX_SETTLE_STEPS) -> int:
+        return physics.settle(self.space, max_steps)
+
+    def movable(self) -> list[Thing]:
+        return [t for t in self.things.values() if not t.fixed]
+
+    def snapshot(self) -> Snapshot:
+        return {t.id: (physics.pose_of(t.body), t.body.space is not None)
+                for t in self.things.values() if not t.fixed}
+
+    def restore(self, snap: Snapshot) -> None:
+        for obj, (pose, present) in snap.items():
+            if present:
+                self.put(obj, pose)
+            else:
+                self.lift(obj)

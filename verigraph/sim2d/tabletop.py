@@ -1,0 +1,119 @@
+"""The tabletop world (side view, gravity): moves are lifted, placed, settled and read back.
+
+`move(o, rel, t)` lifts `o` out of the world (what rested on it is left behind and
+falls), settles, searches free placements on or in `t` (see placement and putdown),
+puts `o` down, settles and reads the graph back from contacts. Candidates are tried in
+simulation first: one that slides, tips or ends in another graph is taken back and the
+next tried. When nothing fits, or everything would topple, the world refuses with
+`execution_failed` before anything moves. In unverified mode there are no such checks:
+the arm puts the object down where it can and physics decides what the graph becomes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from verigraph.actions.feedback import Violation
+from verigraph.actions.model import AlignAction, MoveAction
+from verigraph.graph.dictionary import Dictionary
+from verigraph.graph.model import Edge, Node, SceneGraph
+from verigraph.sim2d import physics
+from verigraph.sim2d.errors import SimError
+from verigraph.sim2d.putdown import put_down
+from verigraph.sim2d.readback import read_supports
+from verigraph.sim2d.scene import TabletopScene, Thing
+from verigraph.sim2d.world import SimWorld, WorldKind
+
+
+class TabletopWorld(SimWorld):
+    """Blocks, kitchen and tableware scenes: furniture is static, objects are dynamic."""
+
+    kind: WorldKind = "tabletop"
+
+    def __init__(self, scene: TabletopScene, nodes: list[Node], dictionary: Dictionary,
+                 dictionary_name: str | None) -> None:
+        self.scene = scene
+        self.nodes = [n.model_copy(deep=True) for n in nodes]
+        self.dictionary = dictionary
+        self.dictionary_name = dictionary_name
+
+    # -- World protocol --------------------------------------------------------------------
+    def observe(self) -> SceneGraph:
+        supports, _ = read_supports(self.scene)
+        edges = [Edge(source=obj, relation=rel, target=target)
+                 for obj, (rel, target) in supports.items()]
+        return SceneGraph(nodes=[n.model_copy(deep=True) for n in self.nodes], edges=edges,
+                          dictionary=self.dictionary_name).canonical()
+
+    def perform(self, action: MoveAction | AlignAction) -> Violation | None:
+        if not isinstance(action, MoveAction):
+            return Violation(action=action.model_dump(), constraint="unknown_side",
+                             message="align needs tangram pieces; this is a tabletop world",
+                             suggestion="use move(object, relation, target)")
+        self._check_ids(action)
+        return self._move(action, verified=True)
+
+    def perform_unverified(self, action: MoveAction | AlignAction) -> SceneGraph:
+        if not isinstance(action, MoveAction):
+            raise SimError("align needs tangram pieces; this is a tabletop world",
+                           field="action", value=action.text(),
+                           fix="use move(object, relation, target)")
+        self._check_ids(action)
+        thing = self.scene.things[action.object]
+        if thing.fixed:
+            raise SimError(f"the arm cannot lift {action.object}: it is fixed furniture",
+                           field="object", value=action.object, fix="move a movable object")
+        if action.object == action.target:
+            raise SimError(f"cannot put {action.object} {action.relation} itself",
+                           field="target", value=action.target, fix="choose another target")
+        self._move(action, verified=False)
+        return self.observe()
+
+    # -- SimWorld ----------------------------------------------------------------------------
+    def render(self, width: int = 640, height: int = 480, *, labels: bool = False
+               ) -> np.ndarray:
+        from verigraph.sim2d.render import render_tabletop
+        return render_tabletop(self, width, height, labels=labels)
+
+    def copy(self) -> TabletopWorld:
+        scene = TabletopScene()
+        for t in self.scene.things.values():
+            body = physics.make_body(t.spec, physics.pose_of(t.body), fixed=t.fixed)
+            scene.add(Thing(t.id, t.label, t.props, t.spec, body, t.fixed),
+                      in_space=t.body.space is not None)
+        other = TabletopWorld(scene, self.nodes, self.dictionary, self.dictionary_name)
+        return other
+
+    # -- internals ---------------------------------------------------------------------------
+    def _check_ids(self, action: MoveAction) -> None:
+        for role, name in (("object", action.object), ("target", action.target)):
+            if name not in self.scene.things:
+                raise SimError(f"there is no object '{name}' in the simulated scene",
+                               field=role, value=name,
+                               fix=f"use one of {', '.join(self.scene.things)}")
+
+    def _move(self, action: MoveAction, *, verified: bool) -> Violation | None:
+        scene = self.scene
+        before = scene.snapshot()
+        scene.lift(action.object)
+        scene.settle()
+        outcome = put_down(scene, action.object, action.relation, action.target,
+                           verify=verified)
+        if outcome in ("no_room", "unstable"):
+            scene.restore(before)
+            return self._refusal(action, read_supports(scene)[0], outcome)
+        return None
+
+    def _refusal(self, action: MoveAction, supports: dict[str, tuple[str, str]],
+                 outcome: str) -> Violation:
+        target = action.target
+        carried = sorted(o for o, (_, t) in supports.items() if t == target)
+        what = f" ({target} carries {', '.join(carried)})" if carried else ""
+        why = ("found no free place for" if outcome == "no_room" else
+               "found only places that slide or topple for")
+        return Violation(
+            action=action.model_dump(), constraint="execution_failed",
+            message=f"the simulator {why} {action.object} {action.relation} {target}{what}; "
+                    "nothing was moved", blocking=carried,
+            suggestion=(f"move {carried[0]} off {target} first, or choose another target"
+                        if carried else "choose another target"))
