@@ -50,12 +50,11 @@ class MotionOutcome(BaseModel):
 
 
 class Approval:
-    """A human's yes to one set of waypoints, issued by one controller, usable once."""
+    """A human's yes to one set of waypoints; its controller accepts it once."""
 
-    __slots__ = ("__weakref__", "approved_at", "issuer", "waypoints")
+    __slots__ = ("__weakref__", "approved_at", "waypoints")
 
-    def __init__(self, issuer: ArmController, waypoints: list[Pose]) -> None:
-        self.issuer = issuer
+    def __init__(self, waypoints: list[Pose]) -> None:
         self.waypoints = waypoints
         self.approved_at = time.time()
 
@@ -132,16 +131,7 @@ class ArmController:
                 fix="use mode sim for simulators and mode real (with confirmation) for hardware")
         timeout = self.config.connect_timeout_s
         self._log("connect", {"host": self.config.host, "timeout_s": timeout}, "sent")
-        errors: list[BaseException] = []
-
-        def attempt() -> None:
-            try:
-                self._driver.connect(timeout)
-            except BaseException as exc:
-                errors.append(exc)
-
-        worker = threading.Thread(target=attempt, name="arm-connect", daemon=True)
-        worker.start()
+        worker, errors = _start("arm-connect", lambda: self._driver.connect(timeout))
         worker.join(timeout + 1.0)
         if worker.is_alive() or errors:
             why = f"no answer within {timeout} s" if worker.is_alive() else str(errors[0])
@@ -228,7 +218,7 @@ class ArmController:
                                     field="confirm", value=motion,
                                     fix="approve the motion when asked; use a client that "
                                         "supports elicitation, or mode sim / dry-run")
-        approval = Approval(self, waypoints)
+        approval = Approval(waypoints)
         self._approvals.add(approval)
         return approval
 
@@ -249,48 +239,47 @@ class ArmController:
     # -- motions ---------------------------------------------------------------------------
     def execute(self, plan: MotionPlan, *, approval: Approval | None = None) -> MotionOutcome:
         """Pick and place per `plan`, or raise an ArmRefusal before anything is sent."""
-        with self._exclusive():
-            try:
-                redeem(plan.receipt, max_age_s=self.config.max_location_age_s)
-                segments = plan.path(self._current_tcp())
-                self._check(segments, plan.grasp.speed_m_s, plan.grasp.force_n)
-                self._check([], plan.placement.speed_m_s, None)
-                self._redeem_approval(approval, [s.end for s in segments])
-                self._refuse_if_stopped()
-            except ArmRefusal as exc:
-                self._log("move", {"action": plan.receipt.action.text()}, "refused", str(exc))
-                raise
-            if self.mode == "dry-run":
-                self._log("pick", plan.grasp.model_dump(), "recorded")
-                self._log("place", plan.placement.model_dump(), "recorded")
-                self._dry_tcp = plan.placement.retreat
-                return self._finish(MotionOutcome(status="recorded"))
-            outcome = self._run("pick", plan.grasp.model_dump(),
-                                lambda: self._driver.pick(plan.grasp))
-            if outcome is None:
-                outcome = self._run("place", plan.placement.model_dump(),
-                                    lambda: self._driver.place(plan.placement))
-            return self._finish(outcome or MotionOutcome(status="done"))
+        return self._gated(
+            plan.receipt.action.text(), plan.path,
+            max(plan.grasp.speed_m_s, plan.placement.speed_m_s), plan.grasp.force_n, approval,
+            [("pick", plan.grasp.model_dump(), lambda: self._driver.pick(plan.grasp)),
+             ("place", plan.placement.model_dump(), lambda: self._driver.place(plan.placement))],
+            redeem_first=lambda: redeem(plan.receipt, max_age_s=self.config.max_location_age_s))
 
     def home(self, *, approval: Approval | None = None) -> MotionOutcome:
         """Move to the configured home pose through the same checks."""
+        home, speed = self.config.home, self.config.speed_m_s
+        return self._gated(
+            "home", lambda start: [PathSegment("to home", start, home)], speed, None, approval,
+            [("home", {"pose": home.model_dump(), "speed_m_s": speed},
+              lambda: self._driver.home(home, speed))])
+
+    def _gated(self, what: str, path: Callable[[Pose], list[PathSegment]], speed: float,
+               force: float | None, approval: Approval | None,
+               commands: list[tuple[str, dict[str, Any], Callable[[], None]]], *,
+               redeem_first: Callable[[], object] | None = None) -> MotionOutcome:
+        """Every check, then the commands in order (recorded only, in dry-run)."""
         with self._exclusive():
             try:
-                segment = PathSegment("to home", self._current_tcp(), self.config.home)
-                self._check([segment], self.config.speed_m_s, None)
-                self._redeem_approval(approval, [segment.end])
+                if redeem_first is not None:
+                    redeem_first()
+                segments = path(self._current_tcp())
+                self._check(segments, speed, force)
+                self._redeem_approval(approval, [s.end for s in segments])
                 self._refuse_if_stopped()
             except ArmRefusal as exc:
-                self._log("home", {}, "refused", str(exc))
+                self._log("motion", {"what": what}, "refused", str(exc))
                 raise
-            params = {"pose": self.config.home.model_dump(), "speed_m_s": self.config.speed_m_s}
             if self.mode == "dry-run":
-                self._log("home", params, "recorded")
-                self._dry_tcp = self.config.home
+                for name, params, _ in commands:
+                    self._log(name, params, "recorded")
+                self._dry_tcp = segments[-1].end
                 return self._finish(MotionOutcome(status="recorded"))
-            outcome = self._run("home", params, lambda: self._driver.home(
-                self.config.home, self.config.speed_m_s))
-            return self._finish(outcome or MotionOutcome(status="done"))
+            for name, params, call in commands:
+                outcome = self._run(name, params, call)
+                if outcome is not None:
+                    return self._finish(outcome)
+            return self._finish(MotionOutcome(status="done"))
 
     @contextmanager
     def _exclusive(self) -> Iterator[None]:
@@ -333,17 +322,8 @@ class ArmController:
              call: Callable[[], None]) -> MotionOutcome | None:
         """Send one command under the motion timeout; None if it completed."""
         self._log(command, params, "sent")
-        errors: list[BaseException] = []
-
-        def body() -> None:
-            try:
-                call()
-            except BaseException as exc:
-                errors.append(exc)
-
-        worker = threading.Thread(target=body, name=f"arm-{command}", daemon=True)
+        worker, errors = _start(f"arm-{command}", call)
         self._worker = worker
-        worker.start()
         worker.join(self.config.motion_timeout_s)
         if worker.is_alive():
             reason = f"{command} exceeded motion_timeout_s ({self.config.motion_timeout_s} s)"
@@ -377,3 +357,18 @@ class ArmController:
         self.audit.record(AuditRecord(seq=0, time=0.0, mode=self.config.mode,
                                       driver=self._driver.name, command=command,
                                       params=params, outcome=outcome, detail=detail))
+
+
+def _start(name: str, call: Callable[[], None]) -> tuple[threading.Thread, list[BaseException]]:
+    """Run `call` in a daemon thread; the list receives what it raised, if anything."""
+    errors: list[BaseException] = []
+
+    def body() -> None:
+        try:
+            call()
+        except BaseException as exc:
+            errors.append(exc)
+
+    worker = threading.Thread(target=body, name=name, daemon=True)
+    worker.start()
+    return worker, errors
