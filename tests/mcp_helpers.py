@@ -9,11 +9,13 @@ import shutil
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import IO, Any
 
 import cv2
 import numpy as np
@@ -60,38 +62,56 @@ def free_port() -> int:
         return int(s.getsockname()[1])
 
 
+@dataclass
+class RunningServer:
+    """A `verigraph serve --transport http` subprocess; its output goes to temp files."""
+
+    url: str
+    proc: subprocess.Popen[bytes]
+    stdout: IO[bytes]
+    stderr: IO[bytes]
+
+    def stop(self) -> tuple[bytes, bytes]:
+        """Terminate and return everything it wrote to stdout and stderr."""
+        if self.proc.poll() is None:
+            self.proc.terminate()
+            try:
+                self.proc.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+        self.stdout.seek(0)
+        self.stderr.seek(0)
+        return self.stdout.read(), self.stderr.read()
+
+
 @contextmanager
 def http_server(token: str | None = None, extra: list[str] | None = None
-                ) -> Iterator[tuple[str, subprocess.Popen[bytes]]]:
-    """`verigraph serve --transport http` on a free loopback port; yields (url, process)."""
+                ) -> Iterator[RunningServer]:
+    """`verigraph serve --transport http` on a free loopback port."""
     port = free_port()
     env = {k: v for k, v in os.environ.items() if k != "VERIGRAPH_TOKEN"}
     args = [*verigraph_command(), "serve", "--transport", "http", "--port", str(port)]
     if token:
         args += ["--token", token]
-    proc = subprocess.Popen(args + (extra or []), env=env, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE)
-    try:
-        deadline = time.monotonic() + 30
-        while True:
-            if proc.poll() is not None:
-                raise RuntimeError(f"server exited: {proc.stderr.read().decode()[-2000:]}"
-                                   if proc.stderr else "server exited")
-            try:
-                with socket.create_connection(("127.0.0.1", port), timeout=0.2):
-                    break
-            except OSError:
-                if time.monotonic() > deadline:
-                    raise
-                time.sleep(0.1)
-        yield f"http://127.0.0.1:{port}/mcp", proc
-    finally:
-        proc.terminate()
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        proc = subprocess.Popen(args + (extra or []), env=env, stdout=out, stderr=err)
+        server = RunningServer(f"http://127.0.0.1:{port}/mcp", proc, out, err)
         try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
+            deadline = time.monotonic() + 30
+            while True:
+                if proc.poll() is not None:
+                    raise RuntimeError(f"server exited: {server.stop()[1][-2000:]!r}")
+                try:
+                    with socket.create_connection(("127.0.0.1", port), timeout=0.2):
+                        break
+                except OSError:
+                    if time.monotonic() > deadline:
+                        raise
+                    time.sleep(0.1)
+            yield server
+        finally:
+            server.stop()
 
 
 def rpc(method: str, params: dict[str, Any] | None = None, request_id: int = 1) -> bytes:
