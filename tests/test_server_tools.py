@@ -143,6 +143,16 @@ async def test_agent_vlm_route_through_the_server(client: Client) -> None:
                                         "source_side": None, "target_side": None}]
 
 
+@pytest.mark.skipif(not has("verigraph.sim2d", "world_for_graph"), reason="no sim2d")
+async def test_simulated_episode_renders_the_simulator(client: Client) -> None:
+    eid = await load(client, generator={"family": "tangram", "seed": 1}, simulate=True)
+    state = structured(await client.call_tool("get_state", {"episode_id": eid}))
+    assert state["simulated"] and state["relations"] == ["touches"]
+    render = await client.call_tool("render_scene", {"episode_id": eid, "view": "goal"})
+    assert [c.type for c in render.content] == ["image"]
+    assert decode_png(render.content[0].data).std() > 5
+
+
 @pytest.mark.skipif(has("verigraph.perception", "perceive"), reason="perception installed")
 async def test_generate_scene_graph_is_a_clear_tool_error(client: Client) -> None:
     result = await client.call_tool("generate_scene_graph", {"image": png_b64()})

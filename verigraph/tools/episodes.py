@@ -95,9 +95,10 @@ class GeneratorSpec(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     family: str = Field(min_length=1, max_length=32,
-                        description="scene family, e.g. tabletop or tangram")
+                        description="scene family: blocks, kitchen, tableware or tangram")
     seed: int = Field(default=0, ge=0, le=2**31 - 1)
-    n_objects: int | None = Field(default=None, ge=1, le=40)
+    n_objects: int | None = Field(default=None, ge=1, le=12,
+                                  description="movable objects (default: drawn from the seed)")
 
 
 class LoadSceneInput(BaseModel):
@@ -140,6 +141,7 @@ def load_scene(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
     goal = params.goal
     source: str
     world: Any = None
+    goal_world: Any = None
     image = None
     state: WorldState | None = None
     graph: SceneGraph | None = None
@@ -156,6 +158,7 @@ def load_scene(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
         graph = generated.graph
         goal = goal or getattr(generated, "goal", None)
         world = generated.world if params.simulate else None
+        goal_world = getattr(generated, "goal_world", None) if params.simulate else None
         source = f"generator:{spec.family}/seed={spec.seed}"
     else:
         assert params.image is not None
@@ -178,7 +181,8 @@ def load_scene(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
 
     def make(episode_id: str) -> Episode:
         return Episode(id=episode_id, state=state, source=source, k=params.k, t=params.t,
-                       goal=goal, instruction=instruction, world=world, image=image,
+                       goal=goal, instruction=instruction, world=world, goal_world=goal_world,
+                       image=image,
                        dictionary_name=params.dictionary,
                        initial_graph=state.to_graph() if state is not None else None)
 

@@ -69,7 +69,8 @@ class RenderSceneInput(BaseModel):
 
     episode_id: EpisodeId
     view: Literal["current", "goal"] = Field(
-        default="current", description="current scene, or a drawing of the goal graph")
+        default="current", description="the current scene, or the goal (a simulator render "
+                                       "for generated scenes, else a drawing of the goal graph)")
     width: int = Width
     height: int = Height
 
@@ -77,7 +78,11 @@ class RenderSceneInput(BaseModel):
 def render_scene(ctx: ToolContext, params: RenderSceneInput) -> ImageResult:
     """PNG of the current scene (simulator render when simulated) or of the goal graph."""
     with ctx.store.use(params.episode_id) as episode:
-        if params.view == "goal":
+        goal_render = getattr(episode.goal_world, "render", None)
+        if params.view == "goal" and callable(goal_render):
+            image = np.asarray(goal_render(width=params.width, height=params.height),
+                               dtype=np.uint8)
+        elif params.view == "goal":
             goal = episode.goal
             if goal is None or goal.graph is None:
                 raise ToolArgumentError("this episode has no goal graph to draw", field="view",

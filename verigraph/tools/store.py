@@ -58,6 +58,7 @@ class Episode:
     goal: Goal | None = None
     instruction: str | None = None
     world: World | None = None
+    goal_world: Any = None  # a simulator world in the goal state, for rendering it
     image: np.ndarray | None = None
     initial_graph: SceneGraph | None = None
     dictionary_name: str | None = None
