@@ -35,7 +35,6 @@ def build_server(toolbox: Toolbox | None = None, *, config: ToolConfig | None = 
     server: MCPServer[Any] = MCPServer(
         "verigraph", title="VeriGraph", version=__version__, instructions=INSTRUCTIONS,
         description="Scene-graph verifier for LLM robot planning",
-        website_url="https://github.com/verigraph/verigraph",
         middleware=[ArgumentGate()], log_level=log_level)
     register_tools(server, toolbox)
     register_resources(server, toolbox)
