@@ -14,7 +14,9 @@ per planner call, one mistake is inserted at a random position of the proposal:
 
 A kind that is impossible in the current graph (nothing is stacked, say) falls back to
 another enabled kind, so the configured rate is the rate of mistakes actually made.
-The mistake is computed on the graph as it will be at its position in the proposal.
+The mistake is computed on the graph as it will be at its position in the proposal,
+which is before one of the planned moves, so a mistake always costs something: without
+feedback (direct mode) the plan fails; with it, an iteration.
 """
 
 from __future__ import annotations
@@ -69,8 +71,10 @@ class NoisyPlanner:
     def _inject(self, state: WorldState, actions: list[AnyAction], k: int | None
                 ) -> tuple[list[AnyAction], MistakeKind | None]:
         moves = [a for a in actions if not isinstance(a, DoneAction)]
-        last = len(moves) if k is None else min(len(moves), k - 1)
-        position = self.rng.randint(0, max(last, 0))
+        # Before one of the planned moves (so the mistake matters), or first when the
+        # proposal is only the end token.
+        last = max(len(moves) - 1, 0) if k is None else min(max(len(moves) - 1, 0), k - 1)
+        position = self.rng.randint(0, last)
         at = state.copy()
         for action in moves[:position]:
             apply_action(at, action)
