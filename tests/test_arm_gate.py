@@ -421,3 +421,10 @@ def test_home_is_gated_like_any_motion(tmp_path: Path) -> None:
     with pytest.raises(ArmStoppedError):
         cell.world.home()
     assert cell.world.render is None  # no camera of its own to show
+
+
+def test_unknown_object_is_the_validator_s_answer(tmp_path: Path) -> None:
+    cell = Cell(tmp_path)
+    violation = cell.world.perform(MoveAction(object="purple", target="red"))
+    assert violation is not None and violation.constraint == "unknown_object"
+    assert cell.motions() == []

@@ -128,8 +128,6 @@ class ArmWorld:
     # -- internals ---------------------------------------------------------------------------
     def _plan(self, action: MoveAction) -> MotionPlan | Violation:
         locations = self._locator.locate(self._graph.node_ids())
-        held = _required(locations, action.object, "object")
-        target = _required(locations, action.target, "target")
         observed = WorldState.from_graph(
             infer_graph(self._graph, self._dictionary, locations, self._tolerances),
             self._dictionary, partial=True)
@@ -137,6 +135,8 @@ class ArmWorld:
         if isinstance(receipt, Violation):
             return receipt.model_copy(update={
                 "message": f"in the scene the arm observes, {receipt.message}"})
+        held = _required(locations, action.object, "object")
+        target = _required(locations, action.target, "target")
         return plan_motion(receipt, held, target, list(locations.values()),
                            self._controller.config, time.time())
 
