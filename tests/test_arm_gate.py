@@ -385,6 +385,8 @@ def test_audit_log_is_append_only_json_lines(tmp_path: Path) -> None:
     assert records[-1]["command"] == "stop" and records[-1]["mode"] == "real"
     pick = next(r for r in records if r["command"] == "pick" and r["outcome"] == "sent")
     assert pick["params"]["object_id"] == "green" and pick["params"]["force_n"] == 20.0
+    # the graph the arm observed when it validated the action
+    assert "green on table" in pick["params"]["validated_on"].split(";")
 
 
 def test_request_scoped_confirmation_follows_the_call_into_the_worker_thread(

@@ -242,7 +242,8 @@ class ArmController:
         return self._gated(
             plan.receipt.action.text(), plan.path,
             max(plan.grasp.speed_m_s, plan.placement.speed_m_s), plan.grasp.force_n, approval,
-            [("pick", plan.grasp.model_dump(), lambda: self._driver.pick(plan.grasp)),
+            [("pick", {**plan.grasp.model_dump(), "validated_on": plan.receipt.fingerprint},
+              lambda: self._driver.pick(plan.grasp)),
              ("place", plan.placement.model_dump(), lambda: self._driver.place(plan.placement))],
             redeem_first=lambda: redeem(plan.receipt, max_age_s=self.config.max_location_age_s))
 

@@ -64,10 +64,6 @@ class KeepOutZone(Box):
     name: str = Field(min_length=1, max_length=64, description="shown in refusals")
 
 
-def distance(a: Point, b: Point) -> float:
-    return math.dist(a, b)
-
-
 def lerp(a: Point, b: Point, t: float) -> Point:
     return (a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t)
 
