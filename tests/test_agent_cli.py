@@ -45,15 +45,15 @@ def test_cli_oracle_over_stdio_prints_iterations_and_writes_the_trace(tmp_path: 
 
 
 def test_cli_noisy_planner_shows_feedback_and_still_succeeds(tmp_path: Path) -> None:
-    done = agent("--scene", "three_blocks", "--planner", "noisy", "--noise", "1.0",
+    done = agent("--scene", "three_blocks", "--planner", "noisy", "--noise", "0.6",
                  "--seed", "4", "--k", "1", "--threshold", "10", "--trace",
                  str(tmp_path / "t.json"))
+    assert done.returncode == 0, done.stdout + done.stderr
     trace = json.loads((tmp_path / "t.json").read_text())
-    refused = [it for it in trace["iterations"] if it["verdict"] != "clean"
-               and it["verdict"] != "end_token"]
-    assert refused, "a 100% noisy planner must have been refused at least once"
-    assert "feedback: " in done.stdout
-    assert done.returncode == (0 if trace["success"] else 1)
+    refused = [it for it in trace["iterations"] if it["verdict"] == "violation"]
+    assert refused, "seed 4 injects mistakes the verifier must refuse"
+    assert "feedback: " in done.stdout and "REFUSED by the verifier" in done.stdout
+    assert trace["success"] is True and trace["violations_caught"] == len(refused)
 
 
 def test_cli_always_failing_run_exits_1_with_the_threshold_verdict(tmp_path: Path) -> None:

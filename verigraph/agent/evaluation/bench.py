@@ -39,6 +39,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--noise", type=float, default=0.3, help="noisy planner's mistake rate")
     p.add_argument("--k", type=int, default=3, help="actions per iteration (main table)")
     p.add_argument("--threshold", "-t", type=int, default=5, help="error threshold (main table)")
+    p.add_argument("--max-iterations", type=int, default=30,
+                   help="stop an episode after this many iterations even if tau < t "
+                        "(a planner that keeps making valid but useless moves)")
     p.add_argument("--ground-truth-graphs", action="store_true",
                    help="use true goal graphs instead of perceiving goal images (separates "
                         "planning errors from perception errors)")
@@ -59,11 +62,12 @@ def _settings(args: argparse.Namespace) -> tuple[list[Setting], list[Setting], l
                              value=unknown[0], fix=f"use {', '.join(PLANNER_NAMES)}")
     main: list[Setting] = []
     for name in planners:
-        base = Setting(planner=name, k=args.k, threshold=args.threshold, noise=args.noise)
+        base = Setting(planner=name, k=args.k, threshold=args.threshold, noise=args.noise,
+                       max_iterations=args.max_iterations)
         main += [base, base.model_copy(update={"mode": "direct"})]
         if name == "noisy":
             main.append(base.model_copy(update={"done_policy": "trust"}))
-    noisy = Setting(planner="noisy", noise=args.noise)
+    noisy = Setting(planner="noisy", noise=args.noise, max_iterations=args.max_iterations)
     t_rows = [noisy.model_copy(update={"threshold": t, "k": 3}) for t in T_VALUES]
     k_rows = [noisy.model_copy(update={"k": k, "threshold": 5}) for k in K_VALUES]
     return main, t_rows, k_rows

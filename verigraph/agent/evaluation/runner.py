@@ -38,6 +38,7 @@ class Setting(BaseModel):
     threshold: int = 5
     done_policy: DonePolicy = "verify"
     noise: float = 0.3
+    max_iterations: int = 30
 
     def label(self) -> str:
         name = self.planner if self.planner != "noisy" else f"noisy ({self.noise:.0%})"
@@ -93,7 +94,7 @@ def run_task(env: ToolEnvironment, task: Task, setting: Setting,
     planner = shared or make_planner(setting.planner, PlannerOptions(
         noise=setting.noise, seed=episode_seed(task.task_id, setting)))
     config = LoopConfig(mode=setting.mode, k=setting.k, threshold=setting.threshold,
-                        done_policy=setting.done_policy)
+                        done_policy=setting.done_policy, max_iterations=setting.max_iterations)
     started = time.perf_counter()
     try:
         trace = run_episode(env, planner, task.spec, config)
