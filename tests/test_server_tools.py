@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 import json
+import threading
+import time
 from collections.abc import AsyncIterator
 from typing import Any
 
+import anyio
 import pytest
 from mcp import Client, MCPError
 from mcp_helpers import decode_png, png_b64, structured, text
@@ -197,6 +200,39 @@ async def test_bad_arguments_are_tool_errors(client: Client, tool: str, args: di
     assert "https://errors.pydantic.dev" not in text(result)
     still = await client.call_tool("load_scene", {"scene_id": "three_blocks"})
     assert not still.is_error
+
+
+async def test_a_busy_episode_does_not_stall_other_episodes() -> None:
+    toolbox = Toolbox()
+    async with Client(build_server(toolbox)) as c:
+        busy, free = await load(c), await load(c)
+        release = threading.Event()
+        held = threading.Event()
+
+        def hold() -> None:
+            with toolbox.context.store.use(busy):
+                held.set()
+                release.wait(5)
+
+        holder = threading.Thread(target=hold)
+        holder.start()
+        held.wait(5)
+        waiting: list[Any] = []
+
+        async def call_busy() -> None:
+            waiting.append(await c.call_tool("validate_action", {
+                "episode_id": busy, "action": "move(cup, desk)"}))
+
+        async with anyio.create_task_group() as tg:
+            tg.start_soon(call_busy)
+            start = time.perf_counter()
+            other = await c.call_tool("validate_action", {"episode_id": free,
+                                                          "action": "move(cup, desk)"})
+            assert not other.is_error and time.perf_counter() - start < 2
+            assert not waiting  # the busy episode's call is still waiting, off the loop
+            release.set()
+        holder.join()
+        assert structured(waiting[0])["ok"] is True
 
 
 async def test_unknown_tool_is_an_error_result(client: Client) -> None:

@@ -10,6 +10,7 @@ import pytest
 from verigraph.graph.builtin_scenes import cup_on_book
 from verigraph.graph.state import WorldState
 from verigraph.tools import Episode, EpisodeLimitError, EpisodeStore, UnknownEpisodeError
+from verigraph.tools.store import WouldBlock, non_blocking
 
 
 def make(episode_id: str) -> Episode:
@@ -93,3 +94,18 @@ def test_removed_episode_is_gone_even_for_a_waiting_caller() -> None:
         store.remove(ep.id)
     with pytest.raises(UnknownEpisodeError), store.use(eid):
         pass
+
+
+def test_non_blocking_mode_refuses_to_wait() -> None:
+    store = EpisodeStore()
+    eid = store.add(make).id
+    with non_blocking(), store.use(eid) as ep:  # a free episode is used directly
+        assert ep.id == eid
+    with store.use(eid), non_blocking(), pytest.raises(WouldBlock), store.use(eid):
+        pass  # busy: refused instead of waiting
+    with store.use(eid) as ep:
+        ep.world = object()  # type: ignore[assignment]
+    with non_blocking(), pytest.raises(WouldBlock), store.use(eid):
+        pass  # a simulator may be slow: refused too
+    with store.use(eid) as ep:  # normal mode still waits and works
+        assert ep.world is not None

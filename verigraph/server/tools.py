@@ -13,6 +13,7 @@ import inspect
 from collections.abc import Callable
 from typing import Annotated, Any
 
+import anyio.to_thread
 from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
 from mcp.server.mcpserver import MCPServer
 from mcp.server.mcpserver.exceptions import ToolError
@@ -23,6 +24,7 @@ from verigraph.errors import VeriGraphError
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
 from verigraph.tools.registry import parse_arguments as parse_tool_arguments
 from verigraph.tools.scenes import ImageResult
+from verigraph.tools.store import WouldBlock, non_blocking
 
 
 def to_result(spec: ToolSpec, result: BaseModel | ImageResult) -> CallToolResult:
@@ -50,18 +52,42 @@ def _parameters(model: type[BaseModel]) -> list[inspect.Parameter]:
     return params
 
 
-def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., CallToolResult]:
-    """A function whose signature mirrors `spec.input_model` and which runs the tool."""
+# Tools that may take long (images, search, perception) always run on a worker thread.
+SLOW_TOOLS = frozenset({"render_scene", "get_scene_image", "solve", "generate_scene_graph"})
+SLOW_ARGUMENTS = ("image", "generator", "simulate")
 
-    def call(**arguments: Any) -> CallToolResult:
-        try:
-            params = spec.input_model.model_validate(arguments)
-        except ValidationError as exc:
-            raise ToolError(str(argument_error(spec, exc))) from None
+
+def may_block(spec: ToolSpec, params: BaseModel) -> bool:
+    """Whether a call could hold the event loop for long (decode, render, simulate, search)."""
+    return spec.name in SLOW_TOOLS or any(getattr(params, a, None) for a in SLOW_ARGUMENTS)
+
+
+def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
+    """An async function whose signature mirrors `spec.input_model` and runs the tool.
+
+    Fast calls run directly on the event loop: a thread hop costs more than the
+    verification itself. A call that could block (slow tool, busy episode, simulator)
+    runs on a worker thread instead.
+    """
+
+    def run(params: BaseModel) -> CallToolResult:
         try:
             return to_result(spec, toolbox.run(spec, params))
         except VeriGraphError as exc:
             raise ToolError(str(exc)) from None
+
+    async def call(**arguments: Any) -> CallToolResult:
+        try:
+            params = spec.input_model.model_validate(arguments)
+        except ValidationError as exc:
+            raise ToolError(str(argument_error(spec, exc))) from None
+        if not may_block(spec, params):
+            try:
+                with non_blocking():
+                    return run(params)
+            except WouldBlock:
+                pass
+        return await anyio.to_thread.run_sync(run, params)
 
     returns: Any = (Annotated[CallToolResult, spec.output_model] if spec.output_model
                     else CallToolResult)

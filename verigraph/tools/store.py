@@ -14,6 +14,7 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -32,6 +33,31 @@ DEFAULT_K = 3
 DEFAULT_T = 5
 DEFAULT_MAX_EPISODES = 256
 DEFAULT_IDLE_TIMEOUT_S = 3600.0
+
+# Set while a tool runs on an event loop thread (see `non_blocking`).
+_NON_BLOCKING: ContextVar[bool] = ContextVar("verigraph_non_blocking", default=False)
+
+
+class WouldBlock(Exception):  # noqa: N818 - a signal, not an error
+    """Raised in non-blocking mode instead of waiting for a lock or a simulator.
+
+    Nothing has changed when it is raised (episodes are only touched under the lock),
+    so the caller can simply run the same call again on a worker thread.
+    """
+
+
+@contextmanager
+def non_blocking() -> Iterator[None]:
+    """Within this block `EpisodeStore.use` never waits: it raises WouldBlock instead.
+
+    The MCP server runs fast tools directly on its event loop (no thread hop); this
+    keeps one busy episode from stalling every other client.
+    """
+    token = _NON_BLOCKING.set(True)
+    try:
+        yield
+    finally:
+        _NON_BLOCKING.reset(token)
 
 
 class TraceEntry(BaseModel):
@@ -151,15 +177,26 @@ class EpisodeStore:
 
     @contextmanager
     def use(self, episode_id: str) -> Iterator[Episode]:
-        """Hold the episode's lock for the duration of one tool call."""
+        """Hold the episode's lock for the duration of one tool call.
+
+        In `non_blocking` mode, an episode that is busy or has a (slow) simulator
+        raises WouldBlock instead of waiting.
+        """
         episode = self._get(episode_id)
-        with episode.lock:
+        if _NON_BLOCKING.get():
+            if episode.world is not None or not episode.lock.acquire(blocking=False):
+                raise WouldBlock(episode_id)
+        else:
+            episode.lock.acquire()
+        try:
             # It may have been ended while we waited for the lock.
             with self._lock:
                 if self._episodes.get(episode_id) is not episode:
                     raise UnknownEpisodeError(episode_id)
             episode.last_used = self._clock()
             yield episode
+        finally:
+            episode.lock.release()
 
     def remove(self, episode_id: str) -> None:
         """Forget an episode (the caller holds its lock, see `use`)."""
