@@ -132,3 +132,24 @@ def test_library_loop_over_http_with_two_episodes(http_server: str) -> None:
 def test_cli_http_without_url_is_bad_input() -> None:
     done = agent("--scene", "cup_on_book", "--transport", "http")
     assert done.returncode == 2 and "--url" in done.stderr
+
+
+def test_agent_prompt_is_the_servers_mcp_prompt() -> None:
+    """The agent renders the same text the server's `iterative_planner` prompt serves."""
+    from verigraph.agent.prompting import planner_prompt
+    from verigraph.graph import Goal, SceneGraph, WorldState
+
+    env = McpTools.stdio()
+    try:
+        state = env.call("load_scene", {"scene_id": "cup_on_book", "k": 2})
+        served = env.prompt("iterative_planner", {"episode_id": state["episode_id"]})
+        env.call("end_episode", {"episode_id": state["episode_id"]})
+    finally:
+        env.close()
+    ours = planner_prompt("iterative", WorldState.from_graph(
+        SceneGraph.model_validate(state["graph"])), Goal.model_validate(state["goal"]), k=2,
+        instruction=state["instruction"], history=[], feedback=None, iteration=1)
+    hint = served.find("\n(With the VeriGraph tools")
+    assert hint > 0
+    # same lines; object order may differ (tool results list nodes in canonical order)
+    assert sorted(served[:hint].rstrip().splitlines()) == sorted(ours.rstrip().splitlines())

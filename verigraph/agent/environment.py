@@ -159,6 +159,16 @@ class McpTools:
         data: dict[str, Any] = dict(result.structured_content)
         return data
 
+    def prompt(self, name: str, arguments: Mapping[str, str]) -> str:
+        """An MCP prompt's text (e.g. the server's `iterative_planner` for an episode)."""
+        client = self._client
+
+        async def run() -> Any:
+            return await client.get_prompt(name, dict(arguments))
+
+        result = self._portal.call(run)
+        return "\n".join(getattr(m.content, "text", "") for m in result.messages)
+
     def list_tools(self) -> list[str]:
         client = self._client
 
