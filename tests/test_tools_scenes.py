@@ -151,12 +151,27 @@ def test_bad_images_name_the_field(payload: str, message: str) -> None:
     assert err.value.field == "image" and message in str(err.value)
 
 
-def test_image_decompression_bomb_is_refused() -> None:
+def test_image_decompression_bombs_are_refused() -> None:
     png = bytearray(encode_png(np.zeros((4, 4, 3), np.uint8)))
     png[16:24] = (100_000).to_bytes(4, "big") + (100_000).to_bytes(4, "big")
     with pytest.raises(ToolArgumentError) as err:
         decode_image(base64.b64encode(bytes(png)).decode())
-    assert "too large" in str(err.value)
+    assert "100000x100000 pixels, too large" in str(err.value)
+    ok, buf = cv2.imencode(".jpg", np.zeros((4, 6, 3), np.uint8))
+    jpeg = bytearray(buf.tobytes())
+    sof = next(i for i in range(2, len(jpeg) - 1) if jpeg[i] == 0xFF and jpeg[i + 1] == 0xC0)
+    jpeg[sof + 5:sof + 9] = (60_000).to_bytes(2, "big") + (60_000).to_bytes(2, "big")
+    with pytest.raises(ToolArgumentError) as err:
+        decode_image(base64.b64encode(bytes(jpeg)).decode())
+    assert "60000x60000 pixels, too large" in str(err.value)
+
+
+def test_jpeg_images_decode() -> None:
+    image = np.zeros((30, 40, 3), np.uint8)
+    image[:, :20] = (255, 255, 255)
+    ok, buf = cv2.imencode(".jpg", image)
+    decoded = decode_image(base64.b64encode(buf.tobytes()).decode())
+    assert decoded.shape == (30, 40, 3) and decoded[:, :10].mean() > 200
 
 
 def test_data_url_prefix_is_accepted() -> None:

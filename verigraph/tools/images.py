@@ -17,7 +17,9 @@ import numpy as np
 from verigraph.tools.errors import ToolArgumentError
 
 MAX_IMAGE_BYTES = 12 * 1024 * 1024
-MAX_IMAGE_PIXELS = 40_000_000
+MAX_IMAGE_PIXELS = 16_000_000  # e.g. 4000 x 4000; 48 MB once decoded
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+JPEG_MAGIC = b"\xff\xd8\xff"
 _DATA_URL = re.compile(r"^data:image/[A-Za-z0-9.+-]+;base64,", re.IGNORECASE)
 _FIX = "send a PNG or JPEG file encoded as base64 text (a data:image/...;base64, prefix is fine)"
 
@@ -37,11 +39,17 @@ def decode_image(text: str, *, field: str = "image") -> np.ndarray:
                                 value=payload[:32], fix=_FIX) from None
     if not raw:
         raise ToolArgumentError("image is empty", field=field, value="", fix=_FIX)
-    header = _probe_size(raw)
-    if header is not None and header[0] * header[1] > MAX_IMAGE_PIXELS:
-        raise ToolArgumentError(f"image is {header[0]}x{header[1]} pixels, too large to decode",
-                                field=field, value=f"{header[0]}x{header[1]}",
-                                fix="downscale it below 40 megapixels")
+    if not raw.startswith((PNG_MAGIC, JPEG_MAGIC)):
+        raise ToolArgumentError("the bytes are not a PNG or JPEG file", field=field,
+                                value=raw[:8].hex(), fix=_FIX)
+    size = _probe_size(raw)
+    if size is None:
+        raise ToolArgumentError("the image header is damaged (no size found)", field=field,
+                                value=raw[:8].hex(), fix=_FIX)
+    if size[0] * size[1] > MAX_IMAGE_PIXELS:
+        raise ToolArgumentError(f"image is {size[0]}x{size[1]} pixels, too large to decode",
+                                field=field, value=f"{size[0]}x{size[1]}",
+                                fix="downscale it below 16 megapixels (1024 px is plenty)")
     image = cv2.imdecode(np.frombuffer(raw, dtype=np.uint8), cv2.IMREAD_COLOR)
     if image is None or image.size == 0:
         raise ToolArgumentError("the bytes are not a PNG or JPEG image OpenCV can decode",
@@ -50,9 +58,31 @@ def decode_image(text: str, *, field: str = "image") -> np.ndarray:
 
 
 def _probe_size(raw: bytes) -> tuple[int, int] | None:
-    """Width and height from a PNG header (decompression-bomb guard), else None."""
-    if raw[:8] == b"\x89PNG\r\n\x1a\n" and len(raw) >= 24:
+    """Width and height from the PNG or JPEG header, read before decoding anything.
+
+    A few bytes can declare a gigapixel image; checking the header first is the guard
+    against such decompression bombs.
+    """
+    if raw.startswith(PNG_MAGIC):
+        if len(raw) < 24:
+            return None
         return int.from_bytes(raw[16:20], "big"), int.from_bytes(raw[20:24], "big")
+    pos = 2
+    while pos + 4 <= len(raw):  # JPEG: walk the segments up to the first SOF marker
+        if raw[pos] != 0xFF:
+            return None
+        marker = raw[pos + 1]
+        if marker == 0xFF:
+            pos += 1
+            continue
+        length = int.from_bytes(raw[pos + 2:pos + 4], "big")
+        if 0xC0 <= marker <= 0xCF and marker not in (0xC4, 0xC8, 0xCC):
+            if pos + 9 > len(raw):
+                return None
+            height = int.from_bytes(raw[pos + 5:pos + 7], "big")
+            width = int.from_bytes(raw[pos + 7:pos + 9], "big")
+            return width, height
+        pos += 2 + length
     return None
 
 
