@@ -215,3 +215,25 @@ def test_render_and_home(world: ArmWorld) -> None:
     tcp = world.status().tcp
     home = world._controller.config.home
     assert tcp is not None and math.dist(tcp.point(), home.point()) < 0.01
+
+
+def test_in_places_the_cup_inside_the_bowl() -> None:
+    graph = SceneGraph(nodes=[Node(id="table", label="table"), Node(id="bowl", label="bowl"),
+                              Node(id="cup", label="cup")],
+                       edges=[Edge(source="bowl", relation="on", target="table"),
+                              Edge(source="cup", relation="on", target="table")],
+                       dictionary="tableware")
+    w = open_panda(graph)
+    try:
+        scene = scene_of(w)
+        _, _, violation, _, state = execute_in_world(
+            WorldState.from_graph(graph), [MoveAction(object="cup", relation="in",
+                                                      target="bowl")], w)
+        assert violation is None, violation.text()
+        assert "cup in bowl" in {e.sentence() for e in state.edges()}
+        (cx, cy, cz), (bx, by, bz) = scene.body_position("cup"), scene.body_position("bowl")
+        assert math.dist((cx, cy), (bx, by)) < 0.03  # inside the 12 cm bowl's walls
+        assert cz - 0.04 < bz  # the cup's bottom is below the bowl's centre: inside
+        assert scene.in_contact("cup", "bowl") and not scene.in_contact("cup", "table")
+    finally:
+        w.close()

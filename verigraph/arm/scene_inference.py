@@ -32,7 +32,9 @@ def _support(obj: ObjectLocation, other: ObjectLocation, props: ObjectProperties
     """(relation, score) if `other` can be what holds `obj`; lower score = better."""
     if not other.footprint_contains(obj.centre[0], obj.centre[1], tol.xy_margin_m):
         return None
-    if props.container and other.bottom_z - tol.z_gap_m <= obj.bottom_z < other.top_z - 0.005:
+    fits = max(obj.size[0], obj.size[1]) <= min(other.size[0], other.size[1]) + tol.xy_margin_m
+    if props.container and fits and \
+            other.bottom_z - tol.z_gap_m <= obj.bottom_z < other.top_z - 0.005:
         return "in", -1.0  # inside a container beats resting near a surface
     gap = abs(obj.bottom_z - other.top_z)
     if props.surface and gap <= tol.z_gap_m:
