@@ -183,3 +183,14 @@ def test_max_episodes_from_config() -> None:
     load(box, scene_id="cup_on_book")
     with pytest.raises(EpisodeLimitError):
         load(box, scene_id="cup_on_book")
+
+
+def test_oversized_graphs_are_refused_before_indexing() -> None:
+    nodes = [{"id": "table", "label": "table"}] + [
+        {"id": f"b{i}", "label": "block"} for i in range(5001)]
+    edges = [{"source": f"b{i}", "relation": "on", "target": "table"} for i in range(5001)]
+    box = Toolbox()
+    with pytest.raises(VeriGraphError) as err:
+        box.call("load_scene", {"graph": {"nodes": nodes, "edges": edges}})
+    assert "at most 5000 nodes" in str(err.value) and err.value.field == "graph"
+    assert len(box.context.store) == 0

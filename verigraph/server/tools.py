@@ -57,9 +57,21 @@ SLOW_TOOLS = frozenset({"render_scene", "get_scene_image", "solve", "generate_sc
 SLOW_ARGUMENTS = ("image", "generator", "simulate")
 
 
+BIG_GRAPH_NODES = 300
+BIG_PLAN_CHARS = 20_000
+
+
 def may_block(spec: ToolSpec, params: BaseModel) -> bool:
-    """Whether a call could hold the event loop for long (decode, render, simulate, search)."""
-    return spec.name in SLOW_TOOLS or any(getattr(params, a, None) for a in SLOW_ARGUMENTS)
+    """Whether a call could hold the event loop for long (decode, render, simulate, search,
+    or a large graph or plan)."""
+    if spec.name in SLOW_TOOLS or any(getattr(params, a, None) for a in SLOW_ARGUMENTS):
+        return True
+    graphs = [getattr(params, "graph", None), getattr(getattr(params, "goal", None), "graph",
+                                                      None)]
+    if any(len(getattr(g, "nodes", ())) > BIG_GRAPH_NODES for g in graphs):
+        return True
+    plan = getattr(params, "plan", None)
+    return isinstance(plan, str | list) and len(plan) > BIG_PLAN_CHARS
 
 
 def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:

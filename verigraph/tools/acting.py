@@ -8,6 +8,8 @@ a copy and committed at the end, so bad input leaves the episode exactly as it w
 
 from __future__ import annotations
 
+from typing import Annotated
+
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from verigraph.actions.executor import execute_in_world
@@ -28,6 +30,8 @@ from verigraph.tools.episodes import check_goal_against
 from verigraph.tools.errors import EpisodeStateError, ToolArgumentError
 from verigraph.tools.fields import (
     ActionInput,
+    BoundedGoal,
+    BoundedGraph,
     EpisodeId,
     SceneId,
     builtin_scene,
@@ -188,7 +192,7 @@ class CheckGoalInput(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     episode_id: EpisodeId
-    goal: Goal | None = Field(default=None,
+    goal: BoundedGoal | None = Field(default=None,
                               description="check this goal instead of the episode's")
 
 
@@ -224,13 +228,13 @@ class ValidatePlanInput(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
 
-    plan: str | list[ActionInput] = Field(
+    plan: str | Annotated[list[ActionInput], Field(max_length=MAX_PLAN_ACTIONS)] = Field(
         description="text plan (one action per line) or a list of actions")
     scene_id: SceneId | None = None
-    graph: SceneGraph | None = Field(default=None, description="initial scene graph")
+    graph: BoundedGraph | None = Field(default=None, description="initial scene graph")
     episode_id: EpisodeId | None = Field(
         default=None, description="start from this episode's current graph (and goal)")
-    goal: Goal | None = Field(default=None, description="check the final graph against it")
+    goal: BoundedGoal | None = Field(default=None, description="check the final graph against it")
     all_errors: bool = Field(default=False, description="skip failing actions and report "
                                                         "every violation")
 

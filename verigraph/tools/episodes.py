@@ -19,6 +19,8 @@ from verigraph.tools import optional
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.fields import (
+    BoundedGoal,
+    BoundedGraph,
     DictionaryName,
     EpisodeId,
     ImageData,
@@ -107,7 +109,7 @@ class LoadSceneInput(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     scene_id: SceneId | None = None
-    graph: SceneGraph | None = Field(default=None, description="a scene graph to start from")
+    graph: BoundedGraph | None = Field(default=None, description="a scene graph to start from")
     image: ImageData | None = Field(
         default=None, description="photo of the scene; without built-in perception the "
                                    "episode waits for submit_scene_graph")
@@ -115,7 +117,7 @@ class LoadSceneInput(BaseModel):
                                             description="generate a scene with sim2d")
     dictionary: DictionaryName | None = Field(
         default=None, description="dictionary D for an image or a graph that names none")
-    goal: Goal | None = Field(default=None, description="goal now (else the built-in one, "
+    goal: BoundedGoal | None = Field(default=None, description="goal now (else the built-in one, "
                                                         "or set_goal later)")
     instruction: str | None = Instruction
     simulate: bool = Field(default=False, description="also execute actions in the 2D "
@@ -236,7 +238,7 @@ class SetGoalInput(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     episode_id: EpisodeId
-    graph: SceneGraph | None = Field(default=None, description="goal scene graph")
+    graph: BoundedGraph | None = Field(default=None, description="goal scene graph")
     partial: bool = Field(default=False, description="only the listed edges must hold")
     predicate: Literal["single_stack"] | None = Field(
         default=None, description="single_stack: every movable object in one tower")

@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Annotated, Any
 
-from pydantic import Field
+from pydantic import AfterValidator, Field
 
 from verigraph.actions.model import Action, AnyAction, DoneAction
 from verigraph.actions.parser import parse_text_plan
@@ -42,8 +42,26 @@ ImageData = Annotated[str, Field(
     description="base64 PNG or JPEG (a data:image/...;base64, prefix is accepted)")]
 
 
-def action_text(action: AnyAction) -> str:
-    return action.text()
+MAX_GRAPH_NODES = 5000
+MAX_GRAPH_EDGES = 20_000
+
+
+def _bounded(graph: SceneGraph) -> SceneGraph:
+    if len(graph.nodes) > MAX_GRAPH_NODES or len(graph.edges) > MAX_GRAPH_EDGES:
+        raise ValueError(f"the graph has {len(graph.nodes)} nodes and {len(graph.edges)} edges; "
+                         f"at most {MAX_GRAPH_NODES} nodes and {MAX_GRAPH_EDGES} edges are "
+                         "accepted")
+    return graph
+
+
+def _bounded_goal(goal: Goal) -> Goal:
+    if goal.graph is not None:
+        _bounded(goal.graph)
+    return goal
+
+
+BoundedGraph = Annotated[SceneGraph, AfterValidator(_bounded)]
+BoundedGoal = Annotated[Goal, AfterValidator(_bounded_goal)]
 
 
 def parse_actions(items: Sequence[Any], *, field: str = "actions", indexed: bool = True

@@ -39,10 +39,6 @@ class ToolSpec:
     summary: Callable[[Any], str] = lambda result: str(result.summary())
 
 
-def _report_summary(report: ValidationReport) -> str:
-    return acting.report_summary(report)
-
-
 TOOL_SPECS: tuple[ToolSpec, ...] = (
     ToolSpec("load_scene", "Start an episode",
              "Start a planning episode from a built-in scene id (cup_on_book, three_blocks, "
@@ -79,7 +75,7 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              "scene id, a graph or an episode's current graph, optionally against a goal. "
              "Per-step report; stores and changes nothing.",
              acting.ValidatePlanInput, ValidationReport, acting.validate_plan,
-             read_only=True, idempotent=True, summary=_report_summary),
+             read_only=True, idempotent=True, summary=acting.report_summary),
     ToolSpec("check_goal", "Check the goal",
              "Difference between the episode's current graph and its goal (or a goal given "
              "here): missing and extra edges and objects.",

@@ -13,14 +13,19 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from verigraph.actions.model import Action, AnyAction
 from verigraph.actions.report import validate_plan
-from verigraph.graph.goal import Goal
-from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.tools import optional
 from verigraph.tools.context import ToolContext
 from verigraph.tools.episodes import check_goal_against
 from verigraph.tools.errors import FeatureUnavailableError, ToolArgumentError
-from verigraph.tools.fields import EpisodeId, SceneId, builtin_scene, state_from_graph
+from verigraph.tools.fields import (
+    BoundedGoal,
+    BoundedGraph,
+    EpisodeId,
+    SceneId,
+    builtin_scene,
+    state_from_graph,
+)
 
 
 class SolveInput(BaseModel):
@@ -31,8 +36,8 @@ class SolveInput(BaseModel):
     episode_id: EpisodeId | None = Field(default=None, description="plan from this "
                                                                    "episode's current graph")
     scene_id: SceneId | None = None
-    graph: SceneGraph | None = None
-    goal: Goal | None = Field(default=None, description="defaults to the episode's or the "
+    graph: BoundedGraph | None = None
+    goal: BoundedGoal | None = Field(default=None, description="defaults to the episode's or the "
                                                         "built-in scene's goal")
     max_expansions: int = Field(default=200_000, ge=1, le=2_000_000,
                                 description="search budget (nodes expanded)")
