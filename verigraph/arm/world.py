@@ -31,9 +31,9 @@ from verigraph.graph.goal import GraphDiff, diff
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 
-# The core has no constraint id for "the world refused before moving" yet; until it
-# does, refusals use execution_failed (the world did not reach the predicted graph).
-REFUSED: ConstraintId = "execution_failed"
+# A refusal before anything moved (safety limit, latched stop, stale location, declined
+# confirmation) is its own constraint, distinct from execution_failed after a motion.
+REFUSED: ConstraintId = "arm_refused"
 
 
 @dataclass(frozen=True, slots=True)
