@@ -235,6 +235,17 @@ async def test_a_busy_episode_does_not_stall_other_episodes() -> None:
         assert structured(waiting[0])["ok"] is True
 
 
+async def test_json_looking_strings_keep_their_meaning(client: Client) -> None:
+    graph = {"nodes": [{"id": "desk", "label": "desk"}], "edges": []}
+    result = await client.call_tool("submit_scene_graph", {"episode_id": "null",
+                                                           "graph": graph})
+    assert result.is_error and "no open episode with id 'null'" in text(result)
+    eid = await load(client)
+    as_json = await client.call_tool("validate_action", {
+        "episode_id": eid, "action": '{"action": "move", "object": "cup", "target": "desk"}'})
+    assert structured(as_json)["action"] == "move(cup, on, desk)"
+
+
 async def test_unknown_tool_is_an_error_result(client: Client) -> None:
     result = await client.call_tool("teleport", {})
     assert result.is_error and "Unknown tool: teleport" in text(result)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import base64
 import inspect
 from collections.abc import Callable
+from contextvars import ContextVar
 from typing import Annotated, Any
 
 import anyio.to_thread
@@ -89,10 +90,14 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
             raise ToolError(str(exc)) from None
 
     async def call(**arguments: Any) -> CallToolResult:
-        try:
-            params = spec.input_model.model_validate(arguments)
-        except ValidationError as exc:
-            raise ToolError(str(argument_error(spec, exc))) from None
+        gated = _GATED.get()
+        if gated is not None and gated[0] == spec.name:
+            params = gated[1]  # validated from the raw JSON by ArgumentGate
+        else:
+            try:
+                params = spec.input_model.model_validate(arguments)
+            except ValidationError as exc:
+                raise ToolError(str(argument_error(spec, exc))) from None
         if not may_block(spec, params):
             try:
                 with non_blocking():
@@ -123,24 +128,34 @@ def register_tools(server: MCPServer[Any], toolbox: Toolbox) -> None:
                 open_world_hint=False))
 
 
-class ArgumentGate:
-    """Server middleware: check tools/call arguments against our models before the SDK.
+# The arguments ArgumentGate validated for the tools/call being handled (tool, input).
+_GATED: ContextVar[tuple[str, BaseModel] | None] = ContextVar("verigraph_gated", default=None)
 
-    The SDK ignores unknown argument names and words type errors for Python readers;
-    this gate rejects misspelt arguments and answers in terms of fields and fixes.
+
+class ArgumentGate:
+    """Server middleware: validate tools/call arguments with our models, from the raw JSON.
+
+    The SDK ignores unknown argument names, words type errors for Python readers, and
+    decodes JSON-looking strings (so an episode_id "null" would become None). The gate
+    rejects misspelt arguments, answers in terms of fields and fixes, and hands the tool
+    exactly the input it validated.
     """
 
     async def __call__(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
                        ) -> HandlerResult:
-        if ctx.method == "tools/call" and ctx.params is not None:
-            name = ctx.params.get("name")
-            spec = TOOLS.get(name) if isinstance(name, str) else None
-            if spec is not None:
-                try:
-                    parse_tool_arguments(spec, ctx.params.get("arguments"))
-                except VeriGraphError as exc:
-                    return CallToolResult(
-                        content=[TextContent(type="text", text=f"Error executing tool "
-                                                               f"{spec.name}: {exc}")],
-                        is_error=True)
-        return await call_next(ctx)
+        if ctx.method != "tools/call" or ctx.params is None:
+            return await call_next(ctx)
+        name = ctx.params.get("name")
+        spec = TOOLS.get(name) if isinstance(name, str) else None
+        if spec is None:
+            return await call_next(ctx)
+        try:
+            params = parse_tool_arguments(spec, ctx.params.get("arguments"))
+        except VeriGraphError as exc:
+            return CallToolResult(content=[TextContent(
+                type="text", text=f"Error executing tool {spec.name}: {exc}")], is_error=True)
+        token = _GATED.set((spec.name, params))
+        try:
+            return await call_next(ctx)
+        finally:
+            _GATED.reset(token)

@@ -6,6 +6,7 @@ executed so far and the count tau of consecutive failed execute_actions calls.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
@@ -138,58 +139,64 @@ class LoadSceneInput(BaseModel):
         return self
 
 
-def load_scene(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
-    """Create an episode; nothing is stored unless the whole input is valid."""
-    goal = params.goal
-    source: str
+@dataclass
+class _Source:
+    """What a load_scene source yields before it is checked and stored."""
+
+    name: str
+    graph: SceneGraph | None = None
+    goal: Goal | None = None
     world: Any = None
     goal_world: Any = None
-    image = None
-    state: WorldState | None = None
-    graph: SceneGraph | None = None
+    image: Any = None
+
+
+def _read_source(params: LoadSceneInput) -> _Source:
     if params.scene_id is not None:
-        graph, builtin_goal = builtin_scene(params.scene_id)
-        goal = goal or builtin_goal
-        source = f"scene_id:{params.scene_id}"
-    elif params.graph is not None:
-        graph = params.graph
-        source = "graph"
-    elif params.generator is not None:
+        graph, goal = builtin_scene(params.scene_id)
+        return _Source(f"scene_id:{params.scene_id}", graph, goal)
+    if params.graph is not None:
+        return _Source("graph", params.graph)
+    if params.generator is not None:
         spec = params.generator
         generated = optional.generate_scene()(spec.family, spec.seed, spec.n_objects)
-        graph = generated.graph
-        goal = goal or getattr(generated, "goal", None)
-        world = generated.world if params.simulate else None
-        goal_world = getattr(generated, "goal_world", None) if params.simulate else None
-        source = f"generator:{spec.family}/seed={spec.seed}"
-    else:
-        assert params.image is not None
-        image = decode_image(params.image)
-        source = "image"
-        if optional.has("verigraph.perception", "perceive"):
-            graph = optional.perception()(image, dictionary=dictionary_for(params.dictionary))
-    if graph is not None:
-        graph = _with_dictionary(graph, params.dictionary)
-        state = state_from_graph(graph)
+        keep = params.simulate  # the generator always builds worlds; attach them on request
+        return _Source(f"generator:{spec.family}/seed={spec.seed}", generated.graph,
+                       getattr(generated, "goal", None), generated.world if keep else None,
+                       getattr(generated, "goal_world", None) if keep else None)
+    assert params.image is not None
+    image = decode_image(params.image)
+    perceived: SceneGraph | None = None
+    if optional.has("verigraph.perception", "perceive"):
+        perceived = optional.perception()(image, dictionary=dictionary_for(params.dictionary))
+    return _Source("image", perceived, image=image)
+
+
+def load_scene(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
+    """Create an episode; nothing is stored unless the whole input is valid."""
+    source = _read_source(params)
+    goal = params.goal or source.goal
+    state: WorldState | None = None
+    world = source.world
+    if source.graph is not None:
+        state = state_from_graph(_with_dictionary(source.graph, params.dictionary))
         if params.simulate and world is None:
             world = optional.world_for_graph()(state.to_graph(), seed=params.seed)
+        if goal is not None:
+            check_goal_against(goal, state, field="goal")
     elif params.simulate:
         raise ToolArgumentError("simulate needs a scene graph, but an image has none yet",
                                 field="simulate", value=True,
                                 fix="load with simulate=false, or pass the graph instead")
-    if goal is not None and graph is not None:
-        check_goal_against(goal, state, field="goal")
-    instruction = params.instruction
 
     def make(episode_id: str) -> Episode:
-        return Episode(id=episode_id, state=state, source=source, k=params.k, t=params.t,
-                       goal=goal, instruction=instruction, world=world, goal_world=goal_world,
-                       image=image,
+        return Episode(id=episode_id, state=state, source=source.name, k=params.k, t=params.t,
+                       goal=goal, instruction=params.instruction, world=world,
+                       goal_world=source.goal_world, image=source.image,
                        dictionary_name=params.dictionary,
                        initial_graph=state.to_graph() if state is not None else None)
 
-    episode = ctx.store.add(make)
-    return describe(episode)
+    return describe(ctx.store.add(make))
 
 
 def _with_dictionary(graph: SceneGraph, name: str | None) -> SceneGraph:
