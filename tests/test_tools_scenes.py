@@ -74,6 +74,13 @@ def test_get_scene_image_returns_the_loaded_photo_and_the_prompt() -> None:
     assert "put the lid on the pot" in out.text and f'episode_id="{eid}"' in out.text
 
 
+def test_large_photos_are_sent_back_scaled_down() -> None:
+    box = Toolbox()
+    eid = box.call("load_scene", {"image": png_b64(2400, 1200)}).episode_id
+    image = decode(box.call("get_scene_image", {"episode_id": eid}).png)
+    assert image.shape == (800, 1600, 3)
+
+
 def test_submit_normalises_and_reports_every_problem_at_once() -> None:
     box = Toolbox()
     graph = {"nodes": [{"id": "Red Block", "label": "cube"}, {"id": "tbl", "label": "Table Top"},

@@ -13,6 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
+import cv2
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
@@ -44,6 +45,19 @@ class ImageResult:
     mime_type: str = "image/png"
 
 
+MAX_PHOTO_SIDE = 1600  # photos are sent back at most this large (vision models downscale anyway)
+
+
+def fit(image: np.ndarray, longest: int) -> np.ndarray:
+    """The image scaled down (never up) so that its longer side is at most `longest`."""
+    height, width = image.shape[:2]
+    scale = longest / max(height, width)
+    if scale >= 1:
+        return image
+    size = (max(1, round(width * scale)), max(1, round(height * scale)))
+    return cv2.resize(image, size, interpolation=cv2.INTER_AREA)
+
+
 def _colors(state: WorldState) -> dict[str, str]:
     return {o.id: o.props.color for o in state.objects.values() if o.props.color}
 
@@ -55,7 +69,7 @@ def _picture(episode: Episode, width: int, height: int) -> np.ndarray:
         image = render(width=width, height=height)
         return np.asarray(image, dtype=np.uint8)
     if episode.image is not None:
-        return episode.image
+        return fit(episode.image, MAX_PHOTO_SIDE)
     state = episode.require_state()
     return draw_graph(state.to_graph(), width, height, title="scene graph (drawing)",
                       colors=_colors(state))
