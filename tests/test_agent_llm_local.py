@@ -65,7 +65,7 @@ def test_real_model_loop_ends_with_a_clear_verdict(server: LocalModelServer) -> 
     planner = LocalLLMPlanner(server=server)
     trace = run_episode(InProcessTools(), planner,
                         EpisodeSpec(load={"scene_id": "cup_on_book"}),
-                        LoopConfig(k=2, threshold=2, max_iterations=4))
+                        LoopConfig(k=2, threshold=2, max_iterations=3))
     planner.inner.close()
     assert trace.stop_reason in ("end_token", "threshold", "iteration_limit")
     assert trace.verdict in ("goal_reached", "goal_not_reached", "threshold_reached")

@@ -14,7 +14,7 @@ import contextlib
 import os
 import sys
 from collections.abc import Mapping, Sequence
-from typing import Any, Protocol
+from typing import Any, Protocol, TextIO
 
 from pydantic import BaseModel
 
@@ -78,6 +78,18 @@ def _child_env() -> dict[str, str]:
     return env
 
 
+def _errlog() -> TextIO:
+    """Where the server child's stderr goes: ours if it is a real file, else the original."""
+    for stream in (sys.stderr, sys.__stderr__):
+        try:
+            if stream is not None and not stream.closed:
+                stream.fileno()
+                return stream
+        except (OSError, ValueError, AttributeError):
+            continue
+    return open(os.devnull, "w")  # noqa: SIM115 (lives as long as the child)
+
+
 class McpTools:
     """A real MCP client session, driven synchronously through an anyio portal.
 
@@ -109,14 +121,16 @@ class McpTools:
     def stdio(cls, command: str | None = None, args: Sequence[str] | None = None, *,
               cwd: str | None = None, timeout_s: float = 60.0) -> McpTools:
         """Spawn `verigraph serve` (or `command args`) and talk to it over stdio."""
-        from mcp import StdioServerParameters
+        from mcp import StdioServerParameters, stdio_client
 
         default_cmd, default_args = serve_command()
         params = StdioServerParameters(command=command or default_cmd,
                                        args=list(args if args is not None else default_args),
                                        env=_child_env(), cwd=cwd)
         try:
-            return cls(params, "stdio", timeout_s=timeout_s)
+            # The SDK's default errlog is sys.stderr as it was at import time; pass the
+            # current one (test runners and notebooks swap it) so the child's logs land.
+            return cls(stdio_client(params, errlog=_errlog()), "stdio", timeout_s=timeout_s)
         except Exception as exc:
             raise VeriGraphError(f"could not start the MCP server over stdio: {exc}",
                                  field="--transport stdio", value=params.command,
