@@ -88,7 +88,7 @@ def movable_spec(label: str, props: ObjectProperties) -> BodySpec:
     elif label in ("lid",):
         part = _tapered(w, h, 0.45)
     elif label in ("plate",):
-        part = _tapered(w, h, 1.35)
+        part = _tapered(w, h, 1.2)
     else:
         part = _box(-w / 2, 0.0, w / 2, h)
     return BodySpec(label=label, kind="box", width=w, height=h, parts=(part,), top=h)

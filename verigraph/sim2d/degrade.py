@@ -39,14 +39,14 @@ def degrade(image: np.ndarray, spec: Degradation, seed: int = 0) -> np.ndarray:
     if spec.lighting > 0:
         h, w = out.shape[:2]
         angle = rng.uniform(0, 2 * np.pi)
-        yy, xx = np.mgrid[0:h, 0:w].astype(np.float32)
-        ramp = (np.cos(angle) * (xx / w - 0.5) + np.sin(angle) * (yy / h - 0.5))
-        gain = 1.0 + spec.lighting * (rng.uniform(-0.3, 0.3) + 0.6 * ramp)
-        out *= gain[:, :, None]
+        xs = (np.arange(w, dtype=np.float32) / w - 0.5) * np.float32(np.cos(angle))
+        ys = (np.arange(h, dtype=np.float32) / h - 0.5) * np.float32(np.sin(angle))
+        gain = 1.0 + spec.lighting * (rng.uniform(-0.3, 0.3) + 0.6 * (ys[:, None] + xs[None, :]))
+        out *= gain.astype(np.float32)[:, :, None]
     if spec.blur > 0:
         out = np.asarray(cv2.GaussianBlur(out, (0, 0), sigmaX=spec.blur), dtype=np.float32)
     if spec.noise > 0:
-        out += rng.normal(0.0, spec.noise, size=out.shape).astype(np.float32)
+        out += rng.standard_normal(size=out.shape, dtype=np.float32) * np.float32(spec.noise)
     result = np.clip(out, 0, 255).astype(np.uint8)
     if spec.jpeg is not None:
         quality = int(min(100, max(1, spec.jpeg)))

@@ -80,6 +80,9 @@ def generate_scene(family: str, seed: int, n_objects: int | None = None) -> Gene
                        field="n_objects", value=n, fix="use a number from 3 to 7")
     for _ in range(DRAWS):
         graph = _draw_tabletop(family, rng, n)
+        state = WorldState.from_graph(graph)
+        if not any(room_violation(state, a) is None for a in valid_moves(state)):
+            continue  # nothing can be moved anywhere (three spoons on a table)
         try:
             world = build_tabletop(graph, rng.randrange(2**31))
         except SimError:
@@ -225,19 +228,21 @@ def _label(node_id: str) -> str:
 
 def _random_goal(world: TabletopWorld, graph: SceneGraph, rng: random.Random
                  ) -> TabletopWorld:
-    """A copy of the world after 2-4 random valid moves that have room."""
+    """A copy of the world after 2-4 random valid moves that have room (more if those
+    happened to lead back to the start)."""
     sim = world.copy()
     state = WorldState.from_graph(graph)
     start = graph.edge_keys()
-    moves = rng.randint(2, 4)
-    for step in range(2 * moves):
-        if step >= moves and sim.observe().edge_keys() != start:
+    wanted, done = rng.randint(2, 4), 0
+    for _ in range(4 * wanted):
+        if done >= wanted and sim.observe().edge_keys() != start:
             break
         actions = [a for a in valid_moves(state) if room_violation(state, a) is None]
         rng.shuffle(actions)
-        for action in actions[:6]:
+        for action in actions[:8]:
             _, _, violation, _, state = execute_in_world(state, [action], sim)
             if violation is None:
+                done += 1
                 break
     return sim
 

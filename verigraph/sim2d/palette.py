@@ -1,11 +1,13 @@
 """Colour names -> BGR, shared by the renderer and (later) perception.
 
 Each object class draws in its dictionary colour; a node's `attrs.color` overrides it
-(blocks carry their colour there). Unknown names fall back to a fixed grey so that a
-render never depends on anything but the world state.
+(blocks carry their colour there, or in their id). Unknown names fall back to a fixed
+grey so that a render never depends on anything but the world state.
 """
 
 from __future__ import annotations
+
+import zlib
 
 BGR = tuple[int, int, int]
 
@@ -47,6 +49,20 @@ BACKGROUND: BGR = (235, 228, 222)
 FLOOR: BGR = (105, 115, 125)
 OUTLINE: BGR = (25, 25, 25)
 TANGRAM_BACKGROUND: BGR = (250, 250, 250)
+
+
+def object_color(node_id: str, attrs_color: object, class_color: str | None) -> BGR:
+    """An object's colour: `attrs.color`, else its class colour, else a colour named in
+    its id (`red_block`), else one picked from the id (stable across runs), so equal
+    blocks without colours still look distinct."""
+    if isinstance(attrs_color, str) and attrs_color.strip().lower().replace(" ", "") in COLORS:
+        return bgr(attrs_color)
+    if class_color:
+        return bgr(class_color)
+    for token in node_id.lower().split("_"):
+        if token in COLORS:
+            return COLORS[token]
+    return COLORS[BLOCK_COLORS[zlib.crc32(node_id.encode()) % len(BLOCK_COLORS)]]
 
 
 def bgr(name: str | None) -> BGR:

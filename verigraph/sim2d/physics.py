@@ -89,8 +89,10 @@ def remove_body(space: pymunk.Space, body: pymunk.Body) -> None:
 
 
 def set_pose(body: pymunk.Body, pose: Pose) -> None:
-    body.position = (pose.x, pose.y)
+    # Angle first: Chipmunk turns a body about its centre of gravity, so setting the
+    # angle after the position would move the origin away from (x, y).
     body.angle = pose.angle
+    body.position = (pose.x, pose.y)
     if body.body_type == pymunk.Body.DYNAMIC:
         body.velocity = (0.0, 0.0)
         body.angular_velocity = 0.0

@@ -31,6 +31,7 @@ FIXED_GAP = 1.5
 GRID = 0.5
 MAX_TRIES = 160
 SIDE_NORMAL = 0.5
+FOOTING_PROBE = 0.25
 
 
 @dataclass(frozen=True, slots=True)
@@ -141,7 +142,7 @@ class _Terrain:
         return best
 
 
-def _upright_first(obj: Thing, target: Thing, relation: str) -> bool:
+def _upright(obj: Thing, target: Thing, relation: str) -> bool:
     cavity = target.spec.cavity
     if relation != "in" or cavity is None or not obj.spec.thin:
         return False
@@ -207,9 +208,8 @@ def find_placements(scene: TabletopScene, obj: str, relation: str, target: str,
     """
     thing = scene.things[obj]
     tgt = scene.things[target]
-    angles = [0.0, math.pi / 2] if relation == "in" and thing.spec.thin else [0.0]
-    if _upright_first(thing, tgt, relation):
-        angles.reverse()
+    # Cutlery stands upright only where it cannot lie flat (a narrow cup or mug).
+    angles = [math.pi / 2, 0.0] if _upright(thing, tgt, relation) else [0.0]
     terrain = _Terrain(scene, skip=obj)
     bal_lo, bal_hi = balance_interval(scene, direct, target, thing.mass)
     out: list[Placement] = []
@@ -248,9 +248,14 @@ def _accept(scene: TabletopScene, thing: Thing, pose: Pose, relation: str, targe
         sup = direct_support(scene, thing, contacts)
         if sup.supporter is None or sup.span is None:
             return False
+        # The footing: everything within a small drop under the object, since it will
+        # tilt that little onto a second rim or edge before coming to rest.
+        footing = direct_support(scene, thing, physics.probe_contacts(
+            scene.space, thing.body, FOOTING_PROBE), same_as=sup.supporter)
+        span = footing.span or sup.span
         com_x = thing.com()[0]
-        mg = margin(sup.span[1] - sup.span[0])
-        if not sup.span[0] + mg - 1e-6 <= com_x <= sup.span[1] - mg + 1e-6:
+        mg = margin(span[1] - span[0])
+        if not span[0] + mg - 1e-6 <= com_x <= span[1] - mg + 1e-6:
             return False
         if physics.overlaps(scene.space, thing.body):
             return False

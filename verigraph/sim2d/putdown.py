@@ -67,13 +67,16 @@ def _apply(scene: TabletopScene, obj: str, plan: Plan) -> None:
 
 
 def _try_slides(scene: TabletopScene, obj: str, relation: str, target: str,
-                supports: dict[str, tuple[str, str]], slides: tuple[Slide, ...]
-                ) -> Plan | None:
-    """Slide, look for a placement, slide back; the plan if one was found."""
+                supports: dict[str, tuple[str, str]], slides: tuple[Slide, ...],
+                supports_of: tuple[str, ...] = ()) -> Plan | None:
+    """Slide, look for a placement, slide back; the plan if one was found.
+
+    `supports_of`: what the slid groups rest on (they may touch it, nothing else)."""
     _slide(scene, slides)
     try:
         group = {scene.things[o].body for ids, _ in slides for o in ids}
-        allowed = group | {scene.things[target].body}
+        allowed = group | {scene.things[target].body} | {
+            scene.things[s].body for s in supports_of}
         for body in group:
             if any(b not in allowed for b in physics.overlaps(scene.space, body, SLIDE_DEPTH)):
                 return None
@@ -89,17 +92,23 @@ def _try_slides(scene: TabletopScene, obj: str, relation: str, target: str,
         _slide(scene, tuple(reversed(slides)), -1.0)
 
 
-def _stayed(scene: TabletopScene, intended: Snapshot) -> bool:
-    """Nothing slid or tipped noticeably while settling (a tilted stack is not a success
-    even if it still reads as the right graph)."""
+def disturbed(scene: TabletopScene, intended: Snapshot) -> list[str]:
+    """Objects that slid or tipped noticeably away from their intended poses."""
+    out = []
     for obj, (pose, present) in intended.items():
-        if not present:
+        if not present or not scene.present(obj):
             continue
         now = physics.pose_of(scene.things[obj].body)
         turn = abs(math.remainder(now.angle - pose.angle, 2 * math.pi))
         if math.hypot(now.x - pose.x, now.y - pose.y) > SETTLE_SHIFT or turn > SETTLE_TURN:
-            return False
-    return True
+            out.append(obj)
+    return out
+
+
+def _stayed(scene: TabletopScene, intended: Snapshot) -> bool:
+    """Nothing slid or tipped while settling (a tilted stack is not a success even if
+    it still reads as the right graph)."""
+    return not disturbed(scene, intended)
 
 
 def _loads(direct: dict[str, DirectSupport], target: str, obj: str) -> list[tuple[str, ...]]:
@@ -145,31 +154,60 @@ def _packed(scene: TabletopScene, loads: list[tuple[str, ...]], edge: float, gap
 def _slide_plans(scene: TabletopScene, obj: str, relation: str, target: str,
                  supports: dict[str, tuple[str, str]], direct: dict[str, DirectSupport]
                  ) -> list[Plan]:
-    """Make room on a crowded surface: push the load to one side (furniture: to the
-    left), or slide a movable surface's whole load sideways as one block."""
+    """Make room: push the target's load to one side (furniture: to the left), or slide
+    a movable surface's whole load sideways as one block; if the target stands on
+    furniture, also push its neighbours there aside so that the object may overhang."""
     tgt = scene.things[target]
     loads = _loads(direct, target, obj)
-    if relation != "on" or not loads:
-        return []
     left, _, right, _ = tgt.bounds()
-    options: list[tuple[Slide, ...]] = []
-    if tgt.fixed:
-        options.append(_packed(scene, loads, left + FIXED_GAP / 2, FIXED_GAP, -1.0))
-    else:
-        options.append(_packed(scene, loads, left, 0.2, -1.0))
-        options.append(_packed(scene, loads, right, 0.2, 1.0))
-        block = tuple(dict.fromkeys(o for ids in loads for o in ids))
-        reach = (right - left) / 2 + scene.things[obj].spec.width / 2
-        for k in range(1, int(reach / SLIDE_STEP) + 1):
-            options.append(((block, -k * SLIDE_STEP),))
-            options.append(((block, k * SLIDE_STEP),))
-    for slides in options:
+    own: list[tuple[Slide, ...]] = []
+    if relation == "on" and loads:
+        if tgt.fixed:
+            own.append(_packed(scene, loads, left + FIXED_GAP / 2, FIXED_GAP, -1.0))
+        else:
+            own.append(_packed(scene, loads, left, 0.2, -1.0))
+            own.append(_packed(scene, loads, right, 0.2, 1.0))
+            block = tuple(dict.fromkeys(o for ids in loads for o in ids))
+            reach = (right - left) / 2 + scene.things[obj].spec.width / 2
+            for k in range(1, int(reach / SLIDE_STEP) + 1):
+                own.append(((block, -k * SLIDE_STEP),))
+                own.append(((block, k * SLIDE_STEP),))
+    options: list[tuple[tuple[Slide, ...], tuple[str, ...]]] = [(o, (target,)) for o in own]
+    base = direct.get(target)
+    floor = base.supporter if base is not None else None
+    if floor is not None and not tgt.fixed and scene.things[floor].fixed:
+        for aside in _nudges(scene, direct, floor, target, obj):
+            options.append((aside, (floor,)))
+            options.extend((aside + o, (floor, target)) for o in own[:2])
+    for slides, rests_on in options:
         if not slides:
             continue
-        plan = _try_slides(scene, obj, relation, target, supports, slides)
+        plan = _try_slides(scene, obj, relation, target, supports, slides, rests_on)
         if plan is not None:
             return [plan]
     return []
+
+
+def _nudges(scene: TabletopScene, direct: dict[str, DirectSupport], furniture: str,
+            target: str, obj: str) -> list[tuple[Slide, ...]]:
+    """Ways to make room around `target` on a piece of furniture: push the neighbours on
+    one side or both away by the moved object's width, move the target itself away
+    from them, or push everything else to the furniture's edges."""
+    left, _, right, _ = scene.things[furniture].bounds()
+    groups = [g for g in _loads(direct, furniture, obj) if target not in g]
+    centre = sum(_extent(scene, tuple(subtree_of(direct, target)))) / 2
+    before = [g for g in groups if sum(_extent(scene, g)) / 2 < centre]
+    after = [g for g in groups if sum(_extent(scene, g)) / 2 >= centre]
+    width = scene.things[obj].spec.width
+    right_block = (tuple(dict.fromkeys(o for g in after for o in g)), width)
+    left_block = (tuple(dict.fromkeys(o for g in before for o in g)), -width)
+    own = tuple(subtree_of(direct, target))
+    options: list[tuple[Slide, ...]] = [
+        (right_block,), (left_block,), (left_block, right_block),
+        ((own, width / 2),), ((own, -width / 2),), ((own, width),), ((own, -width),),
+        _packed(scene, before, left + FIXED_GAP / 2, FIXED_GAP, -1.0)
+        + _packed(scene, after, right - FIXED_GAP / 2, FIXED_GAP, 1.0)]
+    return [tuple(sl for sl in o if sl[0]) for o in options if any(sl[0] for sl in o)]
 
 
 def put_down(scene: TabletopScene, obj: str, relation: str, target: str, *,

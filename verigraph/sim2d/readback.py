@@ -33,8 +33,10 @@ class DirectSupport:
 
 
 def direct_support(scene: TabletopScene, thing: Thing,
-                   contacts: list[Contact] | None = None) -> DirectSupport:
-    """Pick the supporting contact: below the object, under its centre of mass if possible."""
+                   contacts: list[Contact] | None = None, *,
+                   same_as: str | None = None) -> DirectSupport:
+    """Pick the supporting contact: below the object, under its centre of mass if possible
+    (`same_as`: only contacts with that object)."""
     if contacts is None:
         contacts = probe_contacts(scene.space, thing.body)
     com_x = thing.com()[0]
@@ -46,7 +48,8 @@ def direct_support(scene: TabletopScene, thing: Thing,
         span = (min(xs), max(xs))
         under = span[0] - 0.05 <= com_x <= span[1] + 0.05
         other = scene.by_body.get(c.other)
-        if other is None and c.other is not scene.floor:
+        if (other is None and c.other is not scene.floor) or (
+                same_as is not None and other != same_as):
             continue
         candidate = DirectSupport(other, span, on_floor=other is None)
         score = (under, span[1] - span[0], -index)

@@ -34,11 +34,13 @@ View = tuple[float, float, float, float]  # x0, y0, x1, y1 in world units
 class _Camera:
     """World rectangle -> pixels, uniform scale, centred, y up in the world."""
 
-    def __init__(self, view: View, width: int, height: int) -> None:
+    def __init__(self, view: View, width: int, height: int, *, bottom: bool = False) -> None:
         x0, y0, x1, y1 = view
         self.s = min(width / (x1 - x0), height / (y1 - y0))
         self.ox = (width - (x1 - x0) * self.s) / 2 - x0 * self.s
-        self.oy = (height - (y1 - y0) * self.s) / 2 + y1 * self.s
+        # Side views keep the floor at the bottom edge; spare height goes to the sky.
+        self.oy = height + y0 * self.s if bottom else \
+            (height - (y1 - y0) * self.s) / 2 + y1 * self.s
 
     def points(self, poly: Sequence[tuple[float, float]]) -> np.ndarray:
         arr = np.asarray(poly, dtype=np.float64)
@@ -71,14 +73,14 @@ def tabletop_view(world: TabletopWorld) -> View:
     x0 = min(b[0] for b in fixed) - MARGIN
     x1 = max(b[2] for b in fixed) + MARGIN
     y1 = max(top + MARGIN, FURNITURE_TOP + HEADROOM)
-    return x0, -2.0, x1, y1
+    return x0, -3.0, x1, y1
 
 
 def render_tabletop(world: TabletopWorld, width: int = 640, height: int = 480, *,
                     labels: bool = False, view: View | None = None) -> np.ndarray:
     img = np.empty((height, width, 3), dtype=np.uint8)
     img[:] = palette.BACKGROUND
-    cam = _Camera(view or tabletop_view(world), width, height)
+    cam = _Camera(view or tabletop_view(world), width, height, bottom=True)
     floor_y = cam.pixel(0.0, 0.0)[1]
     img[max(floor_y, 0):, :] = palette.FLOOR
     colors = {n.id: n.attrs.get("color") for n in world.nodes}
@@ -86,9 +88,8 @@ def render_tabletop(world: TabletopWorld, width: int = 640, height: int = 480, *
     for t in things:
         if t.body.space is None:
             continue
-        name = colors.get(t.id) or t.props.color
-        _draw_polys(img, cam, physics.world_polygons(t.body), palette.bgr(
-            name if isinstance(name, str) else None))
+        color = palette.object_color(t.id, colors.get(t.id), t.props.color)
+        _draw_polys(img, cam, physics.world_polygons(t.body), color)
     if labels:
         for t in things:
             if t.body.space is None:
@@ -116,9 +117,9 @@ def render_tangram(world: TangramWorld, width: int = 640, height: int = 480, *,
     cam = _Camera((min(xs) - m, min(ys) - m, max(xs) + m, max(ys) + m), width, height)
     tangram = builtin_dictionary("tangram")
     for node in world.nodes:
-        name = node.attrs.get("color") or tangram.properties(world.labels[node.id]).color
-        _draw_polys(img, cam, [polys[node.id]], palette.bgr(name if isinstance(name, str)
-                                                             else None))
+        color = palette.object_color(node.id, node.attrs.get("color"),
+                                     tangram.properties(world.labels[node.id]).color)
+        _draw_polys(img, cam, [polys[node.id]], color)
     if labels:
         for node in world.nodes:
             poly = polys[node.id]

@@ -7,12 +7,15 @@ and the simulator's container geometry, conservatively: when it returns None, si
 finds a stable placement (the test suite checks this over many random scenes). It
 explains the failure the way the other constraints do, so a planner can fix the plan.
 
-Rules, with extent(x) = max(width(x), total extent of what x carries):
+Rules, with extent(x) = max(width(x), what x carries side by side on it, or the widest
+thing in or across it for a container):
 - on fixed furniture: always room (furniture is sized for every movable object);
 - on a movable surface: alone, anything (centred); beside a load, the load's extents
   plus half the object fit within the width (the object may overhang the far edge),
   and a surface resting on something narrower than itself carries a single object;
-- nothing more on or in an object that shares a crowded surface (it may overhang);
+- a surface that balances several objects (it rests on something narrower, stands on
+  a narrower foot like a plate, or its load hangs over its edges) takes no more load
+  anywhere above it and gives none up: the rest could tip;
 - in a container: nothing lies across its rim; an object narrower than the opening
   goes inside if the contents side by side leave room (cutlery may stand upright in an
   empty narrow container); a wider one rests on the rim if nothing sticks out.
@@ -28,6 +31,7 @@ from verigraph.sim2d.bodies import movable_spec
 CLEARANCE = 0.4
 GAP = 0.3
 OVERHANG_MARGIN = 1.0
+CROWD_SLACK = 2.0
 
 
 def _width(state: WorldState, obj: str) -> float:
@@ -35,18 +39,65 @@ def _width(state: WorldState, obj: str) -> float:
 
 
 def extent(state: WorldState, obj: str) -> float:
-    """Horizontal space an object takes with everything it carries."""
-    load = sum(extent(state, c) for c in state.carried[obj])
+    """Horizontal space an object takes with everything it carries: a surface's load
+    stands side by side, a container's is inside or across its rim."""
+    widths = [extent(state, c) for c in state.carried[obj]]
+    load = sum(widths) if state.objects[obj].props.surface else max(widths, default=0.0)
     return max(_width(state, obj), load)
 
 
 def _crowded(state: WorldState, support: str) -> bool:
-    """The support's load is wider than it, so something on it may overhang."""
+    """The support's load is clearly wider than it, so things on it overhang."""
     load = state.carried[support]
     if state.objects[support].props.surface and len(load) > 1:
         used = sum(extent(state, c) for c in load) + GAP * (len(load) - 1)
-        return used > _width(state, support)
+        return used > _width(state, support) + CROWD_SLACK
     return False
+
+
+def _base_width(state: WorldState, obj: str) -> float:
+    """Width of what the object stands on (a plate's foot is narrower than its top)."""
+    info = state.objects[obj]
+    spec = movable_spec(info.label, info.props)
+    feet = [x for part in spec.parts for x, y in part if abs(y) < 1e-9]
+    return max(feet) - min(feet) if feet else _width(state, obj)
+
+
+def _balances(state: WorldState, obj: str) -> bool:
+    """A movable surface whose load may rely on balance: it rests on something narrower
+    (or across a rim), it stands on a foot narrower than its top (a plate), or its load
+    hangs well over its edges."""
+    info = state.objects[obj]
+    if not info.props.movable or not info.props.surface:
+        return False
+    below = state.support.get(obj)
+    if below is not None and state.objects[below[1]].props.movable and (
+            below[0] == "in" or _width(state, below[1]) < _width(state, obj)):
+        return True
+    return _base_width(state, obj) < 0.9 * _width(state, obj) or _crowded(state, obj)
+
+
+def _above(state: WorldState, obj: str) -> set[str]:
+    """`obj` and everything on or in it, directly or not."""
+    out, stack = set(), [obj]
+    while stack:
+        x = stack.pop()
+        out.add(x)
+        stack.extend(state.carried[x])
+    return out
+
+
+def _balancing_below(state: WorldState, start: str) -> str | None:
+    """The first support from `start` downwards that balances more than one object."""
+    current: str | None = start
+    seen: set[str] = set()
+    while current is not None and current not in seen:
+        seen.add(current)
+        if _balances(state, current) and len(state.carried[current]) > 1:
+            return current
+        below = state.support.get(current)
+        current = below[1] if below is not None else None
+    return None
 
 
 def _inner(state: WorldState, obj: str) -> tuple[float, float]:
@@ -66,18 +117,25 @@ def _fail(action: MoveAction, message: str, blocking: list[str], suggestion: str
 def room_violation(state: WorldState, action: MoveAction) -> Violation | None:
     """Why a (validator-valid) move has no room in the simulator, or None."""
     obj, rel, target = action.object, action.relation, action.target
+    source = state.support.get(obj)
+    balancing = _balancing_below(state, source[1]) if source is not None else None
+    if balancing is not None:
+        others = sorted(c for c in state.carried[balancing] if obj not in _above(state, c))
+        return _fail(action, f"{balancing} balances several objects, {obj} among them; "
+                     f"taking {obj} away could tip it", others,
+                     f"move {others[0]} off {balancing} first" if others else
+                     f"move the objects on {balancing} off it first")
     t = state.objects[target]
     if not t.props.movable:
         return None
     load = sorted(state.carried[target])
     need = _width(state, obj)
     below = state.support.get(target)
-    if below is not None and state.objects[below[1]].props.movable and _crowded(state,
-                                                                              below[1]):
-        return _fail(action, f"{target} shares {below[1]} with other objects and may hang "
-                     f"over its edge; more load could tip it", [below[1]],
-                     f"put {obj} somewhere steadier, or give {target} room on {below[1]} "
-                     "first")
+    balancing = _balancing_below(state, below[1]) if below is not None else None
+    if balancing is not None:
+        return _fail(action, f"{target} stands on {balancing}, which balances several objects; "
+                     "more load could tip it", [balancing],
+                     f"put {obj} somewhere steadier, or clear {balancing} first")
     if rel == "on":
         width = _width(state, target)
         used = sum(extent(state, c) for c in load) + GAP * len(load)

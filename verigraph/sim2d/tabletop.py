@@ -6,10 +6,13 @@ puts `o` down, settles and reads the graph back from contacts. Candidates are tr
 simulation first: one that slides, tips or ends in another graph is taken back and the
 next tried. When nothing fits, or everything would topple, the world refuses with
 `execution_failed` before anything moves. In unverified mode there are no such checks:
-the arm puts the object down where it can and physics decides what the graph becomes.
+the arm carries the object up and over the target (whatever rests on it rides along or
+falls, see carry), puts it down where it can and physics decides what the graph becomes.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -18,6 +21,7 @@ from verigraph.actions.model import AlignAction, MoveAction
 from verigraph.graph.dictionary import Dictionary
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.sim2d import physics
+from verigraph.sim2d.carry import carry_over
 from verigraph.sim2d.errors import SimError
 from verigraph.sim2d.putdown import put_down
 from verigraph.sim2d.readback import read_supports
@@ -69,6 +73,22 @@ class TabletopWorld(SimWorld):
         self._move(action, verified=False)
         return self.observe()
 
+    def tipped(self, limit: float = 0.35) -> list[str]:
+        """Movable objects that fell over: tilted, or a container on its side or upside
+        down (cutlery standing upright and flat things lying flipped do not count)."""
+        out = []
+        for t in self.scene.movable():
+            if t.body.space is None:
+                continue
+            angle = math.remainder(t.body.angle, 2 * math.pi)
+            if abs(angle) <= limit:
+                continue
+            upright = t.spec.thin and abs(abs(angle) - math.pi / 2) <= limit
+            flipped = t.spec.kind == "box" and abs(abs(angle) - math.pi) <= limit
+            if not (upright or flipped):
+                out.append(t.id)
+        return out
+
     # -- SimWorld ----------------------------------------------------------------------------
     def render(self, width: int = 640, height: int = 480, *, labels: bool = False
                ) -> np.ndarray:
@@ -95,8 +115,18 @@ class TabletopWorld(SimWorld):
     def _move(self, action: MoveAction, *, verified: bool) -> Violation | None:
         scene = self.scene
         before = scene.snapshot()
+        held = read_supports(scene)[0] if verified else {}
+        if not verified:
+            carry_over(scene, action.object, action.target)
         scene.lift(action.object)
         scene.settle()
+        if verified:
+            after = read_supports(scene)[0]
+            moved = sorted(o for o in set(held) | set(after)
+                           if o != action.object and held.get(o) != after.get(o))
+            if moved:  # something leant on the object: lifting it would upset that
+                scene.restore(before)
+                return self._refusal(action, held, "disturbs", moved)
         outcome = put_down(scene, action.object, action.relation, action.target,
                            verify=verified)
         if outcome in ("no_room", "unstable"):
@@ -105,8 +135,14 @@ class TabletopWorld(SimWorld):
         return None
 
     def _refusal(self, action: MoveAction, supports: dict[str, tuple[str, str]],
-                 outcome: str) -> Violation:
+                 outcome: str, moved: list[str] | None = None) -> Violation:
         target = action.target
+        if moved:
+            return Violation(
+                action=action.model_dump(), constraint="execution_failed",
+                message=f"lifting {action.object} would make {', '.join(moved)} slide or "
+                        f"fall (it leans on {action.object}); nothing was moved",
+                blocking=moved, suggestion=f"move {moved[0]} away from {action.object} first")
         carried = sorted(o for o, (_, t) in supports.items() if t == target)
         what = f" ({target} carries {', '.join(carried)})" if carried else ""
         why = ("found no free place for" if outcome == "no_room" else

@@ -1,8 +1,8 @@
 """The tangram world (top view, no gravity): align pieces side to side, read contacts back.
 
 Pieces are kinematic pymunk bodies; `align` computes the rigid motion of DESIGN
-section 2, asks the physics engine whether the moved piece would penetrate another
-(then it refuses with `overlap` and nothing moves), and otherwise applies it. The graph
+section 2, asks the physics engine which pieces the moved piece would touch, refuses
+with `overlap` (nothing moves) if it penetrates any of them, and otherwise applies it. The graph
 is read from geometry: a `touches` edge for every pair of sides that are antiparallel,
 collinear within a tolerance and overlap by more than a fraction of the shorter side.
 """
@@ -25,6 +25,7 @@ from verigraph.sim2d.tangram_geometry import (
     TPose,
     Vec,
     align_pose,
+    overlap_depth,
     piece_model,
     placed,
     touching_sides,
@@ -61,20 +62,24 @@ class TangramWorld(SimWorld):
 
     def _set(self, piece: str, pose: TPose) -> None:
         body = self.bodies[piece]
+        body.angle = pose.theta  # before the position: see physics.set_pose
         body.position = (pose.x, pose.y)
-        body.angle = pose.theta
         self.space.reindex_shapes_for_body(body)
 
     def overlapping(self, piece: str) -> list[str]:
-        """Pieces that `piece` penetrates deeper than the tolerance, per the engine."""
+        """Pieces that `piece` penetrates deeper than the tolerance.
+
+        The physics engine finds the pieces in contact; the depth of each contact is
+        measured on the polygons (see overlap_depth)."""
         body = self.bodies[piece]
+        mine = self.vertices(piece)
         hits = []
         for shape in body.shapes:
             for hit in self.space.shape_query(shape):
                 other = next((k for k, b in self.bodies.items() if b is hit.shape.body), None)
                 if other is None or other == piece or other in hits:
                     continue
-                if any(p.distance < -OVERLAP_DEPTH for p in hit.contact_point_set.points):
+                if overlap_depth(mine, self.vertices(other)) > OVERLAP_DEPTH:
                     hits.append(other)
         return hits
 

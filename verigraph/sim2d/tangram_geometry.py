@@ -156,3 +156,25 @@ def touching_sides(p_vertices: list[Vec], q_vertices: list[Vec]) -> list[tuple[i
                 out.append((i, j))
     return out
 
+
+def overlap_depth(p: list[Vec], q: list[Vec]) -> float:
+    """How deep two convex polygons overlap (0 when they only touch or are apart).
+
+    Separating axes over both polygons' edge normals. Used on the pairs the physics
+    engine reports as in contact, because its penetration depth is unreliable for
+    congruent pieces lying exactly on top of each other (it reports 0).
+    """
+    depth = math.inf
+    for poly in (p, q):
+        n = len(poly)
+        for i in range(n):
+            (x0, y0), (x1, y1) = poly[i], poly[(i + 1) % n]
+            length = math.hypot(x1 - x0, y1 - y0)
+            nx, ny = (y1 - y0) / length, (x0 - x1) / length
+            a = [x * nx + y * ny for x, y in p]
+            b = [x * nx + y * ny for x, y in q]
+            overlap = min(max(a), max(b)) - max(min(a), min(b))
+            if overlap <= 0:
+                return 0.0
+            depth = min(depth, overlap)
+    return depth
