@@ -1,0 +1,141 @@
+"""Every valid action executed in sim2d ends in the predicted graph.
+
+Random valid moves (uniform over what the validator accepts) on generated scenes of
+the built-in tabletop families go through `execute_in_world`. A move the symbolic room
+check (`room_violation`) accepts must end exactly as predicted; a move it rejects may
+still succeed, or the world refuses it before anything moves. Nothing may ever end in
+a graph other than the prediction.
+"""
+
+from __future__ import annotations
+
+import random
+
+import pytest
+
+from verigraph.actions import MoveAction
+from verigraph.actions.executor import execute_in_world
+from verigraph.graph.builtin_scenes import cup_on_book, kitchen_pan
+from verigraph.graph.model import Edge, Node, SceneGraph
+from verigraph.graph.state import WorldState
+from verigraph.sim2d import generate_scene, world_for_graph
+from verigraph.sim2d.generator import valid_moves
+from verigraph.sim2d.room import room_violation
+from verigraph.sim2d.tabletop import TabletopWorld
+
+SCENES_PER_FAMILY = 18
+MOVES_PER_SCENE = 12
+
+
+@pytest.mark.parametrize("family", ["blocks", "kitchen", "tableware"])
+def test_random_valid_moves_end_in_the_predicted_graph(family: str) -> None:
+    failures: list[str] = []
+    executed = refused = 0
+    for seed in range(SCENES_PER_FAMILY):
+        scene = generate_scene(family, seed)
+        world = scene.world
+        state = WorldState.from_graph(scene.graph)
+        rng = random.Random(f"{family}:{seed}")
+        for step in range(MOVES_PER_SCENE):
+            action = rng.choice(valid_moves(state))
+            roomy = room_violation(state, action) is None
+            before = world.observe()
+            done, _, violation, _, new_state = execute_in_world(state, [action], world)
+            where = f"{family}:{seed} step {step} {action.text()}"
+            if violation is None:
+                observed = world.observe()
+                if observed.edge_keys() != new_state.to_graph().edge_keys():
+                    failures.append(f"{where}: observed {observed.sentences()}")
+                executed += 1
+                state = new_state
+            elif done:  # performed, but the world ended elsewhere
+                failures.append(f"{where}: {violation.message}")
+                state = new_state
+            elif roomy:
+                failures.append(f"{where}: refused although the room check passed: "
+                                f"{violation.message}")
+            else:
+                refused += 1
+                assert violation.constraint == "execution_failed", where
+                assert world.observe() == before, f"{where}: a refusal moved something"
+    assert not failures, "\n".join(failures)
+    total = SCENES_PER_FAMILY * MOVES_PER_SCENE
+    assert executed + refused == total
+    assert executed >= 0.8 * total  # the room check rejects a minority of valid moves
+
+
+def _state_and_world(graph: SceneGraph) -> tuple[WorldState, TabletopWorld]:
+    world = world_for_graph(graph)
+    assert isinstance(world, TabletopWorld)
+    return WorldState.from_graph(graph), world
+
+
+def test_move_lands_on_the_free_part_of_the_target() -> None:
+    state, world = _state_and_world(cup_on_book())
+    _, _, violation, _, state = execute_in_world(
+        state, [MoveAction(object="cup", target="desk"), MoveAction(object="book",
+                                                                    target="shelf")], world)
+    assert violation is None
+    things = world.scene.things
+    cup, book, shelf = (things[i].bounds() for i in ("cup", "book", "shelf"))
+    assert cup[1] == pytest.approx(14.0, abs=0.1)  # standing on the desk top
+    assert shelf[0] <= book[0] and book[2] <= shelf[2]  # wholly on the shelf
+    # Moving the cup onto the book again centres it on the book's free part.
+    _, _, violation, _, state = execute_in_world(
+        state, [MoveAction(object="cup", target="book")], world)
+    assert violation is None
+    cup = things["cup"].bounds()
+    assert book[0] <= cup[0] and cup[2] <= book[2] and cup[1] == pytest.approx(book[3], abs=0.1)
+
+
+def test_containment_is_real_the_spoon_lies_between_the_walls() -> None:
+    state, world = _state_and_world(kitchen_pan())
+    _, _, violation, _, state = execute_in_world(
+        state, [MoveAction(object="spoon", relation="in", target="pan")], world)
+    assert violation is None
+    spoon, pan = world.scene.things["spoon"], world.scene.things["pan"]
+    left, bottom, right, top = pan.bounds()
+    s_left, s_bottom, s_right, s_top = spoon.bounds()
+    assert left < s_left and s_right < right and bottom < s_bottom < top
+
+
+def test_cutlery_stands_upright_in_a_narrow_cup() -> None:
+    graph = SceneGraph(nodes=[Node(id="table", label="table"), Node(id="cup", label="cup"),
+                              Node(id="fork", label="fork")],
+                       edges=[Edge(source="cup", relation="on", target="table"),
+                              Edge(source="fork", relation="on", target="table")],
+                       dictionary="tableware")
+    state, world = _state_and_world(graph)
+    _, _, violation, _, _ = execute_in_world(
+        state, [MoveAction(object="fork", relation="in", target="cup")], world)
+    assert violation is None
+    left, bottom, right, top = world.scene.things["fork"].bounds()
+    assert top - bottom > 4 * (right - left)  # upright
+    assert world.observe().edge_keys() >= {("fork", "in", "cup", None, None)}
+
+
+def test_no_room_is_refused_before_anything_moves_and_explained() -> None:
+    graph = SceneGraph(nodes=[Node(id="table", label="table"), Node(id="plate", label="plate"),
+                              Node(id="tray", label="tray"), Node(id="cup", label="cup")],
+                       edges=[Edge(source="plate", relation="on", target="table"),
+                              Edge(source="tray", relation="on", target="plate"),
+                              Edge(source="cup", relation="on", target="table")],
+                       dictionary="tableware")
+    state, world = _state_and_world(graph)
+    action = MoveAction(object="cup", target="plate")  # valid: the plate carries 2
+    room = room_violation(state, action)
+    assert room is not None and room.blocking == ["tray"] and "tray" in room.suggestion
+    before = world.scene.snapshot()
+    executed, _, violation, _, after = execute_in_world(state, [action], world)
+    assert executed == [] and violation is not None
+    assert violation.constraint == "execution_failed" and violation.blocking == ["tray"]
+    assert "nothing was moved" in violation.message
+    assert world.scene.snapshot() == before and after.to_graph() == state.to_graph()
+
+
+def test_room_check_explains_a_blocked_container() -> None:
+    state = WorldState.from_graph(kitchen_pan())
+    state.set_support("pan", "in", "pot")  # the pan lies across the pot's rim
+    violation = room_violation(state, MoveAction(object="lid", relation="in", target="pot"))
+    assert violation is not None and violation.blocking == ["pan"]
+    assert "rim" in violation.message

@@ -1,0 +1,94 @@
+"""Renderer: a pure function of the state, consistent class colours, degradations."""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+import pytest
+
+from verigraph.graph.builtin_scenes import cup_on_book, three_blocks
+from verigraph.graph.dictionary import builtin_dictionary
+from verigraph.sim2d import (
+    Degradation,
+    TabletopWorld,
+    degrade,
+    encode_png,
+    generate_scene,
+    side_by_side,
+    world_for_graph,
+)
+from verigraph.sim2d.palette import COLORS, bgr
+
+
+def centre_pixel(world: TabletopWorld, image: np.ndarray, obj: str, frac_y: float = 0.5
+                 ) -> tuple[int, ...]:
+    """Pixel at a point inside an object's solid part (found through the camera)."""
+    from verigraph.sim2d.render import _Camera, tabletop_view
+
+    cam = _Camera(tabletop_view(world), image.shape[1], image.shape[0], bottom=True)
+    left, bottom, right, top = world.scene.things[obj].bounds()
+    x, y = cam.pixel((left + right) / 2, bottom + frac_y * (top - bottom))
+    return tuple(int(v) for v in image[y, x])
+
+
+@pytest.mark.parametrize("size", [(640, 480), (320, 240), (200, 400)])
+def test_render_has_the_requested_size_and_is_pure(size: tuple[int, int]) -> None:
+    world = world_for_graph(cup_on_book())
+    before = world.observe()
+    a = world.render(*size)
+    b = world.render(*size, labels=False)
+    assert a.shape == (size[1], size[0], 3) and a.dtype == np.uint8
+    assert (a == b).all()
+    assert world.observe() == before
+    assert len(np.unique(a.reshape(-1, 3), axis=0)) >= 5  # furniture, objects, floor, sky
+
+
+def test_objects_are_drawn_in_their_class_colours() -> None:
+    world = world_for_graph(cup_on_book())
+    assert isinstance(world, TabletopWorld)
+    image = world.render(640, 480)
+    assert centre_pixel(world, image, "book") == bgr("green")
+    assert centre_pixel(world, image, "cup", frac_y=0.03) == bgr("yellow")  # cup floor
+    blocks = world_for_graph(three_blocks())
+    assert isinstance(blocks, TabletopWorld)
+    img = blocks.render(640, 480)
+    for block in ("red_block", "blue_block", "green_block"):
+        assert centre_pixel(blocks, img, block) == bgr(block.split("_")[0])
+
+
+@pytest.mark.parametrize("family", ["kitchen", "tableware", "tangram"])
+def test_classes_of_a_family_have_distinct_known_colours(family: str) -> None:
+    d = builtin_dictionary(family)
+    colours = [p.color for p in d.objects.values()]
+    assert all(c in COLORS for c in colours), colours
+    movable = [p.color for p in d.objects.values() if p.movable]
+    assert len(set(movable)) == len(movable), movable
+
+
+def test_tangram_render_shows_every_piece_colour() -> None:
+    world = generate_scene("tangram", 0).world
+    image = world.render(640, 480)
+    present = {tuple(int(v) for v in px) for px in np.unique(image.reshape(-1, 3), axis=0)}
+    for n in world.nodes:
+        assert bgr(n.attrs["color"]) in present
+
+
+def test_degradations_change_the_image_deterministically() -> None:
+    image = world_for_graph(cup_on_book()).render(320, 240)
+    assert (degrade(image, Degradation()) == image).all()
+    for spec in (Degradation(noise=8), Degradation(blur=1.5), Degradation(lighting=0.6),
+                 Degradation(jpeg=30), Degradation(noise=5, blur=1, lighting=0.3, jpeg=50)):
+        out = degrade(image, spec, seed=3)
+        assert out.shape == image.shape and out.dtype == np.uint8
+        assert np.abs(out.astype(int) - image.astype(int)).mean() > 0.3, spec
+        assert (degrade(image, spec, seed=3) == out).all()
+    noisy = [degrade(image, Degradation(noise=8), seed=s) for s in (1, 2)]
+    assert not (noisy[0] == noisy[1]).all()
+
+
+def test_png_encoding_round_trips_and_side_by_side_stacks() -> None:
+    image = world_for_graph(cup_on_book()).render(160, 120)
+    decoded = cv2.imdecode(np.frombuffer(encode_png(image), np.uint8), cv2.IMREAD_COLOR)
+    assert (decoded == image).all()
+    pair = side_by_side([image, image], ["start", "goal"])
+    assert pair.shape[1] > 2 * 160 and pair.shape[0] > 120
