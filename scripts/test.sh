@@ -3,6 +3,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 VERIGRAPH_EXTRAS="${VERIGRAPH_EXTRAS:-dev,pddl,arm}" bash scripts/setup.sh
+# The official MCP Inspector (a client nobody here wrote) for the interoperability test.
+bash scripts/install_inspector.sh
+export VERIGRAPH_INSPECTOR="$PWD/.tools/bin/mcp-inspector"
 .venv/bin/ruff check verigraph tests benchmarks examples
 .venv/bin/mypy
 .venv/bin/pytest "$@"
