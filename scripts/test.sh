@@ -3,6 +3,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 VERIGRAPH_EXTRAS="${VERIGRAPH_EXTRAS:-dev,pddl,arm}" bash scripts/setup.sh
+# The real local LLM (llama.cpp + Gemma 3 270M) for the llm-local planner tests.
+bash scripts/install_llm.sh
 # The official MCP Inspector (a client nobody here wrote) for the interoperability test.
 bash scripts/install_inspector.sh
 export VERIGRAPH_INSPECTOR="$PWD/.tools/bin/mcp-inspector"
