@@ -5,14 +5,24 @@ import random
 import pytest
 import unified_planning as up  # noqa: E402
 from unified_planning.io import PDDLReader  # noqa: E402
-from unified_planning.shortcuts import PlanValidator, get_environment  # noqa: E402
+from unified_planning.shortcuts import (  # noqa: E402
+    OneshotPlanner,
+    PlanValidator,
+    get_environment,
+)
 
 from scenes import random_blocks
 from verigraph.actions import MoveAction, validate_plan
 from verigraph.errors import GoalError
 from verigraph.graph import Goal, WorldState
 from verigraph.solver import solve
-from verigraph.solver.pddl import domain_pddl, ground_plan, problem_pddl
+from verigraph.solver.pddl import (
+    PddlNames,
+    action_from_pddl,
+    domain_pddl,
+    ground_plan,
+    problem_pddl,
+)
 
 get_environment().credits_stream = None
 
@@ -80,3 +90,24 @@ def test_tableware_capacities_and_containers_agree(tmp_path):
 def test_predicate_goals_cannot_be_exported():
     with pytest.raises(GoalError, match="graph"):
         problem_pddl(WorldState.from_graph(random_blocks(3, 0)), Goal(predicate="single_stack"))
+
+
+def test_pyperplan_plans_for_the_export_pass_our_validator(tmp_path):
+    """The other direction: a classical planner solves the exported problem with A*
+    (admissible hmax), and our validator accepts its plan, which is as short as ours."""
+    for seed in range(3):
+        start, goal = random_blocks(4, seed), Goal(graph=random_blocks(4, seed + 40))
+        state = WorldState.from_graph(start)
+        (tmp_path / "d.pddl").write_text(domain_pddl())
+        (tmp_path / "p.pddl").write_text(problem_pddl(state, goal))
+        problem = PDDLReader().parse_problem(str(tmp_path / "d.pddl"),
+                                             str(tmp_path / "p.pddl"))
+        with OneshotPlanner(name="pyperplan",
+                            params={"search": "astar", "heuristic": "hmax"}) as planner:
+            result = planner.solve(problem)
+        names = PddlNames(list(state.objects))
+        plan = [action_from_pddl(a.action.name, [str(p) for p in a.actual_parameters], names)
+                for a in result.plan.actions]
+        report = validate_plan(start, plan or "done", goal)
+        assert report.valid, report.text()
+        assert len(plan) == len(solve(start, goal).plan)

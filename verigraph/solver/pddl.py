@@ -155,3 +155,12 @@ def ground_plan(state: WorldState, actions: Sequence[AnyAction]) -> list[tuple[s
             load[to] += 1
         support[x] = (r2, to)
     return out
+
+
+def action_from_pddl(name: str, params: Sequence[str], names: PddlNames) -> MoveAction:
+    """A grounded PDDL action of this domain back as a move (for plans found by PDDL tools)."""
+    back = {v: k for k, v in names.to_pddl.items()}
+    relation = name.rsplit("-", 1)[-1]
+    if name.startswith("reseat-"):
+        return MoveAction(object=back[params[0]], relation=relation, target=back[params[1]])
+    return MoveAction(object=back[params[0]], relation=relation, target=back[params[2]])
