@@ -18,7 +18,7 @@ from verigraph.arm.config import (
     load_arm_config,
     parse_arm_config,
 )
-from verigraph.arm.confirm import confirm_scope, scoped_confirm
+from verigraph.arm.confirm import NotApproved, NoWayToAsk, confirm_scope, scoped_confirm
 from verigraph.arm.controller import Approval, ArmController, MotionOutcome
 from verigraph.arm.errors import (
     ArmBusyError,
@@ -36,7 +36,7 @@ from verigraph.arm.errors import (
     UnauthorizedMotionError,
     UnsafeMotionError,
 )
-from verigraph.arm.factory import make_driver, open_arm_world
+from verigraph.arm.factory import make_driver, open_arm_world, probe_arm
 from verigraph.arm.geometry import Box, KeepOutZone
 from verigraph.arm.locators import DeclaredObject, DryRunLocator, LayoutLocator
 from verigraph.arm.models import (
@@ -49,6 +49,7 @@ from verigraph.arm.models import (
     Placement,
     Pose,
 )
+from verigraph.arm.preapproval import PreApproved
 from verigraph.arm.protocols import ArmDriver, ConfirmHook, ObjectLocator
 from verigraph.arm.receipt import ValidatedAction, authorize
 from verigraph.arm.world import ArmWorld, RelationCheck
@@ -59,10 +60,11 @@ __all__ = [
     "ArmRefusal", "ArmStatus", "ArmStoppedError", "ArmWorld", "AuditLog", "AuditRecord", "Box",
     "CameraView", "ConfirmHook", "ConfirmationError", "ConfirmationRequest", "DeclaredObject",
     "DriverStatus", "DryRunLocator", "Grasp", "InfeasibleMotionError", "KeepOutZone",
-    "LayoutLocator", "MotionCancelledError", "MotionOutcome", "ObjectLocation",
-    "ObjectLocator", "ObjectNotFoundError", "Placement", "Pose", "PyBulletOptions",
+    "LayoutLocator", "MotionCancelledError", "MotionOutcome", "NoWayToAsk", "NotApproved",
+    "ObjectLocation", "ObjectLocator", "ObjectNotFoundError", "Placement", "Pose",
+    "PreApproved", "PyBulletOptions",
     "RelationCheck", "RosbridgeOptions", "StaleLocationError", "UnauthorizedMotionError",
     "UnsafeMotionError", "ValidatedAction", "XArmOptions", "authorize", "confirm_scope",
     "driver_from_executor", "load_arm_config", "make_driver", "open_arm_world",
-    "parse_arm_config", "scoped_confirm",
+    "parse_arm_config", "probe_arm", "scoped_confirm",
 ]

@@ -16,6 +16,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 
 from verigraph.arm.errors import ArmConfigError
 from verigraph.arm.geometry import Box, KeepOutZone, Point
+from verigraph.arm.locators import DeclaredObject
 from verigraph.arm.models import Pose, RunMode
 
 DriverName = Literal["pybullet", "rosbridge", "xarm"]
@@ -116,6 +117,10 @@ class ArmConfig(BaseModel):
                                  description="keep-out zones are grown by this much")
     home: Pose = Pose(x=0.35, y=0.0, z=0.45)
     audit_log: Path | None = Field(default=None, description="JSON-lines file, appended to")
+    layout: dict[str, DeclaredObject] = Field(
+        default_factory=dict,
+        description="object id -> measured box, the locator for drivers without a camera "
+                    "(rosbridge, xarm); a fixed layout never sees motion")
     pybullet: PyBulletOptions = Field(default_factory=PyBulletOptions)
     rosbridge: RosbridgeOptions = Field(default_factory=RosbridgeOptions)
     xarm: XArmOptions = Field(default_factory=XArmOptions)
@@ -160,6 +165,8 @@ _FIXES = {
     "workspace": "give min and max corners as [x, y, z] in metres with min < max",
     "keep_out": "give each zone a name and min/max corners in metres",
     "host": "give the controller's address, e.g. host: 192.168.1.185",
+    "layout": "give each object id a centre [x, y, z] and size [along, across, height] "
+              "in metres",
 }
 
 

@@ -28,6 +28,10 @@ class NoWayToAsk(Exception):
     """The current request installed no confirmation hook (its client cannot elicit)."""
 
 
+class NotApproved(Exception):
+    """A hook's reasoned no: the motion is not one the human approved."""
+
+
 @contextmanager
 def confirm_scope(hook: ConfirmHook | None) -> Iterator[None]:
     """Install `hook` for the current request; `scoped_confirm` delegates to it.
@@ -68,7 +72,7 @@ def ask_confirmation(hook: ConfirmHook | None, request: ConfirmationRequest,
         answer = _wait(reply, timeout_s) if inspect.isawaitable(reply) else reply
     except TimeoutError:
         return ConfirmationAnswer(False, f"no answer within {timeout_s:.0f} s")
-    except NoWayToAsk as exc:
+    except (NoWayToAsk, NotApproved) as exc:
         return ConfirmationAnswer(False, str(exc))
     except Exception as exc:  # a failing hook must never let the arm move
         return ConfirmationAnswer(False, f"the confirmation hook failed: {exc!r}")

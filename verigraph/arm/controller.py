@@ -162,6 +162,30 @@ class ArmController:
             self._log("stop", {"reason": reason}, "recorded", "no driver connected")
         return self.status()
 
+    def reset_request(self) -> ConfirmationRequest | None:
+        """What a human approves before a real arm's latched stop is cleared (else None).
+
+        Clearing the latch re-enables the motors, so on a real arm it is confirmed like
+        a motion; with no stop latched, or not in real mode, there is nothing to ask.
+        """
+        if self.mode != "real" or self._stop_reason is None:
+            return None
+        return self._request(f"reset: clear the latched stop ({self._stop_reason}) and "
+                             "re-enable the motors; nothing moves now", [], 0.0, None)
+
+    def confirm_reset(self) -> None:
+        """Ask the human about `reset_request()`; ConfirmationError unless approved."""
+        request = self.reset_request()
+        if request is None:
+            return
+        answer = ask_confirmation(self._confirm, request, self.config.confirm_timeout_s)
+        self._log("confirm", {"motion": request.motion},
+                  "done" if answer.approved else "refused", answer.reason)
+        if not answer.approved:
+            raise ConfirmationError(f"reset not confirmed: {answer.reason}", field="confirm",
+                                    value="reset", fix="approve the reset when asked, once "
+                                                       "the cell is safe")
+
     def reset(self) -> ArmStatus:
         """Clear the latched stop once no motion is running (explicit operator action)."""
         if self._worker is not None and self._worker.is_alive():
@@ -193,32 +217,48 @@ class ArmController:
     # -- confirmation ----------------------------------------------------------------------
     def confirm_plan(self, plan: MotionPlan) -> Approval:
         """Check the plan, then ask the human; an Approval to pass to `execute`."""
-        segments = plan.path(self._current_tcp())
+        request, _ = self.preview(plan)
+        return self._ask(request)
+
+    def preview(self, plan: MotionPlan, start: Pose | None = None
+                ) -> tuple[ConfirmationRequest, Pose]:
+        """The request `confirm_plan` would put to the human: checked, not asked.
+
+        `start` is where the tool will be when the motion begins (default: now), so a
+        sequence of motions can be previewed in order; returns the request and the pose
+        the motion ends at. Raises the refusal `confirm_plan` would raise.
+        """
+        segments = plan.path(start if start is not None else self._current_tcp())
         self._check(segments, plan.grasp.speed_m_s, plan.grasp.force_n)
-        return self._ask(describe(plan), [s.end for s in segments], plan.grasp.speed_m_s,
-                         plan.grasp.force_n)
+        self._refuse_if_stopped()
+        request = self._request(describe(plan), [s.end for s in segments],
+                                plan.grasp.speed_m_s, plan.grasp.force_n)
+        return request, segments[-1].end
 
     def confirm_home(self) -> Approval:
         segment = PathSegment("to home", self._current_tcp(), self.config.home)
         self._check([segment], self.config.speed_m_s, None)
-        return self._ask(f"go home to {self.config.home.text()}", [segment.end],
-                         self.config.speed_m_s, None)
-
-    def _ask(self, motion: str, waypoints: list[Pose], speed: float,
-             force: float | None) -> Approval:
         self._refuse_if_stopped()
-        request = ConfirmationRequest(driver=self._driver.name, host=self.config.host,
-                                      motion=motion, waypoints=waypoints, speed_m_s=speed,
-                                      force_n=force)
+        return self._ask(self._request(f"go home to {self.config.home.text()}", [segment.end],
+                                       self.config.speed_m_s, None))
+
+    def _request(self, motion: str, waypoints: list[Pose], speed: float,
+                 force: float | None) -> ConfirmationRequest:
+        return ConfirmationRequest(driver=self._driver.name, host=self.config.host,
+                                   motion=motion, waypoints=waypoints, speed_m_s=speed,
+                                   force_n=force)
+
+    def _ask(self, request: ConfirmationRequest) -> Approval:
+        self._refuse_if_stopped()
         answer = ask_confirmation(self._confirm, request, self.config.confirm_timeout_s)
-        self._log("confirm", {"motion": motion}, "done" if answer.approved else "refused",
-                  answer.reason)
+        self._log("confirm", {"motion": request.motion},
+                  "done" if answer.approved else "refused", answer.reason)
         if not answer.approved:
             raise ConfirmationError(f"real motion not confirmed: {answer.reason}",
-                                    field="confirm", value=motion,
+                                    field="confirm", value=request.motion,
                                     fix="approve the motion when asked; use a client that "
                                         "supports elicitation, or mode sim / dry-run")
-        approval = Approval(waypoints)
+        approval = Approval(request.waypoints)
         self._approvals.add(approval)
         return approval
 

@@ -7,6 +7,7 @@ in dry-run) and returns the World to hand to `execute_in_world`.
 
 from __future__ import annotations
 
+import socket
 from collections.abc import Callable
 
 import numpy as np
@@ -14,7 +15,8 @@ import numpy as np
 from verigraph.arm.audit import AuditLog
 from verigraph.arm.config import DRIVER_NAMES, ArmConfig
 from verigraph.arm.controller import ArmController
-from verigraph.arm.errors import ArmConfigError
+from verigraph.arm.errors import ArmConfigError, ArmConnectionError
+from verigraph.arm.locators import LayoutLocator
 from verigraph.arm.protocols import ArmDriver, ConfirmHook, ObjectLocator
 from verigraph.arm.world import ArmWorld
 from verigraph.graph.model import SceneGraph
@@ -25,9 +27,9 @@ def open_arm_world(config: ArmConfig, graph: SceneGraph, *, confirm: ConfirmHook
                    audit: AuditLog | None = None) -> ArmWorld:
     """An ArmWorld for the episode `graph`, connected unless the mode is dry-run.
 
-    `confirm` is asked before every real motion; `locator` is required for drivers
-    without a camera of their own (rosbridge, xarm); `driver` replaces the one named in
-    the config (tests, custom hardware).
+    `confirm` is asked before every real motion; drivers without a camera of their own
+    (rosbridge, xarm) need a `locator`, or a `layout` in the config; `driver` replaces
+    the one named in the config (tests, custom hardware).
     """
     on_close: Callable[[], None] | None = None
     render: Callable[..., np.ndarray] | None = None
@@ -51,11 +53,13 @@ def open_arm_world(config: ArmConfig, graph: SceneGraph, *, confirm: ConfirmHook
 
     elif driver is None:
         driver = make_driver(config)
+    if locator is None and config.layout:
+        locator = LayoutLocator(config.layout)
     if locator is None:
         raise ArmConfigError(f"the {config.driver} driver has no camera of its own",
                              field="locator", value=config.driver,
-                             fix="pass an ObjectLocator (a camera pipeline, or a LayoutLocator "
-                                 "for a fixed, measured layout)")
+                             fix="pass an ObjectLocator (a camera pipeline), or give the "
+                                 "config a layout: the measured box of every object")
     controller = ArmController(config, driver, confirm=confirm, audit=audit)
     try:
         controller.connect()
@@ -79,3 +83,30 @@ def make_driver(config: ArmConfig) -> ArmDriver:
     raise ArmConfigError(f"the {config.driver} driver needs a scene, not only a config",
                          field="driver", value=config.driver,
                          fix="build it with open_arm_world, which creates the PyBullet cell")
+
+
+# The TCP port each hardware driver talks to (xArm: the SDK's control port).
+CONTROL_PORTS = {"xarm": 502}
+
+
+def probe_arm(config: ArmConfig) -> None:
+    """Check that the controller accepts a TCP connection, within connect_timeout_s.
+
+    Side-effect free (nothing is sent), so `verigraph serve` can refuse to start
+    against an unreachable arm before any client relies on it. Simulators and
+    dry-run never contact a controller, so they are not probed.
+    """
+    if config.mode == "dry-run" or config.driver == "pybullet":
+        return
+    port = config.rosbridge.port if config.driver == "rosbridge" else CONTROL_PORTS["xarm"]
+    host = config.host or ""
+    try:
+        with socket.create_connection((host, port), timeout=config.connect_timeout_s):
+            pass
+    except OSError as exc:
+        why = "no answer" if isinstance(exc, TimeoutError) else (exc.strerror or str(exc))
+        raise ArmConnectionError(
+            f"cannot reach the {config.driver} controller at {host}:{port} within "
+            f"{config.connect_timeout_s:g} s ({why})", field="host", value=host,
+            fix="check the address, that the controller is on and reachable, and the port"
+        ) from None

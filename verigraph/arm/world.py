@@ -11,17 +11,18 @@ so `execute_in_world` flags `execution_failed` and adopts it.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from verigraph.actions.feedback import ConstraintId, Violation
 from verigraph.actions.model import AlignAction, MoveAction
+from verigraph.arm.config import ArmConfig
 from verigraph.arm.controller import ArmController, MotionOutcome
 from verigraph.arm.errors import ArmError, ArmRefusal, ObjectNotFoundError
 from verigraph.arm.locators import DryRunLocator
-from verigraph.arm.models import ArmStatus, ObjectLocation
+from verigraph.arm.models import ArmStatus, ConfirmationRequest, ObjectLocation, Pose
 from verigraph.arm.planning import MotionPlan, plan_motion
 from verigraph.arm.protocols import ObjectLocator
 from verigraph.arm.receipt import authorize
@@ -111,7 +112,42 @@ class ArmWorld:
         return self._controller.home(approval=approval)
 
     def reset(self) -> ArmStatus:
+        """Clear the latched stop; on a real arm a human approves it first."""
+        self._controller.confirm_reset()
         return self._controller.reset()
+
+    @property
+    def config(self) -> ArmConfig:
+        return self._controller.config
+
+    def preview(self, actions: Sequence[object]) -> list[ConfirmationRequest]:
+        """The confirmation requests a real run of `actions` would make, in order.
+
+        Moves nothing and asks nothing. Each motion is planned from fresh locations with
+        the predicted results of the earlier ones laid over them (as in dry-run). The
+        preview ends before the first action that is not a move or that the arm would
+        refuse: a refused motion is never put to the human.
+        """
+        overlay = DryRunLocator(self._locator)
+        start: Pose | None = None
+        requests: list[ConfirmationRequest] = []
+        for action in actions:
+            if not isinstance(action, MoveAction):
+                break
+            try:
+                planned = self._plan(action, overlay)
+                if isinstance(planned, Violation):
+                    break
+                request, start = self._controller.preview(planned, start)
+            except ArmRefusal:
+                break
+            requests.append(request)
+            overlay.record(planned.predicted_location(time.time()))
+        return requests
+
+    def reset_request(self) -> ConfirmationRequest | None:
+        """What `reset` would ask the human (None: it asks nothing)."""
+        return self._controller.reset_request()
 
     def close(self) -> None:
         try:
@@ -126,8 +162,9 @@ class ArmWorld:
         return diff(observed, expected)
 
     # -- internals ---------------------------------------------------------------------------
-    def _plan(self, action: MoveAction) -> MotionPlan | Violation:
-        locations = self._locator.locate(self._graph.node_ids())
+    def _plan(self, action: MoveAction, locator: ObjectLocator | None = None
+              ) -> MotionPlan | Violation:
+        locations = (locator or self._locator).locate(self._graph.node_ids())
         observed = WorldState.from_graph(
             infer_graph(self._graph, self._dictionary, locations, self._tolerances),
             self._dictionary, partial=True)

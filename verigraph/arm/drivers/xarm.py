@@ -11,7 +11,9 @@ by the gate but cannot be enforced by this gripper.
 
 from __future__ import annotations
 
+import contextlib
 import math
+import sys
 import threading
 from collections.abc import Callable
 from typing import Any
@@ -25,7 +27,9 @@ ApiFactory = Callable[[str], Any]
 
 def sdk_api(host: str) -> Any:
     """A real XArmAPI for `host`, not yet connected."""
-    from xarm.wrapper import XArmAPI
+    # The SDK prints its version to stdout on import; over MCP stdio, stdout is the wire.
+    with contextlib.redirect_stdout(sys.stderr):
+        from xarm.wrapper import XArmAPI
 
     return XArmAPI(host, is_radian=False, do_not_open=True)
 
