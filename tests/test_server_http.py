@@ -17,6 +17,8 @@ from mcp import Client, MCPError
 from mcp.client.streamable_http import streamable_http_client
 from mcp_helpers import JSON_HEADERS, http_server, rpc, structured, verigraph_command
 
+from verigraph.tools import TOOL_SPECS
+
 TOKEN = "test-token-7f3a"
 AUTH = {"Authorization": f"Bearer {TOKEN}"}
 
@@ -62,7 +64,7 @@ def test_missing_or_wrong_token_gets_401(url: str) -> None:
         error = response.json()["error"]
         assert error["code"] == -32001 and "Authorization: Bearer <token>" in error["message"]
     ok = httpx2.post(url, headers={**JSON_HEADERS, **AUTH}, content=body)
-    assert ok.status_code == 200 and len(ok.json()["result"]["tools"]) == 13
+    assert ok.status_code == 200 and len(ok.json()["result"]["tools"]) == len(TOOL_SPECS)
 
 
 @pytest.mark.anyio

@@ -53,7 +53,7 @@ async def test_tools_list_matches_the_tool_table(client: Client) -> None:
         assert tool.annotations.read_only_hint is spec.read_only
         assert tool.annotations.destructive_hint is spec.destructive
         assert tool.annotations.idempotent_hint is spec.idempotent
-        assert tool.annotations.open_world_hint is False
+        assert tool.annotations.open_world_hint is spec.open_world
         assert set(tool.input_schema["properties"]) == set(spec.input_model.model_fields)
         required = {n for n, f in spec.input_model.model_fields.items() if f.is_required()}
         assert set(tool.input_schema.get("required", [])) == required

@@ -16,7 +16,8 @@ from verigraph.tools.prompting import planner_prompt, scene_graph_prompt
 
 DESIGN_TOOLS = ["load_scene", "set_goal", "get_state", "validate_action", "execute_actions",
                 "validate_plan", "check_goal", "generate_scene_graph", "render_scene", "solve",
-                "get_scene_image", "submit_scene_graph", "end_episode"]
+                "get_scene_image", "submit_scene_graph", "end_episode", "arm_status", "arm_stop",
+                "arm_reset"]
 
 
 def test_tools_follow_design_order_and_naming() -> None:
@@ -26,9 +27,14 @@ def test_tools_follow_design_order_and_naming() -> None:
 
 @pytest.mark.parametrize("spec", TOOL_SPECS, ids=lambda s: s.name)
 def test_annotations_are_honest(spec: ToolSpec) -> None:
-    changes = {"load_scene", "set_goal", "execute_actions", "submit_scene_graph", "end_episode"}
+    changes = {"load_scene", "set_goal", "execute_actions", "submit_scene_graph", "end_episode",
+               "arm_stop", "arm_reset"}
     assert spec.read_only == (spec.name not in changes)
     assert spec.destructive == (spec.name in {"execute_actions", "end_episode"})
+    # may connect to or move a robot arm
+    assert spec.open_world == (spec.name in {"load_scene", "execute_actions",
+                                             "submit_scene_graph", "arm_status", "arm_stop",
+                                             "arm_reset"})
     assert (spec.output_model is None) == (spec.name in {"render_scene", "get_scene_image"})
 
 

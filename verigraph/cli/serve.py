@@ -6,6 +6,7 @@ import argparse
 import logging
 import os
 import sys
+from pathlib import Path
 from typing import Any
 
 from verigraph.errors import VeriGraphError
@@ -32,6 +33,14 @@ def register(sub: Any) -> None:
     p.add_argument("--max-episodes", type=int, default=256,
                    help="open episodes kept at once (default 256)")
     p.add_argument("--disable-solve", action="store_true", help="turn the solve tool off")
+    p.add_argument("--executor", default=None, metavar="NAME",
+                   help="where episodes run unless load_scene picks another: graph "
+                        "(verification only; the default), sim2d, arm:pybullet, "
+                        "arm:rosbridge or arm:xarm (default with --arm-config: its arm)")
+    p.add_argument("--arm-config", type=Path, default=None, metavar="FILE",
+                   help="arm configuration (YAML or JSON): driver, host, workspace, keep-out "
+                        "zones, speeds, force cap, timeouts, mode (dry-run unless the file "
+                        "says sim or real)")
     p.add_argument("--log-level", default="WARNING",
                    choices=("DEBUG", "INFO", "WARNING", "ERROR"), help="stderr log level")
     p.set_defaults(handler=run_serve)
@@ -43,6 +52,7 @@ def run_serve(args: argparse.Namespace) -> int:
     from verigraph.server.app import build_server
     from verigraph.server.http import HttpOptions, serve_http
     from verigraph.tools.context import ToolConfig
+    from verigraph.tools.executors import server_executor
 
     token = args.token or os.environ.get(TOKEN_ENV) or None
     if args.transport == "http" and args.host not in ("127.0.0.1", "localhost", "::1") \
@@ -54,7 +64,12 @@ def run_serve(args: argparse.Namespace) -> int:
         raise VeriGraphError("limits out of range", field="--max-episodes/--max-body-mib",
                              value=None, fix="use --max-episodes >= 1 and 0 < --max-body-mib "
                                              "<= 1024")
-    config = ToolConfig(max_episodes=args.max_episodes, enable_solve=not args.disable_solve)
+    executor, arm = server_executor(args.executor, args.arm_config)
+    if arm is not None and executor.startswith("arm:"):
+        logging.getLogger("verigraph.server").warning(
+            "episodes run on %s in mode %s", executor, arm.config.mode)
+    config = ToolConfig(max_episodes=args.max_episodes, enable_solve=not args.disable_solve,
+                        executor=executor, arm=arm)
     server = build_server(config=config, log_level=args.log_level)
     if args.transport == "stdio":
         server.run("stdio")

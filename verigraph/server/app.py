@@ -23,6 +23,9 @@ Edges read `source relation target` ("cup on book": the book carries the cup).
 3. After t consecutive failed execute_actions calls the episode stops. Call end_episode
    (the end token) for the verdict. Images: render_scene; to describe a photo with
    your own vision model use get_scene_image, then submit_scene_graph.
+4. An episode on an arm (executor arm:<driver>) moves it only for validated actions;
+   on a real arm the user approves each call's motions. arm_stop halts it and latches
+   a stop that only arm_reset clears; arm_status reports it.
 """
 
 LogLevel = Literal["DEBUG", "INFO", "WARNING", "ERROR", "CRITICAL"]

@@ -21,7 +21,9 @@ from mcp.server.mcpserver.exceptions import ToolError
 from mcp.types import CallToolResult, ImageContent, TextContent, ToolAnnotations
 from pydantic import BaseModel, Field, ValidationError
 
+from verigraph.arm import confirm_scope
 from verigraph.errors import VeriGraphError
+from verigraph.server.confirmation import PREVIEWS, approval_hook, resolver_parameters
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
 from verigraph.tools.registry import parse_arguments as parse_tool_arguments
 from verigraph.tools.scenes import ImageResult
@@ -53,9 +55,11 @@ def _parameters(model: type[BaseModel]) -> list[inspect.Parameter]:
     return params
 
 
-# Tools that may take long (images, search, perception) always run on a worker thread.
-SLOW_TOOLS = frozenset({"render_scene", "get_scene_image", "solve", "generate_scene_graph"})
-SLOW_ARGUMENTS = ("image", "generator", "simulate")
+# Tools that may take long (images, search, perception, a robot arm's controller) always
+# run on a worker thread.
+SLOW_TOOLS = frozenset({"render_scene", "get_scene_image", "solve", "generate_scene_graph",
+                        "arm_status", "arm_stop", "arm_reset"})
+SLOW_ARGUMENTS = ("image", "generator", "simulate", "executor")
 
 
 BIG_GRAPH_NODES = 300
@@ -75,13 +79,21 @@ def may_block(spec: ToolSpec, params: BaseModel) -> bool:
     return isinstance(plan, str | list) and len(plan) > BIG_PLAN_CHARS
 
 
+def _gated_params(name: str) -> BaseModel | None:
+    gated = _GATED.get()
+    return gated[1] if gated is not None and gated[0] == name else None
+
+
 def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
     """An async function whose signature mirrors `spec.input_model` and runs the tool.
 
     Fast calls run directly on the event loop: a thread hop costs more than the
     verification itself. A call that could block (slow tool, busy episode, simulator)
-    runs on a worker thread instead.
+    runs on a worker thread instead. A tool that can make a real arm act also takes
+    the user's answer, which the SDK elicits before the body runs (see confirmation).
     """
+    confirmed = spec.name in PREVIEWS
+    slow_default = spec.name == "load_scene" and toolbox.context.config.executor != "graph"
 
     def run(params: BaseModel) -> CallToolResult:
         try:
@@ -90,26 +102,32 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
             raise ToolError(str(exc)) from None
 
     async def call(**arguments: Any) -> CallToolResult:
-        gated = _GATED.get()
-        if gated is not None and gated[0] == spec.name:
-            params = gated[1]  # validated from the raw JSON by ArgumentGate
-        else:
+        hook = approval_hook(spec.name, arguments) if confirmed else None
+        params = _gated_params(spec.name)  # validated from the raw JSON by ArgumentGate
+        if params is None:
             try:
                 params = spec.input_model.model_validate(arguments)
             except ValidationError as exc:
                 raise ToolError(str(argument_error(spec, exc))) from None
-        if not may_block(spec, params):
-            try:
-                with non_blocking():
-                    return run(params)
-            except WouldBlock:
-                pass
-        return await anyio.to_thread.run_sync(run, params)
+        with confirm_scope(hook):
+            if not (slow_default or may_block(spec, params)):
+                try:
+                    with non_blocking():
+                        return run(params)
+                except WouldBlock:
+                    pass
+            return await anyio.to_thread.run_sync(run, params)
 
     returns: Any = (Annotated[CallToolResult, spec.output_model] if spec.output_model
                     else CallToolResult)
+    parameters = _parameters(spec.input_model)
+    if confirmed:
+        extra = resolver_parameters(spec.name, toolbox, lambda: _gated_params(spec.name))
+        parameters += extra
+        # The SDK finds resolvers with typing.get_type_hints, which reads __annotations__.
+        call.__annotations__ = {p.name: p.annotation for p in extra}
     call.__signature__ = inspect.Signature(  # type: ignore[attr-defined]
-        _parameters(spec.input_model), return_annotation=returns)
+        parameters, return_annotation=returns)
     call.__name__ = spec.name
     call.__qualname__ = spec.name
     call.__doc__ = spec.description
@@ -125,7 +143,7 @@ def register_tools(server: MCPServer[Any], toolbox: Toolbox) -> None:
             annotations=ToolAnnotations(
                 title=spec.title, read_only_hint=spec.read_only,
                 destructive_hint=spec.destructive, idempotent_hint=spec.idempotent,
-                open_world_hint=False))
+                open_world_hint=spec.open_world))
 
 
 # The arguments ArgumentGate validated for the tools/call being handled (tool, input).

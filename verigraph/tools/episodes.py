@@ -12,6 +12,8 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from verigraph.actions.feedback import Violation
+from verigraph.arm import ArmWorld
+from verigraph.arm.models import RunMode
 from verigraph.graph.goal import PREDICATES, Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
@@ -19,6 +21,7 @@ from verigraph.graph.wellformed import check_well_formed
 from verigraph.tools import optional
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import ToolArgumentError
+from verigraph.tools.executors import EXECUTOR_HELP, SceneCheck, arm_setup_for, check_executor
 from verigraph.tools.fields import (
     BoundedGoal,
     BoundedGraph,
@@ -57,6 +60,13 @@ class EpisodeState(BaseModel):
     k: int = Field(description="at most k actions per execute_actions call")
     threshold_reached: bool
     simulated: bool = Field(description="actions also run in the 2D simulator")
+    executor: str = Field(description="where actions run: graph (verification only), sim2d, "
+                                      "or arm:<driver>")
+    arm_mode: RunMode | None = Field(default=None, description="arm episodes: dry-run (records, "
+                                 "moves nothing), sim, or real (the user confirms motions)")
+    scene_check: SceneCheck | None = Field(
+        default=None, description="arm episodes: whether the arm observed the scene as the "
+                                  "graph says when the episode started")
     awaiting_scene_graph: bool
     dictionary: str
     relations: list[str]
@@ -69,8 +79,13 @@ class EpisodeState(BaseModel):
                     "(get_scene_image, then submit_scene_graph)")
         edges = "; ".join(self.graph.sentences()) or "no edges"
         goal = "no goal" if self.goal_diff is None else self.goal_diff.summary()
-        return (f"episode {self.episode_id}: {len(self.graph.nodes)} objects ({edges}); {goal}; "
+        text = (f"episode {self.episode_id}: {len(self.graph.nodes)} objects ({edges}); {goal}; "
                 f"{len(self.executed)} executed, tau={self.tau}/{self.t}, k={self.k}")
+        if self.arm_mode is not None:
+            text += f"; runs on {self.executor} ({self.arm_mode})"
+        if self.scene_check is not None and not self.scene_check.matches:
+            text += f"; {self.scene_check.summary()}"
+        return text
 
 
 def describe(episode: Episode) -> EpisodeState:
@@ -85,7 +100,9 @@ def describe(episode: Episode) -> EpisodeState:
         goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
         executed=[a.text() for a in episode.executed], calls=episode.calls, tau=episode.tau,
         t=episode.t, k=episode.k, threshold_reached=episode.threshold_reached,
-        simulated=episode.world is not None, awaiting_scene_graph=state is None,
+        simulated=episode.executor == "sim2d", executor=episode.executor,
+        arm_mode=episode.world.config.mode if isinstance(episode.world, ArmWorld) else None,
+        scene_check=episode.scene_check, awaiting_scene_graph=state is None,
         dictionary=dictionary.name if dictionary else pending,
         relations=list((dictionary or dictionary_for(pending)).relations),
         last_violation=episode.last_violation)
@@ -122,7 +139,13 @@ class LoadSceneInput(BaseModel):
                                                         "or set_goal later)")
     instruction: str | None = Instruction
     simulate: bool = Field(default=False, description="also execute actions in the 2D "
-                                                      "simulator (needs verigraph.sim2d)")
+                                                      "simulator (needs verigraph.sim2d); "
+                                                      "the same as executor=sim2d")
+    executor: str | None = Field(
+        default=None, min_length=1, max_length=32,
+        description=f"where actions run: {EXECUTOR_HELP}; default: the server's. An arm "
+                    "episode uses the server's arm configuration (mode dry-run unless the "
+                    "operator configured sim or real)")
     seed: int = Field(default=0, ge=0, le=2**31 - 1, description="simulator seed")
     k: int = Field(default=DEFAULT_K, ge=1, le=50, description="max actions per "
                                                                "execute_actions call")
@@ -151,7 +174,19 @@ class _Source:
     image: Any = None
 
 
-def _read_source(params: LoadSceneInput) -> _Source:
+def choose_executor(ctx: ToolContext, params: LoadSceneInput) -> str:
+    """The call's executor, else simulate=true (sim2d), else the server's default."""
+    if params.executor is None:
+        return "sim2d" if params.simulate else ctx.config.executor
+    name = check_executor(params.executor)
+    if params.simulate and name != "sim2d":
+        raise ToolArgumentError(f"simulate=true runs the 2D simulator, but executor={name}",
+                                field="simulate", value=True,
+                                fix="give only executor, or only simulate=true")
+    return name
+
+
+def _read_source(params: LoadSceneInput, executor: str) -> _Source:
     if params.scene_id is not None:
         graph, goal = builtin_scene(params.scene_id)
         return _Source(f"scene_id:{params.scene_id}", graph, goal)
@@ -160,7 +195,7 @@ def _read_source(params: LoadSceneInput) -> _Source:
     if params.generator is not None:
         spec = params.generator
         generated = optional.generate_scene()(spec.family, spec.seed, spec.n_objects)
-        keep = params.simulate  # the generator always builds worlds; attach them on request
+        keep = executor == "sim2d"  # the generator always builds worlds; keep them for sim2d
         return _Source(f"generator:{spec.family}/seed={spec.seed}", generated.graph,
                        getattr(generated, "goal", None), generated.world if keep else None,
                        getattr(generated, "goal_world", None) if keep else None)
@@ -173,30 +208,47 @@ def _read_source(params: LoadSceneInput) -> _Source:
 
 
 def load_scene(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
-    """Create an episode; nothing is stored unless the whole input is valid."""
-    source = _read_source(params)
+    """Create an episode; nothing is stored unless the whole input is valid.
+
+    An arm episode opens (and, unless dry-run, connects) its arm last, after every other
+    check, and compares what the arm observes with the graph. An image episode gets its
+    arm when its scene graph is submitted.
+    """
+    executor = choose_executor(ctx, params)
+    source = _read_source(params, executor)
     goal = params.goal or source.goal
     state: WorldState | None = None
     world = source.world
     if source.graph is not None:
         state = state_from_graph(_with_dictionary(source.graph, params.dictionary))
-        if params.simulate and world is None:
+        if executor == "sim2d" and world is None:
             world = optional.world_for_graph()(state.to_graph(), seed=params.seed)
         if goal is not None:
             check_goal_against(goal, state, field="goal")
-    elif params.simulate:
-        raise ToolArgumentError("simulate needs a scene graph, but an image has none yet",
-                                field="simulate", value=True,
-                                fix="load with simulate=false, or pass the graph instead")
+    elif executor == "sim2d":
+        field = "simulate" if params.simulate else "executor"
+        raise ToolArgumentError("the 2D simulator needs a scene graph, but an image has none "
+                                "yet", field=field, value=True if params.simulate else executor,
+                                fix="load with executor graph, or pass the graph instead")
+    scene_check: SceneCheck | None = None
+    if executor.startswith("arm:"):
+        setup = arm_setup_for(executor, ctx.config.arm)
+        if state is not None:
+            world, scene_check = ctx.arms.open(setup, state, ctx.store.evict_idle)
 
     def make(episode_id: str) -> Episode:
         return Episode(id=episode_id, state=state, source=source.name, k=params.k, t=params.t,
                        goal=goal, instruction=params.instruction, world=world,
                        goal_world=source.goal_world, image=source.image,
-                       dictionary_name=params.dictionary,
+                       dictionary_name=params.dictionary, executor=executor,
+                       scene_check=scene_check,
                        initial_graph=state.to_graph() if state is not None else None)
 
-    return describe(ctx.store.add(make))
+    try:
+        return describe(ctx.store.add(make))
+    except BaseException:
+        ctx.arms.close(world)  # e.g. the episode limit: do not keep the arm connected
+        raise
 
 
 def _with_dictionary(graph: SceneGraph, name: str | None) -> SceneGraph:

@@ -17,7 +17,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from verigraph.actions.report import ValidationReport
-from verigraph.tools import acting, episodes, scenes, solving
+from verigraph.tools import acting, arm, episodes, scenes, solving
 from verigraph.tools.context import ToolConfig, ToolContext
 from verigraph.tools.errors import InvalidArgumentsError, ToolArgumentError
 from verigraph.tools.scenes import ImageResult
@@ -36,6 +36,7 @@ class ToolSpec:
     read_only: bool
     destructive: bool = False
     idempotent: bool = False
+    open_world: bool = False  # may reach outside the server: a robot arm and its controller
     summary: Callable[[Any], str] = lambda result: str(result.summary())
 
 
@@ -43,9 +44,11 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
     ToolSpec("load_scene", "Start an episode",
              "Start a planning episode from a built-in scene id (cup_on_book, three_blocks, "
              "kitchen_pan), a scene graph, an image, or the sim2d generator. Returns the "
-             "episode_id every other stateful tool takes, the current graph and the goal.",
+             "episode_id every other stateful tool takes, the current graph and the goal. "
+             "executor picks where actions run (graph, sim2d, or the server's arm); an arm "
+             "episode reports whether the arm observes the scene as the graph says.",
              episodes.LoadSceneInput, episodes.EpisodeState, episodes.load_scene,
-             read_only=False),
+             read_only=False, open_world=True),
     ToolSpec("set_goal", "Set the goal",
              "Set the episode's goal: a goal graph (partial=true: only the listed edges must "
              "hold), a predicate (single_stack), a reference image, or an instruction in "
@@ -64,12 +67,13 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              acting.ValidateActionInput, acting.ActionCheck, acting.validate_action,
              read_only=True, idempotent=True),
     ToolSpec("execute_actions", "Execute actions",
-             "Execute at most k actions in order on the episode (and its simulator) until "
-             "the first violation; the valid prefix stays applied. Returns the new graph, "
-             "the violation feedback, tau, whether the threshold t is reached and whether "
-             "the goal holds. Include done (the end token) when the goal is reached.",
+             "Execute at most k actions in order on the episode (and its simulator or arm) "
+             "until the first violation; the valid prefix stays applied. Returns the new "
+             "graph, the violation feedback, tau, whether the threshold t is reached and "
+             "whether the goal holds. Include done (the end token) when the goal is reached. "
+             "On a real arm the user is asked to approve the motions first.",
              acting.ExecuteActionsInput, acting.ExecutionOutput, acting.execute_actions,
-             read_only=False, destructive=True),
+             read_only=False, destructive=True, open_world=True),
     ToolSpec("validate_plan", "Validate a whole plan",
              "Stateless: check a whole plan (text, one action per line, or a list) from a "
              "scene id, a graph or an episode's current graph, optionally against a goal. "
@@ -107,15 +111,33 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              "Check a scene graph you wrote for an image against dictionary D and relations "
              "R: synonyms and spellings are normalised and every problem is reported at "
              "once. An accepted graph becomes the starting graph of an episode that was "
-             "loaded from an image.",
+             "loaded from an image (an arm episode's arm attaches then).",
              scenes.SubmitSceneGraphInput, scenes.SceneGraphSubmission,
-             scenes.submit_scene_graph, read_only=False, idempotent=True),
+             scenes.submit_scene_graph, read_only=False, idempotent=True, open_world=True),
     ToolSpec("end_episode", "End the episode",
              "The end token: final verdict (goal reached or not, threshold reached), final "
              "graph and the trace of every execute_actions call. Closes the episode; its id "
              "stops working.",
              episodes.EpisodeRef, episodes.EpisodeVerdict, episodes.end_episode,
              read_only=False, destructive=True),
+    ToolSpec("arm_status", "Arm status",
+             "State of an arm episode's arm: driver, mode (dry-run moves nothing, sim, real), "
+             "connection, whether the stop is latched and why, busy, tool pose, last "
+             "outcome, commands sent. Answers at once, even during a motion.",
+             arm.ArmRef, arm.ArmStatusOutput, arm.arm_status,
+             read_only=True, idempotent=True, open_world=True),
+    ToolSpec("arm_stop", "Stop the arm",
+             "Stop the episode's arm now, even in the middle of a motion, and latch the "
+             "stop: every later motion is refused until arm_reset. Calling it again keeps "
+             "it latched.",
+             arm.ArmStopInput, arm.ArmStatusOutput, arm.arm_stop,
+             read_only=False, idempotent=True, open_world=True),
+    ToolSpec("arm_reset", "Reset the arm's stop",
+             "Clear the latched stop once the stopped motion has ended, so the arm accepts "
+             "motions again. On a real arm the user is asked to approve it first. Make the "
+             "cell safe before calling it.",
+             arm.ArmRef, arm.ArmStatusOutput, arm.arm_reset,
+             read_only=False, open_world=True),
 )
 TOOLS: dict[str, ToolSpec] = {spec.name: spec for spec in TOOL_SPECS}
 

@@ -26,6 +26,7 @@ from verigraph.tools import optional
 from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph
 from verigraph.tools.errors import ToolArgumentError
+from verigraph.tools.executors import SceneCheck, arm_setup_for
 from verigraph.tools.fields import DictionaryName, EpisodeId, ImageData, dictionary_for
 from verigraph.tools.images import decode_image, encode_png
 from verigraph.tools.prompting import scene_graph_prompt
@@ -163,6 +164,9 @@ class SceneGraphSubmission(BaseModel):
     diff_to_episode: GraphDiff | None = Field(
         default=None, description="how it differs from the episode's current graph")
     goal_diff: GraphDiff | None = None
+    scene_check: SceneCheck | None = Field(
+        default=None, description="arm episodes: whether the arm observes the scene as the "
+                                  "adopted graph says")
 
     def summary(self) -> str:
         if not self.accepted:
@@ -176,6 +180,8 @@ class SceneGraphSubmission(BaseModel):
             text += f", {len(self.normalised)} name(s) normalised"
         if self.adopted:
             text += f"; episode {self.episode_id} now starts from this graph"
+            if self.scene_check is not None:
+                text += f"; {self.scene_check.summary()}"
         elif self.diff_to_episode is not None:
             text += ("; matches the episode's graph" if self.diff_to_episode.satisfied else
                      "; differs from the episode's graph: "
@@ -198,6 +204,11 @@ def submit_scene_graph(ctx: ToolContext, params: SubmitSceneGraphInput) -> Scene
             return result
         if episode.state is None:
             state = WorldState.from_graph(result.graph, dictionary)
+            if episode.executor.startswith("arm:"):  # the arm waited for this graph
+                setup = arm_setup_for(episode.executor, ctx.config.arm)
+                episode.world, episode.scene_check = ctx.arms.open(setup, state,
+                                                                   ctx.store.evict_idle)
+                result.scene_check = episode.scene_check
             episode.state = state
             episode.initial_graph = state.to_graph()
             result.adopted = True

@@ -28,6 +28,7 @@ from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.tools.errors import EpisodeLimitError, EpisodeStateError, UnknownEpisodeError
+from verigraph.tools.executors import SceneCheck
 
 DEFAULT_K = 3
 DEFAULT_T = 5
@@ -84,6 +85,8 @@ class Episode:
     goal: Goal | None = None
     instruction: str | None = None
     world: World | None = None
+    executor: str = "graph"  # graph, sim2d or arm:<driver>
+    scene_check: SceneCheck | None = None  # arm episodes: observed scene vs graph at start
     goal_world: Any = None  # a simulator world in the goal state, for rendering it
     image: np.ndarray | None = None
     initial_graph: SceneGraph | None = None
@@ -122,12 +125,14 @@ class EpisodeStore:
 
     def __init__(self, max_episodes: int = DEFAULT_MAX_EPISODES,
                  idle_timeout: float = DEFAULT_IDLE_TIMEOUT_S,
-                 clock: Callable[[], float] = time.monotonic) -> None:
+                 clock: Callable[[], float] = time.monotonic,
+                 on_drop: Callable[[Episode], None] | None = None) -> None:
         if max_episodes < 1:
             raise ValueError("max_episodes must be at least 1")
         self.max_episodes = max_episodes
         self.idle_timeout = idle_timeout
         self._clock = clock
+        self._on_drop = on_drop  # releases what an ended or evicted episode holds (an arm)
         self._episodes: dict[str, Episode] = {}
         self._lock = threading.Lock()
 
@@ -141,9 +146,9 @@ class EpisodeStore:
 
     def add(self, make: Callable[[str], Episode]) -> Episode:
         """Insert the episode `make(new_id)` builds; evicts idle episodes when full."""
+        if len(self) >= self.max_episodes:
+            self.evict_idle()
         with self._lock:
-            if len(self._episodes) >= self.max_episodes:
-                self._evict_idle()
             if len(self._episodes) >= self.max_episodes:
                 raise EpisodeLimitError(
                     f"the server already holds {self.max_episodes} open episodes",
@@ -159,12 +164,20 @@ class EpisodeStore:
             self._episodes[episode_id] = episode
             return episode
 
-    def _evict_idle(self) -> None:
+    def evict_idle(self) -> None:
+        """Drop episodes unused for longer than idle_timeout (and release their arms)."""
         now = self._clock()
-        stale = [eid for eid, ep in self._episodes.items()
-                 if now - ep.last_used > self.idle_timeout and not ep.lock.locked()]
-        for eid in stale:
-            del self._episodes[eid]
+        with self._lock:
+            stale = [ep for ep in self._episodes.values()
+                     if now - ep.last_used > self.idle_timeout and not ep.lock.locked()]
+            for ep in stale:
+                del self._episodes[ep.id]
+        for ep in stale:
+            self._dropped(ep)
+
+    def _dropped(self, episode: Episode) -> None:
+        if self._on_drop is not None:
+            self._on_drop(episode)
 
     def _get(self, episode_id: Any) -> Episode:
         if not isinstance(episode_id, str):
@@ -175,16 +188,22 @@ class EpisodeStore:
             raise UnknownEpisodeError(episode_id)
         return episode
 
+    def peek(self, episode_id: str) -> Episode:
+        """The episode without taking its lock: only for calls that must not wait for a
+        running one (arm_stop, arm_status), and that touch only thread-safe parts."""
+        return self._get(episode_id)
+
     @contextmanager
     def use(self, episode_id: str) -> Iterator[Episode]:
         """Hold the episode's lock for the duration of one tool call.
 
-        In `non_blocking` mode, an episode that is busy or has a (slow) simulator
-        raises WouldBlock instead of waiting.
+        In `non_blocking` mode, an episode that is busy or has a (slow) simulator or
+        arm raises WouldBlock instead of waiting.
         """
         episode = self._get(episode_id)
         if _NON_BLOCKING.get():
-            if episode.world is not None or not episode.lock.acquire(blocking=False):
+            slow = episode.world is not None or episode.executor != "graph"
+            if slow or not episode.lock.acquire(blocking=False):
                 raise WouldBlock(episode_id)
         else:
             episode.lock.acquire()
@@ -199,6 +218,8 @@ class EpisodeStore:
             episode.lock.release()
 
     def remove(self, episode_id: str) -> None:
-        """Forget an episode (the caller holds its lock, see `use`)."""
+        """Forget an episode and release its arm (the caller holds its lock, see `use`)."""
         with self._lock:
-            self._episodes.pop(episode_id, None)
+            episode = self._episodes.pop(episode_id, None)
+        if episode is not None:
+            self._dropped(episode)
