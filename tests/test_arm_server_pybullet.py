@@ -12,12 +12,14 @@ import math
 from collections.abc import AsyncIterator
 from typing import Any
 
+import cv2
+import numpy as np
 import pytest
 from arm_server_helpers import BLOCKS, loose_blocks
 from mcp import Client
 from mcp_helpers import decode_png, structured, text
 
-from verigraph.arm import ArmWorld, PyBulletOptions, parse_arm_config
+from verigraph.arm import ArmWorld, CameraView, PyBulletOptions, parse_arm_config
 from verigraph.arm.testing.deps import require
 from verigraph.server import build_server
 from verigraph.tools import Toolbox, ToolConfig
@@ -25,6 +27,7 @@ from verigraph.tools.executors import ArmSetup
 
 require("pybullet")
 
+from verigraph.arm.sim.camera import capture  # noqa: E402
 from verigraph.arm.sim.panda_scene import PandaScene  # noqa: E402
 
 pytestmark = pytest.mark.anyio
@@ -90,7 +93,9 @@ async def test_panda_stacks_three_blocks_from_a_plan_and_the_physics_confirms_ea
     assert status["commands_sent"] == 5 and status["last_outcome"] == "done"
     picture = await client.call_tool("render_scene", {"episode_id": eid, "width": 160,
                                                       "height": 120})
-    assert decode_png(picture.content[0].data).shape == (120, 160, 3)
+    shown = decode_png(picture.content[0].data)  # type: ignore[union-attr]
+    camera = capture(scene, CameraView(eye=(1.1, 0.5, 0.75), width=160, height=120))
+    assert np.array_equal(shown, cv2.cvtColor(camera.rgb, cv2.COLOR_RGB2BGR))  # red is red
     verdict = await client.call_tool("end_episode", {"episode_id": eid})
     assert text(verdict).startswith("SUCCESS: goal reached")
     assert len(box.context.arms) == 0

@@ -10,6 +10,7 @@ from __future__ import annotations
 import socket
 from collections.abc import Callable
 
+import cv2
 import numpy as np
 
 from verigraph.arm.audit import AuditLog
@@ -49,7 +50,7 @@ def open_arm_world(config: ArmConfig, graph: SceneGraph, *, confirm: ConfirmHook
 
         def render(width: int = view.width, height: int = view.height) -> np.ndarray:
             camera = view.model_copy(update={"width": width, "height": height})
-            return capture(scene, camera).rgb
+            return cv2.cvtColor(capture(scene, camera).rgb, cv2.COLOR_RGB2BGR)
 
     elif driver is None:
         driver = make_driver(config)

@@ -64,8 +64,8 @@ class ArmWorld:
         self._on_close = on_close
         self.last_check: RelationCheck | None = None
         self.last_outcome: MotionOutcome | None = None
-        # `render(width=, height=) -> RGB array` when the cell has a camera to show (the
-        # scene tools look for it); None otherwise.
+        # `render(width=, height=) -> BGR array` (OpenCV order, like sim2d's) when the
+        # cell has a camera to show (the scene tools look for it); None otherwise.
         self.render = render
 
     # -- World protocol ----------------------------------------------------------------------
