@@ -9,8 +9,9 @@ from pathlib import Path
 import pytest
 from arm_server_helpers import LAYOUT
 from mcp import Client, StdioServerParameters
-from mcp_helpers import structured, verigraph_command
+from mcp_helpers import REPO, structured, verigraph_command
 
+from verigraph.arm import load_arm_config
 from verigraph.arm.testing.deps import require
 from verigraph.cli import main
 
@@ -79,3 +80,11 @@ async def test_stdio_server_runs_episodes_on_the_configured_panda(tmp_path: Path
     records = [json.loads(line) for line in (tmp_path / "audit.jsonl").read_text().splitlines()]
     assert [r["command"] for r in records if r["outcome"] == "done"] == [
         "connect", "pick", "place"]
+
+
+@pytest.mark.parametrize("name", ["pybullet_sim.yaml", "xarm_real.yaml"])
+def test_example_arm_configs_are_valid(name: str) -> None:
+    config = load_arm_config(REPO / "examples" / "arm_configs" / name)
+    assert config.mode in ("sim", "real")
+    if config.driver == "xarm":
+        assert config.host and config.layout and config.audit_log is not None
