@@ -23,8 +23,8 @@ from verigraph.sim2d.generator import valid_moves
 from verigraph.sim2d.room import room_violation
 from verigraph.sim2d.tabletop import TabletopWorld
 
-SCENES_PER_FAMILY = 18
-MOVES_PER_SCENE = 12
+SCENES_PER_FAMILY = 30
+MOVES_PER_SCENE = 15
 
 
 @pytest.mark.parametrize("family", ["blocks", "kitchen", "tableware"])

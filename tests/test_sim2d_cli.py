@@ -37,6 +37,7 @@ def test_render_goal_labels_and_degradations(tmp_path: Path) -> None:
                  str(noisy), "--noise", "10", "--blur", "1", "--lighting", "0.5",
                  "--jpeg", "40"]) == 0
     a, b = cv2.imread(str(clean)), cv2.imread(str(noisy))
+    assert a is not None and b is not None
     assert a.shape == b.shape == (480, 640, 3)
     assert abs(a.astype(int) - b.astype(int)).mean() > 1
 

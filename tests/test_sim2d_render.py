@@ -89,6 +89,6 @@ def test_degradations_change_the_image_deterministically() -> None:
 def test_png_encoding_round_trips_and_side_by_side_stacks() -> None:
     image = world_for_graph(cup_on_book()).render(160, 120)
     decoded = cv2.imdecode(np.frombuffer(encode_png(image), np.uint8), cv2.IMREAD_COLOR)
-    assert (decoded == image).all()
+    assert decoded is not None and np.array_equal(decoded, image)
     pair = side_by_side([image, image], ["start", "goal"])
     assert pair.shape[1] > 2 * 160 and pair.shape[0] > 120

@@ -105,6 +105,17 @@ def disturbed(scene: TabletopScene, intended: Snapshot) -> list[str]:
     return out
 
 
+def turned(scene: TabletopScene, before: Snapshot, limit: float) -> list[str]:
+    """Objects whose angle changed by more than `limit` (they tipped)."""
+    out = []
+    for obj, (pose, present) in before.items():
+        if present and scene.present(obj):
+            now = scene.things[obj].body.angle
+            if abs(math.remainder(now - pose.angle, 2 * math.pi)) > limit:
+                out.append(obj)
+    return out
+
+
 def _stayed(scene: TabletopScene, intended: Snapshot) -> bool:
     """Nothing slid or tipped while settling (a tilted stack is not a success even if
     it still reads as the right graph)."""

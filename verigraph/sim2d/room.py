@@ -17,8 +17,9 @@ thing in or across it for a container):
   a narrower foot like a plate, or its load hangs over its edges) takes no more load
   anywhere above it and gives none up: the rest could tip;
 - in a container: nothing lies across its rim; an object narrower than the opening
-  goes inside if the contents side by side leave room (cutlery may stand upright in an
-  empty narrow container); a wider one rests on the rim if nothing sticks out.
+  goes inside if the contents side by side leave room (one that only just fits, only
+  into an empty container; cutlery may stand upright in an empty narrow one); a wider
+  one rests on the rim if nothing sticks out.
 """
 
 from __future__ import annotations
@@ -87,14 +88,15 @@ def _above(state: WorldState, obj: str) -> set[str]:
     return out
 
 
-def _balancing_below(state: WorldState, start: str) -> str | None:
-    """The first support from `start` downwards that balances more than one object."""
+def _balancing_below(state: WorldState, start: str, adding: int = 0) -> str | None:
+    """The first support from `start` downwards that balances more than one object
+    (counting `adding` objects about to be put somewhere above it)."""
     current: str | None = start
     seen: set[str] = set()
     while current is not None and current not in seen:
         seen.add(current)
-        if _balances(state, current) and len(state.carried[current]) > 1:
-            return current
+        if _balances(state, current) and len(_above(state, current)) + adding > 2:
+            return current  # it balances more than one object (side by side or a tower)
         below = state.support.get(current)
         current = below[1] if below is not None else None
     return None
@@ -131,10 +133,10 @@ def room_violation(state: WorldState, action: MoveAction) -> Violation | None:
     load = sorted(state.carried[target])
     need = _width(state, obj)
     below = state.support.get(target)
-    balancing = _balancing_below(state, below[1]) if below is not None else None
+    balancing = _balancing_below(state, below[1], adding=1) if below is not None else None
     if balancing is not None:
-        return _fail(action, f"{target} stands on {balancing}, which balances several objects; "
-                     "more load could tip it", [balancing],
+        return _fail(action, f"{target} stands on {balancing}, which would balance several "
+                     "objects; more load could tip it", [balancing],
                      f"put {obj} somewhere steadier, or clear {balancing} first")
     if rel == "on":
         width = _width(state, target)
@@ -165,6 +167,11 @@ def room_violation(state: WorldState, action: MoveAction) -> Violation | None:
             return _fail(action, f"{obj} does not fit in {target} next to "
                          f"{', '.join(load)}: the opening is {opening:.1f} wide", load,
                          f"take {load[0]} out of {target} first")
+        return None
+    if need <= opening:
+        if load:  # a snug fit: it would land on what is already inside
+            return _fail(action, f"{obj} only just fits in {target}, which already holds "
+                         f"{', '.join(load)}", load, f"take {load[0]} out of {target} first")
         return None
     info = state.objects[obj]
     spec = movable_spec(info.label, info.props)

@@ -23,10 +23,12 @@ from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.sim2d import physics
 from verigraph.sim2d.carry import carry_over
 from verigraph.sim2d.errors import SimError
-from verigraph.sim2d.putdown import put_down
+from verigraph.sim2d.putdown import put_down, turned
 from verigraph.sim2d.readback import read_supports
 from verigraph.sim2d.scene import TabletopScene, Thing
 from verigraph.sim2d.world import SimWorld, WorldKind
+
+LIFT_TURN = 0.2
 
 
 class TabletopWorld(SimWorld):
@@ -122,8 +124,9 @@ class TabletopWorld(SimWorld):
         scene.settle()
         if verified:
             after = read_supports(scene)[0]
-            moved = sorted(o for o in set(held) | set(after)
-                           if o != action.object and held.get(o) != after.get(o))
+            moved = sorted({o for o in set(held) | set(after)
+                            if o != action.object and held.get(o) != after.get(o)}
+                           | set(turned(scene, before, LIFT_TURN)))
             if moved:  # something leant on the object: lifting it would upset that
                 scene.restore(before)
                 return self._refusal(action, held, "disturbs", moved)

@@ -50,7 +50,7 @@ class TangramWorld(SimWorld):
             shape = pymunk.Poly(body, list(piece_model(labels[node.id])))
             self.space.add(body, shape)
             self.bodies[node.id] = body
-            self._set(node.id, poses[node.id])
+            self.set_pose(node.id, poses[node.id])
 
     # -- state -----------------------------------------------------------------------------
     def pose(self, piece: str) -> TPose:
@@ -60,7 +60,8 @@ class TangramWorld(SimWorld):
     def vertices(self, piece: str) -> list[Vec]:
         return placed(self.labels[piece], self.pose(piece))
 
-    def _set(self, piece: str, pose: TPose) -> None:
+    def set_pose(self, piece: str, pose: TPose) -> None:
+        """Put a piece at a pose (no checks: layout, generators and tests)."""
         body = self.bodies[piece]
         body.angle = pose.theta  # before the position: see physics.set_pose
         body.position = (pose.x, pose.y)
@@ -103,10 +104,10 @@ class TangramWorld(SimWorld):
                              suggestion="use align(piece, side, target, target_side)")
         self._check(action)
         old = self.pose(action.object)
-        self._set(action.object, self.align_target(action))
+        self.set_pose(action.object, self.align_target(action))
         hits = self.overlapping(action.object)
         if hits:
-            self._set(action.object, old)
+            self.set_pose(action.object, old)
             return Violation(
                 action=action.model_dump(), constraint="overlap",
                 message=f"{action.text()} would make {action.object} overlap "
@@ -120,7 +121,7 @@ class TangramWorld(SimWorld):
             raise SimError("tangram pieces are placed with align, not move", field="action",
                            value=action.text(), fix="use align(piece, side, target, side)")
         self._check(action)
-        self._set(action.object, self.align_target(action))
+        self.set_pose(action.object, self.align_target(action))
         return self.observe()
 
     def align_target(self, action: AlignAction) -> TPose:
@@ -187,7 +188,7 @@ def build_tangram(graph: SceneGraph) -> TangramWorld:
         shift = offset - min(xs)
         for p in group:
             pose = world.pose(p)
-            world._set(p, TPose(pose.x + shift, pose.y, pose.theta))
+            world.set_pose(p, TPose(pose.x + shift, pose.y, pose.theta))
         offset += max(xs) - min(xs) + SEPARATION
     observed = {frozenset({(e.source, e.source_side or 0), (e.target, e.target_side or 0)})
                 for e in world.observe().edges}
@@ -202,7 +203,7 @@ def build_tangram(graph: SceneGraph) -> TangramWorld:
 def _place_group(world: TangramWorld, root: str,
                  neighbours: dict[str, list[tuple[int, str, int]]], placed_ids: list[str],
                  wanted: dict[frozenset[tuple[str, int]], None]) -> list[str]:
-    world._set(root, TPose(0.0, 0.0, 0.0))
+    world.set_pose(root, TPose(0.0, 0.0, 0.0))
     placed_ids.append(root)
     group = [root]
     queue: deque[str] = deque([root])
@@ -224,7 +225,7 @@ def _place_piece(world: TangramWorld, piece: str,
     for side_index, other, other_side in neighbours[piece]:
         if other not in group:
             continue
-        world._set(piece, align_pose(world.labels[piece], side_index, world.vertices(other),
+        world.set_pose(piece, align_pose(world.labels[piece], side_index, world.vertices(other),
                                      other_side))
         if world.overlapping(piece):
             continue

@@ -56,7 +56,7 @@ def _try_figure(rng: random.Random, pieces: list[str]) -> TangramWorld | None:
     rng.shuffle(order)
     world = TangramWorld(tangram_nodes(pieces), {p: p for p in pieces},
                          {p: _parking(i) for i, p in enumerate(pieces)})
-    world._set(order[0], TPose(0.0, 0.0, rng.randrange(8) * math.pi / 4))
+    world.set_pose(order[0], TPose(0.0, 0.0, rng.randrange(8) * math.pi / 4))
     placed = [order[0]]
     used: set[tuple[str, int]] = set()
     for piece in order[1:]:
@@ -69,7 +69,7 @@ def _try_figure(rng: random.Random, pieces: list[str]) -> TangramWorld | None:
             other_side = rng.choice(free)
             own_side = rng.randrange(len(piece_model(piece)))
             pose = align_pose(piece, own_side, world.vertices(other), other_side)
-            world._set(piece, pose)
+            world.set_pose(piece, pose)
             if world.overlapping(piece):
                 continue
             mine = world.vertices(piece)
@@ -84,7 +84,7 @@ def _try_figure(rng: random.Random, pieces: list[str]) -> TangramWorld | None:
             return None
         # The most compact of the valid placements: figures look like tangram figures.
         _, pose, mine_side, other_side_used = min(options, key=lambda o: o[0])
-        world._set(piece, pose)
+        world.set_pose(piece, pose)
         used.update({mine_side, other_side_used})
         placed.append(piece)
     return world
@@ -114,7 +114,7 @@ def perturb(rng: random.Random, target: TangramWorld) -> tuple[TangramWorld, str
     ys = [y for p in degree if p != piece for _, y in start.vertices(p)]
     away = TPose(max(xs) + 2 * SEPARATION + 6.0, (min(ys) + max(ys)) / 2,
                  rng.randrange(8) * math.pi / 4)
-    start._set(piece, away)
+    start.set_pose(piece, away)
     return start, piece
 
 

@@ -14,7 +14,7 @@ import numpy as np
 
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AlignAction, MoveAction
-from verigraph.graph.model import SceneGraph
+from verigraph.graph.model import Node, SceneGraph
 
 WorldKind = Literal["tabletop", "tangram"]
 
@@ -23,6 +23,7 @@ class SimWorld(ABC):
     """A seeded, deterministic 2-D world that carries out actions and reports its graph."""
 
     kind: WorldKind
+    nodes: list[Node]  # the scene's objects, as given (ids, labels, attrs)
 
     @abstractmethod
     def perform(self, action: MoveAction | AlignAction) -> Violation | None:
