@@ -39,9 +39,36 @@ class BodySpec:
     wall: float = 0.0
 
     @property
+    def mass_centre(self) -> tuple[float, float, float]:
+        """(mass, x, y) of the parts at unit density, in the local frame.
+
+        Kept here because pymunk only reports a body's mass while it is in a space, and
+        a lifted object must still be weighed when its placement is chosen."""
+        total = mx = my = 0.0
+        for part in self.parts:
+            a, cx, cy = _area_centroid(part)
+            total += a
+            mx += a * cx
+            my += a * cy
+        return total, mx / total, my / total
+
+    @property
     def thin(self) -> bool:
         """Long and flat (cutlery): may stand upright in a narrow container."""
         return self.kind == "box" and self.width >= 4 * self.height
+
+
+def _area_centroid(poly: Polygon) -> tuple[float, float, float]:
+    area = cx = cy = 0.0
+    for i in range(len(poly)):
+        x0, y0 = poly[i]
+        x1, y1 = poly[(i + 1) % len(poly)]
+        cross = x0 * y1 - x1 * y0
+        area += cross
+        cx += (x0 + x1) * cross
+        cy += (y0 + y1) * cross
+    area /= 2
+    return abs(area), cx / (6 * area), cy / (6 * area)
 
 
 def _box(x0: float, y0: float, x1: float, y1: float) -> Polygon:

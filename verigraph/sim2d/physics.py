@@ -8,12 +8,11 @@ the bodies' poses alone rather than of the solver's contact cache.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import pymunk
 
-from verigraph.sim2d.bodies import BodySpec, Polygon
+from verigraph.sim2d.bodies import BodySpec
 
 GRAVITY = -981.0
 DT = 1.0 / 240.0
@@ -138,11 +137,6 @@ def world_polygons(body: pymunk.Body) -> list[list[tuple[float, float]]]:
             pts = [body.local_to_world(v) for v in shape.get_vertices()]
             out.append([(float(p.x), float(p.y)) for p in pts])
     return out
-
-
-def transform(part: Polygon, pose: Pose) -> list[tuple[float, float]]:
-    c, s = math.cos(pose.angle), math.sin(pose.angle)
-    return [(pose.x + c * x - s * y, pose.y + s * x + c * y) for x, y in part]
 
 
 def probe_contacts(space: pymunk.Space, body: pymunk.Body,

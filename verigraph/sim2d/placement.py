@@ -3,11 +3,11 @@
 A placement is chosen like a careful arm would: pick a horizontal position over the
 target, lower the object until it touches whatever is highest under it, and keep the
 position only if (a) it comes to rest on the intended target in the intended relation
-(read with the same rules as the ground truth), (b) its centre of mass is over the
-contact with a margin, and (c) every object under it keeps its centre of mass over its
-own support. Positions are tried in order of preference: packed from the left on fixed
-furniture, centred on small supports and in containers. Thin cutlery going into a
-narrow container stands upright.
+(read with the same rules as the ground truth), (b) it stands on a real footing (not on
+an edge) with its centre of mass over the contact with a margin, and (c) every object
+under it keeps its centre of mass over its own support. Positions are tried in order of
+preference: packed from the left on fixed furniture, centred on small supports and in
+containers. Thin cutlery going into a narrow container stands upright.
 """
 
 from __future__ import annotations
@@ -32,6 +32,7 @@ GRID = 0.5
 MAX_TRIES = 160
 SIDE_NORMAL = 0.5
 FOOTING_PROBE = 0.25
+MIN_FOOTING = 2.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -115,8 +116,8 @@ def _footprint(thing: Thing, angle: float) -> _Footprint:
         for x, y in part:
             xs.append(c * x - s * y)
             ys.append(s * x + c * y)
-    cog = thing.body.center_of_gravity
-    return _Footprint(min(xs), max(xs), min(ys), c * cog.x - s * cog.y)
+    _, gx, gy = thing.spec.mass_centre
+    return _Footprint(min(xs), max(xs), min(ys), c * gx - s * gy)
 
 
 class _Terrain:
@@ -253,6 +254,9 @@ def _accept(scene: TabletopScene, thing: Thing, pose: Pose, relation: str, targe
         footing = direct_support(scene, thing, physics.probe_contacts(
             scene.space, thing.body, FOOTING_PROBE), same_as=sup.supporter)
         span = footing.span or sup.span
+        left, _, right, _ = thing.bounds()
+        if span[1] - span[0] < min(MIN_FOOTING, 0.25 * (right - left)):
+            return False  # balanced on an edge (a knife across one wall of a pot)
         com_x = thing.com()[0]
         mg = margin(span[1] - span[0])
         if not span[0] + mg - 1e-6 <= com_x <= span[1] - mg + 1e-6:

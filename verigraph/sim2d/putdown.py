@@ -1,13 +1,13 @@
-"""Putting a lifted object down: choose placements, try them in physics, keep one.
+"""Putting a lifted object down: candidate placements are tried in simulation, one is kept.
 
-Each candidate placement is carried out and settled; if the graph read back is the
-expected one it stays, otherwise the scene is restored and the next is tried. When a
-movable surface has no free spot left, the objects already on it are slid sideways
-together (the arm nudges them; their support does not change) to open one. The arm
-checks candidates in simulation before committing, so in verified mode a placement
-that would topple is never carried out; unverified mode lets physics decide.
-Furniture that looks full because of gaps left by earlier moves has its load pushed
-to the left first.
+A candidate counts only if, once settled, the graph read back is the expected one and
+nothing slid or tipped; otherwise the scene is restored and the next one is tried (the
+arm checks in simulation before committing, so a verified placement that would topple
+is never carried out). When nothing fits, room is made without changing any support:
+furniture's load is pushed to the left (closing gaps left by earlier moves), a
+movable surface's load is packed aside or slid as a block, and the target's neighbours
+on furniture are nudged away. Unverified mode takes the first candidate, or a plain
+drop over the target, and lets physics decide.
 """
 
 from __future__ import annotations

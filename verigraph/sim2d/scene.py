@@ -30,14 +30,18 @@ class Thing:
 
     def com(self) -> tuple[float, float]:
         """Centre of mass in world coordinates (furniture: centre of its outline)."""
-        local = self.body.center_of_gravity if not self.fixed else \
-            pymunk.Vec2d(0.0, self.spec.top / 2)
+        if self.fixed:
+            local = (0.0, self.spec.top / 2)
+        else:
+            _, cx, cy = self.spec.mass_centre
+            local = (cx, cy)
         p = self.body.local_to_world(local)
         return float(p.x), float(p.y)
 
     @property
     def mass(self) -> float:
-        return 0.0 if self.fixed else float(self.body.mass)
+        """Mass at the physics density, also while lifted (pymunk says 0 then)."""
+        return 0.0 if self.fixed else self.spec.mass_centre[0] * physics.DENSITY
 
     def bounds(self) -> tuple[float, float, float, float]:
         """Axis-aligned bounds (left, bottom, right, top) of the body's shapes."""

@@ -28,7 +28,7 @@ from verigraph.sim2d.readback import read_supports
 from verigraph.sim2d.scene import TabletopScene, Thing
 from verigraph.sim2d.world import SimWorld, WorldKind
 
-LIFT_TURN = 0.2
+LIFT_TURN = 0.5
 
 
 class TabletopWorld(SimWorld):
@@ -103,8 +103,7 @@ class TabletopWorld(SimWorld):
             body = physics.make_body(t.spec, physics.pose_of(t.body), fixed=t.fixed)
             scene.add(Thing(t.id, t.label, t.props, t.spec, body, t.fixed),
                       in_space=t.body.space is not None)
-        other = TabletopWorld(scene, self.nodes, self.dictionary, self.dictionary_name)
-        return other
+        return TabletopWorld(scene, self.nodes, self.dictionary, self.dictionary_name)
 
     # -- internals ---------------------------------------------------------------------------
     def _check_ids(self, action: MoveAction) -> None:
