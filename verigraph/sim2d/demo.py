@@ -111,7 +111,8 @@ def run(scene: str, out: Path, width: int = 640, height: int = 480) -> bool:
     fallen = what_if.tipped() if isinstance(what_if, TabletopWorld) else []
     _say(f"     {bad.text()} -> {_sentences(observed)}")
     if fallen:
-        _say(f"     fell over: {', '.join(fallen)}")
+        _say(f"     fell over: {', '.join(fallen)} (a graph edge cannot show that; the "
+             "image does)")
     mess = what_if.render(width, height, labels=True)
     _say(f"     image: {_save(out, 'unverified_mistake.png', mess)}")
 
