@@ -56,7 +56,7 @@ def test_random_valid_moves_end_in_the_predicted_graph(family: str) -> None:
                                 f"{violation.message}")
             else:
                 refused += 1
-                assert violation.constraint == "execution_failed", where
+                assert violation.constraint == "no_room", where
                 assert world.observe() == before, f"{where}: a refusal moved something"
     assert not failures, "\n".join(failures)
     total = SCENES_PER_FAMILY * MOVES_PER_SCENE
@@ -128,7 +128,7 @@ def test_no_room_is_refused_before_anything_moves_and_explained() -> None:
     before = world.scene.snapshot()
     executed, _, violation, _, after = execute_in_world(state, [action], world)
     assert executed == [] and violation is not None
-    assert violation.constraint == "execution_failed" and violation.blocking == ["tray"]
+    assert violation.constraint == "no_room" and violation.blocking == ["tray"]
     assert "nothing was moved" in violation.message
     assert world.scene.snapshot() == before and after.to_graph() == state.to_graph()
 

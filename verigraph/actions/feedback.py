@@ -10,7 +10,7 @@ ConstraintId = Literal[
     "unknown_object", "unknown_relation", "same_object", "not_movable", "object_not_clear",
     "target_full", "target_not_surface", "target_not_container", "would_create_cycle",
     "already_there", "unknown_side", "side_occupied", "overlap", "execution_failed",
-    "arm_refused", "malformed_action",
+    "arm_refused", "no_room", "malformed_action",
 ]
 
 CONSTRAINT_DESCRIPTIONS: dict[str, str] = {
@@ -29,6 +29,8 @@ CONSTRAINT_DESCRIPTIONS: dict[str, str] = {
     "side_occupied": "tangram: the target side already touches another piece",
     "overlap": "tangram (sim2d): the moved piece would intersect another piece",
     "execution_failed": "the simulator or arm did not end in the predicted graph",
+    "no_room": "the simulator found no place where the object fits and rests stably "
+               "(sizes, which capacities do not capture); nothing moved",
     "arm_refused": "the arm adapter refused before moving (safety limit, stop latched, "
                    "stale location, confirmation declined)",
     "malformed_action": "the action does not match the action schema",

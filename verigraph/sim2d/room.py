@@ -112,7 +112,7 @@ def _inner(state: WorldState, obj: str) -> tuple[float, float]:
 
 
 def _fail(action: MoveAction, message: str, blocking: list[str], suggestion: str) -> Violation:
-    return Violation(action=action.model_dump(), constraint="execution_failed",
+    return Violation(action=action.model_dump(), constraint="no_room",
                      message=message, blocking=blocking, suggestion=suggestion)
 
 

@@ -5,7 +5,7 @@ falls), settles, searches free placements on or in `t` (see placement and putdow
 puts `o` down, settles and reads the graph back from contacts. Candidates are tried in
 simulation first: one that slides, tips or ends in another graph is taken back and the
 next tried. When nothing fits, or everything would topple, the world refuses with
-`execution_failed` before anything moves. In unverified mode there are no such checks:
+`no_room` before anything moves. In unverified mode there are no such checks:
 the arm carries the object up and over the target (whatever rests on it rides along or
 falls, see carry), puts it down where it can and physics decides what the graph becomes.
 """
@@ -141,7 +141,7 @@ class TabletopWorld(SimWorld):
         target = action.target
         if moved:
             return Violation(
-                action=action.model_dump(), constraint="execution_failed",
+                action=action.model_dump(), constraint="no_room",
                 message=f"lifting {action.object} would make {', '.join(moved)} slide or "
                         f"fall (it leans on {action.object}); nothing was moved",
                 blocking=moved, suggestion=f"move {moved[0]} away from {action.object} first")
@@ -150,7 +150,7 @@ class TabletopWorld(SimWorld):
         why = ("found no free place for" if outcome == "no_room" else
                "found only places that slide or topple for")
         return Violation(
-            action=action.model_dump(), constraint="execution_failed",
+            action=action.model_dump(), constraint="no_room",
             message=f"the simulator {why} {action.object} {action.relation} {target}{what}; "
                     "nothing was moved", blocking=carried,
             suggestion=(f"move {carried[0]} off {target} first, or choose another target"
