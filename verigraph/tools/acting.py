@@ -24,9 +24,8 @@ from verigraph.errors import PlanParseError
 from verigraph.graph.goal import Goal, GraphDiff
 from verigraph.graph.goal import check_goal as core_check_goal
 from verigraph.graph.model import SceneGraph
-from verigraph.graph.state import WorldState
 from verigraph.tools.context import ToolContext
-from verigraph.tools.episodes import check_goal_against
+from verigraph.tools.episodes import check_goal_against, stateless_source
 from verigraph.tools.errors import EpisodeStateError, ToolArgumentError
 from verigraph.tools.fields import (
     ActionInput,
@@ -34,10 +33,8 @@ from verigraph.tools.fields import (
     BoundedGraph,
     EpisodeId,
     SceneId,
-    builtin_scene,
     count_moves,
     parse_actions,
-    state_from_graph,
 )
 from verigraph.tools.store import TraceEntry
 
@@ -271,19 +268,8 @@ def _plan_actions(plan: str | list[ActionInput]) -> list[AnyAction]:
 def validate_plan(ctx: ToolContext, params: ValidatePlanInput) -> ValidationReport:
     """Per-step report for a plan; nothing is stored or modified."""
     actions = _plan_actions(params.plan)
-    goal = params.goal
-    state: WorldState
-    if params.episode_id is not None:
-        with ctx.store.use(params.episode_id) as episode:
-            state = episode.require_state().copy()
-            goal = goal or episode.goal
-    elif params.scene_id is not None:
-        graph, builtin_goal = builtin_scene(params.scene_id)
-        state = state_from_graph(graph)
-        goal = goal or builtin_goal
-    else:
-        assert params.graph is not None
-        state = state_from_graph(params.graph)
+    state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
+                                   graph=params.graph, goal=params.goal)
     if params.goal is not None:
         check_goal_against(params.goal, state, field="goal")
     return core_validate_plan(state, actions, goal, all_errors=params.all_errors)

@@ -261,6 +261,24 @@ def _with_dictionary(graph: SceneGraph, name: str | None) -> SceneGraph:
     return graph.model_copy(update={"dictionary": name})
 
 
+def stateless_source(ctx: ToolContext, *, episode_id: str | None, scene_id: str | None,
+                     graph: SceneGraph | None, goal: Goal | None
+                     ) -> tuple[WorldState, Goal | None]:
+    """The state (a copy) and goal named by a stateless tool's source arguments.
+
+    Exactly one of episode_id, scene_id and graph is set (the input models check it);
+    an explicit goal wins over the episode's or the built-in scene's.
+    """
+    if episode_id is not None:
+        with ctx.store.use(episode_id) as episode:
+            return episode.require_state().copy(), goal or episode.goal
+    if scene_id is not None:
+        scene, builtin_goal = builtin_scene(scene_id)
+        return state_from_graph(scene), goal or builtin_goal
+    assert graph is not None
+    return state_from_graph(graph), goal
+
+
 def check_goal_against(goal: Goal, state: WorldState | None, *, field: str) -> None:
     """A goal graph must be well formed and name only objects of the scene."""
     if goal.graph is None:

@@ -13,18 +13,15 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from verigraph.actions.model import Action, AnyAction
 from verigraph.actions.report import validate_plan
-from verigraph.graph.state import WorldState
 from verigraph.tools import optional
 from verigraph.tools.context import ToolContext
-from verigraph.tools.episodes import check_goal_against
+from verigraph.tools.episodes import check_goal_against, stateless_source
 from verigraph.tools.errors import FeatureUnavailableError, ToolArgumentError
 from verigraph.tools.fields import (
     BoundedGoal,
     BoundedGraph,
     EpisodeId,
     SceneId,
-    builtin_scene,
-    state_from_graph,
 )
 
 
@@ -78,19 +75,8 @@ def solve(ctx: ToolContext, params: SolveInput) -> SolveOutput:
                                       value=None, fix="plan with validate_action and "
                                                       "execute_actions feedback instead")
     search = optional.solver()
-    goal = params.goal
-    state: WorldState
-    if params.episode_id is not None:
-        with ctx.store.use(params.episode_id) as episode:
-            state = episode.require_state().copy()
-            goal = goal or episode.goal
-    elif params.scene_id is not None:
-        graph, builtin_goal = builtin_scene(params.scene_id)
-        state = state_from_graph(graph)
-        goal = goal or builtin_goal
-    else:
-        assert params.graph is not None
-        state = state_from_graph(params.graph)
+    state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
+                                   graph=params.graph, goal=params.goal)
     if goal is None:
         raise ToolArgumentError("there is no goal to solve for", field="goal", value=None,
                                 fix="pass goal, or call set_goal on the episode first")
