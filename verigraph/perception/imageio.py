@@ -1,0 +1,178 @@
+"""Reading images safely: sizes from the header before decoding, truncation detected.
+
+A 100 kB PNG can declare 50000x50000 pixels and take 7 GB to decode, so the width and
+height are read from the file header (PNG, JPEG, BMP, WebP) and checked against the
+limits first; formats whose header we cannot read are refused rather than trusted.
+A truncated PNG or JPEG decodes silently to a half-grey picture in OpenCV, so the end
+marker is checked too. Every failure is an `ImageInputError` naming the fix.
+"""
+
+from __future__ import annotations
+
+import struct
+from pathlib import Path
+
+import cv2
+import numpy as np
+
+from verigraph.errors import VeriGraphError
+from verigraph.perception.config import ImageLimits
+
+SUPPORTED = "PNG, JPEG, BMP or WebP"
+
+
+class ImageInputError(VeriGraphError):
+    """An image that cannot or may not be decoded (format, size, truncation)."""
+
+
+def image_size(data: bytes) -> tuple[str, int, int]:
+    """(format, width, height) from the header; ImageInputError if unreadable."""
+    if data[:8] == b"\x89PNG\r\n\x1a\n":
+        if len(data) < 24 or data[12:16] != b"IHDR":
+            raise _truncated("PNG")
+        w, h = struct.unpack(">II", data[16:24])
+        return "png", w, h
+    if data[:3] == b"\xff\xd8\xff":
+        return ("jpeg", *_jpeg_size(data))
+    if data[:2] == b"BM":
+        if len(data) < 26:
+            raise _truncated("BMP")
+        w, h = struct.unpack("<ii", data[18:26])
+        return "bmp", abs(w), abs(h)
+    if data[:4] == b"RIFF" and data[8:12] == b"WEBP":
+        return ("webp", *_webp_size(data))
+    raise ImageInputError(
+        "the data is not an image format perception reads", field="image",
+        value=data[:8].hex(), fix=f"give a {SUPPORTED} file")
+
+
+def _truncated(fmt: str) -> ImageInputError:
+    return ImageInputError(f"the {fmt} file is truncated (it ends before the image does)",
+                           field="image", value=fmt,
+                           fix="send the complete file; re-export it if it was cut off")
+
+
+def _jpeg_size(data: bytes) -> tuple[int, int]:
+    i = 2
+    while i + 4 <= len(data):
+        if data[i] != 0xFF:
+            i += 1
+            continue
+        marker = data[i + 1]
+        if marker in (0xD8, 0x01) or 0xD0 <= marker <= 0xD7 or marker == 0xFF:
+            i += 1 if marker == 0xFF else 2
+            continue
+        length = struct.unpack(">H", data[i + 2:i + 4])[0]
+        if 0xC0 <= marker <= 0xCF and marker not in (0xC4, 0xC8, 0xCC):
+            if i + 9 > len(data):
+                break
+            h, w = struct.unpack(">HH", data[i + 5:i + 9])
+            return w, h
+        i += 2 + length
+    raise _truncated("JPEG")
+
+
+def _webp_size(data: bytes) -> tuple[int, int]:
+    chunk = data[12:16]
+    if chunk == b"VP8 " and len(data) >= 30:
+        w, h = struct.unpack("<HH", data[26:30])
+        return w & 0x3FFF, h & 0x3FFF
+    if chunk == b"VP8L" and len(data) >= 25:
+        bits = int.from_bytes(data[21:25], "little")
+        return (bits & 0x3FFF) + 1, ((bits >> 14) & 0x3FFF) + 1
+    if chunk == b"VP8X" and len(data) >= 30:
+        return (int.from_bytes(data[24:27], "little") + 1,
+                int.from_bytes(data[27:30], "little") + 1)
+    raise _truncated("WebP")
+
+
+def check_size(width: int, height: int, limits: ImageLimits) -> None:
+    """Refuse images outside the configured limits (before any pixel is decoded)."""
+    if width <= 0 or height <= 0:
+        raise ImageInputError(f"the image header declares {width}x{height} pixels",
+                              field="image", value=f"{width}x{height}",
+                              fix="give an image with a valid header")
+    if width * height > limits.max_pixels or max(width, height) > limits.max_side:
+        raise ImageInputError(
+            f"the image is {width}x{height} pixels, more than perception accepts "
+            f"({limits.max_pixels} pixels, {limits.max_side} px per side)", field="image",
+            value=f"{width}x{height}",
+            fix="downscale it (1024 px on the long side is plenty), or raise "
+                "ImageLimits.max_pixels / max_side if you trust the source")
+    if min(width, height) < limits.min_side:
+        raise ImageInputError(
+            f"the image is {width}x{height} pixels, too small to perceive objects in",
+            field="image", value=f"{width}x{height}",
+            fix=f"give an image at least {limits.min_side} px on each side")
+
+
+def _check_complete(fmt: str, data: bytes) -> None:
+    if fmt == "png" and b"IEND" not in data[-64:]:
+        raise _truncated("PNG")
+    if fmt == "jpeg" and b"\xff\xd9" not in data[-64:]:
+        raise _truncated("JPEG")
+
+
+def decode_image(data: bytes, limits: ImageLimits | None = None) -> np.ndarray:
+    """BGR uint8 pixels of an encoded image, checked against the limits first."""
+    limits = limits or ImageLimits()
+    if not data:
+        raise ImageInputError("the image is empty (0 bytes)", field="image", value="",
+                              fix=f"give a {SUPPORTED} file")
+    if len(data) > limits.max_bytes:
+        raise ImageInputError(
+            f"the image file is {len(data)} bytes, more than {limits.max_bytes}",
+            field="image", value=len(data),
+            fix="compress or downscale it, or raise ImageLimits.max_bytes")
+    fmt, width, height = image_size(data)
+    check_size(width, height, limits)
+    _check_complete(fmt, data)
+    image = cv2.imdecode(np.frombuffer(data, dtype=np.uint8), cv2.IMREAD_COLOR)
+    if image is None or image.size == 0:
+        raise ImageInputError(f"the {fmt.upper()} data is corrupt and cannot be decoded",
+                              field="image", value=data[:8].hex(),
+                              fix="re-export the image and send it again")
+    return np.asarray(image, dtype=np.uint8)
+
+
+def read_image(path: str | Path, limits: ImageLimits | None = None) -> np.ndarray:
+    """Decode an image file (size-checked before it is read in full)."""
+    limits = limits or ImageLimits()
+    p = Path(path)
+    if not p.is_file():
+        raise ImageInputError(f"no image file at {p}", field="image", value=str(p),
+                              fix="check the path")
+    size = p.stat().st_size
+    if size > limits.max_bytes:
+        raise ImageInputError(f"{p.name} is {size} bytes, more than {limits.max_bytes}",
+                              field="image", value=str(p),
+                              fix="compress or downscale it, or raise ImageLimits.max_bytes")
+    return decode_image(p.read_bytes(), limits)
+
+
+def as_bgr(image: object, limits: ImageLimits | None = None) -> np.ndarray:
+    """A BGR uint8 array from an array (grey, BGR or BGRA), encoded bytes or a path."""
+    limits = limits or ImageLimits()
+    if isinstance(image, bytes | bytearray | memoryview):
+        return decode_image(bytes(image), limits)
+    if isinstance(image, str | Path):
+        return read_image(image, limits)
+    if not isinstance(image, np.ndarray):
+        raise ImageInputError(f"cannot perceive a {type(image).__name__}", field="image",
+                              value=type(image).__name__,
+                              fix="pass a BGR uint8 array, encoded image bytes or a path")
+    if image.dtype != np.uint8:
+        raise ImageInputError(f"image pixels are {image.dtype}, not uint8", field="image",
+                              value=str(image.dtype),
+                              fix="convert with image.astype(numpy.uint8) after scaling to "
+                                  "0-255")
+    if image.ndim == 2:
+        image = cv2.cvtColor(image, cv2.COLOR_GRAY2BGR)
+    elif image.ndim == 3 and image.shape[2] == 4:
+        image = cv2.cvtColor(image, cv2.COLOR_BGRA2BGR)
+    elif image.ndim != 3 or image.shape[2] != 3:
+        raise ImageInputError(f"image array has shape {image.shape}", field="image",
+                              value=str(image.shape),
+                              fix="pass an (height, width, 3) BGR array")
+    check_size(image.shape[1], image.shape[0], limits)
+    return np.ascontiguousarray(image)

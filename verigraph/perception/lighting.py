@@ -1,0 +1,115 @@
+"""Undo uneven lighting before colours are classified.
+
+A brighter lamp or a shadow gradient multiplies every channel by a smooth gain, which
+moves a grey counter towards a silver pot. The background and the floor have known
+colours, so the gain is measured where they show (on a small thumbnail, so noise
+averages out) and fitted as a plane `g(x, y) = a + b*x + c*y` with outliers dropped
+(objects that happen to share the background's hue). Clipped pixels say nothing about
+the gain and are left out. When too little background shows, nothing is corrected.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import cv2
+import numpy as np
+
+THUMB = 8  # thumbnail is 1/THUMB of the image in each direction
+MIN_SAMPLES = 40
+CHROMA_TOLERANCE = 0.04
+RANSAC_TRIALS = 60
+RANSAC_SUBSET = 600
+INLIER_TOLERANCE = 0.015
+CLIPPED = 248
+NEUTRAL = 0.03  # gains this close to 1 everywhere are left alone
+
+
+@dataclass(frozen=True, slots=True)
+class GainField:
+    """g(x, y) = a + b * (x / w - 0.5) + c * (y / h - 0.5); identity when a=1, b=c=0."""
+
+    a: float = 1.0
+    b: float = 0.0
+    c: float = 0.0
+    samples: int = 0
+
+    @property
+    def is_identity(self) -> bool:
+        return abs(self.a - 1) + (abs(self.b) + abs(self.c)) / 2 < NEUTRAL
+
+    def at(self, u: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """Gain at image coordinates given as fractions of width and height."""
+        return self.a + self.b * (u - 0.5) + self.c * (v - 0.5)
+
+
+def estimate_gain(image: np.ndarray, references: list[tuple[int, int, int]]) -> GainField:
+    """Fit the gain plane from pixels that look like one of the reference colours."""
+    h, w = image.shape[:2]
+    size = (max(1, w // THUMB), max(1, h // THUMB))
+    small = cv2.resize(image, size, interpolation=cv2.INTER_AREA).astype(np.float32)
+    clipped = cv2.resize((channel_max(image) >= CLIPPED).astype(np.uint8), size,
+                         interpolation=cv2.INTER_AREA) > 0
+    sh, sw = small.shape[:2]
+    vv, uu = np.mgrid[0:sh, 0:sw].astype(np.float32)
+    uu = (uu + 0.5) / sw - 0.5
+    vv = (vv + 0.5) / sh - 0.5
+    us, vs, gs = [], [], []
+    for ref in references:
+        ratio = small / np.array(ref, dtype=np.float32)
+        gain = ratio.mean(axis=2)
+        spread = np.abs(ratio - gain[:, :, None]).max(axis=2)
+        ok = ~clipped & (spread < CHROMA_TOLERANCE * gain) & (gain > 0.4) & (gain < 1.8)
+        us.append(uu[ok])
+        vs.append(vv[ok])
+        gs.append(gain[ok])
+    u, v, g = np.concatenate(us), np.concatenate(vs), np.concatenate(gs)
+    if len(g) < MIN_SAMPLES:
+        return GainField(samples=int(len(g)))
+    design = np.stack([np.ones(len(g)), u, v], axis=1)
+    keep = _ransac_inliers(design, g, RANSAC_SUBSET)
+    if keep.sum() < MIN_SAMPLES:
+        return GainField(samples=int(keep.sum()))
+    coef, *_ = np.linalg.lstsq(design[keep], g[keep], rcond=None)
+    return GainField(float(coef[0]), float(coef[1]), float(coef[2]), int(keep.sum()))
+
+
+def _ransac_inliers(design: np.ndarray, g: np.ndarray, subset: int) -> np.ndarray:
+    """Samples on the plane most samples agree with (objects that mimic the background's
+    hue, such as a grey counter, form a smaller plane of their own and are dropped)."""
+    rng = np.random.default_rng(0)
+    scored = rng.choice(len(g), size=min(subset, len(g)), replace=False)
+    best_coef, best_count = None, -1
+    for trial in rng.integers(0, len(g), size=(RANSAC_TRIALS, 3)):
+        a = design[trial]
+        if abs(float(np.linalg.det(a))) < 1e-6:
+            continue
+        coef = np.linalg.solve(a, g[trial])
+        count = int((np.abs(design[scored] @ coef - g[scored]) < INLIER_TOLERANCE).sum())
+        if count > best_count:
+            best_coef, best_count = coef, count
+    if best_coef is None:
+        return np.zeros(len(g), dtype=bool)
+    return np.asarray(np.abs(design @ best_coef - g) < INLIER_TOLERANCE)
+
+
+def correct(image: np.ndarray, gain: GainField) -> np.ndarray:
+    """The image divided by the gain field (unchanged when the field is the identity)."""
+    if gain.is_identity:
+        return image
+    h, w = image.shape[:2]
+    u = (np.arange(w, dtype=np.float32) + 0.5) / w
+    v = (np.arange(h, dtype=np.float32) + 0.5) / h
+    field = gain.at(u[None, :], v[:, None]).astype(np.float32)
+    inverse = 1.0 / np.clip(field, 0.2, 5.0)
+    out = cv2.multiply(image.astype(np.float32), cv2.merge([inverse, inverse, inverse]))
+    result = np.clip(out, 0, 255).astype(np.uint8)
+    # A clipped pixel only says "at least this bright": keep it as it is.
+    clipped = (channel_max(image) >= CLIPPED).view(np.uint8)
+    return np.asarray(cv2.copyTo(image, clipped, result))
+
+
+def channel_max(image: np.ndarray) -> np.ndarray:
+    """Brightest channel per pixel (OpenCV's max is ten times numpy's on 3 channels)."""
+    b, g, r = cv2.split(image)
+    return np.asarray(cv2.max(cv2.max(b, g), r))

@@ -1,0 +1,178 @@
+"""Relations `on` and `in` from pixels, by the simulator's own readback rules.
+
+For every object the direct supporter is what lies right under its bottom edge (within
+two outline widths), preferring the one under its centre, as physics prefers the
+contact under the centre of mass. The relation then follows the rules of
+`sim2d.readback`, with a container's cavity taken as its convex hull: resting on a
+surface is `on` unless the centre sits inside that object's cavity; resting on a
+container is `in`; resting on something that is neither (a spoon) is `in` the smallest
+container around the centre, else whatever that thing rests on.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import cv2
+import numpy as np
+
+from verigraph.perception.tabletop import Detection
+
+NOTHING, FLOOR_ID = 0, -1
+UNDER_TOLERANCE = 2.0
+
+
+@dataclass(frozen=True, slots=True)
+class DirectSupport:
+    """What an object rests on: another detection's index, the floor, or nothing."""
+
+    supporter: int | None
+    on_floor: bool = False
+
+
+def label_map(shape: tuple[int, int], detections: Sequence[Detection],
+              floor_row: int | None) -> np.ndarray:
+    """int32 map: detection index + 1 per pixel, FLOOR_ID below the floor line, else 0."""
+    out = np.zeros(shape, dtype=np.int32)
+    if floor_row is not None:
+        out[floor_row:, :] = FLOOR_ID
+    for i, d in enumerate(detections):
+        r = d.region
+        view = out[r.y0:r.y1, r.x0:r.x1]
+        view[r.mask] = i + 1
+    return out
+
+
+def direct_support(index: int, detections: Sequence[Detection], labels: np.ndarray,
+                   gap: int) -> DirectSupport:
+    """Scan down from every bottom pixel of the object for the first other thing."""
+    r = detections[index].region
+    rows = r.mask.shape[0]
+    # Lowest pixel of the object in each column (columns without pixels are skipped).
+    has = r.mask.any(axis=0)
+    lowest = rows - 1 - np.argmax(r.mask[::-1, :], axis=0)
+    cols = np.nonzero(has)[0]
+    if len(cols) == 0:
+        return DirectSupport(None)
+    h = labels.shape[0]
+    found: dict[int, list[int]] = {}
+    for step in range(1, gap + 1):
+        ys = r.y0 + lowest[cols] + step
+        ok = ys < h
+        if not ok.any():
+            break
+        xs = r.x0 + cols
+        hits = np.zeros(len(cols), dtype=np.int32)
+        hits[ok] = labels[ys[ok], xs[ok]]
+        new = (hits != NOTHING) & (hits != index + 1)
+        for c, v in zip(cols[new], hits[new], strict=True):
+            found.setdefault(int(v), []).append(int(c))
+        cols = cols[~new]
+        if len(cols) == 0:
+            break
+    if not found:
+        return DirectSupport(None)
+    com_x = detections[index].region.centroid()[0] - r.x0
+    near = max(UNDER_TOLERANCE, 0.1 * r.width)
+    best: tuple[tuple[bool, int], int] | None = None
+    for value, columns in found.items():
+        cs = np.asarray(columns)
+        # Columns, not their span: blur can leave a sliver of the table's colour on
+        # both sides of a block, which spans everything but touches little.
+        score = (bool(np.any(np.abs(cs - com_x) <= near)), len(cs))
+        if best is None or score > best[0]:
+            best = (score, value)
+    assert best is not None
+    value = best[1]
+    if value == FLOOR_ID:
+        return DirectSupport(None, on_floor=True)
+    return DirectSupport(value - 1)
+
+
+class Cavities:
+    """Convex hulls of containers: a point inside one is inside its cavity."""
+
+    def __init__(self, detections: Sequence[Detection], tolerance: float) -> None:
+        self.tolerance = tolerance
+        self.bottoms = [d.region.y1 for d in detections]
+        self.hulls: dict[int, tuple[np.ndarray, float]] = {}
+        for i, d in enumerate(detections):
+            if d.model.container:
+                hull = cv2.convexHull(d.region.points())
+                self.hulls[i] = (hull, float(cv2.contourArea(hull)))
+
+    def holds(self, container: int, point: tuple[float, float]) -> bool:
+        entry = self.hulls.get(container)
+        if entry is None:
+            return False
+        dist = cv2.pointPolygonTest(entry[0], (float(point[0]), float(point[1])), True)
+        return bool(dist >= -self.tolerance)
+
+    def innermost(self, point: tuple[float, float], exclude: int) -> int | None:
+        """The innermost container around a point of object `exclude` (the one standing
+        highest: a pot in a pan is inside the pan), among those whose bottom is below the
+        object's (what a container stands in cannot be inside it)."""
+        inside = [(self.bottoms[i], area, i) for i, (_, area) in self.hulls.items()
+                  if i != exclude and self.bottoms[exclude] < self.bottoms[i]
+                  and self.holds(i, point)]
+        return min(inside)[2] if inside else None
+
+
+def infer_supports(detections: Sequence[Detection], labels: np.ndarray, *, gap: int,
+                   cavity_tolerance: float) -> dict[int, tuple[str, int]]:
+    """(relation, supporter index) for every detection that rests on or in another."""
+    direct = [direct_support(i, detections, labels, gap) for i in range(len(detections))]
+    cavities = Cavities(detections, cavity_tolerance)
+    centres = [d.region.centroid() for d in detections]
+    for i, d in enumerate(direct):
+        # A container's floor can hide under outlines in a small render: an object whose
+        # centre is in a cavity, found resting on something outside that cavity, rests
+        # on the container's (unseen) floor.
+        holder = cavities.innermost(centres[i], exclude=i)
+        if holder is None or d.supporter == holder or detections[i].model.fixed:
+            continue
+        if d.supporter is not None and cavities.holds(d.supporter, centres[i]):
+            continue  # resting inside another container that the scan did reach
+        if d.supporter is None or not cavities.holds(holder, centres[d.supporter]):
+            direct[i] = DirectSupport(holder)
+    resolved: dict[int, tuple[str, int] | None] = {}
+
+    def relation_to(obj: int, sup: int) -> str | None:
+        model = detections[sup].model
+        if model.container and cavities.holds(sup, centres[obj]):
+            return "in"
+        if model.surface:
+            return "on"
+        if model.container:
+            return "in"
+        return None
+
+    def resolve(obj: int, visiting: set[int]) -> tuple[str, int] | None:
+        if obj in resolved:
+            return resolved[obj]
+        if obj in visiting:
+            return None
+        visiting.add(obj)
+        result: tuple[str, int] | None = None
+        sup = direct[obj].supporter
+        if sup is not None:
+            rel = relation_to(obj, sup)
+            if rel is not None:
+                result = (rel, sup)
+            else:
+                holder = cavities.innermost(centres[obj], exclude=obj)
+                result = ("in", holder) if holder is not None else resolve(sup, visiting)
+        elif not direct[obj].on_floor:
+            holder = cavities.innermost(centres[obj], exclude=obj)
+            result = ("in", holder) if holder is not None else None
+        visiting.discard(obj)
+        resolved[obj] = result
+        return result
+
+    out = {}
+    for i in range(len(detections)):
+        rel = resolve(i, set())
+        if rel is not None:
+            out[i] = rel
+    return out

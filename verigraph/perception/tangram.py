@@ -1,0 +1,141 @@
+"""Tangram detector (top view): seven coloured pieces, their sides and their contacts.
+
+Each piece colour is one piece. Its pixels give a convex outline, which
+`cv2.approxPolyN` reduces to the piece's number of corners; the corners are ordered
+clockwise from the canonical vertex, the exact piece model is fitted onto them, and
+every pair of facing, collinear, overlapping sides becomes a `touches` edge with both
+side indices.
+"""
+
+from __future__ import annotations
+
+import math
+
+import cv2
+import numpy as np
+
+from verigraph.graph.dictionary import Dictionary
+from verigraph.graph.model import Edge, Node, SceneGraph
+from verigraph.perception import colors, lighting
+from verigraph.perception.catalogue import ObjectModel
+from verigraph.perception.config import PerceptionConfig
+from verigraph.perception.labelling import Labeller
+from verigraph.perception.regions import Region, colour_fragments
+from verigraph.perception.result import PerceptionResult
+from verigraph.perception.tangram_sides import (
+    PlacedPiece,
+    canonical_start,
+    clockwise,
+    contacts,
+    fit_model,
+    to_world,
+)
+from verigraph.sim2d import palette
+from verigraph.sim2d.tangram_geometry import piece_model, signed_area
+
+MAX_FIT_ERROR = 0.35  # RMS corner error (world units) before a shape is called odd
+
+
+def piece_models(dictionary: Dictionary) -> list[ObjectModel]:
+    """The tangram pieces of a dictionary as labeller candidates."""
+    out = []
+    for label, props in sorted(dictionary.objects.items()):
+        if props.sides is None or not props.color:
+            continue
+        try:
+            model = piece_model(label)
+        except KeyError:
+            continue
+        xs, ys = [x for x, _ in model], [y for _, y in model]
+        perimeter = sum(math.dist(model[i], model[(i + 1) % len(model)])
+                        for i in range(len(model)))
+        out.append(ObjectModel(label=label, colour=props.color.strip().lower(),
+                               fixed=False, width=max(xs) - min(xs), height=max(ys) - min(ys),
+                               area=abs(signed_area(model)), perimeter=perimeter,
+                               container=False, surface=False, own_colour=True))
+    return out
+
+
+def _largest_per_colour(fragments: list[Region]) -> dict[int, Region]:
+    best: dict[int, Region] = {}
+    for r in fragments:
+        if r.cls not in best or r.area > best[r.cls].area:
+            best[r.cls] = r
+    return best
+
+
+def outline(region: Region, sides: int) -> np.ndarray | None:
+    """Convex polygon with `sides` corners around a region, in pixel coordinates."""
+    pts = region.points().astype(np.float32)
+    if len(pts) < sides:
+        return None
+    hull = cv2.convexHull(pts)
+    poly = cv2.approxPolyN(hull, sides, epsilon_percentage=-1, ensure_convex=True)
+    poly = np.asarray(poly, dtype=np.float64).reshape(-1, 2)
+    if len(poly) != sides:
+        return None
+    return poly + 0.5  # pixel centres -> pixel area
+
+
+def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: PerceptionConfig,
+                     labeller: Labeller) -> PerceptionResult:
+    """What a top-view tangram image shows."""
+    warnings: list[str] = []
+    models = piece_models(dictionary)
+    if not models:
+        raise ValueError("the dictionary has no tangram pieces with known shapes")
+    gain = lighting.estimate_gain(image, [palette.TANGRAM_BACKGROUND])
+    corrected = lighting.correct(image, gain)
+    colour_names = tuple(sorted({m.colour for m in models}))
+    table = colors.colour_table(colour_names, tangram=True)
+    classes = colors.classify(corrected, table)
+    fragments = colour_fragments(corrected, classes, table, min_core=config.min_core_pixels)
+    pieces = _largest_per_colour(fragments)
+    found: list[tuple[ObjectModel, np.ndarray]] = []
+    for cls, region in sorted(pieces.items()):
+        colour = table.names[cls]
+        model, _ = labeller.choose(corrected, region, colour, models, 0.0)
+        poly = outline(region, len(piece_model(model.label)))
+        if poly is None:
+            warnings.append(f"the {colour} region does not look like a {model.label}")
+            continue
+        found.append((model, poly))
+    scale = _scale(found)
+    placed: dict[str, PlacedPiece] = {}
+    for model, poly in found:
+        if scale <= 0:
+            break
+        corners = clockwise(to_world(poly, scale))
+        start, flipped = canonical_start(model.label, corners)
+        corners = np.roll(corners, -start, axis=0)
+        piece = fit_model(model.label, corners)
+        if flipped:
+            warnings.append(f"{model.label} looks mirrored; tangram pieces are never flipped")
+        if piece.fit_error > MAX_FIT_ERROR:
+            warnings.append(f"{model.label} fits its shape poorly "
+                            f"({piece.fit_error:.2f} units off)")
+        placed[model.label] = piece
+    ids = sorted(placed)
+    edges = []
+    for i, a in enumerate(ids):
+        for b in ids[i + 1:]:
+            for sa, sb in contacts(placed[a], placed[b],
+                                   max_angle=math.radians(config.side_angle_degrees),
+                                   max_distance=config.side_distance,
+                                   min_overlap=config.side_overlap):
+                edges.append(Edge(source=a, relation="touches", target=b, source_side=sa,
+                                  target_side=sb))
+    by_label = {m.label: m for m, _ in found}
+    nodes = [Node(id=p, label=p, attrs={"color": by_label[p].colour}) for p in ids]
+    if not nodes:
+        warnings.append("no tangram pieces were found in the image")
+    graph = SceneGraph(nodes=nodes, edges=edges, dictionary="tangram").canonical()
+    return PerceptionResult(graph=graph, view="tangram", family="tangram",
+                            labeller=labeller.name, warnings=warnings, scale=scale)
+
+
+def _scale(found: list[tuple[ObjectModel, np.ndarray]]) -> float:
+    """Pixels per world unit: the median over pieces of sqrt(pixel area / model area)."""
+    ratios = [math.sqrt(abs(float(cv2.contourArea(poly.astype(np.float32)))) / m.area)
+              for m, poly in found if m.area > 0]
+    return float(np.median(ratios)) if ratios else 0.0
