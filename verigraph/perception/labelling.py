@@ -46,13 +46,15 @@ class Shape:
 
 
 class Labeller(Protocol):
-    """Chooses the dictionary object a region shows."""
+    """Chooses the dictionary object each region shows."""
 
     name: str
 
-    def choose(self, image: np.ndarray, region: Region, colour: str,
-               models: Sequence[ObjectModel], scale: float) -> tuple[ObjectModel, float]:
-        """The best model for the region and a confidence in [0, 1]."""
+    def label(self, image: np.ndarray, regions: Sequence[Region], colours: Sequence[str],
+              models: Sequence[ObjectModel], scale: float) -> list[tuple[ObjectModel, float]]:
+        """For each region (with the colour class segmentation gave it), the best model
+        and a confidence in [0, 1]. All regions of an image come in one call, so a
+        network labeller can batch them."""
         ...
 
 
@@ -72,6 +74,11 @@ class ColourShapeLabeller:
     """The default labeller: colour class first, then size and hollowness."""
 
     name = "colour-shape"
+
+    def label(self, image: np.ndarray, regions: Sequence[Region], colours: Sequence[str],
+              models: Sequence[ObjectModel], scale: float) -> list[tuple[ObjectModel, float]]:
+        return [self.choose(image, r, c, models, scale)
+                for r, c in zip(regions, colours, strict=True)]
 
     def choose(self, image: np.ndarray, region: Region, colour: str,
                models: Sequence[ObjectModel], scale: float) -> tuple[ObjectModel, float]:

@@ -21,7 +21,8 @@ from verigraph.perception.config import PerceptionConfig
 from verigraph.perception.graphing import assign_ids, tabletop_graph
 from verigraph.perception.imageio import as_bgr
 from verigraph.perception.labelling import ColourShapeLabeller, Labeller
-from verigraph.perception.result import PerceptionResult
+from verigraph.perception.noise import denoise
+from verigraph.perception.result import DetectedObject, PerceptionResult
 from verigraph.perception.support import infer_supports, label_map
 from verigraph.perception.tabletop import detect_tabletop
 from verigraph.perception.tangram import perceive_tangram
@@ -42,7 +43,7 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
     start = time.perf_counter()
     config = config or DEFAULT_CONFIG
     labeller = labeller or DEFAULT_LABELLER
-    bgr = as_bgr(image, config.limits)
+    bgr = denoise(as_bgr(image, config.limits))
     d = load_dictionary(dictionary) if not isinstance(dictionary, Dictionary) else dictionary
     view = choose_view(bgr, d, config.view)
     if view == "tangram":
@@ -78,8 +79,12 @@ def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
     graph = tabletop_graph(detections, supports, name)
     problems = check_well_formed(graph, d)
     warnings += [f"perceived graph: {p.message}" for p in problems]
+    objects = [DetectedObject(id=det.id, label=det.label, colour=det.colour,
+                              box=(det.region.x0, det.region.y0, det.region.x1, det.region.y1),
+                              score=det.score) for det in detections]
     return PerceptionResult(graph=graph, view="tabletop", family=family,
-                            labeller=labeller.name, warnings=warnings, scale=scene.scale)
+                            labeller=labeller.name, objects=objects, warnings=warnings,
+                            scale=scene.scale)
 
 
 def perceive(image: Any, dictionary: Dictionary | str | None = None, task: str | None = None,

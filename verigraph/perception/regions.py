@@ -78,8 +78,9 @@ class Region:
 
 def core_area(mask: np.ndarray) -> int:
     """Pixels left after a one-pixel erosion (0 for lines at most two pixels thick)."""
-    padded = np.pad(mask.view(np.uint8), 1)
-    return int(np.count_nonzero(cv2.erode(padded, KERNEL3)))
+    eroded = cv2.erode(mask.view(np.uint8), KERNEL3, borderType=cv2.BORDER_CONSTANT,
+                       borderValue=0)
+    return int(np.count_nonzero(eroded))
 
 
 def _solid(piece: np.ndarray, pixels: np.ndarray, table: ColourTable, min_core: int) -> bool:
@@ -101,8 +102,8 @@ def colour_fragments(image: np.ndarray, classes: np.ndarray, table: ColourTable,
     out: list[Region] = []
     for i in range(1, n):
         x, y, w, h, area = (int(v) for v in stats[i])
-        if area < min_core:
-            continue
+        if area < min(min_core, PURE_PIXELS):
+            continue  # noise specks: too small for either test in _solid
         comp = labels[y:y + h, x:x + w] == i
         crop = classes[y:y + h, x:x + w]
         counts = np.bincount(crop[comp], minlength=len(table.names))

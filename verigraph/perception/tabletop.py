@@ -168,18 +168,18 @@ def detect_tabletop(image: np.ndarray, classes: np.ndarray, table: ColourTable,
         fragments += bright_objects(pockets, image, table, models, scale)
     objects = assemble(fragments, table, models, scale)
     all_models = [m for ms in models.values() for m in ms]
+    objects = [r for r in objects if table.names[r.cls] in models]
+    labels = labeller.label(image, objects, [table.names[r.cls] for r in objects],
+                            all_models, scale)
     detections = []
-    for region in objects:
-        colour = table.names[region.cls]
-        if colour not in models:
-            continue
-        model, score = labeller.choose(image, region, colour, all_models, scale)
+    for region, (model, score) in zip(objects, labels, strict=True):
         if not model.fixed and scale > 0 and \
                 region.area < config.min_visible_fraction * model.area * scale * scale:
             continue  # specks of an object colour (noise, blurred edges of others)
         if model.fixed and not _solid_furniture(region, scale):
             continue  # a sliver in a furniture colour (JPEG bleeding, blurred edges)
-        detections.append(Detection(region=region, colour=colour, model=model, score=score))
+        detections.append(Detection(region=region, colour=model.colour, model=model,
+                                    score=score))
     unknown = _unknown_regions(classes, config)
     if unknown:
         warnings.append(f"{unknown} region(s) have colours no dictionary object is drawn "

@@ -21,7 +21,7 @@ from verigraph.perception.catalogue import ObjectModel
 from verigraph.perception.config import PerceptionConfig
 from verigraph.perception.labelling import Labeller
 from verigraph.perception.regions import Region, colour_fragments
-from verigraph.perception.result import PerceptionResult
+from verigraph.perception.result import DetectedObject, PerceptionResult
 from verigraph.perception.tangram_sides import (
     PlacedPiece,
     canonical_start,
@@ -92,9 +92,18 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
     fragments = colour_fragments(corrected, classes, table, min_core=config.min_core_pixels)
     pieces = _largest_per_colour(fragments)
     found: list[tuple[ObjectModel, np.ndarray]] = []
-    for cls, region in sorted(pieces.items()):
-        colour = table.names[cls]
-        model, _ = labeller.choose(corrected, region, colour, models, 0.0)
+    regions = [pieces[c] for c in sorted(pieces)]
+    colours = [table.names[c] for c in sorted(pieces)]
+    labels = labeller.label(corrected, regions, colours, models, 0.0)
+    objects: dict[str, DetectedObject] = {}
+    for region, colour, (model, score) in zip(regions, colours, labels, strict=True):
+        if model.label in objects:
+            warnings.append(f"two regions look like {model.label}; kept the first")
+            continue
+        objects[model.label] = DetectedObject(id=model.label, label=model.label,
+                                              colour=model.colour,
+                                              box=(region.x0, region.y0, region.x1, region.y1),
+                                              score=score)
         poly = outline(region, len(piece_model(model.label)))
         if poly is None:
             warnings.append(f"the {colour} region does not look like a {model.label}")
@@ -131,7 +140,8 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
         warnings.append("no tangram pieces were found in the image")
     graph = SceneGraph(nodes=nodes, edges=edges, dictionary="tangram").canonical()
     return PerceptionResult(graph=graph, view="tangram", family="tangram",
-                            labeller=labeller.name, warnings=warnings, scale=scale)
+                            labeller=labeller.name, objects=[objects[p] for p in ids],
+                            warnings=warnings, scale=scale)
 
 
 def _scale(found: list[tuple[ObjectModel, np.ndarray]]) -> float:
