@@ -47,9 +47,10 @@ class PerceptionConfig(BaseModel):
     side_angle_degrees: float = Field(default=6.0, gt=0, le=45,
                                       description="tangram: largest angle between touching "
                                                   "sides")
-    side_distance: float = Field(default=0.3, gt=0, description="tangram: largest offset "
-                                                                "between touching sides, in "
-                                                                "small-triangle leg units / 4")
+    side_distance: float = Field(default=0.3, gt=0,
+                                 description="tangram: largest offset between touching "
+                                             "sides, in world units (a small triangle's "
+                                             "leg is 4)")
     side_overlap: float = Field(default=0.25, gt=0, le=1,
                                 description="tangram: shared length as a fraction of the "
                                             "shorter side")

@@ -18,6 +18,7 @@ from verigraph.perception.colors import BACKGROUND, DARK, FIRST_OBJECT, ColourTa
 KERNEL3 = np.ones((3, 3), np.uint8)
 PURE = 8  # Lab distance of a pixel that shows its colour unmixed
 PURE_PIXELS = 10
+BORDER_POCKET_SHARE = 0.01
 THICK_CORE_SHARE = 0.5  # a thick region keeps half its pixels under a 1-px erosion
 
 
@@ -178,8 +179,9 @@ def enclosed_bright(image: np.ndarray, classes: np.ndarray, table: ColourTable, 
     out = []
     for i in range(1, n):
         x, y, w, h, area = (int(v) for v in stats[i])
-        if x == 0 or y == 0 or x + w >= w_img or y + h >= h_img:
-            continue
+        if (x == 0 or y == 0 or x + w >= w_img or y + h >= h_img) and \
+                area > BORDER_POCKET_SHARE * h_img * w_img:
+            continue  # the background itself (an object cut by the frame is small)
         comp = labels[y:y + h, x:x + w] == i
         if area >= 2 * min_core or _pure_bright(comp, image[y:y + h, x:x + w],
                                                 classes[y:y + h, x:x + w], table):

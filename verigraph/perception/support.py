@@ -109,6 +109,10 @@ class Cavities:
         dist = cv2.pointPolygonTest(entry[0], (float(point[0]), float(point[1])), True)
         return bool(dist >= -self.tolerance)
 
+    def nested(self, inner: int, outer: int, centres: Sequence[tuple[float, float]]) -> bool:
+        """Whether object `inner` stands inside container `outer`."""
+        return self.bottoms[inner] < self.bottoms[outer] and self.holds(outer, centres[inner])
+
     def innermost(self, point: tuple[float, float], exclude: int) -> int | None:
         """The innermost container around a point of object `exclude` (the one standing
         highest: a pot in a pan is inside the pan), among those whose bottom is below the
@@ -127,15 +131,14 @@ def infer_supports(detections: Sequence[Detection], labels: np.ndarray, *, gap: 
     centres = [d.region.centroid() for d in detections]
     for i, d in enumerate(direct):
         # A container's floor can hide under outlines in a small render: an object whose
-        # centre is in a cavity, found resting on something outside that cavity, rests
-        # on the container's (unseen) floor.
+        # centre is in a cavity rests in that container, unless what it was found
+        # resting on stands inside the container too (a cup on a plate in a bowl).
         holder = cavities.innermost(centres[i], exclude=i)
         if holder is None or d.supporter == holder or detections[i].model.fixed:
             continue
-        if d.supporter is not None and cavities.holds(d.supporter, centres[i]):
-            continue  # resting inside another container that the scan did reach
-        if d.supporter is None or not cavities.holds(holder, centres[d.supporter]):
-            direct[i] = DirectSupport(holder)
+        if d.supporter is not None and cavities.nested(d.supporter, holder, centres):
+            continue
+        direct[i] = DirectSupport(holder)
     resolved: dict[int, tuple[str, int] | None] = {}
 
     def relation_to(obj: int, sup: int) -> str | None:

@@ -16,7 +16,7 @@ import cv2
 import numpy as np
 
 from verigraph.perception.catalogue import ObjectModel
-from verigraph.perception.colors import FLOOR, UNKNOWN, ColourTable
+from verigraph.perception.colors import BACKGROUND, FLOOR, UNKNOWN, ColourTable
 from verigraph.perception.config import PerceptionConfig
 from verigraph.perception.labelling import Labeller
 from verigraph.perception.regions import (
@@ -31,6 +31,7 @@ from verigraph.sim2d.bodies import FURNITURE_TOP
 FLOOR_ROW_FRACTION = 0.3
 MERGE_SLACK = 1.2
 MERGE_PIXELS = 4.0
+CLIPPED_MEAN = 248.0
 
 
 @dataclass(slots=True)
@@ -133,19 +134,28 @@ def assemble(fragments: list[Region], table: ColourTable,
 
 def bright_objects(candidates: list[Region], image: np.ndarray, table: ColourTable,
                    models: dict[str, list[ObjectModel]], scale: float) -> list[Region]:
-    """Enclosed background-coloured areas that have the size of a white/silver object."""
+    """Enclosed background-coloured areas that are white/silver objects: closer to the
+    object's colour than to the background's, and no larger than the object. A pocket
+    whose pixels are all clipped says nothing about its colour; it must at least be
+    half as long as the object."""
+    options = [c for c in table.bright if table.names[c] in models]
+    if not options:
+        return []
     out = []
     for region in candidates:
         pixels = image[region.y0:region.y1, region.x0:region.x1][region.mask]
-        mean = pixels.reshape(-1, 3).mean(axis=0)
-        options = [c for c in table.bright if table.names[c] in models]
-        if not options:
+        mean = pixels.reshape(-1, 3).astype(np.float32).mean(axis=0)
+        best = min([BACKGROUND, *options],
+                   key=lambda c: float(np.linalg.norm(mean - np.array(table.bgr[c]))))
+        if best == BACKGROUND:
             continue
-        best = min(options, key=lambda c: float(np.linalg.norm(mean - np.array(table.bgr[c]))))
         longest, largest = _expected_pixels(models[table.names[best]], scale)
-        if max(region.width, region.height) <= MERGE_SLACK * longest + MERGE_PIXELS and \
-                region.area <= MERGE_SLACK * largest:
-            out.append(Region(best, region.x0, region.y0, region.mask))
+        size = max(region.width, region.height)
+        if size > MERGE_SLACK * longest + MERGE_PIXELS or region.area > MERGE_SLACK * largest:
+            continue
+        if float(mean.max()) >= CLIPPED_MEAN and size < 0.5 * longest:
+            continue
+        out.append(Region(best, region.x0, region.y0, region.mask))
     return out
 
 
