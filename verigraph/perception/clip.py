@@ -36,6 +36,7 @@ log = logging.getLogger("verigraph.perception")
 
 PROMPT = "a photo of a {colour} {name}"
 CROP_MARGIN = 0.15
+GROUND = 128  # grey behind a cropped object
 DEFAULT_MODEL = "ViT-B-32"
 DEFAULT_TAG = "openai"
 INSTALL_FIX = ("pip install 'verigraph[clip]', then give a local model folder "
@@ -152,8 +153,29 @@ def crop(image: np.ndarray, box: tuple[int, int, int, int],
     return np.asarray(cv2.cvtColor(image[y0:y1, x0:x1], cv2.COLOR_BGR2RGB))
 
 
+def object_crop(image: np.ndarray, region: Region, margin: float = CROP_MARGIN) -> np.ndarray:
+    """RGB crop of one detected object on a plain grey ground: neighbours that share the
+    bounding box (a tangram piece's box holds parts of three others) are blanked, so the
+    crop shows the object and its outline only."""
+    h, w = image.shape[:2]
+    pad = int(round(margin * max(region.width, region.height))) + 2
+    x0, y0 = max(0, region.x0 - pad), max(0, region.y0 - pad)
+    x1, y1 = min(w, region.x1 + pad), min(h, region.y1 + pad)
+    mask = np.zeros((y1 - y0, x1 - x0), np.uint8)
+    mask[region.y0 - y0:region.y1 - y0, region.x0 - x0:region.x1 - x0] = region.mask
+    mask = cv2.dilate(mask, np.ones((5, 5), np.uint8))  # keep the outline
+    out = np.full((y1 - y0, x1 - x0, 3), GROUND, np.uint8)
+    out[mask.astype(bool)] = image[y0:y1, x0:x1][mask.astype(bool)]
+    return np.asarray(cv2.cvtColor(out, cv2.COLOR_BGR2RGB))
+
+
+def prompt_text(label: str, colour: str, template: str = PROMPT) -> str:
+    """The text a crop is compared with: "a photo of a red block"."""
+    return template.format(colour=colour, name=label.replace("_", " "))
+
+
 def prompt_for(model: ObjectModel, template: str = PROMPT) -> str:
-    return template.format(colour=model.colour, name=model.label.replace("_", " "))
+    return prompt_text(model.label, model.colour, template)
 
 
 class ClipLabeller:
@@ -188,7 +210,7 @@ class ClipLabeller:
             return []
         prompts = tuple(prompt_for(m, self.template) for m in models)
         texts = self._text_features(prompts)
-        images = self.image_features([crop(image, (r.x0, r.y0, r.x1, r.y1)) for r in regions])
+        images = self.image_features([object_crop(image, r) for r in regions])
         probs = (100.0 * images @ texts.T).softmax(dim=-1).numpy()
         best = probs.argmax(axis=1)
         return [(models[int(b)], float(probs[i, b])) for i, b in enumerate(best)]

@@ -56,6 +56,8 @@ class VlmConfig(BaseModel):
     timeout_s: float = Field(default=120.0, gt=0)
     retries: int = Field(default=2, ge=0, le=20)
     image_format: Literal["png", "jpeg"] = "png"
+    max_nodes: int = Field(default=40, ge=1, le=500, description="schema limit on objects")
+    max_edges: int = Field(default=80, ge=0, le=2000, description="schema limit on edges")
 
     @classmethod
     def from_env(cls, **overrides: Any) -> VlmConfig:
@@ -74,9 +76,11 @@ class VlmConfig(BaseModel):
         return cls.model_validate(given)
 
 
-def graph_schema(dictionary: Dictionary) -> dict[str, Any]:
+def graph_schema(dictionary: Dictionary, *, max_nodes: int = 40,
+                 max_edges: int = 80) -> dict[str, Any]:
     """JSON schema of a scene graph over D and R, in the strict subset OpenAI accepts
-    (every property required, optional values nullable, no extra properties)."""
+    (every property required, optional values nullable, no extra properties). The
+    length limits stop small models that repeat themselves until the token limit."""
     names = sorted(set(dictionary.names) | {s for p in dictionary.objects.values()
                                             for s in p.synonyms})
     node = {"type": "object", "additionalProperties": False,
@@ -96,8 +100,9 @@ def graph_schema(dictionary: Dictionary) -> dict[str, Any]:
                 "source_side": {"type": ["integer", "null"]},
                 "target_side": {"type": ["integer", "null"]}}}
     return {"type": "object", "additionalProperties": False, "required": ["nodes", "edges"],
-            "properties": {"nodes": {"type": "array", "items": node},
-                           "edges": {"type": "array", "items": edge}}}
+            "properties": {"nodes": {"type": "array", "items": node, "maxItems": max_nodes},
+                           "edges": {"type": "array", "items": edge,
+                                     "maxItems": max_edges}}}
 
 
 def response_format_field(kind: ResponseFormat, schema: dict[str, Any]) -> dict[str, Any] | None:
@@ -139,16 +144,19 @@ def build_payload(config: VlmConfig, image: np.ndarray, dictionary: Dictionary,
         "temperature": config.temperature,
         "max_tokens": config.max_tokens,
     }
-    field = response_format_field(config.response_format, graph_schema(dictionary))
+    schema = graph_schema(dictionary, max_nodes=config.max_nodes, max_edges=config.max_edges)
+    field = response_format_field(config.response_format, schema)
     if field is not None:
         payload["response_format"] = field
     return payload
 
 
-def answer_text(data: dict[str, Any]) -> str:
-    """The message content of a chat-completions answer; VlmError if there is none."""
+def answer_text(data: dict[str, Any]) -> tuple[str, bool]:
+    """The message content of a chat-completions answer and whether the token limit cut
+    it off; VlmError if there is none."""
     try:
-        message = data["choices"][0]["message"]
+        choice = data["choices"][0]
+        message = choice["message"]
     except (KeyError, IndexError, TypeError):
         raise VlmError("the endpoint's answer has no choices[0].message", field="response",
                        value=str(data)[:200], fix="check that the endpoint speaks the "
@@ -162,24 +170,38 @@ def answer_text(data: dict[str, Any]) -> str:
     if not isinstance(content, str) or not content.strip():
         raise VlmError("the model answered with no text", field="response", value=None,
                        fix="raise max_tokens or use a model that supports images")
-    return content
+    return content, choice.get("finish_reason") == "length"
 
 
-def parse_graph(text: str, dictionary: Dictionary) -> PerceptionResult:
+def parse_graph(text: str, dictionary: Dictionary, *, truncated: bool = False
+                ) -> PerceptionResult:
     """A model's JSON answer -> normalised scene graph; problems become warnings."""
     from verigraph.tools.submission import SubmittedGraph, check_submission
 
     try:
         data = json.loads(_FENCE.sub("", text.strip()))
     except json.JSONDecodeError as exc:
+        if truncated:
+            raise VlmError("the answer was cut off at the token limit before the JSON "
+                           "ended", field="response", value=text[-200:],
+                           fix="raise max_tokens, or lower max_nodes so the schema stops a "
+                               "model that repeats itself") from None
         raise VlmError(f"the answer is not JSON ({exc.msg} at character {exc.pos})",
                        field="response", value=text[:200],
                        fix="use response_format json_schema or json_object_schema so the "
                            "server constrains the answer") from None
+    notes: list[str] = []
     if isinstance(data, dict):
         for node in data.get("nodes", []) if isinstance(data.get("nodes"), list) else []:
             if isinstance(node, dict) and isinstance(node.get("attrs"), dict):
                 node["attrs"] = {k: v for k, v in node["attrs"].items() if v is not None}
+        for edge in data.get("edges", []) if isinstance(data.get("edges"), list) else []:
+            if isinstance(edge, dict) and edge.get("relation") != "touches" and (
+                    edge.get("source_side") is not None or edge.get("target_side") is not None):
+                notes.append(f"dropped the side numbers of '{edge.get('source')} "
+                             f"{edge.get('relation')} {edge.get('target')}' (only tangram "
+                             "contacts have sides)")
+                edge["source_side"] = edge["target_side"] = None
         data.pop("dictionary", None)
     try:
         submitted = SubmittedGraph.model_validate(data)
@@ -189,7 +211,7 @@ def parse_graph(text: str, dictionary: Dictionary) -> PerceptionResult:
                        field=".".join(str(p) for p in err["loc"]), value=str(data)[:200],
                        fix="constrain the answer with the graph schema") from None
     graph, renames, problems = check_submission(submitted, dictionary)
-    warnings = [f"renamed {r.field}: {r.before} -> {r.after}" for r in renames]
+    warnings = notes + [f"renamed {r.field}: {r.before} -> {r.after}" for r in renames]
     warnings += [f"[{p.rule}] {p.message} (fix: {p.fix})" for p in problems]
     name = dictionary.name if dictionary.name in BUILTIN_DICTIONARIES else None
     graph = graph.model_copy(update={"dictionary": name})
@@ -218,7 +240,8 @@ class VlmClient:
         bgr = as_bgr(image, limits)
         d = dictionary if isinstance(dictionary, Dictionary) else load_dictionary(dictionary)
         data = self.client.post("chat/completions", build_payload(self.config, bgr, d, task))
-        return parse_graph(answer_text(data), d)
+        text, truncated = answer_text(data)
+        return parse_graph(text, d, truncated=truncated)
 
     def close(self) -> None:
         self.client.close()
