@@ -24,7 +24,9 @@ class ImageLimits(BaseModel):
     max_pixels: int = Field(default=40_000_000, ge=1,
                             description="largest width*height decoded (decompression bombs)")
     max_side: int = Field(default=16384, ge=1, description="longest side in pixels")
-    min_side: int = Field(default=32, ge=1, description="shortest side worth perceiving")
+    min_side: int = Field(default=32, ge=1, description="shortest side worth perceiving; "
+                                                        "smaller images give an empty graph "
+                                                        "with a warning")
 
 
 class PerceptionConfig(BaseModel):

@@ -99,11 +99,6 @@ def check_size(width: int, height: int, limits: ImageLimits) -> None:
             value=f"{width}x{height}",
             fix="downscale it (1024 px on the long side is plenty), or raise "
                 "ImageLimits.max_pixels / max_side if you trust the source")
-    if min(width, height) < limits.min_side:
-        raise ImageInputError(
-            f"the image is {width}x{height} pixels, too small to perceive objects in",
-            field="image", value=f"{width}x{height}",
-            fix=f"give an image at least {limits.min_side} px on each side")
 
 
 def _check_complete(fmt: str, data: bytes) -> None:

@@ -43,8 +43,18 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
     start = time.perf_counter()
     config = config or DEFAULT_CONFIG
     labeller = labeller or DEFAULT_LABELLER
-    bgr = denoise(as_bgr(image, config.limits))
+    bgr = as_bgr(image, config.limits)
     d = load_dictionary(dictionary) if not isinstance(dictionary, Dictionary) else dictionary
+    if min(bgr.shape[:2]) < config.limits.min_side:
+        result = PerceptionResult(
+            graph=SceneGraph(dictionary=d.name if d.name in BUILTIN_DICTIONARIES else None),
+            view=config.view, family=None, labeller=labeller.name, warnings=[
+                f"the image is {bgr.shape[1]}x{bgr.shape[0]} pixels, too small to find "
+                f"objects in (ImageLimits.min_side is {config.limits.min_side}); "
+                "the graph is empty"])
+        result.seconds = time.perf_counter() - start
+        return result
+    bgr = denoise(bgr)
     view = choose_view(bgr, d, config.view)
     if view == "tangram":
         result = perceive_tangram(bgr, d, config, labeller)
