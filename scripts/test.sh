@@ -2,7 +2,7 @@
 # Set up from scratch and run every check CI runs: lint, types, the test suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-VERIGRAPH_EXTRAS="${VERIGRAPH_EXTRAS:-dev,pddl,arm}" bash scripts/setup.sh
+VERIGRAPH_EXTRAS="${VERIGRAPH_EXTRAS:-dev,pddl,arm,clip}" bash scripts/setup.sh
 # The real local LLM (llama.cpp + Gemma 3 270M) for the llm-local planner tests.
 bash scripts/install_llm.sh
 # The official MCP Inspector (a client nobody here wrote) for the interoperability test.
