@@ -16,8 +16,10 @@ import numpy as np
 from verigraph.perception.colors import BACKGROUND, DARK, FIRST_OBJECT, ColourTable, purity
 
 KERNEL3 = np.ones((3, 3), np.uint8)
+CROSS3 = cv2.getStructuringElement(cv2.MORPH_CROSS, (3, 3))
 PURE = 8  # Lab distance of a pixel that shows its colour unmixed
 PURE_PIXELS = 10
+NEAR_PURE = 15  # median distance of a blurred, still recognisable thin part
 BORDER_POCKET_SHARE = 0.01
 THICK_CORE_SHARE = 0.5  # a thick region keeps half its pixels under a 1-px erosion
 
@@ -62,6 +64,10 @@ class Region:
         ys, xs = np.nonzero(self.mask)
         return np.stack([xs + self.x0, ys + self.y0], axis=1).astype(np.int32)
 
+    def shifted(self, dx: int, dy: int) -> Region:
+        """The same region with its box moved by (dx, dy) (crop -> image coordinates)."""
+        return Region(self.cls, self.x0 + dx, self.y0 + dy, self.mask)
+
     def merged(self, other: Region) -> Region:
         """One region covering both (same class as self)."""
         x0, y0 = min(self.x0, other.x0), min(self.y0, other.y0)
@@ -84,12 +90,21 @@ def core_area(mask: np.ndarray) -> int:
     return int(np.count_nonzero(eroded))
 
 
-def _solid(piece: np.ndarray, pixels: np.ndarray, table: ColourTable, min_core: int) -> bool:
+def _solid(piece: np.ndarray, pixels: np.ndarray, table: ColourTable, min_core: int,
+           cls: int) -> bool:
     """A fragment, not a rim: thick enough, or thin but drawn in its own pure colour
-    (a cup's wall at a small scale is thinner than the outline around it)."""
+    (a cup's wall at a small scale is thinner than the outline around it), or thin in a
+    colour that no blurred edge of another colour imitates (blur takes the purity of a
+    thin yellow wall, but nothing else turns yellow)."""
     if core_area(piece) >= min_core:
         return True
-    return int(np.count_nonzero(purity(pixels[piece], table) < PURE)) >= PURE_PIXELS
+    if int(np.count_nonzero(purity(pixels[piece], table) < PURE)) >= PURE_PIXELS:
+        return True
+    if cls in table.confusable or int(np.count_nonzero(piece)) < 3 * min_core:
+        return False
+    # ... and still close to its colour on the whole (JPEG ringing makes thin streaks
+    # of far-off colours that happen to fall in a class).
+    return float(np.median(purity(pixels[piece], table))) < NEAR_PURE
 
 
 def colour_fragments(image: np.ndarray, classes: np.ndarray, table: ColourTable, *,
@@ -111,7 +126,7 @@ def colour_fragments(image: np.ndarray, classes: np.ndarray, table: ColourTable,
         present = [c for c in range(FIRST_OBJECT, len(counts)) if counts[c] >= min_core]
         pixels = image[y:y + h, x:x + w]
         if len(present) == 1 and counts[present[0]] == area:
-            if _solid(comp, pixels, table, min_core):
+            if _solid(comp, pixels, table, min_core, present[0]):
                 out.append(Region(present[0], x, y, comp))
             continue
         for c in present:  # touching fills of different colours: split by colour
@@ -120,7 +135,7 @@ def colour_fragments(image: np.ndarray, classes: np.ndarray, table: ColourTable,
             for j in range(1, m):
                 sx, sy, sw, sh, _ = (int(v) for v in sub_stats[j])
                 piece = sub_labels[sy:sy + sh, sx:sx + sw] == j
-                if _solid(piece, pixels[sy:sy + sh, sx:sx + sw], table, min_core):
+                if _solid(piece, pixels[sy:sy + sh, sx:sx + sw], table, min_core, c):
                     out.append(Region(c, x + sx, y + sy, piece))
     return [part for r in out for part in trimmed(r, min_core)]
 
@@ -169,13 +184,33 @@ def enclosed_bright(image: np.ndarray, classes: np.ndarray, table: ColourTable, 
                     min_core: int) -> list[Region]:
     """Background-coloured areas cut off from the image border: candidates for white or
     silver objects, which per pixel look like the background (their class is decided
-    later, by size and mean colour)."""
+    later, by size and mean colour).
+
+    Blur can open a one-pixel gap in the outline at a plate's thin tip, joining the
+    plate to the background; a second pass on the mask opened by a 3x3 cross closes
+    such leaks (at the cost of pockets thinner than three pixels, which the first pass
+    keeps).
+    """
     bright = (classes == BACKGROUND)
     for c in table.bright:
         bright |= classes == c
-    n, labels, stats, _ = cv2.connectedComponentsWithStats(bright.view(np.uint8),
-                                                           connectivity=4)
-    h_img, w_img = classes.shape
+    mask = bright.view(np.uint8)
+    out = _pockets(mask, image, classes, table, min_core)
+    opened = cv2.morphologyEx(mask, cv2.MORPH_OPEN, CROSS3)
+    for region in _pockets(opened, image, classes, table, min_core):
+        if not any(_inside(region, r) for r in out):
+            out.append(region)
+    return out
+
+
+def _inside(a: Region, b: Region) -> bool:
+    return b.x0 <= a.x0 and b.y0 <= a.y0 and a.x1 <= b.x1 and a.y1 <= b.y1
+
+
+def _pockets(mask: np.ndarray, image: np.ndarray, classes: np.ndarray, table: ColourTable,
+             min_core: int) -> list[Region]:
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(mask, connectivity=4)
+    h_img, w_img = mask.shape
     out = []
     for i in range(1, n):
         x, y, w, h, area = (int(v) for v in stats[i])

@@ -21,6 +21,7 @@ from verigraph.perception.tabletop import Detection
 
 NOTHING, FLOOR_ID = 0, -1
 UNDER_TOLERANCE = 2.0
+WIDE_GAP_FACTOR = 2
 
 
 @dataclass(frozen=True, slots=True)
@@ -127,6 +128,11 @@ def infer_supports(detections: Sequence[Detection], labels: np.ndarray, *, gap: 
                    cavity_tolerance: float) -> dict[int, tuple[str, int]]:
     """(relation, supporter index) for every detection that rests on or in another."""
     direct = [direct_support(i, detections, labels, gap) for i in range(len(detections))]
+    for i, d in enumerate(direct):
+        # Everything in a settled scene rests on something: when blur or JPEG widen
+        # the dark band under an object beyond the gap, look a little further.
+        if d.supporter is None and not d.on_floor:
+            direct[i] = direct_support(i, detections, labels, WIDE_GAP_FACTOR * gap)
     cavities = Cavities(detections, cavity_tolerance)
     centres = [d.region.centroid() for d in detections]
     for i, d in enumerate(direct):

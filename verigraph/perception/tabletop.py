@@ -32,6 +32,7 @@ FLOOR_ROW_FRACTION = 0.3
 MERGE_SLACK = 1.2
 MERGE_PIXELS = 4.0
 CLIPPED_MEAN = 248.0
+ACTIVITY_PAD = 4
 
 
 @dataclass(slots=True)
@@ -143,8 +144,11 @@ def bright_objects(candidates: list[Region], image: np.ndarray, table: ColourTab
         return []
     out = []
     for region in candidates:
-        pixels = image[region.y0:region.y1, region.x0:region.x1][region.mask]
-        mean = pixels.reshape(-1, 3).astype(np.float32).mean(axis=0)
+        pixels = image[region.y0:region.y1, region.x0:region.x1][region.mask].reshape(-1, 3)
+        # The brightest quarter: blur darkens a thin white plate towards its outline.
+        bright = pixels.astype(np.float32)
+        level = bright.sum(axis=1)
+        mean = bright[level >= np.percentile(level, 75)].mean(axis=0)
         best = min([BACKGROUND, *options],
                    key=lambda c: float(np.linalg.norm(mean - np.array(table.bgr[c]))))
         if best == BACKGROUND:
@@ -165,16 +169,22 @@ def detect_tabletop(image: np.ndarray, classes: np.ndarray, table: ColourTable,
     """Objects in a side-view image whose pixels are already classified."""
     warnings: list[str] = []
     floor = floor_row(classes)
-    fragments = colour_fragments(image, classes, table, min_core=config.min_core_pixels)
+    # Work inside the box around everything that is neither wall nor floor: a tabletop
+    # render is mostly empty wall, and connected components cost per pixel.
+    x0, y0, x1, y1 = activity_box(classes)
+    crop_image, crop_classes = image[y0:y1, x0:x1], classes[y0:y1, x0:x1]
+    found = colour_fragments(crop_image, crop_classes, table, min_core=config.min_core_pixels)
     black = table.index("black")
     if black is not None and "black" in models:
-        fragments += dark_blobs(classes, black, min_area=20 * config.min_core_pixels)
+        found += dark_blobs(crop_classes, black, min_area=20 * config.min_core_pixels)
+    fragments = [r.shifted(x0, y0) for r in found]
     scale = estimate_scale(fragments, table, models, floor)
     if scale <= 0:
         warnings.append("no furniture standing on a floor was found, so object sizes are "
                         "not checked; labels rest on colour alone")
     if table.bright and any(table.names[c] in models for c in table.bright):
-        pockets = enclosed_bright(image, classes, table, min_core=config.min_core_pixels)
+        pockets = [r.shifted(x0, y0) for r in enclosed_bright(
+            crop_image, crop_classes, table, min_core=config.min_core_pixels)]
         fragments += bright_objects(pockets, image, table, models, scale)
     objects = assemble(fragments, table, models, scale)
     all_models = [m for ms in models.values() for m in ms]
@@ -196,6 +206,18 @@ def detect_tabletop(image: np.ndarray, classes: np.ndarray, table: ColourTable,
                         "in; they were left out")
     return TabletopScene(detections=detections, floor_row=floor, scale=scale,
                          warnings=warnings)
+
+
+def activity_box(classes: np.ndarray, pad: int = ACTIVITY_PAD) -> tuple[int, int, int, int]:
+    """(x0, y0, x1, y1) around every pixel that is not wall or floor, padded with wall."""
+    busy = (classes != BACKGROUND) & (classes != FLOOR)
+    rows = np.flatnonzero(busy.any(axis=1))
+    cols = np.flatnonzero(busy.any(axis=0))
+    h, w = classes.shape
+    if len(rows) == 0:
+        return 0, 0, w, h
+    return (max(0, int(cols[0]) - pad), max(0, int(rows[0]) - pad),
+            min(w, int(cols[-1]) + 1 + pad), min(h, int(rows[-1]) + 1 + pad))
 
 
 def _solid_furniture(region: Region, scale: float) -> bool:
