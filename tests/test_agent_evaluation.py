@@ -46,12 +46,12 @@ def test_instruction_goals_are_well_formed_new_and_reachable(family: str) -> Non
     assert made >= 6 * 20
 
 
-def test_groups_without_perception_are_reported_not_run() -> None:
+def test_reference_image_groups_run_with_perception() -> None:
+    assert perception_available()
     groups = build_groups(("ref_image_blocks", "tangram"), 2, 0, ground_truth=False)
     ref, tangram = groups
-    if perception_available():
-        pytest.skip("perception is installed; the group runs")
-    assert ref.tasks == [] and ref.not_run is not None and "perception" in ref.not_run
+    assert ref.not_run is None and len(ref.tasks) == 2
+    assert "image" in (ref.tasks[0].spec.set_goal or {})
     assert tangram.not_run is None and len(tangram.tasks) == 2
     truth = build_groups(("ref_image_blocks",), 2, 0, ground_truth=True)[0]
     assert truth.not_run is None and len(truth.tasks) == 2

@@ -15,7 +15,6 @@ from mcp_helpers import decode_png, png_b64, structured, text
 
 from verigraph.server import INSTRUCTIONS, build_server
 from verigraph.tools import TOOL_SPECS, TOOLS, Toolbox
-from verigraph.tools.optional import has
 
 pytestmark = pytest.mark.anyio
 STATEFUL = [s.name for s in TOOL_SPECS if "episode_id" in s.input_model.model_fields
@@ -146,7 +145,6 @@ async def test_agent_vlm_route_through_the_server(client: Client) -> None:
                                         "source_side": None, "target_side": None}]
 
 
-@pytest.mark.skipif(not has("verigraph.sim2d", "world_for_graph"), reason="no sim2d")
 async def test_simulated_episode_renders_the_simulator(client: Client) -> None:
     eid = await load(client, generator={"family": "tangram", "seed": 1}, simulate=True)
     state = structured(await client.call_tool("get_state", {"episode_id": eid}))
@@ -156,12 +154,15 @@ async def test_simulated_episode_renders_the_simulator(client: Client) -> None:
     assert decode_png(render.content[0].data).std() > 5
 
 
-@pytest.mark.skipif(has("verigraph.perception", "perceive"), reason="perception installed")
-async def test_generate_scene_graph_is_a_clear_tool_error(client: Client) -> None:
-    result = await client.call_tool("generate_scene_graph", {"image": png_b64()})
-    assert result.is_error and result.structured_content is None
-    assert "built-in perception (image -> scene graph) is not available yet" in text(result)
-    assert "get_scene_image" in text(result) and "submit_scene_graph" in text(result)
+async def test_generate_scene_graph_returns_the_perceived_graph(client: Client) -> None:
+    eid = await load(client, generator={"family": "tableware", "seed": 2}, simulate=True)
+    result = await client.call_tool("generate_scene_graph", {"episode_id": eid})
+    assert not result.is_error, text(result)
+    perceived = structured(result)
+    state = structured(await client.call_tool("get_state", {"episode_id": eid}))
+    assert perceived["accepted"]
+    assert sorted(e["source"] for e in perceived["graph"]["edges"]) == sorted(
+        e["source"] for e in state["graph"]["edges"])
 
 
 @pytest.mark.parametrize("tool", STATEFUL)

@@ -9,8 +9,8 @@ from mcp_helpers import png_b64
 
 from verigraph.errors import VeriGraphError
 from verigraph.tools import Toolbox, ToolConfig, UnknownEpisodeError
-from verigraph.tools.errors import EpisodeLimitError, FeatureUnavailableError
-from verigraph.tools.optional import _attribute, has
+from verigraph.tools.errors import EpisodeLimitError
+from verigraph.tools.optional import _attribute
 
 CUP_PLAN = ["move(cup, on, desk)", "move(book, on, shelf)"]
 
@@ -79,8 +79,8 @@ def test_unknown_scene_id_lists_the_known_ones() -> None:
     assert err.value.field == "scene_id" and "cup_on_book" in (err.value.fix or "")
 
 
-@pytest.mark.skipif(has("verigraph.perception", "perceive"), reason="perception installed")
 def test_image_episode_waits_for_a_submitted_graph() -> None:
+    """A blank photo: built-in perception finds nothing, so the agent's graph is awaited."""
     box = Toolbox()
     state = load(box, image=png_b64(), dictionary="tableware")
     assert state.awaiting_scene_graph and state.graph is None
@@ -141,12 +141,21 @@ def test_invalid_goals_change_nothing(goal: dict[str, Any], expected: str) -> No
     assert box.call("get_state", {"episode_id": eid}) == before
 
 
-@pytest.mark.skipif(has("verigraph.perception", "perceive"), reason="perception installed")
-def test_goal_image_without_perception_points_to_a_goal_graph() -> None:
+def test_goal_image_is_perceived_into_the_goal_graph() -> None:
+    """The paper's reference-image goal: a render of the goal state becomes the goal."""
+    import base64
+
+    from verigraph.sim2d import generate_scene
+    from verigraph.tools.images import encode_png
+
+    scene = generate_scene("blocks", 11)
+    assert scene.goal is not None and scene.goal_world is not None
     box = Toolbox()
-    eid = load(box, scene_id="cup_on_book").episode_id
-    with pytest.raises(FeatureUnavailableError):
-        box.call("set_goal", {"episode_id": eid, "image": png_b64()})
+    eid = load(box, graph=scene.graph.model_dump()).episode_id
+    photo = base64.b64encode(encode_png(scene.goal_world.render(640, 480))).decode()
+    out = box.call("set_goal", {"episode_id": eid, "image": photo})
+    assert out.goal is not None and out.goal.graph is not None
+    assert out.goal.graph.edge_keys() == scene.goal.graph.edge_keys()
 
 
 def test_end_episode_success_and_the_id_stops_working() -> None:

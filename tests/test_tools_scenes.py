@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import base64
-from typing import Any
 
 import cv2
 import numpy as np
@@ -11,12 +10,9 @@ import pytest
 from mcp_helpers import png_b64
 
 from verigraph.graph.builtin_scenes import cup_on_book, three_blocks
-from verigraph.tools import FeatureUnavailableError, ToolArgumentError, Toolbox
+from verigraph.tools import ToolArgumentError, Toolbox
 from verigraph.tools.drawing import draw_graph, layout
 from verigraph.tools.images import decode_image, encode_png
-from verigraph.tools.optional import has
-
-NO_PERCEPTION = not has("verigraph.perception", "perceive")
 
 
 def decode(png: bytes) -> np.ndarray:
@@ -135,16 +131,24 @@ def test_submission_for_a_loaded_scene_is_compared_not_adopted() -> None:
         "book on desk", "cup on book"]
 
 
-@pytest.mark.skipif(not NO_PERCEPTION, reason="perception installed")
-@pytest.mark.parametrize("args", [{"image": "IMAGE"}, {"episode_id": "EPISODE"}])
-def test_generate_scene_graph_points_to_the_agent_route(args: dict[str, Any]) -> None:
+@pytest.mark.parametrize("family,seed", [("kitchen", 3), ("tableware", 4), ("blocks", 5)])
+def test_generate_scene_graph_perceives_a_simulated_render(family: str, seed: int) -> None:
+    """Built-in perception through the tool: a sim2d render back to its scene graph."""
+    from verigraph.sim2d import generate_scene
+
+    scene = generate_scene(family, seed)
+    photo = base64.b64encode(encode_png(scene.world.render(640, 480))).decode()
+    out = Toolbox().call("generate_scene_graph", {"image": photo, "dictionary": family})
+    assert out.accepted, out
+    assert sorted(n.label for n in out.graph.nodes) == sorted(n.label for n in scene.graph.nodes)
+    assert len(out.graph.edges) == len(scene.graph.edges)
+
+
+def test_an_image_perception_cannot_read_waits_for_the_agents_graph() -> None:
     box = Toolbox()
-    eid = box.call("load_scene", {"scene_id": "cup_on_book"}).episode_id
-    args = {k: {"IMAGE": png_b64(), "EPISODE": eid}[v] for k, v in args.items()}
-    with pytest.raises(FeatureUnavailableError) as err:
-        box.call("generate_scene_graph", args)
-    assert "not available yet" in str(err.value)
-    assert "get_scene_image" in (err.value.fix or "") and "submit_scene_graph" in err.value.fix
+    blank = png_b64(40, 30, (0, 255, 0))
+    state = box.call("load_scene", {"image": blank, "dictionary": "kitchen"})
+    assert state.awaiting_scene_graph and state.graph is None
 
 
 @pytest.mark.parametrize("payload, message", [

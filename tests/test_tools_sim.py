@@ -8,10 +8,6 @@ import pytest
 
 from verigraph.errors import VeriGraphError
 from verigraph.tools import Toolbox
-from verigraph.tools.optional import has
-
-pytestmark = pytest.mark.skipif(not has("verigraph.sim2d", "world_for_graph"),
-                                reason="verigraph.sim2d is not installed")
 
 
 def picture(box: Toolbox, eid: str, view: str = "current") -> np.ndarray:

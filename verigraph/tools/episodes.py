@@ -204,6 +204,11 @@ def _read_source(params: LoadSceneInput, executor: str) -> _Source:
     perceived: SceneGraph | None = None
     if optional.has("verigraph.perception", "perceive"):
         perceived = optional.perception()(image, dictionary=dictionary_for(params.dictionary))
+        if not perceived.nodes:
+            # Built-in perception found nothing it knows: the agent's own vision model may
+            # do better, so the episode waits for submit_scene_graph instead of starting
+            # from an empty scene.
+            perceived = None
     return _Source("image", perceived, image=image)
 
 
