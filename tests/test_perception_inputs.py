@@ -182,3 +182,13 @@ def test_cli_empty_scene_warns(tmp_path: Path, capsys: pytest.CaptureFixture[str
     assert main(["perceive", str(path), "--family", "tangram"]) == 0
     captured = capsys.readouterr()
     assert "0 objects" in captured.out and "warning: no tangram pieces" in captured.err
+
+
+def test_pure_noise_gives_an_empty_graph_not_hallucinated_pieces() -> None:
+    import numpy as np
+
+    from verigraph.perception import perceive_image
+
+    noise = np.random.default_rng(0).integers(0, 256, (800, 800, 3), dtype=np.uint8)
+    result = perceive_image(noise)
+    assert result.graph.nodes == [] and result.warnings

@@ -34,6 +34,9 @@ from verigraph.sim2d import palette
 from verigraph.sim2d.tangram_geometry import piece_model, signed_area
 
 MAX_FIT_ERROR = 0.35  # RMS corner error (world units) before a shape is called odd
+MIN_PIECE_PIXELS = 60  # a small triangle covers several hundred pixels even at 320x240
+MIN_FILL = 0.8  # share of a piece's outline its colour must fill
+REJECT_FIT_ERROR = 1.0  # beyond this the region is not that piece at all (e.g. noise)
 # Pieces drawn early lose half an outline along edges later pieces share, so their
 # areas understate the scale; the upper part of the distribution is the honest one.
 SCALE_PERCENTILE = 80
@@ -111,6 +114,18 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
         if poly is None:
             warnings.append(f"the {colour} region does not look like a {model.label}")
             continue
+        if region.area < MIN_PIECE_PIXELS:
+            warnings.append(f"the {colour} region is too small for a piece "
+                            f"({region.area} px); ignored")
+            objects.pop(model.label, None)
+            continue
+        filled = region.area / max(abs(float(cv2.contourArea(poly.astype(np.float32)))), 1.0)
+        if filled < MIN_FILL:
+            # A piece is a solid polygon; scattered specks of its colour (noise, texture)
+            # are not, however well their outline happens to fit.
+            warnings.append(f"the {colour} region is not solid ({filled:.0%} filled); ignored")
+            objects.pop(model.label, None)
+            continue
         found.append((model, poly))
     scale = _scale(found)
     placed: dict[str, PlacedPiece] = {}
@@ -123,6 +138,11 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
         piece = fit_model(model.label, corners)
         if flipped:
             warnings.append(f"{model.label} looks mirrored; tangram pieces are never flipped")
+        if piece.fit_error > REJECT_FIT_ERROR:
+            warnings.append(f"the {model.colour} region is not a {model.label} "
+                            f"({piece.fit_error:.2f} units off its shape); ignored")
+            objects.pop(model.label, None)
+            continue
         if piece.fit_error > MAX_FIT_ERROR:
             warnings.append(f"{model.label} fits its shape poorly "
                             f"({piece.fit_error:.2f} units off)")
