@@ -195,7 +195,10 @@ def reference_image_tasks(family: Literal["blocks", "kitchen"], n: int, seed: in
             if ground_truth:
                 set_goal["graph"] = _graph_json(goal.graph)
             else:
-                png = goal_image_png(goal.graph, draw + 1)
+                try:
+                    png = goal_image_png(goal.graph, draw + 1)
+                except VeriGraphError:
+                    continue  # the goal cannot be laid out afresh (no room): draw another
                 set_goal["image"] = base64.b64encode(png).decode("ascii")
             spec = EpisodeSpec(task_id=f"{group}/{i}", load=_load(scene.graph, simulate, draw),
                                set_goal=set_goal)
