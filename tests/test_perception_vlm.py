@@ -19,18 +19,13 @@ import cv2
 import numpy as np
 import pytest
 
+from verigraph.agent.openai_backend import response_format_field
 from verigraph.agent.testing import RecordedResponse as R
 from verigraph.agent.testing import RecordedResponseServerForTests, chat_completion
 from verigraph.cli import main
 from verigraph.graph.dictionary import builtin_dictionary
 from verigraph.perception.metrics import score_graph
-from verigraph.perception.vlm import (
-    VlmClient,
-    VlmConfig,
-    VlmError,
-    graph_schema,
-    response_format_field,
-)
+from verigraph.perception.vlm import VlmClient, VlmConfig, VlmError, graph_schema
 from verigraph.sim2d.generator import generate_scene
 
 RECORDED_LLAMA_CPP_ANSWER = json.loads(
@@ -186,6 +181,8 @@ def test_schema_dialects_and_limits() -> None:
     assert response_format_field("json_object_schema", schema) == {"type": "json_object",
                                                                    "schema": schema}
     assert response_format_field("none", schema) is None
+    strict = response_format_field("json_schema", schema, "scene_graph")
+    assert strict is not None and strict["json_schema"]["name"] == "scene_graph"
 
 
 def test_config_from_env(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -63,11 +63,12 @@ class OpenAIConfig(BaseModel):
         return cls.model_validate(given)
 
 
-def response_format_field(kind: ResponseFormat, schema: dict[str, Any]) -> dict[str, Any] | None:
+def response_format_field(kind: ResponseFormat, schema: dict[str, Any],
+                          name: str = SCHEMA_NAME) -> dict[str, Any] | None:
     """The `response_format` request field for a server dialect (None: leave it out)."""
     if kind == "json_schema":
         return {"type": "json_schema",
-                "json_schema": {"name": SCHEMA_NAME, "strict": True, "schema": schema}}
+                "json_schema": {"name": name, "strict": True, "schema": schema}}
     if kind == "json_object_schema":
         return {"type": "json_object", "schema": schema}
     if kind == "json_object":

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from verigraph.sim2d.tangram_geometry import piece_model, signed_area
+from verigraph.sim2d.tangram_geometry import piece_model, sides_touch, signed_area
 
 Vec = tuple[float, float]
 
@@ -87,28 +87,6 @@ def fit_model(label: str, corners: np.ndarray) -> PlacedPiece:
     error = float(np.sqrt(((placed - corners) ** 2).sum(axis=1).mean()))
     return PlacedPiece(label=label, vertices=tuple((float(x), float(y)) for x, y in placed),
                        fit_error=error)
-
-
-def sides_touch(p: tuple[Vec, Vec], q: tuple[Vec, Vec], *, max_angle: float,
-                max_distance: float, min_overlap: float) -> bool:
-    """Two sides touch: facing (antiparallel within `max_angle` radians), collinear
-    within `max_distance`, and sharing more than `min_overlap` of the shorter side."""
-    (ax, ay), (bx, by) = p
-    (cx, cy), (dx, dy) = q
-    lp, lq = math.dist(p[0], p[1]), math.dist(q[0], q[1])
-    if lp < 1e-9 or lq < 1e-9:
-        return False
-    ux, uy = (bx - ax) / lp, (by - ay) / lp
-    vx, vy = (dx - cx) / lq, (dy - cy) / lq
-    if ux * vx + uy * vy > -math.cos(max_angle):
-        return False
-    for px, py in (q[0], q[1]):
-        if abs((px - ax) * uy - (py - ay) * ux) > max_distance:
-            return False
-    t0 = (cx - ax) * ux + (cy - ay) * uy
-    t1 = (dx - ax) * ux + (dy - ay) * uy
-    overlap = min(lp, max(t0, t1)) - max(0.0, min(t0, t1))
-    return overlap > min_overlap * min(lp, lq)
 
 
 def contacts(a: PlacedPiece, b: PlacedPiece, *, max_angle: float, max_distance: float,

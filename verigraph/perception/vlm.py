@@ -105,18 +105,6 @@ def graph_schema(dictionary: Dictionary, *, max_nodes: int = 40,
                                      "maxItems": max_edges}}}
 
 
-def response_format_field(kind: ResponseFormat, schema: dict[str, Any]) -> dict[str, Any] | None:
-    """The `response_format` request field for a server dialect (None: leave it out)."""
-    if kind == "json_schema":
-        return {"type": "json_schema",
-                "json_schema": {"name": SCHEMA_NAME, "strict": True, "schema": schema}}
-    if kind == "json_object_schema":
-        return {"type": "json_object", "schema": schema}
-    if kind == "json_object":
-        return {"type": "json_object"}
-    return None
-
-
 def image_data_url(image: np.ndarray, fmt: str = "png") -> str:
     """A BGR image as a data: URL."""
     ok, buf = cv2.imencode(".png" if fmt == "png" else ".jpg", image)
@@ -131,6 +119,7 @@ def build_payload(config: VlmConfig, image: np.ndarray, dictionary: Dictionary,
                   task: str | None = None) -> dict[str, Any]:
     """The chat-completions body: prompt text and image in one user message (some chat
     templates drop system messages)."""
+    from verigraph.agent.openai_backend import response_format_field
     from verigraph.tools.prompting import scene_graph_prompt
 
     prompt = scene_graph_prompt(dictionary, task)
@@ -145,7 +134,7 @@ def build_payload(config: VlmConfig, image: np.ndarray, dictionary: Dictionary,
         "max_tokens": config.max_tokens,
     }
     schema = graph_schema(dictionary, max_nodes=config.max_nodes, max_edges=config.max_edges)
-    field = response_format_field(config.response_format, schema)
+    field = response_format_field(config.response_format, schema, SCHEMA_NAME)
     if field is not None:
         payload["response_format"] = field
     return payload

@@ -127,8 +127,14 @@ def _wrap(angle: float) -> float:
     return (angle + math.pi) % (2 * math.pi) - math.pi
 
 
-def sides_touch(p: tuple[Vec, Vec], q: tuple[Vec, Vec]) -> bool:
-    """Two sides touch: antiparallel, collinear within tolerance, overlapping enough."""
+def sides_touch(p: tuple[Vec, Vec], q: tuple[Vec, Vec], *,
+                max_angle: float = ANGLE_TOLERANCE, max_distance: float = COLLINEAR_TOLERANCE,
+                min_overlap: float = MIN_OVERLAP_FRACTION) -> bool:
+    """Two sides touch: facing (antiparallel within `max_angle` radians), collinear
+    within `max_distance`, and sharing more than `min_overlap` of the shorter side.
+
+    Perception calls this with looser tolerances for measured (pixel) geometry.
+    """
     (ax, ay), (bx, by) = p
     (cx, cy), (dx, dy) = q
     lp, lq = math.dist(p[0], p[1]), math.dist(q[0], q[1])
@@ -136,15 +142,15 @@ def sides_touch(p: tuple[Vec, Vec], q: tuple[Vec, Vec]) -> bool:
         return False
     ux, uy = (bx - ax) / lp, (by - ay) / lp
     vx, vy = (dx - cx) / lq, (dy - cy) / lq
-    if ux * vx + uy * vy > -math.cos(ANGLE_TOLERANCE):
+    if ux * vx + uy * vy > -math.cos(max_angle):
         return False  # not facing: outward normals are not opposite
     for px, py in (q[0], q[1]):
-        if abs((px - ax) * uy - (py - ay) * ux) > COLLINEAR_TOLERANCE:
+        if abs((px - ax) * uy - (py - ay) * ux) > max_distance:
             return False
     t0 = (cx - ax) * ux + (cy - ay) * uy
     t1 = (dx - ax) * ux + (dy - ay) * uy
     overlap = min(lp, max(t0, t1)) - max(0.0, min(t0, t1))
-    return overlap > MIN_OVERLAP_FRACTION * min(lp, lq)
+    return overlap > min_overlap * min(lp, lq)
 
 
 def touching_sides(p_vertices: list[Vec], q_vertices: list[Vec]) -> list[tuple[int, int]]:
