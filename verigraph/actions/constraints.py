@@ -14,8 +14,6 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AlignAction, MoveAction
 from verigraph.graph.state import WorldState
 
-MOVE_RELATIONS = ("on", "in")
-
 
 def _violation(action: MoveAction | AlignAction, constraint: str, message: str,
                suggestion: str, blocking: list[str] | None = None) -> Violation:

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from verigraph.errors import MalformedGraphError
 from verigraph.graph.dictionary import Dictionary, ObjectProperties, load_dictionary
 from verigraph.graph.model import Edge, Node, SceneGraph
-from verigraph.graph.wellformed import check_well_formed, resolve_properties
+from verigraph.graph.wellformed import check_and_resolve
 
 Side = tuple[str, int]
 
@@ -47,11 +47,10 @@ class WorldState:
                    partial: bool = False) -> WorldState:
         """Check the graph and index it; raises MalformedGraphError listing every problem."""
         d = load_dictionary(dictionary if dictionary is not None else graph.dictionary)
-        problems = check_well_formed(graph, d, partial=partial)
+        problems, resolved = check_and_resolve(graph, d, partial=partial)
         if problems:
             raise MalformedGraphError(problems)
         state = cls(d)
-        resolved = resolve_properties(graph, d, [])
         for node in graph.nodes:
             label, props = resolved[node.id]
             state.objects[node.id] = ObjectInfo(node.id, label, props, dict(node.attrs))

@@ -57,6 +57,12 @@ def resolve_properties(graph: SceneGraph, dictionary: Dictionary,
 def check_well_formed(graph: SceneGraph, dictionary: Dictionary, *,
                       partial: bool = False) -> list[GraphProblem]:
     """Every rule the graph breaks (empty list = well formed). Runs in O(nodes + edges)."""
+    return check_and_resolve(graph, dictionary, partial=partial)[0]
+
+
+def check_and_resolve(graph: SceneGraph, dictionary: Dictionary, *, partial: bool = False
+                      ) -> tuple[list[GraphProblem], dict[str, tuple[str, ObjectProperties]]]:
+    """check_well_formed plus each node's (canonical label, properties), resolved once."""
     problems: list[GraphProblem] = []
     counts = Counter(n.id for n in graph.nodes)
     for node_id, count in counts.items():
@@ -145,7 +151,7 @@ def check_well_formed(graph: SceneGraph, dictionary: Dictionary, *,
                 fix=f"remove one edge of the cycle, e.g. the one from '{first}'"))
         except nx.NetworkXNoCycle:
             pass
-    return problems
+    return problems, resolved
 
 
 def _check_sides(edge: Edge, where: str, resolved: dict[str, tuple[str, ObjectProperties]]

@@ -66,7 +66,7 @@ class _Problem:
             if not state.objects[obj].props.movable:
                 self.fixed_load[self.index[target]] += 1
         self.start = self.encode(state)
-        self.fixed_ids = {i for i in range(len(self.ids)) if i not in set(self.movable)}
+        self.fixed_ids = set(range(len(self.ids))) - set(self.movable)
 
     def encode(self, state: WorldState) -> tuple[int, ...]:
         codes = []
