@@ -90,6 +90,10 @@ def main() -> None:
         median, runs = median_time(lambda w=world: w.render(640, 480), runs=50)
         rows.append([f"render 640x480 ({label})", ms(median), ms(sorted(runs)[44]),
                      ms(max(runs)), "50"])
+    h, w = kitchen.render().shape[:2]
+    median, runs = median_time(lambda: kitchen.render(), runs=50)
+    rows.append([f"render default frame (kitchen, {w}x{h})", ms(median), ms(sorted(runs)[44]),
+                 ms(max(runs)), "50"])
     frame = kitchen.render(640, 480)
     spec = Degradation(noise=6, blur=1.0, lighting=0.4, jpeg=60)
     median, runs = median_time(lambda: degrade(frame, spec, seed=1), runs=20)

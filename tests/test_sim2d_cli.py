@@ -38,7 +38,9 @@ def test_render_goal_labels_and_degradations(tmp_path: Path) -> None:
                  "--jpeg", "40"]) == 0
     a, b = cv2.imread(str(clean)), cv2.imread(str(noisy))
     assert a is not None and b is not None
-    assert a.shape == b.shape == (480, 640, 3)
+    assert a.shape == b.shape
+    height, width = a.shape[:2]
+    assert width >= 640 and width > 2 * height  # the default frame takes the scene's shape
     assert abs(a.astype(int) - b.astype(int)).mean() > 1
 
 
@@ -46,8 +48,25 @@ def test_render_a_scene_file(tmp_path: Path) -> None:
     scene = tmp_path / "kitchen.json"
     scene.write_text(json.dumps(kitchen_pan().model_dump()))
     out = tmp_path / "k.png"
-    assert main(["render", "--scene", str(scene), "--out", str(out)]) == 0
+    assert main(["render", "--scene", str(scene), "--out", str(out), "--width", "640",
+                 "--height", "480"]) == 0
     assert read(out) == (640, 480)
+    assert main(["render", "--scene", str(scene), "--out", str(out), "--width", "900"]) == 0
+    width, height = read(out)
+    default = tmp_path / "default.png"
+    assert main(["render", "--scene", str(scene), "--out", str(default)]) == 0
+    dw, dh = read(default)
+    assert width == 900 and abs(height / width - dh / dw) < 0.01  # one side: same shape
+
+
+@pytest.mark.parametrize("flag", ["--width", "--height"])
+def test_render_size_out_of_range_names_the_field(flag: str, tmp_path: Path,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["render", "--scene", "cup_on_book", "--out", str(tmp_path / "x.png"), flag,
+                 "5"]) == 2
+    err = capsys.readouterr().err
+    assert flag.strip("-") in err and "16..4000" in err
+    assert not (tmp_path / "x.png").exists()
 
 
 def test_render_bad_scene_id_is_bad_input(tmp_path: Path,

@@ -43,6 +43,24 @@ def test_render_has_the_requested_size_and_is_pure(size: tuple[int, int]) -> Non
     assert len(np.unique(a.reshape(-1, 3), axis=0)) >= 5  # furniture, objects, floor, sky
 
 
+def test_default_frame_takes_the_scene_shape_at_a_fixed_scale() -> None:
+    """A wide kitchen is drawn wide, at 8 px per world unit, instead of shrinking into
+    640x480; a narrow scene is at least 640 wide; tangram keeps 640x480."""
+    from verigraph.sim2d.render import MAX_SIDE, MIN_WIDTH, PIXELS_PER_UNIT, tabletop_view
+
+    for family in ("kitchen", "tableware", "blocks"):
+        scene = generate_scene(family, 7)
+        image = scene.world.render()
+        x0, y0, x1, y1 = tabletop_view(scene.world)
+        height, width = image.shape[:2]
+        assert abs(width / height - (x1 - x0) / (y1 - y0)) < 0.02
+        assert MIN_WIDTH <= width <= MAX_SIDE
+        assert width / (x1 - x0) >= min(PIXELS_PER_UNIT, MAX_SIDE / (x1 - x0)) - 0.01
+        assert scene.world.render(width=width).shape == image.shape
+        assert scene.world.render(height=height).shape[0] == height
+    assert generate_scene("tangram", 7).world.render().shape == (480, 640, 3)
+
+
 def test_objects_are_drawn_in_their_class_colours() -> None:
     world = world_for_graph(cup_on_book())
     assert isinstance(world, TabletopWorld)

@@ -48,8 +48,11 @@ def open_arm_world(config: ArmConfig, graph: SceneGraph, *, confirm: ConfirmHook
         on_close = scene.close
         view = config.pybullet.cameras[0]
 
-        def render(width: int = view.width, height: int = view.height) -> np.ndarray:
-            camera = view.model_copy(update={"width": width, "height": height})
+        def render(width: int | None = None, height: int | None = None) -> np.ndarray:
+            """The scene camera's image; a side not given keeps the camera's aspect."""
+            w = width or (round(height * view.width / view.height) if height else view.width)
+            h = height or round(w * view.height / view.width)
+            camera = view.model_copy(update={"width": w, "height": h})
             return cv2.cvtColor(capture(scene, camera).rgb, cv2.COLOR_RGB2BGR)
 
     elif driver is None:

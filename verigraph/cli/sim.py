@@ -30,8 +30,11 @@ def register(sub: Any) -> None:
     r.add_argument("--out", required=True, help="PNG file to write")
     r.add_argument("--goal", action="store_true",
                    help="draw the scene's goal instead (built-in or generated scenes)")
-    r.add_argument("--width", type=int, default=640)
-    r.add_argument("--height", type=int, default=480)
+    r.add_argument("--width", type=int, default=None,
+                   help="image width (default: the scene's own shape at 8 px per world "
+                        "unit for tabletops, 640 for tangram)")
+    r.add_argument("--height", type=int, default=None,
+                   help="image height (default: follows the scene's shape; tangram 480)")
     r.add_argument("--seed", type=int, default=0, help="layout seed for built-in and file "
                                                        "scenes; also seeds the degradations")
     r.add_argument("--labels", action="store_true", help="write object ids (tangram: side "
@@ -49,8 +52,10 @@ def register(sub: Any) -> None:
     d.add_argument("--out", default="out/demo", help="directory for the images (default "
                                                      "out/demo)")
     d.add_argument("--scene", choices=DEMO_SCENES, default="cup_on_book")
-    d.add_argument("--width", type=int, default=640)
-    d.add_argument("--height", type=int, default=480)
+    d.add_argument("--width", type=int, default=None, help="image width (default: the "
+                                                             "scene's own shape)")
+    d.add_argument("--height", type=int, default=None, help="image height (default: follows "
+                                                             "the scene's shape)")
     d.set_defaults(handler=run_demo)
 
 
@@ -94,13 +99,18 @@ def write_png(path: Path, image: np.ndarray) -> None:
                              fix="give a writable path ending in .png")
 
 
+def check_size(width: int | None, height: int | None) -> None:
+    """Each side given must be 16..4000 pixels (a side left out follows the scene)."""
+    for name, value in (("width", width), ("height", height)):
+        if value is not None and not 16 <= value <= 4000:
+            raise VeriGraphError("image size out of range", field=name, value=value,
+                                 fix="use 16..4000 pixels per side, or leave it out")
+
+
 def run_render(args: argparse.Namespace) -> int:
     from verigraph.sim2d import Degradation, degrade
 
-    if args.width < 16 or args.height < 16 or args.width * args.height > 16_000_000:
-        raise VeriGraphError("image size out of range", field="width/height",
-                             value=f"{args.width}x{args.height}",
-                             fix="use 16..4000 pixels per side")
+    check_size(args.width, args.height)
     world = load_world(args.scene, args.seed, goal=args.goal)
     image = world.render(args.width, args.height, labels=args.labels)
     spec = Degradation(noise=args.noise, blur=args.blur, lighting=args.lighting,
@@ -108,7 +118,8 @@ def run_render(args: argparse.Namespace) -> int:
     image = degrade(image, spec, seed=args.seed)
     out = Path(args.out)
     write_png(out, image)
-    print(f"{out}: {args.scene}{' (goal)' if args.goal else ''}, {args.width}x{args.height}; "
+    print(f"{out}: {args.scene}{' (goal)' if args.goal else ''}, "
+          f"{image.shape[1]}x{image.shape[0]}; "
           + "; ".join(world.observe().sentences()))
     return EXIT_OK
 
@@ -117,5 +128,6 @@ def run_render(args: argparse.Namespace) -> int:
 def run_demo(args: argparse.Namespace) -> int:
     from verigraph.sim2d.demo import run
 
+    check_size(args.width, args.height)
     return EXIT_OK if run(args.scene, Path(args.out), args.width, args.height) else \
         EXIT_NEGATIVE

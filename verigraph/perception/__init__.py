@@ -2,7 +2,7 @@
 
     >>> from verigraph.sim2d import generate_scene
     >>> scene = generate_scene("kitchen", 7)
-    >>> graph = perceive(scene.world.render(640, 480), dictionary="kitchen")
+    >>> graph = perceive(scene.world.render(), dictionary="kitchen")
     >>> graph.edge_keys() == scene.graph.edge_keys()
     True
 

@@ -6,6 +6,12 @@ colours, so the gain is measured where they show (on a small thumbnail, so noise
 averages out) and fitted as a plane `g(x, y) = a + b*x + c*y` with outliers dropped
 (objects that happen to share the background's hue). Clipped pixels say nothing about
 the gain and are left out. When too little background shows, nothing is corrected.
+
+A grey counter is the background's colour at two thirds of the gain, and in a tightly
+framed side view it can cover more of the image than the wall does; a plane through
+its pixels would darken everything. So samples come from the areas that reach the
+image border with a smoothly varying gain (the wall and the floor band) whenever
+such areas exist; an object inside the frame is cut off from them by its outline.
 """
 
 from __future__ import annotations
@@ -23,6 +29,7 @@ RANSAC_SUBSET = 600
 INLIER_TOLERANCE = 0.015
 CLIPPED = 248
 NEUTRAL = 0.03  # gains this close to 1 everywhere are left alone
+SMOOTH_STEP = 0.05  # largest gain change within a 3x3 thumbnail window of one surface
 
 
 @dataclass(frozen=True, slots=True)
@@ -60,6 +67,7 @@ def estimate_gain(image: np.ndarray, references: list[tuple[int, int, int]]) -> 
         gain = ratio.mean(axis=2)
         spread = np.abs(ratio - gain[:, :, None]).max(axis=2)
         ok = ~clipped & (spread < CHROMA_TOLERANCE * gain) & (gain > 0.4) & (gain < 1.8)
+        ok = border_surfaces(ok, gain)
         us.append(uu[ok])
         vs.append(vv[ok])
         gs.append(gain[ok])
@@ -72,6 +80,22 @@ def estimate_gain(image: np.ndarray, references: list[tuple[int, int, int]]) -> 
         return GainField(samples=int(keep.sum()))
     coef, *_ = np.linalg.lstsq(design[keep], g[keep], rcond=None)
     return GainField(float(coef[0]), float(coef[1]), float(coef[2]), int(keep.sum()))
+
+
+def border_surfaces(ok: np.ndarray, gain: np.ndarray) -> np.ndarray:
+    """The part of `ok` in smooth-gain areas that touch the image border; `ok` itself
+    when no such area exists (a photo whose wall shows only between objects)."""
+    gain = gain.astype(np.float32)
+    k3 = np.ones((3, 3), np.uint8)
+    smooth = cv2.subtract(cv2.dilate(gain, k3), cv2.erode(gain, k3)) < SMOOTH_STEP
+    count, labels = cv2.connectedComponents((ok & smooth).view(np.uint8), connectivity=4)
+    if count <= 1:
+        return ok
+    edge = np.concatenate([labels[0], labels[-1], labels[:, 0], labels[:, -1]])
+    touching = np.unique(edge[edge > 0])
+    if len(touching) == 0:
+        return ok
+    return np.isin(labels, touching)
 
 
 def _ransac_inliers(design: np.ndarray, g: np.ndarray, subset: int) -> np.ndarray:

@@ -5,6 +5,13 @@ node's `attrs.color` wins, as for blocks) with a thin dark border; furniture is 
 first, the floor is a grey band. Drawing reads poses only and never changes the world,
 so the same state always gives the same pixels. The tabletop camera frames the
 furniture (plus headroom for stacks) so frames of one episode line up.
+
+Image size: a caller may fix width and height; a side view of a kitchen is five times
+wider than tall, so squeezing it into 640x480 leaves most of the frame empty sky and a
+cup wall two pixels wide. Without a size, a tabletop is drawn at `PIXELS_PER_UNIT` (the
+image takes the scene's own shape, at least `MIN_WIDTH` wide, at most `MAX_SIDE` on
+either side); with only one side given, the other follows the scene's shape. The
+tangram's top view is compact and keeps 640x480 by default.
 """
 
 from __future__ import annotations
@@ -27,8 +34,32 @@ SHIFT = 4
 SCALE = 1 << SHIFT
 HEADROOM = 24.0
 MARGIN = 3.0
+PIXELS_PER_UNIT = 8.0  # a 0.5-unit cup wall is 4 px: still visible under blur and JPEG
+MIN_WIDTH = 640
+MAX_SIDE = 2048
+DEFAULT_SIZE = (640, 480)
 
 View = tuple[float, float, float, float]  # x0, y0, x1, y1 in world units
+
+
+def frame_size(view: View, width: int | None = None, height: int | None = None, *,
+               default: tuple[int, int] | None = None) -> tuple[int, int]:
+    """(width, height) of the image for a view: the caller's size where given, the other
+    side from the view's shape (at most MAX_SIDE: past that the scene is centred in a
+    frame of another shape); with neither, `default` or the view at PIXELS_PER_UNIT."""
+    x0, y0, x1, y1 = view
+    view_w, view_h = max(x1 - x0, 1e-6), max(y1 - y0, 1e-6)
+    if width is not None and height is not None:
+        return width, height
+    if width is not None:
+        return width, min(MAX_SIDE, max(1, round(width * view_h / view_w)))
+    if height is not None:
+        return min(MAX_SIDE, max(1, round(height * view_w / view_h))), height
+    if default is not None:
+        return default
+    scale = max(PIXELS_PER_UNIT, MIN_WIDTH / view_w)
+    scale = min(scale, MAX_SIDE / view_w, MAX_SIDE / view_h)
+    return max(1, round(view_w * scale)), max(1, round(view_h * scale))
 
 
 class _Camera:
@@ -76,11 +107,13 @@ def tabletop_view(world: TabletopWorld) -> View:
     return x0, -3.0, x1, y1
 
 
-def render_tabletop(world: TabletopWorld, width: int = 640, height: int = 480, *,
-                    labels: bool = False, view: View | None = None) -> np.ndarray:
+def render_tabletop(world: TabletopWorld, width: int | None = None, height: int | None = None,
+                    *, labels: bool = False, view: View | None = None) -> np.ndarray:
+    view = view or tabletop_view(world)
+    width, height = frame_size(view, width, height)
     img = np.empty((height, width, 3), dtype=np.uint8)
     img[:] = palette.BACKGROUND
-    cam = _Camera(view or tabletop_view(world), width, height, bottom=True)
+    cam = _Camera(view, width, height, bottom=True)
     floor_y = cam.pixel(0.0, 0.0)[1]
     img[max(floor_y, 0):, :] = palette.FLOOR
     colors = {n.id: n.attrs.get("color") for n in world.nodes}
@@ -106,15 +139,17 @@ def render_tabletop(world: TabletopWorld, width: int = 640, height: int = 480, *
     return img
 
 
-def render_tangram(world: TangramWorld, width: int = 640, height: int = 480, *,
-                   labels: bool = False) -> np.ndarray:
-    img = np.empty((height, width, 3), dtype=np.uint8)
-    img[:] = palette.TANGRAM_BACKGROUND
+def render_tangram(world: TangramWorld, width: int | None = None, height: int | None = None,
+                   *, labels: bool = False) -> np.ndarray:
     polys = {n.id: world.vertices(n.id) for n in world.nodes}
     xs = [x for poly in polys.values() for x, _ in poly] or [0.0, 1.0]
     ys = [y for poly in polys.values() for _, y in poly] or [0.0, 1.0]
     m = 2 * MARGIN
-    cam = _Camera((min(xs) - m, min(ys) - m, max(xs) + m, max(ys) + m), width, height)
+    view = (min(xs) - m, min(ys) - m, max(xs) + m, max(ys) + m)
+    width, height = frame_size(view, width, height, default=DEFAULT_SIZE)
+    img = np.empty((height, width, 3), dtype=np.uint8)
+    img[:] = palette.TANGRAM_BACKGROUND
+    cam = _Camera(view, width, height)
     tangram = builtin_dictionary("tangram")
     for node in world.nodes:
         color = palette.object_color(node.id, node.attrs.get("color"),

@@ -92,8 +92,8 @@ class TabletopWorld(SimWorld):
         return out
 
     # -- SimWorld ----------------------------------------------------------------------------
-    def render(self, width: int = 640, height: int = 480, *, labels: bool = False
-               ) -> np.ndarray:
+    def render(self, width: int | None = None, height: int | None = None, *,
+               labels: bool = False) -> np.ndarray:
         from verigraph.sim2d.render import render_tabletop
         return render_tabletop(self, width, height, labels=labels)
 

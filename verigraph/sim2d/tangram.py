@@ -129,8 +129,8 @@ class TangramWorld(SimWorld):
         return align_pose(self.labels[action.object], action.side,
                           self.vertices(action.target), action.target_side)
 
-    def render(self, width: int = 640, height: int = 480, *, labels: bool = False
-               ) -> np.ndarray:
+    def render(self, width: int | None = None, height: int | None = None, *,
+               labels: bool = False) -> np.ndarray:
         from verigraph.sim2d.render import render_tangram
         return render_tangram(self, width, height, labels=labels)
 

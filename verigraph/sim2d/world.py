@@ -43,9 +43,11 @@ class SimWorld(ABC):
         fixed object)."""
 
     @abstractmethod
-    def render(self, width: int = 640, height: int = 480, *, labels: bool = False
-               ) -> np.ndarray:
-        """BGR uint8 image of the current state (a pure function of the state)."""
+    def render(self, width: int | None = None, height: int | None = None, *,
+               labels: bool = False) -> np.ndarray:
+        """BGR uint8 image of the current state (a pure function of the state). A side
+        not given follows the scene's shape; with neither, the world picks a size that
+        shows its thinnest parts (see `sim2d.render.frame_size`)."""
 
     @abstractmethod
     def copy(self) -> SimWorld:

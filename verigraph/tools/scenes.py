@@ -33,8 +33,13 @@ from verigraph.tools.prompting import scene_graph_prompt
 from verigraph.tools.store import Episode
 from verigraph.tools.submission import Rename, SubmittedGraph, check_submission
 
-Width = Field(default=640, ge=64, le=2048, description="image width in pixels")
-Height = Field(default=480, ge=64, le=2048, description="image height in pixels")
+Width = Field(default=None, ge=64, le=2048,
+              description="image width in pixels; omit to let the scene choose: a simulated "
+                          "tabletop in its own shape at 8 px per world unit, tangram and "
+                          "graph drawings 640x480, a loaded photo as loaded (at most 1600 px)")
+Height = Field(default=None, ge=64, le=2048,
+               description="image height in pixels; omit to follow the scene's shape")
+DRAWING_SIZE = (640, 480)
 
 
 @dataclass(frozen=True)
@@ -63,7 +68,14 @@ def _colors(state: WorldState) -> dict[str, str]:
     return {o.id: o.props.color for o in state.objects.values() if o.props.color}
 
 
-def _picture(episode: Episode, width: int, height: int) -> np.ndarray:
+def _drawing(graph: SceneGraph, width: int | None, height: int | None, title: str,
+             colors: dict[str, str]) -> np.ndarray:
+    return draw_graph(graph, width or DRAWING_SIZE[0], height or DRAWING_SIZE[1], title=title,
+                      colors=colors)
+
+
+def _picture(episode: Episode, width: int | None = None, height: int | None = None
+             ) -> np.ndarray:
     """What a camera would show: simulator render, the loaded photo, or a drawing."""
     render = getattr(episode.world, "render", None)
     if callable(render):
@@ -72,8 +84,7 @@ def _picture(episode: Episode, width: int, height: int) -> np.ndarray:
     if episode.image is not None:
         return fit(episode.image, MAX_PHOTO_SIDE)
     state = episode.require_state()
-    return draw_graph(state.to_graph(), width, height, title="scene graph (drawing)",
-                      colors=_colors(state))
+    return _drawing(state.to_graph(), width, height, "scene graph (drawing)", _colors(state))
 
 
 # -- render_scene ---------------------------------------------------------------------------
@@ -86,8 +97,8 @@ class RenderSceneInput(BaseModel):
     view: Literal["current", "goal"] = Field(
         default="current", description="the current scene, or the goal (a simulator render "
                                        "for generated scenes, else a drawing of the goal graph)")
-    width: int = Width
-    height: int = Height
+    width: int | None = Width
+    height: int | None = Height
 
 
 def render_scene(ctx: ToolContext, params: RenderSceneInput) -> ImageResult:
@@ -104,8 +115,8 @@ def render_scene(ctx: ToolContext, params: RenderSceneInput) -> ImageResult:
                                         value="goal", fix="call set_goal with a graph first, "
                                                           "or use view=current")
             colors = _colors(episode.state) if episode.state is not None else {}
-            image = draw_graph(goal.graph, params.width, params.height,
-                               title="goal graph (drawing)", colors=colors)
+            image = _drawing(goal.graph, params.width, params.height, "goal graph (drawing)",
+                             colors)
         else:
             image = _picture(episode, params.width, params.height)
     return ImageResult(png=encode_png(image))
@@ -120,8 +131,8 @@ class GetSceneImageInput(BaseModel):
     episode_id: EpisodeId
     task: str | None = Field(default=None, max_length=4000,
                              description="what the scene graph is for, added to the prompt")
-    width: int = Width
-    height: int = Height
+    width: int | None = Width
+    height: int | None = Height
 
 
 def get_scene_image(ctx: ToolContext, params: GetSceneImageInput) -> ImageResult:
@@ -256,14 +267,15 @@ class GenerateSceneGraphInput(BaseModel):
 
 def generate_scene_graph(ctx: ToolContext, params: GenerateSceneGraphInput
                          ) -> SceneGraphSubmission:
-    """Built-in perception; until it exists, a clear error naming the agent-VLM route."""
+    """Built-in perception of an image, or of the episode's own picture at its default
+    size (for a simulated tabletop, the size that keeps thin parts visible)."""
     dictionary = dictionary_for(params.dictionary)
     if params.image is not None:
         image = decode_image(params.image)
     else:
         assert params.episode_id is not None
         with ctx.store.use(params.episode_id) as episode:
-            image = _picture(episode, 640, 480)
+            image = _picture(episode)
     perceive = optional.perception()
     graph = perceive(image, dictionary=dictionary)
     submitted = SubmittedGraph.model_validate(graph.model_dump())

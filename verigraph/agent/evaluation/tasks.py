@@ -171,7 +171,7 @@ def goal_image_png(goal_graph: SceneGraph, seed: int) -> bytes:
     from verigraph.sim2d import encode_png, world_for_graph
 
     world = world_for_graph(goal_graph, seed=seed)
-    return bytes(encode_png(world.render(640, 480)))
+    return bytes(encode_png(world.render()))
 
 
 def reference_image_tasks(family: Literal["blocks", "kitchen"], n: int, seed: int, *,
