@@ -50,6 +50,22 @@ def test_render_scene_is_a_png_of_the_requested_size() -> None:
         "render_scene", {"episode_id": eid}).png))
 
 
+def test_render_scene_default_frame_follows_the_scene() -> None:
+    """A simulated kitchen comes back in its own wide shape (thin walls stay visible);
+    one side given keeps that shape; a graph-only episode is drawn at 640x480."""
+    box = Toolbox()
+    eid = box.call("load_scene", {"generator": {"family": "kitchen", "seed": 7},
+                                  "simulate": True}).episode_id
+    wide = decode(box.call("render_scene", {"episode_id": eid}).png)
+    height, width = wide.shape[:2]
+    assert width >= 640 and width > 2 * height
+    narrow = decode(box.call("render_scene", {"episode_id": eid, "width": 640}).png)
+    assert narrow.shape[1] == 640 and abs(narrow.shape[0] / 640 - height / width) < 0.01
+    graph_only = box.call("load_scene", {"scene_id": "three_blocks", "simulate": False})
+    drawing = decode(box.call("render_scene", {"episode_id": graph_only.episode_id}).png)
+    assert drawing.shape == (480, 640, 3)
+
+
 def test_render_goal_needs_a_goal_graph() -> None:
     box = Toolbox()
     eid = box.call("load_scene", {"scene_id": "three_blocks"}).episode_id  # predicate goal
