@@ -6,7 +6,7 @@ import cv2
 import numpy as np
 import pytest
 
-from verigraph.graph.builtin_scenes import cup_on_book, three_blocks
+from verigraph.graph.builtin_scenes import cup_on_book, kitchen_pan, three_blocks
 from verigraph.graph.dictionary import builtin_dictionary
 from verigraph.sim2d import (
     Degradation,
@@ -59,6 +59,23 @@ def test_default_frame_takes_the_scene_shape_at_a_fixed_scale() -> None:
         assert scene.world.render(width=width).shape == image.shape
         assert scene.world.render(height=height).shape[0] == height
     assert generate_scene("tangram", 7).world.render().shape == (480, 640, 3)
+
+
+def test_labels_are_light_on_dark_furniture_and_dark_elsewhere() -> None:
+    """The stove's name is readable on the black stove, the counter's on the grey one."""
+    from verigraph.sim2d.render import _Camera, tabletop_view
+
+    world = world_for_graph(kitchen_pan())
+    assert isinstance(world, TabletopWorld)
+    plain, labelled = world.render(), world.render(labels=True)
+    cam = _Camera(tabletop_view(world), plain.shape[1], plain.shape[0], bottom=True)
+    for name, light in (("stove", True), ("counter", False)):
+        left, bottom, right, top = world.scene.things[name].bounds()
+        (x0, y0), (x1, y1) = cam.pixel(left, top), cam.pixel(right, bottom)
+        changed = (plain[y0:y1, x0:x1] != labelled[y0:y1, x0:x1]).any(axis=2)
+        assert changed.sum() > 20, name
+        text = labelled[y0:y1, x0:x1][changed].mean()
+        assert (text > 120) if light else (text < 120), (name, text)
 
 
 def test_objects_are_drawn_in_their_class_colours() -> None:

@@ -92,7 +92,13 @@ def _draw_polys(img: np.ndarray, cam: _Camera, polys: list[list[tuple[float, flo
 
 
 def _label(img: np.ndarray, text: str, at: tuple[int, int]) -> None:
-    cv2.putText(img, text, at, cv2.FONT_HERSHEY_SIMPLEX, 0.4, (20, 20, 20), 1, cv2.LINE_AA)
+    """Dark text, or light text where it lands on something dark (a black stove)."""
+    (w, h), _ = cv2.getTextSize(text, cv2.FONT_HERSHEY_SIMPLEX, 0.4, 1)
+    x, y = at
+    under = img[max(0, y - h):max(0, y + 1), max(0, x):max(0, x + w)]
+    dark = under.size > 0 and float(under.mean()) < 90
+    colour = (235, 235, 235) if dark else (20, 20, 20)
+    cv2.putText(img, text, at, cv2.FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv2.LINE_AA)
 
 
 def tabletop_view(world: TabletopWorld) -> View:
