@@ -14,6 +14,9 @@ from collections.abc import Collection
 from pathlib import Path
 from typing import Any
 
+from mcp.client.context import ClientRequestContext
+from mcp.types import ElicitRequestParams, ElicitResult
+
 from verigraph.arm import ArmWorld, ObjectLocation, open_arm_world, parse_arm_config, scoped_confirm
 from verigraph.arm.drivers.xarm import XArmDriver
 from verigraph.arm.testing.xarm_standin import XArmAPIStandIn
@@ -31,6 +34,24 @@ LAYOUT: dict[str, dict[str, list[float]]] = {
 }
 MOTION_CALLS = ("set_position", "set_gripper_position", "open_lite6_gripper",
                 "close_lite6_gripper")
+
+
+class User:
+    """The person behind an MCP client: answers every confirmation question the same
+    way (an elicitation callback) and keeps the questions."""
+
+    def __init__(self, action: str = "accept", approve: bool = True) -> None:
+        self.action = action
+        self.approve = approve
+        self.asked: list[str] = []
+
+    async def __call__(self, context: ClientRequestContext,
+                       params: ElicitRequestParams) -> ElicitResult:
+        self.asked.append(params.message)
+        assert params.requested_schema["properties"]["approve"]["type"] == "boolean"
+        if self.action != "accept":
+            return ElicitResult(action=self.action)  # type: ignore[arg-type]
+        return ElicitResult(action="accept", content={"approve": self.approve})
 
 
 def loose_blocks() -> dict[str, Any]:

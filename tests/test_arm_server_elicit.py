@@ -9,15 +9,13 @@ object is `BlockCellStandIn`, a stand-in for hardware that cannot run here.
 from __future__ import annotations
 
 import json
-from collections.abc import Awaitable, Callable
 from pathlib import Path
 from typing import Any
 
 import pytest
-from arm_server_helpers import BlockCellStandIn, loose_blocks, xarm_toolbox
+from arm_server_helpers import BlockCellStandIn, User, loose_blocks, xarm_toolbox
 from mcp import Client
-from mcp.client.context import ClientRequestContext
-from mcp.types import CallToolResult, ElicitRequestParams, ElicitResult
+from mcp.types import CallToolResult
 from mcp_helpers import structured, text
 
 from verigraph.arm import ConfirmationRequest, Pose, PreApproved, confirm_scope
@@ -31,29 +29,11 @@ from verigraph.tools.registry import TOOLS, parse_arguments
 require("xarm")
 
 pytestmark = pytest.mark.anyio
-Callback = Callable[[ClientRequestContext, ElicitRequestParams], Awaitable[ElicitResult]]
 
 
 @pytest.fixture()
 def anyio_backend() -> str:
     return "asyncio"
-
-
-class User:
-    """The person behind the client: answers every question the same way, keeps them."""
-
-    def __init__(self, action: str = "accept", approve: bool = True) -> None:
-        self.action = action
-        self.approve = approve
-        self.asked: list[str] = []
-
-    async def __call__(self, context: ClientRequestContext,
-                       params: ElicitRequestParams) -> ElicitResult:
-        self.asked.append(params.message)
-        assert params.requested_schema["properties"]["approve"]["type"] == "boolean"
-        if self.action != "accept":
-            return ElicitResult(action=self.action)  # type: ignore[arg-type]
-        return ElicitResult(action="accept", content={"approve": self.approve})
 
 
 async def episode(client: Client) -> str:

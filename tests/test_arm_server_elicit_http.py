@@ -21,11 +21,10 @@ from typing import Any
 import httpx2
 import pytest
 import uvicorn
-from arm_server_helpers import BlockCellStandIn, loose_blocks, xarm_toolbox
+from arm_server_helpers import BlockCellStandIn, User, loose_blocks, xarm_toolbox
 from mcp import Client
-from mcp.client.context import ClientRequestContext
 from mcp.client.streamable_http import streamable_http_client
-from mcp.types import CallToolResult, ElicitRequestParams, ElicitResult
+from mcp.types import CallToolResult
 from mcp_helpers import free_port, structured, text
 
 from verigraph.arm.testing.deps import require
@@ -42,19 +41,6 @@ TOKEN = "elicit-over-http"
 @pytest.fixture()
 def anyio_backend() -> str:
     return "asyncio"
-
-
-class User:
-    """Answers every question the same way and keeps them."""
-
-    def __init__(self, approve: bool) -> None:
-        self.approve = approve
-        self.asked: list[str] = []
-
-    async def __call__(self, context: ClientRequestContext,
-                       params: ElicitRequestParams) -> ElicitResult:
-        self.asked.append(params.message)
-        return ElicitResult(action="accept", content={"approve": self.approve})
 
 
 @contextmanager
