@@ -14,10 +14,7 @@ KITCHEN = 10020  # a long grey counter under a short wall
 
 
 def lit(image: np.ndarray, gain: GainField) -> np.ndarray:
-    h, w = image.shape[:2]
-    u = (np.arange(w, dtype=np.float32) + 0.5) / w
-    v = (np.arange(h, dtype=np.float32) + 0.5) / h
-    field = gain.at(u[None, :], v[:, None])[:, :, None]
+    field = gain.image(*image.shape[:2])[:, :, None]
     return np.clip(image.astype(np.float32) * field, 0, 255).astype(np.uint8)
 
 

@@ -49,6 +49,12 @@ class GainField:
         """Gain at image coordinates given as fractions of width and height."""
         return self.a + self.b * (u - 0.5) + self.c * (v - 0.5)
 
+    def image(self, height: int, width: int) -> np.ndarray:
+        """The gain at every pixel centre of a height x width image, float32."""
+        u = (np.arange(width, dtype=np.float32) + 0.5) / width
+        v = (np.arange(height, dtype=np.float32) + 0.5) / height
+        return np.asarray(self.at(u[None, :], v[:, None]), dtype=np.float32)
+
 
 def estimate_gain(image: np.ndarray, references: list[tuple[int, int, int]]) -> GainField:
     """Fit the gain plane from pixels that look like one of the reference colours."""
@@ -121,11 +127,7 @@ def correct(image: np.ndarray, gain: GainField) -> np.ndarray:
     """The image divided by the gain field (unchanged when the field is the identity)."""
     if gain.is_identity:
         return image
-    h, w = image.shape[:2]
-    u = (np.arange(w, dtype=np.float32) + 0.5) / w
-    v = (np.arange(h, dtype=np.float32) + 0.5) / h
-    field = gain.at(u[None, :], v[:, None]).astype(np.float32)
-    inverse = 1.0 / np.clip(field, 0.2, 5.0)
+    inverse = 1.0 / np.clip(gain.image(*image.shape[:2]), 0.2, 5.0)
     out = cv2.multiply(image.astype(np.float32), cv2.merge([inverse, inverse, inverse]))
     result = np.clip(out, 0, 255).astype(np.uint8)
     # A clipped pixel only says "at least this bright": keep it as it is.
