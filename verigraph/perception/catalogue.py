@@ -12,9 +12,7 @@ from dataclasses import dataclass
 
 from verigraph.graph.dictionary import Dictionary
 from verigraph.sim2d import palette
-from verigraph.sim2d.bodies import movable_spec
-
-FURNITURE_HEIGHT_FALLBACK = 14.0
+from verigraph.sim2d.bodies import FURNITURE_TOP, movable_spec
 
 
 @dataclass(frozen=True, slots=True)
@@ -79,7 +77,7 @@ def _build_models(dictionary: Dictionary) -> tuple[ObjectModel, ...]:
             width, height = spec.width, spec.height
         else:
             width = float(props.width or 40.0)
-            height = FURNITURE_HEIGHT_FALLBACK
+            height = FURNITURE_TOP  # what sim2d draws a carrying surface as
             area = width * height
             perimeter = 2 * (width + height)
         for colour in colours:

@@ -76,14 +76,19 @@ def node_color(label: str, attrs: dict[str, object], default: str | None = None
     return (150 + digest[0] % 90, 150 + digest[1] % 90, 150 + digest[2] % 90)
 
 
-def draw_graph(graph: SceneGraph, width: int = 640, height: int = 480,
+DRAWING_SIZE = (640, 480)
+
+
+def draw_graph(graph: SceneGraph, width: int | None = None, height: int | None = None,
                title: str | None = None, colors: dict[str, str] | None = None) -> np.ndarray:
     """BGR uint8 picture of `graph`: labelled boxes, relation arrows, optional title.
+    A side not given is DRAWING_SIZE's.
 
     `colors` maps node ids to colour names (e.g. from the dictionary) used when a node
     has no `color` attribute of its own.
     """
     colors = colors or {}
+    width, height = width or DRAWING_SIZE[0], height or DRAWING_SIZE[1]
     image = np.full((height, width, 3), 255, dtype=np.uint8)
     top = 30 if title else 8
     if title:

@@ -39,7 +39,6 @@ Width = Field(default=None, ge=64, le=2048,
                           "graph drawings 640x480, a loaded photo as loaded (at most 1600 px)")
 Height = Field(default=None, ge=64, le=2048,
                description="image height in pixels; omit to follow the scene's shape")
-DRAWING_SIZE = (640, 480)
 
 
 @dataclass(frozen=True)
@@ -68,12 +67,6 @@ def _colors(state: WorldState) -> dict[str, str]:
     return {o.id: o.props.color for o in state.objects.values() if o.props.color}
 
 
-def _drawing(graph: SceneGraph, width: int | None, height: int | None, title: str,
-             colors: dict[str, str]) -> np.ndarray:
-    return draw_graph(graph, width or DRAWING_SIZE[0], height or DRAWING_SIZE[1], title=title,
-                      colors=colors)
-
-
 def _picture(episode: Episode, width: int | None = None, height: int | None = None
              ) -> np.ndarray:
     """What a camera would show: simulator render, the loaded photo, or a drawing."""
@@ -84,7 +77,8 @@ def _picture(episode: Episode, width: int | None = None, height: int | None = No
     if episode.image is not None:
         return fit(episode.image, MAX_PHOTO_SIDE)
     state = episode.require_state()
-    return _drawing(state.to_graph(), width, height, "scene graph (drawing)", _colors(state))
+    return draw_graph(state.to_graph(), width, height, title="scene graph (drawing)",
+                      colors=_colors(state))
 
 
 # -- render_scene ---------------------------------------------------------------------------
@@ -115,8 +109,8 @@ def render_scene(ctx: ToolContext, params: RenderSceneInput) -> ImageResult:
                                         value="goal", fix="call set_goal with a graph first, "
                                                           "or use view=current")
             colors = _colors(episode.state) if episode.state is not None else {}
-            image = _drawing(goal.graph, params.width, params.height, "goal graph (drawing)",
-                             colors)
+            image = draw_graph(goal.graph, params.width, params.height,
+                               title="goal graph (drawing)", colors=colors)
         else:
             image = _picture(episode, params.width, params.height)
     return ImageResult(png=encode_png(image))
