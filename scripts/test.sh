@@ -14,6 +14,8 @@ VERIGRAPH_EXTRAS="${VERIGRAPH_EXTRAS:-dev,pddl,arm,clip}" bash scripts/setup.sh
 # The official MCP Inspector (a client nobody here wrote) for the interoperability test.
 bash scripts/install_inspector.sh
 export VERIGRAPH_INSPECTOR="$PWD/.tools/bin/mcp-inspector"
+# The official TypeScript SDK, ajv and the conformance suite (tests/interop/).
+bash scripts/install_interop.sh
 .venv/bin/ruff check verigraph tests benchmarks examples
 .venv/bin/mypy
 if [ "$SLOW" = 1 ]; then
