@@ -21,7 +21,9 @@ from verigraph.graph.dictionary import Dictionary
 from verigraph.graph.goal import GraphDiff, check_goal, diff
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.graph.submission import Rename, SubmittedGraph, check_submission
 from verigraph.graph.wellformed import GraphProblem
+from verigraph.prompts.filling import scene_graph_prompt
 from verigraph.tools import optional
 from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph
@@ -29,9 +31,7 @@ from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.executors import SceneCheck, arm_setup_for
 from verigraph.tools.fields import DictionaryName, EpisodeId, ImageData, dictionary_for
 from verigraph.tools.images import decode_image, encode_png
-from verigraph.tools.prompting import scene_graph_prompt
 from verigraph.tools.store import Episode
-from verigraph.tools.submission import Rename, SubmittedGraph, check_submission
 
 Width = Field(default=None, ge=64, le=2048,
               description="image width in pixels; omit to let the scene choose: a simulated "
