@@ -23,8 +23,8 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.submission import Rename, SubmittedGraph, check_submission
 from verigraph.graph.wellformed import GraphProblem
+from verigraph.perception import perceive
 from verigraph.prompts.filling import scene_graph_prompt
-from verigraph.tools import optional
 from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph
 from verigraph.tools.errors import ToolArgumentError
@@ -270,7 +270,6 @@ def generate_scene_graph(ctx: ToolContext, params: GenerateSceneGraphInput
         assert params.episode_id is not None
         with ctx.store.use(params.episode_id) as episode:
             image = _picture(episode)
-    perceive = optional.perception()
     graph = perceive(image, dictionary=dictionary)
     submitted = SubmittedGraph.model_validate(graph.model_dump())
     return _checked(submitted, dictionary)
