@@ -12,11 +12,11 @@ import pytest
 
 from verigraph.agent import EpisodeSpec, InProcessTools, LoopConfig, PlannerRequest, run_episode
 from verigraph.agent.anthropic_backend import TOOL_NAME, AnthropicConfig, AnthropicPlanner
-from verigraph.agent.http import JsonHttpClient
 from verigraph.agent.testing import RecordedResponse as R
 from verigraph.agent.testing import RecordedResponseServerForTests, anthropic_tool_use
 from verigraph.graph.builtin_scenes import three_blocks
 from verigraph.graph.goal import Goal
+from verigraph.llm.http import JsonHttpClient
 
 STACK = [{"action": "move", "object": "green_block", "relation": "on", "target": "red_block"},
          {"action": "done"}]

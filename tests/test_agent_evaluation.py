@@ -11,7 +11,6 @@ from verigraph.agent.evaluation import Setting, build_groups, run_setting
 from verigraph.agent.evaluation.bench import run
 from verigraph.agent.evaluation.language import TEMPLATES, instruction_for, template_counts
 from verigraph.agent.evaluation.runner import Progress
-from verigraph.agent.evaluation.tasks import perception_available
 from verigraph.graph import WorldState, check_goal, check_well_formed
 from verigraph.solver import solve
 
@@ -47,7 +46,6 @@ def test_instruction_goals_are_well_formed_new_and_reachable(family: str) -> Non
 
 
 def test_reference_image_groups_run_with_perception() -> None:
-    assert perception_available()
     groups = build_groups(("ref_image_blocks", "tangram"), 2, 0, ground_truth=False)
     ref, tangram = groups
     assert ref.not_run is None and len(ref.tasks) == 2
@@ -90,8 +88,6 @@ def test_report_has_the_paper_row_ablations_and_not_run_groups(tmp_path: object)
     assert "Ablation: error threshold t" in text and "Ablation: actions per iteration k" in text
     for t in (2, 3, 5, 10):
         assert f"\n| {t} | " in text
-    if not perception_available():
-        assert "Ref. image (blocks): not run (needs built-in perception" in text
 
 
 def test_bench_rejects_unknown_groups_and_planners() -> None:

@@ -165,11 +165,13 @@ def test_a_named_dictionary_limits_the_labels() -> None:
 
 
 def test_perceive_is_what_the_tools_layer_calls() -> None:
-    """`verigraph.tools.optional.perception()` finds `perceive(image, dictionary=D)`."""
+    """The tools (load_scene, set_goal, generate_scene_graph) call `perceive(image,
+    dictionary=D)` itself."""
     from verigraph.graph.dictionary import load_dictionary
-    from verigraph.tools import optional
+    from verigraph.tools import goals, loading
+    from verigraph.tools import scenes as scene_tools
 
-    fn = optional.perception()
-    graph = fn(render("kitchen", 1), dictionary=load_dictionary("kitchen"))
+    assert loading.perceive is goals.perceive is scene_tools.perceive is perceive
+    graph = perceive(render("kitchen", 1), dictionary=load_dictionary("kitchen"))
     assert isinstance(graph, SceneGraph)
     assert score_graph(graph, scenes("kitchen")[1].graph, "kitchen").exact

@@ -19,11 +19,11 @@ import cv2
 import numpy as np
 import pytest
 
-from verigraph.agent.openai_backend import response_format_field
 from verigraph.agent.testing import RecordedResponse as R
 from verigraph.agent.testing import RecordedResponseServerForTests, chat_completion
 from verigraph.cli import main
 from verigraph.graph.dictionary import builtin_dictionary
+from verigraph.llm.formats import response_format_field
 from verigraph.perception.metrics import score_graph
 from verigraph.perception.vlm import VlmClient, VlmConfig, VlmError, graph_schema
 from verigraph.sim2d.generator import generate_scene

@@ -10,7 +10,6 @@ from mcp_helpers import png_b64
 from verigraph.errors import VeriGraphError
 from verigraph.tools import Toolbox, ToolConfig, UnknownEpisodeError
 from verigraph.tools.errors import EpisodeLimitError
-from verigraph.tools.optional import _attribute
 
 CUP_PLAN = ["move(cup, on, desk)", "move(book, on, shelf)"]
 
@@ -88,12 +87,6 @@ def test_image_episode_waits_for_a_submitted_graph() -> None:
     with pytest.raises(VeriGraphError) as err:
         box.call("execute_actions", {"episode_id": state.episode_id, "actions": ["done"]})
     assert "submit_scene_graph" in (err.value.fix or "")
-
-
-def test_optional_subsystems_are_looked_up_at_call_time() -> None:
-    assert _attribute("verigraph.no_such_subsystem", "world_for_graph") is None
-    assert _attribute("verigraph.graph", "no_such_function") is None
-    assert _attribute("verigraph.graph", "check_goal") is not None
 
 
 def test_set_goal_graph_predicate_and_instruction() -> None:

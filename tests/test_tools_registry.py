@@ -11,8 +11,8 @@ from verigraph import prompts
 from verigraph.errors import VeriGraphError
 from verigraph.graph.builtin_scenes import cup_on_book, cup_on_book_goal
 from verigraph.graph.state import WorldState
+from verigraph.prompts.filling import planner_prompt, scene_graph_prompt
 from verigraph.tools import TOOL_SPECS, Toolbox, ToolConfig, ToolSpec
-from verigraph.tools.prompting import planner_prompt, scene_graph_prompt
 
 DESIGN_TOOLS = ["load_scene", "set_goal", "get_state", "validate_action", "execute_actions",
                 "validate_plan", "check_goal", "generate_scene_graph", "render_scene", "solve",

@@ -12,14 +12,14 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.agent.http import JsonHttpClient
 from verigraph.agent.models import PlannerReply, PlannerRequest
 from verigraph.agent.parsing import ParseFailure, parse_answer, parse_tool_input
 from verigraph.agent.schema import action_schema
 from verigraph.errors import VeriGraphError
+from verigraph.llm.clients import anthropic_client
+from verigraph.llm.http import JsonHttpClient
 
 TOOL_NAME = "propose_actions"
-API_VERSION = "2023-06-01"
 
 
 class AnthropicConfig(BaseModel):
@@ -57,12 +57,9 @@ class AnthropicPlanner:
                  ) -> None:
         self.config = config
         self.name = f"anthropic:{config.model}"
-        headers = {"anthropic-version": API_VERSION, "content-type": "application/json"}
-        if config.api_key:
-            headers["x-api-key"] = config.api_key
-        self.client = client or JsonHttpClient(config.base_url, headers=headers,
-                                               timeout=config.timeout_s,
-                                               retries=config.retries)
+        self.client = client or anthropic_client(config.base_url, config.api_key,
+                                                 timeout=config.timeout_s,
+                                                 retries=config.retries)
 
     def build_payload(self, request: PlannerRequest) -> dict[str, Any]:
         """The Messages API request body for one proposal."""

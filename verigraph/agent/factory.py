@@ -7,9 +7,9 @@ from typing import Literal, get_args
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.agent.noisy import MISTAKE_KINDS, MistakeKind, NoisyPlanner
-from verigraph.agent.openai_backend import ResponseFormat
 from verigraph.agent.oracle import OraclePlanner
 from verigraph.agent.planner import Planner
+from verigraph.llm.formats import ResponseFormat
 
 PlannerName = Literal["oracle", "noisy", "openai", "anthropic", "llm-local"]
 PLANNER_NAMES: tuple[str, ...] = get_args(PlannerName)

@@ -23,9 +23,10 @@ import httpx2
 from verigraph.agent.models import PlannerReply, PlannerRequest
 from verigraph.agent.openai_backend import OpenAIConfig, OpenAIPlanner
 from verigraph.errors import VeriGraphError
+from verigraph.extras import EXTRAS
 
 MODEL_ALIAS = "gemma-3-270m"
-EXTRA_HINT = ('install the extra: pip install "verigraph[llm]" (llama-cpp-python must be '
+EXTRA_HINT = (f"install the extra: {EXTRAS['llm'].install} (llama-cpp-python must be "
               'built with CMAKE_ARGS="-DGGML_NATIVE=OFF -DLLAVA_BUILD=OFF" on machines that '
               "refuse AMX instructions)")
 

@@ -2,14 +2,9 @@
 
 Works with OpenAI, Gemini's compatible endpoint, Ollama, vLLM and llama.cpp's server.
 The answer is constrained to the action schema; servers disagree on how to ask for
-that, so the request format is configurable:
-
-- `json_schema`: `{"type": "json_schema", "json_schema": {"name", "strict", "schema"}}`
-  (OpenAI, vLLM, Ollama);
-- `json_object_schema`: `{"type": "json_object", "schema": S}` (llama-cpp-python's
-  server, which rejects `json_schema` with HTTP 500);
-- `json_object`: plain JSON mode, the schema only described in the prompt;
-- `none`: free text, parsed as JSON or as the text plan form.
+that, so the request format is configurable (`verigraph.llm.formats`: `json_schema`,
+`json_object_schema`, `json_object`, or `none`: free text, parsed as JSON or as the text
+plan form).
 
 The whole prompt goes into one user message (some chat templates, such as Gemma's,
 drop system messages). Malformed or truncated answers become feedback, not errors.
@@ -18,18 +13,17 @@ drop system messages). Malformed or truncated answers become feedback, not error
 from __future__ import annotations
 
 import os
-from typing import Any, Literal
+from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.agent.http import JsonHttpClient
 from verigraph.agent.models import PlannerReply, PlannerRequest
 from verigraph.agent.parsing import ParseFailure, parse_answer
 from verigraph.agent.schema import SCHEMA_NAME, action_schema, format_instruction
 from verigraph.errors import VeriGraphError
-
-ResponseFormat = Literal["json_schema", "json_object_schema", "json_object", "none"]
-RESPONSE_FORMATS: tuple[str, ...] = ("json_schema", "json_object_schema", "json_object", "none")
+from verigraph.llm.clients import openai_client
+from verigraph.llm.formats import ResponseFormat, response_format_field
+from verigraph.llm.http import JsonHttpClient
 
 
 class OpenAIConfig(BaseModel):
@@ -63,19 +57,6 @@ class OpenAIConfig(BaseModel):
         return cls.model_validate(given)
 
 
-def response_format_field(kind: ResponseFormat, schema: dict[str, Any],
-                          name: str = SCHEMA_NAME) -> dict[str, Any] | None:
-    """The `response_format` request field for a server dialect (None: leave it out)."""
-    if kind == "json_schema":
-        return {"type": "json_schema",
-                "json_schema": {"name": name, "strict": True, "schema": schema}}
-    if kind == "json_object_schema":
-        return {"type": "json_object", "schema": schema}
-    if kind == "json_object":
-        return {"type": "json_object"}
-    return None
-
-
 class OpenAIPlanner:
     """Chat-completions planner; one HTTP call (plus transient retries) per proposal."""
 
@@ -83,10 +64,8 @@ class OpenAIPlanner:
                  client: JsonHttpClient | None = None) -> None:
         self.config = config
         self.name = name or f"openai:{config.model}"
-        headers = {"Authorization": f"Bearer {config.api_key}"} if config.api_key else {}
-        self.client = client or JsonHttpClient(config.base_url, headers=headers,
-                                               timeout=config.timeout_s,
-                                               retries=config.retries)
+        self.client = client or openai_client(config.base_url, config.api_key,
+                                              timeout=config.timeout_s, retries=config.retries)
 
     def build_payload(self, request: PlannerRequest) -> dict[str, Any]:
         """The chat-completions request body for one proposal."""
@@ -100,7 +79,7 @@ class OpenAIPlanner:
         }
         if self.config.seed is not None:
             payload["seed"] = self.config.seed
-        field = response_format_field(self.config.response_format, schema)
+        field = response_format_field(self.config.response_format, schema, SCHEMA_NAME)
         if field is not None:
             payload["response_format"] = field
         return payload

@@ -1,7 +1,7 @@
 """The planner prompt for one iteration, from the same templates the MCP prompts serve.
 
 The text pieces (objects, graph, goal, actions, constraints, history) come from
-`verigraph.tools.prompting`, which the server's `iterative_planner` and `direct_planner`
+`verigraph.prompts.filling`, which the server's `iterative_planner` and `direct_planner`
 prompts use too, so an LLM behind this agent reads what a chat assistant reads. Only the
 feedback line differs: the agent also reports malformed answers and a premature end
 token, which the server never sees.
@@ -15,7 +15,7 @@ from verigraph import prompts
 from verigraph.agent.models import Feedback, Mode
 from verigraph.graph.goal import Goal
 from verigraph.graph.state import WorldState
-from verigraph.tools import prompting as pieces
+from verigraph.prompts import filling as pieces
 
 TEMPLATE = {"iterative": "iterative_planner", "direct": "direct_planner"}
 

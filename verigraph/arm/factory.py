@@ -20,6 +20,7 @@ from verigraph.arm.errors import ArmConfigError, ArmConnectionError
 from verigraph.arm.locators import LayoutLocator
 from verigraph.arm.protocols import ArmDriver, ConfirmHook, ObjectLocator
 from verigraph.arm.world import ArmWorld
+from verigraph.extras import require
 from verigraph.graph.model import SceneGraph
 
 
@@ -38,6 +39,7 @@ def open_arm_world(config: ArmConfig, graph: SceneGraph, *, confirm: ConfirmHook
         raise ArmConfigError(f"unknown arm driver '{config.driver}'", field="driver",
                              value=config.driver, fix=f"use one of {', '.join(DRIVER_NAMES)}")
     if config.driver == "pybullet" and driver is None:
+        require("arm", "pybullet")
         from verigraph.arm.drivers.pybullet_panda import PyBulletPandaDriver
         from verigraph.arm.sim.camera import PyBulletCameraLocator, capture
         from verigraph.arm.sim.panda_scene import PandaScene
@@ -75,8 +77,10 @@ def open_arm_world(config: ArmConfig, graph: SceneGraph, *, confirm: ConfirmHook
 
 
 def make_driver(config: ArmConfig) -> ArmDriver:
-    """The hardware driver named in the config (imports its SDK only now)."""
+    """The hardware driver named in the config (imports its SDK only now; a missing SDK
+    is an ExtraMissingError naming the install command)."""
     if config.driver == "rosbridge":
+        require("arm", "roslibpy")
         from verigraph.arm.drivers.rosbridge import RosbridgeDriver
 
         return RosbridgeDriver(config)

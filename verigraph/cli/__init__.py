@@ -6,16 +6,14 @@ Exit codes: 0 success, 1 a negative verdict (plan invalid, goal missed), 2 bad i
 from __future__ import annotations
 
 import argparse
-import importlib
 import sys
 from collections.abc import Sequence
 
+from verigraph.cli import agent, bench, core, perceive, serve, sim
 from verigraph.errors import VeriGraphError
 
-# Each module defines `register(subparsers)`; a module whose optional dependencies are
-# missing is skipped, so the core install still has validate/solve/export-pddl.
-SUBCOMMAND_MODULES = ("verigraph.cli.core", "verigraph.cli.serve", "verigraph.cli.sim",
-                      "verigraph.cli.agent", "verigraph.cli.bench", "verigraph.cli.perceive")
+# Each module defines `register(subparsers)`, in the order of the help text.
+SUBCOMMAND_MODULES = (core, serve, sim, agent, bench, perceive)
 
 EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
 
@@ -23,13 +21,7 @@ EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="verigraph", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for name in SUBCOMMAND_MODULES:
-        try:
-            module = importlib.import_module(name)
-        except ModuleNotFoundError as exc:
-            if exc.name and exc.name.startswith("verigraph"):
-                continue
-            raise
+    for module in SUBCOMMAND_MODULES:
         module.register(sub)
     return parser
 

@@ -23,7 +23,7 @@ GENERATOR = re.compile(r"^(?P<family>[a-z_]+):(?P<seed>\d+)(?::(?P<n>\d+))?$")
 def register(sub: Any) -> None:
     from verigraph.agent.factory import PLANNER_NAMES
     from verigraph.agent.noisy import MISTAKE_KINDS
-    from verigraph.agent.openai_backend import RESPONSE_FORMATS
+    from verigraph.llm.formats import RESPONSE_FORMATS
 
     p = sub.add_parser(
         "agent", help="plan with an LLM (or the solver) through the MCP tools, Algorithm 1",

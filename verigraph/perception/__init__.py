@@ -9,7 +9,7 @@
 `perceive` is the entry point the tools layer calls (`generate_scene_graph`, image
 inputs of `load_scene` and `set_goal`); `perceive_image` also returns warnings, the
 detected objects and timings. Labellers: the default colour/shape one, or OpenCLIP
-(`make_labeller("clip", ClipSource(...))`, optional extra `verigraph[clip]`). The VLM
+(`make_labeller("clip", ClipSource(...))`, optional extra `verigraph-mcp[clip]`). The VLM
 path (`VlmClient`) asks an OpenAI-compatible vision model instead.
 """
 

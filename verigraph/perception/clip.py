@@ -12,7 +12,7 @@ Weights never come from the network. A model is loaded from
   are already in the user's cache (`~/.cache/huggingface`, `~/.cache/clip`).
 Anything else raises `ClipUnavailable`, and `make_labeller` falls back to the
 colour/shape labeller with a message saying how to get the model. torch and open_clip
-are the optional extra `verigraph[clip]`.
+are the optional extra `clip` (see `verigraph.extras`).
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ import cv2
 import numpy as np
 
 from verigraph.errors import VeriGraphError
+from verigraph.extras import EXTRAS, missing
 from verigraph.perception.catalogue import ObjectModel
 from verigraph.perception.labelling import ColourShapeLabeller, Labeller
 from verigraph.perception.regions import Region
@@ -39,7 +40,7 @@ CROP_MARGIN = 0.15
 GROUND = 128  # grey behind a cropped object
 DEFAULT_MODEL = "ViT-B-32"
 DEFAULT_TAG = "openai"
-INSTALL_FIX = ("pip install 'verigraph[clip]', then give a local model folder "
+INSTALL_FIX = (f"{EXTRAS['clip'].install}, then give a local model folder "
                "(--clip-model local-dir:/path) or a tag whose weights are in your cache")
 
 
@@ -57,6 +58,10 @@ class ClipSource:
 
 
 def _modules() -> tuple[Any, Any]:
+    absent = missing("clip")
+    if absent:
+        raise ClipUnavailable(f"OpenCLIP is not installed ({absent[0]} is missing)",
+                              field="labeller", value="clip", fix=INSTALL_FIX)
     try:
         import open_clip
         import torch

@@ -9,8 +9,8 @@ model that writes "Red Block" or "on top of" still yields canonical names and ev
 remaining problem is listed. Chat assistants keep using the agent-side path.
 
 Servers disagree on how to ask for a schema, so `response_format` is configurable, as
-for the `openai` planner: `json_schema` (OpenAI, vLLM, Ollama, Gemini), `json_object_schema`
-(llama-cpp-python's server), `json_object` or `none`.
+for the `openai` planner (`verigraph.llm.formats`): `json_schema` (OpenAI, vLLM, Ollama,
+Gemini), `json_object_schema` (llama-cpp-python's server), `json_object` or `none`.
 """
 
 from __future__ import annotations
@@ -28,11 +28,14 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError
 from verigraph.errors import VeriGraphError
 from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, Dictionary, load_dictionary
 from verigraph.graph.model import ID_PATTERN
+from verigraph.graph.submission import SubmittedGraph, check_submission
+from verigraph.llm.clients import openai_client
+from verigraph.llm.formats import ResponseFormat, response_format_field
 from verigraph.perception.config import ImageLimits
 from verigraph.perception.imageio import as_bgr
 from verigraph.perception.result import PerceptionResult
+from verigraph.prompts.filling import scene_graph_prompt
 
-ResponseFormat = Literal["json_schema", "json_object_schema", "json_object", "none"]
 SCHEMA_NAME = "scene_graph"
 _FENCE = re.compile(r"^```(?:json)?\s*|\s*```$", re.MULTILINE)
 
@@ -119,9 +122,6 @@ def build_payload(config: VlmConfig, image: np.ndarray, dictionary: Dictionary,
                   task: str | None = None) -> dict[str, Any]:
     """The chat-completions body: prompt text and image in one user message (some chat
     templates drop system messages)."""
-    from verigraph.agent.openai_backend import response_format_field
-    from verigraph.tools.prompting import scene_graph_prompt
-
     prompt = scene_graph_prompt(dictionary, task)
     payload: dict[str, Any] = {
         "model": config.model,
@@ -165,8 +165,6 @@ def answer_text(data: dict[str, Any]) -> tuple[str, bool]:
 def parse_graph(text: str, dictionary: Dictionary, *, truncated: bool = False
                 ) -> PerceptionResult:
     """A model's JSON answer -> normalised scene graph; problems become warnings."""
-    from verigraph.tools.submission import SubmittedGraph, check_submission
-
     try:
         data = json.loads(_FENCE.sub("", text.strip()))
     except json.JSONDecodeError as exc:
@@ -214,11 +212,8 @@ class VlmClient:
     def __init__(self, config: VlmConfig, *, client: Any = None) -> None:
         self.config = config
         if client is None:
-            from verigraph.agent.http import JsonHttpClient
-
-            headers = {"Authorization": f"Bearer {config.api_key}"} if config.api_key else {}
-            client = JsonHttpClient(config.base_url, headers=headers,
-                                    timeout=config.timeout_s, retries=config.retries)
+            client = openai_client(config.base_url, config.api_key,
+                                   timeout=config.timeout_s, retries=config.retries)
         self.client = client
 
     def perceive(self, image: object, dictionary: Dictionary | str | None = None,

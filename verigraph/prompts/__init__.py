@@ -1,5 +1,7 @@
 """Prompt templates (planner and scene-graph generation) as text files, and `render`.
 
+Filling them from a state, a goal or a dictionary is `verigraph.prompts.filling`.
+
 The templates live next to this file as Markdown with `$name` placeholders
 (`string.Template`), so they are readable and editable without touching code. The MCP
 server exposes them as prompts; the agent loop calls `render` directly.

@@ -12,8 +12,8 @@ from mcp.server.mcpserver import MCPServer
 
 from verigraph.errors import VeriGraphError
 from verigraph.graph.state import WorldState
+from verigraph.prompts.filling import planner_prompt, scene_graph_prompt
 from verigraph.tools.fields import builtin_scene, dictionary_for
-from verigraph.tools.prompting import planner_prompt, scene_graph_prompt
 from verigraph.tools.registry import Toolbox
 
 

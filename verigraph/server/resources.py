@@ -18,8 +18,8 @@ from verigraph.actions.model import ActionAdapter
 from verigraph.errors import VeriGraphError
 from verigraph.graph.builtin_scenes import BUILTIN_GOALS, BUILTIN_SCENES
 from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, load_dictionary
-from verigraph.tools.episodes import describe
 from verigraph.tools.registry import Toolbox
+from verigraph.tools.summaries import describe
 
 JSON = "application/json"
 RELATION_MEANINGS = {

@@ -16,19 +16,17 @@ tangram's top view is compact and keeps 640x480 by default.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from collections.abc import Mapping, Sequence
+from typing import Protocol
 
 import cv2
 import numpy as np
 
 from verigraph.graph.dictionary import builtin_dictionary
+from verigraph.graph.model import Node
 from verigraph.sim2d import palette, physics
 from verigraph.sim2d.bodies import FURNITURE_TOP
-
-if TYPE_CHECKING:
-    from verigraph.sim2d.tabletop import TabletopWorld
-    from verigraph.sim2d.tangram import TangramWorld
+from verigraph.sim2d.scene import TabletopScene
 
 SHIFT = 4
 SCALE = 1 << SHIFT
@@ -40,6 +38,30 @@ MAX_SIDE = 2048
 DEFAULT_SIZE = (640, 480)
 
 View = tuple[float, float, float, float]  # x0, y0, x1, y1 in world units
+
+
+class TabletopPicture(Protocol):
+    """What a side view is drawn from: the bodies of a scene and the nodes' colours.
+
+    A plain description, so the renderer needs no world class (the worlds call it)."""
+
+    @property
+    def scene(self) -> TabletopScene: ...
+
+    @property
+    def nodes(self) -> Sequence[Node]: ...
+
+
+class TangramPicture(Protocol):
+    """What a top view is drawn from: the pieces, their labels and placed outlines."""
+
+    @property
+    def nodes(self) -> Sequence[Node]: ...
+
+    @property
+    def labels(self) -> Mapping[str, str]: ...
+
+    def vertices(self, piece: str) -> list[tuple[float, float]]: ...
 
 
 def frame_size(view: View, width: int | None = None, height: int | None = None, *,
@@ -101,7 +123,7 @@ def _label(img: np.ndarray, text: str, at: tuple[int, int]) -> None:
     cv2.putText(img, text, at, cv2.FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv2.LINE_AA)
 
 
-def tabletop_view(world: TabletopWorld) -> View:
+def tabletop_view(world: TabletopPicture) -> View:
     """Furniture extent with headroom for stacks; grows if something stands higher."""
     things = [t for t in world.scene.things.values() if t.body.space is not None]
     fixed = [t.bounds() for t in things if t.fixed] or [t.bounds() for t in things] \
@@ -113,7 +135,7 @@ def tabletop_view(world: TabletopWorld) -> View:
     return x0, -3.0, x1, y1
 
 
-def render_tabletop(world: TabletopWorld, width: int | None = None, height: int | None = None,
+def render_tabletop(world: TabletopPicture, width: int | None = None, height: int | None = None,
                     *, labels: bool = False, view: View | None = None) -> np.ndarray:
     view = view or tabletop_view(world)
     width, height = frame_size(view, width, height)
@@ -145,7 +167,7 @@ def render_tabletop(world: TabletopWorld, width: int | None = None, height: int 
     return img
 
 
-def render_tangram(world: TangramWorld, width: int | None = None, height: int | None = None,
+def render_tangram(world: TangramPicture, width: int | None = None, height: int | None = None,
                    *, labels: bool = False) -> np.ndarray:
     polys = {n.id: world.vertices(n.id) for n in world.nodes}
     xs = [x for poly in polys.values() for x, _ in poly] or [0.0, 1.0]

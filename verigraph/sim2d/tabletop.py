@@ -25,6 +25,7 @@ from verigraph.sim2d.carry import carry_over
 from verigraph.sim2d.errors import SimError
 from verigraph.sim2d.putdown import put_down, turned
 from verigraph.sim2d.readback import read_supports
+from verigraph.sim2d.render import render_tabletop
 from verigraph.sim2d.scene import TabletopScene, Thing
 from verigraph.sim2d.world import SimWorld, WorldKind
 
@@ -94,7 +95,6 @@ class TabletopWorld(SimWorld):
     # -- SimWorld ----------------------------------------------------------------------------
     def render(self, width: int | None = None, height: int | None = None, *,
                labels: bool = False) -> np.ndarray:
-        from verigraph.sim2d.render import render_tabletop
         return render_tabletop(self, width, height, labels=labels)
 
     def copy(self) -> TabletopWorld:

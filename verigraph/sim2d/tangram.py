@@ -19,6 +19,7 @@ from verigraph.actions.model import AlignAction, MoveAction
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.sim2d.errors import SimError
+from verigraph.sim2d.render import render_tangram
 from verigraph.sim2d.tangram_geometry import (
     OVERLAP_DEPTH,
     SEPARATION,
@@ -131,7 +132,6 @@ class TangramWorld(SimWorld):
 
     def render(self, width: int | None = None, height: int | None = None, *,
                labels: bool = False) -> np.ndarray:
-        from verigraph.sim2d.render import render_tangram
         return render_tangram(self, width, height, labels=labels)
 
     def copy(self) -> TangramWorld:

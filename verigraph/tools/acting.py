@@ -25,7 +25,6 @@ from verigraph.graph.goal import Goal, GraphDiff
 from verigraph.graph.goal import check_goal as core_check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.tools.context import ToolContext
-from verigraph.tools.episodes import check_goal_against, stateless_source
 from verigraph.tools.errors import EpisodeStateError, ToolArgumentError
 from verigraph.tools.fields import (
     ActionInput,
@@ -36,6 +35,8 @@ from verigraph.tools.fields import (
     count_moves,
     parse_actions,
 )
+from verigraph.tools.goals import check_goal_against
+from verigraph.tools.loading import stateless_source
 from verigraph.tools.store import TraceEntry
 
 MAX_ACTIONS_PER_CALL = 50

@@ -32,7 +32,7 @@ class EpisodeStateError(VeriGraphError):
 
 
 class FeatureUnavailableError(VeriGraphError):
-    """A subsystem (simulator, perception, solver) that is not installed or is disabled."""
+    """A tool this server's configuration disables (e.g. solve)."""
 
 
 class InvalidArgumentsError(ToolArgumentError):

@@ -29,7 +29,6 @@ from verigraph.arm import (
 )
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.tools import optional
 from verigraph.tools.errors import EpisodeLimitError, ToolArgumentError
 
 EXECUTOR_HELP = ("graph (verification only), sim2d (the 2D simulator) or arm:<driver> "
@@ -99,8 +98,6 @@ def server_executor(executor: str | None, arm_config: str | Path | None
     config = load_arm_config(arm_config) if arm_config is not None else None
     name = check_executor(executor or (f"arm:{config.driver}" if config else "graph"),
                           field="--executor")
-    if name == "sim2d":
-        optional.world_for_graph()
     if not name.startswith("arm:"):
         return name, ArmSetup(config) if config else None
     driver = driver_from_executor(name)

@@ -17,7 +17,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from verigraph.actions.report import ValidationReport
-from verigraph.tools import acting, arm, episodes, scenes, solving
+from verigraph.tools import acting, arm, episodes, goals, loading, scenes, solving, summaries
 from verigraph.tools.context import ToolConfig, ToolContext
 from verigraph.tools.errors import InvalidArgumentsError, ToolArgumentError
 from verigraph.tools.scenes import ImageResult
@@ -47,18 +47,18 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              "episode_id every other stateful tool takes, the current graph and the goal. "
              "executor picks where actions run (graph, sim2d, or the server's arm); an arm "
              "episode reports whether the arm observes the scene as the graph says.",
-             episodes.LoadSceneInput, episodes.EpisodeState, episodes.load_scene,
+             loading.LoadSceneInput, summaries.EpisodeState, loading.load_scene,
              read_only=False, open_world=True),
     ToolSpec("set_goal", "Set the goal",
              "Set the episode's goal: a goal graph (partial=true: only the listed edges must "
              "hold), a predicate (single_stack), a reference image, or an instruction in "
              "words. An invalid goal changes nothing.",
-             episodes.SetGoalInput, episodes.GoalOutput, episodes.set_goal,
+             goals.SetGoalInput, goals.GoalOutput, goals.set_goal,
              read_only=False, idempotent=True),
     ToolSpec("get_state", "Episode state",
              "Current scene graph, goal, difference to the goal, executed actions, tau "
              "(consecutive failed execute_actions calls), k and t.",
-             episodes.EpisodeRef, episodes.EpisodeState, episodes.get_state,
+             episodes.EpisodeRef, summaries.EpisodeState, episodes.get_state,
              read_only=True, idempotent=True),
     ToolSpec("validate_action", "Check one action",
              "Check one action (JSON or text such as move(cup, on, table)) on the episode's "
@@ -86,9 +86,8 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              acting.CheckGoalInput, acting.GoalCheck, acting.check_goal,
              read_only=True, idempotent=True),
     ToolSpec("generate_scene_graph", "Perceive a scene graph",
-             "Built-in perception: image -> scene graph. When it is not installed the tool "
-             "says so; use get_scene_image and submit_scene_graph with your own vision "
-             "model instead.",
+             "Built-in perception: image -> scene graph. For images it does not know, use "
+             "get_scene_image and submit_scene_graph with your own vision model instead.",
              scenes.GenerateSceneGraphInput, scenes.SceneGraphSubmission,
              scenes.generate_scene_graph, read_only=True, idempotent=True),
     ToolSpec("render_scene", "Render the scene",

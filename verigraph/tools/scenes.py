@@ -21,17 +21,17 @@ from verigraph.graph.dictionary import Dictionary
 from verigraph.graph.goal import GraphDiff, check_goal, diff
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.graph.submission import Rename, SubmittedGraph, check_submission
 from verigraph.graph.wellformed import GraphProblem
-from verigraph.tools import optional
+from verigraph.perception import perceive
+from verigraph.prompts.filling import scene_graph_prompt
 from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.executors import SceneCheck, arm_setup_for
 from verigraph.tools.fields import DictionaryName, EpisodeId, ImageData, dictionary_for
 from verigraph.tools.images import decode_image, encode_png
-from verigraph.tools.prompting import scene_graph_prompt
 from verigraph.tools.store import Episode
-from verigraph.tools.submission import Rename, SubmittedGraph, check_submission
 
 Width = Field(default=None, ge=64, le=2048,
               description="image width in pixels; omit to let the scene choose: a simulated "
@@ -270,7 +270,6 @@ def generate_scene_graph(ctx: ToolContext, params: GenerateSceneGraphInput
         assert params.episode_id is not None
         with ctx.store.use(params.episode_id) as episode:
             image = _picture(episode)
-    perceive = optional.perception()
     graph = perceive(image, dictionary=dictionary)
     submitted = SubmittedGraph.model_validate(graph.model_dump())
     return _checked(submitted, dictionary)

@@ -7,15 +7,12 @@ up as `verified: false` instead of a wrong answer.
 
 from __future__ import annotations
 
-from typing import Any
-
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from verigraph.actions.model import Action, AnyAction
 from verigraph.actions.report import validate_plan
-from verigraph.tools import optional
+from verigraph.solver import solve as search_plan
 from verigraph.tools.context import ToolContext
-from verigraph.tools.episodes import check_goal_against, stateless_source
 from verigraph.tools.errors import FeatureUnavailableError, ToolArgumentError
 from verigraph.tools.fields import (
     BoundedGoal,
@@ -23,6 +20,8 @@ from verigraph.tools.fields import (
     EpisodeId,
     SceneId,
 )
+from verigraph.tools.goals import check_goal_against
+from verigraph.tools.loading import stateless_source
 
 
 class SolveInput(BaseModel):
@@ -74,7 +73,6 @@ def solve(ctx: ToolContext, params: SolveInput) -> SolveOutput:
         raise FeatureUnavailableError("solve is disabled on this server", field="solve",
                                       value=None, fix="plan with validate_action and "
                                                       "execute_actions feedback instead")
-    search = optional.solver()
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
                                    graph=params.graph, goal=params.goal)
     if goal is None:
@@ -82,7 +80,7 @@ def solve(ctx: ToolContext, params: SolveInput) -> SolveOutput:
                                 fix="pass goal, or call set_goal on the episode first")
     if params.goal is not None:
         check_goal_against(params.goal, state, field="goal")
-    result: Any = search(state, goal, max_expansions=params.max_expansions)
+    result = search_plan(state, goal, max_expansions=params.max_expansions)
     plan: list[AnyAction] = list(result.plan or [])
     verified = False
     if result.reachable:

@@ -17,7 +17,6 @@ Episodes are fixed by (group, index, seed), so every planner sees the same tasks
 from __future__ import annotations
 
 import base64
-import importlib.util
 import random
 from collections.abc import Callable
 from typing import Any, Literal
@@ -57,17 +56,6 @@ class GroupTasks(BaseModel):
     not_run: str | None = Field(default=None, description="why the group was skipped")
     graphs: str = Field(default="ground truth",
                         description="where the graphs come from: ground truth or perceived")
-
-
-def sim2d_available() -> bool:
-    return importlib.util.find_spec("verigraph.sim2d") is not None
-
-
-def perception_available() -> bool:
-    """Whether `verigraph.perception.perceive` exists (the goal-image groups need it)."""
-    from verigraph.tools import optional
-
-    return optional.has("verigraph.perception", "perceive")
 
 
 def _generate(family: str, seed: int, n_objects: int | None = None) -> Any:
@@ -177,10 +165,6 @@ def goal_image_png(goal_graph: SceneGraph, seed: int) -> bytes:
 def reference_image_tasks(family: Literal["blocks", "kitchen"], n: int, seed: int, *,
                           ground_truth: bool, simulate: bool = False) -> GroupTasks:
     group: GroupName = "ref_image_blocks" if family == "blocks" else "ref_image_kitchen"
-    if not ground_truth and not perception_available():
-        return GroupTasks(group=group, not_run=(
-            "needs built-in perception (verigraph.perception) to read the goal image; not "
-            "installed yet. Run with --ground-truth-graphs to plan from the true goal graph"))
     tasks = []
     instruction = "Rearrange the scene so that it looks like the reference image."
     for i in range(n):
@@ -235,9 +219,6 @@ def tangram_tasks(n: int, seed: int, *, simulate: bool = False) -> GroupTasks:
 def build_groups(groups: tuple[GroupName, ...], n: int, seed: int, *, ground_truth: bool,
                  simulate: bool = False) -> list[GroupTasks]:
     """Every requested group's tasks (or why it is not run)."""
-    if not sim2d_available():
-        reason = "needs the scene generator verigraph.sim2d, which is not installed"
-        return [GroupTasks(group=g, not_run=reason) for g in groups]
     builders: dict[GroupName, Callable[[], GroupTasks]] = {
         "stacking": lambda: stacking_tasks(n, seed, simulate=simulate),
         "language": lambda: language_tasks(n, seed, simulate=simulate),

@@ -21,12 +21,14 @@ from typing import Any
 from verigraph.arm.config import ArmConfig
 from verigraph.arm.errors import ArmConnectionError, ArmMotionError, MotionCancelledError
 from verigraph.arm.models import DriverStatus, Grasp, Placement, Pose
+from verigraph.extras import require
 
 ApiFactory = Callable[[str], Any]
 
 
 def sdk_api(host: str) -> Any:
     """A real XArmAPI for `host`, not yet connected."""
+    require("arm", "xarm")
     # The SDK prints its version to stdout on import; over MCP stdio, stdout is the wire.
     with contextlib.redirect_stdout(sys.stderr):
         from xarm.wrapper import XArmAPI

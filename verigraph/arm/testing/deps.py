@@ -11,7 +11,9 @@ import importlib
 import os
 from types import ModuleType
 
-INSTALL = "pip install -e '.[arm]'"
+from verigraph.extras import EXTRAS
+
+INSTALL = EXTRAS["arm"].install
 
 
 def require(module: str) -> ModuleType:

@@ -1,4 +1,4 @@
-"""JSON over HTTP with retries: the transport of the LLM backends.
+"""JSON over HTTP with retries: the transport of every model client (planners, VLM).
 
 Transient failures (connection errors, timeouts, 408, 409, 425, 429, 5xx and
 Anthropic's 529 "overloaded") are retried with exponential backoff and jitter,

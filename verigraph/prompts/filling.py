@@ -1,7 +1,8 @@
 """Fill the prompt templates from an episode or a scene: the words a planner reads.
 
-Shared by the MCP prompts, get_scene_image and the agent loop, so every planner sees
-the same description of actions A, constraints C, the graphs and the end token.
+Shared by the MCP prompts, get_scene_image, the agent loop and VLM perception, so every
+planner sees the same description of actions A, constraints C, the graphs and the end
+token. It sits just above `actions` because the planner prompt lists the constraints C.
 """
 
 from __future__ import annotations
