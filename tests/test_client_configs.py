@@ -72,7 +72,7 @@ def test_server_json_and_docs_name_this_distribution() -> None:
     assert f"mcp-name: {server['name']}" in readme
     for doc in [REPO / "README.md", *sorted((REPO / "docs").glob("*.md"))]:
         text = doc.read_text()
-        wrong = re.findall(r"(?:--from|--spec|pip install)\s+(verigraph)(?![-\w\[])", text)
+        wrong = re.findall(r"(?:--from|--spec|pip install)\s+['\"]?(verigraph)(?![-\w])", text)
         assert not wrong, f"{doc.name} installs the unrelated `verigraph` package"
 
 

@@ -53,7 +53,7 @@ def require_clip() -> tuple[Any, Any]:
         import torch
     except ImportError as exc:
         if os.environ.get("CI") == "true":
-            pytest.fail(f"CI=true requires the clip extra (pip install 'verigraph[clip]'): "
+            pytest.fail(f"CI=true requires the clip extra (pip install 'verigraph-mcp[clip]'): "
                         f"{exc.name} is missing")
         pytest.skip(f"the clip extra is not installed ({exc.name} missing)")
     return torch, open_clip

@@ -25,7 +25,7 @@ def register(sub: Any) -> None:
     p.add_argument("--json", action="store_true", help="print the result as JSON")
     p.add_argument("--view", choices=("auto", "tabletop", "tangram"), default="auto")
     p.add_argument("--labeller", choices=("default", "clip"), default="default",
-                   help="clip: OpenCLIP zero-shot labels (needs verigraph[clip] and local "
+                   help="clip: OpenCLIP zero-shot labels (needs verigraph-mcp[clip] and local "
                         "weights; falls back to default with a message)")
     p.add_argument("--clip-model", default=None,
                    help="open_clip architecture or local-dir:/path folder (default ViT-B-32)")
