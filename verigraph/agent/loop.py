@@ -7,7 +7,19 @@ consecutive failed iterations and is reset by a clean one; the episode stops whe
 planner's end token is accepted or when tau reaches the threshold t. `end_episode`
 gives the verdict.
 
-Two refinements, both recorded in the trace:
+Stops besides t, each recorded as the trace's `stop_reason`:
+
+- `goal_reached` (`stop_on_goal`, default on): the goal holds after an iteration, so
+  the episode ends there instead of asking for `done` (a planner cannot undo a reached
+  goal). Off, only the end token stops a successful run: the paper's literal rule.
+- `no_progress` (`no_progress=N`, default 15, 0 = off): N consecutive iterations
+  without a new lowest distance to the goal (see progress.py). Valid moves back and
+  forth reset tau, so without it only `max_iterations` would end them.
+- `iteration_limit` (`max_iterations`, default 60): the last safety stop.
+- `planner_error`: the planner raised (an endpoint still down after its retries, a
+  bug); the episode is closed, the error is in the trace, and the caller carries on.
+
+Refinements of the loop itself, recorded in the trace:
 
 - A malformed answer (not JSON, not actions, truncated) is a failed iteration: it
   counts towards tau and its parse error is the next feedback.
@@ -35,12 +47,14 @@ from verigraph.agent.models import (
     DonePolicy,
     EpisodeTrace,
     Feedback,
+    FeedbackMode,
     IterationRecord,
     Mode,
     PlannerReply,
     PlannerRequest,
 )
 from verigraph.agent.planner import Planner
+from verigraph.agent.progress import ProgressMeter, goal_distance, shape_feedback
 from verigraph.agent.prompting import planner_prompt
 from verigraph.errors import VeriGraphError
 from verigraph.graph.goal import Goal, GraphDiff
@@ -61,6 +75,15 @@ class LoopConfig(BaseModel):
     threshold: int = Field(default=5, ge=1, le=100,
                            description="stop after t consecutive failed iterations")
     done_policy: DonePolicy = "verify"
+    stop_on_goal: bool = Field(default=True,
+                               description="stop as soon as the goal holds (off: only the "
+                                           "end token stops, the paper's literal rule)")
+    no_progress: int = Field(default=15, ge=0, le=10_000,
+                             description="stop after this many iterations without a new "
+                                         "lowest distance to the goal (0 = never)")
+    feedback: FeedbackMode = Field(default="full",
+                                   description="what the planner is shown of a failure: "
+                                               "full, constraint (id only) or none")
     max_iterations: int = Field(default=60, ge=1, le=10_000,
                                 description="safety stop for planners that never finish")
     record_prompts: bool = Field(default=False, description="keep each prompt in the trace")
@@ -130,7 +153,9 @@ class _Episode:
         self.goal_diff: GraphDiff | None = None
         self.trace = EpisodeTrace(planner=planner.name, mode=config.mode, k=config.k,
                                   threshold=config.threshold, done_policy=config.done_policy,
-                                  transport=env.transport, task=spec.task_id)
+                                  transport=env.transport, task=spec.task_id,
+                                  stop_on_goal=config.stop_on_goal,
+                                  feedback_mode=config.feedback)
 
     # -- tools ---------------------------------------------------------------------------
     def _absorb_state(self, state: Mapping[str, Any]) -> None:
@@ -191,18 +216,32 @@ class _Episode:
     def ask(self, iteration: int, feedback: Feedback | None) -> tuple[PlannerReply, str]:
         assert self.graph is not None
         k = self.config.k if self.config.mode == "iterative" else None
+        shown_goal = _prompt_goal(self.goal, self.spec.show_goal_graph)
+        shown_feedback = shape_feedback(feedback, self.config.feedback)
         prompt = planner_prompt(
-            self.config.mode, WorldState.from_graph(self.graph),
-            _prompt_goal(self.goal, self.spec.show_goal_graph), k=k,
-            instruction=self.instruction, history=self.history, feedback=feedback,
+            self.config.mode, WorldState.from_graph(self.graph), shown_goal, k=k,
+            instruction=self.instruction, history=self.history, feedback=shown_feedback,
             iteration=iteration)
         request = PlannerRequest(mode=self.config.mode, iteration=iteration, graph=self.graph,
-                                 goal=self.goal, instruction=self.instruction,
-                                 feedback=feedback, history=list(self.history), k=k,
-                                 prompt=prompt)
+                                 goal=shown_goal, privileged_goal=self.goal,
+                                 instruction=self.instruction, feedback=shown_feedback,
+                                 history=list(self.history), k=k, prompt=prompt)
         reply = self.planner.propose(request)
         self.trace.llm_calls += reply.llm_calls
         return reply, prompt
+
+    def planner_failed(self, iteration: int, exc: Exception, started: float) -> None:
+        """End the episode on a planner exception: one record, the error in the trace."""
+        message = f"{type(exc).__name__}: {exc}"[:500]
+        self.trace.planner_error = message
+        self.trace.stop_reason = "planner_error"
+        self.record(IterationRecord(iteration=iteration, proposed=[], verdict="planner_error",
+                                    tau=0, llm_calls=0, note=f"planner raised {message}",
+                                    goal_satisfied=self.goal_satisfied,
+                                    seconds=time.perf_counter() - started))
+
+    def distance(self) -> int | None:
+        return goal_distance(self.graph, self.goal) if self.graph is not None else None
 
     def record(self, record: IterationRecord) -> None:
         self.trace.iterations.append(record)
@@ -229,9 +268,15 @@ def _iterate(ep: _Episode) -> None:
     config = ep.config
     tau = 0
     feedback: Feedback | None = None
+    meter = ProgressMeter(config.no_progress)
+    meter.update(ep.distance())
     for iteration in range(1, config.max_iterations + 1):
         started = time.perf_counter()
-        reply, prompt = ep.ask(iteration, feedback)
+        try:
+            reply, prompt = ep.ask(iteration, feedback)
+        except Exception as exc:  # noqa: BLE001 (any planner failure ends only this episode)
+            ep.planner_failed(iteration, exc, started)
+            return
         record = IterationRecord(
             iteration=iteration, proposed=[a.text() for a in reply.actions], verdict="clean",
             tau=tau, llm_calls=reply.llm_calls, raw_output=reply.raw, note=reply.note,
@@ -274,20 +319,31 @@ def _iterate(ep: _Episode) -> None:
         record.tau = tau
         record.feedback = feedback
         record.goal_satisfied = ep.goal_satisfied
+        record.goal_distance = ep.distance()
         record.seconds = time.perf_counter() - started
         ep.record(record)
         if ended:
             ep.trace.stop_reason = "end_token"
             return
+        if config.stop_on_goal and ep.goal_satisfied:
+            ep.trace.stop_reason = "goal_reached"
+            return
         if tau >= config.threshold or server_threshold:
             ep.trace.stop_reason = "threshold"
+            return
+        if meter.update(record.goal_distance):
+            ep.trace.stop_reason = "no_progress"
             return
     ep.trace.stop_reason = "iteration_limit"
 
 
 def _direct(ep: _Episode) -> None:
     started = time.perf_counter()
-    reply, prompt = ep.ask(1, None)
+    try:
+        reply, prompt = ep.ask(1, None)
+    except Exception as exc:  # noqa: BLE001 (any planner failure ends only this episode)
+        ep.planner_failed(1, exc, started)
+        return
     record = IterationRecord(
         iteration=1, proposed=[a.text() for a in reply.actions], verdict="clean", tau=0,
         llm_calls=reply.llm_calls, raw_output=reply.raw, note=reply.note,
@@ -314,6 +370,7 @@ def _direct(ep: _Episode) -> None:
                 ep.trace.violations_caught += 1
                 break
     record.goal_satisfied = ep.goal_satisfied
+    record.goal_distance = ep.distance()
     record.seconds = time.perf_counter() - started
     ep.record(record)
     ep.trace.stop_reason = "single_shot"
@@ -324,9 +381,10 @@ def run_episode(env: ToolEnvironment, planner: Planner, spec: EpisodeSpec,
                 on_start: StartHook | None = None) -> EpisodeTrace:
     """Run one episode through the tools and return its trace (verdict included).
 
-    The episode is always closed with `end_episode`, also when the planner raises (for
-    example an LLM endpoint that stays down after its retries); the error then
-    propagates after the server-side episode has been released.
+    A planner exception ends the episode with `stop_reason="planner_error"` and the
+    error in `trace.planner_error`; the verdict is still taken, so the trace is whole.
+    Anything else that escapes (a tool error, Ctrl-C) closes the server-side episode
+    with `end_episode` and propagates.
     """
     config = config or LoopConfig()
     ep = _Episode(env, planner, spec, config, on_iteration)

@@ -53,7 +53,7 @@ class NoisyPlanner:
         self.injected: list[MistakeKind] = []
 
     def propose(self, request: PlannerRequest) -> PlannerReply:
-        plan, note = reference_plan(request)
+        plan, note = reference_plan(request, request.goal)
         actions = chunk(plan, request.k)
         if self.rng.random() >= self.rate:
             return PlannerReply(actions=actions, note=note)

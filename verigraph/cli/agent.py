@@ -3,7 +3,8 @@
 It spawns `verigraph serve` over stdio (default) or connects to a streamable-HTTP URL,
 then does everything through the tools (load_scene, set_goal, get_state,
 execute_actions, end_episode), printing each iteration and the verdict.
-Exit codes: 0 goal reached, 1 goal missed, 2 bad input.
+Exit codes: 0 goal reached, 1 goal missed, 2 bad input, 3 the planner raised (the
+episode is closed and --trace is still written).
 """
 
 from __future__ import annotations
@@ -50,7 +51,18 @@ def register(sub: Any) -> None:
     loop.add_argument("--done-policy", choices=("verify", "trust"), default="verify",
                       help="verify: refuse done while the goal does not hold (default); "
                            "trust: the end token always stops (the paper's literal rule)")
-    loop.add_argument("--max-iterations", type=int, default=60)
+    loop.add_argument("--stop-on-goal", action=argparse.BooleanOptionalAction, default=True,
+                      help="stop as soon as the goal holds (default); --no-stop-on-goal "
+                           "waits for the end token, the paper's literal rule")
+    loop.add_argument("--no-progress", type=int, default=15, metavar="N",
+                      help="stop after N iterations without a new lowest distance to the "
+                           "goal, e.g. valid moves back and forth (default 15; 0 = never)")
+    loop.add_argument("--max-iterations", type=int, default=60, metavar="N",
+                      help="stop after N planner calls whatever tau is (default 60): the "
+                           "last safety stop for planners that never finish")
+    loop.add_argument("--feedback", choices=("full", "constraint", "none"), default="full",
+                      help="what the planner is told of a failure: the verifier's full "
+                           "report (default), the constraint id only, or nothing")
     server = p.add_argument_group("server")
     server.add_argument("--transport", choices=("stdio", "http"), default="stdio",
                         help="stdio: spawn `verigraph serve`; http: connect to --url")
@@ -173,7 +185,8 @@ def run_agent(args: argparse.Namespace) -> int:
     try:
         config = LoopConfig(mode=args.mode, k=args.k, threshold=args.threshold,
                             done_policy=args.done_policy, max_iterations=args.max_iterations,
-                            record_prompts=args.trace_prompts)
+                            stop_on_goal=args.stop_on_goal, no_progress=args.no_progress,
+                            feedback=args.feedback, record_prompts=args.trace_prompts)
     except ValidationError as exc:
         err = exc.errors()[0]
         name = str(err["loc"][0]) if err["loc"] else "options"
@@ -203,8 +216,12 @@ def run_agent(args: argparse.Namespace) -> int:
     finally:
         planner.close()
     out.write(verdict_line(trace) + "\n")
+    if trace.planner_error:
+        sys.stderr.write(f"error: the planner failed: {trace.planner_error}\n")
     if args.trace:
         Path(args.trace).write_text(json.dumps(trace.model_dump(mode="json"), indent=2) + "\n")
         if not args.quiet:
             out.write(f"trace written to {args.trace}\n")
+    if trace.planner_error:
+        return 3
     return 0 if trace.success else 1
