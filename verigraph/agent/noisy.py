@@ -28,6 +28,7 @@ from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveActi
 from verigraph.actions.validator import apply_action, validate_action
 from verigraph.agent.models import PlannerReply, PlannerRequest
 from verigraph.agent.oracle import chunk, reference_plan
+from verigraph.agent.translator import GoalReader
 from verigraph.graph.state import WorldState
 
 MistakeKind = Literal["non_clear", "full_target", "hallucinated", "wrong_relation",
@@ -51,9 +52,10 @@ class NoisyPlanner:
         self.rng = random.Random(seed)
         self.name = f"noisy({rate:.0%})"
         self.injected: list[MistakeKind] = []
+        self.reader = GoalReader()
 
     def propose(self, request: PlannerRequest) -> PlannerReply:
-        plan, note = reference_plan(request, request.goal)
+        plan, note = reference_plan(request, self.reader.read(request)[0])
         actions = chunk(plan, request.k)
         if self.rng.random() >= self.rate:
             return PlannerReply(actions=actions, note=note)
