@@ -8,7 +8,7 @@ Two small pieces of Algorithm 1 bookkeeping that the loop keeps outside its own 
   which ends valid moves back and forth that would otherwise reset tau forever.
 - `shape_feedback`: the feedback modes of the feedback ablation. `full` is the verifier's
   whole report (constraint, message, blocking objects, suggestion); `constraint` keeps
-  only the constraint id and the step; `none` tells the planner nothing (it is asked
+  only the constraint id; `none` tells the planner nothing (it is asked
   again as if for the first time; tau still counts the failure).
 """
 
@@ -64,8 +64,6 @@ def shape_feedback(feedback: Feedback | None, mode: FeedbackMode) -> Feedback | 
     if mode == "none":
         return None
     if feedback.violation is not None:
-        step = feedback.violation.step
-        where = f" at step {step}" if step is not None else ""
         return Feedback(kind=feedback.kind,
-                        text=f"[{feedback.violation.constraint}] an action was refused{where}")
+                        text=f"[{feedback.violation.constraint}] an action was refused")
     return Feedback(kind=feedback.kind, text=f"[{feedback.kind}]")

@@ -19,10 +19,10 @@ from typing import TextIO
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.agent.environment import InProcessTools, ToolEnvironment
-from verigraph.agent.evaluation.tasks import GroupName, GroupTasks, Task
+from verigraph.agent.evaluation.tasks import SUITE_VERSION, GroupName, GroupTasks, Task
 from verigraph.agent.factory import PlannerOptions, make_planner
 from verigraph.agent.loop import LoopConfig, run_episode
-from verigraph.agent.models import DonePolicy, Mode
+from verigraph.agent.models import DonePolicy, FeedbackMode, Mode
 from verigraph.agent.planner import Planner
 from verigraph.errors import VeriGraphError
 
@@ -39,13 +39,19 @@ class Setting(BaseModel):
     done_policy: DonePolicy = "verify"
     noise: float = 0.3
     max_iterations: int = 30
+    feedback: FeedbackMode = "full"
+    stop_on_goal: bool = True
+    no_progress: int = 15
 
     def label(self) -> str:
         name = self.planner if self.planner != "noisy" else f"noisy ({self.noise:.0%})"
         if self.mode == "direct":
             return f"{name}, direct"
         policy = "" if self.done_policy == "verify" else ", trust done"
-        return f"{name}, iterative k={self.k} t={self.threshold}{policy}"
+        if not self.stop_on_goal:
+            policy += ", end token only"
+        feedback = "" if self.feedback == "full" else f", feedback {self.feedback}"
+        return f"{name}, iterative k={self.k} t={self.threshold}{policy}{feedback}"
 
 
 class EpisodeResult(BaseModel):
@@ -62,6 +68,7 @@ class EpisodeResult(BaseModel):
     stop_reason: str | None = None
     seconds: float = 0.0
     error: str | None = Field(default=None, description="tool or planner error, if any")
+    suite_version: str = SUITE_VERSION
 
 
 class GroupStats(BaseModel):
@@ -81,7 +88,7 @@ def episode_seed(task_id: str, setting: Setting) -> int:
     return zlib.crc32(f"{task_id}|{setting.label()}".encode())
 
 
-OFFLINE_PLANNERS = ("oracle", "noisy")
+OFFLINE_PLANNERS = ("oracle", "rule-based", "greedy", "noisy")
 
 
 def run_task(env: ToolEnvironment, task: Task, setting: Setting,
@@ -94,7 +101,9 @@ def run_task(env: ToolEnvironment, task: Task, setting: Setting,
     planner = shared or make_planner(setting.planner, PlannerOptions(
         noise=setting.noise, seed=episode_seed(task.task_id, setting)))
     config = LoopConfig(mode=setting.mode, k=setting.k, threshold=setting.threshold,
-                        done_policy=setting.done_policy, max_iterations=setting.max_iterations)
+                        done_policy=setting.done_policy, max_iterations=setting.max_iterations,
+                        feedback=setting.feedback, stop_on_goal=setting.stop_on_goal,
+                        no_progress=setting.no_progress)
     started = time.perf_counter()
     try:
         trace = run_episode(env, planner, task.spec, config)
@@ -109,7 +118,7 @@ def run_task(env: ToolEnvironment, task: Task, setting: Setting,
         llm_calls=trace.llm_calls, actions=trace.actions_executed,
         violations=trace.violations_caught, malformed=trace.malformed_outputs,
         premature_done=trace.premature_done, stop_reason=trace.stop_reason,
-        seconds=trace.wall_time_s)
+        seconds=trace.wall_time_s, error=trace.planner_error)
 
 
 def aggregate(group: GroupName, results: Sequence[EpisodeResult]) -> GroupStats:
