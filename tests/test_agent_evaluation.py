@@ -32,16 +32,17 @@ def test_oracle_solves_every_group_and_noise_hurts_direct_more_than_iterative() 
     oracle = run_setting(Setting(planner="oracle"), groups)
     assert all(s.success_rate == 1.0 for s in oracle.values()), oracle
     assert all(s.violations_caught == 0 for s in oracle.values())
-    solver_groups = [g for g in groups if g.group != "language"]  # language: see the translator
-    noisy = run_setting(Setting(planner="noisy", noise=0.3), solver_groups)
-    direct = run_setting(Setting(planner="noisy", noise=0.3, mode="direct"), solver_groups)
-    total = sum(s.episodes for s in noisy.values())
-    iterative_rate = sum(s.success_rate * s.episodes for s in noisy.values()) / total
-    direct_rate = sum(s.success_rate * s.episodes for s in direct.values()) / total
-    assert iterative_rate >= 0.95
-    assert direct_rate <= iterative_rate - 0.15
-    assert sum(s.violations_caught for s in noisy.values()) > 0
-    assert all(s.mean_llm_calls >= 1 for s in noisy.values())
+
+    def overall(setting: Setting) -> float:
+        stats = run_setting(setting, groups)
+        return sum(s.success_rate * s.episodes for s in stats.values()) / sum(
+            s.episodes for s in stats.values())
+
+    patient = overall(Setting(planner="noisy", noise=0.3, k=1, threshold=10))
+    hasty = overall(Setting(planner="noisy", noise=0.3, k=1, threshold=2))
+    direct = overall(Setting(planner="noisy", noise=0.3, mode="direct"))
+    assert patient >= hasty + 0.2, (patient, hasty)
+    assert direct <= patient - 0.4, (direct, patient)
 
 
 def test_report_has_the_paper_row_ablations_and_not_run_groups(tmp_path: object) -> None:
