@@ -45,11 +45,20 @@ def test_oracle_solves_every_group_and_noise_hurts_direct_more_than_iterative() 
     assert direct <= patient - 0.4, (direct, patient)
 
 
-def test_report_has_the_paper_row_ablations_and_not_run_groups(tmp_path: object) -> None:
-    text = run(["--episodes", "3", "--groups", "stacking,ref_image_blocks"])
-    assert "| oracle, iterative k=3 t=5 | 100% |" in text
-    assert "paper: VeriGraph (GPT-4V, iterative), Table 2" in text
-    assert "Ablation: error threshold t" in text and "Ablation: actions per iteration k" in text
+def test_report_groups_planner_kinds_and_keeps_the_paper_in_its_own_table() -> None:
+    text = run(["--episodes", "3", "--groups", "stacking,language,ref_image_blocks"])
+    assert "| oracle, iterative k=3 t=5 | 100% | 100% |" in text
+    assert "**Privileged ceiling: oracle" in text and "**Greedy feedback-driven" in text
+    assert "greedy, iterative k=3 t=5, feedback none" in text
+    assert "noisy (30%), iterative k=3 t=5, trust done, end token only" in text
+    assert "### What feedback is worth (greedy baseline)" in text
+    assert "### Rule-based translator: instruction to goal" in text and "| all | " in text
+    assert "| Stacking | 3 | " in text  # the difficulty table
+    assert "Suite version 2" in text
+    paper = text[text.index("### The paper's numbers"):]
+    assert "| Direct LLM (GPT-4V, one shot) | - | 73% |" in paper
+    assert "| VeriGraph (GPT-4V, iterative) | 65% | 65% | 55% | 86% | 72% |" in paper
+    assert "Not comparable in value" in paper
     for t in (2, 3, 5, 10):
         assert f"\n| {t} | " in text
     if not perception_available():
