@@ -93,6 +93,13 @@ def register(sub: Any) -> None:
     out.add_argument("--trace", help="write the episode trace (JSON) to this file")
     out.add_argument("--trace-prompts", action="store_true", help="keep prompts in the trace")
     out.add_argument("--quiet", "-q", action="store_true", help="print only the verdict")
+    out.add_argument("--record", metavar="DIR",
+                     help="write the planner transcript (each prompt and reply) to "
+                          "DIR/<scene>__<mode>.jsonl")
+    out.add_argument("--replay", metavar="DIR",
+                     help="answer from a transcript recorded with --record instead of "
+                          "calling the planner (no key, no network); a prompt that differs "
+                          "from the recorded one stops the episode as a planner error")
     p.set_defaults(handler=run_agent)
 
 
@@ -162,6 +169,20 @@ def _planner_options(args: argparse.Namespace) -> Any:
                              fix="see `verigraph agent --help`") from None
 
 
+def _planner(args: argparse.Namespace) -> Any:
+    from verigraph.agent.factory import make_planner
+    from verigraph.agent.transcripts import RecordingPlanner, ReplayingPlanner
+
+    if args.record and args.replay:
+        raise VeriGraphError("--record and --replay exclude each other", field="--replay",
+                             value=args.replay, fix="record once, then replay in another run")
+    key = f"{Path(args.scene).stem if Path(args.scene).is_file() else args.scene}__{args.mode}"
+    if args.replay:
+        return ReplayingPlanner(args.replay, key)
+    planner = make_planner(args.planner, _planner_options(args))
+    return RecordingPlanner(planner, args.record, key) if args.record else planner
+
+
 def _environment(args: argparse.Namespace) -> Any:
     import os
 
@@ -179,7 +200,6 @@ def run_agent(args: argparse.Namespace) -> int:
     from pydantic import ValidationError
 
     from verigraph.agent.console import header_lines, print_iteration, verdict_line
-    from verigraph.agent.factory import make_planner
     from verigraph.agent.loop import EpisodeSpec, LoopConfig, run_episode
 
     try:
@@ -195,7 +215,7 @@ def run_agent(args: argparse.Namespace) -> int:
                              ) from None
     spec = EpisodeSpec(load=_scene_spec(args), set_goal=_goal_spec(args),
                        show_goal_graph=not args.hide_goal_graph)
-    planner = make_planner(args.planner, _planner_options(args))
+    planner = _planner(args)
     out = sys.stdout
 
     def on_start(trace: Any) -> None:

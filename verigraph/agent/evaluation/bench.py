@@ -67,6 +67,12 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--simulate", action="store_true",
                    help="also execute every action in the 2D simulator (slower)")
     p.add_argument("--no-ablations", action="store_true", help="skip the t and k ablations")
+    p.add_argument("--record", metavar="DIR",
+                   help="write every episode's planner transcript (prompts and replies) to "
+                        "DIR, one JSONL file per row and task")
+    p.add_argument("--replay", metavar="DIR",
+                   help="answer from transcripts recorded with --record instead of calling "
+                        "the planners (re-scores a paid run offline; no key needed)")
     p.add_argument("--ablation-episodes", type=int,
                    help="episodes per group in the ablations (default: --episodes)")
     p.add_argument("--out", help="write the Markdown report here")
@@ -112,6 +118,15 @@ def _settings(args: argparse.Namespace) -> tuple[Sections, list[Setting], list[S
     t_rows = [noisy.model_copy(update={"threshold": t, "k": args.k}) for t in T_VALUES]
     k_rows = [noisy.model_copy(update={"k": k, "threshold": args.threshold})
               for k in K_VALUES]
+    if args.record and args.replay:
+        raise VeriGraphError("--record and --replay exclude each other", field="--replay",
+                             value=args.replay, fix="record once, then replay in another run")
+    io = {"record_dir": args.record, "replay_dir": args.replay}
+    if args.record or args.replay:
+        sections = {title: [s.model_copy(update=io) for s in rows]
+                    for title, rows in sections.items()}
+        t_rows = [s.model_copy(update=io) for s in t_rows]
+        k_rows = [s.model_copy(update=io) for s in k_rows]
     return list(sections.items()), t_rows, k_rows
 
 
@@ -164,8 +179,10 @@ def run(argv: Sequence[str] | None = None) -> str:
         f"{args.seed}; noisy planner: {args.noise:.0%} of proposed actions wrong; loop: "
         f"stop when the goal holds, no-progress stop after {args.no_progress} iterations, "
         f"at most {args.max_iterations} iterations; graphs: {graphs or 'none'}; "
-        f"{'simulated' if args.simulate else 'graph-only'} execution. Wall time is the sum "
-        "of episode times of the row.", "",
+        f"{'simulated' if args.simulate else 'graph-only'} execution"
+        f"{f'; planner answers replayed from {args.replay}' if args.replay else ''}"
+        f"{f'; transcripts recorded to {args.record}' if args.record else ''}. Wall time is "
+        "the sum of episode times of the row.", "",
         *success_table([(title, rows(settings, groups)) for title, settings in sections],
                        groups), "",
     ]

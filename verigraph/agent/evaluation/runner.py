@@ -24,6 +24,7 @@ from verigraph.agent.factory import PlannerOptions, make_planner
 from verigraph.agent.loop import LoopConfig, run_episode
 from verigraph.agent.models import DonePolicy, FeedbackMode, Mode
 from verigraph.agent.planner import Planner
+from verigraph.agent.transcripts import RecordingPlanner, ReplayingPlanner
 from verigraph.errors import VeriGraphError
 
 
@@ -42,6 +43,9 @@ class Setting(BaseModel):
     feedback: FeedbackMode = "full"
     stop_on_goal: bool = True
     no_progress: int = 15
+    record_dir: str | None = Field(default=None, description="write planner transcripts here")
+    replay_dir: str | None = Field(default=None,
+                                   description="answer from transcripts recorded here")
 
     def label(self) -> str:
         name = self.planner if self.planner != "noisy" else f"noisy ({self.noise:.0%})"
@@ -98,8 +102,16 @@ def run_task(env: ToolEnvironment, task: Task, setting: Setting,
     Offline planners are built per episode (seeded by the task); an LLM planner is
     `shared` across the setting's episodes, so a local model server starts only once.
     """
-    planner = shared or make_planner(setting.planner, PlannerOptions(
-        noise=setting.noise, seed=episode_seed(task.task_id, setting)))
+    key = f"{setting.label()}__{task.task_id}"
+    planner: Planner
+    if setting.replay_dir:
+        planner = ReplayingPlanner(setting.replay_dir, key)
+    else:
+        planner = shared or make_planner(setting.planner, PlannerOptions(
+            noise=setting.noise, seed=episode_seed(task.task_id, setting)))
+        if setting.record_dir:
+            planner = RecordingPlanner(planner, setting.record_dir, key,
+                                       close_inner=shared is None)
     config = LoopConfig(mode=setting.mode, k=setting.k, threshold=setting.threshold,
                         done_policy=setting.done_policy, max_iterations=setting.max_iterations,
                         feedback=setting.feedback, stop_on_goal=setting.stop_on_goal,
@@ -170,7 +182,8 @@ def run_setting(setting: Setting, groups: Sequence[GroupTasks], *,
                 ) -> dict[GroupName, GroupStats]:
     """Every runnable group's stats for one setting."""
     env = env or InProcessTools()
-    shared = None if setting.planner in OFFLINE_PLANNERS else make_planner(setting.planner)
+    shared = None if setting.planner in OFFLINE_PLANNERS or setting.replay_dir \
+        else make_planner(setting.planner)
     stats: dict[GroupName, GroupStats] = {}
     try:
         for group in groups:
