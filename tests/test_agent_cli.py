@@ -166,3 +166,13 @@ def test_cli_planner_failure_exits_3_and_still_writes_the_trace(tmp_path: Path) 
     trace = json.loads(trace_file.read_text())
     assert trace["stop_reason"] == "planner_error" and trace["planner_error"]
     assert trace["success"] is False
+
+
+def test_cli_help_documents_every_stop(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        main(["agent", "--help"])
+    assert exit_info.value.code == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "--max-iterations N stop after N planner calls" in text
+    assert "--no-progress N" in text and "--no-stop-on-goal" in text
+    assert "--record DIR" in text and "--replay DIR" in text
