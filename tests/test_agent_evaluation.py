@@ -28,7 +28,7 @@ def test_reference_image_groups_run_with_perception() -> None:
 
 def test_oracle_solves_every_group_and_noise_hurts_direct_more_than_iterative() -> None:
     groups = build_groups(("stacking", "language", "ref_image_kitchen", "ref_image_blocks",
-                           "tangram"), 12, 0, ground_truth=True)
+                           "tangram"), 8, 0, ground_truth=True)
     oracle = run_setting(Setting(planner="oracle"), groups)
     assert all(s.success_rate == 1.0 for s in oracle.values()), oracle
     assert all(s.violations_caught == 0 for s in oracle.values())
