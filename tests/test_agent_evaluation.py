@@ -82,3 +82,18 @@ def test_progress_bar_reports_on_a_pipe() -> None:
     lines = stream.getvalue().splitlines()
     assert 2 <= len(lines) <= 11
     assert lines[-1].startswith("[" + "#" * 30 + "] 20/20 episodes")
+
+
+def test_a_failing_llm_planner_is_counted_and_the_bench_goes_on(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from verigraph.agent.testing import RecordedResponse, RecordedResponseServerForTests
+
+    groups = build_groups(("stacking",), 3, 0, ground_truth=True)
+    refusal = RecordedResponse({"error": {"message": "invalid key"}}, status=401)
+    with RecordedResponseServerForTests([refusal] * 3) as server:
+        monkeypatch.setenv("OPENAI_BASE_URL", server.url)
+        monkeypatch.setenv("OPENAI_API_KEY", "not-a-key")
+        monkeypatch.setenv("OPENAI_MODEL", "m")
+        stats = run_setting(Setting(planner="openai"), groups)["stacking"]
+    assert stats.episodes == 3 and stats.errors == 3 and stats.success_rate == 0.0
+    assert len(server.requests) == 3  # one call per episode: a 401 is not retried
