@@ -153,3 +153,26 @@ def test_agent_prompt_is_the_servers_mcp_prompt() -> None:
     assert hint > 0
     # same lines; object order may differ (tool results list nodes in canonical order)
     assert sorted(served[:hint].rstrip().splitlines()) == sorted(ours.rstrip().splitlines())
+
+
+def test_cli_planner_failure_exits_3_and_still_writes_the_trace(tmp_path: Path) -> None:
+    trace_file = tmp_path / "trace.json"
+    dead = f"http://127.0.0.1:{_free_port()}/v1"  # nothing listens there
+    done = agent("--scene", "cup_on_book", "--planner", "openai", "--base-url", dead,
+                 "--model", "m", "--api-key", "x", "--retries", "0", "--timeout", "2",
+                 "--trace", str(trace_file), "-q")
+    assert done.returncode == 3, done.stdout + done.stderr
+    assert "the planner failed" in done.stderr
+    trace = json.loads(trace_file.read_text())
+    assert trace["stop_reason"] == "planner_error" and trace["planner_error"]
+    assert trace["success"] is False
+
+
+def test_cli_help_documents_every_stop(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        main(["agent", "--help"])
+    assert exit_info.value.code == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "--max-iterations N stop after N planner calls" in text
+    assert "--no-progress N" in text and "--no-stop-on-goal" in text
+    assert "--record DIR" in text and "--replay DIR" in text

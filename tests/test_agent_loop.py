@@ -112,9 +112,22 @@ def test_verify_policy_refuses_a_premature_done_and_counts_it_as_a_failure() -> 
 
 
 def test_done_when_the_goal_holds_ends_the_episode_successfully() -> None:
-    trace = run(Scripted([["move(cup, on, desk)", "move(book, on, shelf)"], ["done"]]))
+    trace = run(Scripted([["move(cup, on, desk)", "move(book, on, shelf)"], ["done"]]),
+                stop_on_goal=False)
     assert [r.verdict for r in trace.iterations] == ["clean", "end_token"]
     assert trace.stop_reason == "end_token" and trace.success
+
+
+def test_stop_on_goal_ends_the_episode_before_the_planner_can_undo_the_goal() -> None:
+    undo = ["move(cup, on, book)"]
+    reach = ["move(cup, on, desk)", "move(book, on, shelf)"]
+    stopped = run(Scripted([reach, undo, ["done"]]))
+    assert stopped.stop_reason == "goal_reached" and stopped.success
+    assert len(stopped.iterations) == 1 and stopped.iterations[0].goal_distance == 0
+    literal = run(Scripted([reach, undo, ["done"]]), stop_on_goal=False,
+                  done_policy="trust")
+    assert [r.verdict for r in literal.iterations] == ["clean", "clean", "end_token"]
+    assert not literal.success and literal.stop_reason == "end_token"
 
 
 def test_malformed_answers_count_towards_tau_and_become_feedback() -> None:
@@ -137,8 +150,17 @@ def test_malformed_answers_alone_reach_the_threshold() -> None:
 
 def test_a_planner_that_never_finishes_stops_at_the_iteration_limit() -> None:
     shuffle = Scripted([["move(cup, on, desk)"], ["move(cup, on, book)"]] * 10)
-    trace = run(shuffle, max_iterations=6)
+    trace = run(shuffle, max_iterations=6, no_progress=0)
     assert trace.stop_reason == "iteration_limit" and len(trace.iterations) == 6
+    assert all(r.tau == 0 for r in trace.iterations)
+
+
+def test_valid_moves_back_and_forth_stop_at_the_no_progress_rule() -> None:
+    shuffle = Scripted([["move(cup, on, desk)"], ["move(cup, on, book)"]] * 20)
+    trace = run(shuffle, no_progress=4, threshold=3)
+    assert trace.stop_reason == "no_progress" and not trace.success
+    # desk brings the cup one edge closer (a new low), then 4 iterations without a new low
+    assert [r.goal_distance for r in trace.iterations] == [2, 4, 2, 4, 2]
     assert all(r.tau == 0 for r in trace.iterations)
 
 
@@ -165,15 +187,35 @@ def test_goal_graph_can_be_hidden_from_the_prompt_but_is_still_checked() -> None
     prompt = planner.requests[0].prompt
     assert "Put the book on the shelf, cup on the desk." in prompt
     assert "Goal graph" not in prompt
-    assert planner.requests[0].goal is not None  # the oracle may still read it
+    assert planner.requests[0].goal is None  # only the words are shown
+    assert planner.requests[0].privileged_goal is not None  # the ceiling (oracle) reads it
     assert trace.success
 
 
-def test_planner_errors_close_the_episode_and_propagate() -> None:
+@pytest.mark.parametrize("mode", ["iterative", "direct"])
+def test_a_planner_exception_ends_the_episode_with_planner_error(mode: str) -> None:
     env = InProcessTools()
-    with pytest.raises(RuntimeError, match="endpoint down"):
-        run(Scripted([RuntimeError("endpoint down")]), env=env)
-    assert len(env.toolbox.context.store) == 0
+    script = [["move(cup, on, desk)"], RuntimeError("endpoint down")]
+    trace = run(Scripted(script[1:] if mode == "direct" else script), env=env, mode=mode)
+    assert trace.stop_reason == "planner_error" and not trace.success
+    assert trace.planner_error == "RuntimeError: endpoint down"
+    assert trace.iterations[-1].verdict == "planner_error"
+    assert trace.verdict == "goal_not_reached" and trace.final_graph is not None
+    assert len(env.toolbox.context.store) == 0  # the episode was closed
+
+
+def test_constraint_and_none_feedback_modes_show_the_planner_less() -> None:
+    for mode, expect in (("constraint", "[object_not_clear] an action was refused"),
+                         ("none", None)):
+        planner = Scripted([NOT_CLEAR, SOLVE_CUP])
+        trace = run(planner, feedback=mode)
+        shown = planner.requests[1].feedback
+        assert (shown.text if shown else None) == expect
+        assert shown is None or shown.violation is None
+        assert "move(cup, on" not in planner.requests[1].prompt
+        full = trace.iterations[0].feedback  # the trace keeps the verifier's whole report
+        assert full is not None and full.violation is not None
+        assert trace.feedback_mode == mode and trace.success
 
 
 def test_the_trace_is_json_and_round_trips() -> None:

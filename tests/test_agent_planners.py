@@ -10,7 +10,8 @@ from verigraph.actions import DoneAction, MoveAction, validate_action
 from verigraph.actions.model import AlignAction
 from verigraph.agent import PlannerRequest, make_planner
 from verigraph.agent.factory import PlannerOptions
-from verigraph.agent.noisy import MISTAKE_KINDS, MistakeKind, NoisyPlanner, make_mistake
+from verigraph.agent.models import Feedback
+from verigraph.agent.noisy import MISTAKE_KINDS, NoiseProfile, NoisyPlanner, make_mistake
 from verigraph.agent.oracle import OraclePlanner
 from verigraph.graph import Edge, Goal, Node, SceneGraph, WorldState
 from verigraph.graph.builtin_scenes import cup_on_book, cup_on_book_goal, three_blocks
@@ -60,10 +61,9 @@ def test_noisy_with_rate_zero_is_the_oracle_and_rate_one_always_errs() -> None:
     clean = NoisyPlanner(0.0, seed=1)
     assert all(clean.propose(req).actions == oracle for _ in range(20))
     noisy = NoisyPlanner(1.0, seed=1)
-    replies = [noisy.propose(req) for _ in range(50)]
+    replies = [noisy.propose(req) for _ in range(60)]
     assert all(r.note and r.note.startswith("injected mistake") for r in replies)
-    assert len(noisy.injected) == 50
-    assert set(noisy.injected) == set(MISTAKE_KINDS)
+    assert set(noisy.injected) >= set(MISTAKE_KINDS)
 
 
 def test_noisy_is_reproducible_for_a_seed() -> None:
@@ -81,36 +81,49 @@ def test_injected_mistakes_stay_within_k() -> None:
         assert len(moves) <= 2
 
 
-EXPECTED = {"non_clear": "object_not_clear", "full_target": "target_full",
-            "hallucinated": "unknown_object"}
-
-
-@pytest.mark.parametrize("kind", ["non_clear", "full_target", "hallucinated", "wrong_relation"])
-def test_each_mistake_kind_is_refused_by_the_verifier_for_its_reason(kind: str) -> None:
+def test_mistakes_are_not_vetted_some_are_valid_but_useless_some_refused() -> None:
     state = WorldState.from_graph(tall_stack())
-    upcoming = MoveAction(object="b1", relation="on", target="b3")
-    mistake = make_mistake(kind, state, upcoming, random.Random(0))  # type: ignore[arg-type]
-    assert mistake is not None
-    violation = validate_action(state, mistake)
+    planned = MoveAction(object="b1", relation="on", target="b3")
+    rng = random.Random(0)
+    verdicts = [validate_action(state, make_mistake("random_move", state, planned, rng))
+                for _ in range(60)]
+    assert any(v is None for v in verdicts) and any(v is not None for v in verdicts)
+    ghost = make_mistake("hallucinated", state, planned, rng)
+    violation = validate_action(state, ghost)
+    assert violation is not None and violation.constraint == "unknown_object"
+    loaded = make_mistake("non_clear", state, planned, rng)
+    violation = validate_action(state, loaded)
+    assert violation is not None and violation.constraint == "object_not_clear"
+
+
+def test_per_call_errors_malformed_premature_done_and_repeats() -> None:
+    req = request(tall_stack(), Goal(predicate="single_stack"))
+    broken = NoisyPlanner(seed=0, profile=NoiseProfile(action_error=0.0, malformed=1.0))
+    reply = broken.propose(req)
+    assert reply.error and reply.raw and not reply.actions
+    quitter = NoisyPlanner(seed=0, profile=NoiseProfile(action_error=0.0, premature_done=1.0))
+    assert quitter.propose(req).actions == [DoneAction()]
+    refused = MoveAction(object="b0", relation="on", target="b3")
+    violation = validate_action(WorldState.from_graph(tall_stack()), refused)
     assert violation is not None
-    if kind in EXPECTED:
-        assert violation.constraint == EXPECTED[kind]
-    else:
-        assert isinstance(mistake, MoveAction) and mistake.relation == "in"
-        # blocks allow only `on`, so R itself refuses it before the container check
-        assert violation.constraint in ("unknown_relation", "target_not_container")
+    stubborn = NoisyPlanner(seed=0, profile=NoiseProfile(action_error=0.0, repeat=1.0))
+    again = stubborn.propose(request(tall_stack(), Goal(predicate="single_stack")).model_copy(
+        update={"feedback": Feedback(kind="violation", text=violation.text(),
+                                     violation=violation)}))
+    assert again.actions[0] == refused
 
 
-def test_impossible_kinds_return_none() -> None:
-    flat = SceneGraph.model_validate({
-        "nodes": [{"id": "table", "label": "table"}, {"id": "a", "label": "block"}],
-        "edges": [{"source": "a", "relation": "on", "target": "table"}],
-        "dictionary": "blocks"})
-    state = WorldState.from_graph(flat)
-    assert make_mistake("non_clear", state, None, random.Random(0)) is None
+def test_noisy_never_reads_the_privileged_goal() -> None:
+    req = PlannerRequest(mode="iterative", iteration=1, graph=cup_on_book(), goal=None,
+                         privileged_goal=cup_on_book_goal(), k=3, prompt="",
+                         instruction="Tidy up, please.")
+    reply = NoisyPlanner(0.0, seed=0).propose(req)
+    assert reply.actions == [DoneAction()]
+    assert reply.note is not None and "not understood" in reply.note
+    assert OraclePlanner().propose(req).actions[0].text() == "move(cup, on, desk)"
 
 
-def test_tangram_mistakes_are_align_actions_the_verifier_refuses() -> None:
+def test_tangram_mistakes_are_align_actions() -> None:
     pieces = [("square", "square"), ("small_triangle_1", "small_triangle_1"),
               ("medium_triangle", "medium_triangle")]
     graph = SceneGraph.model_validate({
@@ -119,11 +132,12 @@ def test_tangram_mistakes_are_align_actions_the_verifier_refuses() -> None:
                    "source_side": 0, "target_side": 1}],
         "dictionary": "tangram"})
     state = WorldState.from_graph(graph)
-    kinds: tuple[MistakeKind, ...] = ("full_target", "hallucinated", "wrong_relation")
-    for kind in kinds:
-        mistake = make_mistake(kind, state, None, random.Random(1))
+    planned = AlignAction(object="medium_triangle", side=0, target="square", target_side=0)
+    for kind in ("random_move", "hallucinated", "wrong_relation"):
+        mistake = make_mistake(kind, state, planned, random.Random(1))  # type: ignore[arg-type]
         assert isinstance(mistake, AlignAction), kind
-        assert validate_action(state, mistake) is not None
+    wrong = make_mistake("wrong_relation", state, planned, random.Random(1))
+    assert validate_action(state, wrong) is not None
 
 
 def test_factory_builds_the_offline_planners_and_rejects_unknown_names() -> None:

@@ -12,6 +12,7 @@ VERDICT_WORDS = {
     "malformed": "MALFORMED answer",
     "premature_done": "done REFUSED: goal not reached",
     "end_token": "end token accepted",
+    "planner_error": "PLANNER FAILED",
 }
 
 

@@ -6,12 +6,15 @@ from typing import Literal, get_args
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from verigraph.agent.greedy import GreedyPlanner
 from verigraph.agent.noisy import MISTAKE_KINDS, MistakeKind, NoisyPlanner
 from verigraph.agent.oracle import OraclePlanner
 from verigraph.agent.planner import Planner
+from verigraph.agent.rule_based import RuleBasedPlanner
 from verigraph.llm.formats import ResponseFormat
 
-PlannerName = Literal["oracle", "noisy", "openai", "anthropic", "llm-local"]
+PlannerName = Literal["oracle", "rule-based", "greedy", "noisy", "openai", "anthropic",
+                      "llm-local"]
 PLANNER_NAMES: tuple[str, ...] = get_args(PlannerName)
 
 
@@ -21,7 +24,7 @@ class PlannerOptions(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     noise: float = Field(default=0.3, ge=0.0, le=1.0, description="noisy: mistakes per call")
-    seed: int = Field(default=0, description="noisy: RNG seed")
+    seed: int = Field(default=0, description="noisy, greedy: RNG seed")
     mistakes: tuple[MistakeKind, ...] = MISTAKE_KINDS
     base_url: str | None = None
     model: str | None = None
@@ -39,6 +42,10 @@ def make_planner(name: str, options: PlannerOptions | None = None) -> Planner:
     options = options or PlannerOptions()
     if name == "oracle":
         return OraclePlanner()
+    if name == "rule-based":
+        return RuleBasedPlanner()
+    if name == "greedy":
+        return GreedyPlanner(seed=options.seed)
     if name == "noisy":
         return NoisyPlanner(rate=options.noise, seed=options.seed, kinds=options.mistakes)
     common = {"temperature": options.temperature, "max_tokens": options.max_tokens,

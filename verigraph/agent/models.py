@@ -19,8 +19,11 @@ from verigraph.graph.model import SceneGraph
 Mode = Literal["iterative", "direct"]
 DonePolicy = Literal["verify", "trust"]
 FeedbackKind = Literal["violation", "malformed", "premature_done"]
-IterationVerdict = Literal["clean", "violation", "malformed", "premature_done", "end_token"]
-StopReason = Literal["end_token", "threshold", "iteration_limit", "single_shot"]
+FeedbackMode = Literal["full", "constraint", "none"]
+IterationVerdict = Literal["clean", "violation", "malformed", "premature_done", "end_token",
+                           "planner_error"]
+StopReason = Literal["end_token", "goal_reached", "threshold", "no_progress",
+                     "iteration_limit", "single_shot", "planner_error"]
 
 
 class Feedback(BaseModel):
@@ -38,9 +41,12 @@ class Feedback(BaseModel):
 class PlannerRequest(BaseModel):
     """Everything a planner may use to propose the next actions.
 
-    LLM backends read only `prompt` (the rendered MCP prompt); the solver-based planners
-    read the structured fields, including the ground-truth `goal`, which makes them
-    privileged baselines rather than fair competitors.
+    LLM backends read only `prompt` (the rendered MCP prompt). The offline planners read
+    the structured fields, which carry exactly what the prompt shows: `goal` is the goal
+    as the prompt states it (None when the prompt shows only an instruction), and
+    `feedback` is what the prompt shows of the last failure. `privileged_goal` is the
+    verifier's ground truth; only the `oracle` reads it, which makes it a ceiling, not
+    a competitor.
     """
 
     model_config = ConfigDict(extra="forbid")
@@ -48,7 +54,10 @@ class PlannerRequest(BaseModel):
     mode: Mode
     iteration: int = Field(ge=1, description="1-based planner call number")
     graph: SceneGraph = Field(description="the current scene graph")
-    goal: Goal | None = Field(description="the episode's goal (graph and/or predicate)")
+    goal: Goal | None = Field(description="the goal as the prompt shows it (graph and/or "
+                                          "predicate); None when only words are shown")
+    privileged_goal: Goal | None = Field(default=None,
+                                         description="the ground-truth goal; oracle only")
     instruction: str | None = None
     feedback: Feedback | None = Field(default=None, description="what failed last time")
     history: list[str] = Field(default_factory=list, description="actions executed so far")
@@ -90,6 +99,8 @@ class IterationRecord(BaseModel):
     raw_output: str | None = None
     prompt: str | None = Field(default=None, description="only with --trace-prompts")
     note: str | None = None
+    goal_distance: int | None = Field(default=None,
+                                      description="goal edges missing + extra edges after it")
 
 
 class EpisodeTrace(BaseModel):
@@ -101,6 +112,8 @@ class EpisodeTrace(BaseModel):
     threshold: int
     done_policy: DonePolicy
     transport: str
+    stop_on_goal: bool = True
+    feedback_mode: FeedbackMode = "full"
     episode_id: str | None = None
     task: str | None = Field(default=None, description="task id in a benchmark")
     initial_graph: SceneGraph | None = None
@@ -118,6 +131,8 @@ class EpisodeTrace(BaseModel):
     violations_caught: int = Field(default=0, description="actions the verifier refused")
     malformed_outputs: int = 0
     premature_done: int = 0
+    planner_error: str | None = Field(default=None,
+                                      description="the exception that ended the episode")
     wall_time_s: float = 0.0
 
     def summary(self) -> str:

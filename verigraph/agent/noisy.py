@@ -1,199 +1,187 @@
-"""The `noisy` planner: the oracle with seeded, injected mistakes of the kinds LLMs make.
+"""The `noisy` planner: the reference solver with seeded mistakes of the kinds LLMs make.
 
-It stands in for an imperfect LLM so the value of the verifier's feedback and of the
-error threshold t can be measured offline and reproducibly. With probability `rate`
-per planner call, one mistake is inserted at a random position of the proposal:
+An offline stand-in for an imperfect LLM, so the value of feedback and of the threshold
+t can be measured reproducibly. It plans towards the goal its prompt shows (language
+tasks: the rule-based translator's goal; it never reads the privileged goal) and then
+spoils the proposal. Mistakes are drawn without asking the verifier, so some are
+refused and some are valid but useless (or harmful: they undo progress), like a real
+model's. Parameters (`NoiseProfile`):
 
-- `non_clear`: move an object that has something on or in it (object_not_clear);
-- `full_target`: put an object on a target that has no room left (target_full;
-  tangram: a side that already touches another piece, side_occupied);
-- `hallucinated`: name an object that is not in the scene (unknown_object);
-- `wrong_relation`: `in` on a non-container or `on` on a non-surface (tangram: a side
-  index the piece does not have);
-- `stop_early`: answer `done` before the goal holds.
-
-A kind that is impossible in the current graph (nothing is stacked, say) falls back to
-another enabled kind, so the configured rate is the rate of mistakes actually made.
-The mistake is computed on the graph as it will be at its position in the proposal,
-which is before one of the planned moves, so a mistake always costs something: without
-feedback (direct mode) the plan fails; with it, an iteration.
+- `action_error` (`--noise`, default 0.3): per proposed action, the chance that it is
+  replaced by a mistake of one of the enabled `kinds`:
+  - `random_move`: a move (tangram: an align) drawn at random from the scene's objects;
+  - `non_clear`: move an object that carries something (forgets to clear it first);
+  - `hallucinated`: an object that is not in the scene;
+  - `wrong_relation`: the planned move with `in`/`on` flipped (tangram: a side the
+    piece does not have);
+  - `skip_step`: the planned action is left out (the rest may then fail);
+  so the more actions per call (k), the more mistakes per call.
+- `malformed` (default action_error / 5): per call, an unreadable answer.
+- `premature_done` (default action_error / 5): per call, `done` while its goal does
+  not hold.
+- `repeat` (default 0.5): after a refusal, the chance that the refused action is
+  proposed again first (models often repeat a rejected step).
 """
 
 from __future__ import annotations
 
 import random
+import re
 from typing import Literal, get_args
 
+from pydantic import BaseModel, ConfigDict, Field
+
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
-from verigraph.actions.validator import apply_action, validate_action
 from verigraph.agent.models import PlannerReply, PlannerRequest
 from verigraph.agent.oracle import chunk, reference_plan
+from verigraph.agent.translator import GoalReader
 from verigraph.graph.state import WorldState
 
-MistakeKind = Literal["non_clear", "full_target", "hallucinated", "wrong_relation",
-                      "stop_early"]
+MistakeKind = Literal["random_move", "non_clear", "hallucinated", "wrong_relation",
+                      "skip_step"]
 MISTAKE_KINDS: tuple[MistakeKind, ...] = get_args(MistakeKind)
+GARBAGE = ('{"actions": [{"action": "move", "object": ', "Sure! Here is the plan:\nmove(",
+           '{"plan": "stack them"}')
+SUGGESTED_STEP = re.compile(r"step (\d+):")
+
+
+class NoiseProfile(BaseModel):
+    """The noisy planner's error rates (see the module docstring)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    action_error: float = Field(default=0.3, ge=0.0, le=1.0)
+    malformed: float | None = Field(default=None, ge=0.0, le=1.0,
+                                    description="default: action_error / 5")
+    premature_done: float | None = Field(default=None, ge=0.0, le=1.0,
+                                         description="default: action_error / 5")
+    repeat: float = Field(default=0.5, ge=0.0, le=1.0)
+
+    def per_call(self, value: float | None) -> float:
+        return self.action_error / 5 if value is None else value
 
 
 class NoisyPlanner:
-    """Oracle proposals with one injected mistake per call with probability `rate`."""
+    """Solver proposals spoilt per action, plus malformed, repeated and premature answers."""
 
     def __init__(self, rate: float = 0.3, seed: int = 0,
-                 kinds: tuple[MistakeKind, ...] = MISTAKE_KINDS) -> None:
+                 kinds: tuple[MistakeKind, ...] = MISTAKE_KINDS,
+                 profile: NoiseProfile | None = None) -> None:
         if not 0.0 <= rate <= 1.0:
             raise ValueError(f"noise rate must be between 0 and 1, got {rate}")
         unknown = [k for k in kinds if k not in MISTAKE_KINDS]
         if unknown or not kinds:
             raise ValueError(f"mistake kinds must be a non-empty subset of "
                              f"{', '.join(MISTAKE_KINDS)}; got {', '.join(kinds) or 'none'}")
-        self.rate = rate
+        self.profile = profile or NoiseProfile(action_error=rate)
         self.kinds = tuple(kinds)
         self.rng = random.Random(seed)
-        self.name = f"noisy({rate:.0%})"
-        self.injected: list[MistakeKind] = []
+        self.name = f"noisy({self.profile.action_error:.0%})"
+        self.injected: list[str] = []
+        self.reader = GoalReader()
+        self.last: list[AnyAction] = []
 
     def propose(self, request: PlannerRequest) -> PlannerReply:
-        plan, note = reference_plan(request)
-        actions = chunk(plan, request.k)
-        if self.rng.random() >= self.rate:
-            return PlannerReply(actions=actions, note=note)
+        goal, note = self.reader.read(request)
+        plan, why = reference_plan(request, goal)
+        note = note if goal is None else why or note
+        p = self.profile
+        if self.rng.random() < p.per_call(p.malformed):
+            self.injected.append("malformed")
+            raw = self.rng.choice(GARBAGE)
+            return PlannerReply(error="the answer is not valid JSON for the action schema",
+                                raw=raw, note="injected mistake: malformed")
+        if plan and self.rng.random() < p.per_call(p.premature_done):
+            self.injected.append("premature_done")
+            return PlannerReply(actions=[DoneAction()], note="injected mistake: premature_done")
         state = WorldState.from_graph(request.graph)
-        noisy, kind = self._inject(state, actions, request.k)
-        if kind is None:
-            return PlannerReply(actions=actions, note=note)
-        self.injected.append(kind)
-        return PlannerReply(actions=noisy, note=f"injected mistake: {kind}")
+        actions = chunk(plan, request.k)
+        moves = [a for a in actions if not isinstance(a, DoneAction)]
+        done = len(moves) < len(actions)
+        spoilt: list[AnyAction] = []
+        made: list[str] = []
+        repeated = self._repeat(request)
+        if repeated is not None:
+            spoilt.append(repeated)
+            made.append("repeat")
+        for action in moves:
+            if self.rng.random() >= p.action_error:
+                spoilt.append(action)
+                continue
+            kind = self.rng.choice(self.kinds)
+            made.append(kind)
+            if kind == "skip_step":
+                continue
+            spoilt.append(make_mistake(kind, state, action, self.rng))
+        if request.k is not None:
+            spoilt = spoilt[:request.k]
+        if done and len(spoilt) == len(moves) and not made:
+            spoilt.append(DoneAction())
+        elif done and request.k is None:
+            spoilt.append(DoneAction())  # a whole plan ends with done, right or wrong
+        self.injected.extend(made)
+        self.last = [a for a in spoilt if not isinstance(a, DoneAction)]
+        if not spoilt:
+            spoilt = [DoneAction()] if not plan else [moves[0]]
+        mistakes = f"injected mistake: {', '.join(made)}" if made else None
+        return PlannerReply(actions=spoilt, note="; ".join(x for x in (mistakes, note) if x)
+                            or None)
 
     def close(self) -> None:
         return None
 
-    # -- injection ---------------------------------------------------------------------
-    def _inject(self, state: WorldState, actions: list[AnyAction], k: int | None
-                ) -> tuple[list[AnyAction], MistakeKind | None]:
-        moves = [a for a in actions if not isinstance(a, DoneAction)]
-        # Before one of the planned moves (so the mistake matters), or first when the
-        # proposal is only the end token.
-        last = max(len(moves) - 1, 0) if k is None else min(max(len(moves) - 1, 0), k - 1)
-        position = self.rng.randint(0, last)
-        at = state.copy()
-        for action in moves[:position]:
-            apply_action(at, action)
-        upcoming = moves[position] if position < len(moves) else None
-        order = list(self.kinds)
-        first = self.rng.choice(order)
-        order.remove(first)
-        self.rng.shuffle(order)
-        for kind in (first, *order):
-            if kind == "stop_early":
-                if moves:
-                    return [*moves[:position], DoneAction()], kind
-                continue
-            mistake = make_mistake(kind, at, upcoming, self.rng)
-            if mistake is not None:
-                noisy: list[AnyAction] = [*moves[:position], mistake, *moves[position:]]
-                if k is not None and len(noisy) > k:
-                    return noisy[:k], kind
-                return [*noisy, *[a for a in actions if isinstance(a, DoneAction)]], kind
-        return actions, None
+    def _repeat(self, request: PlannerRequest) -> AnyAction | None:
+        """The refused action of the last call, with probability `repeat`."""
+        fb = request.feedback
+        if fb is None or fb.kind != "violation" or self.rng.random() >= self.profile.repeat:
+            return None
+        if fb.violation is not None:
+            data = fb.violation.action
+            try:
+                return (AlignAction.model_validate(data) if data.get("action") == "align"
+                        else MoveAction.model_validate(data))
+            except ValueError:
+                return None
+        return self.last[0] if self.last else None
 
 
 def _movable(state: WorldState) -> list[str]:
-    return [o.id for o in state.objects.values() if o.props.movable and not o.props.sides]
+    return sorted(o.id for o in state.objects.values() if o.props.movable)
 
 
-def _pieces(state: WorldState) -> list[str]:
-    return [o.id for o in state.objects.values() if o.props.sides and o.props.movable]
-
-
-def make_mistake(kind: MistakeKind, state: WorldState, upcoming: AnyAction | None,
-                 rng: random.Random) -> MoveAction | AlignAction | None:
-    """One wrong action of `kind` that the verifier must refuse, or None if impossible."""
-    action: MoveAction | AlignAction | None
-    if _pieces(state):
-        action = _tangram_mistake(kind, state, rng)
-    else:
-        action = _tabletop_mistake(kind, state, upcoming, rng)
-    if action is None or validate_action(state, action) is None:
-        return None  # harmless after all: not a mistake the verifier can show
-    return action
-
-
-def _tabletop_mistake(kind: MistakeKind, state: WorldState, upcoming: AnyAction | None,
-                      rng: random.Random) -> MoveAction | None:
-    movable = _movable(state)
-    if not movable:
-        return None
-    clear = [o for o in movable if state.is_clear(o)]
+def make_mistake(kind: MistakeKind, state: WorldState, planned: AnyAction,
+                 rng: random.Random) -> AnyAction:
+    """A wrong action of `kind` instead of `planned`, drawn without asking the verifier."""
+    objects = sorted(state.objects)
+    if isinstance(planned, AlignAction):
+        pieces = _movable(state) or objects
+        if kind == "hallucinated":
+            return planned.model_copy(update={"object": invented_name(state, rng)})
+        if kind == "wrong_relation":
+            sides = state.side_count(planned.object) or 3
+            return planned.model_copy(update={"side": sides + rng.randint(0, 2)})
+        obj, target = rng.sample(pieces, 2) if len(pieces) > 1 else (pieces[0], pieces[0])
+        return AlignAction(object=obj, side=rng.randrange(state.side_count(obj) or 3),
+                           target=target, target_side=rng.randrange(state.side_count(target)
+                                                                    or 3))
+    assert isinstance(planned, MoveAction)
+    if kind == "hallucinated":
+        return MoveAction(object=invented_name(state, rng), relation=planned.relation,
+                          target=planned.target)
+    if kind == "wrong_relation":
+        return planned.model_copy(update={"relation": "in" if planned.relation == "on"
+                                          else "on"})
     if kind == "non_clear":
-        loaded = [o for o in movable if not state.is_clear(o)]
-        if not loaded:
-            return None
-        obj = rng.choice(loaded)
-        below = state.support.get(obj, ("", ""))[1]
-        above = {o for o in state.objects if obj in state.supports_chain(o)}
-        targets = [t for t in state.objects if t not in above | {obj, below}
-                   and state.objects[t].props.surface and state.has_room(t)]
-        if not targets:
-            return None
-        return MoveAction(object=obj, relation="on", target=rng.choice(targets))
-    if kind == "full_target":
-        full = [o for o in state.objects if not state.has_room(o)
-                and (state.objects[o].props.surface or state.objects[o].props.container)]
-        rng.shuffle(full)
-        for target in full:
-            candidates = [o for o in clear if o != target and o not in state.carried[target]]
-            if candidates:
-                relation = "on" if state.objects[target].props.surface else "in"
-                return MoveAction(object=rng.choice(candidates), relation=relation,
-                                  target=target)
-        return None
-    if kind == "hallucinated":
-        return MoveAction(object=_invented_name(state, rng), relation="on",
-                          target=rng.choice(list(state.objects)))
-    if kind == "wrong_relation":
-        if isinstance(upcoming, MoveAction):
-            flipped = "in" if upcoming.relation == "on" else "on"
-            return MoveAction(object=upcoming.object, relation=flipped, target=upcoming.target)
-        for _ in range(10):
-            obj = rng.choice(clear or movable)
-            target = rng.choice([o for o in state.objects if o != obj])
-            t = state.objects[target].props
-            if not t.container:
-                return MoveAction(object=obj, relation="in", target=target)
-            if not t.surface:
-                return MoveAction(object=obj, relation="on", target=target)
-        return None
-    return None
+        loaded = [o for o in _movable(state) if not state.is_clear(o)]
+        if loaded:
+            return MoveAction(object=rng.choice(loaded), relation=planned.relation,
+                              target=planned.target)
+    relations = state.move_relations or ("on",)
+    return MoveAction(object=rng.choice(_movable(state) or objects),
+                      relation=rng.choice(relations), target=rng.choice(objects))
 
 
-def _tangram_mistake(kind: MistakeKind, state: WorldState, rng: random.Random
-                     ) -> AlignAction | None:
-    pieces = _pieces(state)
-    if len(pieces) < 2:
-        return None
-    obj, target = rng.sample(pieces, 2)
-    n_obj = state.side_count(obj) or 3
-    n_target = state.side_count(target) or 3
-    if kind == "full_target":
-        taken = [(side, other) for side, other in state.contacts.items()
-                 if side[0] in pieces]
-        rng.shuffle(taken)
-        for (piece, side), (other, _) in taken:
-            movers = [p for p in pieces if p not in (piece, other)]
-            if movers:
-                mover = rng.choice(movers)
-                return AlignAction(object=mover, side=0, target=piece, target_side=side)
-        return None
-    if kind == "hallucinated":
-        return AlignAction(object=_invented_name(state, rng), side=0, target=target,
-                           target_side=0)
-    if kind == "wrong_relation":
-        return AlignAction(object=obj, side=n_obj + rng.randint(0, 2), target=target,
-                           target_side=rng.randrange(n_target))
-    return None  # non_clear has no tangram counterpart
-
-
-def _invented_name(state: WorldState, rng: random.Random) -> str:
+def invented_name(state: WorldState, rng: random.Random) -> str:
     """A plausible object name that is not in the scene (a colour or a number off)."""
     base = rng.choice(sorted(state.objects))
     options = [f"{base}_2", f"{base}_3", "purple_block", "blue_mug", "small_triangle_3",

@@ -1,7 +1,9 @@
 """The `oracle` planner: the reference solver in the planner's seat.
 
-Not an LLM: it reads the ground-truth goal and plans optimally, so it is the upper
-bound of every table and the check that the pipeline (tools, loop, goal check) is sound.
+Not an LLM and not a fair competitor: it reads the ground-truth goal
+(`request.privileged_goal`, also when the prompt shows only an instruction) and plans
+optimally, so it is the privileged ceiling of every table and the check that the
+pipeline (tools, loop, goal check) is sound.
 It re-plans from the current graph on every call, so it also recovers from states a
 noisy planner left behind.
 """
@@ -10,19 +12,26 @@ from __future__ import annotations
 
 from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.graph.goal import check_goal
+from verigraph.agent.tangram_plan import tangram_plan
+from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.state import WorldState
 from verigraph.solver import solve
 
 
-def reference_plan(request: PlannerRequest) -> tuple[list[AnyAction], str | None]:
-    """An optimal plan from the request's graph to its goal, and a note when there is none."""
-    if request.goal is None:
-        return [], "no checkable goal: the oracle can only answer done"
+def reference_plan(request: PlannerRequest, goal: Goal | None
+                   ) -> tuple[list[AnyAction], str | None]:
+    """An optimal plan from the request's graph to `goal`, and a note when there is none."""
+    if goal is None:
+        return [], "no checkable goal: the planner can only answer done"
     state = WorldState.from_graph(request.graph)
-    if check_goal(state, request.goal).satisfied:
+    if check_goal(state, goal).satisfied:
         return [], None
-    result = solve(state, request.goal)
+    if goal.graph is not None and any(o.props.sides for o in state.objects.values()):
+        aligns = tangram_plan(state, goal)
+        if aligns is None:
+            return [], "no tangram plan found"
+        return list[AnyAction](aligns), None
+    result = solve(state, goal)
     if not result.reachable:
         return [], f"solver found no plan: {result.reason}"
     return list(result.plan), None
@@ -41,7 +50,7 @@ class OraclePlanner:
     name = "oracle"
 
     def propose(self, request: PlannerRequest) -> PlannerReply:
-        plan, note = reference_plan(request)
+        plan, note = reference_plan(request, request.privileged_goal or request.goal)
         return PlannerReply(actions=chunk(plan, request.k), llm_calls=1, note=note)
 
     def close(self) -> None:

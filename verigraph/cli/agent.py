@@ -3,7 +3,8 @@
 It spawns `verigraph serve` over stdio (default) or connects to a streamable-HTTP URL,
 then does everything through the tools (load_scene, set_goal, get_state,
 execute_actions, end_episode), printing each iteration and the verdict.
-Exit codes: 0 goal reached, 1 goal missed, 2 bad input.
+Exit codes: 0 goal reached, 1 goal missed, 2 bad input, 3 the planner raised (the
+episode is closed and --trace is still written).
 """
 
 from __future__ import annotations
@@ -50,7 +51,18 @@ def register(sub: Any) -> None:
     loop.add_argument("--done-policy", choices=("verify", "trust"), default="verify",
                       help="verify: refuse done while the goal does not hold (default); "
                            "trust: the end token always stops (the paper's literal rule)")
-    loop.add_argument("--max-iterations", type=int, default=60)
+    loop.add_argument("--stop-on-goal", action=argparse.BooleanOptionalAction, default=True,
+                      help="stop as soon as the goal holds (default); --no-stop-on-goal "
+                           "waits for the end token, the paper's literal rule")
+    loop.add_argument("--no-progress", type=int, default=15, metavar="N",
+                      help="stop after N iterations without a new lowest distance to the "
+                           "goal, e.g. valid moves back and forth (default 15; 0 = never)")
+    loop.add_argument("--max-iterations", type=int, default=60, metavar="N",
+                      help="stop after N planner calls whatever tau is (default 60): the "
+                           "last safety stop for planners that never finish")
+    loop.add_argument("--feedback", choices=("full", "constraint", "none"), default="full",
+                      help="what the planner is told of a failure: the verifier's full "
+                           "report (default), the constraint id only, or nothing")
     server = p.add_argument_group("server")
     server.add_argument("--transport", choices=("stdio", "http"), default="stdio",
                         help="stdio: spawn `verigraph serve`; http: connect to --url")
@@ -81,6 +93,13 @@ def register(sub: Any) -> None:
     out.add_argument("--trace", help="write the episode trace (JSON) to this file")
     out.add_argument("--trace-prompts", action="store_true", help="keep prompts in the trace")
     out.add_argument("--quiet", "-q", action="store_true", help="print only the verdict")
+    out.add_argument("--record", metavar="DIR",
+                     help="write the planner transcript (each prompt and reply) to "
+                          "DIR/<scene>__<mode>.jsonl")
+    out.add_argument("--replay", metavar="DIR",
+                     help="answer from a transcript recorded with --record instead of "
+                          "calling the planner (no key, no network); a prompt that differs "
+                          "from the recorded one stops the episode as a planner error")
     p.set_defaults(handler=run_agent)
 
 
@@ -150,6 +169,20 @@ def _planner_options(args: argparse.Namespace) -> Any:
                              fix="see `verigraph agent --help`") from None
 
 
+def _planner(args: argparse.Namespace) -> Any:
+    from verigraph.agent.factory import make_planner
+    from verigraph.agent.transcripts import RecordingPlanner, ReplayingPlanner
+
+    if args.record and args.replay:
+        raise VeriGraphError("--record and --replay exclude each other", field="--replay",
+                             value=args.replay, fix="record once, then replay in another run")
+    key = f"{Path(args.scene).stem if Path(args.scene).is_file() else args.scene}__{args.mode}"
+    if args.replay:
+        return ReplayingPlanner(args.replay, key)
+    planner = make_planner(args.planner, _planner_options(args))
+    return RecordingPlanner(planner, args.record, key) if args.record else planner
+
+
 def _environment(args: argparse.Namespace) -> Any:
     import os
 
@@ -167,13 +200,13 @@ def run_agent(args: argparse.Namespace) -> int:
     from pydantic import ValidationError
 
     from verigraph.agent.console import header_lines, print_iteration, verdict_line
-    from verigraph.agent.factory import make_planner
     from verigraph.agent.loop import EpisodeSpec, LoopConfig, run_episode
 
     try:
         config = LoopConfig(mode=args.mode, k=args.k, threshold=args.threshold,
                             done_policy=args.done_policy, max_iterations=args.max_iterations,
-                            record_prompts=args.trace_prompts)
+                            stop_on_goal=args.stop_on_goal, no_progress=args.no_progress,
+                            feedback=args.feedback, record_prompts=args.trace_prompts)
     except ValidationError as exc:
         err = exc.errors()[0]
         name = str(err["loc"][0]) if err["loc"] else "options"
@@ -182,7 +215,7 @@ def run_agent(args: argparse.Namespace) -> int:
                              ) from None
     spec = EpisodeSpec(load=_scene_spec(args), set_goal=_goal_spec(args),
                        show_goal_graph=not args.hide_goal_graph)
-    planner = make_planner(args.planner, _planner_options(args))
+    planner = _planner(args)
     out = sys.stdout
 
     def on_start(trace: Any) -> None:
@@ -203,8 +236,12 @@ def run_agent(args: argparse.Namespace) -> int:
     finally:
         planner.close()
     out.write(verdict_line(trace) + "\n")
+    if trace.planner_error:
+        sys.stderr.write(f"error: the planner failed: {trace.planner_error}\n")
     if args.trace:
         Path(args.trace).write_text(json.dumps(trace.model_dump(mode="json"), indent=2) + "\n")
         if not args.quiet:
             out.write(f"trace written to {args.trace}\n")
+    if trace.planner_error:
+        return 3
     return 0 if trace.success else 1

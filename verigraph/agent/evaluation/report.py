@@ -1,31 +1,13 @@
-"""Markdown tables for `verigraph bench plan`, with the paper's Table 2 beside ours.
-
-The paper's numbers are success rates (%) of VeriGraph (GPT-4V planner, iterative) as
-listed in public summaries of the paper (Ekpo et al., "VeriGraph: Scene Graphs for
-Execution Verifiable Robot Planning", Table 2). They are a reference for scale, not a
-comparison: the paper's planner is a large VLM on real-looking scenes, ours are the
-reference solver and a solver with injected mistakes on generated scenes.
-"""
+"""Markdown tables for `verigraph bench plan`: success per group, rows grouped by planner
+kind, and the t/k ablations. The paper's numbers have their own table (paper.py)."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 
+from verigraph.agent.evaluation.paper import GROUP_TITLES
 from verigraph.agent.evaluation.runner import GroupStats, Setting
 from verigraph.agent.evaluation.tasks import GROUPS, GroupName, GroupTasks
-
-GROUP_TITLES: dict[GroupName, str] = {
-    "stacking": "Stacking",
-    "language": "Language instr.",
-    "ref_image_kitchen": "Ref. image (kitchen)",
-    "ref_image_blocks": "Ref. image (blocks)",
-    "tangram": "Tangram",
-}
-PAPER_TABLE2: dict[GroupName, float] = {
-    "stacking": 65, "language": 73, "ref_image_kitchen": 55, "ref_image_blocks": 86,
-    "tangram": 72,
-}
-PAPER_ROW = "paper: VeriGraph (GPT-4V, iterative), Table 2"
 
 Row = tuple[Setting, dict[GroupName, GroupStats]]
 
@@ -49,22 +31,25 @@ def _totals(stats: dict[GroupName, GroupStats]) -> tuple[float, float, int, floa
     return calls, actions, violations, seconds, errors
 
 
-def success_table(rows: Sequence[Row], groups: Sequence[GroupTasks],
-                  with_paper: bool = True) -> list[str]:
-    """Success rate per group plus mean LLM calls, mean actions, violations, wall time."""
+def success_table(sections: Sequence[tuple[str, Sequence[Row]]],
+                  groups: Sequence[GroupTasks]) -> list[str]:
+    """Success rate per group plus mean LLM calls, mean actions, violations, wall time and
+    episodes ended by a planner error; a bold row opens each planner kind."""
     by_name = {g.group: g for g in groups}
     shown = [g for g in GROUPS if g in by_name]
     header = ["planner / mode", *[GROUP_TITLES[g] for g in shown], "mean LLM calls",
-              "mean actions", "violations caught", "wall time"]
+              "mean actions", "violations caught", "planner errors", "wall time"]
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    for setting, stats in rows:
-        calls, actions, violations, seconds, _ = _totals(stats)
-        cells = [_cell(stats.get(g), by_name[g]) for g in shown]
-        lines.append(f"| {setting.label()} | " + " | ".join(cells) +
-                     f" | {calls:.2f} | {actions:.2f} | {violations} | {seconds:.1f} s |")
-    if with_paper:
-        cells = [f"{PAPER_TABLE2[g]:.0f}%" for g in shown]
-        lines.append(f"| *{PAPER_ROW}* | " + " | ".join(cells) + " | | | | |")
+    for title, rows in sections:
+        if not rows:
+            continue
+        lines.append(f"| **{title}** |" + " |" * (len(header) - 1))
+        for setting, stats in rows:
+            calls, actions, violations, seconds, errors = _totals(stats)
+            cells = [_cell(stats.get(g), by_name[g]) for g in shown]
+            lines.append(f"| {setting.label()} | " + " | ".join(cells) +
+                         f" | {calls:.2f} | {actions:.2f} | {violations} | {errors} | "
+                         f"{seconds:.1f} s |")
     return lines
 
 

@@ -19,11 +19,12 @@ from typing import TextIO
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.agent.environment import InProcessTools, ToolEnvironment
-from verigraph.agent.evaluation.tasks import GroupName, GroupTasks, Task
+from verigraph.agent.evaluation.tasks import SUITE_VERSION, GroupName, GroupTasks, Task
 from verigraph.agent.factory import PlannerOptions, make_planner
 from verigraph.agent.loop import LoopConfig, run_episode
-from verigraph.agent.models import DonePolicy, Mode
+from verigraph.agent.models import DonePolicy, FeedbackMode, Mode
 from verigraph.agent.planner import Planner
+from verigraph.agent.transcripts import RecordingPlanner, ReplayingPlanner
 from verigraph.errors import VeriGraphError
 
 
@@ -39,13 +40,22 @@ class Setting(BaseModel):
     done_policy: DonePolicy = "verify"
     noise: float = 0.3
     max_iterations: int = 30
+    feedback: FeedbackMode = "full"
+    stop_on_goal: bool = True
+    no_progress: int = 15
+    record_dir: str | None = Field(default=None, description="write planner transcripts here")
+    replay_dir: str | None = Field(default=None,
+                                   description="answer from transcripts recorded here")
 
     def label(self) -> str:
         name = self.planner if self.planner != "noisy" else f"noisy ({self.noise:.0%})"
         if self.mode == "direct":
             return f"{name}, direct"
         policy = "" if self.done_policy == "verify" else ", trust done"
-        return f"{name}, iterative k={self.k} t={self.threshold}{policy}"
+        if not self.stop_on_goal:
+            policy += ", end token only"
+        feedback = "" if self.feedback == "full" else f", feedback {self.feedback}"
+        return f"{name}, iterative k={self.k} t={self.threshold}{policy}{feedback}"
 
 
 class EpisodeResult(BaseModel):
@@ -62,6 +72,7 @@ class EpisodeResult(BaseModel):
     stop_reason: str | None = None
     seconds: float = 0.0
     error: str | None = Field(default=None, description="tool or planner error, if any")
+    suite_version: str = SUITE_VERSION
 
 
 class GroupStats(BaseModel):
@@ -81,7 +92,7 @@ def episode_seed(task_id: str, setting: Setting) -> int:
     return zlib.crc32(f"{task_id}|{setting.label()}".encode())
 
 
-OFFLINE_PLANNERS = ("oracle", "noisy")
+OFFLINE_PLANNERS = ("oracle", "rule-based", "greedy", "noisy")
 
 
 def run_task(env: ToolEnvironment, task: Task, setting: Setting,
@@ -91,10 +102,20 @@ def run_task(env: ToolEnvironment, task: Task, setting: Setting,
     Offline planners are built per episode (seeded by the task); an LLM planner is
     `shared` across the setting's episodes, so a local model server starts only once.
     """
-    planner = shared or make_planner(setting.planner, PlannerOptions(
-        noise=setting.noise, seed=episode_seed(task.task_id, setting)))
+    key = f"{setting.label()}__{task.task_id}"
+    planner: Planner
+    if setting.replay_dir:
+        planner = ReplayingPlanner(setting.replay_dir, key)
+    else:
+        planner = shared or make_planner(setting.planner, PlannerOptions(
+            noise=setting.noise, seed=episode_seed(task.task_id, setting)))
+        if setting.record_dir:
+            planner = RecordingPlanner(planner, setting.record_dir, key,
+                                       close_inner=shared is None)
     config = LoopConfig(mode=setting.mode, k=setting.k, threshold=setting.threshold,
-                        done_policy=setting.done_policy, max_iterations=setting.max_iterations)
+                        done_policy=setting.done_policy, max_iterations=setting.max_iterations,
+                        feedback=setting.feedback, stop_on_goal=setting.stop_on_goal,
+                        no_progress=setting.no_progress)
     started = time.perf_counter()
     try:
         trace = run_episode(env, planner, task.spec, config)
@@ -109,7 +130,7 @@ def run_task(env: ToolEnvironment, task: Task, setting: Setting,
         llm_calls=trace.llm_calls, actions=trace.actions_executed,
         violations=trace.violations_caught, malformed=trace.malformed_outputs,
         premature_done=trace.premature_done, stop_reason=trace.stop_reason,
-        seconds=trace.wall_time_s)
+        seconds=trace.wall_time_s, error=trace.planner_error)
 
 
 def aggregate(group: GroupName, results: Sequence[EpisodeResult]) -> GroupStats:
@@ -161,7 +182,8 @@ def run_setting(setting: Setting, groups: Sequence[GroupTasks], *,
                 ) -> dict[GroupName, GroupStats]:
     """Every runnable group's stats for one setting."""
     env = env or InProcessTools()
-    shared = None if setting.planner in OFFLINE_PLANNERS else make_planner(setting.planner)
+    shared = None if setting.planner in OFFLINE_PLANNERS or setting.replay_dir \
+        else make_planner(setting.planner)
     stats: dict[GroupName, GroupStats] = {}
     try:
         for group in groups:

@@ -1,51 +1,63 @@
-"""The benchmark's episodes: generated sim2d scenes in the paper's four task groups.
+"""The benchmark's episodes: the paper's five task groups, with real difficulty.
 
-- `stacking`: block scenes with incomplete stacks; goal predicate `single_stack`.
-- `language`: kitchen and tableware scenes with an instruction (a command or a goal
-  description, see `language.py`); the planner's prompt shows only the words, the
-  verifier checks the ground-truth goal graph.
-- `ref_image_blocks`, `ref_image_kitchen`: the goal is an image of a structurally
-  similar scene (the goal state laid out afresh by the simulator); the goal graph comes
-  from perceiving it, so these groups need `verigraph.perception` unless
-  `ground_truth=True` hands the planner the true goal graph instead.
-- `tangram`: one piece moved away from the target figure; the planner must say which
-  piece to align with which side.
+- `stacking` (suite_blocks.py): ordered stacking from blocks spread on the table (4-8),
+  tower reversal (4-7) and multi-tower rearrangement; the goal graph spells out the order.
+- `language` (language.py): coloured block scenes with instructions that need colours,
+  quantifiers, relations and negation; the prompt shows only the words, the verifier
+  checks the ground-truth partial goal graph.
+- `ref_image_blocks` (suite_blocks.py) and `ref_image_kitchen` (suite_kitchen.py): the
+  goal is an image of the goal state laid out afresh; 3+ moves, something to clear
+  first. Its graph comes from perceiving the image (`verigraph.perception`) unless
+  `ground_truth=True` hands the planner the true goal graph.
+- `tangram` (suite_tangram.py): 2 to 5 pieces out of the target figure.
 
-Episodes are fixed by (group, index, seed), so every planner sees the same tasks.
+Every group's mean optimal plan length (reference solver) is at least 4; `suite_stats`
+reports it with its distribution. Episodes are fixed by (SUITE_VERSION, group, index,
+seed), so every planner sees the same tasks and results from one suite version stay
+comparable; a change to any generator must bump SUITE_VERSION.
 """
 
 from __future__ import annotations
 
 import base64
 import random
+import statistics
+from collections import Counter
 from collections.abc import Callable
 from typing import Any, Literal
 
 from pydantic import BaseModel, Field
 
-from verigraph.agent.evaluation.language import TEMPLATES, instruction_for
+from verigraph.agent.evaluation import language, suite_blocks, suite_kitchen, suite_tangram
+from verigraph.agent.evaluation.suite_blocks import Drawn
 from verigraph.agent.loop import EpisodeSpec
 from verigraph.errors import VeriGraphError
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 
+SUITE_VERSION = "2"
 GroupName = Literal["stacking", "language", "ref_image_kitchen", "ref_image_blocks", "tangram"]
 GROUPS: tuple[GroupName, ...] = ("stacking", "language", "ref_image_kitchen",
                                  "ref_image_blocks", "tangram")
-MAX_DRAWS = 20  # scenes tried per episode before the group gives up on an index
-STACK_SIZES = (4, 5, 6, 7)  # blocks per stacking scene: enough moves for mistakes to matter
+MAX_DRAWS = 20  # draws tried per episode before the group gives up on an index
+KITCHEN_TARGETS = (4, 5, 6, 5)  # optimal lengths aimed at, in turn
+REF_INSTRUCTION = "Rearrange the scene so that it looks like the reference image."
 
 
 class Task(BaseModel):
-    """One benchmark episode: how to load it and what it is."""
+    """One benchmark episode: how to load it, what it is and how hard it is."""
 
     group: GroupName
     task_id: str
     spec: EpisodeSpec
     family: str
+    kind: str = Field(description="the task's kind within its group (ordered, reversal, ...)")
+    optimal_length: int = Field(description="moves in the reference solver's optimal plan")
     template: str | None = Field(default=None, description="language template id")
-    instruction_kind: str | None = None
+    category: str | None = Field(default=None, description="language: what it exercises")
+    instruction: str | None = None
+    truth: Goal | None = Field(default=None, description="language: the ground-truth goal")
 
 
 class GroupTasks(BaseModel):
@@ -56,21 +68,25 @@ class GroupTasks(BaseModel):
     not_run: str | None = Field(default=None, description="why the group was skipped")
     graphs: str = Field(default="ground truth",
                         description="where the graphs come from: ground truth or perceived")
+    note: str | None = None
 
 
-def _generate(family: str, seed: int, n_objects: int | None = None) -> Any:
-    from verigraph.sim2d.generator import generate_scene
+class SuiteStats(BaseModel):
+    """Optimal plan lengths of one group: mean and distribution."""
 
-    return generate_scene(family, seed, n_objects)
+    group: GroupName
+    episodes: int
+    mean_optimal: float
+    distribution: dict[int, int]
+    kinds: dict[str, int]
 
 
-def _goal_of(scene: Any) -> Goal:
-    goal = scene.goal
-    if isinstance(goal, Goal):
-        return goal
-    if isinstance(goal, SceneGraph):
-        return Goal(graph=goal)
-    return Goal(graph=goal.observe())
+def suite_stats(group: GroupTasks) -> SuiteStats:
+    lengths = [t.optimal_length for t in group.tasks]
+    return SuiteStats(group=group.group, episodes=len(lengths),
+                      mean_optimal=statistics.fmean(lengths) if lengths else 0.0,
+                      distribution=dict(sorted(Counter(lengths).items())),
+                      kinds=dict(sorted(Counter(t.kind for t in group.tasks).items())))
 
 
 def _graph_json(graph: SceneGraph) -> dict[str, Any]:
@@ -108,48 +124,52 @@ def feasible_in_sim(graph: SceneGraph, goal: Goal, seed: int, world: Any = None)
     return violation is None and check_goal(final, goal).satisfied
 
 
-def _draws(base_seed: int, index: int) -> range:
-    start = base_seed * 100_003 + index * MAX_DRAWS
-    return range(start, start + MAX_DRAWS)
+def _rng(group: str, seed: int, index: int, draw: int) -> random.Random:
+    return random.Random(f"verigraph-bench:{SUITE_VERSION}:{group}:{seed}:{index}:{draw}")
+
+
+def _task(group: GroupName, index: int, drawn: Drawn, load: dict[str, Any],
+          set_goal: dict[str, Any], family: str, **extra: Any) -> Task:
+    spec = EpisodeSpec(task_id=f"{group}/{index}", load=load, set_goal=set_goal,
+                       show_goal_graph=group != "language")
+    return Task(group=group, task_id=spec.task_id or "", spec=spec, family=family,
+                kind=drawn.kind, optimal_length=drawn.optimal_length, **extra)
 
 
 def stacking_tasks(n: int, seed: int, *, simulate: bool = False) -> GroupTasks:
     tasks = []
-    goal = Goal(predicate="single_stack", instruction="Stack all the blocks into one tower.")
     for i in range(n):
-        for draw in _draws(seed, i):
-            scene = _generate("blocks", draw, STACK_SIZES[draw % len(STACK_SIZES)])
-            if check_goal(WorldState.from_graph(scene.graph), goal).satisfied:
-                continue  # already one tower: not a stacking task
-            if simulate and not feasible_in_sim(scene.graph, goal, draw):
+        for draw in range(MAX_DRAWS):
+            drawn = suite_blocks.stacking_task(_rng("stacking", seed, i, draw), i)
+            if simulate and not feasible_in_sim(drawn.graph, drawn.goal, draw):
                 continue
-            spec = EpisodeSpec(task_id=f"stacking/{i}", load=_load(scene.graph, simulate, draw),
-                               set_goal={"predicate": "single_stack",
-                                         "instruction": goal.instruction})
-            tasks.append(Task(group="stacking", task_id=spec.task_id or "", spec=spec,
-                              family="blocks"))
+            assert drawn.goal.graph is not None
+            tasks.append(_task("stacking", i, drawn, _load(drawn.graph, simulate, draw),
+                               {"graph": _graph_json(drawn.goal.graph),
+                                "instruction": drawn.goal.instruction}, "blocks"))
             break
     return GroupTasks(group="stacking", tasks=tasks)
 
 
 def language_tasks(n: int, seed: int, *, simulate: bool = False) -> GroupTasks:
-    names = list(TEMPLATES)
+    names = list(language.TEMPLATES)
     tasks = []
     for i in range(n):
-        family = "kitchen" if i % 2 == 0 else "tableware"
-        for attempt, draw in enumerate(_draws(seed, i)):
-            scene = _generate(family, draw)
-            template = names[(i + attempt) % len(names)]
-            made = instruction_for(scene.graph, template, random.Random(draw))
-            if made is None or (simulate and not feasible_in_sim(scene.graph, made.goal, draw)):
+        template = names[i % len(names)]
+        for draw in range(MAX_DRAWS):
+            rng = _rng("language", seed, i, draw)
+            towers = language.draw_scene(rng)
+            made = language.instruction_for(towers, template, rng)
+            graph = suite_blocks.block_graph(towers)
+            if made is None or (simulate and not feasible_in_sim(graph, made.goal, draw)):
                 continue
             assert made.goal.graph is not None
-            spec = EpisodeSpec(
-                task_id=f"language/{i}", load=_load(scene.graph, simulate, draw),
-                set_goal={"graph": _graph_json(made.goal.graph), "instruction": made.text},
-                show_goal_graph=False)
-            tasks.append(Task(group="language", task_id=spec.task_id or "", spec=spec,
-                              family=family, template=template, instruction_kind=made.kind))
+            drawn = Drawn(graph, made.goal, made.category, made.optimal_length)
+            tasks.append(_task(
+                "language", i, drawn, _load(graph, simulate, draw),
+                {"graph": _graph_json(made.goal.graph), "partial": True,
+                 "instruction": made.text}, "blocks", template=template,
+                category=made.category, instruction=made.text, truth=made.goal))
             break
     return GroupTasks(group="language", tasks=tasks)
 
@@ -162,58 +182,67 @@ def goal_image_png(goal_graph: SceneGraph, seed: int) -> bytes:
     return bytes(encode_png(world.render()))
 
 
+def _reference_drawn(family: str, rng: random.Random, i: int, draw: int) -> Drawn | None:
+    if family == "blocks":
+        return suite_blocks.reference_blocks_task(rng)
+    from verigraph.sim2d.generator import generate_scene
+
+    try:
+        scene = generate_scene("kitchen", 1_000 * i + draw, 5 + draw % 3)
+    except VeriGraphError:
+        return None
+    target = KITCHEN_TARGETS[i % len(KITCHEN_TARGETS)]
+    drawn = suite_kitchen.kitchen_goal(scene.graph, rng, target)
+    return drawn if drawn is not None and drawn.optimal_length >= target - 1 else None
+
+
 def reference_image_tasks(family: Literal["blocks", "kitchen"], n: int, seed: int, *,
                           ground_truth: bool, simulate: bool = False) -> GroupTasks:
     group: GroupName = "ref_image_blocks" if family == "blocks" else "ref_image_kitchen"
     tasks = []
-    instruction = "Rearrange the scene so that it looks like the reference image."
     for i in range(n):
-        for draw in _draws(seed, i):
-            scene = _generate(family, draw)
-            goal = _goal_of(scene)
-            if goal.graph is None or goal.graph.edge_keys() == scene.graph.edge_keys():
+        for draw in range(MAX_DRAWS):
+            drawn = _reference_drawn(family, _rng(group, seed, i, draw), i, draw)
+            if drawn is None or drawn.goal.graph is None:
                 continue
-            if simulate and not feasible_in_sim(scene.graph, goal, draw):
+            if simulate and not feasible_in_sim(drawn.graph, drawn.goal, draw):
                 continue
-            set_goal: dict[str, Any] = {"instruction": instruction}
+            set_goal: dict[str, Any] = {"instruction": REF_INSTRUCTION}
             if ground_truth:
-                set_goal["graph"] = _graph_json(goal.graph)
+                set_goal["graph"] = _graph_json(drawn.goal.graph)
             else:
                 try:
-                    png = goal_image_png(goal.graph, draw + 1)
+                    png = goal_image_png(drawn.goal.graph, draw + 1)
                 except VeriGraphError:
                     continue  # the goal cannot be laid out afresh (no room): draw another
                 set_goal["image"] = base64.b64encode(png).decode("ascii")
-            spec = EpisodeSpec(task_id=f"{group}/{i}", load=_load(scene.graph, simulate, draw),
-                               set_goal=set_goal)
-            tasks.append(Task(group=group, task_id=spec.task_id or "", spec=spec,
-                              family=family))
+            tasks.append(_task(group, i, drawn, _load(drawn.graph, simulate, draw), set_goal,
+                               family))
             break
     return GroupTasks(group=group, tasks=tasks,
                       graphs="ground truth" if ground_truth else "perceived goal image")
 
 
 def tangram_tasks(n: int, seed: int, *, simulate: bool = False) -> GroupTasks:
+    from verigraph.sim2d.generator import generate_scene
+
     tasks = []
     for i in range(n):
-        for draw in _draws(seed, i):
-            scene = _generate("tangram", draw)
-            goal = _goal_of(scene)
-            if goal.graph is None or (simulate and not feasible_in_sim(
-                    scene.graph, goal, draw, world=scene.world)):
+        out = suite_tangram.PIECES_OUT[i % len(suite_tangram.PIECES_OUT)]
+        for draw in range(MAX_DRAWS):
+            rng = _rng("tangram", seed, i, draw)
+            figure = generate_scene("tangram", rng.randrange(2**31)).goal.graph
+            drawn = suite_tangram.tangram_task(figure, rng, out) if figure else None
+            if drawn is None or drawn.goal.graph is None:
                 continue
-            set_goal: dict[str, Any] = {"graph": _graph_json(goal.graph)}
-            if goal.instruction:
-                set_goal["instruction"] = goal.instruction
-            # A tangram world cannot be rebuilt from contacts alone: simulate it from the
-            # generator, which lays the pieces out exactly.
-            load = ({"generator": {"family": "tangram", "seed": draw}, "simulate": True}
-                    if simulate else _load(scene.graph, False, draw))
-            spec = EpisodeSpec(task_id=f"tangram/{i}", load=load, set_goal=set_goal)
-            tasks.append(Task(group="tangram", task_id=spec.task_id or "", spec=spec,
-                              family="tangram"))
+            set_goal = {"graph": _graph_json(drawn.goal.graph),
+                        "instruction": drawn.goal.instruction}
+            tasks.append(_task("tangram", i, drawn, _load(drawn.graph, False, draw), set_goal,
+                               "tangram"))
             break
-    return GroupTasks(group="tangram", tasks=tasks)
+    note = "symbolic only: --simulate does not lay out several pieces out" if simulate \
+        else None
+    return GroupTasks(group="tangram", tasks=tasks, note=note)
 
 
 def build_groups(groups: tuple[GroupName, ...], n: int, seed: int, *, ground_truth: bool,

@@ -1,0 +1,222 @@
+"""One episode's bookkeeping for the loop: its settings, how it starts, and the tool calls.
+
+`LoopConfig` and `EpisodeSpec` are the loop's inputs; `Episode` keeps the mutable state
+of one run (graph, goal, history, the trace) and wraps the tools (`load_scene`,
+`set_goal`, `execute_actions`, `end_episode`) and the planner call, so `loop.py` holds
+only Algorithm 1's control flow.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from verigraph.actions.feedback import Violation
+from verigraph.actions.model import AnyAction
+from verigraph.agent.environment import ToolEnvironment
+from verigraph.agent.models import (
+    DonePolicy,
+    EpisodeTrace,
+    Feedback,
+    FeedbackMode,
+    IterationRecord,
+    Mode,
+    PlannerReply,
+    PlannerRequest,
+)
+from verigraph.agent.planner import Planner
+from verigraph.agent.progress import goal_distance, shape_feedback
+from verigraph.agent.prompting import planner_prompt
+from verigraph.errors import VeriGraphError
+from verigraph.graph.goal import Goal, GraphDiff
+from verigraph.graph.model import SceneGraph
+from verigraph.graph.state import WorldState
+
+MAX_ACTIONS_PER_CALL = 50  # execute_actions' limit; direct plans are sent in such chunks
+
+
+class LoopConfig(BaseModel):
+    """Algorithm 1's knobs: k actions per iteration, threshold t, the end-token policy."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    mode: Mode = "iterative"
+    k: int = Field(default=3, ge=1, le=MAX_ACTIONS_PER_CALL,
+                   description="at most k actions per iteration")
+    threshold: int = Field(default=5, ge=1, le=100,
+                           description="stop after t consecutive failed iterations")
+    done_policy: DonePolicy = "verify"
+    stop_on_goal: bool = Field(default=True,
+                               description="stop as soon as the goal holds (off: only the "
+                                           "end token stops, the paper's literal rule)")
+    no_progress: int = Field(default=15, ge=0, le=10_000,
+                             description="stop after this many iterations without a new "
+                                         "lowest distance to the goal (0 = never)")
+    feedback: FeedbackMode = Field(default="full",
+                                   description="what the planner is shown of a failure: "
+                                               "full, constraint (id only) or none")
+    max_iterations: int = Field(default=60, ge=1, le=10_000,
+                                description="safety stop for planners that never finish")
+    record_prompts: bool = Field(default=False, description="keep each prompt in the trace")
+
+
+class EpisodeSpec(BaseModel):
+    """How to start one episode: raw `load_scene` and optional `set_goal` arguments.
+
+    `show_goal_graph=False` hides the goal graph from LLM prompts (instruction tasks:
+    the planner reads the words, the verifier checks the ground-truth graph).
+    """
+
+    model_config = ConfigDict(extra="forbid")
+
+    task_id: str | None = None
+    load: dict[str, Any] = Field(description="load_scene arguments (without k and t)")
+    set_goal: dict[str, Any] | None = Field(default=None,
+                                            description="set_goal arguments (no episode_id)")
+    show_goal_graph: bool = True
+
+
+IterationHook = Callable[[IterationRecord], None]
+StartHook = Callable[[EpisodeTrace], None]
+
+
+def _prompt_goal(goal: Goal | None, show_graph: bool) -> Goal | None:
+    if goal is None or show_graph or goal.graph is None:
+        return goal
+    if goal.predicate is None:
+        return None
+    return goal.model_copy(update={"graph": None})
+
+
+class Episode:
+    """Mutable bookkeeping of one run; the public result is the EpisodeTrace."""
+
+    def __init__(self, env: ToolEnvironment, planner: Planner, spec: EpisodeSpec,
+                 config: LoopConfig, hook: IterationHook | None) -> None:
+        self.env = env
+        self.planner = planner
+        self.spec = spec
+        self.config = config
+        self.hook = hook
+        self.episode_id = ""
+        self.graph: SceneGraph | None = None
+        self.goal: Goal | None = None
+        self.instruction: str | None = None
+        self.history: list[str] = []
+        self.goal_satisfied: bool | None = None
+        self.goal_diff: GraphDiff | None = None
+        self.trace = EpisodeTrace(planner=planner.name, mode=config.mode, k=config.k,
+                                  threshold=config.threshold, done_policy=config.done_policy,
+                                  transport=env.transport, task=spec.task_id,
+                                  stop_on_goal=config.stop_on_goal,
+                                  feedback_mode=config.feedback)
+
+    # -- tools ---------------------------------------------------------------------------
+    def _absorb_state(self, state: Mapping[str, Any]) -> None:
+        graph = state.get("graph")
+        if graph is None:
+            raise VeriGraphError(
+                "the episode has no scene graph yet (it was loaded from an image and no "
+                "perception is installed)", field="scene", value=self.episode_id,
+                fix="load a scene graph, a scene id or a generated scene, or describe the "
+                    "image with get_scene_image + submit_scene_graph first")
+        self.graph = SceneGraph.model_validate(graph)
+        self.goal = Goal.model_validate(state["goal"]) if state.get("goal") else None
+        self.instruction = state.get("instruction")
+        self.history = list(state.get("executed", []))
+        self.goal_satisfied = state.get("goal_satisfied")
+        diff = state.get("goal_diff")
+        self.goal_diff = GraphDiff.model_validate(diff) if diff else None
+
+    def start(self) -> None:
+        iterative = self.config.mode == "iterative"
+        load = {**self.spec.load, "k": self.config.k if iterative else MAX_ACTIONS_PER_CALL,
+                "t": self.config.threshold if iterative else 1}
+        state = self.env.call("load_scene", load)
+        self.episode_id = str(state["episode_id"])
+        self.trace.episode_id = self.episode_id
+        if self.spec.set_goal:
+            self.env.call("set_goal", {"episode_id": self.episode_id, **self.spec.set_goal})
+            state = self.env.call("get_state", {"episode_id": self.episode_id})
+        self._absorb_state(state)
+        self.trace.initial_graph = self.graph
+        self.trace.goal = self.goal
+        self.trace.instruction = self.instruction
+
+    def execute(self, actions: list[AnyAction]) -> dict[str, Any]:
+        out = self.env.call("execute_actions", {
+            "episode_id": self.episode_id,
+            "actions": [a.model_dump(mode="json") for a in actions]})
+        self.graph = SceneGraph.model_validate(out["graph"])
+        self.history.extend(out["executed"])
+        self.goal_satisfied = out.get("goal_satisfied")
+        diff = out.get("goal_diff")
+        self.goal_diff = GraphDiff.model_validate(diff) if diff else None
+        self.trace.actions_executed += len(out["executed"])
+        return out
+
+    def finish(self) -> None:
+        verdict = self.env.call("end_episode", {"episode_id": self.episode_id})
+        self.trace.success = bool(verdict.get("success"))
+        self.trace.verdict = verdict.get("verdict")
+        final = verdict.get("final_graph")
+        self.trace.final_graph = SceneGraph.model_validate(final) if final else None
+        diff = verdict.get("goal_diff")
+        self.trace.goal_diff = GraphDiff.model_validate(diff) if diff else None
+        self.trace.verdict_summary = self.trace.goal_diff.summary() if self.trace.goal_diff \
+            else verdict.get("verdict")
+
+    # -- planner -------------------------------------------------------------------------
+    def ask(self, iteration: int, feedback: Feedback | None) -> tuple[PlannerReply, str]:
+        assert self.graph is not None
+        k = self.config.k if self.config.mode == "iterative" else None
+        shown_goal = _prompt_goal(self.goal, self.spec.show_goal_graph)
+        shown_feedback = shape_feedback(feedback, self.config.feedback)
+        prompt = planner_prompt(
+            self.config.mode, WorldState.from_graph(self.graph), shown_goal, k=k,
+            instruction=self.instruction, history=self.history, feedback=shown_feedback,
+            iteration=iteration)
+        request = PlannerRequest(mode=self.config.mode, iteration=iteration, graph=self.graph,
+                                 goal=shown_goal, privileged_goal=self.goal,
+                                 instruction=self.instruction, feedback=shown_feedback,
+                                 history=list(self.history), k=k, prompt=prompt)
+        reply = self.planner.propose(request)
+        self.trace.llm_calls += reply.llm_calls
+        return reply, prompt
+
+    def planner_failed(self, iteration: int, exc: Exception, started: float) -> None:
+        """End the episode on a planner exception: one record, the error in the trace."""
+        message = f"{type(exc).__name__}: {exc}"[:500]
+        self.trace.planner_error = message
+        self.trace.stop_reason = "planner_error"
+        self.record(IterationRecord(iteration=iteration, proposed=[], verdict="planner_error",
+                                    tau=0, llm_calls=0, note=f"planner raised {message}",
+                                    goal_satisfied=self.goal_satisfied,
+                                    seconds=time.perf_counter() - started))
+
+    def distance(self) -> int | None:
+        return goal_distance(self.graph, self.goal) if self.graph is not None else None
+
+    def record(self, record: IterationRecord) -> None:
+        self.trace.iterations.append(record)
+        if self.hook is not None:
+            self.hook(record)
+
+
+def malformed_feedback(reply: PlannerReply) -> Feedback:
+    reason = reply.error or "it contained no action (not even done)"
+    return Feedback(kind="malformed",
+                    text=f"[malformed_action] your previous answer could not be used: {reason}")
+
+
+def violation_feedback(out: Mapping[str, Any]) -> Feedback:
+    violation = Violation.model_validate(out["violation"])
+    executed = ", ".join(out.get("executed") or []) or "none"
+    skipped = ", ".join(out.get("not_executed") or []) or "none"
+    return Feedback(kind="violation", violation=violation,
+                    text=f"{violation.text()} (executed from your answer: {executed}; not "
+                         f"executed: {skipped})")
+
