@@ -8,6 +8,8 @@ bash scripts/install_llm.sh
 # The official MCP Inspector (a client nobody here wrote) for the interoperability test.
 bash scripts/install_inspector.sh
 export VERIGRAPH_INSPECTOR="$PWD/.tools/bin/mcp-inspector"
+# Headless Chromium for the viewer's browser tests (driven by Playwright from the dev extra).
+command -v chromium >/dev/null || { apt-get update && apt-get install -y chromium; }
 .venv/bin/ruff check verigraph tests benchmarks examples
 .venv/bin/mypy
 .venv/bin/pytest "$@"

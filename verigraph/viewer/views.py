@@ -52,6 +52,8 @@ class StepView(BaseModel):
     violation: Violation | None = None
     added: list[Edge] = Field(default_factory=list)
     removed: list[Edge] = Field(default_factory=list)
+    outlined: list[str] = Field(default_factory=list, description="objects outlined in red: "
+                                "the blocking ones, else those the refused action names")
     graph: SceneGraph = Field(description="the graph after this step (unchanged if refused)")
     render: str | None = Field(default=None, description="data:image/png;base64 drawing")
 
@@ -160,6 +162,14 @@ def _picture(graph: SceneGraph, colors: dict[str, str], title: str,
     return _data_url(encode_png(image))
 
 
+def _outlined(violation: Violation, action: dict[str, object]) -> list[str]:
+    """Who to outline for a refused step: the blocking objects, else the objects the
+    action names (a fixed object, a target that is not a surface)."""
+    if violation.blocking:
+        return list(violation.blocking)
+    return [str(action[k]) for k in ("object", "target") if isinstance(action.get(k), str)]
+
+
 def _role(state: WorldState, node_id: str) -> Role:
     props = state.objects[node_id].props
     if not props.movable:
@@ -184,14 +194,14 @@ def _assemble(title: str, source: Literal["plan", "episode"], state: WorldState,
             gone = {(e.source, e.relation, e.target) for e in removed}
             kept = [e for e in graph.edges if (e.source, e.relation, e.target) not in gone]
             graph = graph.model_copy(update={"edges": kept + added})
-        blocking = step.violation.blocking if step.violation else []
+        blocking = _outlined(step.violation, step.action) if step.violation else []
         verdict = "ok" if step.ok else f"refused: {step.violation.constraint}" \
             if step.violation else "refused"
         render = (_picture(graph, colors, f"step {step.step}: {step.text} ({verdict})"[:90],
                            added, blocking) if index < MAX_RENDERED_STEPS else None)
         steps.append(StepView(step=step.step, text=step.text, ok=step.ok,
                               violation=step.violation, added=added, removed=removed,
-                              graph=graph, render=render))
+                              outlined=blocking, graph=graph, render=render))
     return EpisodeView(
         title=title, source=source, roles=roles, initial_graph=initial,
         initial_render=_picture(initial, colors, "initial scene"), steps=steps,

@@ -42,7 +42,12 @@ export function drawGraph(graph: Graph, roles: Role[], added: Edge[], removed: E
   const nLevels = Math.max(1, ...[...rows.keys()].map((d) => d + 1));
   const width = 480, rowH = 70, height = nLevels * rowH + 20, boxW = 86, boxH = 28;
   const pos = new Map<string, [number, number]>();
-  for (const [d, ids] of rows) {
+  const supportOf = new Map(graph.edges.filter((e) => e.relation !== "touches")
+    .map((e) => [e.source, e.target]));
+  for (const d of [...rows.keys()].sort((a, b) => a - b)) {
+    // Each level ordered by where its supports stand, so stacks do not cross.
+    const ids = [...rows.get(d)!].sort((a, b) =>
+      (pos.get(supportOf.get(a) ?? "")?.[0] ?? 0) - (pos.get(supportOf.get(b) ?? "")?.[0] ?? 0));
     ids.forEach((id, i) => pos.set(id, [((i + 0.5) / ids.length) * width,
                                          height - 30 - d * rowH]));
   }

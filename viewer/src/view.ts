@@ -83,7 +83,7 @@ export function showView(root: HTMLElement, view: EpisodeView): void {
     caption.textContent = step ? `after step ${step.step}: ${step.text}` +
       (step.ok ? "" : ` — refused (${step.violation?.constraint})`) : "initial scene";
     graphBox.replaceChildren(drawGraph(step?.graph ?? view.initial_graph, view.roles,
-      step?.added ?? [], step?.removed ?? [], step?.violation?.blocking ?? []));
+      step?.added ?? [], step?.removed ?? [], step?.outlined ?? []));
     items.forEach((li, i) => li.classList.toggle("selected", i === index - 1));
     root.dataset.selected = String(index);
   };

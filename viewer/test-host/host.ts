@@ -40,9 +40,9 @@ window.showApp = async (html, csp, toolName, args, result) => {
     return await window.hostCallTool(params.name, params.arguments ?? {});
   };
   const initialized = new Promise<void>((resolve) => { bridge.oninitialized = () => resolve(); });
-  iframe.srcdoc = withCsp;
-  await new Promise((resolve) => iframe.addEventListener("load", resolve, { once: true }));
+  // Listen before the view loads: it sends ui/initialize as soon as its script runs.
   await bridge.connect(new PostMessageTransport(iframe.contentWindow!, iframe.contentWindow!));
+  iframe.srcdoc = withCsp;
   await initialized;
   window.hostLog.push("initialized");
   await bridge.sendToolInput({ arguments: args });
