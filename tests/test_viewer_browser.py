@@ -87,8 +87,8 @@ async def test_mcp_app_in_a_host_page_shows_a_real_execute_actions_result() -> N
                 assert await app.locator("#graph svg g.node").count() == 4
                 assert await app.locator('#graph g[data-node="cup"] rect').get_attribute(
                     "stroke") == "#c5221f"  # the blocking object is outlined
-                await page.screenshot(path=str(screenshot_path(  # type: ignore[attr-defined]
-                    "viewer_mcp_app.png")), full_page=True)
+                await page.locator("#view").screenshot(  # type: ignore[attr-defined]
+                    path=str(screenshot_path("viewer_mcp_app.png")))
                 render = app.locator("#render")
                 refused_src = await render.get_attribute("src")
                 await app.locator("#slider").fill("1")
