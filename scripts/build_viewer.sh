@@ -5,4 +5,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/../viewer"
 npm ci --no-audit --no-fund
+npm run typecheck
 npm run build

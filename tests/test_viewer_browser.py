@@ -180,3 +180,43 @@ async def test_html_report_file_opens_from_disk_without_network(tmp_path: Path) 
         assert fetched == "refused"
         assert [u for u in log.urls if not u.startswith(("file:", "data:"))] == []
     assert sys.executable  # the CLI ran in this interpreter's environment
+
+
+@pytest.mark.anyio
+async def test_mcp_app_follows_validate_plan_and_render_scene_results() -> None:
+    ui = advertise("io.modelcontextprotocol/ui", {"mimeTypes": [APP_MIME]})
+    with http_server(token=TOKEN) as server:
+        async with httpx2.AsyncClient(headers={"Authorization": f"Bearer {TOKEN}"},
+                                      timeout=60) as http, \
+                Client(streamable_http_client(server.url, http_client=http),
+                       extensions=[ui]) as client:
+            html = getattr((await client.read_resource(EPISODE_UI)).contents[0], "text", "")
+            eid = structured(await client.call_tool("load_scene", {"scene_id": "three_blocks"}))[
+                "episode_id"]
+            await client.call_tool("execute_actions", {"episode_id": eid,
+                                                       "actions": ["move(red_block, on, table)"]})
+            plan_args = {"scene_id": "cup_on_book",
+                         "plan": "move(cup, on, desk)\nmove(book, on, shelf)"}
+            cases = [
+                ("validate_plan", plan_args, await client.call_tool("validate_plan", plan_args),
+                 "VeriGraph plan check", 2),
+                ("render_scene", {"episode_id": eid},
+                 await client.call_tool("render_scene", {"episode_id": eid}),
+                 "VeriGraph episode (scene_id:three_blocks)", 1),
+            ]
+
+            async def host_call_tool(name: str, args: dict[str, Any]) -> dict[str, Any]:
+                return wire(await client.call_tool(name, args))
+
+            for tool, args, result, title, count in cases:
+                async with browser_page() as (page, log):
+                    await page.expose_function("hostCallTool", host_call_tool)  # type: ignore[attr-defined]
+                    await page.goto(HOST_PAGE.as_uri())  # type: ignore[attr-defined]
+                    await page.evaluate(  # type: ignore[attr-defined]
+                        "([html, tool, args, result]) => window.showApp(html, {}, tool, args, "
+                        "result)", [html, tool, args, wire(result)])
+                    app = page.frame_locator("#view")  # type: ignore[attr-defined]
+                    await app.locator("h1").filter(has_text=title).wait_for(timeout=30_000)
+                    assert await app.locator("#steps li.step").count() == count
+                    assert await app.locator("#steps li.step.refused").count() == 0
+                    assert log.off_loopback() == []
