@@ -19,7 +19,6 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from verigraph.actions.feedback import Violation
 from verigraph.actions.report import ValidationReport
-from verigraph.graph.goal import Goal
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.tools.acting import ValidatePlanInput, validate_plan
@@ -116,9 +115,9 @@ def plan_view(ctx: ToolContext, params: ValidatePlanInput, title: str = "plan ch
               ) -> EpisodeView:
     """Check the plan with the validate_plan tool function and lay it out per step."""
     report = validate_plan(ctx, params)
-    state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
-                                   graph=params.graph, goal=params.goal)
-    return _assemble(title, "plan", state, report, goal)
+    state, _ = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
+                                graph=params.graph, goal=params.goal)
+    return _assemble(title, "plan", state, report)
 
 
 def episode_view(ctx: ToolContext, episode_id: str) -> EpisodeView:
@@ -143,7 +142,7 @@ def episode_view(ctx: ToolContext, episode_id: str) -> EpisodeView:
         report.steps[-1] = last_step.model_copy(update={"ok": False, "violation": recorded,
                                                         "edit": None})
         report.valid = report.plan_valid = False
-    result = _assemble(f"episode ({source})", "episode", start, report, goal)
+    result = _assemble(f"episode ({source})", "episode", start, report)
     result.episode_id = episode_id
     if simulated:
         png = render_scene(ctx, RenderSceneInput(episode_id=episode_id)).png
@@ -180,7 +179,7 @@ def _role(state: WorldState, node_id: str) -> Role:
 
 
 def _assemble(title: str, source: Literal["plan", "episode"], state: WorldState,
-              report: ValidationReport, goal: Goal | None) -> EpisodeView:
+              report: ValidationReport) -> EpisodeView:
     colors = {o.id: o.props.color for o in state.objects.values() if o.props.color}
     roles = [NodeRole(id=o.id, label=o.label, role=_role(state, o.id))
              for o in state.objects.values()]
@@ -195,8 +194,7 @@ def _assemble(title: str, source: Literal["plan", "episode"], state: WorldState,
             kept = [e for e in graph.edges if (e.source, e.relation, e.target) not in gone]
             graph = graph.model_copy(update={"edges": kept + added})
         blocking = _outlined(step.violation, step.action) if step.violation else []
-        verdict = "ok" if step.ok else f"refused: {step.violation.constraint}" \
-            if step.violation else "refused"
+        verdict = f"refused: {step.violation.constraint}" if step.violation else "ok"
         render = (_picture(graph, colors, f"step {step.step}: {step.text} ({verdict})"[:90],
                            added, blocking) if index < MAX_RENDERED_STEPS else None)
         steps.append(StepView(step=step.step, text=step.text, ok=step.ok,
