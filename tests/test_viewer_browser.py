@@ -191,24 +191,24 @@ async def test_mcp_app_follows_validate_plan_and_render_scene_results() -> None:
                 Client(streamable_http_client(server.url, http_client=http),
                        extensions=[ui]) as client:
             html = getattr((await client.read_resource(EPISODE_UI)).contents[0], "text", "")
-            eid = structured(await client.call_tool("load_scene", {"scene_id": "three_blocks"}))[
-                "episode_id"]
+            eid = structured(await client.call_tool("load_scene", {
+                "scene_id": "cup_on_book", "simulate": True}))["episode_id"]
             await client.call_tool("execute_actions", {"episode_id": eid,
-                                                       "actions": ["move(red_block, on, table)"]})
+                                                       "actions": ["move(book, on, shelf)"]})
             plan_args = {"scene_id": "cup_on_book",
                          "plan": "move(cup, on, desk)\nmove(book, on, shelf)"}
             cases = [
                 ("validate_plan", plan_args, await client.call_tool("validate_plan", plan_args),
-                 "VeriGraph plan check", 2),
+                 "VeriGraph plan check", 2, 0),
                 ("render_scene", {"episode_id": eid},
                  await client.call_tool("render_scene", {"episode_id": eid}),
-                 "VeriGraph episode (scene_id:three_blocks)", 1),
+                 "VeriGraph episode (scene_id:cup_on_book)", 1, 1),
             ]
 
             async def host_call_tool(name: str, args: dict[str, Any]) -> dict[str, Any]:
                 return wire(await client.call_tool(name, args))
 
-            for tool, args, result, title, count in cases:
+            for tool, args, result, title, count, refused in cases:
                 async with browser_page() as (page, log):
                     await page.expose_function("hostCallTool", host_call_tool)  # type: ignore[attr-defined]
                     await page.goto(HOST_PAGE.as_uri())  # type: ignore[attr-defined]
@@ -218,5 +218,10 @@ async def test_mcp_app_follows_validate_plan_and_render_scene_results() -> None:
                     app = page.frame_locator("#view")  # type: ignore[attr-defined]
                     await app.locator("h1").filter(has_text=title).wait_for(timeout=30_000)
                     assert await app.locator("#steps li.step").count() == count
-                    assert await app.locator("#steps li.step.refused").count() == 0
+                    assert await app.locator("#steps li.step.refused").count() == refused
+                    if tool == "render_scene":  # a simulated episode: its render is shown too
+                        assert (await app.locator("#scene-render").get_attribute(
+                            "src")).startswith("data:image/png;base64,")
+                        await page.locator("#view").screenshot(  # type: ignore[attr-defined]
+                            path=str(screenshot_path("viewer_mcp_app_sim.png")))
                     assert log.off_loopback() == []

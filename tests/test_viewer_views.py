@@ -93,3 +93,17 @@ def test_report_file_embeds_the_view_safely_and_allows_no_network() -> None:
     assert json.loads(data.group(1))["title"] == result.title  # escaped, still the same text
     assert "connect-src 'none'" in html and "default-src 'none'" in html
     assert html.count("<script") == 2  # the data and the viewer, nothing injected
+
+
+def test_simulated_episode_frames_the_blocker_in_the_simulator_render() -> None:
+    box = Toolbox()
+    eid = box.call("load_scene", {"scene_id": "cup_on_book",  # type: ignore[union-attr]
+                                  "simulate": True}).episode_id
+    fine = view(box.context, ViewInput(episode_id=eid))
+    assert fine.scene_render is not None
+    assert count(picture(fine.scene_render), OUTLINE_COLOR) == 0
+    box.call("execute_actions", {"episode_id": eid, "actions": ["move(book, on, shelf)"]})
+    refused = view(box.context, ViewInput(episode_id=eid))
+    assert refused.steps[-1].outlined == ["cup"]
+    assert refused.scene_render is not None
+    assert count(picture(refused.scene_render), OUTLINE_COLOR) > 200

@@ -15,15 +15,19 @@ from __future__ import annotations
 import base64
 from typing import Literal
 
+import cv2
+import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from verigraph.actions.feedback import Violation
 from verigraph.actions.report import ValidationReport
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.sim2d.render import tabletop_boxes
+from verigraph.sim2d.tabletop import TabletopWorld
 from verigraph.tools.acting import ValidatePlanInput, validate_plan
 from verigraph.tools.context import ToolContext
-from verigraph.tools.drawing import draw_graph
+from verigraph.tools.drawing import OUTLINE_COLOR, draw_graph
 from verigraph.tools.episodes import stateless_source
 from verigraph.tools.fields import BoundedGoal, BoundedGraph, EpisodeId, SceneId
 from verigraph.tools.images import encode_png
@@ -146,8 +150,24 @@ def episode_view(ctx: ToolContext, episode_id: str) -> EpisodeView:
     result.episode_id = episode_id
     if simulated:
         png = render_scene(ctx, RenderSceneInput(episode_id=episode_id)).png
-        result.scene_render = _data_url(png)
+        outlined = result.steps[-1].outlined if result.steps and not result.steps[-1].ok \
+            else []
+        result.scene_render = _data_url(_outline_simulated(ctx, episode_id, png, outlined))
     return result
+
+
+def _outline_simulated(ctx: ToolContext, episode_id: str, png: bytes, ids: list[str]
+                       ) -> bytes:
+    """The simulator's render with the objects that block the refused step framed in red."""
+    with ctx.store.use(episode_id) as episode:
+        world = episode.world
+        boxes = tabletop_boxes(world) if isinstance(world, TabletopWorld) else {}
+    image = cv2.imdecode(np.frombuffer(png, np.uint8), cv2.IMREAD_COLOR)
+    if not ids or not boxes or image is None:
+        return png
+    for x0, y0, x1, y1 in (boxes[i] for i in ids if i in boxes):
+        cv2.rectangle(image, (x0 - 4, y0 - 4), (x1 + 4, y1 + 4), OUTLINE_COLOR, 3, cv2.LINE_AA)
+    return encode_png(image)
 
 
 def _data_url(png: bytes) -> str:

@@ -60,14 +60,14 @@ export function showView(root: HTMLElement, view: EpisodeView): void {
   slider.setAttribute("aria-label", "step");
   const graphBox = h("div", "graph");
   graphBox.id = "graph";
-  left.append(img, caption, slider, graphBox, legend());
   if (view.scene_render) {
     const sim = h("img", "scene-render");
     sim.id = "scene-render";
     sim.src = view.scene_render;
     sim.alt = "simulator render of the current scene";
-    left.append(h("h2", "", "current scene (simulator)"), sim);
+    left.append(h("h2", "", "current scene (simulator)"), sim, h("h2", "", "step by step"));
   }
+  left.append(img, caption, slider, graphBox, legend());
   const list = h("ol", "steps");
   list.id = "steps";
   const right = h("section", "trace");

@@ -35,6 +35,9 @@ window.showApp = async (html, csp, toolName, args, result) => {
     { serverTools: {}, logging: {} },
     { hostContext: { theme: "light", displayMode: "inline", platform: "web",
                      toolInfo: { tool: { name: toolName, inputSchema: { type: "object" } } } } });
+  bridge.onsizechange = ({ height }) => {  // flexible height: follow the view
+    if (height) iframe.style.height = `${Math.ceil(height) + 4}px`;
+  };
   bridge.oncalltool = async (params) => {
     window.hostLog.push(`tools/call ${params.name}`);
     return await window.hostCallTool(params.name, params.arguments ?? {});
