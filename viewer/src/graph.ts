@@ -45,11 +45,24 @@ export function drawGraph(graph: Graph, roles: Role[], added: Edge[], removed: E
   const supportOf = new Map(graph.edges.filter((e) => e.relation !== "touches")
     .map((e) => [e.source, e.target]));
   for (const d of [...rows.keys()].sort((a, b) => a - b)) {
-    // Each level ordered by where its supports stand, so stacks do not cross.
-    const ids = [...rows.get(d)!].sort((a, b) =>
-      (pos.get(supportOf.get(a) ?? "")?.[0] ?? 0) - (pos.get(supportOf.get(b) ?? "")?.[0] ?? 0));
-    ids.forEach((id, i) => pos.set(id, [((i + 0.5) / ids.length) * width,
-                                         height - 30 - d * rowH]));
+    const y = height - 30 - d * rowH;
+    const ids = rows.get(d)!;
+    if (d === 0) {
+      ids.forEach((id, i) => pos.set(id, [((i + 0.5) / ids.length) * width, y]));
+      continue;
+    }
+    // Above its support, siblings side by side, so a stack reads as a stack.
+    const groups = new Map<string, string[]>();
+    for (const id of ids) {
+      const below = supportOf.get(id) ?? "";
+      groups.set(below, [...(groups.get(below) ?? []), id]);
+    }
+    for (const [below, group] of groups) {
+      const x = pos.get(below)?.[0] ?? width / 2;
+      group.forEach((id, i) => pos.set(id, [
+        Math.min(width - boxW / 2, Math.max(boxW / 2, x + (i - (group.length - 1) / 2) * (boxW + 10))),
+        y]));
+    }
   }
   const svg = el("svg", { viewBox: `0 0 ${width} ${height}`, width: "100%", role: "img",
                           "aria-label": "scene graph" });
