@@ -123,6 +123,17 @@ async def test_view_page_checks_a_pasted_plan() -> None:
         async with browser_page() as (page, log):
             response = await page.goto(url)  # type: ignore[attr-defined]
             assert "connect-src 'self'" in response.headers["content-security-policy"]
+            await page.evaluate(  # type: ignore[attr-defined]
+                """() => {  // drop a file onto the scene box, as a person would
+                  const data = new DataTransfer();
+                  data.items.add(new File(["three_blocks"], "scene.yaml"));
+                  document.getElementById("field-scene").dispatchEvent(
+                    new DragEvent("drop", {dataTransfer: data, bubbles: true}));
+                }""")
+            scene_box = page.locator("#field-scene")  # type: ignore[attr-defined]
+            await page.wait_for_function(  # type: ignore[attr-defined]
+                "document.getElementById('field-scene').value === 'three_blocks'")
+            assert await scene_box.input_value() == "three_blocks"
             await page.fill("#field-scene", "cup_on_book")  # type: ignore[attr-defined]
             await page.fill("#field-plan",  # type: ignore[attr-defined]
                             "move(cup, on, desk)\nmove(book, on, cup)\nmove(book, on, shelf)")

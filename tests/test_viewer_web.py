@@ -100,3 +100,16 @@ def test_validate_html_to_a_missing_folder_is_a_clear_error(tmp_path: Path) -> N
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 2
     assert "--html" in done.stderr and "existing, writable folder" in done.stderr
+
+
+def test_a_busy_port_is_a_clear_error() -> None:
+    import socket
+
+    with socket.socket() as busy:
+        busy.bind(("127.0.0.1", 0))
+        busy.listen()
+        port = busy.getsockname()[1]
+        done = subprocess.run([*verigraph_command(), "view", "--port", str(port)],
+                              capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2
+    assert "--port" in done.stderr and "--port 0" in done.stderr

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 import secrets
+import socket
 from typing import Any
 
 TOKEN_ENV = "VERIGRAPH_TOKEN"
@@ -27,22 +28,22 @@ def run_view(args: argparse.Namespace) -> int:
     import anyio
     import uvicorn
 
+    from verigraph.errors import VeriGraphError
     from verigraph.tools.registry import Toolbox
     from verigraph.viewer.web import viewer_app
 
     token = args.token or os.environ.get(TOKEN_ENV) or secrets.token_urlsafe(24)
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    try:
+        sock.bind(("127.0.0.1", args.port))
+    except OSError as exc:
+        sock.close()
+        raise VeriGraphError(f"cannot listen on 127.0.0.1:{args.port}: {exc.strerror}",
+                             field="--port", value=args.port,
+                             fix="pick another port, or --port 0 for a free one") from None
+    port = sock.getsockname()[1]
     app = viewer_app(Toolbox().context, token)
-    config = uvicorn.Config(app, host="127.0.0.1", port=args.port, log_level="warning",
-                            access_log=False, lifespan="off")
-    server = uvicorn.Server(config)
-
-    async def serve() -> None:
-        async with anyio.create_task_group() as tg:
-            tg.start_soon(server.serve)
-            while not server.started:
-                await anyio.sleep(0.05)
-            port = server.servers[0].sockets[0].getsockname()[1] if server.servers else args.port
-            print(f"VeriGraph viewer: http://127.0.0.1:{port}/#token={token}", flush=True)
-
-    anyio.run(serve)
+    config = uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off")
+    print(f"VeriGraph viewer: http://127.0.0.1:{port}/#token={token}", flush=True)
+    anyio.run(uvicorn.Server(config).serve, [sock])
     return 0
