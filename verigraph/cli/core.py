@@ -24,6 +24,8 @@ def register(sub: Any) -> None:
     p.add_argument("--json", action="store_true", help="print the report as JSON")
     p.add_argument("--all-errors", action="store_true",
                    help="continue past violations (skipping failed actions) to list all")
+    p.add_argument("--html", metavar="FILE", help="also write a self-contained HTML report "
+                   "with a drawing per step (see docs/viewer.md)")
     p.set_defaults(handler=run_validate)
 
     s = sub.add_parser("solve", help="an optimal reference plan by A* search",
@@ -85,6 +87,8 @@ def run_validate(args: argparse.Namespace) -> int:
         plan = read_plan_file(args.plan)
         goal = _load_goal_arg(args.goal) if args.goal else None
         report = validate_plan(scene, plan, goal, all_errors=args.all_errors)
+        if args.html:
+            _write_html_report(args.html, scene, plan, goal, args.all_errors)
     except VeriGraphError as exc:
         return _emit_error(exc, args.json)
     if args.json:
@@ -92,6 +96,14 @@ def run_validate(args: argparse.Namespace) -> int:
     else:
         print(report.text())
     return EXIT_OK if report.valid else EXIT_NEGATIVE
+
+
+def _write_html_report(path: str, scene: Any, plan: str, goal: Any, all_errors: bool) -> None:
+    from verigraph.tools.registry import Toolbox
+    from verigraph.viewer.inputs import write_report
+
+    write_report(Toolbox().context, path, scene, plan, goal, all_errors=all_errors)
+    print(f"wrote {path}", file=sys.stderr)
 
 
 def run_solve(args: argparse.Namespace) -> int:

@@ -7,6 +7,7 @@ from typing import Any, Literal
 from mcp.server.mcpserver import MCPServer
 
 from verigraph import __version__
+from verigraph.server.apps import UI_META, AppsGate, episode_apps
 from verigraph.server.prompts import register_prompts
 from verigraph.server.resources import register_resources
 from verigraph.server.tools import ArgumentGate, register_tools
@@ -38,8 +39,9 @@ def build_server(toolbox: Toolbox | None = None, *, config: ToolConfig | None = 
     server: MCPServer[Any] = MCPServer(
         "verigraph", title="VeriGraph", version=__version__, instructions=INSTRUCTIONS,
         description="Scene-graph verifier for LLM robot planning",
-        middleware=[ArgumentGate()], log_level=log_level)
-    register_tools(server, toolbox)
+        middleware=[ArgumentGate(), AppsGate()], log_level=log_level,
+        extensions=[episode_apps(toolbox)])
+    register_tools(server, toolbox, meta=UI_META)
     register_resources(server, toolbox)
     register_prompts(server, toolbox)
     return server

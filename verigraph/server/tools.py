@@ -134,8 +134,10 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
     return call
 
 
-def register_tools(server: MCPServer[Any], toolbox: Toolbox) -> None:
-    """Add every tool in TOOL_SPECS order (the order tools/list reports)."""
+def register_tools(server: MCPServer[Any], toolbox: Toolbox,
+                   meta: dict[str, dict[str, Any]] | None = None) -> None:
+    """Add every tool in TOOL_SPECS order (the order tools/list reports); `meta` gives
+    some tools a `_meta` (the MCP Apps viewer link)."""
     for spec in TOOL_SPECS:
         server.add_tool(
             tool_function(spec, toolbox), name=spec.name, title=spec.title,
@@ -143,7 +145,8 @@ def register_tools(server: MCPServer[Any], toolbox: Toolbox) -> None:
             annotations=ToolAnnotations(
                 title=spec.title, read_only_hint=spec.read_only,
                 destructive_hint=spec.destructive, idempotent_hint=spec.idempotent,
-                open_world_hint=spec.open_world))
+                open_world_hint=spec.open_world),
+            meta=(meta or {}).get(spec.name))
 
 
 # The arguments ArgumentGate validated for the tools/call being handled (tool, input).

@@ -167,6 +167,23 @@ def render_tabletop(world: TabletopPicture, width: int | None = None, height: in
     return img
 
 
+def tabletop_boxes(world: TabletopPicture, width: int | None = None, height: int | None = None
+                   ) -> dict[str, tuple[int, int, int, int]]:
+    """Pixel boxes (x0, y0, x1, y1) of the objects in `render_tabletop`'s picture of the
+    same size, so a caller can mark objects (e.g. the ones blocking an action)."""
+    view = tabletop_view(world)
+    width, height = frame_size(view, width, height)
+    cam = _Camera(view, width, height, bottom=True)
+    boxes = {}
+    for t in world.scene.things.values():
+        if t.body.space is None:
+            continue
+        left, bottom, right, top = t.bounds()
+        (x0, y0), (x1, y1) = cam.pixel(left, top), cam.pixel(right, bottom)
+        boxes[t.id] = (x0, y0, x1, y1)
+    return boxes
+
+
 def render_tangram(world: TangramPicture, width: int | None = None, height: int | None = None,
                    *, labels: bool = False) -> np.ndarray:
     polys = {n.id: world.vertices(n.id) for n in world.nodes}

@@ -9,12 +9,13 @@ caller. Deterministic: the same graph always gives the same pixels.
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Collection
 
 import cv2
 import networkx as nx
 import numpy as np
 
-from verigraph.graph.model import SceneGraph
+from verigraph.graph.model import Edge, SceneGraph
 
 NAMED_COLORS: dict[str, tuple[int, int, int]] = {  # BGR
     "white": (245, 245, 245), "black": (40, 40, 40), "gray": (160, 160, 160),
@@ -25,6 +26,8 @@ NAMED_COLORS: dict[str, tuple[int, int, int]] = {  # BGR
     "walnut": (45, 75, 110), "tan": (120, 170, 210), "cyan": (210, 200, 60),
 }
 EDGE_COLORS = {"on": (70, 70, 70), "in": (180, 100, 30), "touches": (60, 150, 60)}
+HIGHLIGHT_COLOR = (0, 140, 255)  # BGR orange: edges the step added
+OUTLINE_COLOR = (30, 30, 220)  # BGR red: objects that block a refused step
 FONT = cv2.FONT_HERSHEY_SIMPLEX
 
 
@@ -80,13 +83,18 @@ DRAWING_SIZE = (640, 480)
 
 
 def draw_graph(graph: SceneGraph, width: int | None = None, height: int | None = None,
-               title: str | None = None, colors: dict[str, str] | None = None) -> np.ndarray:
+               title: str | None = None, colors: dict[str, str] | None = None, *,
+               highlight: Collection[Edge] = (), outline: Collection[str] = ()
+               ) -> np.ndarray:
     """BGR uint8 picture of `graph`: labelled boxes, relation arrows, optional title.
     A side not given is DRAWING_SIZE's.
 
     `colors` maps node ids to colour names (e.g. from the dictionary) used when a node
-    has no `color` attribute of its own.
+    has no `color` attribute of its own. `highlight` edges (those a step added) are drawn
+    thick and orange; `outline` objects (those blocking a refused step) get a thick red
+    frame, so a picture alone shows what changed and what is in the way.
     """
+    highlighted = {(e.source, e.relation, e.target) for e in highlight}
     colors = colors or {}
     width, height = width or DRAWING_SIZE[0], height or DRAWING_SIZE[1]
     image = np.full((height, width, 3), 255, dtype=np.uint8)
@@ -108,24 +116,32 @@ def draw_graph(graph: SceneGraph, width: int | None = None, height: int | None =
         if edge.source not in centers or edge.target not in centers:
             continue
         _draw_edge(image, centers[edge.source], centers[edge.target], edge.relation, box_h,
-                   edge.source_side, edge.target_side)
+                   edge.source_side, edge.target_side,
+                   (edge.source, edge.relation, edge.target) in highlighted)
     for node in graph.nodes:
         if node.id in centers:
             _draw_node(image, centers[node.id], box_w, box_h, node.id, node.label,
                        node_color(node.label, node.attrs, colors.get(node.id)))
+            if node.id in outline:
+                x, y = centers[node.id]
+                cv2.rectangle(image, (x - box_w // 2 - 4, y - box_h // 2 - 4),
+                              (x + box_w // 2 + 4, y + box_h // 2 + 4), OUTLINE_COLOR, 3,
+                              cv2.LINE_AA)
     return image
 
 
 def _draw_edge(image: np.ndarray, src: tuple[int, int], dst: tuple[int, int], relation: str,
-               box_h: int, source_side: int | None, target_side: int | None) -> None:
-    color = EDGE_COLORS.get(relation, (120, 60, 160))
+               box_h: int, source_side: int | None, target_side: int | None,
+               highlighted: bool = False) -> None:
+    color = HIGHLIGHT_COLOR if highlighted else EDGE_COLORS.get(relation, (120, 60, 160))
+    thickness = 4 if highlighted else 2
     if relation == "touches":
-        cv2.line(image, src, dst, color, 2, cv2.LINE_AA)
+        cv2.line(image, src, dst, color, thickness, cv2.LINE_AA)
         text = f"{source_side}-{target_side}"
     else:
         start = (src[0], src[1] + box_h // 2)
         end = (dst[0], dst[1] - box_h // 2)
-        cv2.arrowedLine(image, start, end, color, 2, cv2.LINE_AA, tipLength=0.12)
+        cv2.arrowedLine(image, start, end, color, thickness, cv2.LINE_AA, tipLength=0.12)
         text = relation
     mid = ((src[0] + dst[0]) // 2 + 4, (src[1] + dst[1]) // 2)
     cv2.putText(image, text, mid, FONT, 0.42, color, 1, cv2.LINE_AA)
