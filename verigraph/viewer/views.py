@@ -28,9 +28,9 @@ from verigraph.sim2d.tabletop import TabletopWorld
 from verigraph.tools.acting import ValidatePlanInput, validate_plan
 from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import OUTLINE_COLOR, draw_graph
-from verigraph.tools.loading import stateless_source
 from verigraph.tools.fields import BoundedGoal, BoundedGraph, EpisodeId, SceneId
 from verigraph.tools.images import encode_png
+from verigraph.tools.loading import stateless_source
 from verigraph.tools.scenes import RenderSceneInput, render_scene
 
 Role = Literal["fixed", "container", "surface", "object"]
