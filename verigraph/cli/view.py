@@ -42,6 +42,7 @@ def run_view(args: argparse.Namespace) -> int:
                              field="--port", value=args.port,
                              fix="pick another port, or --port 0 for a free one") from None
     port = sock.getsockname()[1]
+    sock.listen(128)  # connections queue from now on, so the printed URL works at once
     app = viewer_app(Toolbox().context, token)
     config = uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off")
     print(f"VeriGraph viewer: http://127.0.0.1:{port}/#token={token}", flush=True)
