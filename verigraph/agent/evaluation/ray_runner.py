@@ -1,0 +1,117 @@
+"""Episodes on Ray: a pool of `EpisodeWorker` actors and one shared limiter actor.
+
+Each actor holds the task table (put in the object store once) and runs jobs with
+the same `EpisodeWorker.run` the serial path calls, so results do not depend on the
+scheduler. An actor may run several episodes at once on threads (`max_concurrency`):
+episodes spend most of their time waiting on a model API, not on a core. Jobs are
+submitted a few at a time per slot and collected with `ray.wait` as they finish, so
+a record reaches the results file the moment its episode is done.
+
+`address`: "local" starts a private Ray instance with this machine's cores (and stops
+it afterwards); "auto", "HOST:PORT" or "ray://HOST:10001" join a running cluster, to
+which the verigraph package is shipped as a `py_modules` runtime environment (the
+cluster's Python still needs verigraph's dependencies). An already initialised Ray
+(a notebook, a test fixture) is used as it is.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Iterator
+from typing import Any
+
+from verigraph.agent.evaluation.episode import EngineConfig, EpisodeWorker
+from verigraph.agent.evaluation.limiter import BackendLimits, RateLimiter
+from verigraph.agent.evaluation.results import EpisodeRecord
+from verigraph.agent.evaluation.spec import EpisodeJob
+from verigraph.agent.evaluation.tasks import Task
+from verigraph.errors import VeriGraphError
+
+QUEUE_PER_SLOT = 2  # jobs queued per concurrent slot: workers never idle, Ctrl-C stays quick
+
+
+def _ray() -> Any:
+    try:
+        import ray
+    except ImportError:
+        raise VeriGraphError("Ray is not installed", field="--ray",
+                             fix='pip install "verigraph[scale]"') from None
+    return ray
+
+
+def connect(address: str) -> bool:
+    """Initialise Ray for `address`; True when this call started it (and must stop it)."""
+    ray = _ray()
+    if ray.is_initialized():
+        return False
+    if address == "local":
+        ray.init(num_cpus=os.cpu_count() or 1, include_dashboard=False, log_to_driver=False)
+    else:
+        import verigraph
+
+        ray.init(address=address, log_to_driver=False,
+                 runtime_env={"py_modules": [verigraph]})
+    return True
+
+
+class ActorLimiter:
+    """The `LimiterLike` side of the limiter actor, picklable into every worker."""
+
+    def __init__(self, handle: Any) -> None:
+        self.handle = handle
+
+    def try_acquire(self, backend: str) -> float:
+        return float(_ray().get(self.handle.try_acquire.remote(backend)))
+
+    def release(self, backend: str) -> None:
+        self.handle.release.remote(backend)
+
+
+def run_on_ray(jobs: list[EpisodeJob], tasks: dict[str, Task], config: EngineConfig, *,
+               address: str = "local", concurrency: int | None = None,
+               limits: BackendLimits | None = None) -> Iterator[EpisodeRecord]:
+    """Yield one record per job, in the order they finish."""
+    ray = _ray()
+    started = connect(address)
+    actors: list[Any] = []
+    try:
+        cpus = max(1, int(ray.cluster_resources().get("CPU", 1)))
+        slots = max(1, concurrency or cpus)
+        n_actors = min(cpus, slots)
+        threads = math.ceil(slots / n_actors)
+        limiter = None
+        if limits is not None and (limits.concurrency or limits.requests):
+            limiter_actor = ray.remote(RateLimiter).options(num_cpus=0).remote(default=limits)
+            actors.append(limiter_actor)
+            limiter = ActorLimiter(limiter_actor)
+        remote_worker = ray.remote(EpisodeWorker).options(num_cpus=1, max_concurrency=threads)
+        tasks_ref = ray.put(tasks)
+        workers = [remote_worker.remote(tasks_ref, config, limiter) for _ in range(n_actors)]
+        actors.extend(workers)
+        queue = iter(jobs)
+        in_flight: list[Any] = []
+        budget = n_actors * threads * QUEUE_PER_SLOT
+        turn = 0
+
+        def refill() -> None:
+            nonlocal turn
+            while len(in_flight) < budget:
+                job = next(queue, None)
+                if job is None:
+                    return
+                in_flight.append(workers[turn % n_actors].run.remote(job))
+                turn += 1
+
+        refill()
+        while in_flight:
+            ready, rest = ray.wait(in_flight, num_returns=1)
+            in_flight[:] = rest
+            refill()
+            for ref in ready:
+                yield ray.get(ref)
+    finally:
+        for actor in actors:
+            ray.kill(actor)
+        if started:
+            ray.shutdown()
