@@ -3,6 +3,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 VERIGRAPH_EXTRAS="${VERIGRAPH_EXTRAS:-dev,pddl,arm,clip}" bash scripts/setup.sh
+# Evaluation at scale: Ray for `bench plan --ray`, matplotlib for `bench report --plot`.
+.venv/bin/python -m pip install --quiet -e ".[scale]"
 # The real local LLM (llama.cpp + Gemma 3 270M) for the llm-local planner tests.
 bash scripts/install_llm.sh
 # The official MCP Inspector (a client nobody here wrote) for the interoperability test.

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Generator, Sequence
+from collections.abc import Callable, Generator, Sequence
 from typing import TextIO
 
 from pydantic import BaseModel, ConfigDict, Field
@@ -76,16 +76,23 @@ def options_from_args(args: argparse.Namespace) -> RunOptions:
         progress=not args.no_progress)
 
 
-def execute(jobs: list[EpisodeJob], tasks: dict[str, Task],
-            options: RunOptions) -> Generator[EpisodeRecord, None, None]:
-    """Records of `jobs` as they finish (no resuming, no file: see `run_jobs`)."""
+def execute(jobs: list[EpisodeJob], tasks: dict[str, Task], options: RunOptions,
+            on_ready: Callable[[], None] | None = None
+            ) -> Generator[EpisodeRecord, None, None]:
+    """Records of `jobs` as they finish (no resuming, no file: see `run_jobs`).
+
+    `on_ready` is called when the workers are up, before the first episode starts.
+    """
     if options.ray is not None:
         from verigraph.agent.evaluation.ray_runner import run_on_ray
 
         yield from run_on_ray(jobs, tasks, options.engine, address=options.ray,
-                              concurrency=options.concurrency, limits=options.limits)
+                              concurrency=options.concurrency, limits=options.limits,
+                              on_ready=on_ready)
         return
     worker = EpisodeWorker(tasks, options.engine, RateLimiter(default=options.limits))
+    if on_ready is not None:
+        on_ready()
     try:
         for job in jobs:
             yield worker.run(job)

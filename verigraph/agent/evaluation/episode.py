@@ -165,6 +165,10 @@ class EpisodeWorker:
                 self._pools.append(self._local.pool)
         return self._local.env, self._local.pool
 
+    def ready(self) -> str:
+        """Where this worker runs (a Ray actor answers once it is constructed)."""
+        return _worker_name()
+
     def run(self, job: EpisodeJob) -> EpisodeRecord:
         task = self.tasks.get(job.task_ref)
         if task is None:

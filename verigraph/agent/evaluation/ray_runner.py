@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import Any
 
 from verigraph.agent.evaluation.episode import EngineConfig, EpisodeWorker
@@ -70,8 +70,14 @@ class ActorLimiter:
 
 def run_on_ray(jobs: list[EpisodeJob], tasks: dict[str, Task], config: EngineConfig, *,
                address: str = "local", concurrency: int | None = None,
-               limits: BackendLimits | None = None) -> Iterator[EpisodeRecord]:
-    """Yield one record per job, in the order they finish."""
+               limits: BackendLimits | None = None,
+               on_ready: Callable[[], None] | None = None) -> Iterator[EpisodeRecord]:
+    """Yield one record per job, in the order they finish.
+
+    `on_ready` is called once every worker actor is up (its process started and the
+    task table loaded), before the first job is submitted: start-up is then separable
+    from throughput.
+    """
     ray = _ray()
     started = connect(address)
     actors: list[Any] = []
@@ -89,6 +95,9 @@ def run_on_ray(jobs: list[EpisodeJob], tasks: dict[str, Task], config: EngineCon
         tasks_ref = ray.put(tasks)
         workers = [remote_worker.remote(tasks_ref, config, limiter) for _ in range(n_actors)]
         actors.extend(workers)
+        ray.get([worker.ready.remote() for worker in workers])
+        if on_ready is not None:
+            on_ready()
         queue = iter(jobs)
         in_flight: list[Any] = []
         budget = n_actors * threads * QUEUE_PER_SLOT
