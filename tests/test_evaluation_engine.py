@@ -234,3 +234,15 @@ def test_report_rejects_a_missing_or_foreign_file(tmp_path: Path) -> None:
     bad = tmp_path / "bad.jsonl"
     bad.write_text('{"hello": 1}\n')
     assert main(["bench", "report", str(bad)]) == 2
+
+
+def test_an_address_nobody_answers_is_a_clear_error_not_a_hang() -> None:
+    pytest.importorskip("ray", reason="the scale extra (ray) is not installed")
+    from verigraph.errors import VeriGraphError
+
+    groups = build_groups(("stacking",), 1, 0, ground_truth=True)
+    jobs = jobs_for(Setting(planner="oracle"), groups, "suite")
+    with pytest.raises(VeriGraphError, match="--ray: nothing answers at 127.0.0.1:1"):
+        run_jobs(jobs, task_index(groups), RunOptions(ray="127.0.0.1:1", progress=False))
+    with pytest.raises(VeriGraphError, match="not a Ray address"):
+        run_jobs(jobs, task_index(groups), RunOptions(ray="head-without-port", progress=False))

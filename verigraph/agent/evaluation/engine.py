@@ -126,7 +126,8 @@ def run_jobs(jobs: Sequence[EpisodeJob], tasks: dict[str, Task], options: RunOpt
         progress.close()
         print(progress.summary(interrupted=True, results=options.results), file=stream)
         raise
-    progress.close()
+    finally:
+        progress.close()
     if options.progress:
         print(progress.summary(), file=stream)
     return [done[job.key()] for job in jobs]

@@ -18,9 +18,12 @@ from __future__ import annotations
 
 import math
 import os
+import socket
 from collections.abc import Callable, Iterator
+from pathlib import Path
 from typing import Any
 
+import verigraph
 from verigraph.agent.evaluation.episode import EngineConfig, EpisodeWorker
 from verigraph.agent.evaluation.limiter import BackendLimits, RateLimiter
 from verigraph.agent.evaluation.results import EpisodeRecord
@@ -40,6 +43,24 @@ def _ray() -> Any:
     return ray
 
 
+def _check_reachable(address: str) -> None:
+    """Fail fast on a HOST:PORT nobody listens on (Ray itself keeps retrying for minutes)."""
+    if address == "auto" or "://" in address:
+        return
+    host, _, port = address.rpartition(":")
+    if not host or not port.isdigit():
+        raise VeriGraphError(f"not a Ray address: {address!r}", field="--ray", value=address,
+                             fix="use auto, HOST:PORT or ray://HOST:10001")
+    try:
+        socket.create_connection((host.strip("[]"), int(port)), timeout=5).close()
+    except OSError as exc:
+        raise VeriGraphError(f"nothing answers at {address} ({exc})", field="--ray",
+                             value=address,
+                             fix="start the head with `ray start --head` and pass the "
+                                 "address it prints, or use --ray auto on a cluster node"
+                             ) from None
+
+
 def connect(address: str) -> bool:
     """Initialise Ray for `address`; True when this call started it (and must stop it)."""
     ray = _ray()
@@ -48,10 +69,19 @@ def connect(address: str) -> bool:
     if address == "local":
         ray.init(num_cpus=os.cpu_count() or 1, include_dashboard=False, log_to_driver=False)
     else:
-        import verigraph
-
-        ray.init(address=address, log_to_driver=False,
-                 runtime_env={"py_modules": [verigraph]})
+        _check_reachable(address)
+        package = str(Path(verigraph.__file__).parent)
+        try:
+            ray.init(address=address, log_to_driver=False,
+                     runtime_env={"py_modules": [package]})
+        except (ConnectionError, RuntimeError) as exc:
+            raise VeriGraphError(
+                f"cannot join the Ray cluster at {address}: {str(exc).splitlines()[0]}",
+                field="--ray", value=address,
+                fix="check the address ('auto' on a cluster node, HOST:6379 of the head, or "
+                    "ray://HOST:10001, which needs ray[client]); a cluster with token "
+                    "authentication needs RAY_AUTH_MODE=token and its token "
+                    "(~/.ray/auth_token or RAY_AUTH_TOKEN)") from None
     return True
 
 
