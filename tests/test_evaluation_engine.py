@@ -246,3 +246,36 @@ def test_an_address_nobody_answers_is_a_clear_error_not_a_hang() -> None:
         run_jobs(jobs, task_index(groups), RunOptions(ray="127.0.0.1:1", progress=False))
     with pytest.raises(VeriGraphError, match="not a Ray address"):
         run_jobs(jobs, task_index(groups), RunOptions(ray="head-without-port", progress=False))
+
+
+@pytest.mark.parametrize("flags", [["--concurrency", "0"], ["--rpm", "0"],
+                                   ["--retries", "-1"], ["--simulated-latency", "-1"]])
+def test_bad_engine_flags_are_rejected_by_name(flags: list[str]) -> None:
+    from verigraph.cli import main
+
+    assert main(["bench", "plan", "--groups", "stacking", *flags]) == 2
+
+
+def test_progress_counts_success_per_group_and_traces_are_written(tmp_path: Path) -> None:
+    import io
+
+    from verigraph.agent.evaluation.progress import EpisodeProgress
+
+    groups = build_groups(("stacking", "language"), 2, 0, ground_truth=True)
+    jobs = jobs_for(Setting(planner="noisy", noise=1.0, mode="direct"), groups, "suite")
+    options = RunOptions(progress=False, engine=EngineConfig(traces_dir=str(tmp_path)))
+    records = run_jobs(jobs, task_index(groups), options)
+    stream = io.StringIO()
+    bar = EpisodeProgress(5, records[:1], stream=stream)
+    for record in records[1:]:
+        bar.update(record)
+    bar.close()
+    ok = {g: sum(r.success for r in records if r.group == g) for g in ("stacking", "language")}
+    assert f"stacking {ok['stacking']}/2 language {ok['language']}/2" in stream.getvalue()
+    assert "4/5" in stream.getvalue()
+    summary = bar.summary(interrupted=True, results="r.jsonl")
+    assert summary.startswith("interrupted: 4/5 episodes done (1 from the results file, 3 run")
+    assert "resume" in summary and "r.jsonl" in summary
+    for record in records:
+        trace = json.loads(Path(record.trace_path or "").read_text())
+        assert trace["task"] == record.task_id and trace["success"] == record.success

@@ -94,6 +94,7 @@ def run(argv: Sequence[str] | None = None) -> str:
     if args.episodes < 1:
         raise VeriGraphError("--episodes must be at least 1", field="--episodes",
                              value=args.episodes, fix="use e.g. --episodes 50")
+    options = options_from_args(args)
     started = time.perf_counter()
     main, t_rows, k_rows = _settings(args)
     groups = _groups(args, args.episodes)
@@ -111,7 +112,7 @@ def run(argv: Sequence[str] | None = None) -> str:
                           simulate=args.simulate)
     jobs = {key: jobs_for(key[0], gs, suite) for key, gs in unique.items()}
     tasks = {ref: t for gs in unique.values() for ref, t in task_index(gs).items()}
-    records = run_jobs([j for js in jobs.values() for j in js], tasks, options_from_args(args))
+    records = run_jobs([j for js in jobs.values() for j in js], tasks, options)
     by_key = {r.key: r for r in records}
     total = len(by_key)
     results: dict[tuple[Setting, int], dict[GroupName, GroupStats]] = {

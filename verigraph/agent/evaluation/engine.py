@@ -24,6 +24,7 @@ from verigraph.agent.evaluation.results import EpisodeRecord, ResultsFile
 from verigraph.agent.evaluation.spec import EpisodeJob
 from verigraph.agent.evaluation.tasks import Task
 from verigraph.agent.factory import PlannerOptions
+from verigraph.errors import VeriGraphError
 
 
 class RunOptions(BaseModel):
@@ -66,7 +67,22 @@ def add_engine_arguments(p: argparse.ArgumentParser) -> None:
     g.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
+def _check_flags(args: argparse.Namespace) -> None:
+    checks = (("--concurrency", args.concurrency, 1), ("--rpm", args.rpm, 1),
+              ("--max-concurrent", args.max_concurrent, 1), ("--retries", args.retries, 0),
+              ("--backoff", args.backoff, 0), ("--simulated-latency", args.simulated_latency, 0))
+    for flag, value, least in checks:
+        if value is not None and value < least:
+            raise VeriGraphError(f"{flag} must be at least {least}", field=flag, value=value,
+                                 fix=f"give {flag} a value >= {least}, or leave it out")
+    if args.retries > 20:
+        raise VeriGraphError("--retries must be at most 20", field="--retries",
+                             value=args.retries, fix="use e.g. --retries 4")
+
+
 def options_from_args(args: argparse.Namespace) -> RunOptions:
+    """The engine options of parsed `add_engine_arguments` flags (bad values: exit 2)."""
+    _check_flags(args)
     return RunOptions(
         ray=args.ray, results=args.results, concurrency=args.concurrency,
         limits=BackendLimits(concurrency=args.max_concurrent, requests=args.rpm),
