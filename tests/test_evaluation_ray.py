@@ -87,3 +87,26 @@ def test_limiter_actor_keeps_the_backend_under_its_rate(local_ray: None) -> None
     # ... and the limiter did bind: 16 requests need at least 3 further windows.
     assert times[limit] - times[0] >= window - margin
     assert times[-1] - times[0] >= 3 * window - margin
+
+
+def test_a_killed_worker_is_restarted_and_no_episode_is_lost(local_ray: None) -> None:
+    import os
+    import signal
+
+    from verigraph.agent.evaluation.engine import execute
+
+    groups = build_groups(("stacking",), 8, 0, ground_truth=True)
+    jobs = jobs_for(Setting(planner="noisy", noise=0.5), groups, "suite")
+    tasks = task_index(groups)
+    serial = {r.key: r.outcome() for r in run_jobs(jobs, tasks, RunOptions(progress=False))}
+    options = RunOptions(ray="local", concurrency=2, progress=False,
+                         engine=EngineConfig(latency_s=0.2))
+    records = []
+    for record in execute(jobs, tasks, options):
+        if not records:  # the first episode is done: kill the process that ran it
+            os.kill(int((record.worker or "").rsplit(":", 1)[1]), signal.SIGKILL)
+        records.append(record)
+    assert sorted(r.key for r in records) == sorted(serial)
+    assert all(r.error is None for r in records)
+    assert {r.key: r.outcome() for r in records} == serial
+    assert len({r.worker for r in records}) >= 3  # the restarted actor is a new process

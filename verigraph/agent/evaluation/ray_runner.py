@@ -7,6 +7,10 @@ episodes spend most of their time waiting on a model API, not on a core. Jobs ar
 submitted a few at a time per slot and collected with `ray.wait` as they finish, so
 a record reaches the results file the moment its episode is done.
 
+A worker process that dies is restarted by Ray and its episodes retried (they are
+idempotent: same seed, same record); an episode whose worker is lost for good is
+recorded with `error_kind` "worker" and the run goes on.
+
 `address`: "local" starts a private Ray instance with this machine's cores (and stops
 it afterwards); "auto", "HOST:PORT" or "ray://HOST:10001" join a running cluster, to
 which the verigraph package is shipped as a `py_modules` runtime environment (the
@@ -26,12 +30,13 @@ from typing import Any
 import verigraph
 from verigraph.agent.evaluation.episode import EngineConfig, EpisodeWorker
 from verigraph.agent.evaluation.limiter import BackendLimits, RateLimiter
-from verigraph.agent.evaluation.results import EpisodeRecord
+from verigraph.agent.evaluation.results import EpisodeRecord, blank_record
 from verigraph.agent.evaluation.spec import EpisodeJob
 from verigraph.agent.evaluation.tasks import Task
 from verigraph.errors import VeriGraphError
 
 QUEUE_PER_SLOT = 2  # jobs queued per concurrent slot: workers never idle, Ctrl-C stays quick
+WORKER_RESTARTS = 2  # a dead worker actor is restarted and its episodes retried (idempotent)
 
 
 def _ray() -> Any:
@@ -98,6 +103,35 @@ class ActorLimiter:
         self.handle.release.remote(backend)
 
 
+def _lost(job: EpisodeJob, exc: Exception) -> EpisodeRecord:
+    record = blank_record(job, job.setting.planner)
+    record.error_kind = "worker"
+    record.stop_reason = "worker_error"
+    record.error = f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"[:500]
+    return record
+
+
+def _dispatch(ray: Any, workers: list[Any], jobs: list[EpisodeJob],
+              budget: int) -> Iterator[EpisodeRecord]:
+    """Keep `budget` jobs queued over the workers (round robin); yield as they finish."""
+    queue = iter(jobs)
+    in_flight: dict[Any, EpisodeJob] = {}
+    turn = 0
+    while True:
+        while len(in_flight) < budget and (job := next(queue, None)) is not None:
+            in_flight[workers[turn % len(workers)].run.remote(job)] = job
+            turn += 1
+        if not in_flight:
+            return
+        ready, _ = ray.wait(list(in_flight), num_returns=1)
+        for ref in ready:
+            job = in_flight.pop(ref)
+            try:
+                yield ray.get(ref)
+            except ray.exceptions.RayError as exc:
+                yield _lost(job, exc)
+
+
 def run_on_ray(jobs: list[EpisodeJob], tasks: dict[str, Task], config: EngineConfig, *,
                address: str = "local", concurrency: int | None = None,
                limits: BackendLimits | None = None,
@@ -121,34 +155,16 @@ def run_on_ray(jobs: list[EpisodeJob], tasks: dict[str, Task], config: EngineCon
             limiter_actor = ray.remote(RateLimiter).options(num_cpus=0).remote(default=limits)
             actors.append(limiter_actor)
             limiter = ActorLimiter(limiter_actor)
-        remote_worker = ray.remote(EpisodeWorker).options(num_cpus=1, max_concurrency=threads)
+        remote_worker = ray.remote(EpisodeWorker).options(
+            num_cpus=1, max_concurrency=threads, max_restarts=WORKER_RESTARTS,
+            max_task_retries=WORKER_RESTARTS)
         tasks_ref = ray.put(tasks)
         workers = [remote_worker.remote(tasks_ref, config, limiter) for _ in range(n_actors)]
         actors.extend(workers)
         ray.get([worker.ready.remote() for worker in workers])
         if on_ready is not None:
             on_ready()
-        queue = iter(jobs)
-        in_flight: list[Any] = []
-        budget = n_actors * threads * QUEUE_PER_SLOT
-        turn = 0
-
-        def refill() -> None:
-            nonlocal turn
-            while len(in_flight) < budget:
-                job = next(queue, None)
-                if job is None:
-                    return
-                in_flight.append(workers[turn % n_actors].run.remote(job))
-                turn += 1
-
-        refill()
-        while in_flight:
-            ready, rest = ray.wait(in_flight, num_returns=1)
-            in_flight[:] = rest
-            refill()
-            for ref in ready:
-                yield ray.get(ref)
+        yield from _dispatch(ray, workers, jobs, n_actors * threads * QUEUE_PER_SLOT)
     finally:
         for actor in actors:
             ray.kill(actor)
