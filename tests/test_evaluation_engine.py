@@ -279,3 +279,22 @@ def test_progress_counts_success_per_group_and_traces_are_written(tmp_path: Path
     for record in records:
         trace = json.loads(Path(record.trace_path or "").read_text())
         assert trace["task"] == record.task_id and trace["success"] == record.success
+
+
+def test_named_backend_limits_override_the_default_budget() -> None:
+    from verigraph.agent.evaluation.engine import parse_limit
+    from verigraph.cli import main
+
+    name, limits = parse_limit("openai:gpt-4o-mini=500/16")
+    assert name == "openai:gpt-4o-mini" and (limits.requests, limits.concurrency) == (500, 16)
+    assert parse_limit("anthropic:claude=/2")[1].requests is None
+    options = RunOptions(limits=BackendLimits(concurrency=1),
+                         backend_limits={"fast": BackendLimits(concurrency=3)})
+    limiter = options.limiter()
+    assert limiter is not None
+    assert [limiter.try_acquire("fast") for _ in range(4)][:3] == [0, 0, 0]
+    assert limiter.try_acquire("fast") > 0 and limiter.try_acquire("slow") == 0
+    assert limiter.try_acquire("slow") > 0
+    assert RunOptions().limiter() is None
+    for bad in ("openai=fast", "=5", "openai=0/1"):
+        assert main(["bench", "plan", "--groups", "stacking", "--limit", bad]) == 2

@@ -35,7 +35,17 @@ class RunOptions(BaseModel):
     ray: str | None = Field(default=None, description="None: serial; local, auto, ray://...")
     results: str | None = None
     concurrency: int | None = Field(default=None, ge=1, description="Ray: episodes at once")
-    limits: BackendLimits = Field(default_factory=BackendLimits)
+    limits: BackendLimits = Field(default_factory=BackendLimits,
+                                  description="every backend's budget, unless named below")
+    backend_limits: dict[str, BackendLimits] = Field(
+        default_factory=dict, description="budgets of named backends (e.g. openai:gpt-4o)")
+
+    def limiter(self) -> RateLimiter | None:
+        """The in-process limiter these limits need (None: nothing is limited)."""
+        budgets = [self.limits, *self.backend_limits.values()]
+        if not any(b.concurrency or b.requests for b in budgets):
+            return None
+        return RateLimiter(self.backend_limits, default=self.limits)
     engine: EngineConfig = Field(default_factory=EngineConfig)
     progress: bool = True
 
@@ -56,6 +66,9 @@ def add_engine_arguments(p: argparse.ArgumentParser) -> None:
                                            "shared by every worker")
     g.add_argument("--max-concurrent", type=int,
                    help="planner requests in flight allowed per backend")
+    g.add_argument("--limit", action="append", default=[], metavar="BACKEND=RPM[/IN_FLIGHT]",
+                   help="a named backend's own budget, e.g. openai:gpt-4o-mini=500/16 "
+                        "(repeatable; the backend name is the record's `planner`)")
     g.add_argument("--retries", type=int, default=4,
                    help="retries of a planner request on HTTP 429/5xx (default 4)")
     g.add_argument("--backoff", type=float, default=0.5,
@@ -80,12 +93,28 @@ def _check_flags(args: argparse.Namespace) -> None:
                              value=args.retries, fix="use e.g. --retries 4")
 
 
+def parse_limit(text: str) -> tuple[str, BackendLimits]:
+    """`NAME=RPM` or `NAME=RPM/IN_FLIGHT` (RPM may be empty: `NAME=/4`)."""
+    name, sep, budget = text.rpartition("=")
+    rpm, _, in_flight = budget.partition("/")
+    try:
+        if not (sep and name) or not (rpm or in_flight):
+            raise ValueError(text)
+        return name, BackendLimits(requests=int(rpm) if rpm else None,
+                                   concurrency=int(in_flight) if in_flight else None)
+    except ValueError:
+        raise VeriGraphError(f"not a backend limit: {text!r}", field="--limit", value=text,
+                             fix="write BACKEND=RPM or BACKEND=RPM/IN_FLIGHT with positive "
+                                 "whole numbers, e.g. openai:gpt-4o-mini=500/16") from None
+
+
 def options_from_args(args: argparse.Namespace) -> RunOptions:
     """The engine options of parsed `add_engine_arguments` flags (bad values: exit 2)."""
     _check_flags(args)
     return RunOptions(
         ray=args.ray, results=args.results, concurrency=args.concurrency,
         limits=BackendLimits(concurrency=args.max_concurrent, requests=args.rpm),
+        backend_limits=dict(parse_limit(text) for text in args.limit),
         engine=EngineConfig(retry=RetryPolicy(retries=args.retries, backoff_s=args.backoff),
                             latency_s=args.simulated_latency, traces_dir=args.traces,
                             planner_options=PlannerOptions()),
@@ -103,10 +132,10 @@ def execute(jobs: list[EpisodeJob], tasks: dict[str, Task], options: RunOptions,
         from verigraph.agent.evaluation.ray_runner import run_on_ray
 
         yield from run_on_ray(jobs, tasks, options.engine, address=options.ray,
-                              concurrency=options.concurrency, limits=options.limits,
+                              concurrency=options.concurrency, limiter=options.limiter(),
                               on_ready=on_ready)
         return
-    worker = EpisodeWorker(tasks, options.engine, RateLimiter(default=options.limits))
+    worker = EpisodeWorker(tasks, options.engine, options.limiter())
     if on_ready is not None:
         on_ready()
     try:

@@ -29,7 +29,7 @@ from typing import Any
 
 import verigraph
 from verigraph.agent.evaluation.episode import EngineConfig, EpisodeWorker
-from verigraph.agent.evaluation.limiter import BackendLimits, RateLimiter
+from verigraph.agent.evaluation.limiter import RateLimiter
 from verigraph.agent.evaluation.results import EpisodeRecord, blank_record
 from verigraph.agent.evaluation.spec import EpisodeJob
 from verigraph.agent.evaluation.tasks import Task
@@ -134,7 +134,7 @@ def _dispatch(ray: Any, workers: list[Any], jobs: list[EpisodeJob],
 
 def run_on_ray(jobs: list[EpisodeJob], tasks: dict[str, Task], config: EngineConfig, *,
                address: str = "local", concurrency: int | None = None,
-               limits: BackendLimits | None = None,
+               limiter: RateLimiter | None = None,
                on_ready: Callable[[], None] | None = None) -> Iterator[EpisodeRecord]:
     """Yield one record per job, in the order they finish.
 
@@ -150,16 +150,17 @@ def run_on_ray(jobs: list[EpisodeJob], tasks: dict[str, Task], config: EngineCon
         slots = max(1, concurrency or cpus)
         n_actors = min(cpus, slots)
         threads = math.ceil(slots / n_actors)
-        limiter = None
-        if limits is not None and (limits.concurrency or limits.requests):
-            limiter_actor = ray.remote(RateLimiter).options(num_cpus=0).remote(default=limits)
+        shared = None
+        if limiter is not None:  # the same budgets, held by one actor for the cluster
+            limiter_actor = ray.remote(RateLimiter).options(num_cpus=0).remote(
+                limiter.limits, default=limiter.default)
             actors.append(limiter_actor)
-            limiter = ActorLimiter(limiter_actor)
+            shared = ActorLimiter(limiter_actor)
         remote_worker = ray.remote(EpisodeWorker).options(
             num_cpus=1, max_concurrency=threads, max_restarts=WORKER_RESTARTS,
             max_task_retries=WORKER_RESTARTS)
         tasks_ref = ray.put(tasks)
-        workers = [remote_worker.remote(tasks_ref, config, limiter) for _ in range(n_actors)]
+        workers = [remote_worker.remote(tasks_ref, config, shared) for _ in range(n_actors)]
         actors.extend(workers)
         ray.get([worker.ready.remote() for worker in workers])
         if on_ready is not None:
