@@ -20,6 +20,7 @@ cluster's Python still needs verigraph's dependencies). An already initialised R
 
 from __future__ import annotations
 
+import logging
 import math
 import os
 import socket
@@ -72,12 +73,13 @@ def connect(address: str) -> bool:
     if ray.is_initialized():
         return False
     if address == "local":
-        ray.init(num_cpus=os.cpu_count() or 1, include_dashboard=False, log_to_driver=False)
+        ray.init(num_cpus=os.cpu_count() or 1, include_dashboard=False, log_to_driver=False,
+                 logging_level=logging.WARNING)
     else:
         _check_reachable(address)
         package = str(Path(verigraph.__file__).parent)
         try:
-            ray.init(address=address, log_to_driver=False,
+            ray.init(address=address, log_to_driver=False, logging_level=logging.WARNING,
                      runtime_env={"py_modules": [package]})
         except (ConnectionError, RuntimeError) as exc:
             raise VeriGraphError(
@@ -159,6 +161,8 @@ def run_on_ray(jobs: list[EpisodeJob], tasks: dict[str, Task], config: EngineCon
         remote_worker = ray.remote(EpisodeWorker).options(
             num_cpus=1, max_concurrency=threads, max_restarts=WORKER_RESTARTS,
             max_task_retries=WORKER_RESTARTS)
+        # Held until the run ends, so a restarted worker can still read it (Ray warns
+        # about restartable actors with object-store arguments; this is the remedy).
         tasks_ref = ray.put(tasks)
         workers = [remote_worker.remote(tasks_ref, config, shared) for _ in range(n_actors)]
         actors.extend(workers)
