@@ -83,7 +83,8 @@ def ablation(rows: dict[Setting, list[EpisodeRecord]], knob: str, path: Path) ->
         ax.set_xlabel(name)
         ax.set_ylabel("success (%)")
         ax.set_ylim(0, 105)
-        ax.set_title(f"{family[0].label().split(',')[0]}, {family[0].mode}")
+        fixed = f"k={family[0].k}" if knob == "threshold" else f"t={family[0].threshold}"
+        ax.set_title(f"{family[0].label().split(',')[0]}, {family[0].mode}, {fixed}")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
     return _save(fig, path)
