@@ -17,18 +17,21 @@ import time
 from collections.abc import Sequence
 from pathlib import Path
 
+from verigraph.agent.evaluation.engine import add_engine_arguments, options_from_args, run_jobs
 from verigraph.agent.evaluation.paper import paper_table
 from verigraph.agent.evaluation.report import (
     ablation_table,
     not_run_notes,
     success_table,
 )
-from verigraph.agent.evaluation.runner import GroupStats, Progress, Setting, run_setting
+from verigraph.agent.evaluation.runner import GroupStats, Setting
+from verigraph.agent.evaluation.spec import jobs_for, suite_version, task_index
 from verigraph.agent.evaluation.suite_report import (
     difficulty_table,
     gap_table,
     translation_table,
 )
+from verigraph.agent.evaluation.tables import stats_by_group
 from verigraph.agent.evaluation.tasks import (
     GROUPS,
     SUITE_VERSION,
@@ -76,6 +79,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--ablation-episodes", type=int,
                    help="episodes per group in the ablations (default: --episodes)")
     p.add_argument("--out", help="write the Markdown report here")
+    add_engine_arguments(p)
     return p
 
 
@@ -147,6 +151,7 @@ def run(argv: Sequence[str] | None = None) -> str:
     if args.episodes < 1:
         raise VeriGraphError("--episodes must be at least 1", field="--episodes",
                              value=args.episodes, fix="use e.g. --episodes 50")
+    options = options_from_args(args)
     started = time.perf_counter()
     sections, t_rows, k_rows = _settings(args)
     main = [s for _, rows in sections for s in rows]
@@ -161,11 +166,15 @@ def run(argv: Sequence[str] | None = None) -> str:
     unique: dict[tuple[Setting, int], list[GroupTasks]] = {}
     for setting, gs in plan:
         unique.setdefault((setting, id(gs)), gs)
-    total = sum(len(g.tasks) for gs in unique.values() for g in gs if g.not_run is None)
-    progress = Progress(total)
-    results: dict[tuple[Setting, int], dict[GroupName, GroupStats]] = {}
-    for (setting, key), gs in unique.items():
-        results[(setting, key)] = run_setting(setting, gs, progress=progress)
+    suite = suite_version(args.seed, ground_truth=args.ground_truth_graphs,
+                          simulate=args.simulate)
+    jobs = {key: jobs_for(key[0], gs, suite) for key, gs in unique.items()}
+    tasks = {ref: t for gs in unique.values() for ref, t in task_index(gs).items()}
+    records = run_jobs([j for js in jobs.values() for j in js], tasks, options)
+    by_key = {r.key: r for r in records}
+    total = len(by_key)
+    results: dict[tuple[Setting, int], dict[GroupName, GroupStats]] = {
+        key: stats_by_group([by_key[j.key()] for j in js]) for key, js in jobs.items()}
     wall = time.perf_counter() - started
 
     def rows(settings: Sequence[Setting], gs: list[GroupTasks]

@@ -4,7 +4,8 @@ For speed the benchmark runs the loop in-process against the tool layer
 (`InProcessTools`: the same tool functions the MCP server wraps) instead of spawning a
 server per episode; `verigraph agent` and its tests cover the real MCP transport.
 A planner is built afresh per episode with a seed derived from the task id, so results
-do not depend on the order episodes run in.
+do not depend on the order episodes run in. Every episode goes through
+`episode.run_job`, the function the serial and Ray engines call too.
 """
 
 from __future__ import annotations
@@ -12,67 +13,25 @@ from __future__ import annotations
 import statistics
 import sys
 import time
-import zlib
 from collections.abc import Callable, Sequence
 from typing import TextIO
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel
 
 from verigraph.agent.environment import InProcessTools, ToolEnvironment
-from verigraph.agent.evaluation.tasks import SUITE_VERSION, GroupName, GroupTasks, Task
-from verigraph.agent.factory import PlannerOptions, make_planner
-from verigraph.agent.loop import LoopConfig, run_episode
-from verigraph.agent.models import DonePolicy, FeedbackMode, Mode
+from verigraph.agent.evaluation.episode import (
+    OFFLINE_PLANNERS,
+    EngineConfig,
+    PlannerPool,
+    run_job,
+)
+from verigraph.agent.evaluation.limiter import Gate
+from verigraph.agent.evaluation.spec import EpisodeResult, Setting, episode_seed, job_for
+from verigraph.agent.evaluation.tasks import GroupName, GroupTasks, Task
 from verigraph.agent.planner import Planner
-from verigraph.agent.transcripts import RecordingPlanner, ReplayingPlanner
-from verigraph.errors import VeriGraphError
 
-
-class Setting(BaseModel):
-    """One row of a table: a planner with its loop parameters."""
-
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-    planner: str
-    mode: Mode = "iterative"
-    k: int = 3
-    threshold: int = 5
-    done_policy: DonePolicy = "verify"
-    noise: float = 0.3
-    max_iterations: int = 30
-    feedback: FeedbackMode = "full"
-    stop_on_goal: bool = True
-    no_progress: int = 15
-    record_dir: str | None = Field(default=None, description="write planner transcripts here")
-    replay_dir: str | None = Field(default=None,
-                                   description="answer from transcripts recorded here")
-
-    def label(self) -> str:
-        name = self.planner if self.planner != "noisy" else f"noisy ({self.noise:.0%})"
-        if self.mode == "direct":
-            return f"{name}, direct"
-        policy = "" if self.done_policy == "verify" else ", trust done"
-        if not self.stop_on_goal:
-            policy += ", end token only"
-        feedback = "" if self.feedback == "full" else f", feedback {self.feedback}"
-        return f"{name}, iterative k={self.k} t={self.threshold}{policy}{feedback}"
-
-
-class EpisodeResult(BaseModel):
-    """The numbers one episode contributes to a table."""
-
-    group: GroupName
-    task_id: str
-    success: bool
-    llm_calls: int = 0
-    actions: int = 0
-    violations: int = 0
-    malformed: int = 0
-    premature_done: int = 0
-    stop_reason: str | None = None
-    seconds: float = 0.0
-    error: str | None = Field(default=None, description="tool or planner error, if any")
-    suite_version: str = SUITE_VERSION
+__all__ = ["OFFLINE_PLANNERS", "EpisodeResult", "GroupStats", "Progress", "Setting",
+           "aggregate", "episode_seed", "run_setting", "run_task"]
 
 
 class GroupStats(BaseModel):
@@ -88,50 +47,16 @@ class GroupStats(BaseModel):
     seconds: float
 
 
-def episode_seed(task_id: str, setting: Setting) -> int:
-    return zlib.crc32(f"{task_id}|{setting.label()}".encode())
-
-
-OFFLINE_PLANNERS = ("oracle", "rule-based", "greedy", "noisy")
-
-
 def run_task(env: ToolEnvironment, task: Task, setting: Setting,
              shared: Planner | None = None) -> EpisodeResult:
-    """One episode; tool errors (e.g. a perceived goal naming unknown objects) are failures.
+    """One episode; tool and planner errors are recorded failures, not exceptions.
 
     Offline planners are built per episode (seeded by the task); an LLM planner is
     `shared` across the setting's episodes, so a local model server starts only once.
     """
-    key = f"{setting.label()}__{task.task_id}"
-    planner: Planner
-    if setting.replay_dir:
-        planner = ReplayingPlanner(setting.replay_dir, key)
-    else:
-        planner = shared or make_planner(setting.planner, PlannerOptions(
-            noise=setting.noise, seed=episode_seed(task.task_id, setting)))
-        if setting.record_dir:
-            planner = RecordingPlanner(planner, setting.record_dir, key,
-                                       close_inner=shared is None)
-    config = LoopConfig(mode=setting.mode, k=setting.k, threshold=setting.threshold,
-                        done_policy=setting.done_policy, max_iterations=setting.max_iterations,
-                        feedback=setting.feedback, stop_on_goal=setting.stop_on_goal,
-                        no_progress=setting.no_progress)
-    started = time.perf_counter()
-    try:
-        trace = run_episode(env, planner, task.spec, config)
-    except VeriGraphError as exc:
-        return EpisodeResult(group=task.group, task_id=task.task_id, success=False,
-                             seconds=time.perf_counter() - started, error=str(exc)[:300])
-    finally:
-        if shared is None:
-            planner.close()
-    return EpisodeResult(
-        group=task.group, task_id=task.task_id, success=trace.success,
-        llm_calls=trace.llm_calls, actions=trace.actions_executed,
-        violations=trace.violations_caught, malformed=trace.malformed_outputs,
-        premature_done=trace.premature_done, stop_reason=trace.stop_reason,
-        seconds=trace.wall_time_s, error=trace.planner_error)
-
+    pool = PlannerPool(EngineConfig(), Gate(None),
+                       shared={setting.planner: shared} if shared is not None else None)
+    return run_job(job_for(task, setting, ""), task, env, pool).to_result()
 
 def aggregate(group: GroupName, results: Sequence[EpisodeResult]) -> GroupStats:
     n = len(results)
@@ -180,10 +105,9 @@ def run_setting(setting: Setting, groups: Sequence[GroupTasks], *,
                 progress: Progress | None = None,
                 on_result: Callable[[EpisodeResult], None] | None = None
                 ) -> dict[GroupName, GroupStats]:
-    """Every runnable group's stats for one setting."""
+    """Every runnable group's stats for one setting (serially, in this process)."""
     env = env or InProcessTools()
-    shared = None if setting.planner in OFFLINE_PLANNERS or setting.replay_dir \
-        else make_planner(setting.planner)
+    pool = PlannerPool(EngineConfig(), Gate(None))
     stats: dict[GroupName, GroupStats] = {}
     try:
         for group in groups:
@@ -191,7 +115,7 @@ def run_setting(setting: Setting, groups: Sequence[GroupTasks], *,
                 continue
             results = []
             for task in group.tasks:
-                result = run_task(env, task, setting, shared)
+                result = run_job(job_for(task, setting, ""), task, env, pool).to_result()
                 results.append(result)
                 if on_result is not None:
                     on_result(result)
@@ -199,6 +123,5 @@ def run_setting(setting: Setting, groups: Sequence[GroupTasks], *,
                     progress.advance(setting.label())
             stats[group.group] = aggregate(group.group, results)
     finally:
-        if shared is not None:
-            shared.close()
+        pool.close()
     return stats

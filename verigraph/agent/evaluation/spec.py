@@ -1,0 +1,130 @@
+"""What one benchmark episode is, as data: task, suite version, planner settings, seed.
+
+An `EpisodeJob` is small and self-describing, so it can be shipped to a Ray worker,
+written next to its result, and compared on a rerun: its `key()` hashes everything
+that decides the outcome (the task's content, the settings, the seed) and nothing
+that does not (where or when it ran), which is what makes resuming safe. The task's
+content hash guards against a changed task generator silently reusing old results.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import zlib
+from collections.abc import Iterable
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from verigraph import __version__
+from verigraph.agent.evaluation.tasks import SUITE_VERSION, GroupName, GroupTasks, Task
+from verigraph.agent.models import DonePolicy, FeedbackMode, Mode
+
+
+class Setting(BaseModel):
+    """One row of a table: a planner with its loop parameters."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    planner: str
+    mode: Mode = "iterative"
+    k: int = 3
+    threshold: int = 5
+    done_policy: DonePolicy = "verify"
+    noise: float = 0.3
+    max_iterations: int = 30
+    feedback: FeedbackMode = "full"
+    stop_on_goal: bool = True
+    no_progress: int = 15
+    record_dir: str | None = Field(default=None, description="write planner transcripts here")
+    replay_dir: str | None = Field(default=None,
+                                   description="answer from transcripts recorded here")
+
+    def label(self) -> str:
+        name = self.planner if self.planner != "noisy" else f"noisy ({self.noise:.0%})"
+        if self.mode == "direct":
+            return f"{name}, direct"
+        policy = "" if self.done_policy == "verify" else ", trust done"
+        if not self.stop_on_goal:
+            policy += ", end token only"
+        feedback = "" if self.feedback == "full" else f", feedback {self.feedback}"
+        return f"{name}, iterative k={self.k} t={self.threshold}{policy}{feedback}"
+
+    def transcript_key(self, task_id: str) -> str:
+        """Where this setting's transcript of one task is recorded or replayed."""
+        return f"{self.label()}__{task_id}"
+
+
+class EpisodeResult(BaseModel):
+    """The numbers one episode contributes to a table."""
+
+    group: GroupName
+    task_id: str
+    success: bool
+    llm_calls: int = 0
+    actions: int = 0
+    violations: int = 0
+    malformed: int = 0
+    premature_done: int = 0
+    stop_reason: str | None = None
+    seconds: float = 0.0
+    error: str | None = Field(default=None, description="tool or planner error, if any")
+    suite_version: str = SUITE_VERSION
+
+
+def episode_seed(task_id: str, setting: Setting) -> int:
+    """The planner's seed: fixed by task and setting, independent of run order."""
+    return zlib.crc32(f"{task_id}|{setting.label()}".encode())
+
+
+def task_hash(task: Task) -> str:
+    """A short hash of what the episode loads and asks (its scene, goal and words)."""
+    return hashlib.sha256(task.spec.model_dump_json().encode()).hexdigest()[:12]
+
+
+def suite_version(seed: int, *, ground_truth: bool, simulate: bool) -> str:
+    """The task suite an episode belongs to, in words a reader can match across files."""
+    graphs = "ground-truth-goals" if ground_truth else "perceived-goals"
+    execution = "simulated" if simulate else "graph-only"
+    return f"plan-{__version__}/suite={SUITE_VERSION}/seed={seed}/{graphs}/{execution}"
+
+
+class EpisodeJob(BaseModel):
+    """One episode to run: enough to find its task and rebuild its planner anywhere."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    suite: str
+    task_id: str
+    task_hash: str
+    group: GroupName
+    setting: Setting
+    seed: int
+
+    @property
+    def task_ref(self) -> str:
+        return f"{self.task_id}@{self.task_hash}"
+
+    def key(self) -> str:
+        """Identity for resuming: the same key means the same outcome."""
+        payload = json.dumps([self.task_id, self.task_hash, self.setting.model_dump(mode="json"),
+                              self.seed], sort_keys=True)
+        return hashlib.sha256(payload.encode()).hexdigest()[:20]
+
+
+def job_for(task: Task, setting: Setting, suite: str) -> EpisodeJob:
+    return EpisodeJob(suite=suite, task_id=task.task_id, task_hash=task_hash(task),
+                      group=task.group, setting=setting,
+                      seed=episode_seed(task.task_id, setting))
+
+
+def jobs_for(setting: Setting, groups: Iterable[GroupTasks], suite: str) -> list[EpisodeJob]:
+    """Every runnable episode of one setting (groups that cannot run are left out)."""
+    return [job_for(task, setting, suite) for group in groups if group.not_run is None
+            for task in group.tasks]
+
+
+def task_index(groups: Iterable[GroupTasks]) -> dict[str, Task]:
+    """Tasks by `EpisodeJob.task_ref`, what a worker looks jobs up in."""
+    return {f"{task.task_id}@{task_hash(task)}": task for group in groups
+            for task in group.tasks}
