@@ -75,7 +75,8 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
     """Check a plan step by step on a scene (nothing passed in is modified).
 
     Stops at the first violation unless `all_errors`, which skips the failed action and
-    goes on, to list every problem (like VAL's -c).
+    goes on, to list every problem (like VAL's -c). An empty plan is valid input: it
+    changes nothing, and with a goal the goal check decides the verdict.
 
     >>> from verigraph.graph.builtin_scenes import cup_on_book
     >>> r = validate_plan(cup_on_book(), "move(book, on, shelf)")
@@ -88,7 +89,7 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
         graph = scene if isinstance(scene, SceneGraph) else scene_from_data(scene)
         state = WorldState.from_graph(graph)
     actions: list[AnyAction] = (list(plan) if isinstance(plan, list) and _is_parsed(plan)
-                                else parse_plan(plan))
+                                else parse_plan(plan, allow_empty=True))
     goal_model = None if goal is None else goal_from_data(goal)
     steps: list[StepReport] = []
     violations: list[Violation] = []
