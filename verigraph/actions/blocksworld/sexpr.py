@@ -6,10 +6,13 @@ PDDL is case-insensitive, so every atom is lower-cased here once; `;` starts a c
 from __future__ import annotations
 
 import re
+from typing import NoReturn
 
 from verigraph.errors import VeriGraphError
 
 _TOKEN = re.compile(r";[^\n]*|\(|\)|[^\s()]+|\n")
+_FAST_TOKEN = re.compile(r"[()]|[^\s()]+")
+_COMMENT = re.compile(r";[^\n]*")
 
 SExpr = str | list["SExpr"]
 
@@ -19,32 +22,43 @@ class PddlSyntaxError(VeriGraphError):
 
 
 def parse_sexpr(text: str, *, what: str) -> list[SExpr]:
-    """All top-level expressions in `text` (a domain or problem file's contents)."""
+    """All top-level expressions in `text` (a domain or problem file's contents).
+
+    The fast path tokenizes with one regex; line numbers are only computed for errors.
+    """
     stack: list[list[SExpr]] = [[]]
+    for token in _FAST_TOKEN.findall(_COMMENT.sub("", text).lower()):
+        if token == "(":
+            stack.append([])
+        elif token == ")":
+            if len(stack) == 1:
+                _locate_error(text, what)
+            done = stack.pop()
+            stack[-1].append(done)
+        else:
+            stack[-1].append(token)
+    if len(stack) > 1:
+        _locate_error(text, what)
+    return stack[0]
+
+
+def _locate_error(text: str, what: str) -> NoReturn:
+    """Raise PddlSyntaxError naming the line of the unbalanced parenthesis."""
     opened: list[int] = []
     line = 1
     for match in _TOKEN.finditer(text):
         token = match.group()
         if token == "\n":
             line += 1
-        elif token[0] == ";":
-            continue
         elif token == "(":
-            stack.append([])
             opened.append(line)
         elif token == ")":
-            if len(stack) == 1:
+            if not opened:
                 raise PddlSyntaxError(f"unbalanced ')' on line {line}", field=what,
                                       value=line, fix="remove the extra closing parenthesis")
-            done = stack.pop()
             opened.pop()
-            stack[-1].append(done)
-        else:
-            stack[-1].append(token.lower())
-    if len(stack) > 1:
-        raise PddlSyntaxError(f"'(' opened on line {opened[-1]} is never closed", field=what,
-                              value=opened[-1], fix="add the missing closing parenthesis")
-    return stack[0]
+    raise PddlSyntaxError(f"'(' opened on line {opened[-1]} is never closed", field=what,
+                          value=opened[-1], fix="add the missing closing parenthesis")
 
 
 def define_body(text: str, *, what: str, kind: str) -> tuple[str, list[SExpr]]:
