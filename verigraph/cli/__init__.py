@@ -17,13 +17,17 @@ from verigraph.errors import VeriGraphError
 SUBCOMMAND_MODULES = ("verigraph.cli.core", "verigraph.cli.serve", "verigraph.cli.sim",
                       "verigraph.cli.agent", "verigraph.cli.bench", "verigraph.cli.perceive")
 
+# The offline verifier's commands need only verigraph.cli.core: running one of them does
+# not import the server, agent or simulator stacks (start-up stays well under a second).
+CORE_COMMANDS = ("validate", "solve", "export-pddl")
+
 EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(modules: Sequence[str] = SUBCOMMAND_MODULES) -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="verigraph", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for name in SUBCOMMAND_MODULES:
+    for name in modules:
         try:
             module = importlib.import_module(name)
         except ModuleNotFoundError as exc:
@@ -35,7 +39,9 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    core_only = bool(argv) and argv[0] in CORE_COMMANDS
+    parser = build_parser(("verigraph.cli.core",) if core_only else SUBCOMMAND_MODULES)
     args = parser.parse_args(argv)
     try:
         code: int = args.handler(args)
