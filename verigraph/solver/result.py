@@ -26,6 +26,8 @@ class SolveResult(BaseModel):
     optimal: bool = Field(default=False, description="the plan has the fewest possible moves")
     lower_bound: int | None = Field(default=None, description="no plan is shorter than this")
     elapsed_s: float = Field(default=0.0, description="wall-clock seconds spent")
+    first_plan_s: float | None = Field(default=None, description="anytime: seconds until the "
+                                                                 "first plan was in hand")
     memory_mb: float = Field(default=0.0, description="peak memory growth, MiB")
 
     def summary(self) -> str:

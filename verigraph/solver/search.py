@@ -117,6 +117,7 @@ def _anytime(problem: Problem, wanted: dict[int, int], h: Callable[[Codes], int]
     moves = greedy_plan(problem, wanted, budget) if wanted else None
     if moves is not None and is_goal(_replay(problem, moves)):
         best = [problem.action(m) for m in moves]
+    first_plan_s = round(budget.elapsed(), 3) if best is not None else None
     proof = {"floor": 0}  # the f-floor of the w = 1 run, kept if the budget stops it
     try:
         for weight in (2.0, 1.5, 1.0):
@@ -127,6 +128,7 @@ def _anytime(problem: Problem, wanted: dict[int, int], h: Callable[[Codes], int]
                                     proof if weight == 1.0 else None)
             if found:
                 best = plan
+                first_plan_s = first_plan_s or round(budget.elapsed(), 3)
             if weight == 1.0:
                 if best is None:
                     return SolveResult(reachable=False, status="unreachable",
@@ -139,10 +141,10 @@ def _anytime(problem: Problem, wanted: dict[int, int], h: Callable[[Codes], int]
         lower = max(lower, proof["floor"])
         return SolveResult(reachable=True, plan=best, expanded=budget.expansions,
                            optimal=len(best) <= lower, lower_bound=lower,
-                           reason=f"refinement stopped: {exc}")
+                           first_plan_s=first_plan_s, reason=f"refinement stopped: {exc}")
     assert best is not None
     return SolveResult(reachable=True, plan=best, expanded=budget.expansions,
-                       optimal=len(best) <= lower, lower_bound=lower)
+                       optimal=len(best) <= lower, lower_bound=lower, first_plan_s=first_plan_s)
 
 
 def _replay(problem: Problem, moves: list[Move]) -> Codes:
