@@ -111,3 +111,20 @@ def test_cli_pddl_text_json_and_bad_input(tmp_path):
     r = verigraph("validate", "--domain", str(tmp_path / "d.pddl"), "--problem",
                   "planbench_instance.pddl", "--plan", "planbench_plan.txt", cwd=DATA)
     assert r.returncode == 2 and "unsupported domain" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_three_op_self_move_is_refused_when_the_domain_allows_it():
+    three = (DATA / "three_op_domain.pddl").read_text()
+    problem = PROBLEM.replace("(arm-empty)\n", "")
+    strict = validate_pddl_plan(three, problem, "(move-b-to-t d c)\n(move-t-to-b d d)")
+    assert strict.violations[0].constraint == "same_object" and strict.violations[0].step == 2
+    loose = three.replace("(on-table ?bm) (not (= ?bm ?bt)))", "(on-table ?bm))")
+    with pytest.raises(UnsupportedDomainError, match="onto itself"):
+        validate_pddl_plan(loose, problem, "(move-b-to-t d c)\n(move-t-to-b d d)")
+
+
+def test_cli_all_errors_is_for_scene_plans_only():
+    r = verigraph("validate", "--domain", "planbench_domain.pddl", "--problem",
+                  "planbench_instance.pddl", "--plan", "planbench_plan.txt", "--all-errors",
+                  cwd=DATA)
+    assert r.returncode == 2 and "scene plans only" in r.stderr
