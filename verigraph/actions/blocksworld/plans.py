@@ -15,7 +15,7 @@ is bad input (PlanParseError naming the line), never a verdict.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from typing import NamedTuple
 
 from verigraph.actions.blocksworld.domain import BlocksDomain
 from verigraph.errors import PlanParseError
@@ -25,6 +25,7 @@ PLANBENCH_COLOURS = {"red": "a", "blue": "b", "orange": "c", "yellow": "d", "whi
                      "silver": "k", "gold": "l"}
 ROLE_ARITY = {"pick-up": 1, "put-down": 1, "stack": 2, "unstack": 2, "move-b-to-b": 3,
               "move-b-to-t": 2, "move-t-to-b": 2}
+_IDENTITY = {0: (), 1: (0,), 2: (0, 1), 3: (0, 1, 2)}
 _STEP_PREFIX = re.compile(r"^\s*(?:\d+(?:\.\d+)?\s*:|\d+[.)]|[-*])\s*")
 _DURATION = re.compile(r"\s*\[[\d.]+\]\s*$")
 _ENGLISH = [
@@ -39,8 +40,7 @@ FORMS = ("(op arg ...) with the domain's operators, or PlanBench text such as "
          "'unstack the red block from on top of the blue block'")
 
 
-@dataclass(slots=True, frozen=True)
-class PlanStep:
+class PlanStep(NamedTuple):
     """One action: template role, arguments in template order, how it was written."""
 
     role: str
@@ -77,6 +77,8 @@ def _sexpr_step(body: str, number: int, raw: str, domain: BlocksDomain) -> PlanS
                              line=number, column=2, text=raw,
                              expected=f"({name} "
                              + " ".join(f"?arg{i + 1}" for i in range(len(op.order))) + ")")
+    if op.order == _IDENTITY[len(args)]:
+        return PlanStep(op.role, tuple(args), f"({name} {' '.join(args)})", number)
     slots = [""] * len(args)
     for i, a in enumerate(args):
         slots[op.order[i]] = a
@@ -110,10 +112,11 @@ def parse_blocks_plan(text: str, domain: BlocksDomain, declared: set[str]) -> li
         body = raw.split(";", 1)[0].strip().lower()
         if not body or body.startswith("[plan"):
             continue
-        body = _DURATION.sub("", _STEP_PREFIX.sub("", body)).rstrip(".").strip()
-        if not body:
-            continue
-        if body.startswith("("):
+        if not (body[0] == "(" and body[-1] == ")"):  # prefixes, durations, full stops
+            body = _DURATION.sub("", _STEP_PREFIX.sub("", body)).rstrip(".").strip()
+            if not body:
+                continue
+        if body[0] == "(":
             steps.append(_sexpr_step(body, number, raw, domain))
         else:
             steps.append(_english_step(body, number, raw, domain, declared))

@@ -15,6 +15,7 @@ from verigraph.actions.blocksworld.domain import BlocksDomain, recognise_domain
 from verigraph.actions.blocksworld.hand import HandModel
 from verigraph.actions.blocksworld.plans import parse_blocks_plan
 from verigraph.actions.blocksworld.problem import native_state, read_problem
+from verigraph.actions.records import gc_paused
 from verigraph.actions.report import ValidationReport
 
 
@@ -30,7 +31,16 @@ def _edge(e: tuple[str, str, str]) -> dict[str, str]:
 
 def validate_blocks_dict(domain_text: str, problem_text: str, plan_text: str
                          ) -> dict[str, Any]:
-    """The JSON-ready report (what `verigraph validate --json` prints for PDDL input)."""
+    """The JSON-ready report (what `verigraph validate --json` prints for PDDL input).
+
+    Long plans make hundreds of thousands of small acyclic dicts: the cyclic garbage
+    collector is paused meanwhile (see `gc_paused`).
+    """
+    with gc_paused():
+        return _report(domain_text, problem_text, plan_text)
+
+
+def _report(domain_text: str, problem_text: str, plan_text: str) -> dict[str, Any]:
     domain = cached_domain(domain_text)
     problem = read_problem(problem_text, domain)
     steps = parse_blocks_plan(plan_text, domain, set(problem.blocks))
@@ -43,9 +53,10 @@ def validate_blocks_dict(domain_text: str, problem_text: str, plan_text: str
         action = {"action": op.name, "args": list(step.args)}
         failure = model.check(step, op.self_move_forbidden)
         if failure is None:
-            removed, added = model.apply(step)
+            (x, r0, t0), (_, r1, t1) = model.apply(step)
             out_steps.append({"step": index, "ok": True, "action": action, "text": step.text,
-                              "edit": {"removed": [_edge(removed)], "added": [_edge(added)]}})
+                              "edit": {"removed": [{"source": x, "relation": r0, "target": t0}],
+                                       "added": [{"source": x, "relation": r1, "target": t1}]}})
             continue
         constraint, message, blocking, suggestion = failure
         violation = {"ok": False, "step": index, "action": action, "constraint": constraint,
