@@ -138,15 +138,14 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
     edge_set, edit_set, step_set = set(EDGE_FIELDS), set(EDIT_FIELDS), set(STEP_FIELDS)
     with gc_paused():
         for index, action, payload in records:
-            if isinstance(payload, Violation | GraphEdit):
+            if payload is not None and type(payload) is not tuple:  # not an accepted move
                 ok = isinstance(payload, GraphEdit)
                 values = {"step": index, "ok": ok, "action": _action_dict(action),
                           "text": action.text(), "violation": None if ok else payload,
                           "edit": payload if ok else None}
                 steps.append(trusted(StepReport, values, STEP_FIELDS))
                 continue
-            assert isinstance(action, MoveAction)
-            obj, rel, target = action.object, action.relation, action.target
+            obj, rel, target = action.object, action.relation, action.target  # type: ignore[union-attr]
             added = new(Edge)
             setattr_(added, "__dict__", {"source": obj, "relation": rel, "target": target,
                                          "source_side": None, "target_side": None})
