@@ -97,15 +97,15 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
     else:
         graph = scene if isinstance(scene, SceneGraph) else scene_from_data(scene)
         state = WorldState.from_graph(graph)
-    actions: list[AnyAction] = (list(plan) if isinstance(plan, list) and _is_parsed(plan)
-                                else parse_plan(plan, allow_empty=True))
     goal_model = None if goal is None else goal_from_data(goal)
-    records, violations, done, not_checked = check_plan(state, actions, all_errors)
-    goal_diff = check_goal(state, goal_model) if goal_model is not None else None
-    plan_valid = not violations
-    goal_reached = None if goal_diff is None else goal_diff.satisfied
-    steps = _steps_from_records(records)
-    with gc_paused():
+    with gc_paused():  # a long plan creates many acyclic objects; see gc_paused
+        actions: list[AnyAction] = (list(plan) if isinstance(plan, list) and _is_parsed(plan)
+                                    else parse_plan(plan, allow_empty=True))
+        records, violations, done, not_checked = check_plan(state, actions, all_errors)
+        goal_diff = check_goal(state, goal_model) if goal_model is not None else None
+        plan_valid = not violations
+        goal_reached = None if goal_diff is None else goal_diff.satisfied
+        steps = _steps_from_records(records)
         final_graph = state.to_graph()
     return ValidationReport.model_construct(
         valid=plan_valid and goal_reached is not False, plan_valid=plan_valid,
@@ -129,51 +129,48 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
 
     Accepted moves, the bulk of any long plan, are built inline with `object.__new__`
     and the model's own slots (what `model_construct` does, minus its per-call
-    bookkeeping); the cyclic garbage collector is paused meanwhile, since these
-    objects form no cycles and tens of thousands of them would otherwise trigger
-    repeated full collections (about half the time on a 10,000-step plan).
+    bookkeeping). The caller pauses the garbage collector (`gc_paused`).
     """
     steps: list[Any] = []
     new, setattr_ = object.__new__, object.__setattr__
     edge_set, edit_set, step_set = set(EDGE_FIELDS), set(EDIT_FIELDS), set(STEP_FIELDS)
-    with gc_paused():
-        for index, action, payload in records:
-            if payload is not None and type(payload) is not tuple:  # not an accepted move
-                ok = isinstance(payload, GraphEdit)
-                values = {"step": index, "ok": ok, "action": _action_dict(action),
-                          "text": action.text(), "violation": None if ok else payload,
-                          "edit": payload if ok else None}
-                steps.append(trusted(StepReport, values, STEP_FIELDS))
-                continue
-            obj, rel, target = action.object, action.relation, action.target  # type: ignore[union-attr]
-            added = new(Edge)
-            setattr_(added, "__dict__", {"source": obj, "relation": rel, "target": target,
-                                         "source_side": None, "target_side": None})
-            setattr_(added, "__pydantic_fields_set__", edge_set)
-            setattr_(added, "__pydantic_extra__", None)
-            setattr_(added, "__pydantic_private__", None)
-            removed = []
-            if payload is not None:
-                old = new(Edge)
-                setattr_(old, "__dict__", {"source": obj, "relation": payload[0],
-                                           "target": payload[1], "source_side": None,
-                                           "target_side": None})
-                setattr_(old, "__pydantic_fields_set__", edge_set)
-                setattr_(old, "__pydantic_extra__", None)
-                setattr_(old, "__pydantic_private__", None)
-                removed.append(old)
-            edit = new(GraphEdit)
-            setattr_(edit, "__dict__", {"removed": removed, "added": [added]})
-            setattr_(edit, "__pydantic_fields_set__", edit_set)
-            setattr_(edit, "__pydantic_extra__", None)
-            setattr_(edit, "__pydantic_private__", None)
-            step = new(StepReport)
-            setattr_(step, "__dict__", {
-                "step": index, "ok": True,
-                "action": {"action": "move", "object": obj, "relation": rel, "target": target},
-                "text": f"move({obj}, {rel}, {target})", "violation": None, "edit": edit})
-            setattr_(step, "__pydantic_fields_set__", step_set)
-            setattr_(step, "__pydantic_extra__", None)
-            setattr_(step, "__pydantic_private__", None)
-            steps.append(step)
+    for index, action, payload in records:
+        if payload is not None and type(payload) is not tuple:  # not an accepted move
+            ok = isinstance(payload, GraphEdit)
+            values = {"step": index, "ok": ok, "action": _action_dict(action),
+                      "text": action.text(), "violation": None if ok else payload,
+                      "edit": payload if ok else None}
+            steps.append(trusted(StepReport, values, STEP_FIELDS))
+            continue
+        obj, rel, target = action.object, action.relation, action.target  # type: ignore[union-attr]
+        added = new(Edge)
+        setattr_(added, "__dict__", {"source": obj, "relation": rel, "target": target,
+                                     "source_side": None, "target_side": None})
+        setattr_(added, "__pydantic_fields_set__", edge_set)
+        setattr_(added, "__pydantic_extra__", None)
+        setattr_(added, "__pydantic_private__", None)
+        removed = []
+        if payload is not None:
+            old = new(Edge)
+            setattr_(old, "__dict__", {"source": obj, "relation": payload[0],
+                                       "target": payload[1], "source_side": None,
+                                       "target_side": None})
+            setattr_(old, "__pydantic_fields_set__", edge_set)
+            setattr_(old, "__pydantic_extra__", None)
+            setattr_(old, "__pydantic_private__", None)
+            removed.append(old)
+        edit = new(GraphEdit)
+        setattr_(edit, "__dict__", {"removed": removed, "added": [added]})
+        setattr_(edit, "__pydantic_fields_set__", edit_set)
+        setattr_(edit, "__pydantic_extra__", None)
+        setattr_(edit, "__pydantic_private__", None)
+        step = new(StepReport)
+        setattr_(step, "__dict__", {
+            "step": index, "ok": True,
+            "action": {"action": "move", "object": obj, "relation": rel, "target": target},
+            "text": f"move({obj}, {rel}, {target})", "violation": None, "edit": edit})
+        setattr_(step, "__pydantic_fields_set__", step_set)
+        setattr_(step, "__pydantic_extra__", None)
+        setattr_(step, "__pydantic_private__", None)
+        steps.append(step)
     return steps
