@@ -31,8 +31,10 @@ PEERS = {"FD lama-first": ("fast-downward", {}), "FD seq-opt-lmcut": ("fast-down
 
 
 def _peer_worker(engine: str, params: dict[str, Any], problem_file: str, out: Any) -> None:
+    import os
     import warnings
 
+    os.chdir(Path(problem_file).parent)  # Fast Downward writes output.sas into the cwd
     from unified_planning.io import PDDLReader
     from unified_planning.shortcuts import OneshotPlanner, get_environment
 
