@@ -69,3 +69,32 @@ def test_cli_help_states_the_units():
                        capture_output=True, text=True, timeout=60)
     assert "--time-limit SECONDS" in r.stdout and "--memory-limit MB" in r.stdout
     assert "MiB" in r.stdout and "seconds" in r.stdout
+
+
+@pytest.fixture
+def anyio_backend() -> str:
+    return "asyncio"
+
+
+@pytest.mark.anyio
+async def test_the_solve_tool_has_the_same_budget_and_answers_when_it_runs_out():
+    from mcp import Client
+    from mcp_helpers import structured
+
+    from verigraph.server import build_server
+    from verigraph.solver import DEFAULT_MEMORY_LIMIT_MB, DEFAULT_TIME_LIMIT_S
+    from verigraph.tools import Toolbox
+    from verigraph.tools.solving import SolveInput
+
+    fields = SolveInput.model_fields
+    assert fields["time_limit"].default == DEFAULT_TIME_LIMIT_S
+    assert fields["memory_limit_mb"].default == DEFAULT_MEMORY_LIMIT_MB
+    start, goal = random_blocks(60, 3), random_blocks(60, 4)
+    async with Client(build_server(Toolbox())) as client:
+        out = structured(await client.call_tool("solve", {
+            "graph": start.model_dump(), "goal": {"graph": goal.model_dump()}, "time_limit": 0.5}))
+        assert out["reachable"] is None and "budget exhausted" in out["reason"]
+        out = structured(await client.call_tool("solve", {
+            "graph": start.model_dump(), "goal": {"graph": goal.model_dump()}, "time_limit": 0.5,
+            "anytime": True}))
+        assert out["verified"] and out["length"] <= 2 * out["lower_bound"]
