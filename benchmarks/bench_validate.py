@@ -1,24 +1,42 @@
-"""Validate a 10,000-action plan on a 1,000-object scene; report actions per second.
+"""Validator throughput against unified-planning (and VAL, if given), measured in one run.
 
-Target (issue 2): at least 100,000 actions/s in-process. Run: python benchmarks/bench_validate.py
+* 1,000-object scene x 10,000 valid moves: the core loop, `validate_plan` with its
+  per-step report, text parsing, and the whole `verigraph validate --json` process;
+* the same plan as PDDL 4-op blocks world (20,000 hand actions): our native validator,
+  unified-planning's SequentialPlanValidator (on a slice: it is slow), and VAL's
+  `Validate` on the whole file when `--val PATH` names a binary (nothing is built);
+* `verigraph validate --batch` on PlanBench-sized items against one validator run per plan;
+* CLI start-up on a 2-step plan.
+
+Run: python benchmarks/bench_validate.py [--val /path/to/Validate] [--up-actions 300]
+Results: benchmarks/results/validate.md (rates are wall clock; CPU-time rates beside them
+because the machine may be shared).
 """
 
 from __future__ import annotations
 
+import argparse
+import json
 import random
+import resource
+import subprocess
 import sys
+import tempfile
+import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
 
+from blocks_problems import DOMAIN_FILE, problem  # noqa: E402
 from common import median_time, write_table  # noqa: E402
 
 from verigraph.actions import MoveAction, parse_plan, validate_plan  # noqa: E402
+from verigraph.actions.blocksworld import validate_blocks_dict  # noqa: E402
 from verigraph.actions.validator import run_until_violation  # noqa: E402
-from verigraph.graph import Edge, Goal, Node, SceneGraph, WorldState  # noqa: E402
-from verigraph.solver import solve  # noqa: E402
+from verigraph.graph import Edge, Node, SceneGraph, WorldState  # noqa: E402
 
 N_OBJECTS, N_ACTIONS = 1000, 10_000
+EXAMPLES = Path(__file__).parent.parent / "examples" / "scenes"
 
 
 def big_scene(seed: int = 0) -> SceneGraph:
@@ -56,55 +74,215 @@ def valid_random_walk(scene: SceneGraph, n: int, seed: int = 1) -> list[MoveActi
     return plan
 
 
+def as_pddl(scene: SceneGraph, plan: list[MoveAction]) -> tuple[str, list[str]]:
+    """The scene as a 4-op problem (goal: where the plan ends) and the plan as hand actions."""
+    state = WorldState.from_graph(scene)
+    blocks = [o for o in state.objects if o != "table"]
+    facts = ["(arm-empty)"] + [f"(clear {b})" for b in blocks if state.is_clear(b)]
+    facts += [f"(on-table {b})" if state.support[b][1] == "table"
+              else f"(on {b} {state.support[b][1]})" for b in blocks]
+    lines = []
+    for a in plan:
+        below = state.support[a.object][1]
+        lines.append(f"(pick-up {a.object})" if below == "table"
+                     else f"(unstack {a.object} {below})")
+        lines.append(f"(put-down {a.object})" if a.target == "table"
+                     else f"(stack {a.object} {a.target})")
+        state.set_support(a.object, "on", a.target)
+    goal = [f"(on {b} {state.support[b][1]})" for b in blocks if state.support[b][1] != "table"]
+    text = (f"(define (problem big)\n(:domain blocksworld-4ops)\n(:objects {' '.join(blocks)})\n"
+            f"(:init {' '.join(facts)})\n(:goal (and {' '.join(goal)})))\n")
+    return text, lines
+
+
+CHILD_CPU: dict[str, float] = {}
+
+
+def process_time(cmd: list[str], runs: int = 3) -> float:
+    """Median wall time of a whole process; its median CPU time goes to CHILD_CPU[cmd]."""
+    times, cpu = [], []
+    for _ in range(runs):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        start = time.perf_counter()
+        subprocess.run(cmd, capture_output=True, check=False)
+        times.append(time.perf_counter() - start)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu.append(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
+    CHILD_CPU[" ".join(cmd)] = sorted(cpu)[len(cpu) // 2]
+    return sorted(times)[len(times) // 2]
+
+
+def last_cpu(cmd: list[str]) -> float:
+    return CHILD_CPU[" ".join(cmd)]
+
+
+def up_validate(domain: Path, problem_file: Path, actions: list[str]) -> float:
+    """Seconds unified-planning's SequentialPlanValidator takes on `actions` (parse excluded)."""
+    import unified_planning as up
+    from unified_planning.engines.plan_validator import SequentialPlanValidator
+    from unified_planning.io import PDDLReader
+    from unified_planning.shortcuts import get_environment
+
+    get_environment().credits_stream = None
+    parsed = PDDLReader().parse_problem(str(domain), str(problem_file))
+    plan = up.plans.SequentialPlan([
+        up.plans.ActionInstance(parsed.action(line.strip("()").split()[0]),
+                                [parsed.object(a) for a in line.strip("()").split()[1:]])
+        for line in actions])
+    start = time.perf_counter()
+    SequentialPlanValidator().validate(parsed, plan)
+    return time.perf_counter() - start
+
+
+def cpu_rate(fn, n: int, runs: int = 5) -> float:  # type: ignore[no-untyped-def]
+    fn()
+    best = min(_cpu(fn) for _ in range(runs))
+    return n / best
+
+
+def _cpu(fn) -> float:  # type: ignore[no-untyped-def]
+    start = time.process_time()
+    fn()
+    return time.process_time() - start
+
+
 def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--val", help="path to VAL's Validate binary (optional)")
+    parser.add_argument("--up-actions", type=int, default=300,
+                        help="actions of the big plan given to unified-planning")
+    parser.add_argument("--batch-items", type=int, default=2000)
+    args = parser.parse_args()
+    work = Path(tempfile.mkdtemp(prefix="bench_validate_"))
+    py = [sys.executable, "-m", "verigraph"]
     scene = big_scene()
     plan = valid_random_walk(scene, N_ACTIONS)
     text = "\n".join(a.text() for a in plan)
     state = WorldState.from_graph(scene)
+    rows: list[list[str]] = []
+
+    def row(name: str, seconds: float, n: int, cpu: float | None = None,
+            up_rate: float | None = None, val_rate: float | None = None) -> None:
+        rate = n / seconds
+        rows.append([name, f"{seconds * 1000:.1f}", f"{rate:,.0f}",
+                     "-" if cpu is None else f"{cpu:,.0f}",
+                     "-" if up_rate is None else f"{rate / up_rate:,.1f}x",
+                     "-" if val_rate is None else f"{rate / val_rate:.2f}x"])
+        print(rows[-1], flush=True)
+
+    # PDDL form of the same plan, and the peers on it
+    problem_text, hand = as_pddl(scene, plan)
+    (work / "big.pddl").write_text(problem_text)
+    (work / "big_plan.txt").write_text("\n".join(hand) + "\n")
+    domain_text = DOMAIN_FILE.read_text()
+    up_seconds = up_validate(DOMAIN_FILE, work / "big.pddl", hand[:args.up_actions])
+    up_rate = args.up_actions / up_seconds
+    val_rate = val_process = None
+    if args.val:
+        start = time.perf_counter()
+        subprocess.run([args.val, str(DOMAIN_FILE), str(work / "big.pddl"),
+                        str(work / "big_plan.txt")], capture_output=True, check=False)
+        val_process = time.perf_counter() - start
+        val_rate = len(hand) / val_process
 
     def core() -> None:
         executed, _, violation, _ = run_until_violation(state.copy(), plan, record_edits=False)
         assert violation is None and len(executed) == N_ACTIONS
 
     def report() -> None:
-        r = validate_plan(state, plan)
-        assert r.valid
+        assert validate_plan(state, plan).valid
 
-    def parse() -> None:
-        assert len(parse_plan(text)) == N_ACTIONS
+    def pddl() -> None:
+        assert validate_blocks_dict(domain_text, problem_text, "\n".join(hand))["valid"]
 
-    def index() -> None:
-        WorldState.from_graph(scene)
+    for name, fn, n in [("scene: validate + apply (core loop)", core, N_ACTIONS),
+                        ("scene: validate_plan with per-step report", report, N_ACTIONS),
+                        ("scene: parse 10,000-line text plan",
+                         lambda: parse_plan(text), N_ACTIONS),
+                        ("PDDL 4-op: native validator with report (20,000 actions)", pddl,
+                         len(hand))]:
+        med, _ = median_time(fn, runs=5)
+        row(name, med, n, cpu_rate(fn, n), up_rate, val_rate)
+    rows.append(["unified-planning SequentialPlanValidator (first "
+                 f"{args.up_actions} hand actions)", f"{up_seconds * 1000:.1f}",
+                 f"{up_rate:,.0f}", "-", "1.0x", "-"])
+    (work / "scene.json").write_text(scene.model_dump_json())
+    (work / "plan.txt").write_text(text)
+    cmd = [*py, "validate", "--scene", str(work / "scene.json"), "--plan",
+           str(work / "plan.txt"), "--json"]
+    seconds = process_time(cmd)
+    row("process: verigraph validate --json, scene, 10,000 moves", seconds, N_ACTIONS,
+        N_ACTIONS / last_cpu(cmd), up_rate=up_rate, val_rate=val_rate)
+    cmd = [*py, "validate", "--domain", str(DOMAIN_FILE), "--problem", str(work / "big.pddl"),
+           "--plan", str(work / "big_plan.txt"), "--json"]
+    seconds = process_time(cmd)
+    row("process: verigraph validate --json, PDDL, 20,000 actions", seconds, len(hand),
+        len(hand) / last_cpu(cmd), up_rate=up_rate, val_rate=val_rate)
+    if val_process is not None:
+        rows.append(["process: VAL Validate, PDDL, 20,000 actions",
+                     f"{val_process * 1000:.1f}", f"{len(hand) / val_process:,.0f}", "-", "-",
+                     "1.00x"])
+    for what, cmd in [
+            ("scene", [*py, "validate", "--scene", str(EXAMPLES / "cup_on_book.json"), "--plan",
+                       str(EXAMPLES / "cup_on_book_fixed.txt")]),
+            ("PDDL", [*py, "validate", "--domain", str(DOMAIN_FILE), "--problem",
+                      str(DOMAIN_FILE.parent / "planbench_instance.pddl"), "--plan",
+                      str(DOMAIN_FILE.parent / "planbench_plan.txt")])]:
+        startup = process_time(cmd, runs=5)
+        rows.append([f"process: start-up + small plan ({what}); CPU ms in the CPU column",
+                     f"{startup * 1000:.0f}", "-", f"{last_cpu(cmd) * 1000:.0f} ms", "-", "-"])
+    batch_rows(args, work, py, rows)
+    write_table("validate", "Validator throughput against unified-planning and VAL",
+                ["what", "median ms", "actions/s (wall)", "actions/s (CPU)",
+                 "vs unified-planning", "vs VAL"], rows,
+                notes=f"{N_ACTIONS:,} valid moves on a {N_OBJECTS:,}-object blocks scene "
+                      "(as PDDL: 20,000 4-op actions). In-process rows: median of 5 runs "
+                      "after a warm-up (wall), best of 5 (CPU). Ratios compare wall-clock "
+                      "rates measured in this run. VAL column: "
+                      + ("measured" if args.val else "not measured (no --val given)") + ".")
 
-    rows = []
-    def core_with_edits() -> None:
-        executed, edits, violation, _ = run_until_violation(state.copy(), plan)
-        assert violation is None and len(edits) == N_ACTIONS
 
-    for name, fn in [("validate + apply (execute_until_violation core)", core),
-                     ("same, recording each step's graph edit", core_with_edits),
-                     ("validate_plan with per-step report", report),
-                     ("parse 10,000-line text plan", parse)]:
-        med, _ = median_time(fn)
-        rows.append([name, f"{med * 1000:.1f}", f"{N_ACTIONS / med:,.0f}"])
-    med, _ = median_time(index)
-    rows.append(["load + check + index the 1,000-object scene", f"{med * 1000:.1f}", "-"])
-
-    solve_times = []
+def batch_rows(args: argparse.Namespace, work: Path, py: list[str],
+               rows: list[list[str]]) -> None:
+    """PlanBench-sized items through --batch vs one validator run per plan."""
     sys.path.insert(0, str(Path(__file__).parent.parent / "tests"))
-    from scenes import random_blocks
+    from blocksworld_corpus import reference_plan
 
-    for seed in range(10):
-        start, goal = random_blocks(12, seed), Goal(graph=random_blocks(12, seed + 100))
-        med, _ = median_time(lambda s=start, g=goal: solve(s, g), runs=3)
-        solve_times.append(med)
-    solve_times.sort()
-    rows.append(["solve: 12 blocks to a random goal (median of 10 scenes)",
-                 f"{solve_times[len(solve_times) // 2] * 1000:.1f}", "-"])
-    rows.append(["solve: worst of those 10 scenes", f"{solve_times[-1] * 1000:.1f}", "-"])
-    write_table("validate", "Validator throughput", ["what", "median ms", "actions/s"], rows,
-                notes=f"{N_ACTIONS:,} valid moves on a {N_OBJECTS:,}-object blocks scene; "
-                      "median of 7 runs after a warm-up. Target: >= 100,000 actions/s.")
+    items = []
+    plans: list[tuple[Path, list[str]]] = []
+    for i in range(args.batch_items):
+        n = 3 + i % 5
+        text, _, _, start, goal = problem(n, i)
+        pfile, plan_file = work / f"bp{i}.pddl", work / f"bplan{i}.txt"
+        actions = reference_plan(start, goal)
+        pfile.write_text(text)
+        plan_file.write_text("\n".join(actions))
+        plans.append((pfile, actions))
+        items.append(json.dumps({"id": i, "domain": str(DOMAIN_FILE), "problem": str(pfile),
+                                 "plan": str(plan_file)}))
+    (work / "batch.jsonl").write_text("\n".join(items) + "\n")
+    cmd = [*py, "validate", "--batch", str(work / "batch.jsonl"), "--no-progress"]
+    seconds = process_time(cmd, runs=3)
+    rate = args.batch_items / seconds
+    k = min(100, args.batch_items)
+    up_seconds = sum(up_validate(DOMAIN_FILE, p, a) for p, a in plans[:k])
+    up_rate = k / up_seconds
+    val_rate = None
+    if args.val:
+        start = time.perf_counter()
+        for i in range(k):
+            subprocess.run([args.val, str(DOMAIN_FILE), str(work / f"bp{i}.pddl"),
+                            str(work / f"bplan{i}.txt")], capture_output=True, check=False)
+        val_rate = k / (time.perf_counter() - start)
+    rows.append([f"process: verigraph validate --batch, {args.batch_items:,} PlanBench-sized "
+                 "plans (plans/s)", f"{seconds * 1000:.0f}", f"{rate:,.0f}",
+                 f"{args.batch_items / last_cpu(cmd):,.0f}",
+                 f"{rate / up_rate:,.1f}x", "-" if val_rate is None else f"{rate / val_rate:.1f}x"])
+    rows.append([f"unified-planning, one validation per plan ({k} plans, parse excluded)",
+                 f"{up_seconds * 1000:.0f}", f"{up_rate:,.0f}", "-", "1.0x", "-"])
+    if val_rate is not None:
+        rows.append([f"VAL Validate, one process per plan ({k} plans)", "-", f"{val_rate:,.0f}",
+                     "-", "-", "1.0x"])
 
 
 if __name__ == "__main__":

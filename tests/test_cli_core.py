@@ -58,7 +58,8 @@ def test_goal_missed_exits_1():
      '"target": "a"}]}', "done", "cycle"),
     ('{"nodes": [{"id": "a", "label": "teapot"}], "edges": []}', "done", "not in the"),
     ('{"nodes": [], "edges": []}', "move(a b)", "line 1"),
-    ('{"nodes": [], "edges": []}', "# only a comment\n", "empty"),
+    ('{"nodes": [], "edges": []}', '[{"action": "move", "object": "a"}]', "line 1"),
+    ('{"nodes": [], "edges": []}', "move(a)", "line 1"),
 ])
 def test_bad_input_exits_2_without_traceback(tmp_path, scene_text, plan_text, fragment):
     (tmp_path / "s.json").write_text(scene_text)
@@ -66,6 +67,19 @@ def test_bad_input_exits_2_without_traceback(tmp_path, scene_text, plan_text, fr
     r = run("validate", "--scene", "s.json", "--plan", "p.txt", cwd=tmp_path)
     assert r.returncode == 2, r.stdout + r.stderr
     assert fragment in r.stderr and "Traceback" not in r.stderr
+
+
+@pytest.mark.parametrize("plan_text", ["", "# only a comment\n", "[]"])
+def test_an_empty_plan_is_valid_input_and_the_goal_decides(tmp_path, plan_text):
+    (tmp_path / "p.txt").write_text(plan_text)
+    r = run("validate", "--scene", str(EXAMPLES / "cup_on_book.json"), "--plan", "p.txt",
+            "--goal", str(EXAMPLES / "cup_on_book_goal.json"), "--json", cwd=tmp_path)
+    assert r.returncode == 1, r.stderr
+    report = json.loads(r.stdout)
+    assert report["steps"] == [] and report["plan_valid"] and report["goal_reached"] is False
+    r = run("validate", "--scene", str(EXAMPLES / "cup_on_book.json"), "--plan", "p.txt",
+            cwd=tmp_path)
+    assert r.returncode == 0 and "VALID: 0 step(s) checked" in r.stdout
 
 
 def test_huge_plan_is_handled(tmp_path):

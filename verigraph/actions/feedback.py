@@ -10,7 +10,7 @@ ConstraintId = Literal[
     "unknown_object", "unknown_relation", "same_object", "not_movable", "object_not_clear",
     "target_full", "target_not_surface", "target_not_container", "would_create_cycle",
     "already_there", "unknown_side", "side_occupied", "overlap", "execution_failed",
-    "arm_refused", "no_room", "malformed_action",
+    "arm_refused", "no_room", "malformed_action", "hand_full", "not_held", "wrong_source",
 ]
 
 CONSTRAINT_DESCRIPTIONS: dict[str, str] = {
@@ -34,6 +34,10 @@ CONSTRAINT_DESCRIPTIONS: dict[str, str] = {
     "arm_refused": "the arm adapter refused before moving (safety limit, stop latched, "
                    "stale location, confirmation declined)",
     "malformed_action": "the action does not match the action schema",
+    "hand_full": "blocks world with a hand: a grasp while the hand already holds a block",
+    "not_held": "blocks world with a hand: a release of a block the hand does not hold",
+    "wrong_source": "blocks world: the action names a place the block is not taken from "
+                    "(pick-up of a block on a block, unstack from the wrong block)",
 }
 
 

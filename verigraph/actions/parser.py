@@ -157,8 +157,13 @@ def parse_json_plan(data: Any) -> list[AnyAction]:
     return actions
 
 
-def parse_plan(plan: str | list[Any] | dict[str, Any]) -> list[AnyAction]:
-    """Text or JSON (string or already decoded); raises PlanParseError on any problem."""
+def parse_plan(plan: str | list[Any] | dict[str, Any], *, allow_empty: bool = False
+               ) -> list[AnyAction]:
+    """Text or JSON (string or already decoded); raises PlanParseError on any problem.
+
+    An empty plan is an error unless `allow_empty`: a plan validator treats it as the
+    plan that does nothing (the goal check decides), an agent's reply must act.
+    """
     if isinstance(plan, list | dict):
         actions = parse_json_plan(plan)
     else:
@@ -174,7 +179,7 @@ def parse_plan(plan: str | list[Any] | dict[str, Any]) -> list[AnyAction]:
             actions = parse_json_plan(decoded)
         else:
             actions = parse_text_plan(plan)
-    if not actions:
+    if not actions and not allow_empty:
         raise PlanParseError("the plan is empty", line=1, column=1, text="",
                              expected=f"at least one action: {ANY_FORM}")
     return actions

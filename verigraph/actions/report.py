@@ -7,12 +7,21 @@ from typing import Any
 from pydantic import BaseModel, Field
 
 from verigraph.actions.feedback import Violation
-from verigraph.actions.model import AnyAction, DoneAction
+from verigraph.actions.model import AnyAction, MoveAction
 from verigraph.actions.parser import parse_plan
-from verigraph.actions.validator import GraphEdit, apply_action, validate_action
+from verigraph.actions.records import (
+    EDGE_FIELDS,
+    EDIT_FIELDS,
+    STEP_FIELDS,
+    Record,
+    check_plan,
+    gc_paused,
+    trusted,
+)
+from verigraph.actions.validator import GraphEdit
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.io import goal_from_data, scene_from_data
-from verigraph.graph.model import SceneGraph
+from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 
 
@@ -75,7 +84,8 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
     """Check a plan step by step on a scene (nothing passed in is modified).
 
     Stops at the first violation unless `all_errors`, which skips the failed action and
-    goes on, to list every problem (like VAL's -c).
+    goes on, to list every problem (like VAL's -c). An empty plan is valid input: it
+    changes nothing, and with a goal the goal check decides the verdict.
 
     >>> from verigraph.graph.builtin_scenes import cup_on_book
     >>> r = validate_plan(cup_on_book(), "move(book, on, shelf)")
@@ -87,38 +97,80 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
     else:
         graph = scene if isinstance(scene, SceneGraph) else scene_from_data(scene)
         state = WorldState.from_graph(graph)
-    actions: list[AnyAction] = (list(plan) if isinstance(plan, list) and _is_parsed(plan)
-                                else parse_plan(plan))
     goal_model = None if goal is None else goal_from_data(goal)
-    steps: list[StepReport] = []
-    violations: list[Violation] = []
-    done = False
-    not_checked = 0
-    for index, action in enumerate(actions, start=1):
-        if isinstance(action, DoneAction):
-            done = True
-            break
-        violation = validate_action(state, action, index)
-        if violation is None:
-            edit = apply_action(state, action)
-            steps.append(StepReport.model_construct(step=index, ok=True, action=action.model_dump(),
-                                                    text=action.text(), violation=None, edit=edit))
-            continue
-        violations.append(violation)
-        steps.append(StepReport.model_construct(step=index, ok=False, action=action.model_dump(),
-                                                text=action.text(), violation=violation,
-                                                edit=None))
-        if not all_errors:
-            not_checked = sum(not isinstance(a, DoneAction) for a in actions[index:])
-            break
-    goal_diff = check_goal(state, goal_model) if goal_model is not None else None
-    plan_valid = not violations
-    goal_reached = None if goal_diff is None else goal_diff.satisfied
-    return ValidationReport(
+    with gc_paused():  # a long plan creates many acyclic objects; see gc_paused
+        actions: list[AnyAction] = (list(plan) if isinstance(plan, list) and _is_parsed(plan)
+                                    else parse_plan(plan, allow_empty=True))
+        records, violations, done, not_checked = check_plan(state, actions, all_errors)
+        goal_diff = check_goal(state, goal_model) if goal_model is not None else None
+        plan_valid = not violations
+        goal_reached = None if goal_diff is None else goal_diff.satisfied
+        steps = _steps_from_records(records)
+        final_graph = state.to_graph()
+    return ValidationReport.model_construct(
         valid=plan_valid and goal_reached is not False, plan_valid=plan_valid,
-        goal_reached=goal_reached, steps=steps, violations=violations, not_checked=not_checked,
-        done=done, goal_diff=goal_diff, final_graph=state.to_graph())
+        goal_reached=goal_reached, steps=steps, violations=violations,
+        not_checked=not_checked, done=done, goal_diff=goal_diff, final_graph=final_graph)
 
 
 def _is_parsed(plan: object) -> bool:
     return isinstance(plan, list) and all(isinstance(a, BaseModel) for a in plan) and bool(plan)
+
+
+def _action_dict(action: AnyAction) -> dict[str, Any]:
+    if type(action) is MoveAction:
+        return {"action": "move", "object": action.object, "relation": action.relation,
+                "target": action.target}
+    return action.model_dump()
+
+
+def _steps_from_records(records: list[Record]) -> list[Any]:
+    """StepReports for the records (the edge where compact tuples become models).
+
+    Accepted moves, the bulk of any long plan, are built inline with `object.__new__`
+    and the model's own slots (what `model_construct` does, minus its per-call
+    bookkeeping). The caller pauses the garbage collector (`gc_paused`).
+    """
+    steps: list[Any] = []
+    new, setattr_ = object.__new__, object.__setattr__
+    edge_set, edit_set, step_set = set(EDGE_FIELDS), set(EDIT_FIELDS), set(STEP_FIELDS)
+    for index, action, payload in records:
+        if payload is not None and type(payload) is not tuple:  # not an accepted move
+            ok = isinstance(payload, GraphEdit)
+            values = {"step": index, "ok": ok, "action": _action_dict(action),
+                      "text": action.text(), "violation": None if ok else payload,
+                      "edit": payload if ok else None}
+            steps.append(trusted(StepReport, values, STEP_FIELDS))
+            continue
+        obj, rel, target = action.object, action.relation, action.target  # type: ignore[union-attr]
+        added = new(Edge)
+        setattr_(added, "__dict__", {"source": obj, "relation": rel, "target": target,
+                                     "source_side": None, "target_side": None})
+        setattr_(added, "__pydantic_fields_set__", edge_set)
+        setattr_(added, "__pydantic_extra__", None)
+        setattr_(added, "__pydantic_private__", None)
+        removed = []
+        if payload is not None:
+            old = new(Edge)
+            setattr_(old, "__dict__", {"source": obj, "relation": payload[0],
+                                       "target": payload[1], "source_side": None,
+                                       "target_side": None})
+            setattr_(old, "__pydantic_fields_set__", edge_set)
+            setattr_(old, "__pydantic_extra__", None)
+            setattr_(old, "__pydantic_private__", None)
+            removed.append(old)
+        edit = new(GraphEdit)
+        setattr_(edit, "__dict__", {"removed": removed, "added": [added]})
+        setattr_(edit, "__pydantic_fields_set__", edit_set)
+        setattr_(edit, "__pydantic_extra__", None)
+        setattr_(edit, "__pydantic_private__", None)
+        step = new(StepReport)
+        setattr_(step, "__dict__", {
+            "step": index, "ok": True,
+            "action": {"action": "move", "object": obj, "relation": rel, "target": target},
+            "text": f"move({obj}, {rel}, {target})", "violation": None, "edit": edit})
+        setattr_(step, "__pydantic_fields_set__", step_set)
+        setattr_(step, "__pydantic_extra__", None)
+        setattr_(step, "__pydantic_private__", None)
+        steps.append(step)
+    return steps

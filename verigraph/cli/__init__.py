@@ -6,28 +6,38 @@ Exit codes: 0 success, 1 a negative verdict (plan invalid, goal missed), 2 bad i
 from __future__ import annotations
 
 import argparse
+import importlib
 import sys
 from collections.abc import Sequence
 
-from verigraph.cli import agent, bench, core, perceive, serve, sim, view
 from verigraph.errors import VeriGraphError
 
-# Each module defines `register(subparsers)`, in the order of the help text.
-SUBCOMMAND_MODULES = (core, serve, sim, agent, bench, perceive, view)
+# Each module defines `register(subparsers)`, in the order of the help text. They are
+# imported by name when the parser is built (an import error is an error, never skipped)
+# so that a core command imports only what it needs.
+SUBCOMMAND_MODULES = ("verigraph.cli.core", "verigraph.cli.serve", "verigraph.cli.sim",
+                      "verigraph.cli.agent", "verigraph.cli.bench", "verigraph.cli.perceive",
+                      "verigraph.cli.view")
+
+# The offline verifier's commands need only verigraph.cli.core: running one of them does
+# not import the server, agent or simulator stacks (start-up stays well under a second).
+CORE_COMMANDS = ("validate", "solve", "export-pddl")
 
 EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(modules: Sequence[str] = SUBCOMMAND_MODULES) -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="verigraph", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for module in SUBCOMMAND_MODULES:
-        module.register(sub)
+    for name in modules:
+        importlib.import_module(name).register(sub)
     return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    core_only = bool(argv) and argv[0] in CORE_COMMANDS
+    parser = build_parser(("verigraph.cli.core",) if core_only else SUBCOMMAND_MODULES)
     args = parser.parse_args(argv)
     try:
         code: int = args.handler(args)

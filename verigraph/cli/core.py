@@ -4,37 +4,47 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 from pathlib import Path
 from typing import Any
 
-from verigraph.errors import InputFileError, VeriGraphError
+from verigraph.cli.validating import (
+    EXIT_NEGATIVE,
+    EXIT_OK,
+    emit_error,
+    load_goal_arg,
+    register_validate,
+)
+from verigraph.errors import VeriGraphError
+from verigraph.solver.budget import (
+    DEFAULT_MAX_EXPANSIONS,
+    DEFAULT_MEMORY_LIMIT_MB,
+    DEFAULT_TIME_LIMIT_S,
+)
 
-EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
-MAX_PLAN_BYTES = 64 * 1024 * 1024
+EXIT_BUDGET = 3
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser("validate", help="check a plan against a scene (and a goal)",
-                       description="Per-step report; exit 0 valid (and goal reached), "
-                                   "1 invalid or goal missed, 2 bad input.")
-    p.add_argument("--scene", required=True, help="scene graph file (.json or .yaml)")
-    p.add_argument("--plan", required=True, help="plan file: text (one action per line) or JSON")
-    p.add_argument("--goal", help="goal file: a scene graph, {graph, partial} or {predicate}")
-    p.add_argument("--json", action="store_true", help="print the report as JSON")
-    p.add_argument("--all-errors", action="store_true",
-                   help="continue past violations (skipping failed actions) to list all")
-    p.add_argument("--html", metavar="FILE", help="also write a self-contained HTML report "
-                   "with a drawing per step (see docs/viewer.md)")
-    p.set_defaults(handler=run_validate)
+    register_validate(sub)
 
-    s = sub.add_parser("solve", help="an optimal reference plan by A* search",
+    s = sub.add_parser("solve", help="a reference plan by A* search, under a time/memory budget",
                        description="Exit 0 with a plan, 1 when the goal is unreachable, "
-                                   "2 bad input.")
+                                   "2 bad input, 3 when the budget ran out before any plan "
+                                   "was found (the JSON reason says after how many "
+                                   "expansions, seconds and MB).")
     s.add_argument("--scene", required=True)
     s.add_argument("--goal", required=True, help="goal file, or a predicate name (single_stack)")
     s.add_argument("--json", action="store_true")
-    s.add_argument("--max-expansions", type=int, default=200_000)
+    s.add_argument("--max-expansions", type=int, default=DEFAULT_MAX_EXPANSIONS,
+                   help=f"search nodes to expand at most (default {DEFAULT_MAX_EXPANSIONS:,})")
+    s.add_argument("--time-limit", type=float, default=DEFAULT_TIME_LIMIT_S, metavar="SECONDS",
+                   help=f"wall-clock budget in seconds (default {DEFAULT_TIME_LIMIT_S:g})")
+    s.add_argument("--memory-limit", type=float, default=DEFAULT_MEMORY_LIMIT_MB, metavar="MB",
+                   help="memory budget in MiB that the search may add to the process "
+                        f"(default {DEFAULT_MEMORY_LIMIT_MB})")
+    s.add_argument("--anytime", action="store_true",
+                   help="return the fast strategy's plan at once, refine it with weighted A* "
+                        "within the budget, and report the proven lower bound")
     s.set_defaults(handler=run_solve)
 
     e = sub.add_parser("export-pddl", help="write a STRIPS domain and problem")
@@ -45,81 +55,34 @@ def register(sub: Any) -> None:
     e.set_defaults(handler=run_export_pddl)
 
 
-def read_plan_file(path: str) -> str:
-    p = Path(path)
-    if not p.is_file():
-        raise InputFileError(f"plan file '{p}' does not exist", field="plan", value=path,
-                             fix="give the path of a text or JSON plan")
-    if p.stat().st_size > MAX_PLAN_BYTES:
-        raise InputFileError("plan file is too large", field="plan", value=path,
-                             fix=f"keep plans under {MAX_PLAN_BYTES} bytes")
-    try:
-        return p.read_text(encoding="utf-8")
-    except UnicodeDecodeError:
-        raise InputFileError("plan file is not UTF-8 text", field="plan", value=path,
-                             fix="save it as UTF-8") from None
-
-
-def _load_goal_arg(goal: str) -> Any:
-    from verigraph.graph.goal import PREDICATES, Goal
-    from verigraph.graph.io import load_goal
-
-    if goal in PREDICATES:
-        return Goal.parse(goal)
-    return load_goal(goal)
-
-
-def _emit_error(exc: VeriGraphError, as_json: bool) -> int:
-    if as_json:
-        print(json.dumps({"ok": False, **exc.to_dict()}))
-    print(f"error: {exc}", file=sys.stderr)
-    for problem in getattr(exc, "problems", [])[1:]:
-        print(f"  also [{problem.rule}] {problem.message} (fix: {problem.fix})", file=sys.stderr)
-    return EXIT_BAD_INPUT
-
-
-def run_validate(args: argparse.Namespace) -> int:
-    from verigraph.actions.report import validate_plan
-    from verigraph.graph.io import load_scene
-
-    try:
-        scene = load_scene(args.scene)
-        plan = read_plan_file(args.plan)
-        goal = _load_goal_arg(args.goal) if args.goal else None
-        report = validate_plan(scene, plan, goal, all_errors=args.all_errors)
-        if args.html:
-            _write_html_report(args.html, scene, plan, goal, args.all_errors)
-    except VeriGraphError as exc:
-        return _emit_error(exc, args.json)
-    if args.json:
-        print(report.model_dump_json(exclude_none=True))
-    else:
-        print(report.text())
-    return EXIT_OK if report.valid else EXIT_NEGATIVE
-
-
-def _write_html_report(path: str, scene: Any, plan: str, goal: Any, all_errors: bool) -> None:
-    from verigraph.tools.registry import Toolbox
-    from verigraph.viewer.inputs import write_report
-
-    write_report(Toolbox().context, path, scene, plan, goal, all_errors=all_errors)
-    print(f"wrote {path}", file=sys.stderr)
-
-
 def run_solve(args: argparse.Namespace) -> int:
     from verigraph.graph.io import load_scene
     from verigraph.solver import solve
 
+    for name, value in (("--time-limit", args.time_limit), ("--memory-limit", args.memory_limit),
+                        ("--max-expansions", args.max_expansions)):
+        if not value > 0:
+            return emit_error(VeriGraphError(f"{name} must be positive", field=name,
+                                             value=value, fix=f"give {name} a positive number"),
+                              args.json)
     try:
         scene = load_scene(args.scene)
-        goal = _load_goal_arg(args.goal)
-        result = solve(scene, goal, max_expansions=args.max_expansions)
+        goal = load_goal_arg(args.goal)
+        result = solve(scene, goal, max_expansions=args.max_expansions,
+                       time_limit=args.time_limit, memory_limit_mb=args.memory_limit,
+                       anytime=args.anytime)
     except VeriGraphError as exc:
-        return _emit_error(exc, args.json)
+        return emit_error(exc, args.json)
+    except (MemoryError, RecursionError) as exc:  # last resort: an answer, never a traceback
+        print(json.dumps({"reachable": None, "status": "budget_exhausted",
+                          "reason": f"budget exhausted: {type(exc).__name__}"}))
+        return EXIT_BUDGET
     if args.json:
         print(result.model_dump_json())
     else:
         print(result.text())
+    if result.status == "budget_exhausted":
+        return EXIT_BUDGET
     return EXIT_OK if result.reachable else EXIT_NEGATIVE
 
 
@@ -130,10 +93,10 @@ def run_export_pddl(args: argparse.Namespace) -> int:
 
     try:
         state = WorldState.from_graph(load_scene(args.scene))
-        goal = _load_goal_arg(args.goal)
+        goal = load_goal_arg(args.goal)
         problem = problem_pddl(state, goal)
     except VeriGraphError as exc:
-        return _emit_error(exc, False)
+        return emit_error(exc, False)
     Path(args.domain_out).write_text(domain_pddl())
     Path(args.problem_out).write_text(problem)
     print(f"wrote {args.domain_out} and {args.problem_out}")

@@ -6,10 +6,12 @@ supports or contains the source. Tangram contacts carry the side index on each p
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import networkx as nx
 from pydantic import BaseModel, ConfigDict, Field
+
+if TYPE_CHECKING:  # networkx loads only where a graph is converted (fast CLI start-up)
+    import networkx as nx
 
 ID_PATTERN = r"^[A-Za-z0-9_][A-Za-z0-9_.\-]*$"
 
@@ -85,6 +87,8 @@ class SceneGraph(BaseModel):
         Tangram contacts become one directed edge per contact (source -> target) with
         `source_side` and `target_side` attributes.
         """
+        import networkx as nx
+
         g = nx.DiGraph(dictionary=self.dictionary)
         for n in self.nodes:
             g.add_node(n.id, label=n.label, attrs=dict(n.attrs))

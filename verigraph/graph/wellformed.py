@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from collections import Counter, defaultdict
 
-import networkx as nx
 from pydantic import BaseModel
 
 from verigraph.graph.dictionary import Dictionary, ObjectProperties
@@ -75,6 +74,8 @@ def check_and_resolve(graph: SceneGraph, dictionary: Dictionary, *, partial: boo
     ids = set(counts)
     supports: dict[str, list[int]] = defaultdict(list)
     carried: Counter[str] = Counter()
+    import networkx as nx  # loaded on the first check, not at import (CLI start-up)
+
     support_graph = nx.DiGraph()
     for i, edge in enumerate(graph.edges):
         where = f"edges[{i}]"

@@ -1,5 +1,12 @@
-"""Reference planning: the optimal solver and PDDL export for cross-checking."""
+"""Reference planning: the optimal/anytime solver under a budget, and PDDL export."""
 
-from verigraph.solver.search import SolveResult, solve
+from verigraph.solver.budget import (
+    DEFAULT_MAX_EXPANSIONS,
+    DEFAULT_MEMORY_LIMIT_MB,
+    DEFAULT_TIME_LIMIT_S,
+)
+from verigraph.solver.result import SolveResult
+from verigraph.solver.search import solve
 
-__all__ = ["SolveResult", "solve"]
+__all__ = ["DEFAULT_MAX_EXPANSIONS", "DEFAULT_MEMORY_LIMIT_MB", "DEFAULT_TIME_LIMIT_S",
+           "SolveResult", "solve"]

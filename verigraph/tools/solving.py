@@ -37,6 +37,12 @@ class SolveInput(BaseModel):
                                                         "built-in scene's goal")
     max_expansions: int = Field(default=200_000, ge=1, le=2_000_000,
                                 description="search budget (nodes expanded)")
+    time_limit: float = Field(default=5.0, gt=0, le=600,
+                              description="wall-clock budget in seconds")
+    memory_limit_mb: float = Field(default=200, gt=0, le=16_384,
+                                   description="memory budget in MiB (growth during the search)")
+    anytime: bool = Field(default=False, description="return the fast strategy's plan, refined "
+                                                     "within the budget, with a lower bound")
 
     @model_validator(mode="after")
     def _one_scene(self) -> SolveInput:
@@ -58,10 +64,11 @@ class SolveOutput(BaseModel):
     verified: bool = Field(description="the verifier accepts every step and the goal holds")
     optimal: bool = Field(default=False, description="no shorter plan exists")
     expanded: int = Field(default=0, description="search nodes expanded")
+    lower_bound: int | None = Field(default=None, description="no plan is shorter than this")
 
     def summary(self) -> str:
         if self.reachable is None:
-            return f"no plan found within the search budget ({self.expanded} nodes expanded)"
+            return f"no plan found: {self.reason or 'search budget exhausted'}"
         if not self.reachable:
             return f"no plan: {self.reason or 'goal unreachable'}"
         check = "verified" if self.verified else "NOT verified by the validator"
@@ -80,7 +87,9 @@ def solve(ctx: ToolContext, params: SolveInput) -> SolveOutput:
                                 fix="pass goal, or call set_goal on the episode first")
     if params.goal is not None:
         check_goal_against(params.goal, state, field="goal")
-    result = search_plan(state, goal, max_expansions=params.max_expansions)
+    result = search_plan(state, goal, max_expansions=params.max_expansions,
+                         time_limit=params.time_limit, memory_limit_mb=params.memory_limit_mb,
+                         anytime=params.anytime)
     plan: list[AnyAction] = list(result.plan or [])
     verified = False
     if result.reachable:
@@ -88,4 +97,5 @@ def solve(ctx: ToolContext, params: SolveInput) -> SolveOutput:
     return SolveOutput(reachable=result.reachable, plan=[a.text() for a in plan],
                        actions=plan, length=len(plan), reason=result.reason,
                        verified=verified, optimal=bool(getattr(result, "optimal", False)),
-                       expanded=int(getattr(result, "expanded", 0)))
+                       expanded=int(getattr(result, "expanded", 0)),
+                       lower_bound=getattr(result, "lower_bound", None))

@@ -21,9 +21,9 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.agent.evaluation.limiter import Gate
-from verigraph.llm.http import RETRY_STATUS, LLMEndpointError
 from verigraph.agent.models import PlannerReply, PlannerRequest
 from verigraph.agent.planner import Planner
+from verigraph.llm.http import RETRY_STATUS, LLMEndpointError
 
 _STATUS = re.compile(r"HTTP (\d{3})")
 

@@ -1,0 +1,130 @@
+"""PDDL blocks world in: domain spellings, plan formats, the hand model's feedback, CLI."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from blocksworld_corpus import DATA
+from verigraph.actions.blocksworld import (
+    UnsupportedDomainError,
+    recognise_domain,
+    validate_pddl_plan,
+)
+
+PROBLEM = (DATA / "planbench_instance.pddl").read_text()  # d on c, a on b; goal c on a
+PLANBENCH = (DATA / "planbench_domain.pddl").read_text()
+
+
+@pytest.mark.parametrize("name,family,ops", [
+    ("planbench", "4op", {"pick-up", "put-down", "stack", "unstack"}),
+    ("ipc2000", "4op", {"pick-up", "put-down", "stack", "unstack"}),
+    ("typed", "4op", {"pickup", "putdown", "stack", "unstack"}),
+    ("three_op", "3op", {"move-b-to-b", "move-b-to-t", "move-t-to-b"}),
+])
+def test_each_domain_spelling_is_recognised(name, family, ops):
+    domain = recognise_domain((DATA / f"{name}_domain.pddl").read_text())
+    assert domain.family == family and set(domain.operators) == ops
+
+
+@pytest.mark.parametrize("edit,fragment", [
+    (lambda d: d.replace("(not (arm-empty))))", "(not (arm-empty)) (on ?ob ?ob)))", 1),
+     "pick-up"),
+    (lambda d: d.replace("(holding ?x)", "(holding ?x) (painted ?x)", 1), "predicate"),
+    (lambda d: d.replace("(:requirements :strips)", "(:requirements :strips :fluents)"),
+     "fluents"),
+    (lambda d: d.replace("(:action put-down", "(:action put-down-twice", 1)
+     .replace(":parameters  (?ob)\n  :precondition (holding ?ob)",
+              ":parameters  (?ob)\n  :precondition (or (holding ?ob) (clear ?ob))", 1), "or"),
+])
+def test_anything_outside_the_family_is_unsupported(edit, fragment):
+    with pytest.raises(UnsupportedDomainError, match="unsupported domain") as err:
+        recognise_domain(edit(PLANBENCH))
+    assert fragment in str(err.value)
+
+
+def test_planbench_sentences_and_sexpr_lines_give_the_same_report():
+    text = (DATA / "planbench_plan.txt").read_text()
+    sexpr = (DATA / "planbench_plan.pddl").read_text()
+    a, b = validate_pddl_plan(PLANBENCH, PROBLEM, text), validate_pddl_plan(PLANBENCH, PROBLEM,
+                                                                           sexpr)
+    assert a.valid and a.model_dump() == b.model_dump()
+    val_style = "; VAL output\n0.000: (unstack d c) [1]\n1: (put-down d)\n(PICK-UP C)\n(stack c a)"
+    assert validate_pddl_plan(PLANBENCH, PROBLEM, val_style).valid
+
+
+@pytest.mark.parametrize("plan,step,constraint", [
+    ("(pick-up a)", 1, "wrong_source"),                   # a is on b
+    ("(unstack d a)", 1, "wrong_source"),                 # d is on c
+    ("(pick-up b)", 1, "object_not_clear"),               # a is on b
+    ("(unstack d c)\n(unstack a b)", 2, "hand_full"),
+    ("(put-down a)", 1, "not_held"),
+    ("(unstack d c)\n(stack d b)", 2, "target_full"),     # a is on b
+    ("(unstack d c)\n(stack d d)", 2, "same_object"),
+])
+def test_hand_model_violations_have_their_own_ids(plan, step, constraint):
+    report = validate_pddl_plan(PLANBENCH, PROBLEM, plan)
+    v = report.violations[0]
+    assert (v.step, v.constraint) == (step, constraint) and v.suggestion
+
+
+def test_a_block_still_held_is_not_a_violation_the_goal_decides():
+    report = validate_pddl_plan(PLANBENCH, PROBLEM, "(unstack d c)\n(put-down d)\n(pick-up c)")
+    assert report.plan_valid and not report.goal_reached
+    assert report.goal_diff is not None and report.goal_diff.missing_edges == ["(on c a)"]
+    held = [e for e in report.final_graph.edges if e.relation == "in"]
+    assert [(e.source, e.target) for e in held] == [("c", "hand")]
+
+
+def test_empty_plan_is_valid_input():
+    report = validate_pddl_plan(PLANBENCH, PROBLEM, "")
+    assert report.plan_valid and report.goal_reached is False and report.steps == []
+
+
+def test_inconsistent_initial_state_is_refused():
+    broken = PROBLEM.replace("(clear d)\n", "")
+    with pytest.raises(UnsupportedDomainError, match="clear d"):
+        validate_pddl_plan(PLANBENCH, broken, "")
+
+
+def verigraph(*args, cwd):
+    return subprocess.run([sys.executable, "-m", "verigraph", *args], capture_output=True,
+                          text=True, cwd=cwd, timeout=120)
+
+
+def test_cli_pddl_text_json_and_bad_input(tmp_path):
+    base = ["validate", "--domain", "planbench_domain.pddl", "--problem",
+            "planbench_instance.pddl"]
+    r = verigraph(*base, "--plan", "planbench_plan.txt", cwd=DATA)
+    assert r.returncode == 0 and "VALID: 4 step(s) checked" in r.stdout
+    (tmp_path / "bad.txt").write_text("(unstack d c)\n(stack d b)\n")
+    r = verigraph(*base, "--plan", str(tmp_path / "bad.txt"), "--json", cwd=DATA)
+    assert r.returncode == 1
+    assert json.loads(r.stdout)["violations"][0]["constraint"] == "target_full"
+    (tmp_path / "arity.txt").write_text("(unstack d c)\n(unstack b)\n")
+    r = verigraph(*base, "--plan", str(tmp_path / "arity.txt"), cwd=DATA)
+    assert r.returncode == 2 and "line 2" in r.stderr and "Traceback" not in r.stderr
+    (tmp_path / "d.pddl").write_text(PLANBENCH.replace("(holding ?x)", "(holding ?x) (wet ?x)"))
+    r = verigraph("validate", "--domain", str(tmp_path / "d.pddl"), "--problem",
+                  "planbench_instance.pddl", "--plan", "planbench_plan.txt", cwd=DATA)
+    assert r.returncode == 2 and "unsupported domain" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_three_op_self_move_is_refused_when_the_domain_allows_it():
+    three = (DATA / "three_op_domain.pddl").read_text()
+    problem = PROBLEM.replace("(arm-empty)\n", "")
+    strict = validate_pddl_plan(three, problem, "(move-b-to-t d c)\n(move-t-to-b d d)")
+    assert strict.violations[0].constraint == "same_object" and strict.violations[0].step == 2
+    loose = three.replace("(on-table ?bm) (not (= ?bm ?bt)))", "(on-table ?bm))")
+    with pytest.raises(UnsupportedDomainError, match="onto itself"):
+        validate_pddl_plan(loose, problem, "(move-b-to-t d c)\n(move-t-to-b d d)")
+
+
+def test_cli_all_errors_is_for_scene_plans_only():
+    r = verigraph("validate", "--domain", "planbench_domain.pddl", "--problem",
+                  "planbench_instance.pddl", "--plan", "planbench_plan.txt", "--all-errors",
+                  cwd=DATA)
+    assert r.returncode == 2 and "scene plans only" in r.stderr

@@ -1,0 +1,52 @@
+"""The fused fast path accepts exactly the moves the full constraint list accepts,
+and the report built from compact records equals the one built step by step."""
+
+from __future__ import annotations
+
+import random
+
+from scenes import random_blocks, random_tableware
+from verigraph.actions import MoveAction, validate_plan
+from verigraph.actions.records import move_accepted
+from verigraph.actions.validator import apply_action, validate_action
+from verigraph.graph import Goal, WorldState
+
+
+def test_move_accepted_agrees_with_the_constraints_on_random_moves():
+    rng = random.Random(4)
+    outcomes = {True: 0, False: 0}
+    for case in range(300):
+        graph = random_blocks(6, case) if case % 2 else random_tableware(5, case)
+        state = WorldState.from_graph(graph)
+        ids = [*state.objects, "ghost"]
+        for _ in range(10):
+            a = MoveAction(object=rng.choice(ids), relation=rng.choice(["on", "in", "under"]),
+                           target=rng.choice(ids))
+            fast = move_accepted(state, a)
+            assert fast == (validate_action(state, a) is None), a
+            outcomes[fast] += 1
+            if fast:
+                apply_action(state, a)
+    assert outcomes[True] > 100 and outcomes[False] > 100
+
+
+def test_report_from_records_matches_step_by_step_edits():
+    rng = random.Random(9)
+    for case in range(40):
+        start = random_blocks(5, case)
+        ids = [n.id for n in start.nodes]
+        plan = [MoveAction(object=rng.choice(ids), target=rng.choice(ids)) for _ in range(6)]
+        report = validate_plan(start, plan, Goal(graph=random_blocks(5, case + 1)),
+                               all_errors=True)
+        state = WorldState.from_graph(start)
+        for step, action in zip(report.steps, plan, strict=True):
+            violation = validate_action(state, action, step.step)
+            assert step.ok == (violation is None)
+            if violation is None:
+                edit = apply_action(state, action)
+                assert step.edit is not None and step.edit.model_dump() == edit.model_dump()
+                assert step.action == action.model_dump() and step.text == action.text()
+            else:
+                assert step.violation == violation
+        assert report.final_graph == state.to_graph()
+        assert report.model_dump_json()  # serialises like a validated model

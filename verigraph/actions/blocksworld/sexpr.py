@@ -1,0 +1,102 @@
+"""A small S-expression reader for PDDL: lists of lower-cased atoms, with line numbers.
+
+PDDL is case-insensitive, so every atom is lower-cased here once; `;` starts a comment.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import NoReturn
+
+from verigraph.errors import VeriGraphError
+
+_TOKEN = re.compile(r";[^\n]*|\(|\)|[^\s()]+|\n")
+_FAST_TOKEN = re.compile(r"[()]|[^\s()]+")
+_COMMENT = re.compile(r";[^\n]*")
+
+SExpr = str | list["SExpr"]
+
+
+class PddlSyntaxError(VeriGraphError):
+    """A PDDL file that does not read as balanced S-expressions of the expected shape."""
+
+
+def parse_sexpr(text: str, *, what: str) -> list[SExpr]:
+    """All top-level expressions in `text` (a domain or problem file's contents).
+
+    The fast path tokenizes with one regex; line numbers are only computed for errors.
+    """
+    stack: list[list[SExpr]] = [[]]
+    for token in _FAST_TOKEN.findall(_COMMENT.sub("", text).lower()):
+        if token == "(":
+            stack.append([])
+        elif token == ")":
+            if len(stack) == 1:
+                _locate_error(text, what)
+            done = stack.pop()
+            stack[-1].append(done)
+        else:
+            stack[-1].append(token)
+    if len(stack) > 1:
+        _locate_error(text, what)
+    return stack[0]
+
+
+def _locate_error(text: str, what: str) -> NoReturn:
+    """Raise PddlSyntaxError naming the line of the unbalanced parenthesis."""
+    opened: list[int] = []
+    line = 1
+    for match in _TOKEN.finditer(text):
+        token = match.group()
+        if token == "\n":
+            line += 1
+        elif token == "(":
+            opened.append(line)
+        elif token == ")":
+            if not opened:
+                raise PddlSyntaxError(f"unbalanced ')' on line {line}", field=what,
+                                      value=line, fix="remove the extra closing parenthesis")
+            opened.pop()
+    raise PddlSyntaxError(f"'(' opened on line {opened[-1]} is never closed", field=what,
+                          value=opened[-1], fix="add the missing closing parenthesis")
+
+
+def define_body(text: str, *, what: str, kind: str) -> tuple[str, list[SExpr]]:
+    """(define (KIND name) sections...) -> (name, sections)."""
+    exprs = parse_sexpr(text, what=what)
+    if len(exprs) != 1 or not isinstance(exprs[0], list) or not exprs[0] \
+            or exprs[0][0] != "define":
+        raise PddlSyntaxError(f"a PDDL {kind} file holds one (define ({kind} NAME) ...)",
+                              field=what, value=None, fix=f"start the file with (define ({kind} "
+                              "NAME)")
+    head = exprs[0][1] if len(exprs[0]) > 1 else None
+    if not (isinstance(head, list) and len(head) == 2 and head[0] == kind
+            and isinstance(head[1], str)):
+        raise PddlSyntaxError(f"expected ({kind} NAME) after define", field=what,
+                              value=str(head)[:80], fix=f"write (define ({kind} NAME) ...)")
+    return head[1], exprs[0][2:]
+
+
+def typed_names(items: list[SExpr], *, what: str) -> list[tuple[str, str | None]]:
+    """`a b - block c` -> [(a, block), (b, block), (c, None)] (PDDL typed lists)."""
+    out: list[tuple[str, str | None]] = []
+    pending: list[str] = []
+    i = 0
+    while i < len(items):
+        item = items[i]
+        if not isinstance(item, str):
+            raise PddlSyntaxError(f"expected a name in a typed list, got {item}", field=what,
+                                  value=str(item)[:80], fix="write names as `a b - type`")
+        if item == "-":
+            kind = items[i + 1] if i + 1 < len(items) else None
+            if not isinstance(kind, str):
+                raise PddlSyntaxError("'-' must be followed by a type name", field=what,
+                                      value=None, fix="write names as `a b - type`")
+            out.extend((name, kind) for name in pending)
+            pending = []
+            i += 2
+            continue
+        pending.append(item)
+        i += 1
+    out.extend((name, None) for name in pending)
+    return out

@@ -1,0 +1,163 @@
+"""`verigraph validate`: a plan against a scene graph, a PDDL blocks-world problem, or a batch.
+
+Three inputs, one report shape (the `--json` report of ValidationReport):
+
+* `--scene S --plan P [--goal G]`: a scene graph and a move/align plan;
+* `--domain D --problem P --plan PLAN`: PDDL blocks world (4-op with a hand, or 3-op);
+* `--batch FILE.jsonl`: one item per line, one JSON line out per item, errors per item.
+
+Heavy modules are imported where used, so validating a small plan starts quickly.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+from typing import Any
+
+from verigraph.errors import InputFileError, VeriGraphError
+
+EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
+MAX_PLAN_BYTES = 64 * 1024 * 1024
+
+
+def register_validate(sub: Any) -> None:
+    p = sub.add_parser(
+        "validate", help="check a plan against a scene (and a goal), PDDL blocks world, or a batch",
+        description="Per-step report; exit 0 valid (and goal reached), 1 invalid or goal "
+                    "missed, 2 bad input. Give --scene/--plan[/--goal], or --domain/--problem/"
+                    "--plan (PDDL blocks world), or --batch FILE.jsonl.")
+    p.add_argument("--scene", help="scene graph file (.json or .yaml)")
+    p.add_argument("--plan", help="plan file: text (one action per line) or JSON; with "
+                                  "--domain: (op args) lines or PlanBench sentences")
+    p.add_argument("--goal", help="goal file: a scene graph, {graph, partial} or {predicate}")
+    p.add_argument("--domain", help="PDDL blocks-world domain file (4-op with a hand, or 3-op)")
+    p.add_argument("--problem", help="PDDL problem file for --domain")
+    p.add_argument("--batch", help="JSON Lines file: one {id, domain, problem, plan} or "
+                                   "{id, scene, plan, goal} per line (paths relative to the "
+                                   "file); prints one JSON report line per item")
+    p.add_argument("--json", action="store_true", help="print the report as JSON")
+    p.add_argument("--all-errors", action="store_true",
+                   help="continue past violations (skipping failed actions) to list all "
+                        "(scene plans only)")
+    p.add_argument("--no-progress", action="store_true", help="batch: no progress bar")
+    p.add_argument("--html", metavar="FILE", help="also write a self-contained HTML report "
+                   "with a drawing per step (scene plans; see docs/viewer.md)")
+    p.set_defaults(handler=run_validate)
+
+
+def read_text_file(path: str | Path, field: str, limit: int = MAX_PLAN_BYTES) -> str:
+    p = Path(path)
+    if not p.is_file():
+        raise InputFileError(f"{field} file '{p}' does not exist", field=field, value=str(path),
+                             fix=f"give the path of the {field} file")
+    if p.stat().st_size > limit:
+        raise InputFileError(f"{field} file is too large", field=field, value=str(path),
+                             fix=f"keep it under {limit} bytes")
+    try:
+        return p.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        raise InputFileError(f"{field} file is not UTF-8 text", field=field, value=str(path),
+                             fix="save it as UTF-8") from None
+
+
+def load_goal_arg(goal: str) -> Any:
+    from verigraph.graph.goal import PREDICATES, Goal
+    from verigraph.graph.io import load_goal
+
+    if goal in PREDICATES:
+        return Goal.parse(goal)
+    return load_goal(goal)
+
+
+def emit_error(exc: VeriGraphError, as_json: bool) -> int:
+    if as_json:
+        print(json.dumps({"ok": False, **exc.to_dict()}))
+    print(f"error: {exc}", file=sys.stderr)
+    for problem in getattr(exc, "problems", [])[1:]:
+        print(f"  also [{problem.rule}] {problem.message} (fix: {problem.fix})", file=sys.stderr)
+    return EXIT_BAD_INPUT
+
+
+def pddl_report(domain: str | Path, problem: str | Path, plan: str | Path,
+                cache: dict[str, str] | None = None) -> dict[str, Any]:
+    """The JSON-ready report for a PDDL item (domain texts cached per path in a batch)."""
+    from verigraph.actions.blocksworld.validate import validate_blocks_dict
+
+    key = str(domain)
+    if cache is not None and key in cache:
+        domain_text = cache[key]
+    else:
+        domain_text = read_text_file(domain, "domain")
+        if cache is not None:
+            cache[key] = domain_text
+    return validate_blocks_dict(domain_text, read_text_file(problem, "problem"),
+                                read_text_file(plan, "plan"))
+
+
+def scene_report(scene: str | Path, plan: str | Path, goal: str | Path | None,
+                 all_errors: bool = False) -> Any:
+    from verigraph.actions.report import validate_plan
+    from verigraph.graph.io import load_scene
+
+    goal_value = load_goal_arg(str(goal)) if goal else None
+    return validate_plan(load_scene(scene), read_text_file(plan, "plan"), goal_value,
+                         all_errors=all_errors)
+
+
+def write_html_report(path: str, scene: str, plan: str, goal: str | None,
+                      all_errors: bool) -> None:
+    """The viewer's self-contained report of this validation (drawings embedded)."""
+    from verigraph.graph.io import load_scene
+    from verigraph.tools.registry import Toolbox
+    from verigraph.viewer.inputs import write_report
+
+    goal_value = load_goal_arg(goal) if goal else None
+    write_report(Toolbox().context, path, load_scene(scene), read_text_file(plan, "plan"),
+                 goal_value, all_errors=all_errors)
+    print(f"wrote {path}", file=sys.stderr)
+
+
+def _usage_error(message: str, fix: str) -> VeriGraphError:
+    return VeriGraphError(message, field="arguments", value=None, fix=fix)
+
+
+def run_validate(args: argparse.Namespace) -> int:
+    try:
+        if args.batch:
+            if args.scene or args.domain or args.plan:
+                raise _usage_error("--batch takes no other input", "give only --batch FILE")
+            from verigraph.cli.batch import run_batch
+
+            return run_batch(Path(args.batch), progress=not args.no_progress)
+        if args.domain or args.problem:
+            if not (args.domain and args.problem and args.plan) or args.scene or args.goal:
+                raise _usage_error("PDDL input needs --domain, --problem and --plan (no --scene "
+                                   "or --goal: the goal is in the problem)",
+                                   "verigraph validate --domain D.pddl --problem P.pddl --plan F")
+            if args.all_errors or args.html:
+                raise _usage_error("--all-errors and --html apply to scene plans only",
+                                   "drop --all-errors; PDDL plans stop at the first failure")
+            data = pddl_report(args.domain, args.problem, args.plan)
+            if args.json:
+                print(json.dumps(data))
+                return EXIT_OK if data["valid"] else EXIT_NEGATIVE
+            from verigraph.actions.report import ValidationReport
+
+            report = ValidationReport.model_validate(data)
+        else:
+            if not (args.scene and args.plan):
+                raise _usage_error("give --scene and --plan (or --domain/--problem/--plan, or "
+                                   "--batch)", "verigraph validate --scene S.json --plan P.txt")
+            report = scene_report(args.scene, args.plan, args.goal, args.all_errors)
+            if args.html:
+                write_html_report(args.html, args.scene, args.plan, args.goal, args.all_errors)
+            if args.json:
+                print(report.model_dump_json(exclude_none=True))
+                return EXIT_OK if report.valid else EXIT_NEGATIVE
+    except VeriGraphError as exc:
+        return emit_error(exc, args.json)
+    print(report.text())
+    return EXIT_OK if report.valid else EXIT_NEGATIVE

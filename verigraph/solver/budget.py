@@ -1,0 +1,71 @@
+"""A wall-clock, memory and expansion budget that every search checks as it goes.
+
+Memory is the growth of the process's resident set since the budget started (read from
+/proc/self/statm on Linux, ru_maxrss elsewhere), so the limit is what the search itself
+allocates, not the interpreter and libraries already loaded. Checking costs a clock read
+per call and a /proc read every `memory_every` calls.
+"""
+
+from __future__ import annotations
+
+import os
+import resource
+import time
+from dataclasses import dataclass, field
+
+DEFAULT_TIME_LIMIT_S = 5.0
+DEFAULT_MEMORY_LIMIT_MB = 200
+DEFAULT_MAX_EXPANSIONS = 200_000
+_PAGE = os.sysconf("SC_PAGE_SIZE") if hasattr(os, "sysconf") else 4096
+
+
+def resident_mb() -> float:
+    """Current resident set size in MiB."""
+    try:
+        with open("/proc/self/statm", "rb") as f:
+            return int(f.read().split()[1]) * _PAGE / 2**20
+    except OSError:
+        return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
+class BudgetExhausted(Exception):  # noqa: N818 - a control-flow signal, not an error
+    """Raised inside a search when a limit is reached; carries the reason."""
+
+
+@dataclass(slots=True)
+class Budget:
+    """Limits for one solve call; `check()` raises BudgetExhausted when one is passed."""
+
+    time_limit_s: float = DEFAULT_TIME_LIMIT_S
+    memory_limit_mb: float = DEFAULT_MEMORY_LIMIT_MB
+    max_expansions: int = DEFAULT_MAX_EXPANSIONS
+    memory_every: int = 256
+    expansions: int = 0
+    started: float = field(default_factory=time.perf_counter)
+    base_mb: float = field(default_factory=resident_mb)
+    peak_mb: float = 0.0
+    _calls: int = 0
+
+    def elapsed(self) -> float:
+        return time.perf_counter() - self.started
+
+    def used_mb(self) -> float:
+        used = max(0.0, resident_mb() - self.base_mb)
+        self.peak_mb = max(self.peak_mb, used)
+        return used
+
+    def reason(self, what: str) -> str:
+        return (f"budget exhausted ({what}) after {self.expansions} expansions / "
+                f"{self.elapsed():.1f} s / {self.peak_mb:.0f} MB")
+
+    def check(self, *, memory: bool = False) -> None:
+        """Call often (per expansion and inside large successor loops); `memory` forces
+        the resident-set read (for loops whose every step allocates a lot)."""
+        self._calls += 1
+        if self.expansions > self.max_expansions:
+            raise BudgetExhausted(self.reason(f"{self.max_expansions} expansions"))
+        if time.perf_counter() - self.started > self.time_limit_s:
+            raise BudgetExhausted(self.reason(f"time limit {self.time_limit_s:g} s"))
+        if (memory or self._calls % self.memory_every == 0) \
+                and self.used_mb() > self.memory_limit_mb:
+            raise BudgetExhausted(self.reason(f"memory limit {self.memory_limit_mb:g} MB"))
