@@ -116,6 +116,15 @@ class ArmConfig(BaseModel):
     tool_margin_m: float = Field(default=0.01, ge=0,
                                  description="keep-out zones are grown by this much")
     home: Pose = Pose(x=0.35, y=0.0, z=0.45)
+    agent_may_reset: bool = Field(
+        default=False, description="sim/dry-run: let the agent's arm_reset clear a stop "
+                                   "(real mode always asks the user)")
+    deadman_s: float | None = Field(
+        default=None, gt=0, le=60, description="stop a motion when no tool call arrives "
+                                               "for this long (None: no heartbeat needed)")
+    unsafe_disable_controller_fence: bool = Field(
+        default=False, description="real mode: allow xarm.set_reduced_boundary: false, "
+                                   "which leaves the controller's own fence off")
     audit_log: Path | None = Field(default=None, description="JSON-lines file, appended to")
     layout: dict[str, DeclaredObject] = Field(
         default_factory=dict,

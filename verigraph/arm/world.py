@@ -10,6 +10,7 @@ so `execute_in_world` flags `execution_failed` and adopts it.
 
 from __future__ import annotations
 
+import contextlib
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -78,21 +79,29 @@ class ArmWorld:
         try:
             planned = self._plan(action)
             if isinstance(planned, Violation):
-                return planned
+                return self._logged(action, planned)
             approval = None
             if self._controller.mode == "real":
                 approval = self._controller.confirm_plan(planned)
                 planned = self._plan(action)  # the scene may have changed while asking
                 if isinstance(planned, Violation):
-                    return planned
+                    return self._logged(action, planned)
             outcome = self._controller.execute(planned, approval=approval)
         except ArmRefusal as exc:
-            return _refusal(action, exc)
+            return self._logged(action, _refusal(action, exc), audited=exc.audited)
         self.last_outcome = outcome
         if self._dry is not None and outcome.status == "recorded":
             self._dry.record(planned.predicted_location(time.time()))
         self.last_check = self._check(action)
         return None
+
+    def _logged(self, action: MoveAction, violation: Violation, *,
+                audited: bool = False) -> Violation:
+        """Every refusal goes into the audit log, in every mode."""
+        if not audited:
+            with contextlib.suppress(ArmError):  # a write failure stopped and latched the arm
+                self._controller.log_refusal(action.text(), violation.message)
+        return violation
 
     def observe(self) -> SceneGraph:
         """The scene graph rebuilt from fresh locations of every object."""
@@ -104,7 +113,16 @@ class ArmWorld:
         return self._controller.status()
 
     def stop(self, reason: str = "stop requested") -> ArmStatus:
+        """Halt now and latch (never waits on the driver's status or a running call)."""
         return self._controller.stop(reason)
+
+    @property
+    def stop_latched(self) -> bool:
+        return self._controller.stop_latched
+
+    def touch(self) -> None:
+        """A call from the client arrived (the deadman's heartbeat)."""
+        self._controller.touch()
 
     def home(self) -> MotionOutcome:
         """Go to the configured home pose (confirmed first in real mode)."""
@@ -112,9 +130,9 @@ class ArmWorld:
         return self._controller.home(approval=approval)
 
     def reset(self) -> ArmStatus:
-        """Clear the latched stop; on a real arm a human approves it first."""
-        self._controller.confirm_reset()
-        return self._controller.reset()
+        """The agent's reset: a human approves it on a real arm; in sim and dry-run only
+        if the operator set `agent_may_reset` (else `verigraph arm reset`)."""
+        return self._controller.agent_reset()
 
     @property
     def config(self) -> ArmConfig:

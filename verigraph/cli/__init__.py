@@ -15,7 +15,8 @@ from verigraph.errors import VeriGraphError
 # Each module defines `register(subparsers)`; a module whose optional dependencies are
 # missing is skipped, so the core install still has validate/solve/export-pddl.
 SUBCOMMAND_MODULES = ("verigraph.cli.core", "verigraph.cli.serve", "verigraph.cli.sim",
-                      "verigraph.cli.agent", "verigraph.cli.bench", "verigraph.cli.perceive")
+                      "verigraph.cli.agent", "verigraph.cli.bench", "verigraph.cli.perceive",
+                      "verigraph.cli.arm")
 
 EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
 

@@ -86,7 +86,7 @@ def arm_stop(ctx: ToolContext, params: ArmStopInput) -> ArmStatusOutput:
     """Latch the stop and halt any motion now; only arm_reset clears the latch."""
     episode = ctx.store.peek(params.episode_id)
     world = _arm(episode)
-    already = world.status().stop_latched
+    already = world.stop_latched  # never the driver's status: it might hang
     status = world.stop(params.reason)
     note = ("the stop was already latched; it stays latched" if already else
             "stop latched: the arm halted and refuses every motion until arm_reset")
@@ -94,13 +94,14 @@ def arm_stop(ctx: ToolContext, params: ArmStopInput) -> ArmStatusOutput:
 
 
 def arm_reset(ctx: ToolContext, params: ArmRef) -> ArmStatusOutput:
-    """Clear the latched stop once the stopped motion has ended (a real arm asks first)."""
+    """Clear the arm's latched stop or error once the stopped motion has ended: a real
+    arm asks the user; sim and dry-run only if the operator allowed it. Nothing moves."""
     with ctx.store.use(params.episode_id) as episode:
         world = _arm(episode)
         was = world.status()
         status = world.reset()
-        note = (f"stop cleared (it was latched: {was.stop_reason})" if was.stop_latched
-                else "reset done; no stop was latched")
+        note = (f"stop cleared (it was latched: {was.stop_reason}); nothing moved"
+                if was.stop_latched else "reset done; no stop was latched")
         return _output(episode, status, note)
 
 
