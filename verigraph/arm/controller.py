@@ -22,7 +22,7 @@ from pydantic import BaseModel
 
 from verigraph.arm.audit import AuditLog, AuditWriteError
 from verigraph.arm.config import ArmConfig
-from verigraph.arm.confirm import ask_confirmation
+from verigraph.arm.confirm import ConfirmationAnswer, ask_confirmation
 from verigraph.arm.errors import (
     ArmBusyError,
     ArmConnectionError,
@@ -252,7 +252,7 @@ class ArmController:
         if request is None:
             return
         answer = ask_confirmation(self._confirm, request, self.config.confirm_timeout_s)
-        self._log_answer(request, answer.approved, answer.reason)
+        self._log_answer(request, answer)
         if not answer.approved:
             raise _audited(ConfirmationError(
                 f"reset not confirmed: {answer.reason}", field="confirm", value="reset",
@@ -345,7 +345,7 @@ class ArmController:
     def _ask(self, request: ConfirmationRequest) -> Approval:
         self._refuse_if_stopped()
         answer = ask_confirmation(self._confirm, request, self.config.confirm_timeout_s)
-        self._log_answer(request, answer.approved, answer.reason)
+        self._log_answer(request, answer)
         if not answer.approved:
             raise _audited(ConfirmationError(
                 f"real motion not confirmed: {answer.reason}", field="confirm",
@@ -355,11 +355,13 @@ class ArmController:
         self._approvals.add(approval)
         return approval
 
-    def _log_answer(self, request: ConfirmationRequest, approved: bool, reason: str) -> None:
-        outcome: AuditOutcome = "done" if approved else (
-            "timeout" if "no answer within" in reason or "after" in reason else "declined")
-        self._log("confirm", {"motion": request.motion}, outcome, reason,
+    def _log_answer(self, request: ConfirmationRequest, answer: ConfirmationAnswer) -> None:
+        self._log("confirm", {"motion": request.motion}, answer.outcome, answer.reason,
                   question=request.summary())
+
+    def log_confirmation(self, question: str, outcome: AuditOutcome, detail: str) -> None:
+        """Record an answer asked outside this controller (MCP elicitation)."""
+        self._log("confirm", {}, outcome, detail, question=question)
 
     def log_refusal(self, what: str, detail: str) -> None:
         """Record a refusal decided outside the gate (validator, locator, planner)."""

@@ -23,7 +23,13 @@ from verigraph.arm.config import ArmConfig
 from verigraph.arm.controller import ArmController, MotionOutcome
 from verigraph.arm.errors import ArmError, ArmRefusal, ObjectNotFoundError
 from verigraph.arm.locators import DryRunLocator
-from verigraph.arm.models import ArmStatus, ConfirmationRequest, ObjectLocation, Pose
+from verigraph.arm.models import (
+    ArmStatus,
+    AuditOutcome,
+    ConfirmationRequest,
+    ObjectLocation,
+    Pose,
+)
 from verigraph.arm.planning import MotionPlan, plan_motion
 from verigraph.arm.protocols import ObjectLocator
 from verigraph.arm.receipt import authorize
@@ -119,6 +125,10 @@ class ArmWorld:
     @property
     def stop_latched(self) -> bool:
         return self._controller.stop_latched
+
+    def log_confirmation(self, question: str, outcome: AuditOutcome, detail: str) -> None:
+        """Record a human's answer given outside this world (MCP elicitation)."""
+        self._controller.log_confirmation(question, outcome, detail)
 
     def touch(self) -> None:
         """A call from the client arrived (the deadman's heartbeat)."""

@@ -19,6 +19,7 @@ from verigraph.actions.executor import World
 from verigraph.actions.model import MoveAction
 from verigraph.actions.validator import apply_action, validate_action
 from verigraph.arm import ArmStatus, ArmWorld, ConfirmationRequest
+from verigraph.arm.models import AuditOutcome
 from verigraph.errors import VeriGraphError
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import EpisodeStateError
@@ -108,10 +109,21 @@ def arm_reset(ctx: ToolContext, params: ArmRef) -> ArmStatusOutput:
 # -- what a human approves before a real arm acts ------------------------------------------
 @dataclass(frozen=True)
 class ArmQuestion:
-    """The real-arm requests a call would make, and the text to show the user."""
+    """The real-arm requests a call would make, the text to show the user, and the arm
+    (whose audit log records the answer and whose config sets the deadline)."""
 
     requests: tuple[ConfirmationRequest, ...]
     text: str
+    world: ArmWorld
+
+    @property
+    def timeout_s(self) -> float:
+        return self.world.config.confirm_timeout_s
+
+    def record(self, shown: str | None, outcome: AuditOutcome, detail: str) -> None:
+        """Write the user's answer (or why there was none) to the arm's audit log, with
+        the text `shown` to the user (this question's text if it was not asked)."""
+        self.world.log_confirmation(shown or self.text, outcome, detail)
 
 
 def _real_arm(world: World | None) -> ArmWorld | None:
@@ -130,7 +142,7 @@ def _question(world: ArmWorld, what: str, requests: list[ConfirmationRequest]) -
                      "against the workspace and keep-out zones. Nothing moves unless you "
                      "approve.")
     lines.append("Approve?")
-    return ArmQuestion(tuple(requests), "\n".join(lines))
+    return ArmQuestion(tuple(requests), "\n".join(lines), world)
 
 
 def preview_execute(ctx: ToolContext, params: BaseModel) -> ArmQuestion | None:
