@@ -22,7 +22,7 @@ AuditOutcome = Literal["sent", "done", "recorded", "refused", "declined", "faile
 class Pose(BaseModel):
     """Tool centre point (metres) and yaw (radians) of a top-down gripper."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
     x: float
     y: float
