@@ -36,7 +36,7 @@ from verigraph.arm.errors import (
 from verigraph.arm.latch import ArmLatch
 from verigraph.arm.models import ArmStatus, AuditOutcome, AuditRecord, ConfirmationRequest, Pose
 from verigraph.arm.planning import MotionPlan, PathSegment, describe
-from verigraph.arm.protocols import ArmDriver, ConfirmHook
+from verigraph.arm.protocols import ArmDriver, ConfirmHook, PathCheck
 from verigraph.arm.receipt import redeem
 from verigraph.arm.safety import check_caps, check_path
 from verigraph.arm.threads import StatusPoll, start
@@ -75,8 +75,9 @@ class ArmController:
 
     def __init__(self, config: ArmConfig, driver: ArmDriver, *,
                  confirm: ConfirmHook | None = None, audit: AuditLog | None = None,
-                 latch: ArmLatch | None = None) -> None:
+                 latch: ArmLatch | None = None, whole_arm: PathCheck | None = None) -> None:
         self.config = config
+        self._whole_arm = whole_arm
         self._driver = driver
         self._confirm = confirm
         self.audit = audit if audit is not None else AuditLog(config.audit_log)
@@ -186,6 +187,8 @@ class ArmController:
 
     def close(self) -> None:
         """Disconnect the driver (a latched stop stays latched: it belongs to the arm)."""
+        if self._whole_arm is not None:
+            self._whole_arm.close()
         if self._connected:
             self._connected = False
             self._log("disconnect", {}, "sent")
@@ -450,6 +453,8 @@ class ArmController:
     def _check(self, segments: list[PathSegment], speed: float, force: float | None) -> None:
         check_caps(self.config, speed, force)
         check_path(self.config, segments)
+        if self._whole_arm is not None:
+            self._whole_arm.check(segments)
 
     def _refuse_if_stopped(self) -> None:
         if self._stop_reason is not None:

@@ -138,9 +138,10 @@ def _question(world: ArmWorld, what: str, requests: list[ConfirmationRequest]) -
     if any(r.waypoints for r in requests):
         r = requests[0]
         grip = f", grip {r.force_n:.0f} N" if r.force_n is not None else ""
-        lines.append(f"Tool speed {r.speed_m_s:.2f} m/s{grip}; every waypoint was checked "
-                     "against the workspace and keep-out zones. Nothing moves unless you "
-                     "approve.")
+        lines.append(f"Tool speed {r.speed_m_s:.2f} m/s{grip}; the path of the tool and of "
+                     "the whole arm (every link, the hand, the fingers, the held object) was "
+                     "checked against the workspace, the table and the keep-out zones. "
+                     "Nothing moves unless you approve.")
     lines.append("Approve?")
     return ArmQuestion(tuple(requests), "\n".join(lines), world)
 
