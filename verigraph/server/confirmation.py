@@ -252,8 +252,8 @@ async def arm_call(name: str, toolbox: Toolbox, params: BaseModel,
 @asynccontextmanager
 async def _deadman(name: str, world: ArmWorld | None) -> AsyncIterator[None]:
     """While a motion tool runs: stop and latch the arm if the call is cancelled."""
-    if world is None or name not in MOTION_TOOLS:
-        yield
+    if world is None or name not in MOTION_TOOLS or world.config.mode == "dry-run":
+        yield  # a dry run moves nothing: there is nothing to stop
         return
     finished = False
 
