@@ -24,6 +24,7 @@ from verigraph.tools import Toolbox, ToolConfig
 from verigraph.tools.executors import ArmSetup
 
 require("pybullet")
+require("xarm")
 
 pytestmark = pytest.mark.anyio
 STACK = ["move(green_block, on, red_block)"]
