@@ -88,6 +88,9 @@ async def test_declines_and_refusals_are_in_the_audit_log(
         del api.boxes["red_block"]  # the camera no longer sees the target
         unseen = structured(await client.call_tool("execute_actions", {
             "episode_id": eid, "actions": STACK}))
+        invalid = structured(await client.call_tool("execute_actions", {
+            "episode_id": eid, "actions": ["move(table, on, green_block)"]}))
+    assert invalid["violation"]["constraint"] == "not_movable"
     assert declined.is_error and api.motions() == []
     assert "cannot see red_block" in unseen["violation"]["message"]
     records = audit(tmp_path)
@@ -95,7 +98,9 @@ async def test_declines_and_refusals_are_in_the_audit_log(
     assert [r["outcome"] for r in confirm] == [outcome]
     assert "move(green_block, on, red_block)" in confirm[0]["question"]
     refused = [r for r in records if r["command"] == "motion" and r["outcome"] == "refused"]
-    assert len(refused) == 1 and "cannot see red_block" in refused[0]["detail"]
+    assert len(refused) == 2 and "cannot see red_block" in refused[0]["detail"]
+    assert refused[1]["params"]["what"] == "move(table, on, green_block)"
+    assert "rejected by the episode's validator: [not_movable]" in refused[1]["detail"]
     for record in confirm + refused:
         assert record["episode_id"] == eid and record["pid"] > 0 and record["client"]
         assert record["mode"] == "real"

@@ -101,6 +101,13 @@ class ArmWorld:
         self.last_check = self._check(action)
         return None
 
+    def record_rejection(self, action: object, violation: Violation) -> None:
+        """Log an action the episode's validator rejected before it reached the arm."""
+        text = action.text() if isinstance(action, MoveAction | AlignAction) else repr(action)
+        with contextlib.suppress(ArmError):  # a write failure stopped and latched the arm
+            self._controller.log_refusal(text, f"rejected by the episode's validator: "
+                                               f"[{violation.constraint}] {violation.message}")
+
     def _logged(self, action: MoveAction, violation: Violation, *,
                 audited: bool = False) -> Violation:
         """Every refusal goes into the audit log, in every mode."""
