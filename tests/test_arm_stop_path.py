@@ -76,3 +76,29 @@ async def test_arm_stop_reaches_the_emergency_stop_while_status_hangs(tmp_path: 
             assert api.stopped_at is not None and api.stopped_at - started < 0.05
     finally:
         api.release.set()
+
+
+async def test_arm_stop_does_not_queue_behind_busy_worker_threads(tmp_path: Path) -> None:
+    """Every shared worker thread is taken (a motion, a call waiting for the episode);
+    the stop still goes out at once."""
+    api = BlockCellStandIn()
+    api.time_scale = 1.0  # linear moves take their real duration on the stand-in
+    box = xarm_toolbox(tmp_path, api, speed_m_s=0.05)
+    anyio.to_thread.current_default_thread_limiter().total_tokens = 2
+    async with Client(build_server(box), elicitation_callback=User()) as client:
+        eid = structured(await client.call_tool("load_scene", {"graph": loose_blocks()}))[
+            "episode_id"]
+        async with anyio.create_task_group() as tg:
+            tg.start_soon(client.call_tool, "execute_actions", {
+                "episode_id": eid, "actions": ["move(green_block, on, red_block)"]})
+            with anyio.fail_after(10):
+                while not api.called("set_position"):  # the motion has started
+                    await anyio.sleep(0.01)
+            tg.start_soon(client.call_tool, "get_state", {"episode_id": eid})  # waits
+            limiter = anyio.to_thread.current_default_thread_limiter()
+            with anyio.fail_after(10):
+                while limiter.borrowed_tokens < limiter.total_tokens:  # all taken
+                    await anyio.sleep(0.01)
+            with anyio.fail_after(3):  # the motion alone takes more than 8 s
+                stopped = structured(await client.call_tool("arm_stop", {"episode_id": eid}))
+    assert stopped["stop_latched"] and api.called("emergency_stop")

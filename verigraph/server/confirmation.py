@@ -213,6 +213,16 @@ def client_label(session: Any) -> str:
     return f"{name} (connection {id(session):x})"
 
 
+def thread_limiter(name: str) -> anyio.CapacityLimiter | None:
+    """The worker-thread limiter for a tool call (None: the default one).
+
+    arm_stop gets a limiter of its own for each call, so it never queues behind calls
+    that hold the shared worker threads (a motion, calls waiting for the episode's
+    lock, slow status polls): the stop path waits on nothing.
+    """
+    return anyio.CapacityLimiter(1) if name == "arm_stop" else None
+
+
 # Tools whose call, once gone, must take the arm's motion with it.
 MOTION_TOOLS = frozenset({"execute_actions"})
 

@@ -29,6 +29,7 @@ from verigraph.server.confirmation import (
     client_label,
     resolver_parameters,
     take_answers,
+    thread_limiter,
 )
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
 from verigraph.tools.registry import parse_arguments as parse_tool_arguments
@@ -122,7 +123,7 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
                         return run(params)
                 except WouldBlock:
                     pass
-            return await anyio.to_thread.run_sync(run, params)
+            return await anyio.to_thread.run_sync(run, params, limiter=thread_limiter(spec.name))
 
     returns: Any = (Annotated[CallToolResult, spec.output_model] if spec.output_model
                     else CallToolResult)
