@@ -1,10 +1,13 @@
 """The safety gate between plans and a driver: the only code that calls an ArmDriver.
 
-It enforces, on every motion: run mode (dry-run records and moves nothing), a latched
-stop cleared only by `reset`, one motion at a time, a single-use validator receipt,
-workspace / keep-out / speed / force checks on the whole path before the first
-command, a human approval before `real` motions, a per-command timeout that stops the
-arm and latches, and an append-only audit record of every command.
+It enforces, on every motion: run mode (dry-run records and moves nothing), the arm's
+latched stop (verigraph.arm.latch, shared across episodes, processes and restarts)
+cleared only by a reset someone may make, one motion at a time, a single-use validator
+receipt, workspace / keep-out / speed / force checks and the whole-arm geometry on the
+whole path before the first command, a human approval before `real` motions, a
+per-command timeout and deadman that stop the arm and latch, and an audit record of
+the intent before and the outcome after every command (a failed write stops and
+latches). The stop path waits on nothing.
 """
 
 from __future__ import annotations
