@@ -155,3 +155,19 @@ def test_audit_verify_accepts_the_log_and_rejects_one_changed_byte(
     path.write_bytes(b"".join(lines))
     assert cli_main(["arm", "audit-verify", str(path)]) == 1
     assert "hash does not match" in capsys.readouterr().out
+
+
+def test_operator_commands_refuse_what_they_cannot_do(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    real = tmp_path / "real.json"
+    real.write_text(json.dumps({"driver": "xarm", "mode": "real", "host": "192.168.1.185",
+                                "audit_log": str(tmp_path / "audit.jsonl")}))
+    assert cli_main(["arm", "reset", "--config", str(real)]) == 2  # the user confirms those
+    assert "mode: a real arm's stop is reset through arm_reset" in capsys.readouterr().err
+    memory = tmp_path / "sim.json"
+    memory.write_text(json.dumps({"driver": "pybullet", "mode": "sim"}))
+    assert cli_main(["arm", "reset", "--config", str(memory)]) == 2
+    assert "audit_log: this arm's latch lives in the server's memory" in \
+        capsys.readouterr().err
+    assert cli_main(["arm", "audit-verify", str(tmp_path / "missing.jsonl")]) == 2
+    assert "cannot read the audit log" in capsys.readouterr().err
