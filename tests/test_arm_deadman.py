@@ -148,6 +148,35 @@ async def test_sigterm_stops_the_motion_before_the_server_exits(tmp_path: Path) 
     assert not any(r["command"] == "place" and r["outcome"] == "sent" for r in records)
 
 
+async def test_a_stdio_client_that_goes_away_mid_motion_stops_the_arm(tmp_path: Path) -> None:
+    """The same over the real stdio transport: the client process's end closes the pipe."""
+    config = tmp_path / "arm.json"
+    config.write_text(json.dumps(sim_config(tmp_path)))
+    log = tmp_path / "audit.jsonl"
+    params = StdioServerParameters(command=sys.executable, args=[
+        "-m", "verigraph", "serve", "--arm-config", str(config)], env=dict(os.environ))
+
+    async def session() -> None:
+        async with Client(params) as client:
+            eid = structured(await client.call_tool("load_scene", {
+                "graph": loose_blocks()}))["episode_id"]
+            await client.call_tool("execute_actions", {"episode_id": eid, "actions": STACK})
+
+    with anyio.fail_after(90):
+        async with anyio.create_task_group() as tg:
+            tg.start_soon(session)
+            while not any(r["command"] == "pick" and r["outcome"] == "sent"
+                          for r in audit(log)):  # another process: watch its audit log
+                await anyio.sleep(0.02)
+            tg.cancel_scope.cancel()  # the client goes away: its pipe to the server closes
+        while not any(r["command"] == "stop" for r in audit(log)):
+            await anyio.sleep(0.02)
+    records = audit(log)
+    stop = next(r for r in records if r["command"] == "stop")
+    assert "client that asked for this motion is gone" in stop["params"]["reason"]
+    assert not any(r["command"] == "place" and r["outcome"] == "sent" for r in records)
+
+
 def _alive(pid: int) -> bool:
     try:
         os.kill(pid, 0)
