@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import pytest
@@ -50,7 +51,7 @@ def test_json_config_loads_and_defaults_to_dry_run(tmp_path: Path) -> None:
 @pytest.mark.parametrize(("data", "field", "fix_mentions"), [
     ({"driver": "ur5"}, "driver", "pybullet, rosbridge, xarm"),
     ({"driver": "pybullet", "mode": "fast"}, "mode", "dry-run"),
-    ({"driver": "pybullet", "speed_m_s": 0.5}, "config", "README"),
+    ({"driver": "pybullet", "speed_m_s": 0.5}, "speed_m_s", "max_speed_m_s (0.25)"),
     ({"driver": "pybullet", "workspace": {"min": [0.5, 0, 0], "max": [0.4, 1, 1]}},
      "workspace", "min < max"),
 ])
@@ -105,3 +106,58 @@ def test_overrides_are_validated_too() -> None:
     assert config.with_overrides(mode="sim").mode == "sim"
     with pytest.raises(ArmConfigError):
         config.with_overrides(speed_m_s=1.0)
+
+
+ABSURD = [  # what a careless or hostile operator file might say, and the field named
+    ({"workspace": {"min": [0.2, -0.4, 0.0], "max": [math.inf, 0.4, 0.5]}}, "workspace",
+     "finite"),
+    ({"workspace": {"min": [-200, -200, 0.0], "max": [200, 200, 200]}}, "workspace",
+     "|x| and |y| <= 0.855 m"),
+    ({"workspace": {"min": [0.2, -0.4, -0.3], "max": [0.6, 0.4, 0.5]}}, "workspace.min",
+     "min z >= 0.0 m"),
+    ({"workspace": {"min": [0.2, -0.4, 0.0], "max": [0.6, 0.4, 1.5]}}, "workspace.max",
+     "max z <= 1.188 m"),
+    ({"speed_m_s": 1e6, "max_speed_m_s": math.inf}, "max_speed_m_s", "finite"),
+    ({"speed_m_s": 1.0, "max_speed_m_s": 1e6}, "max_speed_m_s", "<= 1.7 m/s"),
+    ({"grip_force_n": 1e9, "max_force_n": 1e9}, "max_force_n", "<= 70.0 N"),
+    ({"max_location_age_s": 1e9}, "max_location_age_s", "less than or equal to 10"),
+    ({"confirm_timeout_s": 1e9}, "confirm_timeout_s", "less than or equal to 600"),
+    ({"deadman_s": 0}, "deadman_s", "greater than 0"),
+]
+
+
+@pytest.mark.parametrize(("changes", "field", "allowed"), ABSURD)
+def test_absurd_limits_are_rejected_naming_field_and_range(
+        changes: dict[str, object], field: str, allowed: str) -> None:
+    with pytest.raises(ArmConfigError) as err:
+        parse_arm_config({"driver": "pybullet", **changes})
+    assert err.value.field is not None and err.value.field.startswith(field)
+    assert allowed in str(err.value)
+
+
+def test_xarm_hard_limits_are_its_own() -> None:
+    with pytest.raises(ArmConfigError, match=r"<= 1.0 m/s"):
+        parse_arm_config({"driver": "xarm", "max_speed_m_s": 1.5, "speed_m_s": 0.2})
+
+
+@pytest.mark.parametrize(("changes", "field"), [
+    ({"audit_log": "/dev/null"}, "audit_log"),
+    ({"audit_log": "/proc/version/audit.jsonl"}, "audit_log"),
+    ({"xarm": {"set_reduced_boundary": False}}, "xarm.set_reduced_boundary"),
+    ({"agent_may_reset": True}, "agent_may_reset"),
+])
+def test_real_mode_refuses_a_log_that_keeps_nothing_and_an_open_fence(
+        tmp_path: Path, changes: dict[str, object], field: str) -> None:
+    data = {"driver": "xarm", "mode": "real", "host": "192.168.1.185",
+            "audit_log": str(tmp_path / "audit.jsonl"), **changes}
+    with pytest.raises(ArmConfigError) as err:
+        parse_arm_config(data)
+    assert err.value.field == field and err.value.fix
+
+
+def test_the_fence_can_be_turned_off_only_by_the_loud_flag(tmp_path: Path) -> None:
+    config = parse_arm_config({"driver": "xarm", "mode": "real", "host": "192.168.1.185",
+                               "audit_log": str(tmp_path / "audit.jsonl"),
+                               "xarm": {"set_reduced_boundary": False},
+                               "unsafe_disable_controller_fence": True})
+    assert not config.xarm.set_reduced_boundary

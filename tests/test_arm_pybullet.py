@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import math
 import threading
-import time
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -156,8 +156,9 @@ def test_target_outside_the_workspace_moves_nothing() -> None:
         w.close()
 
 
-def test_timeout_halts_the_arm_and_latches_the_stop() -> None:
-    w = open_panda(loose_blocks(), motion_timeout_s=0.3,
+def test_timeout_halts_the_arm_and_latches_the_stop(tmp_path: Path) -> None:
+    w = open_panda(loose_blocks(), motion_timeout_s=0.3, agent_may_reset=True,
+                   audit_log=str(tmp_path / "audit.jsonl"),
                    pybullet=PyBulletOptions(real_time_factor=1.0).model_dump())
     try:
         scene = scene_of(w)
@@ -178,13 +179,28 @@ def test_timeout_halts_the_arm_and_latches_the_stop() -> None:
         w.close()
 
 
-def test_stop_during_a_motion_cancels_it() -> None:
-    w = open_panda(loose_blocks(), pybullet=PyBulletOptions(real_time_factor=1.0).model_dump())
+def arm_moving(scene: PandaScene) -> threading.Event:
+    """An event set when the scene's arm first follows a joint trajectory."""
+    moving = threading.Event()
+    follow = scene.follow
+
+    def follow_and_signal(*args: Any, **kwargs: Any) -> Any:
+        moving.set()
+        return follow(*args, **kwargs)
+
+    scene.follow = follow_and_signal  # type: ignore[method-assign]
+    return moving
+
+
+def test_stop_during_a_motion_cancels_it(tmp_path: Path) -> None:
+    w = open_panda(loose_blocks(), audit_log=str(tmp_path / "audit.jsonl"),
+                   pybullet=PyBulletOptions(real_time_factor=1.0).model_dump())
     try:
+        moving = arm_moving(scene_of(w))
         worker = threading.Thread(target=w.perform,
                                   args=(MoveAction(object="green_block", target="red_block"),))
         worker.start()
-        time.sleep(0.4)
+        assert moving.wait(10)  # the arm is moving, not merely about to
         status = w.stop("test stop")
         worker.join(10)
         assert not worker.is_alive()

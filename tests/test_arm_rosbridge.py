@@ -13,6 +13,7 @@ import socket
 import threading
 import time
 from collections.abc import Iterator
+from typing import Any
 
 import pytest
 
@@ -109,13 +110,18 @@ def test_stop_cancels_the_active_goal() -> None:
     c = RosCell(PyBulletOptions(real_time_factor=1.0))
     try:
         world = c.open()
+        moving = threading.Event()
+        follow = c.scene.follow
+
+        def follow_and_signal(*args: Any, **kwargs: Any) -> Any:
+            moving.set()  # a trajectory goal is being executed: the arm moves
+            return follow(*args, **kwargs)
+
+        c.scene.follow = follow_and_signal  # type: ignore[method-assign]
         worker = threading.Thread(target=world.perform,
                                   args=(MoveAction(object="green_block", target="red_block"),))
         worker.start()
-        deadline = time.monotonic() + 5
-        while not c.server.ops("send_action_goal") and time.monotonic() < deadline:
-            time.sleep(0.01)
-        time.sleep(0.3)
+        assert moving.wait(10)
         world.stop("operator stop")
         worker.join(10)
         assert not worker.is_alive()
@@ -123,9 +129,9 @@ def test_stop_cancels_the_active_goal() -> None:
         assert cancels and cancels[0]["id"] == c.server.ops("send_action_goal")[-1]["id"]
         assert world.last_outcome is not None and world.last_outcome.status == "cancelled"
         halted = c.scene.arm_positions()
-        time.sleep(0.3)
+        c.scene.step(60)  # a quarter second of physics: a halted arm stays put
         assert max(abs(a - b) for a, b in zip(halted, c.scene.arm_positions(), strict=True)) \
-            < 1e-6
+            < 1e-3
         assert world.status().stop_latched
     finally:
         c.close()

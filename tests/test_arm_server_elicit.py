@@ -74,7 +74,10 @@ async def test_approved_motion_moves_the_arm(tmp_path: Path, mode: str) -> None:
     assert api.boxes["green_block"][0][2] == pytest.approx(0.075)  # it rests on red
     records = audit(tmp_path)
     confirmed = [r for r in records if r["command"] == "confirm"]
-    assert [r["outcome"] for r in confirmed] == ["done"]
+    # the user's answer to the question shown, then the gate's check of the motion
+    assert [r["outcome"] for r in confirmed] == ["done", "done"]
+    assert confirmed[0]["question"] == question and confirmed[0]["episode_id"] == eid
+    assert confirmed[0]["client"] and confirmed[0]["pid"]
     assert [r["command"] for r in records if r["outcome"] == "sent"] == [
         "connect", "pick", "place"]
 
@@ -170,9 +173,10 @@ async def test_reset_of_a_real_arm_is_asked_and_a_no_keeps_the_stop(tmp_path: Pa
         assert refused.is_error and "the stop stays latched" in text(refused)
         status = structured(await client.call_tool("arm_status", {"episode_id": eid}))
         assert status["stop_latched"] and status["stop_reason"] == "person in cell"
-    assert no.asked == ["VeriGraph asks before the REAL arm (xarm at 192.168.1.185) acts: "
-                        f"arm_reset on episode {eid}.\n1. reset: clear the latched stop (person "
-                        "in cell) and re-enable the motors; nothing moves now\nApprove?"]
+    assert len(no.asked) == 1 and no.asked[0].startswith(
+        "VeriGraph asks before the REAL arm (xarm at 192.168.1.185) acts: "
+        f"arm_reset on episode {eid}.\n1. reset: clear the latched stop (person "
+        "in cell) and re-enable the motors; nothing moves now\nApprove?\n(Answer within 120 s")
     async with Client(server, elicitation_callback=yes) as client:
         reset = structured(await client.call_tool("arm_reset", {"episode_id": eid}))
         assert not reset["stop_latched"] and "stop cleared" in reset["note"]

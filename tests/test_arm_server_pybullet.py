@@ -8,10 +8,15 @@ mode sim, and the simulated contacts and heights, not only the camera, confirm e
 
 from __future__ import annotations
 
+import json
 import math
+import threading
 from collections.abc import AsyncIterator
+from pathlib import Path
 from typing import Any
 
+import anyio
+import anyio.to_thread
 import cv2
 import numpy as np
 import pytest
@@ -19,8 +24,9 @@ from arm_server_helpers import BLOCKS, loose_blocks
 from mcp import Client
 from mcp_helpers import decode_png, structured, text
 
-from verigraph.arm import ArmWorld, CameraView, PyBulletOptions, parse_arm_config
+from verigraph.arm import ArmWorld, CameraView, PyBulletOptions, load_arm_config, parse_arm_config
 from verigraph.arm.testing.deps import require
+from verigraph.cli import main as cli_main
 from verigraph.server import build_server
 from verigraph.tools import Toolbox, ToolConfig
 from verigraph.tools.executors import ArmSetup
@@ -117,14 +123,33 @@ async def test_dry_run_panda_predicts_but_the_physics_does_not_move() -> None:
         await client.call_tool("end_episode", {"episode_id": eid})
 
 
-async def test_arm_stop_halts_a_running_motion_through_the_server() -> None:
-    import anyio
+def arm_moving(scene: PandaScene) -> threading.Event:
+    """An event set when the scene's arm first follows a joint trajectory."""
+    moving = threading.Event()
+    follow = scene.follow
 
-    box = panda_toolbox(pybullet=PyBulletOptions(real_time_factor=1.0).model_dump())
+    def follow_and_signal(*args: Any, **kwargs: Any) -> Any:
+        moving.set()
+        return follow(*args, **kwargs)
+
+    scene.follow = follow_and_signal  # type: ignore[method-assign]
+    return moving
+
+
+async def test_the_stop_latches_the_arm_across_episodes_and_restarts(tmp_path: Path) -> None:
+    """arm_stop mid-motion latches the arm itself: a new episode on it, or a new server,
+    is latched too; the agent cannot reset it; the operator's reset moves nothing."""
+    config_file = tmp_path / "arm.json"
+    config_file.write_text(json.dumps({
+        "driver": "pybullet", "mode": "sim", "audit_log": str(tmp_path / "audit.jsonl"),
+        "pybullet": PyBulletOptions(real_time_factor=1.0).model_dump()}))
+    box = Toolbox(config=ToolConfig(executor="arm:pybullet",
+                                    arm=ArmSetup(load_arm_config(config_file))))
     async with Client(build_server(box)) as client:
         eid = structured(await client.call_tool("load_scene", {"graph": loose_blocks()}))[
             "episode_id"]
         scene = scene_of(box, eid)
+        moving = arm_moving(scene)
         results: list[dict[str, Any]] = []
 
         async def execute() -> None:
@@ -133,15 +158,39 @@ async def test_arm_stop_halts_a_running_motion_through_the_server() -> None:
 
         async with anyio.create_task_group() as tg:
             tg.start_soon(execute)
-            await anyio.sleep(0.6)  # the real-time motion takes several seconds
+            assert await anyio.to_thread.run_sync(moving.wait, 10)  # the arm is moving
             stopped = structured(await client.call_tool("arm_stop", {"episode_id": eid}))
         assert stopped["stop_latched"]
         out = results[0]
         assert out["violation"]["constraint"] == "execution_failed"
         assert not scene.in_contact("green_block", "red_block")
-        refused = structured(await client.call_tool("execute_actions", {
-            "episode_id": eid, "actions": ["move(green_block, on, red_block)"]}))
-        assert "stop is latched" in refused["violation"]["message"]
-        reset = structured(await client.call_tool("arm_reset", {"episode_id": eid}))
-        assert not reset["stop_latched"]
+        refused = await client.call_tool("arm_reset", {"episode_id": eid})
+        assert refused.is_error and "verigraph arm reset --config FILE" in text(refused)
         await client.call_tool("end_episode", {"episode_id": eid})
+        # a new episode on the same arm: still latched, nothing runs
+        again = structured(await client.call_tool("load_scene", {"graph": loose_blocks()}))
+        status = structured(await client.call_tool("arm_status", {
+            "episode_id": again["episode_id"]}))
+        assert status["stop_latched"] and status["stop_reason"] == "stop requested through arm_stop"
+        out = structured(await client.call_tool("execute_actions", {
+            "episode_id": again["episode_id"], "actions": ["move(green_block, on, red_block)"]}))
+        assert out["violation"]["constraint"] == "arm_refused"
+        assert "stop is latched" in out["violation"]["message"]
+        await client.call_tool("end_episode", {"episode_id": again["episode_id"]})
+    # a restarted server on the same arm: still latched
+    box = Toolbox(config=ToolConfig(executor="arm:pybullet",
+                                    arm=ArmSetup(load_arm_config(config_file))))
+    async with Client(build_server(box)) as client:
+        eid = structured(await client.call_tool("load_scene", {"graph": loose_blocks()}))[
+            "episode_id"]
+        assert structured(await client.call_tool("arm_status", {"episode_id": eid}))[
+            "stop_latched"]
+        joints = scene_of(box, eid).arm_positions()
+        assert cli_main(["arm", "reset", "--config", str(config_file)]) == 0  # the operator
+        status = structured(await client.call_tool("arm_status", {"episode_id": eid}))
+        assert not status["stop_latched"]
+        assert scene_of(box, eid).arm_positions() == joints  # a reset moves nothing
+        await client.call_tool("end_episode", {"episode_id": eid})
+    audit = [json.loads(line) for line in (tmp_path / "audit.jsonl").read_text().splitlines()]
+    assert [r["outcome"] for r in audit if r["command"] == "reset"] == ["refused", "done"]
+    assert cli_main(["arm", "audit-verify", str(tmp_path / "audit.jsonl")]) == 0

@@ -94,8 +94,10 @@ async def test_dry_run_never_calls_the_driver_through_the_tools(tmp_path: Path) 
         out = await call(client, "execute_actions", episode_id=eid, actions=plan + ["done"])
         status = await call(client, "arm_status", episode_id=eid)
         await call(client, "arm_stop", episode_id=eid)
-        await call(client, "arm_reset", episode_id=eid)
+        reset = await client.call_tool("arm_reset", {"episode_id": eid})
         await call(client, "end_episode", episode_id=eid)
+    # only the operator resets a dry-run or simulated arm (verigraph arm reset)
+    assert reset.is_error and "agent_may_reset" in text(reset)
     assert out["ok"] and out["goal_satisfied"]  # the dry run predicts the stack ...
     assert h.api.calls == []  # ... and never talks to the controller, not even to connect
     assert status["commands_sent"] == 0 and not status["connected"]
@@ -103,7 +105,8 @@ async def test_dry_run_never_calls_the_driver_through_the_tools(tmp_path: Path) 
     records = [json.loads(line) for line in h.audit.read_text().splitlines()]
     assert [r["command"] for r in records if r["command"] in ("pick", "place")] == [
         "pick", "place"] * 2
-    assert {r["outcome"] for r in records} <= {"recorded"}
+    assert {r["outcome"] for r in records} <= {"recorded", "refused"}
+    assert [r["command"] for r in records if r["outcome"] == "refused"] == ["reset"]
 
 
 # -- nothing unvalidated reaches the driver, whatever the tool -------------------------------

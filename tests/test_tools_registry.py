@@ -30,7 +30,8 @@ def test_annotations_are_honest(spec: ToolSpec) -> None:
     changes = {"load_scene", "set_goal", "execute_actions", "submit_scene_graph", "end_episode",
                "arm_stop", "arm_reset"}
     assert spec.read_only == (spec.name not in changes)
-    assert spec.destructive == (spec.name in {"execute_actions", "end_episode"})
+    # arm_reset re-enables a stopped arm
+    assert spec.destructive == (spec.name in {"execute_actions", "end_episode", "arm_reset"})
     # may connect to or move a robot arm
     assert spec.open_world == (spec.name in {"load_scene", "execute_actions",
                                              "submit_scene_graph", "arm_status", "arm_stop",

@@ -55,6 +55,9 @@ def execute_in_world(state: WorldState, actions: Sequence[AnyAction], world: Wor
             return executed, edits, None, True, current
         violation = validate_action(current, action, step)
         if violation is not None:
+            record = getattr(world, "record_rejection", None)  # an arm logs every attempt
+            if record is not None:
+                record(action, violation)
             return executed, edits, violation, False, current
         if world is None:
             edits.append(apply_action(current, action))

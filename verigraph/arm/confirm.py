@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import asyncio
 import inspect
+import time
 from collections.abc import Awaitable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -18,7 +19,7 @@ from dataclasses import dataclass
 import anyio
 import anyio.from_thread
 
-from verigraph.arm.models import ConfirmationRequest
+from verigraph.arm.models import AuditOutcome, ConfirmationRequest
 from verigraph.arm.protocols import ConfirmHook
 
 _SCOPED: ContextVar[ConfirmHook | None] = ContextVar("verigraph_arm_confirm", default=None)
@@ -60,24 +61,35 @@ def scoped_confirm(request: ConfirmationRequest) -> bool | Awaitable[bool]:
 class ConfirmationAnswer:
     approved: bool
     reason: str
+    outcome: AuditOutcome = "declined"  # how the audit log files it
 
 
 def ask_confirmation(hook: ConfirmHook | None, request: ConfirmationRequest,
                      timeout_s: float) -> ConfirmationAnswer:
-    """Ask `hook` about `request`; approved only on a literal True within `timeout_s`."""
+    """Ask `hook` about `request`; approved only on a literal True within `timeout_s`.
+
+    A synchronous hook cannot be interrupted, so its answer is timed: one that comes
+    after `timeout_s` counts as no.
+    """
     if hook is None:
-        return ConfirmationAnswer(False, "no confirmation hook: the client cannot ask the user")
+        return ConfirmationAnswer(False, "no confirmation hook: the client cannot ask the user",
+                                  "refused")
+    asked = time.monotonic()
     try:
         reply = hook(request)
         answer = _wait(reply, timeout_s) if inspect.isawaitable(reply) else reply
     except TimeoutError:
-        return ConfirmationAnswer(False, f"no answer within {timeout_s:.0f} s")
+        return ConfirmationAnswer(False, f"no answer within {timeout_s:.0f} s", "timeout")
     except (NoWayToAsk, NotApproved) as exc:
         return ConfirmationAnswer(False, str(exc))
     except Exception as exc:  # a failing hook must never let the arm move
-        return ConfirmationAnswer(False, f"the confirmation hook failed: {exc!r}")
+        return ConfirmationAnswer(False, f"the confirmation hook failed: {exc!r}", "refused")
+    late = time.monotonic() - asked
+    if late > timeout_s:
+        return ConfirmationAnswer(False, f"answered after {late:.1f} s, past the "
+                                         f"{timeout_s:g} s deadline: counted as no", "timeout")
     if answer is True:
-        return ConfirmationAnswer(True, "approved")
+        return ConfirmationAnswer(True, "approved", "done")
     return ConfirmationAnswer(False, "declined" if answer is False
                               else f"the hook answered {answer!r}, not True")
 

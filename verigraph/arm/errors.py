@@ -13,6 +13,8 @@ from verigraph.errors import VeriGraphError
 class ArmError(VeriGraphError):
     """Base class of every arm adapter error."""
 
+    audited = False  # set once the error is in the audit log
+
 
 class ArmConfigError(ArmError):
     """A bad arm configuration: unknown driver, bad mode, inconsistent limits."""
@@ -32,6 +34,10 @@ class UnsafeMotionError(ArmRefusal):
 
 class ArmStoppedError(ArmRefusal):
     """The stop is latched; only an explicit reset clears it."""
+
+
+class ResetNotAllowedError(ArmRefusal):
+    """The caller may not reset this arm (the agent, unless the operator allowed it)."""
 
 
 class ArmBusyError(ArmRefusal):

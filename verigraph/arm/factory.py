@@ -18,7 +18,7 @@ from verigraph.arm.config import DRIVER_NAMES, ArmConfig
 from verigraph.arm.controller import ArmController
 from verigraph.arm.errors import ArmConfigError, ArmConnectionError
 from verigraph.arm.locators import LayoutLocator
-from verigraph.arm.protocols import ArmDriver, ConfirmHook, ObjectLocator
+from verigraph.arm.protocols import ArmDriver, ConfirmHook, ObjectLocator, PathCheck
 from verigraph.arm.world import ArmWorld
 from verigraph.extras import require
 from verigraph.graph.model import SceneGraph
@@ -66,14 +66,32 @@ def open_arm_world(config: ArmConfig, graph: SceneGraph, *, confirm: ConfirmHook
                              field="locator", value=config.driver,
                              fix="pass an ObjectLocator (a camera pipeline), or give the "
                                  "config a layout: the measured box of every object")
-    controller = ArmController(config, driver, confirm=confirm, audit=audit)
+    controller = ArmController(config, driver, confirm=confirm, audit=audit,
+                               whole_arm=whole_arm_check(config))
     try:
         controller.connect()
     except BaseException:
+        controller.close()
         if on_close is not None:
             on_close()
         raise
     return ArmWorld(graph, controller, locator, on_close=on_close, render=render)
+
+
+def whole_arm_check(config: ArmConfig) -> PathCheck | None:
+    """The whole-arm geometry check for `config`'s arm (PyBullet DIRECT with its URDF).
+
+    Required to move anything (sim, real); a dry run without pybullet installed skips it.
+    """
+    try:
+        from verigraph.arm.sim.whole_arm import WholeArmCheck
+    except ImportError:
+        if config.mode == "dry-run":
+            return None
+        raise ArmConfigError("the whole-arm geometry check needs pybullet", field="driver",
+                             value=config.driver,
+                             fix="install the arm extra: pip install 'verigraph[arm]'") from None
+    return WholeArmCheck(config)
 
 
 def make_driver(config: ArmConfig) -> ArmDriver:

@@ -15,9 +15,9 @@ Point = tuple[float, float, float]
 
 
 class Box(BaseModel):
-    """An axis-aligned box given by its minimum and maximum corners (metres)."""
+    """An axis-aligned box given by its minimum and maximum corners (metres, finite)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
     min: Point = Field(description="(x, y, z) of the lower corner, metres, robot base frame")
     max: Point = Field(description="(x, y, z) of the upper corner, metres, robot base frame")

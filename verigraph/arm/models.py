@@ -15,12 +15,14 @@ from pydantic import BaseModel, ConfigDict, Field, computed_field, field_validat
 from verigraph.arm.geometry import Point, wrap_angle
 
 RunMode = Literal["dry-run", "sim", "real"]
+AuditOutcome = Literal["sent", "done", "recorded", "refused", "declined", "failed", "timeout",
+                       "cancelled"]
 
 
 class Pose(BaseModel):
     """Tool centre point (metres) and yaw (radians) of a top-down gripper."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
     x: float
     y: float
@@ -148,16 +150,25 @@ class ArmStatus(BaseModel):
 
 
 class AuditRecord(BaseModel):
-    """One line of the audit log: a command, what was asked and what came of it."""
+    """One line of the audit log: an event, what was asked, what came of it, and who.
 
-    seq: int
-    time: float
+    `seq`, `time`, `pid`, `prev` and `hash` are filled in by `AuditLog.record`.
+    """
+
+    seq: int = 0
+    time: float = 0.0
     mode: RunMode
     driver: str
     command: str
     params: dict[str, object] = Field(default_factory=dict)
-    outcome: Literal["sent", "done", "recorded", "refused", "failed", "timeout", "cancelled"]
+    outcome: AuditOutcome
     detail: str | None = None
+    episode_id: str | None = None
+    client: str | None = Field(default=None, description="the MCP client/session that asked")
+    pid: int | None = None
+    question: str | None = Field(default=None, description="the text shown to the human")
+    prev: str | None = Field(default=None, description="hash of the previous record")
+    hash: str | None = Field(default=None, description="SHA-256 of this record without it")
 
 
 class ConfirmationRequest(BaseModel):

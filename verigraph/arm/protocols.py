@@ -7,7 +7,7 @@ PyBullet camera, a fixed layout, or a real depth camera can each feed any driver
 from __future__ import annotations
 
 from collections.abc import Awaitable, Callable, Collection
-from typing import Protocol, runtime_checkable
+from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
 from verigraph.arm.models import (
     ConfirmationRequest,
@@ -17,6 +17,9 @@ from verigraph.arm.models import (
     Placement,
     Pose,
 )
+
+if TYPE_CHECKING:
+    from verigraph.arm.planning import PathSegment
 
 
 @runtime_checkable
@@ -58,6 +61,14 @@ class ObjectLocator(Protocol):
     """
 
     def locate(self, object_ids: Collection[str]) -> dict[str, ObjectLocation]: ...
+
+
+class PathCheck(Protocol):
+    """A check of a whole planned tool path before motion (the whole-arm geometry)."""
+
+    def check(self, segments: list[PathSegment]) -> None: ...
+
+    def close(self) -> None: ...
 
 
 ConfirmHook = Callable[[ConfirmationRequest], bool | Awaitable[bool]]

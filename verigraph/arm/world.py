@@ -10,6 +10,7 @@ so `execute_in_world` flags `execution_failed` and adopts it.
 
 from __future__ import annotations
 
+import contextlib
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -22,7 +23,13 @@ from verigraph.arm.config import ArmConfig
 from verigraph.arm.controller import ArmController, MotionOutcome
 from verigraph.arm.errors import ArmError, ArmRefusal, ObjectNotFoundError
 from verigraph.arm.locators import DryRunLocator
-from verigraph.arm.models import ArmStatus, ConfirmationRequest, ObjectLocation, Pose
+from verigraph.arm.models import (
+    ArmStatus,
+    AuditOutcome,
+    ConfirmationRequest,
+    ObjectLocation,
+    Pose,
+)
 from verigraph.arm.planning import MotionPlan, plan_motion
 from verigraph.arm.protocols import ObjectLocator
 from verigraph.arm.receipt import authorize
@@ -78,21 +85,36 @@ class ArmWorld:
         try:
             planned = self._plan(action)
             if isinstance(planned, Violation):
-                return planned
+                return self._logged(action, planned)
             approval = None
             if self._controller.mode == "real":
                 approval = self._controller.confirm_plan(planned)
                 planned = self._plan(action)  # the scene may have changed while asking
                 if isinstance(planned, Violation):
-                    return planned
+                    return self._logged(action, planned)
             outcome = self._controller.execute(planned, approval=approval)
         except ArmRefusal as exc:
-            return _refusal(action, exc)
+            return self._logged(action, _refusal(action, exc), audited=exc.audited)
         self.last_outcome = outcome
         if self._dry is not None and outcome.status == "recorded":
             self._dry.record(planned.predicted_location(time.time()))
         self.last_check = self._check(action)
         return None
+
+    def record_rejection(self, action: object, violation: Violation) -> None:
+        """Log an action the episode's validator rejected before it reached the arm."""
+        text = action.text() if isinstance(action, MoveAction | AlignAction) else repr(action)
+        with contextlib.suppress(ArmError):  # a write failure stopped and latched the arm
+            self._controller.log_refusal(text, f"rejected by the episode's validator: "
+                                               f"[{violation.constraint}] {violation.message}")
+
+    def _logged(self, action: MoveAction, violation: Violation, *,
+                audited: bool = False) -> Violation:
+        """Every refusal goes into the audit log, in every mode."""
+        if not audited:
+            with contextlib.suppress(ArmError):  # a write failure stopped and latched the arm
+                self._controller.log_refusal(action.text(), violation.message)
+        return violation
 
     def observe(self) -> SceneGraph:
         """The scene graph rebuilt from fresh locations of every object."""
@@ -104,7 +126,20 @@ class ArmWorld:
         return self._controller.status()
 
     def stop(self, reason: str = "stop requested") -> ArmStatus:
+        """Halt now and latch (never waits on the driver's status or a running call)."""
         return self._controller.stop(reason)
+
+    @property
+    def stop_latched(self) -> bool:
+        return self._controller.stop_latched
+
+    def log_confirmation(self, question: str, outcome: AuditOutcome, detail: str) -> None:
+        """Record a human's answer given outside this world (MCP elicitation)."""
+        self._controller.log_confirmation(question, outcome, detail)
+
+    def touch(self) -> None:
+        """A call from the client arrived (the deadman's heartbeat)."""
+        self._controller.touch()
 
     def home(self) -> MotionOutcome:
         """Go to the configured home pose (confirmed first in real mode)."""
@@ -112,9 +147,9 @@ class ArmWorld:
         return self._controller.home(approval=approval)
 
     def reset(self) -> ArmStatus:
-        """Clear the latched stop; on a real arm a human approves it first."""
-        self._controller.confirm_reset()
-        return self._controller.reset()
+        """The agent's reset: a human approves it on a real arm; in sim and dry-run only
+        if the operator set `agent_may_reset` (else `verigraph arm reset`)."""
+        return self._controller.agent_reset()
 
     @property
     def config(self) -> ArmConfig:

@@ -65,6 +65,10 @@ def run_serve(args: argparse.Namespace) -> int:
                              value=None, fix="use --max-episodes >= 1 and 0 < --max-body-mib "
                                              "<= 1024")
     executor, arm = server_executor(args.executor, args.arm_config)
+    if arm is not None:
+        from verigraph.arm.shutdown import install_stop_on_signals
+
+        install_stop_on_signals()  # SIGTERM / SIGINT stop any motion before exit
     if arm is not None and executor.startswith("arm:"):
         logging.getLogger("verigraph.server").warning(
             "episodes run on %s in mode %s", executor, arm.config.mode)

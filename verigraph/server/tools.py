@@ -21,9 +21,16 @@ from mcp.server.mcpserver.exceptions import ToolError
 from mcp.types import CallToolResult, ImageContent, TextContent, ToolAnnotations
 from pydantic import BaseModel, Field, ValidationError
 
-from verigraph.arm import confirm_scope
 from verigraph.errors import VeriGraphError
-from verigraph.server.confirmation import PREVIEWS, approval_hook, resolver_parameters
+from verigraph.server.confirmation import (
+    CLIENT,
+    PREVIEWS,
+    arm_call,
+    client_label,
+    resolver_parameters,
+    take_answers,
+    thread_limiter,
+)
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
 from verigraph.tools.registry import parse_arguments as parse_tool_arguments
 from verigraph.tools.scenes import ImageResult
@@ -102,21 +109,21 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
             raise ToolError(str(exc)) from None
 
     async def call(**arguments: Any) -> CallToolResult:
-        hook = approval_hook(spec.name, arguments) if confirmed else None
+        answers = take_answers(arguments) if confirmed else None
         params = _gated_params(spec.name)  # validated from the raw JSON by ArgumentGate
         if params is None:
             try:
                 params = spec.input_model.model_validate(arguments)
             except ValidationError as exc:
                 raise ToolError(str(argument_error(spec, exc))) from None
-        with confirm_scope(hook):
+        async with arm_call(spec.name, toolbox, params, answers):
             if not (slow_default or may_block(spec, params)):
                 try:
                     with non_blocking():
                         return run(params)
                 except WouldBlock:
                     pass
-            return await anyio.to_thread.run_sync(run, params)
+            return await anyio.to_thread.run_sync(run, params, limiter=thread_limiter(spec.name))
 
     returns: Any = (Annotated[CallToolResult, spec.output_model] if spec.output_model
                     else CallToolResult)
@@ -176,7 +183,9 @@ class ArgumentGate:
             return CallToolResult(content=[TextContent(
                 type="text", text=f"Error executing tool {spec.name}: {exc}")], is_error=True)
         token = _GATED.set((spec.name, params))
+        client = CLIENT.set(client_label(ctx.session))
         try:
             return await call_next(ctx)
         finally:
+            CLIENT.reset(client)
             _GATED.reset(token)

@@ -19,6 +19,7 @@ from verigraph.actions.executor import World
 from verigraph.actions.model import MoveAction
 from verigraph.actions.validator import apply_action, validate_action
 from verigraph.arm import ArmStatus, ArmWorld, ConfirmationRequest
+from verigraph.arm.models import AuditOutcome
 from verigraph.errors import VeriGraphError
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import EpisodeStateError
@@ -86,7 +87,7 @@ def arm_stop(ctx: ToolContext, params: ArmStopInput) -> ArmStatusOutput:
     """Latch the stop and halt any motion now; only arm_reset clears the latch."""
     episode = ctx.store.peek(params.episode_id)
     world = _arm(episode)
-    already = world.status().stop_latched
+    already = world.stop_latched  # never the driver's status: it might hang
     status = world.stop(params.reason)
     note = ("the stop was already latched; it stays latched" if already else
             "stop latched: the arm halted and refuses every motion until arm_reset")
@@ -94,23 +95,35 @@ def arm_stop(ctx: ToolContext, params: ArmStopInput) -> ArmStatusOutput:
 
 
 def arm_reset(ctx: ToolContext, params: ArmRef) -> ArmStatusOutput:
-    """Clear the latched stop once the stopped motion has ended (a real arm asks first)."""
+    """Clear the arm's latched stop or error once the stopped motion has ended: a real
+    arm asks the user; sim and dry-run only if the operator allowed it. Nothing moves."""
     with ctx.store.use(params.episode_id) as episode:
         world = _arm(episode)
         was = world.status()
         status = world.reset()
-        note = (f"stop cleared (it was latched: {was.stop_reason})" if was.stop_latched
-                else "reset done; no stop was latched")
+        note = (f"stop cleared (it was latched: {was.stop_reason}); nothing moved"
+                if was.stop_latched else "reset done; no stop was latched")
         return _output(episode, status, note)
 
 
 # -- what a human approves before a real arm acts ------------------------------------------
 @dataclass(frozen=True)
 class ArmQuestion:
-    """The real-arm requests a call would make, and the text to show the user."""
+    """The real-arm requests a call would make, the text to show the user, and the arm
+    (whose audit log records the answer and whose config sets the deadline)."""
 
     requests: tuple[ConfirmationRequest, ...]
     text: str
+    world: ArmWorld
+
+    @property
+    def timeout_s(self) -> float:
+        return self.world.config.confirm_timeout_s
+
+    def record(self, shown: str | None, outcome: AuditOutcome, detail: str) -> None:
+        """Write the user's answer (or why there was none) to the arm's audit log, with
+        the text `shown` to the user (this question's text if it was not asked)."""
+        self.world.log_confirmation(shown or self.text, outcome, detail)
 
 
 def _real_arm(world: World | None) -> ArmWorld | None:
@@ -125,11 +138,12 @@ def _question(world: ArmWorld, what: str, requests: list[ConfirmationRequest]) -
     if any(r.waypoints for r in requests):
         r = requests[0]
         grip = f", grip {r.force_n:.0f} N" if r.force_n is not None else ""
-        lines.append(f"Tool speed {r.speed_m_s:.2f} m/s{grip}; every waypoint was checked "
-                     "against the workspace and keep-out zones. Nothing moves unless you "
-                     "approve.")
+        lines.append(f"Tool speed {r.speed_m_s:.2f} m/s{grip}; the path of the tool and of "
+                     "the whole arm (every link, the hand, the fingers, the held object) was "
+                     "checked against the workspace, the table and the keep-out zones. "
+                     "Nothing moves unless you approve.")
     lines.append("Approve?")
-    return ArmQuestion(tuple(requests), "\n".join(lines))
+    return ArmQuestion(tuple(requests), "\n".join(lines), world)
 
 
 def preview_execute(ctx: ToolContext, params: BaseModel) -> ArmQuestion | None:

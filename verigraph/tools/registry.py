@@ -132,11 +132,12 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              arm.ArmStopInput, arm.ArmStatusOutput, arm.arm_stop,
              read_only=False, idempotent=True, open_world=True),
     ToolSpec("arm_reset", "Reset the arm's stop",
-             "Clear the latched stop once the stopped motion has ended, so the arm accepts "
-             "motions again. On a real arm the user is asked to approve it first. Make the "
-             "cell safe before calling it.",
+             "Clear the arm's latched stop (or its controller's error) once the stopped "
+             "motion has ended, so the arm accepts motions again; nothing moves. On a real "
+             "arm the user is asked to approve it first; a simulated or dry-run arm is "
+             "reset only by its operator unless the operator allowed agent resets.",
              arm.ArmRef, arm.ArmStatusOutput, arm.arm_reset,
-             read_only=False, open_world=True),
+             read_only=False, destructive=True, open_world=True),
 )
 TOOLS: dict[str, ToolSpec] = {spec.name: spec for spec in TOOL_SPECS}
 

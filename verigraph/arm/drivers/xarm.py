@@ -49,6 +49,7 @@ class XArmDriver:
         self._api: Any = None
         self._cancel = threading.Event()
         self._moving = False
+        self._fault: str | None = None
 
     # -- connection ------------------------------------------------------------------------
     def connect(self, timeout_s: float) -> None:
@@ -66,11 +67,11 @@ class XArmDriver:
                                      "connection", field="host", value=host,
                                      fix="check the controller's IP address and power")
         self._api = api
-        self._call("clean_warn")
-        self._call("clean_error")
-        self._call("motion_enable", enable=True)
-        self._call("set_mode", 0)
-        self._call("set_state", 0)
+        # Never clear what the controller reports: an error or a stop (state 4) stays
+        # until a reset that a human confirms; only a clean controller is enabled.
+        self._fault = _fault_of(api)
+        if self._fault is None:
+            self._enable()
         if self.options.set_reduced_boundary:
             lo, hi = self.config.workspace.min, self.config.workspace.max
             mm = [hi[0], lo[0], hi[1], lo[1], hi[2], lo[2]]
@@ -95,7 +96,7 @@ class XArmDriver:
         code, pos = api.get_position(is_radian=False)
         tcp = None if code != 0 else Pose(x=pos[0] / 1000, y=pos[1] / 1000, z=pos[2] / 1000,
                                            yaw=math.radians(pos[5]))
-        error = f"controller error {api.error_code}" if api.error_code else None
+        error = _fault_of(api) or self._fault
         return DriverStatus(connected=bool(api.connected), tcp=tcp, moving=self._moving,
                             error=error or ("stopped" if self._cancel.is_set() else None))
 
@@ -123,13 +124,21 @@ class XArmDriver:
             self._api.emergency_stop()
 
     def reset(self) -> None:
+        """Clear the controller's error and stop state and enable it (nothing moves).
+
+        Only the controller calls it, on a reset the user confirmed.
+        """
         self._cancel.clear()
         if self._api is not None:
             self._call("clean_error")
             self._call("clean_warn")
-            self._call("motion_enable", enable=True)
-            self._call("set_mode", 0)
-            self._call("set_state", 0)
+            self._enable()
+            self._fault = None
+
+    def _enable(self) -> None:
+        self._call("motion_enable", enable=True)
+        self._call("set_mode", 0)
+        self._call("set_state", 0)
 
     # -- internals -------------------------------------------------------------------------
     def _sequence(self, steps: list[Callable[[], None]]) -> None:
@@ -173,3 +182,15 @@ class XArmDriver:
                                  value=code, fix="see the xArm API code table; clear the "
                                                  "error on the controller, then reset")
         return result
+
+
+STOPPED_STATE = 4  # the SDK's "stop" state: after an emergency stop or an error
+
+
+def _fault_of(api: Any) -> str | None:
+    """What the controller reports as wrong: an error code, or the stop state."""
+    if getattr(api, "error_code", 0):
+        return f"controller error {api.error_code}"
+    if getattr(api, "state", 0) == STOPPED_STATE:
+        return "controller in the stop state (4)"
+    return None

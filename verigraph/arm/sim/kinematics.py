@@ -82,6 +82,19 @@ class Kinematics:
         self._lower = [i[8] for i in movable]
         self._upper = [i[9] for i in movable]
 
+    @property
+    def client(self) -> int:
+        """The private PyBullet client holding the model (for geometry queries)."""
+        return self._client
+
+    @property
+    def robot(self) -> int:
+        return self._robot
+
+    def set_joints(self, q: tuple[float, ...] | list[float]) -> None:
+        """Put the model at joint positions `q` (arm joints in `joint_names` order)."""
+        self._set(q)
+
     def close(self) -> None:
         if pb.isConnected(self._client):
             pb.disconnect(self._client)
