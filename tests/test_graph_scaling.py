@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from verigraph.graph import Edge, Node, SceneGraph, WorldState, builtin_dictionary
-from verigraph.graph import wellformed
+from verigraph.graph import Edge, Node, SceneGraph, WorldState, builtin_dictionary, wellformed
 from verigraph.graph.dictionary import Dictionary
 from verigraph.graph.wellformed import check_well_formed, find_support_cycle
 
