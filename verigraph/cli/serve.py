@@ -9,6 +9,8 @@ import sys
 from pathlib import Path
 from typing import Any
 
+import anyio
+
 from verigraph.errors import VeriGraphError
 
 TOKEN_ENV = "VERIGRAPH_TOKEN"
@@ -29,7 +31,7 @@ def register(sub: Any) -> None:
     p.add_argument("--allow-host", action="append", default=[], metavar="NAME",
                    help="extra Host/Origin name accepted over HTTP (repeatable)")
     p.add_argument("--max-body-mib", type=float, default=16.0,
-                   help="largest HTTP request body in MiB (default 16)")
+                   help="largest request in MiB: an HTTP body or a stdio message (default 16)")
     p.add_argument("--max-episodes", type=int, default=256,
                    help="open episodes kept at once (default 256)")
     p.add_argument("--disable-solve", action="store_true", help="turn the solve tool off")
@@ -51,6 +53,7 @@ def run_serve(args: argparse.Namespace) -> int:
                         format="%(asctime)s %(levelname)s %(name)s: %(message)s")
     from verigraph.server.app import build_server
     from verigraph.server.http import HttpOptions, serve_http
+    from verigraph.server.stdio import run_stdio
     from verigraph.tools.context import ToolConfig
     from verigraph.tools.executors import server_executor
 
@@ -71,11 +74,12 @@ def run_serve(args: argparse.Namespace) -> int:
     config = ToolConfig(max_episodes=args.max_episodes, enable_solve=not args.disable_solve,
                         executor=executor, arm=arm)
     server = build_server(config=config, log_level=args.log_level)
+    max_bytes = int(args.max_body_mib * 1024 * 1024)
     if args.transport == "stdio":
-        server.run("stdio")
+        anyio.run(run_stdio, server, max_bytes)
         return 0
     options = HttpOptions(host=args.host, port=args.port, token=token,
-                          max_body_bytes=int(args.max_body_mib * 1024 * 1024),
+                          max_body_bytes=max_bytes,
                           allowed_hosts=tuple(args.allow_host))
     serve_http(server, options, log_level=args.log_level)
     return 0
