@@ -4,50 +4,11 @@ error, oversized messages are refused without being held, and the server keeps s
 from __future__ import annotations
 
 import json
-import selectors
-import subprocess
 from collections.abc import Iterator
 from typing import Any
 
 import pytest
-from mcp_helpers import verigraph_command
-
-
-class RawStdio:
-    """`verigraph serve` over stdio, spoken to line by line."""
-
-    def __init__(self, *extra: str) -> None:
-        self.proc = subprocess.Popen([*verigraph_command(), "serve", *extra],
-                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                     stderr=subprocess.DEVNULL)
-        assert self.proc.stdin is not None and self.proc.stdout is not None
-        self.stdin, self.stdout = self.proc.stdin, self.proc.stdout
-        self.selector = selectors.DefaultSelector()
-        self.selector.register(self.stdout, selectors.EVENT_READ)
-
-    def send(self, line: str | bytes) -> None:
-        data = line.encode() if isinstance(line, str) else line
-        self.stdin.write(data + b"\n")
-        self.stdin.flush()
-
-    def reply(self, timeout: float = 60) -> dict[str, Any]:
-        assert self.selector.select(timeout), "no reply from the server"
-        return json.loads(self.stdout.readline())
-
-    def initialize(self) -> None:
-        self.send(json.dumps({"jsonrpc": "2.0", "id": 0, "method": "initialize", "params": {
-            "protocolVersion": "2025-11-25", "capabilities": {},
-            "clientInfo": {"name": "raw", "version": "0"}}}))
-        assert self.reply()["id"] == 0
-        self.send(json.dumps({"jsonrpc": "2.0", "method": "notifications/initialized"}))
-
-    def still_serving(self, request_id: int = 999) -> None:
-        self.send(json.dumps({"jsonrpc": "2.0", "id": request_id, "method": "ping"}))
-        assert self.reply() == {"jsonrpc": "2.0", "id": request_id, "result": {}}
-
-    def close(self) -> int:
-        self.stdin.close()
-        return self.proc.wait(timeout=30)
+from mcp_helpers import RawStdio
 
 
 @pytest.fixture(scope="module")
@@ -124,3 +85,18 @@ def test_a_message_above_the_limit_is_refused_with_its_id(server: RawStdio) -> N
     assert reply["id"] == 41 and reply["error"]["code"] == -32600
     assert "at most 0.0625 MiB" in reply["error"]["message"]
     server.still_serving()
+
+
+def test_a_huge_node_attribute_is_refused_with_a_structured_error() -> None:
+    raw = RawStdio()  # default limits: the 15 MB message itself is allowed in
+    try:
+        raw.initialize()
+        raw.send(call(51, {"name": "load_scene", "arguments": {"graph": {"nodes": [
+            {"id": "table", "label": "table", "attrs": {"note": "x" * 15_000_000}}]}}}))
+        reply = raw.reply()
+        assert reply["id"] == 51 and reply["result"]["isError"] is True
+        message = reply["result"]["content"][0]["text"]
+        assert "nodes[0].attrs" in message and "at most 4096 bytes" in message
+        raw.still_serving()
+    finally:
+        assert raw.close() == 0

@@ -8,6 +8,7 @@ offending value and the fix.
 
 from __future__ import annotations
 
+import json
 from collections.abc import Sequence
 from typing import Annotated, Any
 
@@ -44,6 +45,31 @@ ImageData = Annotated[str, Field(
 
 MAX_GRAPH_NODES = 5000
 MAX_GRAPH_EDGES = 20_000
+# Node attributes are a colour and a few property overrides; an episode keeps them and
+# returns them with every graph, so a large one would be paid for on every call.
+MAX_NODE_ATTRS_BYTES = 4096
+MAX_GRAPH_ATTRS_BYTES = 1024 * 1024
+
+
+def check_attrs_size(nodes: Sequence[Any]) -> None:
+    """ValueError naming the first node whose attrs (as JSON) are too large, or the total."""
+    total = 0
+    for i, node in enumerate(nodes):
+        if not node.attrs:
+            continue
+        try:
+            size = len(json.dumps(node.attrs, default=str))
+        except (TypeError, ValueError, RecursionError):
+            raise ValueError(f"nodes[{i}].attrs of '{str(node.id)[:64]}' is not plain JSON "
+                             "data") from None
+        if size > MAX_NODE_ATTRS_BYTES:
+            raise ValueError(f"nodes[{i}].attrs of '{str(node.id)[:64]}' is {size} bytes as "
+                             f"JSON; at most {MAX_NODE_ATTRS_BYTES} bytes per node are kept "
+                             "(attrs hold a colour and property overrides, not data)")
+        total += size
+    if total > MAX_GRAPH_ATTRS_BYTES:
+        raise ValueError(f"the nodes' attrs total {total} bytes; at most "
+                         f"{MAX_GRAPH_ATTRS_BYTES} bytes per graph are kept")
 
 
 def _bounded(graph: SceneGraph) -> SceneGraph:
@@ -51,6 +77,7 @@ def _bounded(graph: SceneGraph) -> SceneGraph:
         raise ValueError(f"the graph has {len(graph.nodes)} nodes and {len(graph.edges)} edges; "
                          f"at most {MAX_GRAPH_NODES} nodes and {MAX_GRAPH_EDGES} edges are "
                          "accepted")
+    check_attrs_size(graph.nodes)
     return graph
 
 

@@ -29,6 +29,7 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.tools.errors import EpisodeLimitError, EpisodeStateError, UnknownEpisodeError
 from verigraph.tools.executors import SceneCheck
+from verigraph.tools.images import KeptImage
 
 DEFAULT_K = 3
 DEFAULT_T = 5
@@ -88,7 +89,7 @@ class Episode:
     executor: str = "graph"  # graph, sim2d or arm:<driver>
     scene_check: SceneCheck | None = None  # arm episodes: observed scene vs graph at start
     goal_world: Any = None  # a simulator world in the goal state, for rendering it
-    image: np.ndarray | None = None
+    image: np.ndarray | KeptImage | None = None  # kept encoded (see __post_init__)
     initial_graph: SceneGraph | None = None
     dictionary_name: str | None = None
     tau: int = 0
@@ -99,6 +100,10 @@ class Episode:
     done: bool = False
     lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
     last_used: float = 0.0
+
+    def __post_init__(self) -> None:
+        if isinstance(self.image, np.ndarray):
+            self.image = KeptImage.of(self.image)  # perception is done: keep it small
 
     @property
     def threshold_reached(self) -> bool:
