@@ -34,11 +34,16 @@ def register(sub: Any) -> None:
                    help="largest request in MiB: an HTTP body or a stdio message (default 16)")
     p.add_argument("--max-episodes", type=int, default=256,
                    help="open episodes kept at once (default 256)")
+    p.add_argument("--max-arm-episodes", type=int, default=8,
+                   help="arm episodes open at once (default 8; each holds an arm world "
+                        "until end_episode)")
     p.add_argument("--disable-solve", action="store_true", help="turn the solve tool off")
     p.add_argument("--executor", default=None, metavar="NAME",
                    help="where episodes run unless load_scene picks another: graph "
                         "(verification only; the default), sim2d, arm:pybullet, "
-                        "arm:rosbridge or arm:xarm (default with --arm-config: its arm)")
+                        "arm:rosbridge or arm:xarm (default with --arm-config: its arm). "
+                        "Clients may pick graph, sim2d, or this server's arm; without an "
+                        "arm here (or in --arm-config) no client can open an arm episode")
     p.add_argument("--arm-config", type=Path, default=None, metavar="FILE",
                    help="arm configuration (YAML or JSON): driver, host, workspace, keep-out "
                         "zones, speeds, force cap, timeouts, mode (dry-run unless the file "
@@ -63,16 +68,17 @@ def run_serve(args: argparse.Namespace) -> int:
         raise VeriGraphError(f"refusing to serve on {args.host} without a token",
                              field="--host", value=args.host,
                              fix=f"pass --token (or set {TOKEN_ENV}), or bind to 127.0.0.1")
-    if args.max_episodes < 1 or not 0 < args.max_body_mib <= 1024:
+    if args.max_episodes < 1 or args.max_arm_episodes < 0 or not 0 < args.max_body_mib <= 1024:
         raise VeriGraphError("limits out of range", field="--max-episodes/--max-body-mib",
-                             value=None, fix="use --max-episodes >= 1 and 0 < --max-body-mib "
+                             value=None, fix="use --max-episodes >= 1, --max-arm-episodes >= 0 "
+                                             "and 0 < --max-body-mib "
                                              "<= 1024")
     executor, arm = server_executor(args.executor, args.arm_config)
     if arm is not None and executor.startswith("arm:"):
         logging.getLogger("verigraph.server").warning(
             "episodes run on %s in mode %s", executor, arm.config.mode)
     config = ToolConfig(max_episodes=args.max_episodes, enable_solve=not args.disable_solve,
-                        executor=executor, arm=arm)
+                        executor=executor, arm=arm, max_arm_worlds=args.max_arm_episodes)
     server = build_server(config=config, log_level=args.log_level)
     max_bytes = int(args.max_body_mib * 1024 * 1024)
     if args.transport == "stdio":

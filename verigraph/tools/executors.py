@@ -76,11 +76,20 @@ def check_executor(name: str, *, field: str = "executor") -> str:
 
 
 def arm_setup_for(executor: str, server_arm: ArmSetup | None) -> ArmSetup:
-    """The arm an `arm:<driver>` episode runs on: the server's, or a dry-run default."""
-    driver = driver_from_executor(executor)
+    """The arm an `arm:<driver>` episode runs on: the server's, and only the server's.
+
+    Arms are the operator's choice (`verigraph serve --executor arm:<driver>` or
+    `--arm-config`), never a client's: on a server without an arm every arm executor
+    is refused, so no client can make it open PyBullet worlds or connect to hardware.
+    """
+    driver_from_executor(executor)
     if server_arm is None:
-        return ArmSetup(parse_arm_config({"driver": driver}))
-    if server_arm.config.driver != driver:
+        raise ToolArgumentError(
+            f"this server has no arm, so executor {executor} is not available",
+            field="executor", value=executor,
+            fix="use executor graph or sim2d; arm episodes need a server started with "
+                "--executor arm:<driver> or --arm-config")
+    if server_arm.executor != executor:
         raise ToolArgumentError(
             f"this server's arm is {server_arm.executor}, not {executor}", field="executor",
             value=executor, fix=f"use executor {server_arm.executor}, graph or sim2d; another "
