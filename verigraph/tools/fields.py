@@ -28,6 +28,10 @@ from verigraph.tools.errors import ToolArgumentError
 EpisodeId = Annotated[str, Field(
     min_length=1, max_length=64, description="the id load_scene returned",
     examples=["ep_Xq3v9f2PZxk7d1uQm0Cw8g"])]
+RequestId = Annotated[str, Field(
+    min_length=1, max_length=128, pattern=r"^[\x21-\x7e]+$",
+    description="a client-chosen id (printable ASCII), unique per call",
+    examples=["c3f1e2a0-step-4"])]
 ActionText = Annotated[str, Field(
     min_length=1, max_length=2000,
     description="text form: move(cup, on, table), move(cup, table), "

@@ -74,6 +74,38 @@ class TraceEntry(BaseModel):
     goal_satisfied: bool | None = None
 
 
+MAX_REQUEST_RECORDS = 32
+
+
+@dataclass
+class RequestRecords:
+    """request_id -> (proposed actions, result as JSON) of applied execute_actions calls.
+
+    Plain, JSON-serialisable data (a durable store saves `records` with the episode),
+    bounded to the MAX_REQUEST_RECORDS most recent: a retry comes soon after its call.
+    """
+
+    records: dict[str, dict[str, Any]] = field(default_factory=dict)
+
+    def result(self, request_id: str, proposed: list[str]) -> dict[str, Any] | None:
+        """The recorded result of `request_id`, or None if it has not been applied."""
+        record = self.records.get(request_id)
+        if record is None:
+            return None
+        if record["proposed"] != proposed:
+            raise EpisodeStateError(
+                f"request_id '{request_id}' was already used for other actions "
+                f"({'; '.join(record['proposed'])[:200]})", field="request_id",
+                value=request_id, fix="use a new request_id for each new call, and the same "
+                                      "one only to retry the identical call")
+        return dict(record["result"])
+
+    def record(self, request_id: str, proposed: list[str], result: dict[str, Any]) -> None:
+        self.records[request_id] = {"proposed": proposed, "result": result}
+        while len(self.records) > MAX_REQUEST_RECORDS:
+            del self.records[next(iter(self.records))]
+
+
 @dataclass(eq=False)
 class Episode:
     """Mutable state of one planning episode; only touched while its lock is held."""
@@ -98,6 +130,7 @@ class Episode:
     trace: list[TraceEntry] = field(default_factory=list)
     last_violation: Violation | None = None
     done: bool = False
+    requests: RequestRecords = field(default_factory=RequestRecords)
     lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
     last_used: float = 0.0
 
