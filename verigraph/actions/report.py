@@ -10,6 +10,7 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.actions.parser import parse_plan
 from verigraph.actions.validator import GraphEdit, apply_action, validate_action
+from verigraph.budget import checkpoint
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.io import goal_from_data, scene_from_data
 from verigraph.graph.model import SceneGraph
@@ -95,6 +96,7 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
     done = False
     not_checked = 0
     for index, action in enumerate(actions, start=1):
+        checkpoint()
         if isinstance(action, DoneAction):
             done = True
             break

@@ -12,6 +12,7 @@ from collections import Counter, defaultdict
 
 from pydantic import BaseModel
 
+from verigraph.budget import checkpoint
 from verigraph.graph.dictionary import Dictionary, ObjectProperties
 from verigraph.graph.model import Edge, SceneGraph
 
@@ -89,6 +90,8 @@ def check_and_resolve(graph: SceneGraph, dictionary: Dictionary, *, partial: boo
     below: dict[str, list[str]] = defaultdict(list)  # object -> what supports it
     relations = dictionary.relations
     for i, edge in enumerate(graph.edges):
+        if not i & 4095:
+            checkpoint()
         where = f"edges[{i}]"
         relation, source, target_id = edge.relation, edge.source, edge.target
         if relation not in relations:

@@ -14,7 +14,6 @@ from collections.abc import Callable
 from contextvars import ContextVar
 from typing import Annotated, Any
 
-import anyio.to_thread
 from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
 from mcp.server.mcpserver import MCPServer
 from mcp.server.mcpserver.exceptions import ToolError
@@ -24,6 +23,7 @@ from pydantic import BaseModel, Field, ValidationError
 from verigraph.arm import confirm_scope
 from verigraph.errors import VeriGraphError
 from verigraph.server.confirmation import PREVIEWS, approval_hook, resolver_parameters
+from verigraph.server.heavy import CLIENT, HeavyCalls
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
 from verigraph.tools.registry import parse_arguments as parse_tool_arguments
 from verigraph.tools.scenes import ImageResult
@@ -79,12 +79,28 @@ def may_block(spec: ToolSpec, params: BaseModel) -> bool:
     return isinstance(plan, str | list) and len(plan) > BIG_PLAN_CHARS
 
 
+def raw_is_large(arguments: Any) -> bool:
+    """Whether raw arguments are big enough that validating them would hold the loop."""
+    if not isinstance(arguments, dict):
+        return False
+    graphs = [arguments.get("graph"), (arguments.get("goal") or {}).get("graph")
+              if isinstance(arguments.get("goal"), dict) else None]
+    for graph in graphs:
+        if isinstance(graph, dict) and any(
+                isinstance(graph.get(k), list) and len(graph[k]) > BIG_GRAPH_NODES
+                for k in ("nodes", "edges")):
+            return True
+    image, plan = arguments.get("image"), arguments.get("plan")
+    return (isinstance(image, str) and len(image) > 100_000) or (
+        isinstance(plan, str | list) and len(plan) > BIG_PLAN_CHARS // 10)
+
+
 def _gated_params(name: str) -> BaseModel | None:
     gated = _GATED.get()
     return gated[1] if gated is not None and gated[0] == name else None
 
 
-def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
+def tool_function(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Callable[..., Any]:
     """An async function whose signature mirrors `spec.input_model` and runs the tool.
 
     Fast calls run directly on the event loop: a thread hop costs more than the
@@ -116,7 +132,7 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
                         return run(params)
                 except WouldBlock:
                     pass
-            return await anyio.to_thread.run_sync(run, params)
+            return await heavy.run(lambda: run(params), spec.name)
 
     returns: Any = (Annotated[CallToolResult, spec.output_model] if spec.output_model
                     else CallToolResult)
@@ -134,11 +150,11 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
     return call
 
 
-def register_tools(server: MCPServer[Any], toolbox: Toolbox) -> None:
+def register_tools(server: MCPServer[Any], toolbox: Toolbox, heavy: HeavyCalls) -> None:
     """Add every tool in TOOL_SPECS order (the order tools/list reports)."""
     for spec in TOOL_SPECS:
         server.add_tool(
-            tool_function(spec, toolbox), name=spec.name, title=spec.title,
+            tool_function(spec, toolbox, heavy), name=spec.name, title=spec.title,
             description=spec.description,
             annotations=ToolAnnotations(
                 title=spec.title, read_only_hint=spec.read_only,
@@ -159,6 +175,9 @@ class ArgumentGate:
     exactly the input it validated.
     """
 
+    def __init__(self, heavy: HeavyCalls) -> None:
+        self.heavy = heavy
+
     async def __call__(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
                        ) -> HandlerResult:
         if ctx.method != "tools/call" or ctx.params is None:
@@ -167,8 +186,16 @@ class ArgumentGate:
         spec = TOOLS.get(name) if isinstance(name, str) else None
         if spec is None:
             return await call_next(ctx)
+        client = getattr(ctx.request, "client", None)
+        if client is not None:
+            CLIENT.set(f"{client.host}:{client.port}")
+        arguments = ctx.params.get("arguments")
         try:
-            params = parse_tool_arguments(spec, ctx.params.get("arguments"))
+            if raw_is_large(arguments):
+                params = await self.heavy.run(lambda: parse_tool_arguments(spec, arguments),
+                                              f"{spec.name} arguments")
+            else:
+                params = parse_tool_arguments(spec, arguments)
         except VeriGraphError as exc:
             return CallToolResult(content=[TextContent(
                 type="text", text=f"Error executing tool {spec.name}: {exc}")], is_error=True)
