@@ -13,11 +13,13 @@ import anyio.to_thread
 import httpx2
 import pytest
 import uvicorn
-from mcp_helpers import JSON_HEADERS, free_port, rpc
+from mcp import Client
+from mcp_helpers import JSON_HEADERS, free_port, rpc, text
 
 from verigraph.actions import report
-from verigraph.budget import BudgetExceeded, checkpoint
+from verigraph.budget import Budget, BudgetExceeded, checkpoint
 from verigraph.server import build_server
+from verigraph.server.heavy import HeavyLimits
 from verigraph.server.http import HttpOptions, uvicorn_config
 from verigraph.tools import Toolbox
 
@@ -67,12 +69,12 @@ async def test_a_vanished_clients_call_is_cancelled(monkeypatch: pytest.MonkeyPa
         with anyio.fail_after(SAFETY_S):
             while not server.started:
                 await anyio.sleep(0.01)
-        async with httpx2.AsyncClient(timeout=SAFETY_S) as http:
-            async with anyio.create_task_group() as client:
-                client.start_soon(functools.partial(http.post, options.url(), content=body,
-                                                    headers=JSON_HEADERS))
-                await anyio.to_thread.run_sync(held.started.wait, SAFETY_S)
-                client.cancel_scope.cancel()  # the client goes away mid-call
+        async with httpx2.AsyncClient(timeout=SAFETY_S) as http, \
+                anyio.create_task_group() as client:
+            client.start_soon(functools.partial(http.post, options.url(), content=body,
+                                                headers=JSON_HEADERS))
+            await anyio.to_thread.run_sync(held.started.wait, SAFETY_S)
+            client.cancel_scope.cancel()  # the client goes away mid-call
         assert await anyio.to_thread.run_sync(held.finished.wait, SAFETY_S)
         assert held.outcome and "cancelled" in str(held.outcome[0])
         async with httpx2.AsyncClient(timeout=SAFETY_S) as http:  # still serving
@@ -83,12 +85,6 @@ async def test_a_vanished_clients_call_is_cancelled(monkeypatch: pytest.MonkeyPa
 
 async def test_a_call_over_its_wall_clock_budget_gets_a_tool_error(
         monkeypatch: pytest.MonkeyPatch) -> None:
-    from mcp import Client
-    from mcp_helpers import text
-
-    from verigraph.budget import Budget
-    from verigraph.server.heavy import HeavyLimits
-
     held = HeldStep()
     monkeypatch.setattr(report, "validate_action", held)
     server = build_server(Toolbox(), heavy=HeavyLimits(budget=Budget(wall_s=0.2)))
