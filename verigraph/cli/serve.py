@@ -14,6 +14,7 @@ import anyio
 from verigraph.errors import VeriGraphError
 
 TOKEN_ENV = "VERIGRAPH_TOKEN"
+LOOP_SWITCH_INTERVAL_S = 0.0005
 
 
 def register(sub: Any) -> None:
@@ -109,6 +110,9 @@ def run_serve(args: argparse.Namespace) -> int:
     heavy = HeavyLimits(workers=args.heavy_workers, per_client=args.per_client,
                         budget=Budget(wall_s=args.tool_seconds, memory_mib=args.tool_mib))
     server = build_server(config=config, log_level=args.log_level, heavy=heavy)
+    # Heavy calls run on worker threads; a short GIL switch interval lets the event loop
+    # thread answer light calls between their bytecodes (the default is 5 ms per turn).
+    sys.setswitchinterval(LOOP_SWITCH_INTERVAL_S)
     max_bytes = int(args.max_body_mib * 1024 * 1024)
     if args.transport == "stdio":
         anyio.run(run_stdio, server, max_bytes)

@@ -39,11 +39,12 @@ def build_server(toolbox: Toolbox | None = None, *, config: ToolConfig | None = 
     calls run on worker threads within `heavy`'s concurrency and budget."""
     toolbox = toolbox or Toolbox(config=config)
     runner = HeavyCalls(heavy)
+    gate = ArgumentGate(runner)
     server: MCPServer[Any] = MCPServer(
         "verigraph", title="VeriGraph", version=__version__, instructions=INSTRUCTIONS,
         description="Scene-graph verifier for LLM robot planning",
-        middleware=[ArgumentGate(runner)], log_level=log_level)
-    register_tools(server, toolbox, runner)
+        middleware=[gate], log_level=log_level)
+    gate.direct = register_tools(server, toolbox, runner)
     register_resources(server, toolbox)
     register_prompts(server, toolbox)
     return server

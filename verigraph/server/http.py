@@ -13,6 +13,9 @@ import asyncio
 import hmac
 import json
 import logging
+import os
+import socket
+import threading
 from collections import deque
 from dataclasses import dataclass, field
 from typing import Any
@@ -46,7 +49,7 @@ class HttpOptions:
     body_timeout_s: float = 30.0
     keep_alive_s: float = 75.0  # clients keep connections across long local steps
     max_connections: int = 512
-    shutdown_s: float = 1.0  # SIGTERM: in-flight calls get this long, then are cancelled
+    shutdown_s: float = 0.5  # SIGTERM: in-flight calls get this long, then are cancelled
 
     def url(self) -> str:
         host = f"[{self.host}]" if ":" in self.host else self.host
@@ -184,7 +187,32 @@ def uvicorn_config(server: MCPServer[Any], options: HttpOptions, log_level: str 
         log_level=log_level.lower(), access_log=False, lifespan="on",
         http=guarded_protocol(options.header_timeout_s, options.max_connections),
         timeout_keep_alive=int(options.keep_alive_s),
-        timeout_graceful_shutdown=max(1, round(options.shutdown_s)))
+        timeout_graceful_shutdown=options.shutdown_s)  # type: ignore[arg-type]
+
+
+class StoppableServer(uvicorn.Server):
+    """uvicorn that exits within `hard_exit_s` of the start of its shutdown.
+
+    Cancelled calls stop at their next budget checkpoint; a call stuck in code that
+    never checks (a C extension, a blocking driver) would hold the process, so a
+    timer ends it once the grace time is over.
+    """
+
+    def __init__(self, config: uvicorn.Config, hard_exit_s: float) -> None:
+        super().__init__(config)
+        self.hard_exit_s = hard_exit_s
+
+    async def shutdown(self, sockets: list[socket.socket] | None = None) -> None:
+        timer = threading.Timer(self.hard_exit_s, _hard_exit)
+        timer.daemon = True
+        timer.start()
+        await super().shutdown(sockets)
+
+
+def _hard_exit() -> None:
+    log.error("shutdown: tool calls still running after the grace time; exiting now")
+    logging.shutdown()
+    os._exit(0)
 
 
 def serve_http(server: MCPServer[Any], options: HttpOptions, log_level: str = "warning") -> None:
@@ -199,6 +227,6 @@ def serve_http(server: MCPServer[Any], options: HttpOptions, log_level: str = "w
 
     async def main() -> None:
         quiet_accept_errors(asyncio.get_running_loop())
-        await uvicorn.Server(config).serve()
+        await StoppableServer(config, options.shutdown_s + 0.8).serve()
 
     anyio.run(main)

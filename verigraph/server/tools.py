@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import base64
 import inspect
-from collections.abc import Callable
+import logging
+from collections.abc import Awaitable, Callable
 from contextvars import ContextVar
 from typing import Annotated, Any
 
@@ -28,6 +29,8 @@ from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argum
 from verigraph.tools.registry import parse_arguments as parse_tool_arguments
 from verigraph.tools.scenes import ImageResult
 from verigraph.tools.store import WouldBlock, non_blocking
+
+log = logging.getLogger("verigraph.server")
 
 
 def to_result(spec: ToolSpec, result: BaseModel | ImageResult) -> CallToolResult:
@@ -100,15 +103,16 @@ def _gated_params(name: str) -> BaseModel | None:
     return gated[1] if gated is not None and gated[0] == name else None
 
 
-def tool_function(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Callable[..., Any]:
-    """An async function whose signature mirrors `spec.input_model` and runs the tool.
+Executor = Callable[[BaseModel], Awaitable[CallToolResult]]
+
+
+def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Executor:
+    """Run the tool on validated input: on the loop if fast, else as a heavy call.
 
     Fast calls run directly on the event loop: a thread hop costs more than the
-    verification itself. A call that could block (slow tool, busy episode, simulator)
-    runs on a worker thread instead. A tool that can make a real arm act also takes
-    the user's answer, which the SDK elicits before the body runs (see confirmation).
+    verification itself. A call that could block (slow tool, busy episode, simulator,
+    large input) runs on a worker thread within its budget (see heavy).
     """
-    confirmed = spec.name in PREVIEWS
     slow_default = spec.name == "load_scene" and toolbox.context.config.executor != "graph"
 
     def run(params: BaseModel) -> CallToolResult:
@@ -116,6 +120,27 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Callab
             return to_result(spec, toolbox.run(spec, params))
         except VeriGraphError as exc:
             raise ToolError(str(exc)) from None
+
+    async def execute(params: BaseModel) -> CallToolResult:
+        if not (slow_default or may_block(spec, params)):
+            try:
+                with non_blocking():
+                    return run(params)
+            except WouldBlock:
+                pass
+        return await heavy.run(lambda: run(params), spec.name)
+
+    return execute
+
+
+def tool_function(spec: ToolSpec, toolbox: Toolbox, execute: Executor) -> Callable[..., Any]:
+    """An async function whose signature mirrors `spec.input_model` and runs the tool.
+
+    It gives the SDK the tool's schema; ArgumentGate runs most calls itself (see
+    there). A tool that can make a real arm act also takes the user's answer, which
+    the SDK elicits before the body runs (see confirmation).
+    """
+    confirmed = spec.name in PREVIEWS
 
     async def call(**arguments: Any) -> CallToolResult:
         hook = approval_hook(spec.name, arguments) if confirmed else None
@@ -126,13 +151,7 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Callab
             except ValidationError as exc:
                 raise ToolError(str(argument_error(spec, exc))) from None
         with confirm_scope(hook):
-            if not (slow_default or may_block(spec, params)):
-                try:
-                    with non_blocking():
-                        return run(params)
-                except WouldBlock:
-                    pass
-            return await heavy.run(lambda: run(params), spec.name)
+            return await execute(params)
 
     returns: Any = (Annotated[CallToolResult, spec.output_model] if spec.output_model
                     else CallToolResult)
@@ -150,16 +169,23 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Callab
     return call
 
 
-def register_tools(server: MCPServer[Any], toolbox: Toolbox, heavy: HeavyCalls) -> None:
-    """Add every tool in TOOL_SPECS order (the order tools/list reports)."""
+def register_tools(server: MCPServer[Any], toolbox: Toolbox, heavy: HeavyCalls
+                   ) -> dict[str, Executor]:
+    """Add every tool in TOOL_SPECS order (the order tools/list reports); returns the
+    executors ArgumentGate runs directly (every tool that asks no confirmation)."""
+    direct: dict[str, Executor] = {}
     for spec in TOOL_SPECS:
+        execute = tool_executor(spec, toolbox, heavy)
+        if spec.name not in PREVIEWS:
+            direct[spec.name] = execute
         server.add_tool(
-            tool_function(spec, toolbox, heavy), name=spec.name, title=spec.title,
+            tool_function(spec, toolbox, execute), name=spec.name, title=spec.title,
             description=spec.description,
             annotations=ToolAnnotations(
                 title=spec.title, read_only_hint=spec.read_only,
                 destructive_hint=spec.destructive, idempotent_hint=spec.idempotent,
                 open_world_hint=spec.open_world))
+    return direct
 
 
 # The arguments ArgumentGate validated for the tools/call being handled (tool, input).
@@ -177,6 +203,7 @@ class ArgumentGate:
 
     def __init__(self, heavy: HeavyCalls) -> None:
         self.heavy = heavy
+        self.direct: dict[str, Executor] = {}  # filled by build_server
 
     async def __call__(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
                        ) -> HandlerResult:
@@ -199,6 +226,22 @@ class ArgumentGate:
         except VeriGraphError as exc:
             return CallToolResult(content=[TextContent(
                 type="text", text=f"Error executing tool {spec.name}: {exc}")], is_error=True)
+        direct = self.direct.get(spec.name)
+        if direct is not None:
+            # Run it here: the SDK would validate the arguments and the structured
+            # result once more on the event loop (both already hold by construction),
+            # which for a large graph stalls every other client.
+            try:
+                return await direct(params)
+            except ToolError as exc:
+                log.info("Tool %r failed: %r", spec.name, str(exc))
+                return CallToolResult(content=[TextContent(
+                    type="text", text=f"Error executing tool {spec.name}: {exc}")],
+                    is_error=True)
+            except Exception:  # a bug: logged in full, the client learns only that
+                log.exception("Tool %r raised an unexpected exception", spec.name)
+                return CallToolResult(content=[TextContent(
+                    type="text", text=f"Error executing tool {spec.name}")], is_error=True)
         token = _GATED.set((spec.name, params))
         try:
             return await call_next(ctx)

@@ -9,6 +9,8 @@ operator's explicit opt-in in the config file.
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -207,6 +209,7 @@ class ArmCells:
                 world.close()
             finally:
                 self._release(world)
+                return_freed_memory()
 
     def _reserve(self, setup: ArmSetup) -> object:
         key = _hardware_key(setup.config)
@@ -229,6 +232,19 @@ class ArmCells:
     def _release(self, slot: object) -> None:
         with self._lock:
             self._slots.pop(slot, None)
+
+
+def return_freed_memory() -> None:
+    """Hand memory freed by a closed arm world (meshes, simulator state) back to the OS.
+
+    glibc keeps freed heap pages in its arenas, so the process would stay as large as
+    its peak after every closed PyBullet world; malloc_trim releases them.
+    """
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
+        libc.malloc_trim(0)
+    except (OSError, AttributeError):
+        pass  # not glibc: nothing to trim
 
 
 def _hardware_key(config: ArmConfig) -> str | None:
