@@ -135,6 +135,7 @@ class RawStdio:
                                      stderr=subprocess.DEVNULL)
         assert self.proc.stdin is not None and self.proc.stdout is not None
         self.stdin, self.stdout = self.proc.stdin, self.proc.stdout
+        self.pending = bytearray()
         self.selector = selectors.DefaultSelector()
         self.selector.register(self.stdout, selectors.EVENT_READ)
 
@@ -144,8 +145,15 @@ class RawStdio:
         self.stdin.flush()
 
     def reply(self, timeout: float = 60) -> dict[str, Any]:
-        assert self.selector.select(timeout), "no reply from the server"
-        return json.loads(self.stdout.readline())
+        """The next line on stdout as JSON (read unbuffered, so select() stays truthful)."""
+        while b"\n" not in self.pending:
+            assert self.selector.select(timeout), "no reply from the server"
+            chunk = os.read(self.stdout.fileno(), 1 << 16)
+            assert chunk, "the server closed stdout"
+            self.pending += chunk
+        line, _, rest = bytes(self.pending).partition(b"\n")
+        self.pending = bytearray(rest)
+        return json.loads(line)
 
     def initialize(self) -> None:
         self.send(json.dumps({"jsonrpc": "2.0", "id": 0, "method": "initialize", "params": {
