@@ -15,6 +15,7 @@ from collections.abc import Awaitable, Callable
 from contextvars import ContextVar
 from typing import Annotated, Any
 
+import anyio.to_thread
 from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
 from mcp.server.mcpserver import MCPServer
 from mcp.server.mcpserver.exceptions import ToolError
@@ -63,6 +64,8 @@ def _parameters(model: type[BaseModel]) -> list[inspect.Parameter]:
 SLOW_TOOLS = frozenset({"render_scene", "get_scene_image", "solve", "generate_scene_graph",
                         "arm_status", "arm_stop", "arm_reset"})
 SLOW_ARGUMENTS = ("image", "generator", "simulate", "executor")
+# The arm's own controls answer while a motion runs: their own thread, no heavy queue.
+URGENT_TOOLS = frozenset({"arm_status", "arm_stop", "arm_reset"})
 
 
 BIG_GRAPH_NODES = 300
@@ -95,7 +98,7 @@ def raw_is_large(arguments: Any) -> bool:
             return True
     image, plan = arguments.get("image"), arguments.get("plan")
     return (isinstance(image, str) and len(image) > 100_000) or (
-        isinstance(plan, str | list) and len(plan) > BIG_PLAN_CHARS // 10)
+        isinstance(plan, str) and len(plan) > 2000) or (isinstance(plan, list) and len(plan) > 100)
 
 
 def _gated_params(name: str) -> BaseModel | None:
@@ -122,6 +125,8 @@ def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Execut
             raise ToolError(str(exc)) from None
 
     async def execute(params: BaseModel) -> CallToolResult:
+        if spec.name in URGENT_TOOLS:  # never queued behind the call they must interrupt
+            return await anyio.to_thread.run_sync(run, params)
         if not (slow_default or may_block(spec, params)):
             try:
                 with non_blocking():
