@@ -12,6 +12,7 @@ simulator inherit it by calling `checkpoint()`.
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Callable
 from contextvars import ContextVar
 from dataclasses import dataclass, field
@@ -24,6 +25,7 @@ import anyio.to_thread
 from verigraph.budget import Budget, within
 
 T = TypeVar("T")
+log = logging.getLogger("verigraph.server")
 # Who is calling: "host:port" of the HTTP connection, or "stdio". Set per request.
 CLIENT: ContextVar[str] = ContextVar("verigraph_client", default="stdio")
 
@@ -68,6 +70,7 @@ class HeavyCalls:
         budget = self.limits.budget
 
         def guarded() -> T:
+            log.debug("heavy call %s started for %s", name, client)
             with within(budget, name, cancelled=anyio.from_thread.check_cancelled):
                 return fn()
 
