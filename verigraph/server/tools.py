@@ -85,6 +85,20 @@ def may_block(spec: ToolSpec, params: BaseModel) -> bool:
     return isinstance(plan, str | list) and len(plan) > BIG_PLAN_CHARS
 
 
+def big_episode(toolbox: Toolbox, spec: ToolSpec, params: BaseModel) -> bool:
+    """Whether the call works on (and mostly returns) a large episode graph: then its
+    result alone takes long to build, so it runs as a heavy call. validate_action
+    answers in O(degree) and stays on the loop."""
+    episode_id = getattr(params, "episode_id", None)
+    if spec.name == "validate_action" or not isinstance(episode_id, str):
+        return False
+    try:
+        state = toolbox.context.store.peek(episode_id).state
+    except VeriGraphError:
+        return False  # the tool reports it
+    return state is not None and len(state.objects) > BIG_GRAPH_NODES
+
+
 def raw_is_large(arguments: Any) -> bool:
     """Whether raw arguments are big enough that validating them would hold the loop."""
     if not isinstance(arguments, dict):
@@ -127,7 +141,7 @@ def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Execut
     async def execute(params: BaseModel) -> CallToolResult:
         if spec.name in URGENT_TOOLS:  # never queued behind the call they must interrupt
             return await anyio.to_thread.run_sync(run, params)
-        if not (slow_default or may_block(spec, params)):
+        if not (slow_default or may_block(spec, params) or big_episode(toolbox, spec, params)):
             try:
                 with non_blocking():
                     return run(params)
