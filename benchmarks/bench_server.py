@@ -77,10 +77,11 @@ def free_port() -> int:
         return int(s.getsockname()[1])
 
 
-def start_http() -> tuple[subprocess.Popen[bytes], str]:
+def start_http(extra: list[str] | None = None) -> tuple[subprocess.Popen[bytes], str]:
     port = free_port()
     proc = subprocess.Popen([*verigraph_command(), "serve", "--transport", "http", "--port",
-                             str(port), "--token", TOKEN], stderr=subprocess.DEVNULL)
+                             str(port), "--token", TOKEN, *(extra or [])],
+                            stderr=subprocess.DEVNULL)
     url = f"http://127.0.0.1:{port}/mcp"
     deadline = time.monotonic() + 30
     while time.monotonic() < deadline:

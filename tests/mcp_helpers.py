@@ -5,6 +5,7 @@ from __future__ import annotations
 import base64
 import json
 import os
+import selectors
 import shutil
 import socket
 import subprocess
@@ -123,3 +124,48 @@ def rpc(method: str, params: dict[str, Any] | None = None, request_id: int = 1) 
 
 JSON_HEADERS = {"Content-Type": "application/json",
                 "Accept": "application/json, text/event-stream"}
+
+
+class RawStdio:
+    """`verigraph serve` over stdio, spoken to line by line."""
+
+    def __init__(self, *extra: str) -> None:
+        self.proc = subprocess.Popen([*verigraph_command(), "serve", *extra],
+                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                     stderr=subprocess.DEVNULL)
+        assert self.proc.stdin is not None and self.proc.stdout is not None
+        self.stdin, self.stdout = self.proc.stdin, self.proc.stdout
+        self.pending = bytearray()
+        self.selector = selectors.DefaultSelector()
+        self.selector.register(self.stdout, selectors.EVENT_READ)
+
+    def send(self, line: str | bytes) -> None:
+        data = line.encode() if isinstance(line, str) else line
+        self.stdin.write(data + b"\n")
+        self.stdin.flush()
+
+    def reply(self, timeout: float = 60) -> dict[str, Any]:
+        """The next line on stdout as JSON (read unbuffered, so select() stays truthful)."""
+        while b"\n" not in self.pending:
+            assert self.selector.select(timeout), "no reply from the server"
+            chunk = os.read(self.stdout.fileno(), 1 << 16)
+            assert chunk, "the server closed stdout"
+            self.pending += chunk
+        line, _, rest = bytes(self.pending).partition(b"\n")
+        self.pending = bytearray(rest)
+        return json.loads(line)
+
+    def initialize(self) -> None:
+        self.send(json.dumps({"jsonrpc": "2.0", "id": 0, "method": "initialize", "params": {
+            "protocolVersion": "2025-11-25", "capabilities": {},
+            "clientInfo": {"name": "raw", "version": "0"}}}))
+        assert self.reply()["id"] == 0
+        self.send(json.dumps({"jsonrpc": "2.0", "method": "notifications/initialized"}))
+
+    def still_serving(self, request_id: int = 999) -> None:
+        self.send(json.dumps({"jsonrpc": "2.0", "id": request_id, "method": "ping"}))
+        assert self.reply() == {"jsonrpc": "2.0", "id": request_id, "result": {}}
+
+    def close(self) -> int:
+        self.stdin.close()
+        return self.proc.wait(timeout=30)

@@ -100,7 +100,7 @@ FIELD_KINDS = {
     "graph": "object", "goal": "object", "generator": "object", "predicate": "str",
     "view": "str", "k": "int", "t": "int", "seed": "int", "width": "int", "height": "int",
     "max_expansions": "int", "partial": "bool", "simulate": "bool", "all_errors": "bool",
-    "executor": "str", "reason": "str",
+    "executor": "str", "reason": "str", "request_id": "str", "expected_calls": "int",
 }
 
 

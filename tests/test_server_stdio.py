@@ -72,6 +72,8 @@ def test_garbage_on_stdin_does_not_stop_the_server() -> None:
 
     try:
         send("this is not JSON-RPC")
+        parse_error = json.loads(stdout.readline())
+        assert parse_error["id"] is None and parse_error["error"]["code"] == -32700
         send({"jsonrpc": "2.0", "id": 1, "method": "initialize", "params": {
             "protocolVersion": "2025-11-25", "capabilities": {},
             "clientInfo": {"name": "raw", "version": "0"}}})

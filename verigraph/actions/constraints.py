@@ -21,12 +21,18 @@ def _violation(action: MoveAction | AlignAction, constraint: str, message: str,
                      message=message, blocking=blocking or [], suggestion=suggestion)
 
 
+# Fuzzy matching compares against at most this many ids of a similar length, so an
+# unknown name in a huge scene costs a bounded amount of work.
+MAX_FUZZY_CANDIDATES = 400
+
+
 def _nearest_ids(state: WorldState, name: str) -> list[str]:
     """Ids that look like `name`, or whose label is `name` (only runs on failure)."""
-    by_label = [o.id for o in state.objects.values()
-                if o.label == state.dictionary.resolve(name)]
-    close = difflib.get_close_matches(name, list(state.objects), n=3, cutoff=0.5)
-    return list(dict.fromkeys(by_label[:3] + close))[:3]
+    label = state.dictionary.resolve(name)
+    by_label = [o.id for o in state.objects.values() if o.label == label][:3]
+    candidates = [i for i in state.objects if abs(len(i) - len(name)) <= 3]
+    close = difflib.get_close_matches(name, candidates[:MAX_FUZZY_CANDIDATES], n=3, cutoff=0.5)
+    return list(dict.fromkeys(by_label + close))[:3]
 
 
 def _place_hint(state: WorldState, obj: str, exclude: set[str]) -> str:

@@ -20,6 +20,7 @@ from pydantic import BaseModel
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, DoneAction, MoveAction
 from verigraph.actions.validator import apply_action, validate_action
+from verigraph.budget import checkpoint
 from verigraph.graph.state import WorldState
 
 M = TypeVar("M", bound=BaseModel)
@@ -89,6 +90,8 @@ def check_plan(state: WorldState, actions: list[AnyAction], all_errors: bool
     support = state.support
     carried = state.carried
     for index, action in enumerate(actions, start=1):
+        if not index & 1023:
+            checkpoint()  # the server's per-call budget (and cancellation), cheap when unset
         if type(action) is MoveAction and move_accepted(state, action):
             obj = action.object
             old = support.get(obj)

@@ -9,9 +9,12 @@ import sys
 from pathlib import Path
 from typing import Any
 
+import anyio
+
 from verigraph.errors import VeriGraphError
 
 TOKEN_ENV = "VERIGRAPH_TOKEN"
+LOOP_SWITCH_INTERVAL_S = 0.0005
 
 
 def register(sub: Any) -> None:
@@ -29,14 +32,37 @@ def register(sub: Any) -> None:
     p.add_argument("--allow-host", action="append", default=[], metavar="NAME",
                    help="extra Host/Origin name accepted over HTTP (repeatable)")
     p.add_argument("--max-body-mib", type=float, default=16.0,
-                   help="largest HTTP request body in MiB (default 16)")
+                   help="largest request in MiB: an HTTP body or a stdio message (default 16)")
+    p.add_argument("--max-connections", type=int, default=None,
+                   help="open HTTP connections at once; more get 503 (default 512, or fewer "
+                        "when the file-descriptor limit is low)")
+    p.add_argument("--header-timeout", type=float, default=10.0, metavar="S",
+                   help="HTTP: seconds a client has to send its request headers (default 10)")
+    p.add_argument("--body-timeout", type=float, default=30.0, metavar="S",
+                   help="HTTP: seconds a client has to send its request body (default 30)")
+    p.add_argument("--keep-alive", type=float, default=75.0, metavar="S",
+                   help="HTTP: seconds an idle connection stays open (default 75)")
+    p.add_argument("--tool-seconds", type=float, default=30.0, metavar="S",
+                   help="wall-clock budget of one heavy tool call (default 30)")
+    p.add_argument("--tool-mib", type=float, default=512.0, metavar="MIB",
+                   help="memory growth budget of one heavy tool call (default 512)")
+    p.add_argument("--heavy-workers", type=int, default=2,
+                   help="heavy tool calls running at once (default 2)")
+    p.add_argument("--per-client", type=int, default=1,
+                   help="heavy tool calls running at once for one client connection "
+                        "(default 1; the rest wait)")
     p.add_argument("--max-episodes", type=int, default=256,
                    help="open episodes kept at once (default 256)")
+    p.add_argument("--max-arm-episodes", type=int, default=8,
+                   help="arm episodes open at once (default 8; each holds an arm world "
+                        "until end_episode)")
     p.add_argument("--disable-solve", action="store_true", help="turn the solve tool off")
     p.add_argument("--executor", default=None, metavar="NAME",
                    help="where episodes run unless load_scene picks another: graph "
                         "(verification only; the default), sim2d, arm:pybullet, "
-                        "arm:rosbridge or arm:xarm (default with --arm-config: its arm)")
+                        "arm:rosbridge or arm:xarm (default with --arm-config: its arm). "
+                        "Clients may pick graph, sim2d, or this server's arm; without an "
+                        "arm here (or in --arm-config) no client can open an arm episode")
     p.add_argument("--arm-config", type=Path, default=None, metavar="FILE",
                    help="arm configuration (YAML or JSON): driver, host, workspace, keep-out "
                         "zones, speeds, force cap, timeouts, mode (dry-run unless the file "
@@ -49,8 +75,11 @@ def register(sub: Any) -> None:
 def run_serve(args: argparse.Namespace) -> int:
     logging.basicConfig(stream=sys.stderr, level=args.log_level,
                         format="%(asctime)s %(levelname)s %(name)s: %(message)s")
+    from verigraph.budget import Budget
     from verigraph.server.app import build_server
+    from verigraph.server.heavy import HeavyLimits
     from verigraph.server.http import HttpOptions, serve_http
+    from verigraph.server.stdio import run_stdio
     from verigraph.tools.context import ToolConfig
     from verigraph.tools.executors import server_executor
 
@@ -60,9 +89,10 @@ def run_serve(args: argparse.Namespace) -> int:
         raise VeriGraphError(f"refusing to serve on {args.host} without a token",
                              field="--host", value=args.host,
                              fix=f"pass --token (or set {TOKEN_ENV}), or bind to 127.0.0.1")
-    if args.max_episodes < 1 or not 0 < args.max_body_mib <= 1024:
+    if args.max_episodes < 1 or args.max_arm_episodes < 0 or not 0 < args.max_body_mib <= 1024:
         raise VeriGraphError("limits out of range", field="--max-episodes/--max-body-mib",
-                             value=None, fix="use --max-episodes >= 1 and 0 < --max-body-mib "
+                             value=None, fix="use --max-episodes >= 1, --max-arm-episodes >= 0 "
+                                             "and 0 < --max-body-mib "
                                              "<= 1024")
     executor, arm = server_executor(args.executor, args.arm_config)
     if arm is not None:
@@ -73,13 +103,42 @@ def run_serve(args: argparse.Namespace) -> int:
         logging.getLogger("verigraph.server").warning(
             "episodes run on %s in mode %s", executor, arm.config.mode)
     config = ToolConfig(max_episodes=args.max_episodes, enable_solve=not args.disable_solve,
-                        executor=executor, arm=arm)
-    server = build_server(config=config, log_level=args.log_level)
+                        executor=executor, arm=arm, max_arm_worlds=args.max_arm_episodes)
+    numbers = (args.header_timeout, args.body_timeout, args.keep_alive, args.tool_seconds,
+               args.tool_mib, args.heavy_workers, args.per_client)
+    if min(numbers) <= 0:
+        raise VeriGraphError("timeouts, budgets and worker counts must be positive",
+                             field="--header-timeout/--body-timeout/--keep-alive/"
+                                   "--tool-seconds/--tool-mib/--heavy-workers/--per-client",
+                             value=None, fix="give each a positive number")
+    heavy = HeavyLimits(workers=args.heavy_workers, per_client=args.per_client,
+                        budget=Budget(wall_s=args.tool_seconds, memory_mib=args.tool_mib))
+    server = build_server(config=config, log_level=args.log_level, heavy=heavy)
+    # Heavy calls run on worker threads; a short GIL switch interval lets the event loop
+    # thread answer light calls between their bytecodes (the default is 5 ms per turn).
+    sys.setswitchinterval(LOOP_SWITCH_INTERVAL_S)
+    max_bytes = int(args.max_body_mib * 1024 * 1024)
     if args.transport == "stdio":
-        server.run("stdio")
+        anyio.run(run_stdio, server, max_bytes)
         return 0
     options = HttpOptions(host=args.host, port=args.port, token=token,
-                          max_body_bytes=int(args.max_body_mib * 1024 * 1024),
-                          allowed_hosts=tuple(args.allow_host))
+                          max_body_bytes=max_bytes,
+                          allowed_hosts=tuple(args.allow_host),
+                          header_timeout_s=args.header_timeout, body_timeout_s=args.body_timeout,
+                          keep_alive_s=args.keep_alive,
+                          max_connections=args.max_connections or default_max_connections())
     serve_http(server, options, log_level=args.log_level)
     return 0
+
+
+def default_max_connections() -> int:
+    """512, or what the file-descriptor limit leaves after a margin for the server."""
+    try:
+        import resource
+
+        soft = resource.getrlimit(resource.RLIMIT_NOFILE)[0]
+    except (ImportError, ValueError, OSError):
+        return 512
+    if soft == resource.RLIM_INFINITY:
+        return 512
+    return max(8, min(512, soft - 64))

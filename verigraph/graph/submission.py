@@ -9,6 +9,7 @@ so the agent can fix them all in one go.
 from __future__ import annotations
 
 import re
+import unicodedata
 from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
@@ -68,7 +69,11 @@ class Rename(BaseModel):
 
 
 def normalise_id(raw: str) -> str:
-    return canonical_token(raw).strip("_") or raw
+    """`Red Block` -> `red_block`, `tasse_é` -> `tasse_e`: ids are ASCII (they appear in
+    action text and resource URIs), so accents are folded and other letters dropped."""
+    folded = unicodedata.normalize("NFKD", raw).encode("ascii", "ignore").decode("ascii")
+    token = canonical_token(folded).strip("_")[:128]
+    return token if token and _ID.match(token) else raw
 
 
 def normalise_graph(graph: SubmittedGraph, dictionary: Dictionary
@@ -83,10 +88,15 @@ def normalise_graph(graph: SubmittedGraph, dictionary: Dictionary
         if node_id != raw.id:
             renames.append(Rename(field=f"nodes[{i}].id", before=raw.id, after=node_id))
         if not _ID.match(node_id):
+            # The reply shows a placeholder (its own schema only allows valid ids);
+            # the problem names the id as it was sent.
+            node_id = f"invalid_id_{i}"
             problems.append(GraphProblem(
                 rule="invalid_id", node=raw.id, field=f"nodes[{i}].id",
-                message=f"id '{raw.id}' has characters other than letters, digits, _ . -",
+                message=f"id {raw.id!r} has characters other than ASCII letters, digits, "
+                        f"_ . - (shown as {node_id})",
                 fix="use ids like cup, red_block or plate_2"))
+            renames.append(Rename(field=f"nodes[{i}].id", before=raw.id, after=node_id))
         id_map.setdefault(raw.id, node_id)
         id_map.setdefault(node_id, node_id)
         label = dictionary.resolve(raw.label) or raw.label

@@ -12,10 +12,14 @@ from collections import Counter, defaultdict
 
 from pydantic import BaseModel
 
+from verigraph.budget import checkpoint
 from verigraph.graph.dictionary import Dictionary, ObjectProperties
 from verigraph.graph.model import Edge, SceneGraph
 
 SUPPORT_RELATIONS = ("on", "in")
+# Spelling suggestions cost a fuzzy match each; past this many unknown labels the fix
+# names a few known labels instead, so a large bad graph is refused in linear time.
+MAX_SPELLING_SUGGESTIONS = 20
 
 
 class GraphProblem(BaseModel):
@@ -32,18 +36,28 @@ def resolve_properties(graph: SceneGraph, dictionary: Dictionary,
                        problems: list[GraphProblem]) -> dict[str, tuple[str, ObjectProperties]]:
     """Map node id -> (canonical label, properties), recording unknown labels as problems."""
     resolved: dict[str, tuple[str, ObjectProperties]] = {}
+    unknown = 0
+    known: list[str] = []
+    labels: dict[str, str | None] = {}  # raw label -> canonical: scenes repeat labels
     for i, node in enumerate(graph.nodes):
-        label = dictionary.resolve(node.label)
+        if node.label in labels:
+            label = labels[node.label]
+        else:
+            label = labels[node.label] = dictionary.resolve(node.label)
         if label is None:
-            near = dictionary.nearest(node.label)
+            unknown += 1
+            near = dictionary.nearest(node.label) if unknown <= MAX_SPELLING_SUGGESTIONS else []
+            known = known or dictionary.names[:5]
             problems.append(GraphProblem(
                 rule="unknown_label", node=node.id, field=f"nodes[{i}].label",
                 message=f"node '{node.id}' has label '{node.label}', which is not in the "
                         f"{dictionary.name} dictionary",
-                fix=f"use a known label such as {', '.join(near or dictionary.names[:5])}"))
+                fix=f"use a known label such as {', '.join(near or known)}"))
             continue
         try:
-            props = dictionary.objects[label].overridden(node.attrs)
+            props = dictionary.objects[label]
+            if node.attrs:
+                props = props.overridden(node.attrs)
         except Exception as exc:  # DictionaryError from a bad override
             problems.append(GraphProblem(rule="bad_attribute", node=node.id,
                                          field=f"nodes[{i}].attrs", message=str(exc),
@@ -72,57 +86,57 @@ def check_and_resolve(graph: SceneGraph, dictionary: Dictionary, *, partial: boo
                 fix=f"give each object its own id, e.g. {node_id}_2"))
     resolved = resolve_properties(graph, dictionary, problems)
     ids = set(counts)
-    supports: dict[str, list[int]] = defaultdict(list)
     carried: Counter[str] = Counter()
-    import networkx as nx  # loaded on the first check, not at import (CLI start-up)
-
-    support_graph = nx.DiGraph()
+    below: dict[str, list[str]] = defaultdict(list)  # object -> what supports it
+    relations = dictionary.relations
     for i, edge in enumerate(graph.edges):
+        if not i & 4095:
+            checkpoint()
         where = f"edges[{i}]"
-        if edge.relation not in dictionary.relations:
+        relation, source, target_id = edge.relation, edge.source, edge.target
+        if relation not in relations:
             problems.append(GraphProblem(
                 rule="unknown_relation", node=edge.source, field=f"{where}.relation",
                 message=f"relation '{edge.relation}' ({edge.sentence()}) is not in R = "
                         f"{{{', '.join(dictionary.relations)}}}",
                 fix=f"use one of {', '.join(dictionary.relations)}"))
             continue
-        missing = [x for x in (edge.source, edge.target) if x not in ids]
-        if missing:
+        if source not in ids or target_id not in ids:
+            missing = [x for x in (source, target_id) if x not in ids]
             problems.append(GraphProblem(
                 rule="dangling_edge", node=missing[0], field=where,
                 message=f"edge '{edge.sentence()}' names '{missing[0]}', which is not a node",
                 fix=f"add a node with id '{missing[0]}' or remove the edge"))
             continue
-        if edge.source == edge.target:
+        if source == target_id:
             problems.append(GraphProblem(
                 rule="self_loop", node=edge.source, field=where,
                 message=f"edge '{edge.sentence()}' relates '{edge.source}' to itself",
                 fix="remove the edge"))
             continue
-        if edge.relation == "touches":
+        if relation == "touches":
             problems.extend(_check_sides(edge, where, resolved))
             continue
-        supports[edge.source].append(i)
-        carried[edge.target] += 1
-        support_graph.add_edge(edge.source, edge.target)
-        target = resolved.get(edge.target)
+        carried[target_id] += 1
+        below[source].append(target_id)
+        target = resolved.get(target_id)
         if target is None:
             continue
         props = target[1]
-        if edge.relation == "on" and not props.surface:
+        if relation == "on" and not props.surface:
             problems.append(GraphProblem(
                 rule="target_not_surface", node=edge.target, field=where,
                 message=f"'{edge.sentence()}': {edge.target} ({target[0]}) is not a surface",
                 fix=f"use '{edge.source} in {edge.target}'" if props.container else
                     f"put {edge.source} on a surface"))
-        if edge.relation == "in" and not props.container:
+        if relation == "in" and not props.container:
             problems.append(GraphProblem(
                 rule="target_not_container", node=edge.target, field=where,
                 message=f"'{edge.sentence()}': {edge.target} ({target[0]}) is not a container",
                 fix=f"use '{edge.source} on {edge.target}'" if props.surface else
                     f"put {edge.source} in a container"))
     for node_id, (label, props) in resolved.items():
-        n_supports = len(supports.get(node_id, ()))
+        n_supports = len(below.get(node_id, ()))
         if n_supports > 1:
             problems.append(GraphProblem(
                 rule="multiple_supports", node=node_id, field="edges",
@@ -141,18 +155,47 @@ def check_and_resolve(graph: SceneGraph, dictionary: Dictionary, *, partial: boo
                 message=f"'{node_id}' carries {carried[node_id]} objects but its capacity is "
                         f"{props.capacity}",
                 fix=f"move objects off '{node_id}' or raise attrs.capacity"))
-    if support_graph.number_of_edges():
-        try:
-            cycle = nx.find_cycle(support_graph)
-            first = cycle[0][0]
-            loop = " -> ".join([u for u, _ in cycle] + [first])
-            problems.append(GraphProblem(
-                rule="cycle", node=first, field="edges",
-                message=f"support edges form a cycle: {loop}",
-                fix=f"remove one edge of the cycle, e.g. the one from '{first}'"))
-        except nx.NetworkXNoCycle:
-            pass
+    cycle = find_support_cycle(below)
+    if cycle:
+        first = cycle[0]
+        problems.append(GraphProblem(
+            rule="cycle", node=first, field="edges",
+            message=f"support edges form a cycle: {' -> '.join([*cycle, first])}",
+            fix=f"remove one edge of the cycle, e.g. the one from '{first}'"))
     return problems, resolved
+
+
+def find_support_cycle(below: dict[str, list[str]]) -> list[str] | None:
+    """One cycle of the support relation (its nodes in order), or None.
+
+    An iterative three-colour depth-first search: every node and edge is visited once,
+    so a 100,000-block tower costs O(nodes + edges) with no recursion limit.
+    (`networkx.find_cycle` restarts an edge search per node and grows quadratically
+    on a single tall stack.)
+    """
+    done: set[str] = set()
+    for root in below:
+        if root in done:
+            continue
+        path: list[str] = [root]
+        on_path: dict[str, int] = {root: 0}
+        iterators = [iter(below.get(root, ()))]
+        while iterators:
+            nxt = next(iterators[-1], None)
+            if nxt is None:
+                node = path.pop()
+                del on_path[node]
+                done.add(node)
+                iterators.pop()
+                continue
+            if nxt in on_path:
+                return path[on_path[nxt]:]
+            if nxt in done:
+                continue
+            on_path[nxt] = len(path)
+            path.append(nxt)
+            iterators.append(iter(below.get(nxt, ())))
+    return None
 
 
 def _check_sides(edge: Edge, where: str, resolved: dict[str, tuple[str, ObjectProperties]]

@@ -8,6 +8,7 @@ from mcp.server.mcpserver import MCPServer
 
 from verigraph import __version__
 from verigraph.server.apps import UI_META, AppsGate, episode_apps
+from verigraph.server.heavy import HeavyCalls, HeavyLimits
 from verigraph.server.prompts import register_prompts
 from verigraph.server.resources import register_resources
 from verigraph.server.tools import ArgumentGate, register_tools
@@ -33,15 +34,19 @@ LogLevel = Literal["DEBUG", "INFO", "WARNING", "ERROR", "CRITICAL"]
 
 
 def build_server(toolbox: Toolbox | None = None, *, config: ToolConfig | None = None,
-                 log_level: LogLevel = "WARNING") -> MCPServer[Any]:
-    """An MCPServer whose tools all run on `toolbox` (a fresh one by default)."""
+                 log_level: LogLevel = "WARNING",
+                 heavy: HeavyLimits | None = None) -> MCPServer[Any]:
+    """An MCPServer whose tools all run on `toolbox` (a fresh one by default); heavy
+    calls run on worker threads within `heavy`'s concurrency and budget."""
     toolbox = toolbox or Toolbox(config=config)
+    runner = HeavyCalls(heavy)
+    gate = ArgumentGate(runner)
     server: MCPServer[Any] = MCPServer(
         "verigraph", title="VeriGraph", version=__version__, instructions=INSTRUCTIONS,
         description="Scene-graph verifier for LLM robot planning",
-        middleware=[ArgumentGate(), AppsGate()], log_level=log_level,
+        middleware=[gate, AppsGate()], log_level=log_level,
         extensions=[episode_apps(toolbox)])
-    register_tools(server, toolbox, meta=UI_META)
+    gate.direct = register_tools(server, toolbox, runner, meta=UI_META)
     register_resources(server, toolbox)
     register_prompts(server, toolbox)
     return server

@@ -1,29 +1,37 @@
 """Streamable HTTP transport: stateless JSON responses behind auth and a body limit.
 
-Layers, outermost first: bearer-token check (headers only, so unauthenticated
-clients cannot make the server read large bodies), request body limit with a
-JSON-RPC error that says what to do, then the SDK app with DNS-rebinding protection
-(Host and Origin allow-lists; loopback always allowed).
+Layers, outermost first: uvicorn with a header deadline and a connection cap
+(connections), bearer-token check (headers only, so unauthenticated clients cannot
+make the server read large bodies), DNS-rebinding protection (Host and Origin parsed
+per RFC 9110; hostcheck), request body limit and deadline with a JSON-RPC error that
+says what to do and cancellation when the client leaves, then the SDK app.
 """
 
 from __future__ import annotations
 
+import asyncio
 import hmac
 import json
 import logging
+import os
+import socket
+import threading
 from collections import deque
 from dataclasses import dataclass, field
 from typing import Any
 
 import anyio
+import uvicorn
 from mcp.server.mcpserver import MCPServer
 from mcp.server.transport_security import TransportSecuritySettings
 from starlette.datastructures import Headers
 from starlette.responses import Response
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from verigraph.server.connections import guarded_protocol, quiet_accept_errors
+from verigraph.server.hostcheck import HostCheck, HostPolicy
+
 DEFAULT_MAX_BODY_BYTES = 16 * 1024 * 1024
-LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
 log = logging.getLogger("verigraph.server")
 
 
@@ -37,6 +45,11 @@ class HttpOptions:
     token: str | None = None
     max_body_bytes: int = DEFAULT_MAX_BODY_BYTES
     allowed_hosts: tuple[str, ...] = field(default_factory=tuple)
+    header_timeout_s: float = 10.0
+    body_timeout_s: float = 30.0
+    keep_alive_s: float = 75.0  # clients keep connections across long local steps
+    max_connections: int = 512
+    shutdown_s: float = 0.5  # SIGTERM: in-flight calls get this long, then are cancelled
 
     def url(self) -> str:
         host = f"[{self.host}]" if ":" in self.host else self.host
@@ -72,11 +85,19 @@ class BearerTokenAuth:
 
 
 class BodyLimit:
-    """413 with a JSON-RPC error for bodies above `limit` bytes, declared or streamed."""
+    """Read the body within its time and size limits, then run the app until the client
+    disconnects.
 
-    def __init__(self, app: ASGIApp, limit: int) -> None:
+    413 with a JSON-RPC error for bodies above `limit` bytes (declared or streamed), 408
+    when the body does not arrive within `timeout` seconds. Once the body is in, a
+    watcher waits for `http.disconnect`: a client that goes away cancels its request,
+    and with it the tool call's worker (see heavy.HeavyCalls).
+    """
+
+    def __init__(self, app: ASGIApp, limit: int, timeout: float = 30.0) -> None:
         self.app = app
         self.limit = limit
+        self.timeout = timeout
 
     def _too_large(self, size: int | None) -> Response:
         mib = self.limit / (1024 * 1024)
@@ -84,6 +105,20 @@ class BodyLimit:
         return _rpc_error(413, -32600, f"Request body too large{seen}: this server accepts "
                           f"at most {mib:g} MiB per request. Send smaller images (downscale "
                           "or use JPEG) or split the request.")
+
+    async def _read_body(self, receive: Receive) -> deque[Message] | Response | None:
+        chunks: deque[Message] = deque()
+        size = 0
+        while True:
+            message = await receive()
+            chunks.append(message)
+            if message["type"] != "http.request":
+                return None  # the client left while sending
+            size += len(message.get("body", b""))
+            if size > self.limit:
+                return self._too_large(None)
+            if not message.get("more_body", False):
+                return chunks
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] != "http":
@@ -93,57 +128,105 @@ class BodyLimit:
         if declared is not None and declared.isdigit() and int(declared) > self.limit:
             await self._too_large(int(declared))(scope, receive, send)
             return
-        chunks: deque[Message] = deque()
-        size = 0
-        while True:
-            message = await receive()
-            chunks.append(message)
-            if message["type"] != "http.request":
-                break
-            size += len(message.get("body", b""))
-            if size > self.limit:
-                await self._too_large(None)(scope, receive, send)
+        body: deque[Message] | Response | None = None
+        with anyio.move_on_after(self.timeout):
+            body = await self._read_body(receive)
+            if body is None:
                 return
-            if not message.get("more_body", False):
-                break
+        if body is None:
+            await _rpc_error(408, -32600, f"Request body not received within {self.timeout:g} "
+                             "s: send the whole body promptly")(scope, receive, send)
+            return
+        if isinstance(body, Response):
+            await body(scope, receive, send)
+            return
+        chunks = body
+        gone = anyio.Event()
 
         async def replay() -> Message:
-            return chunks.popleft() if chunks else await receive()
+            if chunks:
+                return chunks.popleft()
+            await gone.wait()
+            return {"type": "http.disconnect"}
 
-        await self.app(scope, replay, send)
+        async with anyio.create_task_group() as tg:
+            async def watch() -> None:
+                while (await receive())["type"] != "http.disconnect":
+                    pass
+                gone.set()
+                log.info("client went away: cancelling its request")
+                tg.cancel_scope.cancel()
 
-
-def transport_security(options: HttpOptions) -> TransportSecuritySettings:
-    """Host/Origin allow-lists: loopback names, the bound host, and any extra names."""
-    names = list(LOOPBACK_HOSTS)
-    if options.host not in ("0.0.0.0", "::", *LOOPBACK_HOSTS):
-        names.append(options.host)
-    names.extend(options.allowed_hosts)
-    hosts = [f"[{n}]:*" if ":" in n else f"{n}:*" for n in names]
-    hosts += [h.removesuffix(":*") for h in hosts]  # clients that omit the port
-    origins = [f"http://{h}" for h in hosts] + [f"https://{h}" for h in hosts]
-    return TransportSecuritySettings(enable_dns_rebinding_protection=True,
-                                     allowed_hosts=hosts, allowed_origins=origins)
+            tg.start_soon(watch)
+            await self.app(scope, replay, send)
+            tg.cancel_scope.cancel()
 
 
 def http_app(server: MCPServer[Any], options: HttpOptions) -> ASGIApp:
-    """The ASGI app for `verigraph serve --transport http` (stateless, JSON responses)."""
+    """The ASGI app for `verigraph serve --transport http` (stateless, JSON responses).
+
+    The SDK's own Host/Origin check matches text prefixes; HostCheck parses the headers
+    instead (see hostcheck), so the SDK's is turned off here.
+    """
     app: ASGIApp = server.streamable_http_app(
         streamable_http_path=options.path, stateless_http=True, json_response=True,
         max_request_body_size=options.max_body_bytes,
-        transport_security=transport_security(options), host=options.host)
-    app = BodyLimit(app, options.max_body_bytes)
+        transport_security=TransportSecuritySettings(enable_dns_rebinding_protection=False),
+        host=options.host)
+    app = BodyLimit(app, options.max_body_bytes, options.body_timeout_s)
+    app = HostCheck(app, HostPolicy(options.host, options.port, options.allowed_hosts))
     if options.token:
         app = BearerTokenAuth(app, options.token)
     return app
 
 
-def serve_http(server: MCPServer[Any], options: HttpOptions, log_level: str = "warning") -> None:
-    """Run uvicorn in the foreground until interrupted."""
-    import uvicorn
+def uvicorn_config(server: MCPServer[Any], options: HttpOptions, log_level: str = "warning"
+                   ) -> uvicorn.Config:
+    return uvicorn.Config(
+        http_app(server, options), host=options.host, port=options.port,
+        log_level=log_level.lower(), access_log=False, lifespan="on",
+        http=guarded_protocol(options.header_timeout_s, options.max_connections),
+        timeout_keep_alive=int(options.keep_alive_s),
+        timeout_graceful_shutdown=options.shutdown_s)  # type: ignore[arg-type]
 
-    config = uvicorn.Config(http_app(server, options), host=options.host, port=options.port,
-                            log_level=log_level.lower(), access_log=False, lifespan="on")
+
+class StoppableServer(uvicorn.Server):
+    """uvicorn that exits within `hard_exit_s` of the start of its shutdown.
+
+    Cancelled calls stop at their next budget checkpoint; a call stuck in code that
+    never checks (a C extension, a blocking driver) would hold the process, so a
+    timer ends it once the grace time is over.
+    """
+
+    def __init__(self, config: uvicorn.Config, hard_exit_s: float) -> None:
+        super().__init__(config)
+        self.hard_exit_s = hard_exit_s
+
+    async def shutdown(self, sockets: list[socket.socket] | None = None) -> None:
+        timer = threading.Timer(self.hard_exit_s, _hard_exit)
+        timer.daemon = True
+        timer.start()
+        await super().shutdown(sockets)
+
+
+def _hard_exit() -> None:
+    log.error("shutdown: tool calls still running after the grace time; exiting now")
+    logging.shutdown()
+    os._exit(0)
+
+
+def serve_http(server: MCPServer[Any], options: HttpOptions, log_level: str = "warning") -> None:
+    """Run uvicorn in the foreground until interrupted (SIGINT/SIGTERM).
+
+    On SIGTERM uvicorn stops accepting, gives running requests `shutdown_s`, then
+    cancels them; their worker threads stop at their next budget checkpoint.
+    """
+    config = uvicorn_config(server, options, log_level)
     log.warning("VeriGraph MCP server on %s (auth %s)", options.url(),
                 "on" if options.token else "off")
-    anyio.run(uvicorn.Server(config).serve)
+
+    async def main() -> None:
+        quiet_accept_errors(asyncio.get_running_loop())
+        await StoppableServer(config, options.shutdown_s + 0.8).serve()
+
+    anyio.run(main)

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import base64
 import inspect
-from collections.abc import Callable
+import logging
+from collections.abc import Awaitable, Callable
 from contextvars import ContextVar
 from typing import Annotated, Any
 
@@ -22,8 +23,8 @@ from mcp.types import CallToolResult, ImageContent, TextContent, ToolAnnotations
 from pydantic import BaseModel, Field, ValidationError
 
 from verigraph.errors import VeriGraphError
+from verigraph.server.confirmation import CLIENT as AUDIT_CLIENT
 from verigraph.server.confirmation import (
-    CLIENT,
     PREVIEWS,
     arm_call,
     client_label,
@@ -31,10 +32,13 @@ from verigraph.server.confirmation import (
     take_answers,
     thread_limiter,
 )
+from verigraph.server.heavy import CLIENT, HeavyCalls
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
 from verigraph.tools.registry import parse_arguments as parse_tool_arguments
 from verigraph.tools.scenes import ImageResult
 from verigraph.tools.store import WouldBlock, non_blocking
+
+log = logging.getLogger("verigraph.server")
 
 
 def to_result(spec: ToolSpec, result: BaseModel | ImageResult) -> CallToolResult:
@@ -67,6 +71,8 @@ def _parameters(model: type[BaseModel]) -> list[inspect.Parameter]:
 SLOW_TOOLS = frozenset({"render_scene", "get_scene_image", "solve", "generate_scene_graph",
                         "arm_status", "arm_stop", "arm_reset"})
 SLOW_ARGUMENTS = ("image", "generator", "simulate", "executor")
+# The arm's own controls answer while a motion runs: their own thread, no heavy queue.
+URGENT_TOOLS = frozenset({"arm_status", "arm_stop", "arm_reset"})
 
 
 BIG_GRAPH_NODES = 300
@@ -86,20 +92,51 @@ def may_block(spec: ToolSpec, params: BaseModel) -> bool:
     return isinstance(plan, str | list) and len(plan) > BIG_PLAN_CHARS
 
 
+def big_episode(toolbox: Toolbox, spec: ToolSpec, params: BaseModel) -> bool:
+    """Whether the call works on (and mostly returns) a large episode graph: then its
+    result alone takes long to build, so it runs as a heavy call. validate_action
+    answers in O(degree) and stays on the loop."""
+    episode_id = getattr(params, "episode_id", None)
+    if spec.name == "validate_action" or not isinstance(episode_id, str):
+        return False
+    try:
+        state = toolbox.context.store.peek(episode_id).state
+    except VeriGraphError:
+        return False  # the tool reports it
+    return state is not None and len(state.objects) > BIG_GRAPH_NODES
+
+
+def raw_is_large(arguments: Any) -> bool:
+    """Whether raw arguments are big enough that validating them would hold the loop."""
+    if not isinstance(arguments, dict):
+        return False
+    graphs = [arguments.get("graph"), (arguments.get("goal") or {}).get("graph")
+              if isinstance(arguments.get("goal"), dict) else None]
+    for graph in graphs:
+        if isinstance(graph, dict) and any(
+                isinstance(graph.get(k), list) and len(graph[k]) > BIG_GRAPH_NODES
+                for k in ("nodes", "edges")):
+            return True
+    image, plan = arguments.get("image"), arguments.get("plan")
+    return (isinstance(image, str) and len(image) > 100_000) or (
+        isinstance(plan, str) and len(plan) > 2000) or (isinstance(plan, list) and len(plan) > 100)
+
+
 def _gated_params(name: str) -> BaseModel | None:
     gated = _GATED.get()
     return gated[1] if gated is not None and gated[0] == name else None
 
 
-def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
-    """An async function whose signature mirrors `spec.input_model` and runs the tool.
+Executor = Callable[..., Awaitable[CallToolResult]]
+
+
+def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Executor:
+    """Run the tool on validated input: on the loop if fast, else as a heavy call.
 
     Fast calls run directly on the event loop: a thread hop costs more than the
-    verification itself. A call that could block (slow tool, busy episode, simulator)
-    runs on a worker thread instead. A tool that can make a real arm act also takes
-    the user's answer, which the SDK elicits before the body runs (see confirmation).
+    verification itself. A call that could block (slow tool, busy episode, simulator,
+    large input) runs on a worker thread within its budget (see heavy).
     """
-    confirmed = spec.name in PREVIEWS
     slow_default = spec.name == "load_scene" and toolbox.context.config.executor != "graph"
 
     def run(params: BaseModel) -> CallToolResult:
@@ -107,6 +144,36 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
             return to_result(spec, toolbox.run(spec, params))
         except VeriGraphError as exc:
             raise ToolError(str(exc)) from None
+
+    async def placed(params: BaseModel) -> CallToolResult:
+        if spec.name in URGENT_TOOLS:  # never queued behind the call they must interrupt
+            return await anyio.to_thread.run_sync(run, params,
+                                                  limiter=thread_limiter(spec.name))
+        if not (slow_default or may_block(spec, params) or big_episode(toolbox, spec, params)):
+            try:
+                with non_blocking():
+                    return run(params)
+            except WouldBlock:
+                pass
+        return await heavy.run(lambda: run(params), spec.name)
+
+    async def execute(params: BaseModel, answers: dict[str, Any] | None = None
+                      ) -> CallToolResult:
+        # The arm's scope of the call: audit identity, confirmation, heartbeat, deadman.
+        async with arm_call(spec.name, toolbox, params, answers):
+            return await placed(params)
+
+    return execute
+
+
+def tool_function(spec: ToolSpec, toolbox: Toolbox, execute: Executor) -> Callable[..., Any]:
+    """An async function whose signature mirrors `spec.input_model` and runs the tool.
+
+    It gives the SDK the tool's schema; ArgumentGate runs most calls itself (see
+    there). A tool that can make a real arm act also takes the user's answer, which
+    the SDK elicits before the body runs (see confirmation).
+    """
+    confirmed = spec.name in PREVIEWS
 
     async def call(**arguments: Any) -> CallToolResult:
         answers = take_answers(arguments) if confirmed else None
@@ -116,14 +183,7 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
                 params = spec.input_model.model_validate(arguments)
             except ValidationError as exc:
                 raise ToolError(str(argument_error(spec, exc))) from None
-        async with arm_call(spec.name, toolbox, params, answers):
-            if not (slow_default or may_block(spec, params)):
-                try:
-                    with non_blocking():
-                        return run(params)
-                except WouldBlock:
-                    pass
-            return await anyio.to_thread.run_sync(run, params, limiter=thread_limiter(spec.name))
+        return await execute(params, answers)
 
     returns: Any = (Annotated[CallToolResult, spec.output_model] if spec.output_model
                     else CallToolResult)
@@ -141,19 +201,25 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
     return call
 
 
-def register_tools(server: MCPServer[Any], toolbox: Toolbox,
-                   meta: dict[str, dict[str, Any]] | None = None) -> None:
+def register_tools(server: MCPServer[Any], toolbox: Toolbox, heavy: HeavyCalls,
+                   meta: dict[str, dict[str, Any]] | None = None) -> dict[str, Executor]:
     """Add every tool in TOOL_SPECS order (the order tools/list reports); `meta` gives
-    some tools a `_meta` (the MCP Apps viewer link)."""
+    some tools a `_meta` (the MCP Apps viewer link). Returns the executors ArgumentGate
+    runs directly (every tool that asks no confirmation)."""
+    direct: dict[str, Executor] = {}
     for spec in TOOL_SPECS:
+        execute = tool_executor(spec, toolbox, heavy)
+        if spec.name not in PREVIEWS:
+            direct[spec.name] = execute
         server.add_tool(
-            tool_function(spec, toolbox), name=spec.name, title=spec.title,
+            tool_function(spec, toolbox, execute), name=spec.name, title=spec.title,
             description=spec.description,
             annotations=ToolAnnotations(
                 title=spec.title, read_only_hint=spec.read_only,
                 destructive_hint=spec.destructive, idempotent_hint=spec.idempotent,
                 open_world_hint=spec.open_world),
             meta=(meta or {}).get(spec.name))
+    return direct
 
 
 # The arguments ArgumentGate validated for the tools/call being handled (tool, input).
@@ -169,6 +235,10 @@ class ArgumentGate:
     exactly the input it validated.
     """
 
+    def __init__(self, heavy: HeavyCalls) -> None:
+        self.heavy = heavy
+        self.direct: dict[str, Executor] = {}  # filled by build_server
+
     async def __call__(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
                        ) -> HandlerResult:
         if ctx.method != "tools/call" or ctx.params is None:
@@ -177,15 +247,45 @@ class ArgumentGate:
         spec = TOOLS.get(name) if isinstance(name, str) else None
         if spec is None:
             return await call_next(ctx)
+        client = getattr(ctx.request, "client", None)
+        if client is not None:
+            CLIENT.set(f"{client.host}:{client.port}")
+        arguments = ctx.params.get("arguments")
         try:
-            params = parse_tool_arguments(spec, ctx.params.get("arguments"))
+            if raw_is_large(arguments):
+                params = await self.heavy.run(lambda: parse_tool_arguments(spec, arguments),
+                                              f"{spec.name} arguments")
+            else:
+                params = parse_tool_arguments(spec, arguments)
         except VeriGraphError as exc:
             return CallToolResult(content=[TextContent(
                 type="text", text=f"Error executing tool {spec.name}: {exc}")], is_error=True)
+        audit_client = AUDIT_CLIENT.set(client_label(ctx.session))
+        try:
+            return await self._run(spec, params, ctx, call_next)
+        finally:
+            AUDIT_CLIENT.reset(audit_client)
+
+    async def _run(self, spec: ToolSpec, params: BaseModel,
+                   ctx: ServerRequestContext[Any, Any], call_next: CallNext) -> HandlerResult:
+        direct = self.direct.get(spec.name)
+        if direct is not None:
+            # Run it here: the SDK would validate the arguments and the structured
+            # result once more on the event loop (both already hold by construction),
+            # which for a large graph stalls every other client.
+            try:
+                return await direct(params)
+            except ToolError as exc:
+                log.info("Tool %r failed: %r", spec.name, str(exc))
+                return CallToolResult(content=[TextContent(
+                    type="text", text=f"Error executing tool {spec.name}: {exc}")],
+                    is_error=True)
+            except Exception:  # a bug: logged in full, the client learns only that
+                log.exception("Tool %r raised an unexpected exception", spec.name)
+                return CallToolResult(content=[TextContent(
+                    type="text", text=f"Error executing tool {spec.name}")], is_error=True)
         token = _GATED.set((spec.name, params))
-        client = CLIENT.set(client_label(ctx.session))
         try:
             return await call_next(ctx)
         finally:
-            CLIENT.reset(client)
             _GATED.reset(token)

@@ -31,6 +31,7 @@ from verigraph.tools.fields import (
     BoundedGoal,
     BoundedGraph,
     EpisodeId,
+    RequestId,
     SceneId,
     count_moves,
     parse_actions,
@@ -105,6 +106,13 @@ class ExecuteActionsInput(BaseModel):
     actions: list[ActionInput] = Field(
         min_length=1, max_length=MAX_ACTIONS_PER_CALL,
         description="actions as JSON objects or text; a text item may hold several lines")
+    request_id: RequestId | None = Field(
+        default=None, description="your id for this call: sending the same request_id again "
+                                  "(a retry after a lost reply) returns the first result "
+                                  "instead of executing twice")
+    expected_calls: int | None = Field(
+        default=None, ge=0, description="execute only if the episode has had exactly this "
+                                        "many execute_actions calls (get_state: calls)")
 
 
 class ExecutionOutput(BaseModel):
@@ -139,9 +147,24 @@ class ExecutionOutput(BaseModel):
 
 
 def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionOutput:
-    """execute_until_violation on the episode, updating tau; bad input changes nothing."""
+    """execute_until_violation on the episode, updating tau; bad input changes nothing.
+
+    With a request_id the call is idempotent: its result is recorded with the episode,
+    and a retry returns that record instead of running the actions a second time.
+    """
     actions = parse_actions(params.actions)
+    proposed = [a.text() for a in actions]
     with ctx.store.use(params.episode_id) as episode:
+        if params.request_id is not None:
+            earlier = episode.requests.result(params.request_id, proposed)
+            if earlier is not None:
+                return ExecutionOutput.model_validate(earlier)
+        if params.expected_calls is not None and params.expected_calls != episode.calls:
+            raise EpisodeStateError(
+                f"the episode has had {episode.calls} execute_actions calls, not "
+                f"{params.expected_calls}", field="expected_calls", value=params.expected_calls,
+                fix="call get_state to see what was executed, then decide the next actions "
+                    "from the current graph")
         state = episode.require_state()
         if episode.threshold_reached:
             raise EpisodeStateError(
@@ -174,13 +197,16 @@ def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionO
         episode.tau = tau
         episode.last_violation = violation
         episode.done = episode.done or done
-        return ExecutionOutput(
+        output = ExecutionOutput(
             episode_id=episode.id, ok=violation is None,
             executed=[a.text() for a in executed],
             not_executed=[a.text() for a in actions[len(executed):]] if violation else [],
             violation=violation, edits=edits, graph=new_state.to_graph(), tau=tau,
             t=episode.t, threshold_reached=episode.threshold_reached, done=done,
             goal_satisfied=diff.satisfied if diff else None, goal_diff=diff)
+        if params.request_id is not None:
+            episode.requests.record(params.request_id, proposed, output.model_dump(mode="json"))
+        return output
 
 
 # -- check_goal -----------------------------------------------------------------------------

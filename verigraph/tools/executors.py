@@ -9,6 +9,8 @@ operator's explicit opt-in in the config file.
 
 from __future__ import annotations
 
+import ctypes
+import ctypes.util
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -75,11 +77,20 @@ def check_executor(name: str, *, field: str = "executor") -> str:
 
 
 def arm_setup_for(executor: str, server_arm: ArmSetup | None) -> ArmSetup:
-    """The arm an `arm:<driver>` episode runs on: the server's, or a dry-run default."""
-    driver = driver_from_executor(executor)
+    """The arm an `arm:<driver>` episode runs on: the server's, and only the server's.
+
+    Arms are the operator's choice (`verigraph serve --executor arm:<driver>` or
+    `--arm-config`), never a client's: on a server without an arm every arm executor
+    is refused, so no client can make it open PyBullet worlds or connect to hardware.
+    """
+    driver_from_executor(executor)
     if server_arm is None:
-        return ArmSetup(parse_arm_config({"driver": driver}))
-    if server_arm.config.driver != driver:
+        raise ToolArgumentError(
+            f"this server has no arm, so executor {executor} is not available",
+            field="executor", value=executor,
+            fix="use executor graph or sim2d; arm episodes need a server started with "
+                "--executor arm:<driver> or --arm-config")
+    if server_arm.executor != executor:
         raise ToolArgumentError(
             f"this server's arm is {server_arm.executor}, not {executor}", field="executor",
             value=executor, fix=f"use executor {server_arm.executor}, graph or sim2d; another "
@@ -195,6 +206,7 @@ class ArmCells:
                 world.close()
             finally:
                 self._release(world)
+                return_freed_memory()
 
     def _reserve(self, setup: ArmSetup) -> object:
         key = _hardware_key(setup.config)
@@ -217,6 +229,19 @@ class ArmCells:
     def _release(self, slot: object) -> None:
         with self._lock:
             self._slots.pop(slot, None)
+
+
+def return_freed_memory() -> None:
+    """Hand memory freed by a closed arm world (meshes, simulator state) back to the OS.
+
+    glibc keeps freed heap pages in its arenas, so the process would stay as large as
+    its peak after every closed PyBullet world; malloc_trim releases them.
+    """
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
+        libc.malloc_trim(0)
+    except (OSError, AttributeError):
+        pass  # not glibc: nothing to trim
 
 
 def _hardware_key(config: ArmConfig) -> str | None:

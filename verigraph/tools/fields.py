@@ -8,6 +8,7 @@ offending value and the fix.
 
 from __future__ import annotations
 
+import json
 from collections.abc import Sequence
 from typing import Annotated, Any
 
@@ -27,6 +28,10 @@ from verigraph.tools.errors import ToolArgumentError
 EpisodeId = Annotated[str, Field(
     min_length=1, max_length=64, description="the id load_scene returned",
     examples=["ep_Xq3v9f2PZxk7d1uQm0Cw8g"])]
+RequestId = Annotated[str, Field(
+    min_length=1, max_length=128, pattern=r"^[\x21-\x7e]+$",
+    description="a client-chosen id (printable ASCII), unique per call",
+    examples=["c3f1e2a0-step-4"])]
 ActionText = Annotated[str, Field(
     min_length=1, max_length=2000,
     description="text form: move(cup, on, table), move(cup, table), "
@@ -44,6 +49,31 @@ ImageData = Annotated[str, Field(
 
 MAX_GRAPH_NODES = 5000
 MAX_GRAPH_EDGES = 20_000
+# Node attributes are a colour and a few property overrides; an episode keeps them and
+# returns them with every graph, so a large one would be paid for on every call.
+MAX_NODE_ATTRS_BYTES = 4096
+MAX_GRAPH_ATTRS_BYTES = 1024 * 1024
+
+
+def check_attrs_size(nodes: Sequence[Any]) -> None:
+    """ValueError naming the first node whose attrs (as JSON) are too large, or the total."""
+    total = 0
+    for i, node in enumerate(nodes):
+        if not node.attrs:
+            continue
+        try:
+            size = len(json.dumps(node.attrs, default=str))
+        except (TypeError, ValueError, RecursionError):
+            raise ValueError(f"nodes[{i}].attrs of '{str(node.id)[:64]}' is not plain JSON "
+                             "data") from None
+        if size > MAX_NODE_ATTRS_BYTES:
+            raise ValueError(f"nodes[{i}].attrs of '{str(node.id)[:64]}' is {size} bytes as "
+                             f"JSON; at most {MAX_NODE_ATTRS_BYTES} bytes per node are kept "
+                             "(attrs hold a colour and property overrides, not data)")
+        total += size
+    if total > MAX_GRAPH_ATTRS_BYTES:
+        raise ValueError(f"the nodes' attrs total {total} bytes; at most "
+                         f"{MAX_GRAPH_ATTRS_BYTES} bytes per graph are kept")
 
 
 def _bounded(graph: SceneGraph) -> SceneGraph:
@@ -51,6 +81,7 @@ def _bounded(graph: SceneGraph) -> SceneGraph:
         raise ValueError(f"the graph has {len(graph.nodes)} nodes and {len(graph.edges)} edges; "
                          f"at most {MAX_GRAPH_NODES} nodes and {MAX_GRAPH_EDGES} edges are "
                          "accepted")
+    check_attrs_size(graph.nodes)
     return graph
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import base64
 import binascii
 import re
+from dataclasses import dataclass
 
 import cv2
 import numpy as np
@@ -92,6 +93,43 @@ def encode_png(image: np.ndarray) -> bytes:
     if not ok:  # pragma: no cover - only for impossible shapes
         raise ValueError("OpenCV could not encode the image as PNG")
     return bytes(buffer.tobytes())
+
+
+MAX_PHOTO_SIDE = 1600  # photos are sent back at most this large (vision models downscale anyway)
+
+
+def fit(image: np.ndarray, longest: int) -> np.ndarray:
+    """The image scaled down (never up) so that its longer side is at most `longest`."""
+    height, width = image.shape[:2]
+    scale = longest / max(height, width)
+    if scale >= 1:
+        return image
+    size = (max(1, round(width * scale)), max(1, round(height * scale)))
+    return cv2.resize(image, size, interpolation=cv2.INTER_AREA)
+
+
+@dataclass(frozen=True)
+class KeptImage:
+    """An episode's photo as PNG bytes, at most MAX_PHOTO_SIDE on its long side.
+
+    A decoded photo costs width x height x 3 bytes for the episode's whole life (51 MiB
+    for a 62 KB JPEG of a large scene); kept encoded and at the size it is ever served,
+    it costs its PNG size, and is decoded only while a tool draws it.
+    """
+
+    png: bytes
+    width: int
+    height: int
+
+    @classmethod
+    def of(cls, image: np.ndarray) -> KeptImage:
+        fitted = fit(image, MAX_PHOTO_SIDE)
+        return cls(encode_png(fitted), int(fitted.shape[1]), int(fitted.shape[0]))
+
+    def array(self) -> np.ndarray:
+        image = cv2.imdecode(np.frombuffer(self.png, dtype=np.uint8), cv2.IMREAD_COLOR)
+        assert image is not None, "a kept image is always a valid PNG"
+        return image
 
 
 def png_base64(png: bytes) -> str:

@@ -11,11 +11,10 @@ exists.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
+from typing import Annotated, Literal
 
-import cv2
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from verigraph.graph.dictionary import Dictionary
 from verigraph.graph.goal import GraphDiff, check_goal, diff
@@ -29,8 +28,14 @@ from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.executors import SceneCheck, arm_setup_for
-from verigraph.tools.fields import DictionaryName, EpisodeId, ImageData, dictionary_for
-from verigraph.tools.images import decode_image, encode_png
+from verigraph.tools.fields import (
+    DictionaryName,
+    EpisodeId,
+    ImageData,
+    check_attrs_size,
+    dictionary_for,
+)
+from verigraph.tools.images import KeptImage, decode_image, encode_png
 from verigraph.tools.store import Episode
 
 Width = Field(default=None, ge=64, le=2048,
@@ -50,19 +55,6 @@ class ImageResult:
     mime_type: str = "image/png"
 
 
-MAX_PHOTO_SIDE = 1600  # photos are sent back at most this large (vision models downscale anyway)
-
-
-def fit(image: np.ndarray, longest: int) -> np.ndarray:
-    """The image scaled down (never up) so that its longer side is at most `longest`."""
-    height, width = image.shape[:2]
-    scale = longest / max(height, width)
-    if scale >= 1:
-        return image
-    size = (max(1, round(width * scale)), max(1, round(height * scale)))
-    return cv2.resize(image, size, interpolation=cv2.INTER_AREA)
-
-
 def _colors(state: WorldState) -> dict[str, str]:
     return {o.id: o.props.color for o in state.objects.values() if o.props.color}
 
@@ -74,8 +66,8 @@ def _picture(episode: Episode, width: int | None = None, height: int | None = No
     if callable(render):
         image = render(width=width, height=height)
         return np.asarray(image, dtype=np.uint8)
-    if episode.image is not None:
-        return fit(episode.image, MAX_PHOTO_SIDE)
+    if isinstance(episode.image, KeptImage):
+        return episode.image.array()
     state = episode.require_state()
     return draw_graph(state.to_graph(), width, height, title="scene graph (drawing)",
                       colors=_colors(state))
@@ -141,12 +133,18 @@ def get_scene_image(ctx: ToolContext, params: GetSceneImageInput) -> ImageResult
 
 
 # -- submit_scene_graph ---------------------------------------------------------------------
+def _small_attrs(graph: SubmittedGraph) -> SubmittedGraph:
+    check_attrs_size(graph.nodes)
+    return graph
+
+
 class SubmitSceneGraphInput(BaseModel):
     """The agent's scene graph for an image, checked against D and R."""
 
     model_config = ConfigDict(extra="forbid")
 
-    graph: SubmittedGraph = Field(description="nodes with id/label, edges "
+    graph: Annotated[SubmittedGraph, AfterValidator(_small_attrs)] = Field(
+        description="nodes with id/label, edges "
                                               "source/relation/target")
     episode_id: EpisodeId | None = Field(
         default=None, description="an episode loaded from an image adopts the graph if it "

@@ -29,6 +29,7 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.tools.errors import EpisodeLimitError, EpisodeStateError, UnknownEpisodeError
 from verigraph.tools.executors import SceneCheck
+from verigraph.tools.images import KeptImage
 
 DEFAULT_K = 3
 DEFAULT_T = 5
@@ -73,6 +74,38 @@ class TraceEntry(BaseModel):
     goal_satisfied: bool | None = None
 
 
+MAX_REQUEST_RECORDS = 32
+
+
+@dataclass
+class RequestRecords:
+    """request_id -> (proposed actions, result as JSON) of applied execute_actions calls.
+
+    Plain, JSON-serialisable data (a durable store saves `records` with the episode),
+    bounded to the MAX_REQUEST_RECORDS most recent: a retry comes soon after its call.
+    """
+
+    records: dict[str, dict[str, Any]] = field(default_factory=dict)
+
+    def result(self, request_id: str, proposed: list[str]) -> dict[str, Any] | None:
+        """The recorded result of `request_id`, or None if it has not been applied."""
+        record = self.records.get(request_id)
+        if record is None:
+            return None
+        if record["proposed"] != proposed:
+            raise EpisodeStateError(
+                f"request_id '{request_id}' was already used for other actions "
+                f"({'; '.join(record['proposed'])[:200]})", field="request_id",
+                value=request_id, fix="use a new request_id for each new call, and the same "
+                                      "one only to retry the identical call")
+        return dict(record["result"])
+
+    def record(self, request_id: str, proposed: list[str], result: dict[str, Any]) -> None:
+        self.records[request_id] = {"proposed": proposed, "result": result}
+        while len(self.records) > MAX_REQUEST_RECORDS:
+            del self.records[next(iter(self.records))]
+
+
 @dataclass(eq=False)
 class Episode:
     """Mutable state of one planning episode; only touched while its lock is held."""
@@ -88,7 +121,7 @@ class Episode:
     executor: str = "graph"  # graph, sim2d or arm:<driver>
     scene_check: SceneCheck | None = None  # arm episodes: observed scene vs graph at start
     goal_world: Any = None  # a simulator world in the goal state, for rendering it
-    image: np.ndarray | None = None
+    image: np.ndarray | KeptImage | None = None  # kept encoded (see __post_init__)
     initial_graph: SceneGraph | None = None
     dictionary_name: str | None = None
     tau: int = 0
@@ -97,8 +130,13 @@ class Episode:
     trace: list[TraceEntry] = field(default_factory=list)
     last_violation: Violation | None = None
     done: bool = False
+    requests: RequestRecords = field(default_factory=RequestRecords)
     lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
     last_used: float = 0.0
+
+    def __post_init__(self) -> None:
+        if isinstance(self.image, np.ndarray):
+            self.image = KeptImage.of(self.image)  # perception is done: keep it small
 
     @property
     def threshold_reached(self) -> bool:

@@ -1,0 +1,255 @@
+"""Load and fault suite for `verigraph serve` on loopback (bounded in count and time).
+
+Reports, into benchmarks/results/server_load.md:
+* validate_action calls/s and p50/p99 with 10 and 50 concurrent HTTP clients;
+* a light client's validate_action p99 alone and while a heavy client posts
+  5,000-block graphs with 1,000-action plans (validate_plan) back to back;
+* server RSS per open episode of each kind (built-in scene, sim2d, image, arm) and
+  after 10 rounds of open/end on an arm server;
+* loading the 100,000-block tower (library) and a 5,000-block tower (load_scene);
+* seconds from SIGTERM to exit with heavy calls in flight.
+
+Run: python benchmarks/bench_server_load.py [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import base64
+import json
+import os
+import signal
+import statistics
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+import cv2  # noqa: E402
+import httpx2  # noqa: E402
+import numpy as np  # noqa: E402
+from bench_load import tower  # noqa: E402
+from bench_server import percentile, start_http, wire_call  # noqa: E402
+from common import write_table  # noqa: E402
+
+from verigraph.graph import SceneGraph, WorldState  # noqa: E402
+
+
+def rss_mib(pid: int) -> float:
+    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+        if line.startswith("VmRSS:"):
+            return int(line.split()[1]) / 1024
+    return float("nan")
+
+
+async def call(http: httpx2.AsyncClient, url: str, name: str, arguments: dict[str, Any]
+               ) -> dict[str, Any]:
+    headers, body = wire_call(name, arguments, 1)
+    reply = (await http.post(url, headers=headers, content=body, timeout=120)).json()
+    result = reply["result"]
+    assert not result.get("isError"), str(result)[:300]
+    return result.get("structuredContent") or {}
+
+
+async def light_latencies(url: str, episode: str, calls: int) -> list[float]:
+    headers, body = wire_call("validate_action", {"episode_id": episode,
+                                                  "action": "move(cup, on, desk)"}, 2)
+    times = []
+    async with httpx2.AsyncClient(headers=headers) as http:
+        for _ in range(calls):
+            start = time.perf_counter()
+            response = await http.post(url, content=body)
+            times.append(time.perf_counter() - start)
+            assert response.status_code == 200 and b'"isError":false' in response.content
+    return times
+
+
+async def concurrency(url: str, clients: int, calls_each: int) -> tuple[float, list[float]]:
+    async with httpx2.AsyncClient() as http:
+        episode = (await call(http, url, "load_scene", {"scene_id": "cup_on_book"}))[
+            "episode_id"]
+    start = time.perf_counter()
+    runs = await asyncio.gather(*[light_latencies(url, episode, calls_each)
+                                  for _ in range(clients)])
+    elapsed = time.perf_counter() - start
+    flat = [t for r in runs for t in r]
+    return len(flat) / elapsed, flat
+
+
+def heavy_arguments(n: int = 5000) -> dict[str, Any]:
+    plan = [f"move(b{i}, on, table)" for i in range(n - 2, n - 1002, -1)]
+    return {"graph": tower(n), "plan": plan}
+
+
+async def light_under_heavy(url: str, light_calls: int, heavy: bool) -> tuple[list[float], int]:
+    async with httpx2.AsyncClient() as http:
+        episode = (await call(http, url, "load_scene", {"scene_id": "cup_on_book"}))[
+            "episode_id"]
+    stop = asyncio.Event()
+    heavy_done = 0
+
+    async def heavy_client() -> None:
+        nonlocal heavy_done
+        arguments = heavy_arguments()
+        async with httpx2.AsyncClient() as http:
+            while not stop.is_set():
+                report = await call(http, url, "validate_plan", arguments)
+                assert report["valid"], report
+                heavy_done += 1
+
+    task = asyncio.create_task(heavy_client()) if heavy else None
+    if heavy:
+        await asyncio.sleep(0.5)  # let the heavy client get going
+    times = await light_latencies(url, episode, light_calls)
+    stop.set()
+    if task is not None:
+        await task
+    return times, heavy_done
+
+
+def jpeg_b64(width: int = 1600, height: int = 1200) -> str:
+    image = np.full((height, width, 3), 180, dtype=np.uint8)
+    ok, buf = cv2.imencode(".jpg", image)
+    assert ok
+    return base64.b64encode(buf.tobytes()).decode()
+
+
+async def rss_per_episode(url: str, pid: int, kind: str, arguments: dict[str, Any],
+                          count: int) -> float:
+    async with httpx2.AsyncClient() as http:
+        await call(http, url, "load_scene", arguments)  # warm caches and imports
+        before = rss_mib(pid)
+        ids = [(await call(http, url, "load_scene", arguments))["episode_id"]
+               for _ in range(count)]
+        after = rss_mib(pid)
+        for episode in ids:
+            await call(http, url, "end_episode", {"episode_id": episode})
+    return (after - before) / count
+
+
+async def open_end_rounds(url: str, pid: int, arguments: dict[str, Any], rounds: int
+                          ) -> tuple[float, float, float]:
+    async with httpx2.AsyncClient() as http:
+        first = (await call(http, url, "load_scene", arguments))["episode_id"]
+        await call(http, url, "end_episode", {"episode_id": first})
+        start = rss_mib(pid)
+        peak = start
+        for _ in range(rounds):
+            episode = (await call(http, url, "load_scene", arguments))["episode_id"]
+            peak = max(peak, rss_mib(pid))
+            await call(http, url, "end_episode", {"episode_id": episode})
+        return start, peak, rss_mib(pid)
+
+
+async def sigterm_exit(in_flight: int) -> float:
+    proc, url = start_http()
+    arguments = heavy_arguments()
+
+    async def heavy() -> None:
+        try:
+            async with httpx2.AsyncClient() as http:
+                headers, body = wire_call("validate_plan", arguments, 1)
+                await http.post(url, headers=headers, content=body, timeout=60)
+        except httpx2.HTTPError:
+            pass  # the server went away: expected
+
+    tasks = [asyncio.create_task(heavy()) for _ in range(in_flight)]
+    await asyncio.sleep(1.0)  # requests sent and running
+    start = time.perf_counter()
+    proc.send_signal(signal.SIGTERM)
+    while proc.poll() is None:
+        await asyncio.sleep(0.01)
+    elapsed = time.perf_counter() - start
+    await asyncio.gather(*tasks)
+    return elapsed
+
+
+def tower_load_s(n: int) -> float:
+    text = json.dumps(tower(n))
+    start = time.perf_counter()
+    WorldState.from_graph(SceneGraph.model_validate_json(text))
+    return time.perf_counter() - start
+
+
+def ms(values: list[float], q: float) -> str:
+    return f"{percentile(values, q) * 1000:.1f}"
+
+
+async def run(quick: bool) -> list[list[str]]:
+    rows: list[list[str]] = []
+    proc, url = start_http()
+    try:
+        for clients in (10, 50):
+            calls_each = (20 if quick else 100) if clients == 10 else (4 if quick else 20)
+            rate, flat = await concurrency(url, clients, calls_each)
+            rows.append([f"validate_action, {clients} concurrent clients", f"{rate:,.0f}",
+                         ms(flat, 0.5), ms(flat, 0.99), f"{len(flat)} calls"])
+        light = 50 if quick else 300
+        alone, _ = await light_under_heavy(url, light, heavy=False)
+        loaded, heavy_calls = await light_under_heavy(url, light, heavy=True)
+        rows.append(["light client alone: validate_action", "-", ms(alone, 0.5),
+                     ms(alone, 0.99), f"{light} calls"])
+        rows.append(["light client while a heavy client runs", "-", ms(loaded, 0.5),
+                     ms(loaded, 0.99), f"{light} calls; heavy: {heavy_calls} validate_plan "
+                     "(5,000 blocks, 1,000 actions) meanwhile; p99 ratio "
+                     f"{percentile(loaded, 0.99) / percentile(alone, 0.99):.1f}x"])
+        count = 5 if quick else 20
+        kinds = {"built-in scene": {"scene_id": "cup_on_book"},
+                 "sim2d": {"scene_id": "three_blocks", "simulate": True},
+                 "image (1600x1200 JPEG)": {"image": jpeg_b64(), "dictionary": "kitchen"}}
+        for kind, arguments in kinds.items():
+            per = await rss_per_episode(url, proc.pid, kind, arguments, count)
+            rows.append([f"RSS per open episode: {kind}", "-", "-", "-",
+                         f"{per:.2f} MiB ({count} episodes)"])
+        async with httpx2.AsyncClient() as http:
+            start = time.perf_counter()
+            await call(http, url, "validate_plan", {"graph": tower(5000), "plan": "done"})
+            rows.append(["5,000-block tower: validate_plan round trip", "-",
+                         f"{(time.perf_counter() - start) * 1000:.0f}", "-",
+                         "the largest graph a request may carry"])
+    finally:
+        proc.terminate()
+        proc.wait(timeout=10)
+    arm_proc, arm_url = start_http(["--executor", "arm:pybullet"])
+    try:
+        arm = {"scene_id": "three_blocks", "executor": "arm:pybullet"}
+        per = await rss_per_episode(arm_url, arm_proc.pid, "arm", arm, 2 if quick else 4)
+        rows.append(["RSS per open episode: arm:pybullet (dry-run)", "-", "-", "-",
+                     f"{per:.1f} MiB"])
+        start, peak, end = await open_end_rounds(arm_url, arm_proc.pid, arm, 10)
+        rows.append(["RSS over 10 open/end rounds, arm:pybullet", "-", "-", "-",
+                     f"{start:.0f} -> {end:.0f} MiB (peak {peak:.0f}): "
+                     f"{end - start:+.0f} MiB"])
+    finally:
+        arm_proc.terminate()
+        arm_proc.wait(timeout=10)
+    rows.append(["load + check the 100,000-block tower (library)", "-",
+                 f"{tower_load_s(100_000) * 1000:.0f}", "-", "parse, check, index"])
+    exits = [await sigterm_exit(4) for _ in range(1 if quick else 3)]
+    rows.append(["SIGTERM to exit, 4 heavy calls in flight", "-",
+                 f"{statistics.median(exits) * 1000:.0f}", "-",
+                 f"max {max(exits) * 1000:.0f} ms of {len(exits)} runs"])
+    return rows
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="fewer calls (smoke test)")
+    args = parser.parse_args()
+    load = os.getloadavg()[0]
+    rows = asyncio.run(run(args.quick))
+    notes = ("All clients and servers on loopback on the same machine. Light calls run on "
+             "the event loop; heavy calls (large graphs or plans, images, simulator, "
+             "search, arms) on at most 2 worker threads, 1 per client connection, each "
+             "within its wall-clock and memory budget. 1-minute load average at start: "
+             f"{load:.2f} (other jobs share the 2 cores; absolute times are inflated by it).")
+    write_table("server_load", "MCP server under load and faults",
+                ["what", "calls/s", "p50 ms", "p99 ms", "notes"], rows, notes)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,71 @@
+"""Graph checks scale linearly: tall towers, deep cycles and many misspelt labels."""
+
+from __future__ import annotations
+
+import pytest
+
+from verigraph.graph import Edge, Node, SceneGraph, WorldState, builtin_dictionary, wellformed
+from verigraph.graph.dictionary import Dictionary
+from verigraph.graph.wellformed import check_well_formed, find_support_cycle
+
+BLOCKS = builtin_dictionary("blocks")
+
+
+def tower(n: int) -> SceneGraph:
+    nodes = [Node(id="table", label="table")] + [Node(id=f"b{i}", label="block")
+                                                 for i in range(n)]
+    edges = [Edge(source=f"b{i}", relation="on", target=f"b{i - 1}" if i else "table")
+             for i in range(n)]
+    return SceneGraph(nodes=nodes, edges=edges, dictionary="blocks")
+
+
+class CountingSupports(dict[str, list[str]]):
+    """A support map that counts the lookups the cycle search makes."""
+
+    lookups = 0
+
+    def get(self, key, default=None):  # type: ignore[no-untyped-def, override]
+        CountingSupports.lookups += 1
+        return super().get(key, default)
+
+
+def test_cycle_search_touches_each_support_once():
+    n = 20_000
+    below = CountingSupports({f"b{i}": [f"b{i - 1}" if i else "table"] for i in range(n)})
+    CountingSupports.lookups = 0
+    assert find_support_cycle(below) is None
+    assert CountingSupports.lookups <= n + 1
+
+
+def test_cycle_at_the_top_of_a_tall_tower_is_found_and_named():
+    g = tower(30_000)
+    # b29999 -> b29998 -> ... is a chain; close a loop between the two top blocks
+    g.edges[-2] = Edge(source="b29998", relation="on", target="b29999")
+    problems = [p for p in check_well_formed(g, BLOCKS) if p.rule == "cycle"]
+    assert len(problems) == 1
+    assert "b29998" in problems[0].message and "b29999" in problems[0].message
+
+
+def test_well_formed_tall_tower_indexes_every_block():
+    state = WorldState.from_graph(tower(50_000))
+    assert state.supports_chain("b49999")[-1] == "table"
+    assert len(state.supports_chain("b49999")) == 50_000
+
+
+def test_spelling_suggestions_are_capped(monkeypatch: pytest.MonkeyPatch):
+    calls = []
+    real = Dictionary.nearest
+
+    def counted(self: Dictionary, name: str, n: int = 3) -> list[str]:
+        calls.append(name)
+        return real(self, name, n)
+
+    monkeypatch.setattr(Dictionary, "nearest", counted)
+    g = tower(5000)
+    g = g.model_copy(update={"nodes": [g.nodes[0]] + [Node(id=n.id, label="blok")
+                                                      for n in g.nodes[1:]]})
+    problems = [p for p in check_well_formed(g, BLOCKS) if p.rule == "unknown_label"]
+    assert len(problems) == 5000  # every problem is still reported
+    assert len(calls) == wellformed.MAX_SPELLING_SUGGESTIONS
+    assert "block" in problems[0].fix  # the first ones carry the real suggestion
+    assert problems[-1].fix.startswith("use a known label such as")

@@ -1,0 +1,85 @@
+"""Heavy tool calls run off the event loop, bounded, fair and cancellable.
+
+A heavy call (a large graph or plan, an image, the simulator, search, an arm) runs on
+a worker thread so the event loop keeps answering light calls. At most `workers`
+heavy calls run at once in the server and at most `per_client` for one client (an
+HTTP connection, or the stdio peer); the rest wait their turn. Each runs inside
+`verigraph.budget.within`: its loops' checkpoints stop it once it exceeds its wall
+clock or memory budget, or once its caller is cancelled (the client disconnected,
+or the server got SIGTERM). The budget wraps any callable, so the search and the
+simulator inherit it by calling `checkpoint()`.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable
+from contextvars import ContextVar
+from dataclasses import dataclass, field
+from typing import TypeVar
+
+import anyio
+import anyio.from_thread
+import anyio.to_thread
+
+from verigraph.budget import Budget, within
+
+T = TypeVar("T")
+log = logging.getLogger("verigraph.server")
+# Who is calling: "host:port" of the HTTP connection, or "stdio". Set per request.
+CLIENT: ContextVar[str] = ContextVar("verigraph_client", default="stdio")
+
+
+@dataclass(frozen=True)
+class HeavyLimits:
+    """Concurrency and per-call budget for heavy tool calls (`verigraph serve` flags)."""
+
+    workers: int = 2
+    per_client: int = 1
+    budget: Budget = field(default_factory=Budget)
+
+
+class HeavyCalls:
+    """The server's heavy-call runner (one per server)."""
+
+    def __init__(self, limits: HeavyLimits | None = None) -> None:
+        self.limits = limits or HeavyLimits()
+        self._workers = anyio.CapacityLimiter(self.limits.workers)
+        self._clients: dict[str, tuple[anyio.CapacityLimiter, int]] = {}
+        self.running = 0
+
+    def _client_limiter(self, client: str) -> anyio.CapacityLimiter:
+        limiter, users = self._clients.get(client, (None, 0))
+        if limiter is None:
+            limiter = anyio.CapacityLimiter(self.limits.per_client)
+        self._clients[client] = (limiter, users + 1)
+        return limiter
+
+    def _release_client(self, client: str) -> None:
+        limiter, users = self._clients[client]
+        if users <= 1:
+            del self._clients[client]
+        else:
+            self._clients[client] = (limiter, users - 1)
+
+    async def run(self, fn: Callable[[], T], name: str) -> T:
+        """`fn()` on a worker thread under the budget; cancelling the caller stops it at
+        its next checkpoint (BudgetExceeded inside, the caller's cancellation outside)."""
+        client = CLIENT.get()
+        limiter = self._client_limiter(client)
+        budget = self.limits.budget
+
+        def guarded() -> T:
+            log.debug("heavy call %s started for %s", name, client)
+            with within(budget, name, cancelled=anyio.from_thread.check_cancelled):
+                return fn()
+
+        try:
+            async with limiter:
+                self.running += 1
+                try:
+                    return await anyio.to_thread.run_sync(guarded, limiter=self._workers)
+                finally:
+                    self.running -= 1
+        finally:
+            self._release_client(client)
