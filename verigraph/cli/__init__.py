@@ -9,11 +9,11 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from verigraph.cli import agent, bench, core, perceive, serve, sim
+from verigraph.cli import agent, bench, core, episodes, perceive, serve, sim
 from verigraph.errors import VeriGraphError
 
 # Each module defines `register(subparsers)`, in the order of the help text.
-SUBCOMMAND_MODULES = (core, serve, sim, agent, bench, perceive)
+SUBCOMMAND_MODULES = (core, serve, episodes, sim, agent, bench, perceive)
 
 EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
 

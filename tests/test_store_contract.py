@@ -1,0 +1,146 @@
+"""One contract for every episode store: memory://, sqlite:/// and redis:// (a real server).
+
+The same tool calls run against each store; the durable ones must also hand an episode
+from one tool host (a process) to another, and refuse a stale write.
+"""
+
+from __future__ import annotations
+
+import re
+import stat
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+from store_helpers import redis_url  # noqa: F401 - the session fixture
+
+from verigraph.tools import EpisodeLimitError, Toolbox, ToolConfig, UnknownEpisodeError
+from verigraph.tools.errors import StaleEpisodeError, StoreError
+from verigraph.tools.store_durable import DurableStore
+from verigraph.tools.stores import open_store
+
+STORES = ["memory", "sqlite", "redis"]
+
+
+@pytest.fixture(params=STORES)
+def store_url(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[str]:
+    if request.param == "memory":
+        yield "memory://"
+    elif request.param == "sqlite":
+        yield f"sqlite:///{tmp_path / 'episodes.db'}"
+    else:
+        url = request.getfixturevalue("redis_url")
+        import redis
+        redis.Redis.from_url(url).flushdb()
+        yield url
+
+
+def box_for(url: str, **limits: float) -> Toolbox:
+    return Toolbox(config=ToolConfig(store=url, **limits))  # type: ignore[arg-type]
+
+
+def test_load_execute_end_through_the_store(store_url: str) -> None:
+    box = box_for(store_url)
+    ep = box.call("load_scene", {"scene_id": "cup_on_book"}).episode_id
+    assert re.fullmatch(r"ep_[A-Za-z0-9_-]{22}", ep)
+    out = box.call("execute_actions", {"episode_id": ep, "actions": ["move(cup, desk)"]})
+    assert out.ok
+    bad = box.call("execute_actions", {"episode_id": ep, "actions": ["move(desk, shelf)"]})
+    assert not bad.ok and bad.tau == 1
+    state = box.call("get_state", {"episode_id": ep})
+    assert state.tau == 1 and "cup on desk" in state.graph.sentences()
+    verdict = box.call("end_episode", {"episode_id": ep})
+    assert verdict.executed == ["move(cup, on, desk)"] and len(verdict.trace) == 2
+    with pytest.raises(UnknownEpisodeError):
+        box.call("get_state", {"episode_id": ep})
+
+
+def test_unknown_id_is_a_clear_error(store_url: str) -> None:
+    with pytest.raises(UnknownEpisodeError) as err:
+        box_for(store_url).call("get_state", {"episode_id": "ep_" + "x" * 22})
+    assert err.value.field == "episode_id" and "load_scene" in (err.value.fix or "")
+
+
+def test_the_store_is_capped_with_a_clear_error(store_url: str) -> None:
+    box = box_for(store_url, max_episodes=2)
+    for _ in range(2):
+        box.call("load_scene", {"scene_id": "three_blocks"})
+    with pytest.raises(EpisodeLimitError) as err:
+        box.call("load_scene", {"scene_id": "three_blocks"})
+    assert "end_episode" in (err.value.fix or "")
+    assert len(box.context.store) == 2
+
+
+def test_idle_episodes_make_room(store_url: str) -> None:
+    box = box_for(store_url, max_episodes=1, idle_timeout_s=0.3)
+    old = box.call("load_scene", {"scene_id": "three_blocks"}).episode_id
+    time.sleep(0.5)  # the idle timeout itself is what is tested
+    new = box.call("load_scene", {"scene_id": "three_blocks"}).episode_id
+    assert box.context.store.ids() == [new]
+    with pytest.raises(UnknownEpisodeError):
+        box.call("get_state", {"episode_id": old})
+
+
+@pytest.fixture(params=["sqlite", "redis"])
+def durable_url(request: pytest.FixtureRequest, tmp_path: Path) -> str:
+    if request.param == "sqlite":
+        return f"sqlite:///{tmp_path / 'episodes.db'}"
+    url: str = request.getfixturevalue("redis_url")
+    return url
+
+
+def test_another_process_continues_the_episode(durable_url: str) -> None:
+    first, second = box_for(durable_url), box_for(durable_url)
+    ep = first.call("load_scene", {"scene_id": "cup_on_book"}).episode_id
+    first.call("execute_actions", {"episode_id": ep, "actions": ["move(cup, desk)"]})
+    out = second.call("execute_actions", {"episode_id": ep, "actions": ["move(book, shelf)"]})
+    assert out.ok and out.goal_satisfied
+    # The first host's cached copy is out of date: it must see the second one's move.
+    state = first.call("get_state", {"episode_id": ep})
+    assert state.executed == ["move(cup, on, desk)", "move(book, on, shelf)"]
+    assert state.graph == second.call("get_state", {"episode_id": ep}).graph
+
+
+def test_a_stale_write_is_refused_and_changes_nothing(durable_url: str) -> None:
+    first, second = box_for(durable_url), box_for(durable_url)
+    ep = first.call("load_scene", {"scene_id": "three_blocks"}).episode_id
+    store = first.context.store
+    assert isinstance(store, DurableStore)
+    with pytest.raises(StaleEpisodeError), store.use(ep) as episode:
+        second.call("execute_actions", {"episode_id": ep,
+                                        "actions": ["move(green_block, red_block)"]})
+        episode.tau = 4  # a change computed on the old version
+    state = first.call("get_state", {"episode_id": ep})
+    assert state.tau == 0 and state.executed == ["move(green_block, on, red_block)"]
+
+
+def test_a_sim2d_world_is_rebuilt_exactly(durable_url: str) -> None:
+    first = box_for(durable_url)
+    ep = first.call("load_scene", {"generator": {"family": "kitchen", "seed": 3},
+                                   "executor": "sim2d"}).episode_id
+    plan = first.call("solve", {"episode_id": ep})
+    first.call("execute_actions", {"episode_id": ep, "actions": plan.plan[:1]})
+    before = first.call("render_scene", {"episode_id": ep, "width": 320, "height": 240})
+    after = box_for(durable_url).call("render_scene", {"episode_id": ep, "width": 320,
+                                                           "height": 240})
+    assert before.png == after.png
+    a = first.context.store.peek(ep).world
+    b = box_for(durable_url).context.store.peek(ep).world
+    assert np.array_equal(a.render(), b.render())
+
+
+def test_sqlite_file_is_private(tmp_path: Path) -> None:
+    path = tmp_path / "new" / "episodes.db"
+    box_for(f"sqlite:///{path}").call("load_scene", {"scene_id": "three_blocks"})
+    assert stat.S_IMODE(path.stat().st_mode) == 0o600
+    assert stat.S_IMODE(path.parent.stat().st_mode) == 0o700
+
+
+@pytest.mark.parametrize("url", ["postgres://x", "sqlite://relative.db",
+                                 "redis://127.0.0.1:1/0"])
+def test_bad_store_urls_name_the_flag(url: str) -> None:
+    with pytest.raises(StoreError) as err:
+        open_store(url)
+    assert err.value.field == "--store"
