@@ -79,6 +79,12 @@ class Backend(Protocol):
 Revive = Callable[[Episode], None]
 
 
+def _stale(episode_id: str) -> StaleEpisodeError:
+    return StaleEpisodeError("the episode changed in another process during this call",
+                             field="episode_id", value=episode_id,
+                             fix="nothing was applied; send the call again")
+
+
 class DurableStore(EpisodeStore):
     """An EpisodeStore whose episodes live in a backend shared by processes."""
 
@@ -166,7 +172,9 @@ class DurableStore(EpisodeStore):
         """Make the cached episode the stored one; its current version."""
         with self._lock:
             if self._episodes.get(episode.id) is not episode:
-                raise UnknownEpisodeError(episode.id)  # ended while we waited
+                # Ended, or this copy was dropped while we waited: the tool host runs the
+                # call again, which loads the stored episode (or reports it gone).
+                raise _stale(episode.id)
             cached = self._versions[episode.id]
         version = self.backend.check(episode.id, now, self.idle_timeout)
         if version is None:
@@ -213,10 +221,7 @@ class DurableStore(EpisodeStore):
             if not self.backend.swap(episode_id, version, record.model_dump_json(), now,
                                      self.idle_timeout):
                 self._forget(episode_id)
-                raise StaleEpisodeError(
-                    "the episode changed in another process during this call",
-                    field="episode_id", value=episode_id,
-                    fix="nothing was applied; send the call again")
+                raise _stale(episode_id)
             with self._lock:
                 self._versions[episode_id] = version + 1
 
