@@ -144,3 +144,25 @@ def test_bad_store_urls_name_the_flag(url: str) -> None:
     with pytest.raises(StoreError) as err:
         open_store(url)
     assert err.value.field == "--store"
+
+
+def test_an_idle_episode_expires_in_the_store(durable_url: str) -> None:
+    box = box_for(durable_url, idle_timeout_s=0.3)
+    ep = box.call("load_scene", {"scene_id": "three_blocks"}).episode_id
+    if durable_url.startswith("redis"):
+        import redis
+        ttl = redis.Redis.from_url(durable_url).pttl(f"verigraph:ep:{ep}")
+        assert 0 < ttl <= 300  # Redis EXPIRE does the eviction
+    time.sleep(0.5)  # the idle timeout itself is what is tested
+    with pytest.raises(UnknownEpisodeError):
+        box_for(durable_url, idle_timeout_s=0.3).call("get_state", {"episode_id": ep})
+
+
+def test_extras_persist_with_the_episode(durable_url: str) -> None:
+    first = box_for(durable_url)
+    ep = first.call("load_scene", {"scene_id": "three_blocks"}).episode_id
+    with first.context.store.use(ep) as episode:
+        episode.extras["req-1"] = {"ok": True, "executed": ["move(a, on, b)"]}
+        episode.mark_changed()
+    with box_for(durable_url).context.store.use(ep) as again:
+        assert again.extras == {"req-1": {"ok": True, "executed": ["move(a, on, b)"]}}
