@@ -8,7 +8,7 @@ from pathlib import Path
 
 from mcp_helpers import verigraph_command
 
-from verigraph.tools import ToolConfig, Toolbox
+from verigraph.tools import Toolbox, ToolConfig
 
 
 def episodes(*args: str) -> subprocess.CompletedProcess[str]:
