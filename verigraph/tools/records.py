@@ -90,7 +90,7 @@ def to_record(episode: Episode, *, version: int, created_at: float, updated_at: 
     """The record of `episode` as it is now (the caller holds its lock)."""
     state = episode.state
     extras = dict(episode.extras)
-    if isinstance(episode.world, ArmWorld):
+    if isinstance(episode.world, ArmWorld):  # the latch as it is now, see store_durable
         extras["arm_latched"] = episode.world.status().stop_latched
     return EpisodeRecord(
         id=episode.id, version=version, created_at=created_at, updated_at=updated_at,

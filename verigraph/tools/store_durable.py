@@ -22,6 +22,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any, Protocol
 
+from verigraph.arm import ArmWorld
 from verigraph.tools.errors import EpisodeLimitError, StaleEpisodeError, UnknownEpisodeError
 from verigraph.tools.records import EpisodeRecord, fill_episode, from_record, to_record
 from verigraph.tools.store import (
@@ -77,6 +78,16 @@ class Backend(Protocol):
 
 
 Revive = Callable[[Episode], None]
+
+
+def _note_arm_latch(episode: Episode) -> None:
+    """Keep an arm's latched stop with the episode (arm_stop latches it without a commit),
+    so a process that reloads the episode latches the new connection again."""
+    if isinstance(episode.world, ArmWorld):
+        latched = episode.world.status().stop_latched
+        if latched != episode.extras.get("arm_latched", False):
+            episode.extras["arm_latched"] = latched
+            episode.mark_changed()
 
 
 def _stale(episode_id: str) -> StaleEpisodeError:
@@ -214,6 +225,7 @@ class DurableStore(EpisodeStore):
                 if episode.changes != before:
                     self._forget(episode_id)  # half-changed: reload the stored state
                 raise
+            _note_arm_latch(episode)
             if episode.changes == before or episode_id not in self._episodes:
                 return  # read only, or ended (remove() deleted the record)
             record = to_record(episode, version=version + 1,
