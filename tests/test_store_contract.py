@@ -166,3 +166,17 @@ def test_extras_persist_with_the_episode(durable_url: str) -> None:
         episode.mark_changed()
     with box_for(durable_url).context.store.use(ep) as again:
         assert again.extras == {"req-1": {"ok": True, "executed": ["move(a, on, b)"]}}
+
+
+def test_a_record_of_another_schema_is_a_clear_error(tmp_path: Path) -> None:
+    url = f"sqlite:///{tmp_path / 'episodes.db'}"
+    ep = box_for(url).call("load_scene", {"scene_id": "three_blocks"}).episode_id
+    store = open_store(url)
+    assert isinstance(store, DurableStore)
+    text = store.backend.load(ep, time.time(), 60)
+    assert text is not None and '"schema_version":1' in text
+    assert store.backend.swap(ep, 1, text.replace('"schema_version":1', '"schema_version":2'),
+                              time.time(), 60)
+    with pytest.raises(StoreError) as err:
+        box_for(url).call("get_state", {"episode_id": ep})
+    assert "schema version 2" in err.value.message and "purge" in (err.value.fix or "")

@@ -16,15 +16,29 @@ lock per episode within a process) and adds a backend (SQLite or Redis) that hol
 
 from __future__ import annotations
 
+import re
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any, Protocol
 
+from pydantic import ValidationError
+
 from verigraph.arm import ArmWorld
-from verigraph.tools.errors import EpisodeLimitError, StaleEpisodeError, UnknownEpisodeError
-from verigraph.tools.records import EpisodeRecord, fill_episode, from_record, to_record
+from verigraph.tools.errors import (
+    EpisodeLimitError,
+    StaleEpisodeError,
+    StoreError,
+    UnknownEpisodeError,
+)
+from verigraph.tools.records import (
+    SCHEMA_VERSION,
+    EpisodeRecord,
+    fill_episode,
+    from_record,
+    to_record,
+)
 from verigraph.tools.store import (
     _NON_BLOCKING,
     DEFAULT_IDLE_TIMEOUT_S,
@@ -88,6 +102,20 @@ def _note_arm_latch(episode: Episode) -> None:
         if latched != episode.extras.get("arm_latched", False):
             episode.extras["arm_latched"] = latched
             episode.mark_changed()
+
+
+def _decode(text: str) -> EpisodeRecord:
+    """The stored record; a record this version cannot read is a clear StoreError."""
+    try:
+        return EpisodeRecord.model_validate_json(text)
+    except ValidationError as exc:
+        version = re.search(r'"schema_version":\s*(\d+)', text)
+        raise StoreError(
+            f"a stored episode cannot be read (schema version "
+            f"{version.group(1) if version else 'unknown'}; this server reads "
+            f"{SCHEMA_VERSION}): {exc.error_count()} problem(s)", field="episode_id",
+            value=None, fix="run the server version that wrote it, or drop the episode with "
+                            "verigraph episodes purge ID") from None
 
 
 def _stale(episode_id: str) -> StaleEpisodeError:
@@ -165,7 +193,7 @@ class DurableStore(EpisodeStore):
         text = self.backend.load(episode_id, self._clock(), self.idle_timeout)
         if text is None:
             raise UnknownEpisodeError(episode_id)
-        record = EpisodeRecord.model_validate_json(text)
+        record = _decode(text)
         episode = from_record(record)
         if self.revive is not None:
             self.revive(episode)
@@ -196,7 +224,7 @@ class DurableStore(EpisodeStore):
             if text is None:
                 self._forget(episode.id)
                 raise UnknownEpisodeError(episode.id)
-            record = EpisodeRecord.model_validate_json(text)
+            record = _decode(text)
             live_arm = episode.world if episode.executor.startswith("arm:") else None
             fill_episode(episode, record)
             if live_arm is not None:
