@@ -11,7 +11,7 @@ from typing import Any
 from verigraph.errors import VeriGraphError
 from verigraph.tools.records import EpisodeRecord, action_texts
 from verigraph.tools.store import DEFAULT_IDLE_TIMEOUT_S
-from verigraph.tools.store_durable import Backend
+from verigraph.tools.store_backend import Backend
 from verigraph.tools.stores import STORE_HELP, default_store_url, open_backend, redacted
 
 

@@ -15,7 +15,7 @@ from typing import Any, TypeVar
 import redis
 
 from verigraph.tools.errors import StoreError
-from verigraph.tools.store_durable import StoredEpisode
+from verigraph.tools.store_backend import StoredEpisode
 
 PREFIX = "verigraph:"
 INDEX = PREFIX + "episodes"

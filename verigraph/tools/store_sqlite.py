@@ -16,7 +16,7 @@ import threading
 from pathlib import Path
 
 from verigraph.tools.errors import StoreError
-from verigraph.tools.store_durable import StoredEpisode
+from verigraph.tools.store_backend import StoredEpisode
 
 # Refresh an episode's last-used time at most this often, so a read is not a write.
 TOUCH_EVERY_S = 5.0

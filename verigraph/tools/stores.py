@@ -20,7 +20,8 @@ from verigraph.tools.store import (
     Episode,
     EpisodeStore,
 )
-from verigraph.tools.store_durable import Backend, DurableStore
+from verigraph.tools.store_backend import Backend
+from verigraph.tools.store_durable import DurableStore
 
 STORE_HELP = ("memory://, sqlite:///path/to/episodes.db or redis://host:port/db "
               "(default for the server: sqlite under the user's data directory)")
