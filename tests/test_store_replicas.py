@@ -42,7 +42,7 @@ async def call(client: Client, name: str, **arguments: Any) -> dict[str, Any]:
 
 
 async def test_replicas_share_episodes_and_serialise_moves(redis_url: str) -> None:  # noqa: F811
-    store = ["--store", redis_url]
+    store = ["--store", redis_url, "--log-level", "INFO"]
     with http_server(extra=store) as a, http_server(extra=store) as b:
         replicas = [a.url, b.url]
         async with connect(a.url) as on_a, connect(b.url) as on_b:
@@ -55,12 +55,18 @@ async def test_replicas_share_episodes_and_serialise_moves(redis_url: str) -> No
             initial = (await call(on_a, "load_scene", scene_id="three_blocks"))["graph"]
 
         results: list[dict[str, Any]] = []
+        turns = 8
+        # Each turn the four clients read the state, wait for each other, then send their
+        # moves at the same moment: two on each replica, so the replicas race on one version.
+        ready = [anyio.Event() for _ in range(turns)]
+        arrived = [0] * turns
 
         async def agent(index: int) -> None:
             rng = random.Random(index)
-            for turn in range(8):
-                url = replicas[(index + turn) % 2]  # alternate replicas
-                async with connect(url) as client:
+            async with connect(replicas[0]) as c0, connect(replicas[1]) as c1:
+                clients = [c0, c1]
+                for turn in range(turns):
+                    client = clients[(index + turn) % 2]  # alternate replicas
                     # A move that is valid on the state just read; a racing client may
                     # make it invalid before it runs, which is fine: it then fails whole.
                     graph = (await call(client, "get_state", episode_id=ep))["graph"]
@@ -70,6 +76,10 @@ async def test_replicas_share_episodes_and_serialise_moves(redis_url: str) -> No
                     below = next(e["target"] for e in graph["edges"] if e["source"] == obj)
                     target = rng.choice([b for b in clear if b != obj]
                                         + (["table"] if below != "table" else []))
+                    arrived[turn] += 1
+                    if arrived[turn] == 4:
+                        ready[turn].set()
+                    await ready[turn].wait()
                     results.append(await call(client, "execute_actions", episode_id=ep,
                                               actions=[f"move({obj}, {target})"]))
 
@@ -102,3 +112,5 @@ async def test_replicas_share_episodes_and_serialise_moves(redis_url: str) -> No
             assert [t["call"] for t in trace] == list(range(1, 34))
             assert sum(bool(r["executed"]) for r in results) == len(order) - 1 > 4, [
                 (r["executed"], r["violation"]) for r in results]
+        retried = sum(server.stop()[1].count(b"changed in another process") for server in (a, b))
+        print(f"calls run again after losing a compare-and-set: {retried}")

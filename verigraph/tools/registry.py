@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import difflib
 import json
+import logging
 import random
 import time
 from collections.abc import Callable, Mapping
@@ -243,6 +244,7 @@ def parse_arguments(spec: ToolSpec, arguments: Mapping[str, Any] | None) -> Base
 
 
 MAX_STALE_RETRIES = 50
+_log = logging.getLogger("verigraph.tools")
 
 
 class Toolbox:
@@ -279,8 +281,10 @@ class Toolbox:
             try:
                 result: BaseModel | ImageResult = spec.run(self.context, params)
                 return result
-            except StaleEpisodeError:
+            except StaleEpisodeError as exc:
                 if attempt == MAX_STALE_RETRIES - 1:
                     raise
+                _log.info("%s: %s changed in another process; running the call again",
+                          spec.name, exc.value)
                 time.sleep(random.uniform(0, 0.002 * (attempt + 1)))
         raise AssertionError("unreachable")
