@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import re
 import stat
+import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -180,3 +181,31 @@ def test_a_record_of_another_schema_is_a_clear_error(tmp_path: Path) -> None:
     with pytest.raises(StoreError) as err:
         box_for(url).call("get_state", {"episode_id": ep})
     assert "schema version 2" in err.value.message and "purge" in (err.value.fix or "")
+
+
+def test_concurrent_hosts_serialise_their_moves(durable_url: str) -> None:
+    """Two hosts (as two processes would), two threads each, moves sent at the same time."""
+    hosts = [box_for(durable_url), box_for(durable_url)]
+    ep = hosts[0].call("load_scene", {"scene_id": "three_blocks", "t": 100}).episode_id
+    moves = ["move(green_block, red_block)", "move(green_block, table)"]
+    barrier = threading.Barrier(4)
+    replies: list[list[str]] = []
+
+    def worker(index: int) -> None:
+        for turn in range(6):
+            barrier.wait(timeout=60)
+            out = hosts[index % 2].call("execute_actions", {
+                "episode_id": ep, "actions": [moves[(index + turn) % 2]]})
+            replies.append(out.executed)
+
+    threads = [threading.Thread(target=worker, args=(i,)) for i in range(4)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join(timeout=120)
+    state = hosts[1].call("get_state", {"episode_id": ep})
+    assert state.calls == 24 == len(replies)
+    assert sorted(state.executed) == sorted(m for r in replies for m in r)
+    replay = hosts[1].call("validate_plan", {"scene_id": "three_blocks",
+                                             "plan": state.executed or ["done"]})
+    assert replay.plan_valid and replay.final_graph == state.graph
