@@ -209,3 +209,29 @@ def test_concurrent_hosts_serialise_their_moves(durable_url: str) -> None:
     replay = hosts[1].call("validate_plan", {"scene_id": "three_blocks",
                                              "plan": state.executed or ["done"]})
     assert replay.plan_valid and replay.final_graph == state.graph
+
+
+def test_every_episode_field_is_stored(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    """A field without its own place in the record (here: tau, as if added later) is
+    stored in its JSON form all the same."""
+    import dataclasses
+
+    from verigraph.tools import Episode, records
+    names = {f.name for f in dataclasses.fields(Episode)}
+    assert names <= records.EXPLICIT | records.PER_PROCESS | set(records._adapters())
+    monkeypatch.setattr(records, "EXPLICIT", records.EXPLICIT - {"tau"})
+    records._adapters.cache_clear()
+    try:
+        url = f"sqlite:///{tmp_path / 'episodes.db'}"
+        box = box_for(url)
+        ep = box.call("load_scene", {"scene_id": "three_blocks"}).episode_id
+        box.call("execute_actions", {"episode_id": ep, "actions": ["move(table, red_block)"]})
+        backend = open_store(url).backend  # type: ignore[attr-defined]
+        text = backend.load(ep, time.time(), 60)
+        assert '"fields":{"tau":1}' in text
+        # The generic copy is what a new host reads back.
+        assert backend.swap(ep, 2, text.replace('"fields":{"tau":1}', '"fields":{"tau":3}'),
+                            time.time(), 60)
+        assert box_for(url).call("get_state", {"episode_id": ep}).tau == 3
+    finally:
+        records._adapters.cache_clear()

@@ -4,7 +4,8 @@
 dictionary, k, t, tau, trace, executed actions, executor kind and the simulator's world
 state (poses and velocities, see `sim2d.persist`), plus `extras` for small per-episode
 records other features keep (any JSON value; an arm episode's latched stop is kept as
-`extras["arm_latched"]`). Live things are never stored: an arm's
+`extras["arm_latched"]`). An Episode field added later without a place of its own here
+is stored all the same, in its pydantic JSON form (`fields`). Live things are never stored: an arm's
 driver connection is opened again by whoever loads the record (`revive` hook), a lock is
 per process. No secret is part of an episode, so none is stored.
 """
@@ -12,6 +13,9 @@ per process. No secret is part of an episode, so none is stored.
 from __future__ import annotations
 
 import base64
+import dataclasses
+import functools
+import typing
 from typing import Any, Literal
 
 import cv2
@@ -64,6 +68,8 @@ class EpisodeRecord(BaseModel):
     goal_world: dict[str, Any] | None
     image_png: str | None = Field(description="the scene photo (base64 PNG), image episodes")
     extras: dict[str, Any] = Field(default_factory=dict)
+    fields: dict[str, Any] = Field(
+        default_factory=dict, description="any other Episode field, in its JSON form")
 
 
 def _png(image: np.ndarray | None) -> str | None:
@@ -102,7 +108,28 @@ def to_record(episode: Episode, *, version: int, created_at: float, updated_at: 
         trace=list(episode.trace), last_violation=episode.last_violation, done=episode.done,
         scene_check=episode.scene_check, world=_sim(episode.world),
         goal_world=_sim(episode.goal_world), image_png=_png(episode.image),
-        extras=extras)
+        extras=extras, fields=_other_fields(episode))
+
+
+# Episode fields with their own place in the record, and the ones that are per process.
+EXPLICIT = frozenset({
+    "id", "state", "source", "k", "t", "goal", "instruction", "world", "executor",
+    "scene_check", "goal_world", "image", "initial_graph", "dictionary_name", "tau", "calls",
+    "executed", "trace", "last_violation", "done", "extras"})
+PER_PROCESS = frozenset({"lock", "last_used"})
+
+
+@functools.cache
+def _adapters() -> dict[str, TypeAdapter[Any]]:
+    """A JSON adapter for every other Episode field (one added later is stored too)."""
+    hints = typing.get_type_hints(Episode)
+    return {f.name: TypeAdapter(hints[f.name]) for f in dataclasses.fields(Episode)
+            if f.name not in EXPLICIT | PER_PROCESS}
+
+
+def _other_fields(episode: Episode) -> dict[str, Any]:
+    return {name: adapter.dump_python(getattr(episode, name), mode="json")
+            for name, adapter in _adapters().items()}
 
 
 def restore_state(graph: SceneGraph | None) -> WorldState | None:
@@ -131,6 +158,10 @@ def fill_episode(episode: Episode, record: EpisodeRecord) -> None:
         "extras": dict(record.extras)}
     for name, value in values.items():
         object.__setattr__(episode, name, value)
+    for name, data in record.fields.items():
+        adapter = _adapters().get(name)
+        if adapter is not None:
+            object.__setattr__(episode, name, adapter.validate_python(data))
 
 
 def from_record(record: EpisodeRecord) -> Episode:
