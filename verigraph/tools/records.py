@@ -5,9 +5,9 @@ dictionary, k, t, tau, trace, executed actions, executor kind and the simulator'
 state (poses and velocities, see `sim2d.persist`), plus `extras` for small per-episode
 records other features keep (any JSON value; an arm episode's latched stop is kept as
 `extras["arm_latched"]`). An Episode field added later without a place of its own here
-is stored all the same, in its pydantic JSON form (`fields`). Live things are never stored: an arm's
-driver connection is opened again by whoever loads the record (`revive` hook), a lock is
-per process. No secret is part of an episode, so none is stored.
+is stored all the same, in its pydantic JSON form (`fields`). Live things are never
+stored: an arm's driver connection is opened again by whoever loads the record (`revive`
+hook), a lock is per process. No secret is part of an episode, so none is stored.
 """
 
 from __future__ import annotations
