@@ -137,6 +137,8 @@ def test_sqlite_file_is_private(tmp_path: Path) -> None:
     box_for(f"sqlite:///{path}").call("load_scene", {"scene_id": "three_blocks"})
     assert stat.S_IMODE(path.stat().st_mode) == 0o600
     assert stat.S_IMODE(path.parent.stat().st_mode) == 0o700
+    wal = path.with_name("episodes.db-wal")
+    assert wal.exists() and stat.S_IMODE(wal.stat().st_mode) == 0o600
 
 
 @pytest.mark.parametrize("url", ["postgres://x", "sqlite://relative.db",
