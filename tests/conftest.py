@@ -1,7 +1,22 @@
 import os
 import sys
+import tempfile
+from collections.abc import Iterator
 from pathlib import Path
 
+import pytest
+
+# Servers started by tests keep their default episode store (SQLite) in a fresh
+# directory, never in the user's data directory: one per session for module-wide
+# servers, and one per test (below) so that no test sees another's episodes.
+os.environ["XDG_DATA_HOME"] = tempfile.mkdtemp(prefix="verigraph-test-data-")
 # Never let a test reach for a model hub.
 os.environ.setdefault("HF_HUB_OFFLINE", "1")
 sys.path.insert(0, str(Path(__file__).parent))
+
+
+@pytest.fixture(autouse=True)
+def _private_data_home(tmp_path_factory: pytest.TempPathFactory,
+                       monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path_factory.mktemp("data-home")))
+    yield

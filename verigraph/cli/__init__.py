@@ -15,7 +15,8 @@ from verigraph.errors import VeriGraphError
 # Each module defines `register(subparsers)`, in the order of the help text. They are
 # imported by name when the parser is built (an import error is an error, never skipped)
 # so that a core command imports only what it needs.
-SUBCOMMAND_MODULES = ("verigraph.cli.core", "verigraph.cli.serve", "verigraph.cli.sim",
+SUBCOMMAND_MODULES = ("verigraph.cli.core", "verigraph.cli.serve",
+                      "verigraph.cli.episodes", "verigraph.cli.sim",
                       "verigraph.cli.agent", "verigraph.cli.bench", "verigraph.cli.perceive",
                       "verigraph.cli.view", "verigraph.cli.arm")
 

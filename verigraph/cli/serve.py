@@ -56,6 +56,12 @@ def register(sub: Any) -> None:
     p.add_argument("--max-arm-episodes", type=int, default=8,
                    help="arm episodes open at once (default 8; each holds an arm world "
                         "until end_episode)")
+    p.add_argument("--store", default=None, metavar="URL",
+                   help="where episodes live: memory://, sqlite:///path/episodes.db or "
+                        "redis://host:port/db (default: sqlite in the user's data directory, "
+                        "so episodes survive a restart)")
+    p.add_argument("--idle-timeout", type=float, default=3600.0, metavar="S",
+                   help="drop episodes unused for this many seconds (default 3600)")
     p.add_argument("--disable-solve", action="store_true", help="turn the solve tool off")
     p.add_argument("--executor", default=None, metavar="NAME",
                    help="where episodes run unless load_scene picks another: graph "
@@ -82,6 +88,7 @@ def run_serve(args: argparse.Namespace) -> int:
     from verigraph.server.stdio import run_stdio
     from verigraph.tools.context import ToolConfig
     from verigraph.tools.executors import server_executor
+    from verigraph.tools.stores import default_store_url, redacted
 
     token = args.token or os.environ.get(TOKEN_ENV) or None
     if args.transport == "http" and args.host not in ("127.0.0.1", "localhost", "::1") \
@@ -89,11 +96,13 @@ def run_serve(args: argparse.Namespace) -> int:
         raise VeriGraphError(f"refusing to serve on {args.host} without a token",
                              field="--host", value=args.host,
                              fix=f"pass --token (or set {TOKEN_ENV}), or bind to 127.0.0.1")
-    if args.max_episodes < 1 or args.max_arm_episodes < 0 or not 0 < args.max_body_mib <= 1024:
-        raise VeriGraphError("limits out of range", field="--max-episodes/--max-body-mib",
-                             value=None, fix="use --max-episodes >= 1, --max-arm-episodes >= 0 "
-                                             "and 0 < --max-body-mib "
-                                             "<= 1024")
+    if args.max_episodes < 1 or args.max_arm_episodes < 0 or not 0 < args.max_body_mib <= 1024 \
+            or args.idle_timeout <= 0:
+        raise VeriGraphError("limits out of range",
+                             field="--max-episodes/--max-arm-episodes/--max-body-mib/"
+                                   "--idle-timeout",
+                             value=None, fix="use --max-episodes >= 1, --max-arm-episodes >= 0, "
+                                             "0 < --max-body-mib <= 1024 and --idle-timeout > 0")
     executor, arm = server_executor(args.executor, args.arm_config)
     if arm is not None:
         from verigraph.arm.shutdown import install_stop_on_signals
@@ -102,8 +111,11 @@ def run_serve(args: argparse.Namespace) -> int:
     if arm is not None and executor.startswith("arm:"):
         logging.getLogger("verigraph.server").warning(
             "episodes run on %s in mode %s", executor, arm.config.mode)
+    store = args.store or default_store_url()
+    logging.getLogger("verigraph.server").info("episodes are kept in %s", redacted(store))
     config = ToolConfig(max_episodes=args.max_episodes, enable_solve=not args.disable_solve,
-                        executor=executor, arm=arm, max_arm_worlds=args.max_arm_episodes)
+                        executor=executor, arm=arm, max_arm_worlds=args.max_arm_episodes,
+                        store=store, idle_timeout_s=args.idle_timeout)
     numbers = (args.header_timeout, args.body_timeout, args.keep_alive, args.tool_seconds,
                args.tool_mib, args.heavy_workers, args.per_client)
     if min(numbers) <= 0:

@@ -206,6 +206,7 @@ def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionO
             goal_satisfied=diff.satisfied if diff else None, goal_diff=diff)
         if params.request_id is not None:
             episode.requests.record(params.request_id, proposed, output.model_dump(mode="json"))
+            episode.mark_changed()  # an in-place edit: durable stores save it with the rest
         return output
 
 

@@ -4,13 +4,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from verigraph.tools.executors import DEFAULT_MAX_ARM_WORLDS, ArmCells, ArmSetup
+from verigraph.tools.executors import (
+    DEFAULT_MAX_ARM_WORLDS,
+    ArmCells,
+    ArmSetup,
+    arm_setup_for,
+)
 from verigraph.tools.store import (
     DEFAULT_IDLE_TIMEOUT_S,
     DEFAULT_MAX_EPISODES,
     Episode,
     EpisodeStore,
 )
+from verigraph.tools.store_durable import DurableStore
+from verigraph.tools.stores import open_store
 
 
 @dataclass(frozen=True)
@@ -18,7 +25,8 @@ class ToolConfig:
     """Limits and switches; the defaults suit a local server for one or a few agents.
 
     `executor` is where load_scene episodes run unless the call picks another; `arm`
-    is the server's arm (from --arm-config), used by `arm:<driver>` episodes.
+    is the server's arm (from --arm-config), used by `arm:<driver>` episodes. `store`
+    is where episodes live (see `tools.stores`): memory unless the host picks a durable one.
     """
 
     max_episodes: int = DEFAULT_MAX_EPISODES
@@ -28,6 +36,7 @@ class ToolConfig:
     executor: str = "graph"
     arm: ArmSetup | None = None
     max_arm_worlds: int = DEFAULT_MAX_ARM_WORLDS
+    store: str = "memory://"
 
 
 @dataclass
@@ -40,9 +49,25 @@ class ToolContext:
 
     def __post_init__(self) -> None:
         self.arms = ArmCells(self.config.max_arm_worlds)
-        self.store = EpisodeStore(self.config.max_episodes, self.config.idle_timeout_s,
-                                  on_drop=self._drop)
+        self.store = open_store(self.config.store, self.config.max_episodes,
+                                self.config.idle_timeout_s, on_drop=self._drop)
+        if isinstance(self.store, DurableStore):
+            self.store.revive = self._revive
 
     def _drop(self, episode: Episode) -> None:
         """An ended or evicted episode lets go of its arm (disconnects, frees the cell)."""
         self.arms.close(episode.world)
+
+    def _revive(self, episode: Episode) -> None:
+        """A stored arm episode gets a fresh driver connection in this process.
+
+        The connection is never assumed to survive; a stop latched before the record
+        was written is latched again on the new connection.
+        """
+        if not episode.executor.startswith("arm:") or episode.state is None:
+            return
+        setup = arm_setup_for(episode.executor, self.config.arm)
+        world, _ = self.arms.open(setup, episode.state, self.store.evict_idle)
+        object.__setattr__(episode, "world", world)
+        if episode.extras.get("arm_latched") and hasattr(world, "stop"):
+            world.stop("stop latched before the episode was reloaded")

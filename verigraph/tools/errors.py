@@ -40,3 +40,14 @@ class InvalidArgumentsError(ToolArgumentError):
 
     def __str__(self) -> str:
         return self.message if not self.fix else f"{self.message} (fix: {self.fix})"
+
+
+class StaleEpisodeError(VeriGraphError):
+    """Another process changed the episode while this call ran on an older version.
+
+    Nothing of this call was stored; the tool host runs the call again on the new state.
+    """
+
+
+class StoreError(VeriGraphError):
+    """The episode store cannot be opened or reached (bad --store URL, server down)."""

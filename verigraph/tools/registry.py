@@ -10,6 +10,9 @@ from __future__ import annotations
 
 import difflib
 import json
+import logging
+import random
+import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -19,7 +22,7 @@ from pydantic import BaseModel, ValidationError
 from verigraph.actions.report import ValidationReport
 from verigraph.tools import acting, arm, episodes, goals, loading, scenes, solving, summaries
 from verigraph.tools.context import ToolConfig, ToolContext
-from verigraph.tools.errors import InvalidArgumentsError, ToolArgumentError
+from verigraph.tools.errors import InvalidArgumentsError, StaleEpisodeError, ToolArgumentError
 from verigraph.tools.scenes import ImageResult
 
 
@@ -241,6 +244,10 @@ def parse_arguments(spec: ToolSpec, arguments: Mapping[str, Any] | None) -> Base
         raise argument_error(spec, exc) from None
 
 
+MAX_STALE_RETRIES = 50
+_log = logging.getLogger("verigraph.tools")
+
+
 class Toolbox:
     """Transport-free tool host: `Toolbox().call("load_scene", {"scene_id": ...})`."""
 
@@ -266,6 +273,19 @@ class Toolbox:
         return self.run(spec, params)
 
     def run(self, spec: ToolSpec, params: BaseModel) -> BaseModel | ImageResult:
-        """Run a tool on already validated input."""
-        result: BaseModel | ImageResult = spec.run(self.context, params)
-        return result
+        """Run a tool on already validated input.
+
+        A call that lost a compare-and-set to another process (a durable store shared by
+        replicas) stored nothing, so it runs again on the newer state.
+        """
+        for attempt in range(MAX_STALE_RETRIES):
+            try:
+                result: BaseModel | ImageResult = spec.run(self.context, params)
+                return result
+            except StaleEpisodeError as exc:
+                if attempt == MAX_STALE_RETRIES - 1:
+                    raise
+                _log.info("%s: %s changed in another process; running the call again",
+                          spec.name, exc.value)
+                time.sleep(random.uniform(0, 0.002 * (attempt + 1)))
+        raise AssertionError("unreachable")

@@ -106,6 +106,9 @@ class RequestRecords:
             del self.records[next(iter(self.records))]
 
 
+_UNTRACKED = frozenset({"lock", "last_used"})
+
+
 @dataclass(eq=False)
 class Episode:
     """Mutable state of one planning episode; only touched while its lock is held."""
@@ -131,12 +134,29 @@ class Episode:
     last_violation: Violation | None = None
     done: bool = False
     requests: RequestRecords = field(default_factory=RequestRecords)
+    extras: dict[str, Any] = field(default_factory=dict)  # small JSON records, persisted
     lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
     last_used: float = 0.0
 
     def __post_init__(self) -> None:
         if isinstance(self.image, np.ndarray):
             self.image = KeptImage.of(self.image)  # perception is done: keep it small
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        # Durable stores write an episode back only when it changed: every assignment
+        # counts (in-place edits of a list or of `extras` call `mark_changed`).
+        object.__setattr__(self, name, value)
+        if name not in _UNTRACKED:
+            self.__dict__["changes"] = self.__dict__.get("changes", 0) + 1
+
+    @property
+    def changes(self) -> int:
+        """Assignments so far; a store compares it before and after a tool call."""
+        return int(self.__dict__.get("changes", 0))
+
+    def mark_changed(self) -> None:
+        """Record an in-place change (e.g. to `extras`) so that durable stores save it."""
+        self.__dict__["changes"] = self.changes + 1
 
     @property
     def threshold_reached(self) -> bool:
@@ -261,3 +281,6 @@ class EpisodeStore:
             episode = self._episodes.pop(episode_id, None)
         if episode is not None:
             self._dropped(episode)
+
+    def close(self) -> None:
+        """Release the store's connections (nothing to release in memory)."""

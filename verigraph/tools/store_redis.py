@@ -1,0 +1,143 @@
+"""The Redis backend: episodes shared by several server processes (replicas).
+
+Each episode is a hash `verigraph:ep:<id>` (version, record JSON, timestamps) whose key
+expires after the idle timeout (Redis EXPIRE, refreshed on every use), and a sorted set
+`verigraph:episodes` indexes live ids by last use for the cap and the operator listing.
+Every step is one Lua script, so it is atomic on the server: create checks the cap and
+inserts, swap is the compare-and-set on the version.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+import redis
+
+from verigraph.tools.errors import StoreError
+from verigraph.tools.store_backend import StoredEpisode
+
+PREFIX = "verigraph:"
+INDEX = PREFIX + "episodes"
+T = TypeVar("T")
+
+_CREATE = """
+redis.call('ZREMRANGEBYSCORE', KEYS[2], '-inf', '(' .. ARGV[6])
+if redis.call('ZCARD', KEYS[2]) >= tonumber(ARGV[4]) then return 0 end
+redis.call('HSET', KEYS[1], 'v', 1, 'rec', ARGV[2], 'created', ARGV[3], 'updated', ARGV[3],
+           'used', ARGV[3])
+redis.call('PEXPIRE', KEYS[1], ARGV[5])
+redis.call('ZADD', KEYS[2], ARGV[3], ARGV[1])
+return 1
+"""
+_CHECK = """
+local v = redis.call('HGET', KEYS[1], 'v')
+if not v then
+  redis.call('ZREM', KEYS[2], ARGV[1])
+  return false
+end
+redis.call('HSET', KEYS[1], 'used', ARGV[2])
+redis.call('PEXPIRE', KEYS[1], ARGV[3])
+redis.call('ZADD', KEYS[2], ARGV[2], ARGV[1])
+return tonumber(v)
+"""
+_SWAP = """
+local v = redis.call('HGET', KEYS[1], 'v')
+if (not v) or tonumber(v) ~= tonumber(ARGV[2]) then return 0 end
+redis.call('HSET', KEYS[1], 'v', tonumber(v) + 1, 'rec', ARGV[3], 'updated', ARGV[4],
+           'used', ARGV[4])
+redis.call('PEXPIRE', KEYS[1], ARGV[5])
+redis.call('ZADD', KEYS[2], ARGV[4], ARGV[1])
+return 1
+"""
+
+
+def _key(episode_id: str) -> str:
+    return f"{PREFIX}ep:{episode_id}"
+
+
+def _ms(seconds: float) -> int:
+    return max(1, int(seconds * 1000))
+
+
+class RedisBackend:
+    """Episode records in a Redis database (redis://host:port/db)."""
+
+    def __init__(self, url: str) -> None:
+        self.url = url
+        try:
+            self.client = redis.Redis.from_url(url, decode_responses=True,
+                                               socket_timeout=10, socket_connect_timeout=5)
+        except ValueError as exc:
+            raise StoreError(f"bad Redis URL: {exc}", field="--store", value=url,
+                             fix="use redis://host:port/db, e.g. redis://127.0.0.1:6379/0"
+                             ) from None
+        self._create = self.client.register_script(_CREATE)
+        self._check = self.client.register_script(_CHECK)
+        self._swap = self.client.register_script(_SWAP)
+        self._call(self.client.ping)
+
+    def _call(self, fn: Callable[..., T], *args: Any, **kwargs: Any) -> T:
+        try:
+            return fn(*args, **kwargs)
+        except redis.RedisError as exc:
+            raise StoreError(f"the Redis store at {self.url} failed: {exc}", field="--store",
+                             value=self.url, fix="check that the Redis server is running and "
+                                                 "reachable; episodes are kept there") from None
+
+    def create(self, episode_id: str, record: str, now: float, cap: int, idle: float
+               ) -> bool:
+        done = self._call(self._create, keys=[_key(episode_id), INDEX],
+                          args=[episode_id, record, now, cap, _ms(idle), now - idle])
+        return bool(done)
+
+    def check(self, episode_id: str, now: float, idle: float) -> int | None:
+        version = self._call(self._check, keys=[_key(episode_id), INDEX],
+                             args=[episode_id, now, _ms(idle)])
+        return None if version is None else int(version)
+
+    def load(self, episode_id: str, now: float, idle: float) -> str | None:
+        record = self._call(self.client.hget, _key(episode_id), "rec")
+        return None if record is None else str(record)
+
+    def swap(self, episode_id: str, expected: int, record: str, now: float, idle: float
+             ) -> bool:
+        done = self._call(self._swap, keys=[_key(episode_id), INDEX],
+                          args=[episode_id, expected, record, now, _ms(idle)])
+        return bool(done)
+
+    def delete(self, episode_id: str) -> bool:
+        pipe = self.client.pipeline()
+        pipe.delete(_key(episode_id))
+        pipe.zrem(INDEX, episode_id)
+        deleted, _ = self._call(pipe.execute)
+        return bool(deleted)
+
+    def sweep(self, now: float, idle: float) -> list[str]:
+        cutoff = f"({now - idle}"
+        ids = [str(i) for i in self._call(self.client.zrangebyscore, INDEX, "-inf", cutoff)]
+        if ids:
+            pipe = self.client.pipeline()
+            pipe.delete(*[_key(i) for i in ids])
+            pipe.zrem(INDEX, *ids)
+            self._call(pipe.execute)
+        return ids
+
+    def entries(self, now: float, idle: float) -> list[StoredEpisode]:
+        ids = [str(i) for i in self._call(self.client.zrangebyscore, INDEX, now - idle, "+inf")]
+        pipe = self.client.pipeline()
+        for episode_id in ids:
+            pipe.hmget(_key(episode_id), ["v", "created", "updated", "used"])
+            pipe.hstrlen(_key(episode_id), "rec")
+        replies = self._call(pipe.execute) if ids else []
+        out = []
+        for i, episode_id in enumerate(ids):
+            fields, size = replies[2 * i], replies[2 * i + 1]
+            if fields[0] is None:
+                continue  # expired between the two calls
+            out.append(StoredEpisode(episode_id, int(fields[0]), float(fields[1]),
+                                     float(fields[2]), float(fields[3]), int(size)))
+        return sorted(out, key=lambda e: e.created_at)
+
+    def close(self) -> None:
+        self.client.close()

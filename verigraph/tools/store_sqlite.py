@@ -1,0 +1,138 @@
+"""The SQLite backend: one file, WAL mode, one transaction per state change.
+
+WAL lets readers run while a writer commits; `synchronous=NORMAL` keeps every committed
+transaction through a process crash (kill -9), which is what a restart needs. The file
+(and its directory, when created here) is readable by its owner only; SQLite gives the
+-wal and -shm files the database file's permissions. Idle episodes are swept by the
+store on every load_scene and `verigraph episodes purge`; an expired episode is treated
+as gone at once even before the sweep. Each thread has its own connection.
+"""
+
+from __future__ import annotations
+
+import os
+import sqlite3
+import threading
+from pathlib import Path
+
+from verigraph.tools.errors import StoreError
+from verigraph.tools.store_backend import StoredEpisode
+
+# Refresh an episode's last-used time at most this often, so a read is not a write.
+TOUCH_EVERY_S = 5.0
+
+_SCHEMA = """
+CREATE TABLE IF NOT EXISTS episodes (
+    id TEXT PRIMARY KEY,
+    version INTEGER NOT NULL,
+    created_at REAL NOT NULL,
+    updated_at REAL NOT NULL,
+    last_used REAL NOT NULL,
+    record TEXT NOT NULL
+);
+CREATE INDEX IF NOT EXISTS episodes_last_used ON episodes(last_used);
+"""
+
+
+def create_private_file(path: Path) -> None:
+    """Create `path` (and missing parents) so that only its owner can read it."""
+    if not path.parent.exists():
+        path.parent.mkdir(parents=True, mode=0o700)
+    fd = os.open(path, os.O_CREAT | os.O_RDWR, 0o600)
+    os.close(fd)
+    os.chmod(path, 0o600)
+
+
+class SqliteBackend:
+    """Episode records in one SQLite table."""
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = Path(path).expanduser()
+        self.url = f"sqlite:///{self.path}"
+        try:
+            create_private_file(self.path)
+            connection = self._connection()
+            connection.executescript(_SCHEMA)
+        except (OSError, sqlite3.Error) as exc:
+            raise StoreError(f"cannot open the SQLite store {self.path}: {exc}",
+                             field="--store", value=self.url,
+                             fix="give a writable path: sqlite:///path/to/episodes.db") from None
+
+    _local = threading.local()
+
+    def _connection(self) -> sqlite3.Connection:
+        cache: dict[str, sqlite3.Connection] = self._local.__dict__.setdefault("c", {})
+        connection = cache.get(str(self.path))
+        if connection is None:
+            connection = sqlite3.connect(self.path, isolation_level=None, timeout=30.0,
+                                         check_same_thread=False)
+            connection.execute("PRAGMA journal_mode=WAL")
+            connection.execute("PRAGMA synchronous=NORMAL")
+            connection.execute("PRAGMA busy_timeout=30000")
+            cache[str(self.path)] = connection
+        return connection
+
+    def create(self, episode_id: str, record: str, now: float, cap: int, idle: float
+               ) -> bool:
+        db = self._connection()
+        db.execute("BEGIN IMMEDIATE")
+        try:
+            db.execute("DELETE FROM episodes WHERE last_used < ?", (now - idle,))
+            (count,) = db.execute("SELECT count(*) FROM episodes").fetchone()
+            if count >= cap:
+                db.execute("COMMIT")
+                return False
+            db.execute("INSERT INTO episodes VALUES (?, 1, ?, ?, ?, ?)",
+                       (episode_id, now, now, now, record))
+            db.execute("COMMIT")
+            return True
+        except BaseException:
+            db.execute("ROLLBACK")
+            raise
+
+    def check(self, episode_id: str, now: float, idle: float) -> int | None:
+        db = self._connection()
+        row = db.execute("SELECT version, last_used FROM episodes WHERE id = ?",
+                         (episode_id,)).fetchone()
+        if row is None or row[1] < now - idle:
+            return None
+        if now - row[1] > min(TOUCH_EVERY_S, idle / 10):
+            db.execute("UPDATE episodes SET last_used = max(last_used, ?) WHERE id = ?",
+                       (now, episode_id))
+        return int(row[0])
+
+    def load(self, episode_id: str, now: float, idle: float) -> str | None:
+        row = self._connection().execute(
+            "SELECT record FROM episodes WHERE id = ? AND last_used >= ?",
+            (episode_id, now - idle)).fetchone()
+        return None if row is None else str(row[0])
+
+    def swap(self, episode_id: str, expected: int, record: str, now: float, idle: float
+             ) -> bool:
+        cursor = self._connection().execute(
+            "UPDATE episodes SET version = version + 1, record = ?, updated_at = ?, "
+            "last_used = ? WHERE id = ? AND version = ?",
+            (record, now, now, episode_id, expected))
+        return cursor.rowcount == 1
+
+    def delete(self, episode_id: str) -> bool:
+        cursor = self._connection().execute("DELETE FROM episodes WHERE id = ?",
+                                            (episode_id,))
+        return cursor.rowcount == 1
+
+    def sweep(self, now: float, idle: float) -> list[str]:
+        rows = self._connection().execute(
+            "DELETE FROM episodes WHERE last_used < ? RETURNING id", (now - idle,)).fetchall()
+        return [str(r[0]) for r in rows]
+
+    def entries(self, now: float, idle: float) -> list[StoredEpisode]:
+        rows = self._connection().execute(
+            "SELECT id, version, created_at, updated_at, last_used, length(record) "
+            "FROM episodes WHERE last_used >= ? ORDER BY created_at", (now - idle,)).fetchall()
+        return [StoredEpisode(*row) for row in rows]
+
+    def close(self) -> None:
+        cache = self._local.__dict__.get("c", {})
+        connection = cache.pop(str(self.path), None)
+        if connection is not None:
+            connection.close()
