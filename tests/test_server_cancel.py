@@ -16,7 +16,7 @@ import uvicorn
 from mcp import Client
 from mcp_helpers import JSON_HEADERS, free_port, rpc, text
 
-from verigraph.actions import report
+from verigraph.actions import records
 from verigraph.budget import Budget, BudgetExceeded, checkpoint
 from verigraph.server import build_server
 from verigraph.server.heavy import HeavyLimits
@@ -33,13 +33,13 @@ def anyio_backend() -> str:
 
 
 class HeldStep:
-    """Wraps the validator's per-step check: the first step waits until cancelled."""
+    """Wraps the plan checker's per-move check: the first move waits until cancelled."""
 
     def __init__(self) -> None:
         self.started = threading.Event()
         self.outcome: list[BaseException | str] = []
         self.finished = threading.Event()
-        self.real = report.validate_action
+        self.real = records.move_accepted
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
         if not self.started.is_set():
@@ -58,7 +58,7 @@ class HeldStep:
 
 async def test_a_vanished_clients_call_is_cancelled(monkeypatch: pytest.MonkeyPatch) -> None:
     held = HeldStep()
-    monkeypatch.setattr(report, "validate_action", held)
+    monkeypatch.setattr(records, "move_accepted", held)
     options = HttpOptions(port=free_port())
     server = uvicorn.Server(uvicorn_config(build_server(Toolbox()), options))
     plan = "move(cup, on, desk)   \n" * 1000  # long enough to run as a heavy call
@@ -86,7 +86,7 @@ async def test_a_vanished_clients_call_is_cancelled(monkeypatch: pytest.MonkeyPa
 async def test_a_call_over_its_wall_clock_budget_gets_a_tool_error(
         monkeypatch: pytest.MonkeyPatch) -> None:
     held = HeldStep()
-    monkeypatch.setattr(report, "validate_action", held)
+    monkeypatch.setattr(records, "move_accepted", held)
     server = build_server(Toolbox(), heavy=HeavyLimits(budget=Budget(wall_s=0.2)))
     async with Client(server) as client:
         result = await client.call_tool("validate_plan", {

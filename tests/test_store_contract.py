@@ -230,9 +230,9 @@ def test_every_episode_field_is_stored(monkeypatch: pytest.MonkeyPatch, tmp_path
         box.call("execute_actions", {"episode_id": ep, "actions": ["move(table, red_block)"]})
         backend = open_store(url).backend  # type: ignore[attr-defined]
         text = backend.load(ep, time.time(), 60)
-        assert '"fields":{"tau":1}' in text
+        assert '"fields":{"tau":1,' in text
         # The generic copy is what a new host reads back.
-        assert backend.swap(ep, 2, text.replace('"fields":{"tau":1}', '"fields":{"tau":3}'),
+        assert backend.swap(ep, 2, text.replace('"fields":{"tau":1,', '"fields":{"tau":3,'),
                             time.time(), 60)
         assert box_for(url).call("get_state", {"episode_id": ep}).tau == 3
     finally:

@@ -90,7 +90,7 @@ def check_plan(state: WorldState, actions: list[AnyAction], all_errors: bool
     support = state.support
     carried = state.carried
     for index, action in enumerate(actions, start=1):
-        if not index & 1023:
+        if not index & 63:
             checkpoint()  # the server's per-call budget (and cancellation), cheap when unset
         if type(action) is MoveAction and move_accepted(state, action):
             obj = action.object

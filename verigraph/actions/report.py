@@ -19,6 +19,7 @@ from verigraph.actions.records import (
     trusted,
 )
 from verigraph.actions.validator import GraphEdit
+from verigraph.budget import checkpoint
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.io import goal_from_data, scene_from_data
 from verigraph.graph.model import Edge, SceneGraph
@@ -135,6 +136,8 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
     new, setattr_ = object.__new__, object.__setattr__
     edge_set, edit_set, step_set = set(EDGE_FIELDS), set(EDIT_FIELDS), set(STEP_FIELDS)
     for index, action, payload in records:
+        if not index & 63:
+            checkpoint()  # the server's per-call budget and cancellation
         if payload is not None and type(payload) is not tuple:  # not an accepted move
             ok = isinstance(payload, GraphEdit)
             values = {"step": index, "ok": ok, "action": _action_dict(action),
