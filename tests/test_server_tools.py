@@ -49,10 +49,12 @@ async def test_tools_list_matches_the_tool_table(client: Client) -> None:
         spec = TOOLS[tool.name]
         assert tool.title == spec.title and tool.description == spec.description
         assert tool.annotations is not None
-        assert tool.annotations.read_only_hint is spec.read_only
-        assert tool.annotations.destructive_hint is spec.destructive
-        assert tool.annotations.idempotent_hint is spec.idempotent
-        assert tool.annotations.open_world_hint is spec.open_world
+        hints = tool.annotations  # an absent hint means the specification's default
+        assert (hints.read_only_hint or False) is spec.read_only
+        if not spec.read_only:
+            assert hints.destructive_hint in ((None, True) if spec.destructive else (False,))
+        assert (hints.idempotent_hint or False) is spec.idempotent
+        assert hints.open_world_hint in ((None, True) if spec.open_world else (False,))
         assert set(tool.input_schema["properties"]) == set(spec.input_model.model_fields)
         required = {n for n, f in spec.input_model.model_fields.items() if f.is_required()}
         assert set(tool.input_schema.get("required", [])) == required

@@ -9,7 +9,7 @@ from mcp.server.mcpserver import MCPServer
 from verigraph import __version__
 from verigraph.server.prompts import register_prompts
 from verigraph.server.resources import register_resources
-from verigraph.server.tools import ArgumentGate, register_tools
+from verigraph.server.tools import ArgumentGate, build_tools
 from verigraph.tools.context import ToolConfig
 from verigraph.tools.registry import Toolbox
 
@@ -38,8 +38,7 @@ def build_server(toolbox: Toolbox | None = None, *, config: ToolConfig | None = 
     server: MCPServer[Any] = MCPServer(
         "verigraph", title="VeriGraph", version=__version__, instructions=INSTRUCTIONS,
         description="Scene-graph verifier for LLM robot planning",
-        middleware=[ArgumentGate()], log_level=log_level)
-    register_tools(server, toolbox)
+        middleware=[ArgumentGate()], log_level=log_level, tools=build_tools(toolbox))
     register_resources(server, toolbox)
     register_prompts(server, toolbox)
     return server

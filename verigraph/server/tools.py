@@ -16,14 +16,15 @@ from typing import Annotated, Any
 
 import anyio.to_thread
 from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
-from mcp.server.mcpserver import MCPServer
 from mcp.server.mcpserver.exceptions import ToolError
+from mcp.server.mcpserver.tools import Tool
 from mcp.types import CallToolResult, ImageContent, TextContent, ToolAnnotations
 from pydantic import BaseModel, Field, ValidationError
 
 from verigraph.arm import confirm_scope
 from verigraph.errors import VeriGraphError
 from verigraph.server.confirmation import PREVIEWS, approval_hook, resolver_parameters
+from verigraph.server.schemas import compact_input_schema, compact_output_schema
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
 from verigraph.tools.registry import parse_arguments as parse_tool_arguments
 from verigraph.tools.scenes import ImageResult
@@ -134,16 +135,37 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox) -> Callable[..., Any]:
     return call
 
 
-def register_tools(server: MCPServer[Any], toolbox: Toolbox) -> None:
-    """Add every tool in TOOL_SPECS order (the order tools/list reports)."""
+# The hints' defaults in the MCP specification; a hint equal to its default is not sent.
+_HINT_DEFAULTS = {"read_only_hint": False, "destructive_hint": True, "idempotent_hint": False,
+                  "open_world_hint": True}
+
+
+def tool_annotations(spec: ToolSpec) -> ToolAnnotations:
+    """The tool's behaviour hints, sending only those that differ from the defaults."""
+    hints = {"read_only_hint": spec.read_only, "destructive_hint": spec.destructive,
+             "idempotent_hint": spec.idempotent, "open_world_hint": spec.open_world}
+    if spec.read_only:
+        hints.pop("destructive_hint")  # meaningful only for tools that write
+    # The title is the tool's own `title`; no copy inside the annotations.
+    return ToolAnnotations.model_validate(
+        {k: v for k, v in hints.items() if v != _HINT_DEFAULTS[k]})
+
+
+def build_tools(toolbox: Toolbox) -> list[Tool]:
+    """Every tool in TOOL_SPECS order (the order tools/list reports), with the compact
+    published schemas of verigraph.server.schemas."""
+    tools = []
+    documented: set[str] = set()
     for spec in TOOL_SPECS:
-        server.add_tool(
+        tool = Tool.from_function(
             tool_function(spec, toolbox), name=spec.name, title=spec.title,
             description=spec.description,
-            annotations=ToolAnnotations(
-                title=spec.title, read_only_hint=spec.read_only,
-                destructive_hint=spec.destructive, idempotent_hint=spec.idempotent,
-                open_world_hint=spec.open_world))
+            annotations=tool_annotations(spec))
+        tool.parameters = compact_input_schema(tool.parameters, documented)
+        if tool.fn_metadata.output_schema is not None:
+            tool.fn_metadata.output_schema = compact_output_schema(tool.fn_metadata.output_schema)
+        tools.append(tool)
+    return tools
 
 
 # The arguments ArgumentGate validated for the tools/call being handled (tool, input).

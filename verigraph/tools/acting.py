@@ -50,8 +50,7 @@ class ValidateActionInput(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     episode_id: EpisodeId
-    action: ActionInput = Field(description='JSON {"action": "move", "object": "cup", '
-                                            '"relation": "on", "target": "table"} or text')
+    action: ActionInput = Field(description="an action as JSON or text")
 
 
 class ActionCheck(BaseModel):
@@ -104,7 +103,7 @@ class ExecuteActionsInput(BaseModel):
     episode_id: EpisodeId
     actions: list[ActionInput] = Field(
         min_length=1, max_length=MAX_ACTIONS_PER_CALL,
-        description="actions as JSON objects or text; a text item may hold several lines")
+        description="JSON actions or text (a text item may hold several lines)")
 
 
 class ExecutionOutput(BaseModel):
@@ -228,7 +227,7 @@ class ValidatePlanInput(BaseModel):
 
     plan: str | Annotated[list[ActionInput], Field(max_length=MAX_PLAN_ACTIONS)] = Field(
         description="text plan (one action per line) or a list of actions")
-    scene_id: SceneId | None = None
+    scene_id: SceneId | None = Field(default=None, description="start from a built-in scene")
     graph: BoundedGraph | None = Field(default=None, description="initial scene graph")
     episode_id: EpisodeId | None = Field(
         default=None, description="start from this episode's current graph (and goal)")

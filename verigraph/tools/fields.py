@@ -25,21 +25,21 @@ from verigraph.graph.wellformed import GraphProblem
 from verigraph.tools.errors import ToolArgumentError
 
 EpisodeId = Annotated[str, Field(
-    min_length=1, max_length=64, description="the id load_scene returned",
+    min_length=1, max_length=64, description="from load_scene",
     examples=["ep_Xq3v9f2PZxk7d1uQm0Cw8g"])]
 ActionText = Annotated[str, Field(
     min_length=1, max_length=2000,
-    description="text form: move(cup, on, table), move(cup, table), "
+    description="move(cup, on, table), move(cup, table), "
                 "align(piece, side, target, target_side) or done")]
 ActionInput = Action | ActionText
 SceneId = Annotated[str, Field(min_length=1, max_length=64,
-                               description=f"built-in scene: {', '.join(BUILTIN_SCENES)}")]
+                               description=f"{', '.join(BUILTIN_SCENES)}")]
 DictionaryName = Annotated[str, Field(
     min_length=1, max_length=32,
-    description=f"built-in dictionary: {', '.join(BUILTIN_DICTIONARIES)} or all")]
+    description=f"{', '.join(BUILTIN_DICTIONARIES)} or all")]
 ImageData = Annotated[str, Field(
     min_length=1, max_length=17_000_000,
-    description="base64 PNG or JPEG (a data:image/...;base64, prefix is accepted)")]
+    description="base64 PNG or JPEG (data: URL accepted)")]
 
 
 MAX_GRAPH_NODES = 5000

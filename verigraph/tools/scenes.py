@@ -34,11 +34,9 @@ from verigraph.tools.images import decode_image, encode_png
 from verigraph.tools.store import Episode
 
 Width = Field(default=None, ge=64, le=2048,
-              description="image width in pixels; omit to let the scene choose: a simulated "
-                          "tabletop in its own shape at 8 px per world unit, tangram and "
-                          "graph drawings 640x480, a loaded photo as loaded (at most 1600 px)")
+              description="pixels; omit to let the scene choose (drawings 640x480)")
 Height = Field(default=None, ge=64, le=2048,
-               description="image height in pixels; omit to follow the scene's shape")
+               description="pixels; omit to keep the scene's shape")
 
 
 @dataclass(frozen=True)
@@ -89,8 +87,7 @@ class RenderSceneInput(BaseModel):
 
     episode_id: EpisodeId
     view: Literal["current", "goal"] = Field(
-        default="current", description="the current scene, or the goal (a simulator render "
-                                       "for generated scenes, else a drawing of the goal graph)")
+        default="current", description="the current scene or the goal")
     width: int | None = Width
     height: int | None = Height
 
@@ -124,7 +121,7 @@ class GetSceneImageInput(BaseModel):
 
     episode_id: EpisodeId
     task: str | None = Field(default=None, max_length=4000,
-                             description="what the scene graph is for, added to the prompt")
+                             description="what the graph is for")
     width: int | None = Width
     height: int | None = Height
 
@@ -149,8 +146,8 @@ class SubmitSceneGraphInput(BaseModel):
     graph: SubmittedGraph = Field(description="nodes with id/label, edges "
                                               "source/relation/target")
     episode_id: EpisodeId | None = Field(
-        default=None, description="an episode loaded from an image adopts the graph if it "
-                                  "is accepted; for other episodes it is compared only")
+        default=None, description="an image episode adopts an accepted graph; others "
+                                  "only compare")
     dictionary: DictionaryName | None = Field(default=None, description="dictionary D to "
                                                                         "check against")
 
@@ -250,7 +247,7 @@ class GenerateSceneGraphInput(BaseModel):
     image: ImageData | None = None
     episode_id: EpisodeId | None = Field(default=None, description="use this episode's image")
     dictionary: DictionaryName | None = None
-    task: str | None = Field(default=None, max_length=4000)
+    task: str | None = Field(default=None, max_length=4000, description="what the graph is for")
 
     @model_validator(mode="after")
     def _one_image(self) -> GenerateSceneGraphInput:

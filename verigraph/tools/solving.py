@@ -31,8 +31,8 @@ class SolveInput(BaseModel):
 
     episode_id: EpisodeId | None = Field(default=None, description="plan from this "
                                                                    "episode's current graph")
-    scene_id: SceneId | None = None
-    graph: BoundedGraph | None = None
+    scene_id: SceneId | None = Field(default=None, description="plan from a built-in scene")
+    graph: BoundedGraph | None = Field(default=None, description="plan from this graph")
     goal: BoundedGoal | None = Field(default=None, description="defaults to the episode's or the "
                                                         "built-in scene's goal")
     max_expansions: int = Field(default=200_000, ge=1, le=2_000_000,
