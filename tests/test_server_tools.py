@@ -308,3 +308,29 @@ async def test_prompts_from_an_episode_and_standalone(client: Client) -> None:
     sg = (await client.get_prompt("scene_graph_generation", {"dictionary": "kitchen",
                                                              "task": "cook"}))
     assert "Dictionary: kitchen" in sg.messages[0].content.text
+
+
+async def test_prompt_errors_are_invalid_params_with_the_reason(client: Client) -> None:
+    with pytest.raises(MCPError) as err:
+        await client.get_prompt("iterative_planer", {})
+    assert err.value.code == -32602
+    assert "did you mean iterative_planner" in err.value.message
+    assert "scene_graph_generation" in err.value.message
+    with pytest.raises(MCPError) as err:
+        await client.get_prompt("iterative_planner", {"episode_id": "ep_gone"})
+    assert err.value.code == -32602 and "no open episode" in err.value.message
+    with pytest.raises(MCPError) as err:
+        await client.get_prompt("direct_planner", {"scene": "cup_on_book"})
+    assert err.value.code == -32602 and "it takes episode_id, scene_id" in err.value.message
+    with pytest.raises(MCPError) as err:
+        await client.get_prompt("scene_graph_generation", {"dictionary": "garden"})
+    assert err.value.code == -32602 and "not a built-in dictionary" in err.value.message
+
+
+async def test_prompt_arguments_and_descriptions_read_well(client: Client) -> None:
+    for prompt in (await client.list_prompts()).prompts:
+        assert prompt.description and "\n" not in prompt.description
+        assert "  " not in prompt.description
+        assert prompt.arguments
+        for argument in prompt.arguments:
+            assert argument.description, f"{prompt.name}.{argument.name}"

@@ -7,7 +7,7 @@ from typing import Any, Literal
 from mcp.server.mcpserver import MCPServer
 
 from verigraph import __version__
-from verigraph.server.prompts import register_prompts
+from verigraph.server.prompts import PromptGate, register_prompts
 from verigraph.server.resources import register_resources
 from verigraph.server.tools import ArgumentGate, build_tools
 from verigraph.tools.context import ToolConfig
@@ -33,12 +33,18 @@ LogLevel = Literal["DEBUG", "INFO", "WARNING", "ERROR", "CRITICAL"]
 
 def build_server(toolbox: Toolbox | None = None, *, config: ToolConfig | None = None,
                  log_level: LogLevel = "WARNING") -> MCPServer[Any]:
-    """An MCPServer whose tools all run on `toolbox` (a fresh one by default)."""
+    """An MCPServer whose tools all run on `toolbox` (a fresh one by default).
+
+    The tool, prompt and resource lists never change while the server runs and nothing
+    pushes resource updates, so no protocol era advertises `listChanged` or `subscribe`:
+    `subscriptions/listen` (2026-07-28) stays unserved, like `resources/subscribe`.
+    """
     toolbox = toolbox or Toolbox(config=config)
     server: MCPServer[Any] = MCPServer(
         "verigraph", title="VeriGraph", version=__version__, instructions=INSTRUCTIONS,
         description="Scene-graph verifier for LLM robot planning",
-        middleware=[ArgumentGate()], log_level=log_level, tools=build_tools(toolbox))
+        middleware=[ArgumentGate(), PromptGate()], log_level=log_level, tools=build_tools(toolbox),
+        subscriptions=False)
     register_resources(server, toolbox)
     register_prompts(server, toolbox)
     return server
