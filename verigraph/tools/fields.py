@@ -17,7 +17,12 @@ from verigraph.actions.model import Action, AnyAction, DoneAction
 from verigraph.actions.parser import parse_text_plan
 from verigraph.errors import MalformedGraphError, PlanParseError
 from verigraph.graph.builtin_scenes import BUILTIN_GOALS, BUILTIN_SCENES
-from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, Dictionary, load_dictionary
+from verigraph.graph.dictionary import (
+    BUILTIN_DICTIONARIES,
+    Dictionary,
+    load_dictionary,
+    wrong_dictionary_advice,
+)
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
@@ -124,7 +129,28 @@ def state_from_graph(graph: SceneGraph, *, field: str = "graph", partial: bool =
     try:
         return WorldState.from_graph(graph, dictionary, partial=partial)
     except MalformedGraphError as exc:
+        problems = with_dictionary_advice(graph, list(exc.problems))
         raise ToolArgumentError(
-            f"the scene graph breaks {len(exc.problems)} rule(s):\n"
-            + problems_text(exc.problems, field), field=field, value=None,
+            f"the scene graph breaks {len(problems)} rule(s):\n"
+            + problems_text(problems, field), field=field, value=None,
             fix="correct every listed problem and send the graph again") from None
+
+
+def with_dictionary_advice(graph: SceneGraph, problems: list[GraphProblem]
+                           ) -> list[GraphProblem]:
+    """Unknown labels that another built-in dictionary knows become one problem on
+    `dictionary` saying which one, instead of spelling suggestions per label."""
+    chosen = graph.dictionary
+    unknown = [p for p in problems if p.rule == "unknown_label" and p.node is not None]
+    if not unknown or chosen in (None, "all") or chosen not in BUILTIN_DICTIONARIES:
+        return problems
+    labels = {node.id: node.label for node in graph.nodes}
+    found = wrong_dictionary_advice([labels[p.node] for p in unknown if p.node in labels],
+                                    chosen, list(labels.values()))
+    if found is None:
+        return problems
+    message, fix, covered = found
+    moved = [p for p in unknown if p.node in labels and labels[p.node] in covered]
+    merged = GraphProblem(rule="wrong_dictionary", node=None, field="dictionary",
+                          message=message, fix=fix)
+    return [merged, *(p for p in problems if p not in moved)]
