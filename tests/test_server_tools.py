@@ -334,3 +334,12 @@ async def test_prompt_arguments_and_descriptions_read_well(client: Client) -> No
         assert prompt.arguments
         for argument in prompt.arguments:
             assert argument.description, f"{prompt.name}.{argument.name}"
+
+
+async def test_generate_scene_graph_without_photo_or_simulator_says_so(client: Client) -> None:
+    eid = await load(client, scene_id="cup_on_book")
+    result = await client.call_tool("generate_scene_graph", {"episode_id": eid})
+    assert result.is_error and result.structured_content is None
+    message = text(result)
+    assert "no photo and no simulator" in message and "episode_id" in message
+    assert "fix: pass image" in message and "get_state" in message

@@ -178,6 +178,9 @@ class SceneGraphSubmission(BaseModel):
                 lines.append(f"- ... and {len(self.problems) - 20} more")
             return "\n".join(lines)
         text = f"accepted: {len(self.graph.nodes)} objects, {len(self.graph.edges)} edges"
+        if not self.graph.nodes:
+            text += (" (nothing recognised; the scene need not be empty: describe it with "
+                     "get_scene_image and submit_scene_graph)")
         if self.normalised:
             text += f", {len(self.normalised)} name(s) normalised"
         if self.adopted:
@@ -266,6 +269,13 @@ def generate_scene_graph(ctx: ToolContext, params: GenerateSceneGraphInput
     else:
         assert params.episode_id is not None
         with ctx.store.use(params.episode_id) as episode:
+            if not callable(getattr(episode.world, "render", None)) and episode.image is None:
+                raise ToolArgumentError(
+                    f"episode {episode.id} has no photo and no simulator, so there is "
+                    f"nothing to perceive (its graph came from {episode.source}); perceiving "
+                    "a drawing of that graph would find no objects", field="episode_id",
+                    value=episode.id, fix="pass image (a base64 photo of the scene), or "
+                    "read the graph the episode already has with get_state")
             image = _picture(episode)
     graph = perceive(image, dictionary=dictionary)
     submitted = SubmittedGraph.model_validate(graph.model_dump())
