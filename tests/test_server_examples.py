@@ -41,6 +41,6 @@ def test_registry_server_json_matches_the_package() -> None:
     data = json.loads((REPO / "server.json").read_text())
     assert data["version"] == verigraph.__version__ and len(data["description"]) <= 100
     (package,) = data["packages"]
-    assert package["identifier"] == "verigraph" and package["version"] == verigraph.__version__
+    assert package["identifier"] == "verigraph-mcp" and package["version"] == verigraph.__version__
     assert package["transport"] == {"type": "stdio"}
     assert package["packageArguments"] == [{"type": "positional", "value": "serve"}]

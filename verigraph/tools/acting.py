@@ -37,6 +37,7 @@ from verigraph.tools.fields import (
 )
 from verigraph.tools.goals import check_goal_against
 from verigraph.tools.loading import stateless_source
+from verigraph.tools.texts import edges_line
 from verigraph.tools.store import TraceEntry
 
 MAX_ACTIONS_PER_CALL = 50
@@ -134,7 +135,7 @@ class ExecutionOutput(BaseModel):
             parts.append("threshold reached: call end_episode")
         elif self.done:
             parts.append("end token received: call end_episode for the verdict")
-        return "; ".join(parts)
+        return "; ".join(parts) + "\n" + edges_line(self.graph, "graph now")
 
 
 def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionOutput:

@@ -32,6 +32,7 @@ from verigraph.tools.executors import SceneCheck, arm_setup_for
 from verigraph.tools.fields import DictionaryName, EpisodeId, ImageData, dictionary_for
 from verigraph.tools.images import decode_image, encode_png
 from verigraph.tools.store import Episode
+from verigraph.tools.texts import graph_lines
 
 Width = Field(default=None, ge=64, le=2048,
               description="pixels; omit to let the scene choose (drawings 640x480)")
@@ -191,7 +192,7 @@ class SceneGraphSubmission(BaseModel):
             text += ("; matches the episode's graph" if self.diff_to_episode.satisfied else
                      "; differs from the episode's graph: "
                      + self.diff_to_episode.summary().removeprefix("goal not reached: "))
-        return text
+        return text + "\n" + graph_lines(self.graph) if self.graph.nodes else text
 
 
 def submit_scene_graph(ctx: ToolContext, params: SubmitSceneGraphInput) -> SceneGraphSubmission:
