@@ -37,8 +37,8 @@ from verigraph.tools.fields import (
 )
 from verigraph.tools.goals import check_goal_against
 from verigraph.tools.loading import stateless_source
-from verigraph.tools.texts import edges_line
 from verigraph.tools.store import TraceEntry
+from verigraph.tools.texts import edges_line
 
 MAX_ACTIONS_PER_CALL = 50
 MAX_PLAN_ACTIONS = 1000
