@@ -22,6 +22,8 @@ from starlette.datastructures import Headers
 from starlette.responses import Response
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from verigraph import __version__
+
 DEFAULT_MAX_BODY_BYTES = 16 * 1024 * 1024
 LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
 log = logging.getLogger("verigraph.server")
@@ -51,7 +53,14 @@ def _rpc_error(status: int, code: int, message: str,
 
 
 class BearerTokenAuth:
-    """401 unless the request carries `Authorization: Bearer <token>` (constant-time check)."""
+    """403 unless the request carries `Authorization: Bearer <token>` (constant-time check).
+
+    The token is a pre-shared secret, not OAuth. MCP clients that know OAuth (the MCP
+    Inspector, the TypeScript SDK with an auth provider) start OAuth discovery on every
+    401, with or without a `WWW-Authenticate` challenge, and then show an OAuth failure
+    instead of the reason. So a missing or wrong token gets 403 without a challenge; the
+    JSON-RPC error says which (`data.reason`: missing_token or wrong_token) and what to do.
+    """
 
     def __init__(self, app: ASGIApp, token: str) -> None:
         self.app = app
@@ -61,14 +70,25 @@ class BearerTokenAuth:
         if scope["type"] == "http":
             given = Headers(scope=scope).get("authorization", "").encode()
             if not hmac.compare_digest(given, self.expected):
-                response = _rpc_error(
-                    401, -32001, "Unauthorized: this VeriGraph server needs the header "
-                    "'Authorization: Bearer <token>' with the token it was started with "
-                    "(--token or VERIGRAPH_TOKEN)",
-                    headers={"WWW-Authenticate": 'Bearer realm="verigraph"'})
-                await response(scope, receive, send)
+                await _refusal(given)(scope, receive, send)
                 return
         await self.app(scope, receive, send)
+
+
+def _refusal(given: bytes) -> Response:
+    if not given.strip():
+        reason, message = "missing_token", (
+            "Forbidden: no token was sent; this VeriGraph server needs the header "
+            "'Authorization: Bearer <token>' with the token it was started with "
+            "(--token or VERIGRAPH_TOKEN)")
+    else:
+        reason, message = "wrong_token", (
+            "Forbidden: the token sent does not match; send 'Authorization: Bearer <token>' "
+            "with the token this VeriGraph server was started with (--token or "
+            "VERIGRAPH_TOKEN)")
+    body = json.dumps({"jsonrpc": "2.0", "id": None, "error": {
+        "code": -32001, "message": message, "data": {"reason": reason}}})
+    return Response(body, status_code=403, media_type="application/json")
 
 
 class BodyLimit:
@@ -113,6 +133,32 @@ class BodyLimit:
         await self.app(scope, replay, send)
 
 
+HEALTH_PATH = "/healthz"
+
+
+class HealthCheck:
+    """`GET /healthz` -> 200 {"status": "ok", ...} for load balancers and humans.
+
+    Outermost, so it needs no token and no allowed Host: it says only that the server
+    is up and which version it runs. Everything else passes through.
+    """
+
+    def __init__(self, app: ASGIApp) -> None:
+        self.app = app
+        self.body = json.dumps({"status": "ok", "name": "verigraph", "version": __version__})
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] != "http" or scope["path"] != HEALTH_PATH:
+            await self.app(scope, receive, send)
+            return
+        if scope["method"] not in ("GET", "HEAD"):
+            response = Response(status_code=405, headers={"Allow": "GET, HEAD"})
+        else:
+            response = Response(self.body, media_type="application/json",
+                                headers={"Cache-Control": "no-store"})
+        await response(scope, receive, send)
+
+
 def transport_security(options: HttpOptions) -> TransportSecuritySettings:
     """Host/Origin allow-lists: loopback names, the bound host, and any extra names."""
     names = list(LOOPBACK_HOSTS)
@@ -135,7 +181,7 @@ def http_app(server: MCPServer[Any], options: HttpOptions) -> ASGIApp:
     app = BodyLimit(app, options.max_body_bytes)
     if options.token:
         app = BearerTokenAuth(app, options.token)
-    return app
+    return HealthCheck(app)
 
 
 def serve_http(server: MCPServer[Any], options: HttpOptions, log_level: str = "warning") -> None:
