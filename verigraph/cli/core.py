@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from verigraph.cli.scenes import scene_graph
 from verigraph.errors import InputFileError, VeriGraphError
 
 EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
@@ -18,7 +19,9 @@ def register(sub: Any) -> None:
     p = sub.add_parser("validate", help="check a plan against a scene (and a goal)",
                        description="Per-step report; exit 0 valid (and goal reached), "
                                    "1 invalid or goal missed, 2 bad input.")
-    p.add_argument("--scene", required=True, help="scene graph file (.json or .yaml)")
+    p.add_argument("--scene", required=True, help="scene graph file (.json or .yaml) or a "
+                                                  "built-in scene id (its goal applies "
+                                                  "unless --goal is given)")
     p.add_argument("--plan", required=True, help="plan file: text (one action per line) or JSON")
     p.add_argument("--goal", help="goal file: a scene graph, {graph, partial} or {predicate}")
     p.add_argument("--json", action="store_true", help="print the report as JSON")
@@ -78,12 +81,11 @@ def _emit_error(exc: VeriGraphError, as_json: bool) -> int:
 
 def run_validate(args: argparse.Namespace) -> int:
     from verigraph.actions.report import validate_plan
-    from verigraph.graph.io import load_scene
 
     try:
-        scene = load_scene(args.scene)
+        scene, goal = scene_graph(args.scene)
         plan = read_plan_file(args.plan)
-        goal = _load_goal_arg(args.goal) if args.goal else None
+        goal = _load_goal_arg(args.goal) if args.goal else goal
         report = validate_plan(scene, plan, goal, all_errors=args.all_errors)
     except VeriGraphError as exc:
         return _emit_error(exc, args.json)
