@@ -98,3 +98,47 @@ async def test_published_inputs_accept_what_the_server_accepts() -> None:
         assert not errors, (name, [e.message for e in errors])
     bad = Draft202012Validator(schemas["load_scene"]).iter_errors({"k": "three"})
     assert list(bad), "a wrongly typed argument must not validate"
+
+
+@pytest.mark.anyio
+async def test_every_structured_result_matches_its_published_output_schema() -> None:
+    """Successes, refusals and rejections alike, across the tools that return structure."""
+    validators: dict[str, Draft202012Validator] = {}
+    checked: set[str] = set()
+    async with Client(build_server()) as client:
+        for tool in (await client.list_tools()).tools:
+            if tool.output_schema is not None:
+                validators[tool.name] = Draft202012Validator(tool.output_schema)
+
+        async def call(name: str, arguments: dict[str, Any]) -> dict[str, Any]:
+            result = await client.call_tool(name, arguments)
+            assert not result.is_error, (name, result.content)
+            data = result.structured_content or {}
+            errors = [e.message for e in validators[name].iter_errors(data)]
+            assert not errors, (name, errors[:3])
+            checked.add(name)
+            return data
+
+        eid = (await call("load_scene", {"scene_id": "cup_on_book", "k": 2}))["episode_id"]
+        await call("validate_action", {"episode_id": eid, "action": "move(book, shelf)"})
+        await call("validate_action", {"episode_id": eid, "action": "move(cup, desk)"})
+        await call("execute_actions", {"episode_id": eid, "actions": ["move(book, shelf)"]})
+        await call("get_state", {"episode_id": eid})
+        await call("execute_actions", {"episode_id": eid,
+                                       "actions": ["move(cup, desk)", "move(book, shelf)"]})
+        await call("check_goal", {"episode_id": eid})
+        await call("set_goal", {"episode_id": eid, "predicate": "single_stack"})
+        await call("set_goal", {"episode_id": eid, "instruction": "tidy up"})
+        await call("validate_plan", {"scene_id": "three_blocks", "plan": "move(a, b)\ndone",
+                                     "all_errors": True})
+        await call("solve", {"scene_id": "cup_on_book"})
+        await call("submit_scene_graph", {"graph": {"nodes": [{"id": "x", "label": "dragon"}]}})
+        await call("submit_scene_graph", {"graph": {
+            "nodes": [{"id": "cup", "label": "mug"}, {"id": "table", "label": "table"}],
+            "edges": [{"source": "cup", "relation": "on", "target": "table"}]}})
+        await call("end_episode", {"episode_id": eid})
+        sim = (await call("load_scene", {"generator": {"family": "blocks", "seed": 1},
+                                         "simulate": True}))["episode_id"]
+        await call("generate_scene_graph", {"episode_id": sim})
+        await call("end_episode", {"episode_id": sim})
+    assert checked >= set(validators) - {"arm_status", "arm_stop", "arm_reset"}
