@@ -123,9 +123,15 @@ def _output_node(schema: Schema) -> Schema:
     return kept
 
 
-def _undocumented(schema: Any) -> Any:
+def _without_repeats(schema: Any, seen: set[str]) -> Any:
+    """Drop every description already in `seen`; add the others to it."""
     def node(sub: Schema) -> Schema:
-        sub.pop("description", None)
+        text = sub.get("description")
+        if isinstance(text, str):
+            if text in seen:
+                del sub["description"]
+            else:
+                seen.add(text)
         return sub
     return _walk(schema, node)
 
@@ -182,21 +188,27 @@ def _merge_tagged(schema: Schema) -> Schema:
 def compact_input_schema(schema: Schema, documented: set[str] | None = None) -> Schema:
     """The published inputSchema of a tool (see the module docstring).
 
-    `documented` holds the shared definitions (SceneGraph, Goal, the actions...) whose
-    fields an earlier tool in tools/list already described: a model reads the whole list,
-    so the words are sent once and later tools repeat only the shape. Names defined here
-    are added to it.
+    `documented` holds the nested descriptions (fields of SceneGraph, Goal, Action, the
+    text form of an action...) that an earlier tool in tools/list already sent: a model
+    reads the whole list, so the words are sent once and later tools repeat only the
+    shape. A top-level argument always keeps its own description.
     """
     out: Schema = _walk(schema, _input_node)
     if "$defs" in out:
         out = _merge_tagged(out)
-    definitions: Schema = out.get("$defs", {})
-    for name, definition in definitions.items():
+    for definition in out.get("$defs", {}).values():
         definition.pop("description", None)  # class docstrings; the properties say it
-        if documented is not None and name in documented:
-            definitions[name] = _undocumented(definition)
-    if documented is not None:
-        documented.update(definitions)
+    if documented is None:
+        return out
+    out["$defs"] = {name: _without_repeats(definition, documented)
+                    for name, definition in out.get("$defs", {}).items()} or None
+    for name, prop in out.get("properties", {}).items():
+        own = prop.get("description")
+        nested = _without_repeats({k: v for k, v in prop.items() if k != "description"},
+                                  documented)
+        out["properties"][name] = {**nested, **({"description": own} if own else {})}
+    if out["$defs"] is None:
+        del out["$defs"]
     return out
 
 
