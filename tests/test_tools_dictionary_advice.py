@@ -58,3 +58,15 @@ def test_the_fixed_scene_loads() -> None:
     graph["dictionary"] = "tableware"
     state = Toolbox().call("load_scene", {"graph": graph})
     assert len(state.model_dump()["graph"]["nodes"]) == 5
+
+
+def test_a_submitted_graph_gets_the_same_advice() -> None:
+    graph = kitchen_table()
+    out = Toolbox().call("submit_scene_graph", {"graph": graph})
+    dumped = out.model_dump()
+    assert dumped["accepted"] is False
+    fields = [p["field"] for p in dumped["problems"]]
+    assert fields == ["dictionary"]
+    assert "in the tableware dictionary; use it" in dumped["problems"][0]["message"]
+    retried = Toolbox().call("submit_scene_graph", {"graph": graph, "dictionary": "tableware"})
+    assert retried.model_dump()["accepted"] is True

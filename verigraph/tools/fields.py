@@ -136,11 +136,12 @@ def state_from_graph(graph: SceneGraph, *, field: str = "graph", partial: bool =
             fix="correct every listed problem and send the graph again") from None
 
 
-def with_dictionary_advice(graph: SceneGraph, problems: list[GraphProblem]
-                           ) -> list[GraphProblem]:
+def with_dictionary_advice(graph: SceneGraph, problems: list[GraphProblem],
+                           chosen: str | None = None) -> list[GraphProblem]:
     """Unknown labels that another built-in dictionary knows become one problem on
-    `dictionary` saying which one, instead of spelling suggestions per label."""
-    chosen = graph.dictionary
+    `dictionary` saying which one, instead of spelling suggestions per label.
+    `chosen`: the dictionary the graph was checked against (default: the one it names)."""
+    chosen = chosen or graph.dictionary
     unknown = [p for p in problems if p.rule == "unknown_label" and p.node is not None]
     if not unknown or chosen in (None, "all") or chosen not in BUILTIN_DICTIONARIES:
         return problems

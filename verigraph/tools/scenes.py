@@ -29,7 +29,13 @@ from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.executors import SceneCheck, arm_setup_for
-from verigraph.tools.fields import DictionaryName, EpisodeId, ImageData, dictionary_for
+from verigraph.tools.fields import (
+    DictionaryName,
+    EpisodeId,
+    ImageData,
+    dictionary_for,
+    with_dictionary_advice,
+)
 from verigraph.tools.images import decode_image, encode_png
 from verigraph.tools.store import Episode
 from verigraph.tools.texts import graph_lines
@@ -228,6 +234,7 @@ def submit_scene_graph(ctx: ToolContext, params: SubmitSceneGraphInput) -> Scene
 
 def _checked(graph: SubmittedGraph, dictionary: Dictionary) -> SceneGraphSubmission:
     scene, renames, problems = check_submission(graph, dictionary)
+    problems = with_dictionary_advice(scene, problems, dictionary.name)
     accepted = not problems
     if accepted:
         try:
