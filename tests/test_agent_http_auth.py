@@ -35,6 +35,12 @@ def test_no_server_is_its_own_error() -> None:
     assert "TaskGroup" not in done.stderr
 
 
+def test_a_wrong_path_says_so(url: str) -> None:
+    done = agent(url.removesuffix("/mcp") + "/nope", "--token", TOKEN)
+    assert done.returncode == 3, done.stderr
+    assert "no MCP endpoint there (HTTP 404)" in done.stderr
+
+
 def test_missing_token_is_its_own_error(url: str) -> None:
     done = agent(url)
     assert done.returncode == 4, done.stderr

@@ -44,6 +44,11 @@ def check_endpoint(url: str, token: str | None, timeout_s: float = 10.0) -> None
             f"the MCP server at {url} did not answer: {type(exc).__name__} {exc}",
             field="--url", value=url, fix="check that the server runs and --url is its "
                                           "/mcp endpoint") from None
+    if response.status_code == 404:
+        raise ServerUnreachableError(
+            f"a web server answers at {url} but has no MCP endpoint there (HTTP 404)",
+            field="--url", value=url, fix="use the server's MCP path, e.g. "
+                                          "http://127.0.0.1:8000/mcp")
     if response.status_code not in (401, 403):
         return
     reason = f"HTTP {response.status_code}: {_reason(response)}"
