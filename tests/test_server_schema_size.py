@@ -142,3 +142,15 @@ async def test_every_structured_result_matches_its_published_output_schema() -> 
         await call("generate_scene_graph", {"episode_id": sim})
         await call("end_episode", {"episode_id": sim})
     assert checked >= set(validators) - {"arm_status", "arm_stop", "arm_reset"}
+
+
+@pytest.mark.anyio
+async def test_the_action_schema_resource_is_strict_2020_12() -> None:
+    async with Client(build_server()) as client:
+        read = await client.read_resource("verigraph://schema/action")
+    schema = json.loads(read.contents[0].text)  # type: ignore[union-attr]
+    Draft202012Validator.check_schema(schema)
+    assert "discriminator" not in keys_anywhere(schema)
+    validator = Draft202012Validator(schema)
+    assert validator.is_valid({"action": "move", "object": "cup", "target": "table"})
+    assert not validator.is_valid({"action": "fly"})

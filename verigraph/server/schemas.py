@@ -220,3 +220,12 @@ def compact_output_schema(schema: Schema) -> Schema:
     """
     out: Schema = _walk(schema, _output_node)
     return out
+
+
+def without_openapi_keywords(schema: Schema) -> Schema:
+    """The schema minus `discriminator` (OpenAPI; strict JSON Schema validators refuse it)."""
+    def node(sub: Schema) -> Schema:
+        sub.pop("discriminator", None)
+        return sub
+    out: Schema = _walk(schema, node)
+    return out
