@@ -49,10 +49,12 @@ async def test_tools_list_matches_the_tool_table(client: Client) -> None:
         spec = TOOLS[tool.name]
         assert tool.title == spec.title and tool.description == spec.description
         assert tool.annotations is not None
-        assert tool.annotations.read_only_hint is spec.read_only
-        assert tool.annotations.destructive_hint is spec.destructive
-        assert tool.annotations.idempotent_hint is spec.idempotent
-        assert tool.annotations.open_world_hint is spec.open_world
+        hints = tool.annotations  # an absent hint means the specification's default
+        assert (hints.read_only_hint or False) is spec.read_only
+        if not spec.read_only:
+            assert hints.destructive_hint in ((None, True) if spec.destructive else (False,))
+        assert (hints.idempotent_hint or False) is spec.idempotent
+        assert hints.open_world_hint in ((None, True) if spec.open_world else (False,))
         assert set(tool.input_schema["properties"]) == set(spec.input_model.model_fields)
         required = {n for n, f in spec.input_model.model_fields.items() if f.is_required()}
         assert set(tool.input_schema.get("required", [])) == required
@@ -274,7 +276,8 @@ async def test_resources_static_and_per_episode(client: Client) -> None:
     relations = await read("verigraph://relations")
     assert relations["by_dictionary"]["tangram"] == ["touches"]
     schema = await read("verigraph://schema/action")
-    assert set(schema["discriminator"]["mapping"]) == {"move", "align", "done"}
+    assert {m["$ref"].rsplit("/", 1)[-1] for m in schema["oneOf"]} == {
+        "MoveAction", "AlignAction", "DoneAction"}
     assert "object_not_clear" in await read("verigraph://constraints")
     assert set(await read("verigraph://scenes")) == {"cup_on_book", "three_blocks",
                                                       "kitchen_pan"}
@@ -306,3 +309,38 @@ async def test_prompts_from_an_episode_and_standalone(client: Client) -> None:
     sg = (await client.get_prompt("scene_graph_generation", {"dictionary": "kitchen",
                                                              "task": "cook"}))
     assert "Dictionary: kitchen" in sg.messages[0].content.text
+
+
+async def test_prompt_errors_are_invalid_params_with_the_reason(client: Client) -> None:
+    with pytest.raises(MCPError) as err:
+        await client.get_prompt("iterative_planer", {})
+    assert err.value.code == -32602
+    assert "did you mean iterative_planner" in err.value.message
+    assert "scene_graph_generation" in err.value.message
+    with pytest.raises(MCPError) as err:
+        await client.get_prompt("iterative_planner", {"episode_id": "ep_gone"})
+    assert err.value.code == -32602 and "no open episode" in err.value.message
+    with pytest.raises(MCPError) as err:
+        await client.get_prompt("direct_planner", {"scene": "cup_on_book"})
+    assert err.value.code == -32602 and "it takes episode_id, scene_id" in err.value.message
+    with pytest.raises(MCPError) as err:
+        await client.get_prompt("scene_graph_generation", {"dictionary": "garden"})
+    assert err.value.code == -32602 and "not a built-in dictionary" in err.value.message
+
+
+async def test_prompt_arguments_and_descriptions_read_well(client: Client) -> None:
+    for prompt in (await client.list_prompts()).prompts:
+        assert prompt.description and "\n" not in prompt.description
+        assert "  " not in prompt.description
+        assert prompt.arguments
+        for argument in prompt.arguments:
+            assert argument.description, f"{prompt.name}.{argument.name}"
+
+
+async def test_generate_scene_graph_without_photo_or_simulator_says_so(client: Client) -> None:
+    eid = await load(client, scene_id="cup_on_book")
+    result = await client.call_tool("generate_scene_graph", {"episode_id": eid})
+    assert result.is_error and result.structured_content is None
+    message = text(result)
+    assert "no photo and no simulator" in message and "episode_id" in message
+    assert "fix: pass image" in message and "get_state" in message

@@ -74,3 +74,21 @@ class InputFileError(VeriGraphError):
 
 class GoalError(VeriGraphError):
     """A goal that cannot be interpreted (unknown predicate, bad graph)."""
+
+
+class ServerUnreachableError(VeriGraphError):
+    """No MCP server answers at the URL (connection refused, unknown host, timeout)."""
+
+    exit_code = 3
+
+
+class MissingTokenError(VeriGraphError):
+    """The server needs a bearer token and none was given."""
+
+    exit_code = 4
+
+
+class TokenRejectedError(VeriGraphError):
+    """The server refused the bearer token that was given (401 or 403)."""
+
+    exit_code = 5

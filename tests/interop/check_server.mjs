@@ -13,7 +13,9 @@ import Ajv2020 from "ajv/dist/2020.js";
 
 function transportFromArgs(argv) {
   if (argv[0] === "--stdio") {
-    return new StdioClientTransport({ command: argv[1], args: argv.slice(2), stderr: "ignore" });
+    // The whole environment, so the server runs the same code as the test (PYTHONPATH).
+    return new StdioClientTransport({ command: argv[1], args: argv.slice(2), stderr: "ignore",
+                                      env: { ...process.env } });
   }
   if (argv[0] === "--http") {
     const token = argv[2] === "--token" ? argv[3] : undefined;

@@ -139,7 +139,13 @@ class McpTools:
 
     @classmethod
     def http(cls, url: str, *, token: str | None = None, timeout_s: float = 60.0) -> McpTools:
-        """Connect to a streamable-HTTP server such as `verigraph serve --transport http`."""
+        """Connect to a streamable-HTTP server such as `verigraph serve --transport http`.
+
+        An unreachable server, a missing token and a refused token each raise their own
+        error (verigraph.agent.endpoint) before the session starts."""
+        from verigraph.agent.endpoint import check_endpoint
+
+        check_endpoint(url, token, timeout_s=min(timeout_s, 10.0))
         target: Any = url
         http_client = None
         if token:

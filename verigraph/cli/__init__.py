@@ -1,6 +1,8 @@
 """The `verigraph` command: one subcommand module per area, all calling verigraph.tools.
 
-Exit codes: 0 success, 1 a negative verdict (plan invalid, goal missed), 2 bad input.
+Exit codes: 0 success, 1 a negative verdict (plan invalid, goal missed), 2 bad input;
+for `agent --transport http`: 3 no server at --url, 4 the server needs a token and none
+was given, 5 the server refused the token.
 """
 
 from __future__ import annotations
@@ -44,7 +46,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         code: int = args.handler(args)
     except VeriGraphError as exc:
         print(f"error: {exc}", file=sys.stderr)
-        return EXIT_BAD_INPUT
+        return int(getattr(exc, "exit_code", EXIT_BAD_INPUT))
     except KeyboardInterrupt:
         return 130
     return code

@@ -11,14 +11,12 @@ from __future__ import annotations
 
 import argparse
 import json
-import re
 import sys
 from pathlib import Path
 from typing import Any
 
+from verigraph.cli.scenes import scene_argument
 from verigraph.errors import VeriGraphError
-
-GENERATOR = re.compile(r"^(?P<family>[a-z_]+):(?P<seed>\d+)(?::(?P<n>\d+))?$")
 
 
 def register(sub: Any) -> None:
@@ -104,25 +102,14 @@ def register(sub: Any) -> None:
 
 
 def _scene_spec(args: argparse.Namespace) -> dict[str, Any]:
-    from verigraph.graph.builtin_scenes import BUILTIN_SCENES
-    from verigraph.graph.io import load_scene
-
+    resolved = scene_argument(args.scene)
     load: dict[str, Any] = {}
-    scene = args.scene
-    if Path(scene).is_file():
-        load["graph"] = load_scene(scene).model_dump(mode="json", exclude_none=True)
-    elif scene in BUILTIN_SCENES:
-        load["scene_id"] = scene
-    elif (m := GENERATOR.match(scene)) is not None:
-        gen: dict[str, Any] = {"family": m.group("family"), "seed": int(m.group("seed"))}
-        if m.group("n"):
-            gen["n_objects"] = int(m.group("n"))
-        load["generator"] = gen
+    if resolved.graph is not None:
+        load["graph"] = resolved.graph.model_dump(mode="json", exclude_none=True)
+    elif resolved.builtin is not None:
+        load["scene_id"] = resolved.builtin
     else:
-        raise VeriGraphError(f"'{scene}' is not a scene file, a built-in scene or FAMILY:SEED",
-                             field="--scene", value=scene,
-                             fix=f"use one of {', '.join(BUILTIN_SCENES)}, a .json/.yaml "
-                                 "scene file, or e.g. blocks:3")
+        load["generator"] = resolved.generator
     if args.simulate:
         load["simulate"] = True
     return load

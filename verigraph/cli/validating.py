@@ -29,7 +29,8 @@ def register_validate(sub: Any) -> None:
         description="Per-step report; exit 0 valid (and goal reached), 1 invalid or goal "
                     "missed, 2 bad input. Give --scene/--plan[/--goal], or --domain/--problem/"
                     "--plan (PDDL blocks world), or --batch FILE.jsonl.")
-    p.add_argument("--scene", help="scene graph file (.json or .yaml)")
+    p.add_argument("--scene", help="scene graph file (.json or .yaml) or a built-in scene id "
+                                   "(its goal applies unless --goal is given)")
     p.add_argument("--plan", help="plan file: text (one action per line) or JSON; with "
                                   "--domain: (op args) lines or PlanBench sentences")
     p.add_argument("--goal", help="goal file: a scene graph, {graph, partial} or {predicate}")
@@ -97,26 +98,33 @@ def pddl_report(domain: str | Path, problem: str | Path, plan: str | Path,
                                 read_text_file(plan, "plan"))
 
 
+def scene_and_goal(scene: str | Path, goal: str | Path | None) -> tuple[Any, Any]:
+    """The scene (a file or a built-in id) and the goal: `goal` if given, else a built-in
+    scene's own goal, else None."""
+    from verigraph.cli.scenes import scene_graph
+
+    graph, builtin_goal = scene_graph(str(scene))
+    return graph, load_goal_arg(str(goal)) if goal else builtin_goal
+
+
 def scene_report(scene: str | Path, plan: str | Path, goal: str | Path | None,
                  all_errors: bool = False) -> Any:
     from verigraph.actions.report import validate_plan
-    from verigraph.graph.io import load_scene
 
-    goal_value = load_goal_arg(str(goal)) if goal else None
-    return validate_plan(load_scene(scene), read_text_file(plan, "plan"), goal_value,
+    graph, goal_value = scene_and_goal(scene, goal)
+    return validate_plan(graph, read_text_file(plan, "plan"), goal_value,
                          all_errors=all_errors)
 
 
 def write_html_report(path: str, scene: str, plan: str, goal: str | None,
                       all_errors: bool) -> None:
     """The viewer's self-contained report of this validation (drawings embedded)."""
-    from verigraph.graph.io import load_scene
     from verigraph.tools.registry import Toolbox
     from verigraph.viewer.inputs import write_report
 
-    goal_value = load_goal_arg(goal) if goal else None
-    write_report(Toolbox().context, path, load_scene(scene), read_text_file(plan, "plan"),
-                 goal_value, all_errors=all_errors)
+    graph, goal_value = scene_and_goal(scene, goal)
+    write_report(Toolbox().context, path, graph, read_text_file(plan, "plan"), goal_value,
+                 all_errors=all_errors)
     print(f"wrote {path}", file=sys.stderr)
 
 

@@ -167,3 +167,48 @@ def load_dictionary(spec: str | Path | Dictionary | None) -> Dictionary:
         raise InputFileError(f"cannot read dictionary file: {exc}", field="dictionary",
                              value=str(path), fix="give a YAML/JSON mapping with 'name' and "
                              "'objects: {name: {movable: ..., surface: ...}}'") from None
+
+
+def builtin_homes(label: str) -> list[str]:
+    """The built-in dictionaries that know `label` (by name, synonym or `_2` suffix)."""
+    return [name for name in BUILTIN_DICTIONARIES
+            if builtin_dictionary(name).resolve(label) is not None]
+
+
+def _quoted(labels: list[str]) -> str:
+    names = [f"`{label}`" for label in labels]
+    return names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
+
+
+def wrong_dictionary_advice(labels: list[str], chosen: str, every_label: list[str]
+                            ) -> tuple[str, str, list[str]] | None:
+    """Where labels unknown to dictionary `chosen` live among the other built-ins.
+
+    Returns (message, fix, labels it covers), e.g. "`table` and `tray` are in the
+    tableware dictionary; use it, or omit `dictionary` to use all built-ins"; None when
+    no other built-in knows any of them (a spelling matter: the nearest names help more).
+    One dictionary that knows them all is preferred; else the fewest that do. "use it"
+    only when that dictionary also knows `every_label` of the scene.
+    """
+    elsewhere = {label: [h for h in builtin_homes(label) if h != chosen]
+                 for label in dict.fromkeys(labels)}
+    elsewhere = {label: homes for label, homes in elsewhere.items() if homes}
+    if not elsewhere:
+        return None
+    groups: dict[str, list[str]] = {}
+    remaining = list(elsewhere)
+    while remaining:
+        candidates = {h for label in remaining for h in elsewhere[label]}
+        best = max(sorted(candidates), key=lambda h: sum(h in elsewhere[x] for x in remaining))
+        groups[best] = [label for label in remaining if best in elsewhere[label]]
+        remaining = [label for label in remaining if label not in groups[best]]
+    ((home, known),) = list(groups.items())[:1]
+    home_dictionary = builtin_dictionary(home)
+    if len(groups) == 1 and all(home_dictionary.resolve(x) is not None for x in every_label):
+        verb = "is" if len(known) == 1 else "are"
+        return (f"{_quoted(known)} {verb} in the {home} dictionary; use it, or omit "
+                "`dictionary` to use all built-ins",
+                f'set "dictionary": "{home}" or leave it out', list(elsewhere))
+    parts = "; ".join(f"{_quoted(labels_)} in {name}" for name, labels_ in groups.items())
+    return (f"these labels are not in the {chosen} dictionary ({parts}); omit `dictionary` "
+            "to use all built-ins", "leave \"dictionary\" out", list(elsewhere))

@@ -22,10 +22,10 @@ class Node(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     id: str = Field(min_length=1, max_length=128, pattern=ID_PATTERN,
-                    description="unique in the graph, e.g. red_block or plate_2")
+                    description="unique, e.g. plate_2")
     label: str = Field(min_length=1, max_length=128, description="a name from the dictionary D")
     attrs: dict[str, Any] = Field(default_factory=dict,
-                                  description="colour, property overrides (capacity, movable...)")
+                                  description="colour; overrides (capacity, movable)")
 
 
 class Edge(BaseModel):
@@ -60,7 +60,7 @@ class SceneGraph(BaseModel):
     nodes: list[Node] = Field(default_factory=list)
     edges: list[Edge] = Field(default_factory=list)
     dictionary: str | None = Field(
-        default=None, description="built-in dictionary name or a path; none = union of built-ins")
+        default=None, description="dictionary D; none = all built-ins")
 
     def node(self, node_id: str) -> Node | None:
         return next((n for n in self.nodes if n.id == node_id), None)

@@ -9,9 +9,9 @@ from mcp.server.mcpserver import MCPServer
 from verigraph import __version__
 from verigraph.server.apps import UI_META, AppsGate, episode_apps
 from verigraph.server.heavy import HeavyCalls, HeavyLimits
-from verigraph.server.prompts import register_prompts
+from verigraph.server.prompts import PromptGate, register_prompts
 from verigraph.server.resources import register_resources
-from verigraph.server.tools import ArgumentGate, register_tools
+from verigraph.server.tools import ArgumentGate, build_tools
 from verigraph.tools.context import ToolConfig
 from verigraph.tools.registry import Toolbox
 
@@ -37,16 +37,22 @@ def build_server(toolbox: Toolbox | None = None, *, config: ToolConfig | None = 
                  log_level: LogLevel = "WARNING",
                  heavy: HeavyLimits | None = None) -> MCPServer[Any]:
     """An MCPServer whose tools all run on `toolbox` (a fresh one by default); heavy
-    calls run on worker threads within `heavy`'s concurrency and budget."""
+    calls run on worker threads within `heavy`'s concurrency and budget.
+
+    The tool, prompt and resource lists never change while the server runs and nothing
+    pushes resource updates, so no protocol era advertises `listChanged` or `subscribe`:
+    `subscriptions/listen` (2026-07-28) stays unserved, like `resources/subscribe`.
+    """
     toolbox = toolbox or Toolbox(config=config)
     runner = HeavyCalls(heavy)
     gate = ArgumentGate(runner)
+    tools, direct = build_tools(toolbox, runner, meta=UI_META)
     server: MCPServer[Any] = MCPServer(
         "verigraph", title="VeriGraph", version=__version__, instructions=INSTRUCTIONS,
         description="Scene-graph verifier for LLM robot planning",
-        middleware=[gate, AppsGate()], log_level=log_level,
-        extensions=[episode_apps(toolbox)])
-    gate.direct = register_tools(server, toolbox, runner, meta=UI_META)
+        middleware=[gate, AppsGate(), PromptGate()], log_level=log_level,
+        extensions=[episode_apps(toolbox)], tools=tools, subscriptions=False)
+    gate.direct = direct
     register_resources(server, toolbox)
     register_prompts(server, toolbox)
     return server

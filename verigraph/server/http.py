@@ -28,6 +28,7 @@ from starlette.datastructures import Headers
 from starlette.responses import Response
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from verigraph import __version__
 from verigraph.server.connections import guarded_protocol, quiet_accept_errors
 from verigraph.server.hostcheck import HostCheck, HostPolicy
 
@@ -64,7 +65,14 @@ def _rpc_error(status: int, code: int, message: str,
 
 
 class BearerTokenAuth:
-    """401 unless the request carries `Authorization: Bearer <token>` (constant-time check)."""
+    """403 unless the request carries `Authorization: Bearer <token>` (constant-time check).
+
+    The token is a pre-shared secret, not OAuth. MCP clients that know OAuth (the MCP
+    Inspector, the TypeScript SDK with an auth provider) start OAuth discovery on every
+    401, with or without a `WWW-Authenticate` challenge, and then show an OAuth failure
+    instead of the reason. So a missing or wrong token gets 403 without a challenge; the
+    JSON-RPC error says which (`data.reason`: missing_token or wrong_token) and what to do.
+    """
 
     def __init__(self, app: ASGIApp, token: str) -> None:
         self.app = app
@@ -74,14 +82,25 @@ class BearerTokenAuth:
         if scope["type"] == "http":
             given = Headers(scope=scope).get("authorization", "").encode()
             if not hmac.compare_digest(given, self.expected):
-                response = _rpc_error(
-                    401, -32001, "Unauthorized: this VeriGraph server needs the header "
-                    "'Authorization: Bearer <token>' with the token it was started with "
-                    "(--token or VERIGRAPH_TOKEN)",
-                    headers={"WWW-Authenticate": 'Bearer realm="verigraph"'})
-                await response(scope, receive, send)
+                await _refusal(given)(scope, receive, send)
                 return
         await self.app(scope, receive, send)
+
+
+def _refusal(given: bytes) -> Response:
+    if not given.strip():
+        reason, message = "missing_token", (
+            "Forbidden: no token was sent; this VeriGraph server needs the header "
+            "'Authorization: Bearer <token>' with the token it was started with "
+            "(--token or VERIGRAPH_TOKEN)")
+    else:
+        reason, message = "wrong_token", (
+            "Forbidden: the token sent does not match; send 'Authorization: Bearer <token>' "
+            "with the token this VeriGraph server was started with (--token or "
+            "VERIGRAPH_TOKEN)")
+    body = json.dumps({"jsonrpc": "2.0", "id": None, "error": {
+        "code": -32001, "message": message, "data": {"reason": reason}}})
+    return Response(body, status_code=403, media_type="application/json")
 
 
 class BodyLimit:
@@ -161,6 +180,32 @@ class BodyLimit:
             await self.app(scope, replay, send)
             tg.cancel_scope.cancel()
 
+HEALTH_PATH = "/healthz"
+
+
+class HealthCheck:
+    """`GET /healthz` -> 200 {"status": "ok", ...} for load balancers and humans.
+
+    Outermost, so it needs no token and no allowed Host: it says only that the server
+    is up and which version it runs. Everything else passes through.
+    """
+
+    def __init__(self, app: ASGIApp) -> None:
+        self.app = app
+        self.body = json.dumps({"status": "ok", "name": "verigraph", "version": __version__})
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] != "http" or scope["path"] != HEALTH_PATH:
+            await self.app(scope, receive, send)
+            return
+        if scope["method"] not in ("GET", "HEAD"):
+            response = Response(status_code=405, headers={"Allow": "GET, HEAD"})
+        else:
+            response = Response(self.body, media_type="application/json",
+                                headers={"Cache-Control": "no-store"})
+        await response(scope, receive, send)
+
+
 
 def http_app(server: MCPServer[Any], options: HttpOptions) -> ASGIApp:
     """The ASGI app for `verigraph serve --transport http` (stateless, JSON responses).
@@ -177,7 +222,7 @@ def http_app(server: MCPServer[Any], options: HttpOptions) -> ASGIApp:
     app = HostCheck(app, HostPolicy(options.host, options.port, options.allowed_hosts))
     if options.token:
         app = BearerTokenAuth(app, options.token)
-    return app
+    return HealthCheck(app)
 
 
 def uvicorn_config(server: MCPServer[Any], options: HttpOptions, log_level: str = "warning"

@@ -18,6 +18,7 @@ from verigraph.actions.model import ActionAdapter
 from verigraph.errors import VeriGraphError
 from verigraph.graph.builtin_scenes import BUILTIN_GOALS, BUILTIN_SCENES
 from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, load_dictionary
+from verigraph.server.schemas import without_openapi_keywords
 from verigraph.tools.registry import Toolbox
 from verigraph.tools.summaries import describe
 
@@ -67,7 +68,7 @@ def register_resources(server: MCPServer[Any], toolbox: Toolbox) -> None:
     server.resource("verigraph://schema/action", name="action-schema",
                     title="Action JSON schema", mime_type=JSON,
                     description="JSON schema of move, align and done actions"
-                    )(_constant(_dump(ActionAdapter.json_schema())))
+                    )(_constant(_dump(without_openapi_keywords(ActionAdapter.json_schema()))))
     server.resource("verigraph://constraints", name="constraints", title="Constraints C",
                     mime_type=JSON, description="constraint ids used in violation feedback"
                     )(_constant(_dump(CONSTRAINT_DESCRIPTIONS)))

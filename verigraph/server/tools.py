@@ -17,8 +17,8 @@ from typing import Annotated, Any
 
 import anyio.to_thread
 from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
-from mcp.server.mcpserver import MCPServer
 from mcp.server.mcpserver.exceptions import ToolError
+from mcp.server.mcpserver.tools import Tool
 from mcp.types import CallToolResult, ImageContent, TextContent, ToolAnnotations
 from pydantic import BaseModel, Field, ValidationError
 
@@ -33,6 +33,7 @@ from verigraph.server.confirmation import (
     thread_limiter,
 )
 from verigraph.server.heavy import CLIENT, HeavyCalls
+from verigraph.server.schemas import compact_input_schema, compact_output_schema
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
 from verigraph.tools.registry import parse_arguments as parse_tool_arguments
 from verigraph.tools.scenes import ImageResult
@@ -201,25 +202,45 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox, execute: Executor) -> Callab
     return call
 
 
-def register_tools(server: MCPServer[Any], toolbox: Toolbox, heavy: HeavyCalls,
-                   meta: dict[str, dict[str, Any]] | None = None) -> dict[str, Executor]:
-    """Add every tool in TOOL_SPECS order (the order tools/list reports); `meta` gives
-    some tools a `_meta` (the MCP Apps viewer link). Returns the executors ArgumentGate
-    runs directly (every tool that asks no confirmation)."""
+# The hints' defaults in the MCP specification; a hint equal to its default is not sent.
+_HINT_DEFAULTS = {"read_only_hint": False, "destructive_hint": True, "idempotent_hint": False,
+                  "open_world_hint": True}
+
+
+def tool_annotations(spec: ToolSpec) -> ToolAnnotations:
+    """The tool's behaviour hints, sending only those that differ from the defaults."""
+    hints = {"read_only_hint": spec.read_only, "destructive_hint": spec.destructive,
+             "idempotent_hint": spec.idempotent, "open_world_hint": spec.open_world}
+    if spec.read_only:
+        hints.pop("destructive_hint")  # meaningful only for tools that write
+    # The title is the tool's own `title`; no copy inside the annotations.
+    return ToolAnnotations.model_validate(
+        {k: v for k, v in hints.items() if v != _HINT_DEFAULTS[k]})
+
+
+def build_tools(toolbox: Toolbox, heavy: HeavyCalls,
+                meta: dict[str, dict[str, Any]] | None = None
+                ) -> tuple[list[Tool], dict[str, Executor]]:
+    """Every tool in TOOL_SPECS order (the order tools/list reports), with the compact
+    published schemas of verigraph.server.schemas; `meta` gives some tools a `_meta`
+    (the MCP Apps viewer link). Also returns the executors ArgumentGate runs directly
+    (every tool that asks no confirmation)."""
+    tools = []
     direct: dict[str, Executor] = {}
+    documented: set[str] = set()
     for spec in TOOL_SPECS:
         execute = tool_executor(spec, toolbox, heavy)
         if spec.name not in PREVIEWS:
             direct[spec.name] = execute
-        server.add_tool(
+        tool = Tool.from_function(
             tool_function(spec, toolbox, execute), name=spec.name, title=spec.title,
-            description=spec.description,
-            annotations=ToolAnnotations(
-                title=spec.title, read_only_hint=spec.read_only,
-                destructive_hint=spec.destructive, idempotent_hint=spec.idempotent,
-                open_world_hint=spec.open_world),
+            description=spec.description, annotations=tool_annotations(spec),
             meta=(meta or {}).get(spec.name))
-    return direct
+        tool.parameters = compact_input_schema(tool.parameters, documented)
+        if tool.fn_metadata.output_schema is not None:
+            tool.fn_metadata.output_schema = compact_output_schema(tool.fn_metadata.output_schema)
+        tools.append(tool)
+    return tools, direct
 
 
 # The arguments ArgumentGate validated for the tools/call being handled (tool, input).

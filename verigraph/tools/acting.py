@@ -39,6 +39,7 @@ from verigraph.tools.fields import (
 from verigraph.tools.goals import check_goal_against
 from verigraph.tools.loading import stateless_source
 from verigraph.tools.store import TraceEntry
+from verigraph.tools.texts import edges_line
 
 MAX_ACTIONS_PER_CALL = 50
 MAX_PLAN_ACTIONS = 1000
@@ -51,8 +52,7 @@ class ValidateActionInput(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     episode_id: EpisodeId
-    action: ActionInput = Field(description='JSON {"action": "move", "object": "cup", '
-                                            '"relation": "on", "target": "table"} or text')
+    action: ActionInput = Field(description="an action as JSON or text")
 
 
 class ActionCheck(BaseModel):
@@ -105,14 +105,13 @@ class ExecuteActionsInput(BaseModel):
     episode_id: EpisodeId
     actions: list[ActionInput] = Field(
         min_length=1, max_length=MAX_ACTIONS_PER_CALL,
-        description="actions as JSON objects or text; a text item may hold several lines")
+        description="JSON actions or text (a text item may hold several lines)")
     request_id: RequestId | None = Field(
-        default=None, description="your id for this call: sending the same request_id again "
-                                  "(a retry after a lost reply) returns the first result "
-                                  "instead of executing twice")
+        default=None, description="a retry with the same id returns the first "
+                                  "result, not a second run")
     expected_calls: int | None = Field(
-        default=None, ge=0, description="execute only if the episode has had exactly this "
-                                        "many execute_actions calls (get_state: calls)")
+        default=None, ge=0, description="run only after this many "
+                                        "execute_actions calls")
 
 
 class ExecutionOutput(BaseModel):
@@ -143,7 +142,7 @@ class ExecutionOutput(BaseModel):
             parts.append("threshold reached: call end_episode")
         elif self.done:
             parts.append("end token received: call end_episode for the verdict")
-        return "; ".join(parts)
+        return "; ".join(parts) + "\n" + edges_line(self.graph, "graph now")
 
 
 def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionOutput:
@@ -255,10 +254,10 @@ class ValidatePlanInput(BaseModel):
 
     plan: str | Annotated[list[ActionInput], Field(max_length=MAX_PLAN_ACTIONS)] = Field(
         description="text plan (one action per line) or a list of actions")
-    scene_id: SceneId | None = None
+    scene_id: SceneId | None = Field(default=None, description="start from a built-in scene")
     graph: BoundedGraph | None = Field(default=None, description="initial scene graph")
     episode_id: EpisodeId | None = Field(
-        default=None, description="start from this episode's current graph (and goal)")
+        default=None, description="start from this episode's graph and goal")
     goal: BoundedGoal | None = Field(default=None, description="check the final graph against it")
     all_errors: bool = Field(default=False, description="skip failing actions and report "
                                                         "every violation")

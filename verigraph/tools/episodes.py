@@ -18,6 +18,7 @@ from verigraph.tools.context import ToolContext
 from verigraph.tools.fields import EpisodeId
 from verigraph.tools.store import TraceEntry
 from verigraph.tools.summaries import EpisodeState, describe
+from verigraph.tools.texts import edges_line
 
 
 # -- get_state ------------------------------------------------------------------------------
@@ -63,8 +64,11 @@ class EpisodeVerdict(BaseModel):
                 "no_goal": "ended (no checkable goal was set)",
                 "no_scene": "ended before a scene graph was submitted"}[self.verdict]
         detail = f" ({self.goal_diff.summary()})" if self.goal_diff and not self.success else ""
-        return (f"{text}{detail}; {self.steps} action(s) in {self.calls} call(s); "
+        text = (f"{text}{detail}; {self.steps} action(s) in {self.calls} call(s); "
                 f"episode {self.episode_id} closed")
+        if self.final_graph is not None:
+            text += "\n" + edges_line(self.final_graph, "final graph")
+        return text
 
 
 def end_episode(ctx: ToolContext, params: EpisodeRef) -> EpisodeVerdict:

@@ -33,8 +33,7 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.tools.errors import EpisodeLimitError, ToolArgumentError
 
-EXECUTOR_HELP = ("graph (verification only), sim2d (the 2D simulator) or arm:<driver> "
-                 "(arm:pybullet, arm:rosbridge, arm:xarm)")
+EXECUTOR_HELP = "graph (verify only), sim2d or arm:<driver> (pybullet, rosbridge, xarm)"
 DEFAULT_MAX_ARM_WORLDS = 8
 
 ArmOpener = Callable[[ArmConfig, SceneGraph], ArmWorld]

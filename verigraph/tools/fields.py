@@ -18,7 +18,12 @@ from verigraph.actions.model import Action, AnyAction, DoneAction
 from verigraph.actions.parser import parse_text_plan
 from verigraph.errors import MalformedGraphError, PlanParseError
 from verigraph.graph.builtin_scenes import BUILTIN_GOALS, BUILTIN_SCENES
-from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, Dictionary, load_dictionary
+from verigraph.graph.dictionary import (
+    BUILTIN_DICTIONARIES,
+    Dictionary,
+    load_dictionary,
+    wrong_dictionary_advice,
+)
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
@@ -26,25 +31,24 @@ from verigraph.graph.wellformed import GraphProblem
 from verigraph.tools.errors import ToolArgumentError
 
 EpisodeId = Annotated[str, Field(
-    min_length=1, max_length=64, description="the id load_scene returned",
+    min_length=1, max_length=64, description="from load_scene",
     examples=["ep_Xq3v9f2PZxk7d1uQm0Cw8g"])]
 RequestId = Annotated[str, Field(
     min_length=1, max_length=128, pattern=r"^[\x21-\x7e]+$",
-    description="a client-chosen id (printable ASCII), unique per call",
     examples=["c3f1e2a0-step-4"])]
 ActionText = Annotated[str, Field(
     min_length=1, max_length=2000,
-    description="text form: move(cup, on, table), move(cup, table), "
+    description="move(cup, on, table), move(cup, table), "
                 "align(piece, side, target, target_side) or done")]
 ActionInput = Action | ActionText
 SceneId = Annotated[str, Field(min_length=1, max_length=64,
-                               description=f"built-in scene: {', '.join(BUILTIN_SCENES)}")]
+                               description=f"{', '.join(BUILTIN_SCENES)}")]
 DictionaryName = Annotated[str, Field(
     min_length=1, max_length=32,
-    description=f"built-in dictionary: {', '.join(BUILTIN_DICTIONARIES)} or all")]
+    description=f"{', '.join(BUILTIN_DICTIONARIES)} or all")]
 ImageData = Annotated[str, Field(
     min_length=1, max_length=17_000_000,
-    description="base64 PNG or JPEG (a data:image/...;base64, prefix is accepted)")]
+    description="base64 PNG or JPEG (data: URL accepted)")]
 
 
 MAX_GRAPH_NODES = 5000
@@ -155,7 +159,29 @@ def state_from_graph(graph: SceneGraph, *, field: str = "graph", partial: bool =
     try:
         return WorldState.from_graph(graph, dictionary, partial=partial)
     except MalformedGraphError as exc:
+        problems = with_dictionary_advice(graph, list(exc.problems))
         raise ToolArgumentError(
-            f"the scene graph breaks {len(exc.problems)} rule(s):\n"
-            + problems_text(exc.problems, field), field=field, value=None,
+            f"the scene graph breaks {len(problems)} rule(s):\n"
+            + problems_text(problems, field), field=field, value=None,
             fix="correct every listed problem and send the graph again") from None
+
+
+def with_dictionary_advice(graph: SceneGraph, problems: list[GraphProblem],
+                           chosen: str | None = None) -> list[GraphProblem]:
+    """Unknown labels that another built-in dictionary knows become one problem on
+    `dictionary` saying which one, instead of spelling suggestions per label.
+    `chosen`: the dictionary the graph was checked against (default: the one it names)."""
+    chosen = chosen or graph.dictionary
+    unknown = [p for p in problems if p.rule == "unknown_label" and p.node is not None]
+    if not unknown or chosen in (None, "all") or chosen not in BUILTIN_DICTIONARIES:
+        return problems
+    labels = {node.id: node.label for node in graph.nodes}
+    found = wrong_dictionary_advice([labels[p.node] for p in unknown if p.node in labels],
+                                    chosen, list(labels.values()))
+    if found is None:
+        return problems
+    message, fix, covered = found
+    moved = [p for p in unknown if p.node in labels and labels[p.node] in covered]
+    merged = GraphProblem(rule="wrong_dictionary", node=None, field="dictionary",
+                          message=message, fix=fix)
+    return [merged, *(p for p in problems if p not in moved)]

@@ -26,7 +26,7 @@ from verigraph.tools.fields import (
 from verigraph.tools.images import decode_image
 
 Instruction = Field(default=None, max_length=4000,
-                    description="the task in words, shown to planners (not checked by itself)")
+                    description="the task in words (shown, not checked)")
 
 
 def check_goal_against(goal: Goal, state: WorldState | None, *, field: str) -> None:

@@ -42,10 +42,10 @@ class GeneratorSpec(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     family: str = Field(min_length=1, max_length=32,
-                        description="scene family: blocks, kitchen, tableware or tangram")
+                        description="blocks, kitchen, tableware or tangram")
     seed: int = Field(default=0, ge=0, le=2**31 - 1)
     n_objects: int | None = Field(default=None, ge=1, le=12,
-                                  description="movable objects (default: drawn from the seed)")
+                                  description="movable objects (default: from seed)")
 
 
 class LoadSceneInput(BaseModel):
@@ -53,31 +53,27 @@ class LoadSceneInput(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
 
-    scene_id: SceneId | None = None
+    scene_id: SceneId | None = Field(default=None, description="built-in scene id")
     graph: BoundedGraph | None = Field(default=None, description="a scene graph to start from")
     image: ImageData | None = Field(
-        default=None, description="photo of the scene; when built-in perception finds no "
-                                   "known object, the episode waits for submit_scene_graph")
+        default=None, description="photo; if perception finds no object, "
+                                   "call submit_scene_graph next")
     generator: GeneratorSpec | None = Field(default=None,
                                             description="generate a scene with sim2d")
     dictionary: DictionaryName | None = Field(
-        default=None, description="dictionary D for an image or a graph that names none")
+        default=None, description="dictionary D for an image or graph")
     goal: BoundedGoal | None = Field(default=None, description="goal now (else the built-in one, "
                                                         "or set_goal later)")
     instruction: str | None = Instruction
-    simulate: bool = Field(default=False, description="also execute actions in the 2D "
-                                                      "simulator (needs verigraph.sim2d); "
-                                                      "the same as executor=sim2d")
+    simulate: bool = Field(default=False, description="same as executor=sim2d")
     executor: str | None = Field(
         default=None, min_length=1, max_length=32,
-        description=f"where actions run: {EXECUTOR_HELP}; default: the server's. An arm "
-                    "episode uses the server's arm configuration (mode dry-run unless the "
-                    "operator configured sim or real)")
+        description=f"where actions run: {EXECUTOR_HELP}; default: the server's")
     seed: int = Field(default=0, ge=0, le=2**31 - 1, description="simulator seed")
     k: int = Field(default=DEFAULT_K, ge=1, le=50, description="max actions per "
                                                                "execute_actions call")
     t: int = Field(default=DEFAULT_T, ge=1, le=100,
-                   description="stop after t consecutive failed execute_actions calls")
+                   description="stop after t failed calls in a row")
 
     @model_validator(mode="after")
     def _one_source(self) -> LoadSceneInput:

@@ -45,100 +45,83 @@ class ToolSpec:
 
 TOOL_SPECS: tuple[ToolSpec, ...] = (
     ToolSpec("load_scene", "Start an episode",
-             "Start a planning episode from a built-in scene id (cup_on_book, three_blocks, "
-             "kitchen_pan), a scene graph, an image, or the sim2d generator. Returns the "
-             "episode_id every other stateful tool takes, the current graph and the goal. "
-             "executor picks where actions run (graph, sim2d, or the server's arm); an arm "
-             "episode reports whether the arm observes the scene as the graph says.",
+             "Start an episode from a built-in scene_id, a graph, an image or the sim2d "
+             "generator. Returns the episode_id the other tools take, the graph and the goal.",
              loading.LoadSceneInput, summaries.EpisodeState, loading.load_scene,
              read_only=False, open_world=True),
     ToolSpec("set_goal", "Set the goal",
-             "Set the episode's goal: a goal graph (partial=true: only the listed edges must "
-             "hold), a predicate (single_stack), a reference image, or an instruction in "
-             "words. An invalid goal changes nothing.",
+             "Set the goal: a goal graph (partial: only its edges must hold), a predicate, a "
+             "reference image, or words. An invalid goal changes nothing.",
              goals.SetGoalInput, goals.GoalOutput, goals.set_goal,
              read_only=False, idempotent=True),
     ToolSpec("get_state", "Episode state",
-             "Current scene graph, goal, difference to the goal, executed actions, tau "
-             "(consecutive failed execute_actions calls), k and t.",
+             "Current graph, goal and its difference, executed actions, tau (consecutive "
+             "failed calls), k and t.",
              episodes.EpisodeRef, summaries.EpisodeState, episodes.get_state,
              read_only=True, idempotent=True),
     ToolSpec("validate_action", "Check one action",
-             "Check one action (JSON or text such as move(cup, on, table)) on the episode's "
-             "current graph without executing it: the violated constraint with a fix, or "
-             "the edges it would change. Changes nothing.",
+             "Check one action (JSON or text, e.g. move(cup, on, table)) without executing it:"
+             " the violated constraint and a fix, or the edges it would change.",
              acting.ValidateActionInput, acting.ActionCheck, acting.validate_action,
              read_only=True, idempotent=True),
     ToolSpec("execute_actions", "Execute actions",
-             "Execute at most k actions in order on the episode (and its simulator or arm) "
-             "until the first violation; the valid prefix stays applied. Returns the new "
-             "graph, the violation feedback, tau, whether the threshold t is reached and "
-             "whether the goal holds. Include done (the end token) when the goal is reached. "
-             "On a real arm the user is asked to approve the motions first.",
+             "Execute at most k actions in order until the first violation (the valid prefix "
+             "stays). Returns the graph, feedback with a fix, tau and whether the goal holds. "
+             "End with done. A real arm asks the user first.",
              acting.ExecuteActionsInput, acting.ExecutionOutput, acting.execute_actions,
              read_only=False, destructive=True, open_world=True),
     ToolSpec("validate_plan", "Validate a whole plan",
-             "Stateless: check a whole plan (text, one action per line, or a list) from a "
-             "scene id, a graph or an episode's current graph, optionally against a goal. "
-             "Per-step report; stores and changes nothing.",
+             "Stateless: check a whole plan from a scene_id, graph or episode, optionally "
+             "against a goal. Per-step report.",
              acting.ValidatePlanInput, ValidationReport, acting.validate_plan,
              read_only=True, idempotent=True, summary=acting.report_summary),
     ToolSpec("check_goal", "Check the goal",
-             "Difference between the episode's current graph and its goal (or a goal given "
-             "here): missing and extra edges and objects.",
+             "Missing and extra edges and objects between the episode's graph and its goal (or"
+             " one given here).",
              acting.CheckGoalInput, acting.GoalCheck, acting.check_goal,
              read_only=True, idempotent=True),
     ToolSpec("generate_scene_graph", "Perceive a scene graph",
-             "Built-in perception: image -> scene graph. For images it does not know, use "
-             "get_scene_image and submit_scene_graph with your own vision model instead.",
+             "Built-in perception: the image (given or the episode's) -> scene graph. For "
+             "other images use get_scene_image and submit_scene_graph.",
              scenes.GenerateSceneGraphInput, scenes.SceneGraphSubmission,
              scenes.generate_scene_graph, read_only=True, idempotent=True),
     ToolSpec("render_scene", "Render the scene",
-             "PNG image of the episode's scene: the simulator's render when the episode is "
-             "simulated, else a drawing of the scene graph (view=goal draws the goal graph).",
+             "PNG of the episode's scene: the simulator's render, else a drawing of the graph "
+             "(view=goal: the goal).",
              scenes.RenderSceneInput, None, scenes.render_scene,
              read_only=True, idempotent=True),
     ToolSpec("solve", "Reference plan",
-             "A reference plan by classical search from the episode's current graph (or a "
-             "scene) to its goal, re-checked by the validator. Changes nothing.",
+             "A reference plan by search to the goal, re-checked by the validator.",
              solving.SolveInput, solving.SolveOutput, solving.solve,
              read_only=True, idempotent=True),
     ToolSpec("get_scene_image", "Scene image and prompt",
-             "The episode's scene image together with the scene-graph generation prompt "
-             "(relations R, dictionary D, task), for your own vision model; answer with "
-             "submit_scene_graph.",
+             "The episode's image with the scene-graph prompt (relations R, dictionary D) for "
+             "your own vision model; answer with submit_scene_graph.",
              scenes.GetSceneImageInput, None, scenes.get_scene_image,
              read_only=True, idempotent=True),
     ToolSpec("submit_scene_graph", "Submit a scene graph",
-             "Check a scene graph you wrote for an image against dictionary D and relations "
-             "R: synonyms and spellings are normalised and every problem is reported at "
-             "once. An accepted graph becomes the starting graph of an episode that was "
-             "loaded from an image (an arm episode's arm attaches then).",
+             "Check a scene graph you wrote against D and R (synonyms normalised, every "
+             "problem at once). An image episode starts from an accepted graph.",
              scenes.SubmitSceneGraphInput, scenes.SceneGraphSubmission,
              scenes.submit_scene_graph, read_only=False, idempotent=True, open_world=True),
     ToolSpec("end_episode", "End the episode",
-             "The end token: final verdict (goal reached or not, threshold reached), final "
-             "graph and the trace of every execute_actions call. Closes the episode; its id "
-             "stops working.",
+             "The end token: verdict (goal reached, threshold reached), final graph and trace."
+             " The episode_id stops working.",
              episodes.EpisodeRef, episodes.EpisodeVerdict, episodes.end_episode,
              read_only=False, destructive=True),
     ToolSpec("arm_status", "Arm status",
-             "State of an arm episode's arm: driver, mode (dry-run moves nothing, sim, real), "
-             "connection, whether the stop is latched and why, busy, tool pose, last "
-             "outcome, commands sent. Answers at once, even during a motion.",
+             "An arm episode's arm: driver, mode, connection, latched stop and why, busy, pose, "
+             "last outcome. Answers even mid-motion.",
              arm.ArmRef, arm.ArmStatusOutput, arm.arm_status,
              read_only=True, idempotent=True, open_world=True),
     ToolSpec("arm_stop", "Stop the arm",
-             "Stop the episode's arm now, even in the middle of a motion, and latch the "
-             "stop: every later motion is refused until arm_reset. Calling it again keeps "
-             "it latched.",
+             "Stop the arm now, even mid-motion, and latch the stop: later motions are refused"
+             " until arm_reset.",
              arm.ArmStopInput, arm.ArmStatusOutput, arm.arm_stop,
              read_only=False, idempotent=True, open_world=True),
     ToolSpec("arm_reset", "Reset the arm's stop",
-             "Clear the arm's latched stop (or its controller's error) once the stopped "
-             "motion has ended, so the arm accepts motions again; nothing moves. On a real "
-             "arm the user is asked to approve it first; a simulated or dry-run arm is "
-             "reset only by its operator unless the operator allowed agent resets.",
+             "Clear the latched stop after the motion ended; nothing moves. A real arm asks "
+             "the user; sim/dry-run only if the operator allows agent resets.",
              arm.ArmRef, arm.ArmStatusOutput, arm.arm_reset,
              read_only=False, destructive=True, open_world=True),
 )

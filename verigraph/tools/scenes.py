@@ -34,16 +34,16 @@ from verigraph.tools.fields import (
     ImageData,
     check_attrs_size,
     dictionary_for,
+    with_dictionary_advice,
 )
 from verigraph.tools.images import KeptImage, decode_image, encode_png
 from verigraph.tools.store import Episode
+from verigraph.tools.texts import graph_lines
 
 Width = Field(default=None, ge=64, le=2048,
-              description="image width in pixels; omit to let the scene choose: a simulated "
-                          "tabletop in its own shape at 8 px per world unit, tangram and "
-                          "graph drawings 640x480, a loaded photo as loaded (at most 1600 px)")
+              description="pixels; omit to let the scene choose (drawings 640x480)")
 Height = Field(default=None, ge=64, le=2048,
-               description="image height in pixels; omit to follow the scene's shape")
+               description="pixels; omit to keep the scene's shape")
 
 
 @dataclass(frozen=True)
@@ -81,8 +81,7 @@ class RenderSceneInput(BaseModel):
 
     episode_id: EpisodeId
     view: Literal["current", "goal"] = Field(
-        default="current", description="the current scene, or the goal (a simulator render "
-                                       "for generated scenes, else a drawing of the goal graph)")
+        default="current", description="the current scene or the goal")
     width: int | None = Width
     height: int | None = Height
 
@@ -116,7 +115,7 @@ class GetSceneImageInput(BaseModel):
 
     episode_id: EpisodeId
     task: str | None = Field(default=None, max_length=4000,
-                             description="what the scene graph is for, added to the prompt")
+                             description="what the graph is for")
     width: int | None = Width
     height: int | None = Height
 
@@ -147,8 +146,8 @@ class SubmitSceneGraphInput(BaseModel):
         description="nodes with id/label, edges "
                                               "source/relation/target")
     episode_id: EpisodeId | None = Field(
-        default=None, description="an episode loaded from an image adopts the graph if it "
-                                  "is accepted; for other episodes it is compared only")
+        default=None, description="an image episode adopts an accepted graph; others "
+                                  "only compare")
     dictionary: DictionaryName | None = Field(default=None, description="dictionary D to "
                                                                         "check against")
 
@@ -179,6 +178,9 @@ class SceneGraphSubmission(BaseModel):
                 lines.append(f"- ... and {len(self.problems) - 20} more")
             return "\n".join(lines)
         text = f"accepted: {len(self.graph.nodes)} objects, {len(self.graph.edges)} edges"
+        if not self.graph.nodes:
+            text += (" (nothing recognised; the scene need not be empty: describe it with "
+                     "get_scene_image and submit_scene_graph)")
         if self.normalised:
             text += f", {len(self.normalised)} name(s) normalised"
         if self.adopted:
@@ -189,7 +191,7 @@ class SceneGraphSubmission(BaseModel):
             text += ("; matches the episode's graph" if self.diff_to_episode.satisfied else
                      "; differs from the episode's graph: "
                      + self.diff_to_episode.summary().removeprefix("goal not reached: "))
-        return text
+        return text + "\n" + graph_lines(self.graph) if self.graph.nodes else text
 
 
 def submit_scene_graph(ctx: ToolContext, params: SubmitSceneGraphInput) -> SceneGraphSubmission:
@@ -225,6 +227,7 @@ def submit_scene_graph(ctx: ToolContext, params: SubmitSceneGraphInput) -> Scene
 
 def _checked(graph: SubmittedGraph, dictionary: Dictionary) -> SceneGraphSubmission:
     scene, renames, problems = check_submission(graph, dictionary)
+    problems = with_dictionary_advice(scene, problems, dictionary.name)
     accepted = not problems
     if accepted:
         try:
@@ -248,7 +251,7 @@ class GenerateSceneGraphInput(BaseModel):
     image: ImageData | None = None
     episode_id: EpisodeId | None = Field(default=None, description="use this episode's image")
     dictionary: DictionaryName | None = None
-    task: str | None = Field(default=None, max_length=4000)
+    task: str | None = Field(default=None, max_length=4000, description="what the graph is for")
 
     @model_validator(mode="after")
     def _one_image(self) -> GenerateSceneGraphInput:
@@ -267,6 +270,13 @@ def generate_scene_graph(ctx: ToolContext, params: GenerateSceneGraphInput
     else:
         assert params.episode_id is not None
         with ctx.store.use(params.episode_id) as episode:
+            if not callable(getattr(episode.world, "render", None)) and episode.image is None:
+                raise ToolArgumentError(
+                    f"episode {episode.id} has no photo and no simulator, so there is "
+                    f"nothing to perceive (its graph came from {episode.source}); perceiving "
+                    "a drawing of that graph would find no objects", field="episode_id",
+                    value=episode.id, fix="pass image (a base64 photo of the scene), or "
+                    "read the graph the episode already has with get_state")
             image = _picture(episode)
     graph = perceive(image, dictionary=dictionary)
     submitted = SubmittedGraph.model_validate(graph.model_dump())

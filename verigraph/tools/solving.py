@@ -31,18 +31,18 @@ class SolveInput(BaseModel):
 
     episode_id: EpisodeId | None = Field(default=None, description="plan from this "
                                                                    "episode's current graph")
-    scene_id: SceneId | None = None
-    graph: BoundedGraph | None = None
+    scene_id: SceneId | None = Field(default=None, description="plan from a built-in scene")
+    graph: BoundedGraph | None = Field(default=None, description="plan from this graph")
     goal: BoundedGoal | None = Field(default=None, description="defaults to the episode's or the "
                                                         "built-in scene's goal")
     max_expansions: int = Field(default=200_000, ge=1, le=2_000_000,
-                                description="search budget (nodes expanded)")
+                                description="max nodes expanded")
     time_limit: float = Field(default=5.0, gt=0, le=600,
-                              description="wall-clock budget in seconds")
+                              description="seconds")
     memory_limit_mb: float = Field(default=200, gt=0, le=16_384,
-                                   description="memory budget in MiB (growth during the search)")
-    anytime: bool = Field(default=False, description="return the fast strategy's plan, refined "
-                                                     "within the budget, with a lower bound")
+                                   description="MiB of growth")
+    anytime: bool = Field(default=False, description="fast plan, then refined; "
+                                                     "with a lower bound")
 
     @model_validator(mode="after")
     def _one_scene(self) -> SolveInput:

@@ -16,6 +16,7 @@ from verigraph.graph.model import SceneGraph
 from verigraph.tools.executors import SceneCheck
 from verigraph.tools.fields import dictionary_for
 from verigraph.tools.store import Episode
+from verigraph.tools.texts import goal_line, graph_lines
 
 
 class EpisodeState(BaseModel):
@@ -53,15 +54,17 @@ class EpisodeState(BaseModel):
         if self.graph is None:
             return (f"episode {self.episode_id}: waiting for a scene graph of its image "
                     "(get_scene_image, then submit_scene_graph)")
-        edges = "; ".join(self.graph.sentences()) or "no edges"
         goal = "no goal" if self.goal_diff is None else self.goal_diff.summary()
-        text = (f"episode {self.episode_id}: {len(self.graph.nodes)} objects ({edges}); {goal}; "
+        text = (f"episode {self.episode_id}: {len(self.graph.nodes)} objects; {goal}; "
                 f"{len(self.executed)} executed, tau={self.tau}/{self.t}, k={self.k}")
         if self.arm_mode is not None:
             text += f"; runs on {self.executor} ({self.arm_mode})"
         if self.scene_check is not None and not self.scene_check.matches:
             text += f"; {self.scene_check.summary()}"
-        return text
+        lines = [text, graph_lines(self.graph, self.dictionary), goal_line(self.goal)]
+        if self.last_violation is not None:
+            lines.append(f"last refusal: {self.last_violation.text()}")
+        return "\n".join(line for line in lines if line)
 
 
 def describe(episode: Episode) -> EpisodeState:
