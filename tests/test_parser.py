@@ -6,6 +6,7 @@ import pytest
 
 from verigraph.actions import AlignAction, MoveAction, parse_plan
 from verigraph.actions.model import DoneAction
+from verigraph.actions.parser import parse_text_plan
 from verigraph.errors import PlanParseError
 
 
@@ -75,3 +76,16 @@ def test_parsing_is_linear_in_plan_length():
     small, large = timed(10_000), timed(100_000)
     # Linear would be 10x; allow generous noise but catch quadratic behaviour (100x).
     assert large < small * 30
+
+
+def test_every_bad_line_is_reported_and_the_location_once():
+    plan = "move(cup, desk)\nmove(book shelf\nfoo(bar)\nmove(cup, table)\nmove(,x)\n"
+    with pytest.raises(PlanParseError) as err:
+        parse_text_plan(plan)
+    e = err.value
+    assert (e.line, e.column) == (2, 1)
+    assert [(m.line, m.message) for m in e.more] == [
+        (3, "unknown action 'foo'"), (5, "empty argument")]
+    text = str(e)
+    assert text.startswith("plan line 2, column 1: not an action; also line 3, column 1: ")
+    assert text.count("line 2") == 1 and "line 5, column" in text

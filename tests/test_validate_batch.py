@@ -41,7 +41,7 @@ def test_batch_mixes_pddl_and_scene_items_and_survives_bad_ones(tmp_path):
     assert by_id["ok"]["valid"] and len(by_id["ok"]["steps"]) == 4
     assert by_id[7]["violations"][0]["constraint"] == "target_full"
     assert by_id[7]["violations"][0]["step"] == 2
-    assert by_id["arity"]["ok"] is False and "line 1" in by_id["arity"]["message"]
+    assert by_id["arity"]["ok"] is False and "line 1" in by_id["arity"]["field"]
     assert by_id["missing"]["field"] == "plan"
     assert by_id["scene"]["valid"] and by_id["scene"]["goal_reached"]
     assert by_id["neither"]["error"] == "InputFileError"

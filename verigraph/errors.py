@@ -60,12 +60,22 @@ class PlanParseError(VeriGraphError):
 
     def __init__(self, message: str, *, line: int, column: int, text: str,
                  expected: str) -> None:
-        super().__init__(f"line {line}, column {column}: {message}", field=f"plan line {line}",
-                         value=text, fix=f"write it as {expected}")
+        # The field carries the location once: "plan line 2, column 6: not an action".
+        super().__init__(message, field=f"plan line {line}, column {column}", value=text,
+                         fix=f"write it as {expected}")
         self.line = line
         self.column = column
         self.text = text
         self.expected = expected
+        self.more: list[PlanParseError] = []  # later lines that do not parse either
+
+    def with_more(self, later: list[PlanParseError]) -> PlanParseError:
+        """This error, naming the other bad lines too, so one round fixes them all."""
+        self.more = later
+        if later:
+            self.message += "; also " + "; ".join(
+                f"line {e.line}, column {e.column}: {e.message}" for e in later)
+        return self
 
 
 class InputFileError(VeriGraphError):

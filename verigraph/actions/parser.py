@@ -113,20 +113,33 @@ def _check_name(arg: str, col: int, line: int, text: str, expected: str) -> None
                              column=col + 1, text=text, expected=expected)
 
 
+MAX_REPORTED_ERRORS = 10  # bad lines named in one error; a garbage file stops there
+
+
 def parse_text_plan(text: str) -> list[AnyAction]:
     """A text plan; blank lines and comments are skipped; nothing may follow `done`."""
     actions: list[AnyAction] = []
+    errors: list[PlanParseError] = []
     done_line = 0
     for number, raw in enumerate(text.splitlines(), start=1):
         if not raw.split("#", 1)[0].strip():
             continue
         if done_line:
-            raise PlanParseError(f"action after done (line {done_line})", line=number,
-                                 column=1, text=raw, expected="done as the last action")
-        action = parse_action_text(raw, number)
+            errors.append(PlanParseError(f"action after done (line {done_line})", line=number,
+                                         column=1, text=raw, expected="done as the last action"))
+            break
+        try:
+            action = parse_action_text(raw, number)
+        except PlanParseError as exc:
+            errors.append(exc)  # keep going: report every bad line at once
+            if len(errors) > MAX_REPORTED_ERRORS:
+                break
+            continue
         if isinstance(action, DoneAction):
             done_line = number
         actions.append(action)
+    if errors:
+        raise errors[0].with_more(errors[1:MAX_REPORTED_ERRORS])
     return actions
 
 
