@@ -19,6 +19,7 @@ from mcp_helpers import structured
 from verigraph.arm import ArmWorld
 from verigraph.arm.testing.deps import require
 from verigraph.server import build_server
+from verigraph.server.heavy import HeavyLimits
 
 require("xarm")
 
@@ -79,13 +80,14 @@ async def test_arm_stop_reaches_the_emergency_stop_while_status_hangs(tmp_path: 
 
 
 async def test_arm_stop_does_not_queue_behind_busy_worker_threads(tmp_path: Path) -> None:
-    """Every shared worker thread is taken (a motion, a call waiting for the episode);
-    the stop still goes out at once."""
+    """Every heavy-call slot is taken (a motion; a call waiting behind it); the stop
+    still goes out at once."""
     api = BlockCellStandIn()
     api.time_scale = 1.0  # linear moves take their real duration on the stand-in
     box = xarm_toolbox(tmp_path, api, speed_m_s=0.05)
     anyio.to_thread.current_default_thread_limiter().total_tokens = 2
-    async with Client(build_server(box), elicitation_callback=User()) as client:
+    one_worker = HeavyLimits(workers=1)  # the motion takes the server's only heavy slot
+    async with Client(build_server(box, heavy=one_worker), elicitation_callback=User()) as client:
         eid = structured(await client.call_tool("load_scene", {"graph": loose_blocks()}))[
             "episode_id"]
         async with anyio.create_task_group() as tg:
@@ -95,10 +97,6 @@ async def test_arm_stop_does_not_queue_behind_busy_worker_threads(tmp_path: Path
                 while not api.called("set_position"):  # the motion has started
                     await anyio.sleep(0.01)
             tg.start_soon(client.call_tool, "get_state", {"episode_id": eid})  # waits
-            limiter = anyio.to_thread.current_default_thread_limiter()
-            with anyio.fail_after(10):
-                while limiter.borrowed_tokens < limiter.total_tokens:  # all taken
-                    await anyio.sleep(0.01)
             with anyio.fail_after(3):  # the motion alone takes more than 8 s
                 stopped = structured(await client.call_tool("arm_stop", {"episode_id": eid}))
     assert stopped["stop_latched"] and api.called("emergency_stop")

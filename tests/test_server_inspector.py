@@ -51,7 +51,9 @@ def test_inspector_lists_the_tools_over_stdio() -> None:
     assert [t["name"] for t in tools] == [s.name for s in TOOL_SPECS]
     by_name = {t["name"]: t for t in tools}
     assert by_name["validate_action"]["annotations"]["readOnlyHint"] is True
-    assert by_name["execute_actions"]["annotations"]["destructiveHint"] is True
+    # destructiveHint defaults to true in MCP, so it is sent only when false.
+    assert by_name["execute_actions"]["annotations"].get("destructiveHint", True) is True
+    assert "readOnlyHint" not in by_name["execute_actions"]["annotations"]
     assert "outputSchema" in by_name["validate_plan"]
     assert "outputSchema" not in by_name["render_scene"]
 
