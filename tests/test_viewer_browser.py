@@ -244,7 +244,8 @@ def red_pixels(png: bytes) -> int:
     image = cv2.imdecode(np.frombuffer(png, np.uint8), cv2.IMREAD_COLOR)
     assert image is not None
     red = np.array(OUTLINE_COLOR, dtype=np.int16)
-    return int((np.abs(image.astype(np.int16) - red).max(axis=2) < 40).sum())
+    count = int((np.abs(image.astype(np.int16) - red).max(axis=2) < 40).sum())
+    return count
 
 
 @pytest.mark.anyio
@@ -258,12 +259,12 @@ async def test_mcp_app_slider_steps_through_the_simulator_pictures() -> None:
             html = getattr((await client.read_resource(EPISODE_UI)).contents[0], "text", "")
             eid = structured(await client.call_tool("load_scene", {
                 "scene_id": "cup_on_book", "simulate": True}))["episode_id"]
-            for move in ("move(cup, on, desk)", "move(book, on, shelf)"):
+            for move in ("move(cup, on, desk)", "move(book, on, shelf)", "move(cup, on, book)"):
                 await client.call_tool("execute_actions", {"episode_id": eid,
                                                            "actions": [move]})
-            arguments = {"episode_id": eid, "actions": ["move(desk, on, shelf)"]}
+            arguments = {"episode_id": eid, "actions": ["move(book, on, desk)"]}
             result = await client.call_tool("execute_actions", arguments)
-            assert structured(result)["violation"]["constraint"] == "not_movable"
+            assert structured(result)["violation"]["blocking"] == ["cup"]
 
             async def host_call_tool(name: str, args: dict[str, Any]) -> dict[str, Any]:
                 return wire(await client.call_tool(name, args))
@@ -275,12 +276,12 @@ async def test_mcp_app_slider_steps_through_the_simulator_pictures() -> None:
                     "([html, tool, args, result]) => window.showApp(html, {}, tool, args, "
                     "result)", [html, "execute_actions", arguments, wire(result)])
                 app = page.frame_locator("#view")  # type: ignore[attr-defined]
-                await app.locator("#steps li.step").nth(2).wait_for(timeout=30_000)
+                await app.locator("#steps li.step").nth(3).wait_for(timeout=30_000)
                 sim = app.locator("#scene-render")
                 await page.locator("#view").screenshot(  # type: ignore[attr-defined]
                     path=str(screenshot_path("viewer_mcp_app_sim.png")))
                 sources, shots = [], []
-                for index in range(4):  # as loaded, two moves, the refused step
+                for index in range(5):  # as loaded, three moves, the refused step
                     await app.locator("#slider").fill(str(index))
                     sources.append(await sim.get_attribute("src"))
                     shots.append(await sim.screenshot())
@@ -288,7 +289,7 @@ async def test_mcp_app_slider_steps_through_the_simulator_pictures() -> None:
                         f"simulator picture after step {index}" if index
                         else "simulator picture as loaded")
                 assert all(s.startswith("data:image/png;base64,") for s in sources)
-                assert len(set(sources)) == 4 and len(set(shots)) == 4
-                # Only the refused step frames its object (the desk) in red.
-                assert [red_pixels(s) > 500 for s in shots] == [False, False, False, True]
+                assert len(set(sources)) == 5 and len(set(shots)) == 5
+                # Only the refused step frames the object in the way (the cup) in red.
+                assert [red_pixels(s) > 300 for s in shots] == [False] * 4 + [True]
                 assert log.off_loopback() == []
