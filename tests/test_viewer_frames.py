@@ -5,6 +5,7 @@ untouched."""
 from __future__ import annotations
 
 import copy
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,6 +16,7 @@ from verigraph.sim2d import generate_scene, world_for_graph
 from verigraph.sim2d.persist import world_from_state, world_state
 from verigraph.sim2d.render import tangram_boxes
 from verigraph.tools import Toolbox
+from verigraph.tools.context import ToolConfig
 from verigraph.tools.drawing import OUTLINE_COLOR
 from verigraph.tools.records import from_record, to_record
 from verigraph.viewer import ViewInput, frames, view
@@ -140,3 +142,16 @@ def test_the_world_as_loaded_is_kept_in_the_stored_record() -> None:
     assert restored.initial_world == loaded
     assert np.array_equal(world_from_state(loaded).render(),
                           world_for_graph(cup_on_book()).render())
+
+
+def test_another_host_on_a_durable_store_pictures_the_same_steps(tmp_path: Path) -> None:
+    url = f"sqlite:///{tmp_path / 'episodes.db'}"
+    here, there = (Toolbox(config=ToolConfig(store=url)) for _ in range(2))
+    eid = simulated_cup_on_book(here, MOVES)
+    local = view(here.context, ViewInput(episode_id=eid))
+    remote = view(there.context, ViewInput(episode_id=eid))
+    assert remote.initial_scene_render == local.initial_scene_render
+    assert [s.scene_render for s in remote.steps] == [s.scene_render for s in local.steps]
+    with there.context.store.use(eid) as episode:  # rebuilt from the record
+        now = episode.world.render(width=frames.FRAME_WIDTH)  # type: ignore[union-attr]
+    assert np.array_equal(picture(remote.steps[-1].scene_render or ""), now)
