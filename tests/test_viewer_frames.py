@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from test_viewer_views import count, picture
 
+from verigraph.actions.feedback import Violation
 from verigraph.graph.builtin_scenes import cup_on_book
 from verigraph.sim2d import generate_scene, world_for_graph
 from verigraph.sim2d.persist import world_from_state, world_state
@@ -155,3 +156,24 @@ def test_another_host_on_a_durable_store_pictures_the_same_steps(tmp_path: Path)
     with there.context.store.use(eid) as episode:  # rebuilt from the record
         now = episode.world.render(width=frames.FRAME_WIDTH)  # type: ignore[union-attr]
     assert np.array_equal(picture(remote.steps[-1].scene_render or ""), now)
+
+
+def test_a_step_the_world_did_not_carry_out_as_predicted_shows_the_world_after_it() -> None:
+    box = Toolbox()
+    eid = box.call("load_scene", {"scene_id": "cup_on_book",  # type: ignore[union-attr]
+                                  "simulate": True}).episode_id
+    assert box.call("execute_actions", {"episode_id": eid,  # type: ignore[union-attr]
+                                        "actions": MOVES[:2]}).ok
+    failed = Violation(step=2, action={"action": "move", "object": "book", "relation": "on",
+                                       "target": "shelf"}, constraint="execution_failed",
+                       message="the world did not end as predicted", blocking=["book"],
+                       suggestion="re-plan from the observed graph")
+    with box.context.store.use(eid) as episode:  # as execute_in_world records a mismatch
+        episode.trace[-1] = episode.trace[-1].model_copy(update={"violation": failed})
+        episode.last_violation = failed
+    result = view(box.context, ViewInput(episode_id=eid))
+    assert [(s.text, s.ok) for s in result.steps] == [(MOVES[0], True), (MOVES[1], False)]
+    assert result.steps[1].violation == failed and result.steps[1].outlined == ["book"]
+    moved, framed = (picture(s.scene_render or "") for s in result.steps)
+    assert count(framed, OUTLINE_COLOR) > 200
+    assert (moved != framed).any(axis=2).sum() > 0.01 * moved.shape[0] * moved.shape[1]

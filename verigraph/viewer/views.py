@@ -135,10 +135,14 @@ def episode_view(ctx: ToolContext, episode_id: str) -> EpisodeView:
         initial = episode.initial_graph or state.to_graph()
         executed = [a.text() for a in episode.executed]
         last = episode.trace[-1] if episode.trace else None
-        refused = None
+        refused, failed = None, False
         if last is not None and last.violation is not None:
-            refused = last.proposed[len(last.executed)]
-        recorded = episode.last_violation if refused is not None else None
+            if last.violation.constraint == "execution_failed" or \
+                    len(last.executed) >= len(last.proposed):
+                failed = bool(last.executed)  # executed, but the world ended otherwise
+            else:
+                refused = last.proposed[len(last.executed)]
+        recorded = episode.last_violation if refused is not None or failed else None
         goal = episode.goal
         simulated = callable(getattr(episode.world, "render", None))
         initial_world = episode.initial_world if simulated else None
@@ -149,8 +153,8 @@ def episode_view(ctx: ToolContext, episode_id: str) -> EpisodeView:
     report = validate_plan(ctx, ValidatePlanInput(plan=plan, graph=initial, goal=goal))
     if recorded is not None and report.steps and report.steps[-1].ok:
         last_step = report.steps[-1]  # refused by the simulator or arm, not by the graph
-        report.steps[-1] = last_step.model_copy(update={"ok": False, "violation": recorded,
-                                                        "edit": None})
+        report.steps[-1] = last_step.model_copy(update={
+            "ok": False, "violation": recorded, "edit": last_step.edit if failed else None})
         report.valid = report.plan_valid = False
     result = _assemble(f"episode ({source})", "episode", start, report)
     result.episode_id = episode_id
