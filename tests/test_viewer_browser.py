@@ -10,7 +10,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
+import cv2
 import httpx2
+import numpy as np
 import pytest
 from browser_helpers import browser_page, require_browser, screenshot_path
 from mcp import Client
@@ -19,6 +21,7 @@ from mcp.client.streamable_http import streamable_http_client
 from mcp_helpers import REPO, free_port, http_server, structured, verigraph_command
 
 from verigraph.server.apps import EPISODE_UI
+from verigraph.tools.drawing import OUTLINE_COLOR
 
 TOKEN = "viewer-test-token"
 APP_MIME = "text/html;profile=mcp-app"
@@ -233,6 +236,60 @@ async def test_mcp_app_follows_validate_plan_and_render_scene_results() -> None:
                     if tool == "render_scene":  # a simulated episode: its render is shown too
                         assert (await app.locator("#scene-render").get_attribute(
                             "src")).startswith("data:image/png;base64,")
-                        await page.locator("#view").screenshot(  # type: ignore[attr-defined]
-                            path=str(screenshot_path("viewer_mcp_app_sim.png")))
                     assert log.off_loopback() == []
+
+
+def red_pixels(png: bytes) -> int:
+    """Pixels close to the outline red in a screenshot (scaled, so not exact)."""
+    image = cv2.imdecode(np.frombuffer(png, np.uint8), cv2.IMREAD_COLOR)
+    assert image is not None
+    red = np.array(OUTLINE_COLOR, dtype=np.int16)
+    count = int((np.abs(image.astype(np.int16) - red).max(axis=2) < 40).sum())
+    return count
+
+
+@pytest.mark.anyio
+async def test_mcp_app_slider_steps_through_the_simulator_pictures() -> None:
+    ui = advertise("io.modelcontextprotocol/ui", {"mimeTypes": [APP_MIME]})
+    with http_server(token=TOKEN) as server:
+        async with httpx2.AsyncClient(headers={"Authorization": f"Bearer {TOKEN}"},
+                                      timeout=60) as http, \
+                Client(streamable_http_client(server.url, http_client=http),
+                       extensions=[ui]) as client:
+            html = getattr((await client.read_resource(EPISODE_UI)).contents[0], "text", "")
+            eid = structured(await client.call_tool("load_scene", {
+                "scene_id": "cup_on_book", "simulate": True}))["episode_id"]
+            for move in ("move(cup, on, desk)", "move(book, on, shelf)", "move(cup, on, book)"):
+                await client.call_tool("execute_actions", {"episode_id": eid,
+                                                           "actions": [move]})
+            arguments = {"episode_id": eid, "actions": ["move(book, on, desk)"]}
+            result = await client.call_tool("execute_actions", arguments)
+            assert structured(result)["violation"]["blocking"] == ["cup"]
+
+            async def host_call_tool(name: str, args: dict[str, Any]) -> dict[str, Any]:
+                return wire(await client.call_tool(name, args))
+
+            async with browser_page() as (page, log):
+                await page.expose_function("hostCallTool", host_call_tool)  # type: ignore[attr-defined]
+                await page.goto(HOST_PAGE.as_uri())  # type: ignore[attr-defined]
+                await page.evaluate(  # type: ignore[attr-defined]
+                    "([html, tool, args, result]) => window.showApp(html, {}, tool, args, "
+                    "result)", [html, "execute_actions", arguments, wire(result)])
+                app = page.frame_locator("#view")  # type: ignore[attr-defined]
+                await app.locator("#steps li.step").nth(3).wait_for(timeout=30_000)
+                sim = app.locator("#scene-render")
+                await page.locator("#view").screenshot(  # type: ignore[attr-defined]
+                    path=str(screenshot_path("viewer_mcp_app_sim.png")))
+                sources, shots = [], []
+                for index in range(5):  # as loaded, three moves, the refused step
+                    await app.locator("#slider").fill(str(index))
+                    sources.append(await sim.get_attribute("src"))
+                    shots.append(await sim.screenshot())
+                    assert await sim.get_attribute("alt") == (
+                        f"simulator picture after step {index}" if index
+                        else "simulator picture as loaded")
+                assert all(s.startswith("data:image/png;base64,") for s in sources)
+                assert len(set(sources)) == 5 and len(set(shots)) == 5
+                # Only the refused step frames the object in the way (the cup) in red.
+                assert [red_pixels(s) > 300 for s in shots] == [False] * 4 + [True]
+                assert log.off_loopback() == []

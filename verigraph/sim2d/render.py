@@ -184,17 +184,36 @@ def tabletop_boxes(world: TabletopPicture, width: int | None = None, height: int
     return boxes
 
 
-def render_tangram(world: TangramPicture, width: int | None = None, height: int | None = None,
-                   *, labels: bool = False) -> np.ndarray:
+def _tangram_frame(world: TangramPicture, width: int | None, height: int | None
+                   ) -> tuple[dict[str, list[tuple[float, float]]], _Camera, int, int]:
+    """The pieces' outlines and the top-view camera framing all of them."""
     polys = {n.id: world.vertices(n.id) for n in world.nodes}
     xs = [x for poly in polys.values() for x, _ in poly] or [0.0, 1.0]
     ys = [y for poly in polys.values() for _, y in poly] or [0.0, 1.0]
     m = 2 * MARGIN
     view = (min(xs) - m, min(ys) - m, max(xs) + m, max(ys) + m)
     width, height = frame_size(view, width, height, default=DEFAULT_SIZE)
+    return polys, _Camera(view, width, height), width, height
+
+
+def tangram_boxes(world: TangramPicture, width: int | None = None, height: int | None = None
+                  ) -> dict[str, tuple[int, int, int, int]]:
+    """Pixel boxes (x0, y0, x1, y1) of the pieces (their polygons' bounds) in
+    `render_tangram`'s picture of the same size, as `tabletop_boxes` for a side view."""
+    polys, cam, _, _ = _tangram_frame(world, width, height)
+    boxes = {}
+    for piece, poly in polys.items():
+        corners = [cam.pixel(x, y) for x, y in poly]
+        boxes[piece] = (min(x for x, _ in corners), min(y for _, y in corners),
+                        max(x for x, _ in corners), max(y for _, y in corners))
+    return boxes
+
+
+def render_tangram(world: TangramPicture, width: int | None = None, height: int | None = None,
+                   *, labels: bool = False) -> np.ndarray:
+    polys, cam, width, height = _tangram_frame(world, width, height)
     img = np.empty((height, width, 3), dtype=np.uint8)
     img[:] = palette.TANGRAM_BACKGROUND
-    cam = _Camera(view, width, height)
     tangram = builtin_dictionary("tangram")
     for node in world.nodes:
         color = palette.object_color(node.id, node.attrs.get("color"),

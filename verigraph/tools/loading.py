@@ -16,7 +16,8 @@ from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.perception import perceive
-from verigraph.sim2d import generate_scene, world_for_graph
+from verigraph.sim2d import SimWorld, generate_scene, world_for_graph
+from verigraph.sim2d.persist import world_state
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.executors import EXECUTOR_HELP, SceneCheck, arm_setup_for, check_executor
@@ -166,7 +167,9 @@ def load_scene(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
                        goal_world=source.goal_world, image=source.image,
                        dictionary_name=params.dictionary, executor=executor,
                        scene_check=scene_check,
-                       initial_graph=state.to_graph() if state is not None else None)
+                       initial_graph=state.to_graph() if state is not None else None,
+                       initial_world=world_state(world) if isinstance(world, SimWorld)
+                       else None)
 
     try:
         return describe(ctx.store.add(make))

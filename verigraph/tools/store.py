@@ -135,6 +135,7 @@ class Episode:
     done: bool = False
     requests: RequestRecords = field(default_factory=RequestRecords)
     extras: dict[str, Any] = field(default_factory=dict)  # small JSON records, persisted
+    initial_world: dict[str, Any] | None = None  # sim2d world as loaded (JSON): for replays
     lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
     last_used: float = 0.0
 

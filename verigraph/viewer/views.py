@@ -6,8 +6,9 @@ outlined.
 A plan is checked by the `validate_plan` tool function; an episode's trace is re-checked
 the same way from its initial graph (the executed prefix plus the refused action), and
 the violation the episode recorded wins for the refused step, because a simulator or
-an arm can refuse what the graph allows. Simulated episodes add the simulator's render
-of the current scene (the `render_scene` tool function).
+an arm can refuse what the graph allows. Simulated episodes add the simulator's picture
+of every step (replayed on a copy of the world as loaded, see `frames`) and of the
+current scene (the `render_scene` tool function).
 """
 
 from __future__ import annotations
@@ -23,15 +24,14 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.report import ValidationReport
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.sim2d.render import tabletop_boxes
-from verigraph.sim2d.tabletop import TabletopWorld
 from verigraph.tools.acting import ValidatePlanInput, validate_plan
 from verigraph.tools.context import ToolContext
-from verigraph.tools.drawing import OUTLINE_COLOR, draw_graph
+from verigraph.tools.drawing import draw_graph
 from verigraph.tools.fields import BoundedGoal, BoundedGraph, EpisodeId, SceneId
 from verigraph.tools.images import encode_png
 from verigraph.tools.loading import stateless_source
 from verigraph.tools.scenes import RenderSceneInput, render_scene
+from verigraph.viewer.frames import boxes, outline, step_frames
 
 Role = Literal["fixed", "container", "surface", "object"]
 RENDER_SIZE = (480, 360)
@@ -59,6 +59,8 @@ class StepView(BaseModel):
                                 "the blocking ones, else those the refused action names")
     graph: SceneGraph = Field(description="the graph after this step (unchanged if refused)")
     render: str | None = Field(default=None, description="data:image/png;base64 drawing")
+    scene_render: str | None = Field(default=None, description="the simulator's picture "
+                                     "after this step (simulated episodes), blockers framed")
 
 
 class EpisodeView(BaseModel):
@@ -77,6 +79,8 @@ class EpisodeView(BaseModel):
     goal_summary: str | None = None
     scene_render: str | None = Field(default=None, description="the simulator's render of "
                                                                "the current scene, if any")
+    initial_scene_render: str | None = Field(default=None, description="the simulator's "
+                                             "picture of the scene as loaded, if replayed")
 
     def summary(self) -> str:
         refused = [s for s in self.steps if not s.ok]
@@ -131,20 +135,26 @@ def episode_view(ctx: ToolContext, episode_id: str) -> EpisodeView:
         initial = episode.initial_graph or state.to_graph()
         executed = [a.text() for a in episode.executed]
         last = episode.trace[-1] if episode.trace else None
-        refused = None
+        refused, failed = None, False
         if last is not None and last.violation is not None:
-            refused = last.proposed[len(last.executed)]
-        recorded = episode.last_violation if refused is not None else None
+            if last.violation.constraint == "execution_failed" or \
+                    len(last.executed) >= len(last.proposed):
+                failed = bool(last.executed)  # executed, but the world ended otherwise
+            else:
+                refused = last.proposed[len(last.executed)]
+        recorded = episode.last_violation if refused is not None or failed else None
         goal = episode.goal
         simulated = callable(getattr(episode.world, "render", None))
+        initial_world = episode.initial_world if simulated else None
+        executed_actions = list(episode.executed)
         source = episode.source
     plan = "\n".join(executed + ([refused] if refused else [])) or "done"
     start = WorldState.from_graph(initial, state.dictionary)
     report = validate_plan(ctx, ValidatePlanInput(plan=plan, graph=initial, goal=goal))
     if recorded is not None and report.steps and report.steps[-1].ok:
         last_step = report.steps[-1]  # refused by the simulator or arm, not by the graph
-        report.steps[-1] = last_step.model_copy(update={"ok": False, "violation": recorded,
-                                                        "edit": None})
+        report.steps[-1] = last_step.model_copy(update={
+            "ok": False, "violation": recorded, "edit": last_step.edit if failed else None})
         report.valid = report.plan_valid = False
     result = _assemble(f"episode ({source})", "episode", start, report)
     result.episode_id = episode_id
@@ -153,6 +163,12 @@ def episode_view(ctx: ToolContext, episode_id: str) -> EpisodeView:
         outlined = result.steps[-1].outlined if result.steps and not result.steps[-1].ok \
             else []
         result.scene_render = _data_url(_outline_simulated(ctx, episode_id, png, outlined))
+    if initial_world is not None:
+        first, frames = step_frames(initial_world, executed_actions,
+                                    [s.outlined for s in result.steps])
+        result.initial_scene_render = _data_url(first)
+        for step, frame in zip(result.steps, frames, strict=False):
+            step.scene_render = _data_url(frame)
     return result
 
 
@@ -160,14 +176,11 @@ def _outline_simulated(ctx: ToolContext, episode_id: str, png: bytes, ids: list[
                        ) -> bytes:
     """The simulator's render with the objects that block the refused step framed in red."""
     with ctx.store.use(episode_id) as episode:
-        world = episode.world
-        boxes = tabletop_boxes(world) if isinstance(world, TabletopWorld) else {}
+        framed = boxes(episode.world)
     image = cv2.imdecode(np.frombuffer(png, np.uint8), cv2.IMREAD_COLOR)
-    if not ids or not boxes or image is None:
+    if not ids or not framed or image is None:
         return png
-    for x0, y0, x1, y1 in (boxes[i] for i in ids if i in boxes):
-        cv2.rectangle(image, (x0 - 4, y0 - 4), (x1 + 4, y1 + 4), OUTLINE_COLOR, 3, cv2.LINE_AA)
-    return encode_png(image)
+    return encode_png(outline(image, framed, ids))
 
 
 def _data_url(png: bytes) -> str:

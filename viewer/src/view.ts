@@ -60,12 +60,17 @@ export function showView(root: HTMLElement, view: EpisodeView): void {
   slider.setAttribute("aria-label", "step");
   const graphBox = h("div", "graph");
   graphBox.id = "graph";
-  if (view.scene_render) {
-    const sim = h("img", "scene-render");
-    sim.id = "scene-render";
-    sim.src = view.scene_render;
-    sim.alt = "simulator render of the current scene";
-    left.append(h("h2", "", "current scene (simulator)"), sim, h("h2", "", "step by step"));
+  // Simulated episodes: the simulator's picture of each step follows the slider (a
+  // server that sends only the current scene's render gets that, fixed).
+  const perStep = Boolean(view.initial_scene_render);
+  const sim = h("img", "scene-render");
+  sim.id = "scene-render";
+  const simNote = h("div", "caption");
+  simNote.id = "scene-caption";
+  if (perStep || view.scene_render) {
+    const title = perStep ? "simulator" : "current scene (simulator)";
+    if (!perStep) { sim.src = view.scene_render!; sim.alt = "simulator render of the current scene"; }
+    left.append(h("h2", "", title), sim, simNote, h("h2", "", "scene graph, step by step"));
   }
   left.append(img, caption, slider, graphBox, legend());
   const list = h("ol", "steps");
@@ -80,6 +85,15 @@ export function showView(root: HTMLElement, view: EpisodeView): void {
     slider.value = String(index);
     const step = index > 0 ? view.steps[index - 1] : undefined;
     img.src = step?.render ?? view.initial_render;
+    if (perStep) {
+      const frame = step ? step.scene_render : view.initial_scene_render;
+      sim.hidden = !frame;
+      if (frame) sim.src = frame;
+      sim.alt = step ? `simulator picture after step ${step.step}` : "simulator picture as loaded";
+      simNote.hidden = Boolean(frame);
+      simNote.textContent = frame ? "" : "no simulator picture for this step (only the first "
+        + "steps are pictured)";
+    }
     caption.textContent = step ? `after step ${step.step}: ${step.text}` +
       (step.ok ? "" : ` — refused (${step.violation?.constraint})`) : "initial scene";
     graphBox.replaceChildren(drawGraph(step?.graph ?? view.initial_graph, view.roles,
