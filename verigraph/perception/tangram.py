@@ -16,12 +16,13 @@ import numpy as np
 
 from verigraph.graph.dictionary import Dictionary
 from verigraph.graph.model import Edge, Node, SceneGraph
-from verigraph.perception import colors, lighting
+from verigraph.perception import colors
 from verigraph.perception.catalogue import ObjectModel
 from verigraph.perception.config import PerceptionConfig
 from verigraph.perception.labelling import Labeller
+from verigraph.perception.photometry import correct_colours
 from verigraph.perception.regions import Region, colour_fragments
-from verigraph.perception.result import DetectedObject, PerceptionResult
+from verigraph.perception.result import CONFIDENT, DetectedObject, PerceptionResult, Uncertain
 from verigraph.perception.tangram_sides import (
     PlacedPiece,
     canonical_start,
@@ -90,10 +91,13 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
     models = piece_models(dictionary)
     if not models:
         raise ValueError("the dictionary has no tangram pieces with known shapes")
-    gain = lighting.estimate_gain(image, [palette.TANGRAM_BACKGROUND])
-    corrected = lighting.correct(image, gain)
     colour_names = tuple(sorted({m.colour for m in models}))
     table = colors.colour_table(colour_names, tangram=True)
+    photo = correct_colours(image, [c for i, c in enumerate(table.bgr)
+                                    if i not in (colors.UNKNOWN, colors.MIXED, colors.FLOOR)],
+                            palette.TANGRAM_BACKGROUND, [palette.TANGRAM_BACKGROUND])
+    corrected = photo.image
+    warnings += photo.notes
     classes = colors.classify(corrected, table)
     fragments = colour_fragments(corrected, classes, table, min_core=config.min_core_pixels)
     pieces = _largest_per_colour(fragments)
@@ -162,9 +166,35 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
     if not nodes:
         warnings.append("no tangram pieces were found in the image")
     graph = SceneGraph(nodes=nodes, edges=edges, dictionary="tangram").canonical()
+    confidence, uncertain = _confidence(graph, placed, objects)
     return PerceptionResult(graph=graph, view="tangram", family="tangram",
                             labeller=labeller.name, objects=[objects[p] for p in ids],
-                            warnings=warnings, scale=scale)
+                            warnings=warnings, scale=scale, confidence=confidence,
+                            uncertain=uncertain)
+
+
+def _confidence(graph: SceneGraph, placed: dict[str, PlacedPiece],
+                objects: dict[str, DetectedObject]) -> tuple[dict[str, float], list[Uncertain]]:
+    """A piece is as sure as its labelling and its shape fit (falling to 0 at the
+    rejection error); a contact as its less sure piece."""
+    confidence: dict[str, float] = {}
+    uncertain: list[Uncertain] = []
+    for label, piece in placed.items():
+        fit = max(0.0, 1.0 - max(0.0, piece.fit_error - MAX_FIT_ERROR / 2) / REJECT_FIT_ERROR)
+        value = round(min(objects[label].score, fit), 3)
+        confidence[label] = value
+        if value < CONFIDENT:
+            uncertain.append(Uncertain(item=label, confidence=value,
+                                       reason=f"its outline is {piece.fit_error:.2f} units "
+                                              "off the piece's shape"))
+    for e in graph.edges:
+        name = f"{e.source} touches {e.target} ({e.source_side}, {e.target_side})"
+        value = min(confidence.get(e.source, 1.0), confidence.get(e.target, 1.0))
+        confidence[name] = value
+        if value < CONFIDENT:
+            uncertain.append(Uncertain(item=name, confidence=value,
+                                       reason="one of its pieces is uncertain"))
+    return confidence, uncertain
 
 
 def _scale(found: list[tuple[ObjectModel, np.ndarray]]) -> float:

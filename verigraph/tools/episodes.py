@@ -35,6 +35,7 @@ from verigraph.tools.fields import (
     state_from_graph,
 )
 from verigraph.tools.images import decode_image
+from verigraph.tools.perceived import perceive
 from verigraph.tools.store import DEFAULT_K, DEFAULT_T, Episode, TraceEntry
 
 Instruction = Field(default=None, max_length=4000,
@@ -203,11 +204,12 @@ def _read_source(params: LoadSceneInput, executor: str) -> _Source:
     image = decode_image(params.image)
     perceived: SceneGraph | None = None
     if optional.has("verigraph.perception", "perceive"):
-        perceived = optional.perception()(image, dictionary=dictionary_for(params.dictionary))
-        if not perceived.nodes:
-            # Built-in perception found nothing it knows: the agent's own vision model may
-            # do better, so the episode waits for submit_scene_graph instead of starting
-            # from an empty scene.
+        seen = perceive(image, dictionary_for(params.dictionary))
+        perceived = seen.graph
+        if not perceived.nodes or not seen.confident:
+            # Built-in perception found nothing it knows, or is unsure: the agent's own
+            # vision model may do better, so the episode waits for submit_scene_graph
+            # instead of starting from an empty or doubtful scene.
             perceived = None
     return _Source("image", perceived, image=image)
 
@@ -361,12 +363,19 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
     """Replace the goal (or record an instruction); an invalid goal changes nothing."""
     graph = params.graph
     image = decode_image(params.image) if params.image is not None else None
-    perceive = optional.perception() if image is not None else None
     with ctx.store.use(params.episode_id) as episode:
-        if perceive is not None:
+        if image is not None:
             dictionary = (episode.state.dictionary if episode.state
                           else dictionary_for(episode.dictionary_name))
-            graph = perceive(image, dictionary=dictionary)
+            seen = perceive(image, dictionary)
+            if not seen.confident:
+                raise ToolArgumentError(
+                    "built-in perception is unsure of the goal image: "
+                    + "; ".join(d.message for d in seen.doubts[:5]),
+                    field="image", value=None,
+                    fix="give the goal as a graph (generate_scene_graph returns the "
+                        "perceived proposal to check and correct)")
+            graph = seen.graph
         goal: Goal | None = None
         if graph is not None or params.predicate is not None:
             goal = Goal(graph=graph, partial=params.partial, predicate=params.predicate,

@@ -75,6 +75,13 @@ def perception() -> Callable[..., Any]:
     return fn
 
 
+def perception_report() -> Callable[..., Any] | None:
+    """`verigraph.perception.perceive_image(image_bgr, dictionary=...)` -> a result with
+    `.graph`, `.warnings`, `.uncertain` and `.confident`; None when absent (then
+    `perception()` alone is used and its graph is taken as it is)."""
+    return _attribute("verigraph.perception", "perceive_image")
+
+
 def has(module: str, name: str) -> bool:
     """Whether an optional subsystem entry point exists (used for capability reports)."""
     return _attribute(module, name) is not None

@@ -22,13 +22,13 @@ from verigraph.graph.goal import GraphDiff, check_goal, diff
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import GraphProblem
-from verigraph.tools import optional
 from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.executors import SceneCheck, arm_setup_for
 from verigraph.tools.fields import DictionaryName, EpisodeId, ImageData, dictionary_for
 from verigraph.tools.images import decode_image, encode_png
+from verigraph.tools.perceived import perceive
 from verigraph.tools.prompting import scene_graph_prompt
 from verigraph.tools.store import Episode
 from verigraph.tools.submission import Rename, SubmittedGraph, check_submission
@@ -270,7 +270,10 @@ def generate_scene_graph(ctx: ToolContext, params: GenerateSceneGraphInput
         assert params.episode_id is not None
         with ctx.store.use(params.episode_id) as episode:
             image = _picture(episode)
-    perceive = optional.perception()
-    graph = perceive(image, dictionary=dictionary)
-    submitted = SubmittedGraph.model_validate(graph.model_dump())
-    return _checked(submitted, dictionary)
+    perceived = perceive(image, dictionary)
+    submitted = SubmittedGraph.model_validate(perceived.graph.model_dump())
+    out = _checked(submitted, dictionary)
+    if not perceived.confident:  # a proposal for the agent to confirm, not a fact
+        out.problems += perceived.doubts
+        out.accepted = False
+    return out
