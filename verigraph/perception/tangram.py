@@ -25,6 +25,7 @@ from verigraph.perception.regions import Region, colour_fragments
 from verigraph.perception.result import CONFIDENT, DetectedObject, PerceptionResult, Uncertain
 from verigraph.perception.tangram_sides import (
     PlacedPiece,
+    borderline,
     canonical_start,
     clockwise,
     contacts,
@@ -153,20 +154,28 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
         placed[model.label] = piece
     ids = sorted(placed)
     edges = []
+    unsure: list[str] = []
+    tolerances = {"max_angle": math.radians(config.side_angle_degrees),
+                  "max_distance": config.side_distance, "min_overlap": config.side_overlap}
     for i, a in enumerate(ids):
         for b in ids[i + 1:]:
-            for sa, sb in contacts(placed[a], placed[b],
-                                   max_angle=math.radians(config.side_angle_degrees),
-                                   max_distance=config.side_distance,
-                                   min_overlap=config.side_overlap):
+            touching = contacts(placed[a], placed[b], **tolerances)
+            for sa, sb in touching:
                 edges.append(Edge(source=a, relation="touches", target=b, source_side=sa,
                                   target_side=sb))
+            for sa in range(len(placed[a].vertices)):
+                for sb in range(len(placed[b].vertices)):
+                    if borderline(placed[a], placed[b], (sa, sb), **tolerances):
+                        unsure.append(f"{a} touches {b} ({sa}, {sb})")
     by_label = {m.label: m for m, _ in found}
     nodes = [Node(id=p, label=p, attrs={"color": by_label[p].colour}) for p in ids]
     if not nodes:
         warnings.append("no tangram pieces were found in the image")
     graph = SceneGraph(nodes=nodes, edges=edges, dictionary="tangram").canonical()
     confidence, uncertain = _confidence(graph, placed, objects)
+    uncertain += [Uncertain(item=name, confidence=0.4, reason="the sides lie near the "
+                            "limit of touching; the picture cannot tell whether they touch")
+                  for name in unsure]
     return PerceptionResult(graph=graph, view="tangram", family="tangram",
                             labeller=labeller.name, objects=[objects[p] for p in ids],
                             warnings=warnings, scale=scale, confidence=confidence,
