@@ -175,8 +175,8 @@ def _tangram_mistake(kind: MistakeKind, state: WorldState, rng: random.Random
     n_obj = state.side_count(obj) or 3
     n_target = state.side_count(target) or 3
     if kind == "full_target":
-        taken = [(side, other) for side, other in state.contacts.items()
-                 if side[0] in pieces]
+        taken = [(side, others[0]) for side, others in state.contacts.items()
+                 if side[0] in pieces and others]
         rng.shuffle(taken)
         for (piece, side), (other, _) in taken:
             movers = [p for p in pieces if p not in (piece, other)]
