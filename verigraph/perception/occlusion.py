@@ -16,12 +16,13 @@ from collections.abc import Sequence
 import cv2
 import numpy as np
 
-from verigraph.perception.colors import BACKGROUND
+from verigraph.perception.colors import BACKGROUND, FLOOR
 from verigraph.perception.regions import Region
 
 TOP_TOLERANCE = 3  # px between the tops of two parts of one piece of furniture
 MAX_GAP_SHARE = 0.5  # of the narrower part's width
 WALL_IN_GAP = 0.2  # share of wall pixels in the gap that says "two pieces, not one"
+FLOOR_TILT = 0.06  # rise of the floor's edge across the image (about 3.5 degrees)
 OUTLINE_REACH = 3  # px around a detection that its outline and blur may cover
 
 
@@ -60,6 +61,9 @@ def unexplained_areas(classes: np.ndarray, regions: Sequence[Region], floor_row:
     explained = (classes == BACKGROUND).view(np.uint8).copy()
     if floor_row is not None:
         explained[floor_row:, :] = 1
+        # A slightly rolled camera tilts the floor's edge above the floor row.
+        near = max(0, floor_row - int(FLOOR_TILT * classes.shape[1]))
+        explained[near:floor_row][classes[near:floor_row] == FLOOR] = 1
     objects = np.zeros_like(explained)
     for r in regions:
         objects[r.y0:r.y1, r.x0:r.x1] |= r.mask.view(np.uint8)

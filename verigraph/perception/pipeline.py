@@ -31,6 +31,8 @@ from verigraph.perception.noise import denoise
 from verigraph.perception.occlusion import unexplained_areas
 from verigraph.perception.photometry import correct_colours
 from verigraph.perception.result import DetectedObject, PerceptionResult
+from verigraph.perception.roll import MIN_DEGREES as ROLL_NOTE
+from verigraph.perception.roll import estimate_roll, unroll
 from verigraph.perception.support import infer_supports, label_map
 from verigraph.perception.tabletop import detect_tabletop
 from verigraph.perception.tangram import perceive_tangram
@@ -93,10 +95,17 @@ def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
                             palette.BACKGROUND, [palette.BACKGROUND, palette.FLOOR])
     corrected = photo.image
     classes = colors.classify(corrected, table)
+    notes = list(photo.notes)
+    degrees = estimate_roll(classes)
+    if degrees is not None and abs(degrees) >= ROLL_NOTE:
+        corrected = unroll(corrected, degrees)
+        classes = colors.classify(corrected, table)
+        notes.append(f"the camera is rolled {degrees:+.1f} degrees (the floor line is not "
+                     "level); the image was turned back before supports were read")
     colors.refine_edges(corrected, classes, table)
     scene = detect_tabletop(corrected, classes, table, models, labeller, config)
     detections = scene.detections
-    warnings = photo.notes + list(scene.warnings)
+    warnings = notes + list(scene.warnings)
     if not detections:
         warnings.append("no objects of the dictionary were found in the image")
     assign_ids(detections)
