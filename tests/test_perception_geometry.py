@@ -49,3 +49,25 @@ def test_a_table_split_by_a_bar_is_one_table_and_the_occlusion_is_reported() -> 
     assert score_graph(result.graph, scene.graph, "blocks").exact
     assert any("hides columns" in w for w in result.warnings)
     assert not result.confident
+
+
+@pytest.mark.parametrize("family", ["blocks", "kitchen", "tableware", "tangram"])
+def test_family_detection_says_which_and_why(family: str) -> None:
+    for seed in (32_010, 32_011, 32_012):
+        scene = generate_scene(family, seed)
+        result = perceive_image(scene.world.render())
+        assert result.family == family, result.family_reason
+        assert result.family_reason.startswith(f"{family}:")
+        assert score_graph(result.graph, scene.graph, family).exact
+
+
+def test_a_picture_two_families_fit_alike_is_refused() -> None:
+    """Bare furniture: a table with nothing on it is blocks' and tableware's alike."""
+    from verigraph.graph.model import Node, SceneGraph
+    from verigraph.sim2d import world_for_graph
+
+    graph = SceneGraph(nodes=[Node(id="table", label="table")], dictionary="blocks")
+    result = perceive_image(world_for_graph(graph).render())
+    assert result.family is None and not result.graph.nodes
+    assert result.family_reason.startswith("refused")
+    assert any("about equally" in w for w in result.warnings)

@@ -26,7 +26,7 @@ from verigraph.perception.confidence import graph_confidence
 from verigraph.perception.config import PerceptionConfig
 from verigraph.perception.graphing import assign_ids, tabletop_graph
 from verigraph.perception.imageio import as_bgr
-from verigraph.perception.labelling import ColourShapeLabeller, Labeller
+from verigraph.perception.labelling import ColourShapeLabeller, Labeller, Shape, shape_error
 from verigraph.perception.noise import denoise
 from verigraph.perception.occlusion import unexplained_areas
 from verigraph.perception.photometry import correct_colours
@@ -34,7 +34,7 @@ from verigraph.perception.result import DetectedObject, PerceptionResult
 from verigraph.perception.roll import MIN_DEGREES as ROLL_NOTE
 from verigraph.perception.roll import estimate_roll, unroll
 from verigraph.perception.support import infer_supports, label_map
-from verigraph.perception.tabletop import detect_tabletop
+from verigraph.perception.tabletop import Detection, detect_tabletop
 from verigraph.perception.tangram import perceive_tangram
 from verigraph.perception.views import FAMILY_ORDER, choose_view, family_of
 from verigraph.sim2d import palette
@@ -47,6 +47,7 @@ CAVITY_FLOOR_TOLERANCE = 0.5  # world units, as in sim2d.readback
 UNION = "all"  # load_dictionary(None): the built-ins together; the family is inferred
 FAMILY_MARGIN = 0.05
 ILL_FORMED_PENALTY = 0.05
+SHAPE_PENALTY = 0.1  # per unit of mean shape error: a red block is no mug by its outline
 
 
 def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
@@ -133,20 +134,24 @@ def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
     return PerceptionResult(graph=graph, view="tabletop", family=family,
                             labeller=labeller.name, objects=objects, warnings=warnings,
                             confidence=confidence, uncertain=uncertain, scale=scene.scale,
-                            explained=explained)
+                            explained=explained, shape_error=_shape_error(detections,
+                                                                          scene.scale))
 
 
 def _choose_family(bgr: np.ndarray, config: PerceptionConfig,
                    labeller: Labeller) -> PerceptionResult:
     """Perceive with each tabletop family's dictionary and keep the one that explains
     the picture best (share of the scene its objects account for, less a penalty per
-    ill-formed fact); refuse (empty graph, a warning naming both) when two come within
+    ill-formed fact and per uncertain object, and a penalty for outlines that fit their
+    labels badly); refuse (empty graph, a warning naming both) when two come within
     `FAMILY_MARGIN` of each other."""
     tried = []
     for name in FAMILY_ORDER:
         result = _perceive_tabletop(bgr, builtin_dictionary(name), config, labeller)
         problems = sum(w.startswith("perceived graph:") for w in result.warnings)
-        fit = result.explained - ILL_FORMED_PENALTY * problems if result.objects else 0.0
+        problems += sum(" " not in u.item for u in result.uncertain)  # doubtful objects
+        fit = (result.explained - ILL_FORMED_PENALTY * problems
+               - SHAPE_PENALTY * result.shape_error) if result.objects else 0.0
         tried.append((fit, name, result))
     tried.sort(key=lambda t: -t[0])
     (best, name, result), (second, other, _) = tried[0], tried[1]
@@ -161,6 +166,13 @@ def _choose_family(bgr: np.ndarray, config: PerceptionConfig,
     result.family_reason = (f"{name}: its objects explain the most of the picture "
                             f"(share of the scene explained: {scores})")
     return result
+
+
+def _shape_error(detections: list[Detection], scale: float) -> float:
+    """Mean shape error of the movable objects (how well outlines fit their labels)."""
+    errors = [shape_error(Shape.of(d.region), d.model, scale) for d in detections
+              if not d.model.fixed]
+    return float(np.mean(errors)) if errors and scale > 0 else 0.0
 
 
 def _min_unexplained(scale: float) -> int:

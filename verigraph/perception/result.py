@@ -49,6 +49,8 @@ class PerceptionResult(BaseModel):
     scale: float = Field(default=0.0, description="pixels per world unit (0 = unknown)")
     explained: float = Field(default=1.0, description="share of the scene (not wall or "
                                                       "floor) the detected objects explain")
+    shape_error: float = Field(default=0.0, description="mean shape error of the movable "
+                                                        "objects (0 = as drawn)")
     seconds: float = 0.0
 
     @property
