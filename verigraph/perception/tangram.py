@@ -42,6 +42,7 @@ REJECT_FIT_ERROR = 1.0  # beyond this the region is not that piece at all (e.g. 
 # Pieces drawn early lose half an outline along edges later pieces share, so their
 # areas understate the scale; the upper part of the distribution is the honest one.
 SCALE_PERCENTILE = 80
+GAP_SAMPLES = 7
 
 
 def piece_models(dictionary: Dictionary) -> list[ObjectModel]:
@@ -159,7 +160,8 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
                   "max_distance": config.side_distance, "min_overlap": config.side_overlap}
     for i, a in enumerate(ids):
         for b in ids[i + 1:]:
-            touching = contacts(placed[a], placed[b], **tolerances)
+            touching = [pair for pair in contacts(placed[a], placed[b], **tolerances)
+                        if not gap_visible(classes, scale, placed[a], placed[b], pair)]
             for sa, sb in touching:
                 edges.append(Edge(source=a, relation="touches", target=b, source_side=sa,
                                   target_side=sb))
@@ -211,3 +213,29 @@ def _scale(found: list[tuple[ObjectModel, np.ndarray]]) -> float:
     ratios = [math.sqrt(abs(float(cv2.contourArea(poly.astype(np.float32)))) / m.area)
               for m, poly in found if m.area > 0]
     return float(np.percentile(ratios, SCALE_PERCENTILE)) if ratios else 0.0
+
+
+def gap_visible(classes: np.ndarray, scale: float, a: PlacedPiece, b: PlacedPiece,
+                sides: tuple[int, int]) -> bool:
+    """Whether the table shows between two sides the fit calls touching: most points
+    halfway between them are background. Touching pieces share one outline there; a
+    gap of a quarter unit leaves table between two outlines, which the fitted models
+    (placed within a few tenths of a unit) cannot tell from a contact."""
+    i, j = sides
+    p0, p1 = np.array(a.vertices[i]), np.array(a.vertices[(i + 1) % len(a.vertices)])
+    q0, q1 = np.array(b.vertices[j]), np.array(b.vertices[(j + 1) % len(b.vertices)])
+    direction = (p1 - p0) / max(float(np.linalg.norm(p1 - p0)), 1e-9)
+    ts = sorted([0.0, float(np.linalg.norm(p1 - p0)), float((q0 - p0) @ direction),
+                 float((q1 - p0) @ direction)])[1:3]  # the overlap along side i
+    h, w = classes.shape
+    hits = total = 0
+    for t in np.linspace(ts[0], ts[1], GAP_SAMPLES + 2)[1:-1]:
+        on_p = p0 + t * direction
+        on_q = q0 + ((on_p - q0) @ (q1 - q0)) / max(float((q1 - q0) @ (q1 - q0)), 1e-9) \
+            * (q1 - q0)
+        mid = (on_p + on_q) / 2 * scale
+        x, y = int(round(mid[0] - 0.5)), int(round(-mid[1] - 0.5))
+        if 0 <= x < w and 0 <= y < h:
+            total += 1
+            hits += int(classes[y, x] == colors.BACKGROUND)
+    return total > 0 and hits > total / 2
