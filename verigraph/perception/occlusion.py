@@ -58,7 +58,7 @@ def unexplained_areas(classes: np.ndarray, regions: Sequence[Region], floor_row:
     """Boxes (x0, y0, x1, y1) of areas that are neither wall, floor nor a detected
     object (with its outline), each at least `min_area` pixels after a 1-px erosion;
     and the share of the scene (what is not wall or floor) that is explained."""
-    explained = (classes == BACKGROUND).view(np.uint8).copy()
+    explained = _open_wall(classes, regions, floor_row)
     if floor_row is not None:
         explained[floor_row:, :] = 1
         # A slightly rolled camera tilts the floor's edge above the floor row.
@@ -76,3 +76,26 @@ def unexplained_areas(classes: np.ndarray, regions: Sequence[Region], floor_row:
     n, _, stats, _ = cv2.connectedComponentsWithStats(rest, connectivity=4)
     return [(int(x), int(y), int(x + w), int(y + h)) for x, y, w, h, area in stats[1:n]
             if area >= min_area], share
+
+
+def _open_wall(classes: np.ndarray, regions: Sequence[Region], floor_row: int | None
+               ) -> np.ndarray:
+    """Wall-coloured pixels that are the wall: connected to the image border or the
+    floor, or inside a detected object's convex hull (a cup's cavity, the wall between
+    a table's legs). A wall-coloured pocket elsewhere is something white or silver
+    that no detection accounts for (a plate a colour cast turned the wall's colour)."""
+    wall = (classes == BACKGROUND).view(np.uint8)
+    n, labels = cv2.connectedComponents(wall, connectivity=4)
+    if n <= 1:
+        return wall.copy()
+    edge = [labels[0], labels[-1], labels[:, 0], labels[:, -1]]
+    if floor_row is not None and floor_row > 0:
+        edge.append(labels[floor_row - 1])
+    open_ids = np.unique(np.concatenate(edge))
+    out = np.isin(labels, open_ids[open_ids > 0]).view(np.uint8)
+    hulls = np.zeros_like(out)
+    for r in regions:
+        points = r.points()
+        if len(points) >= 3:
+            cv2.fillConvexPoly(hulls, cv2.convexHull(points), 1)
+    return np.asarray(out | (hulls & wall))

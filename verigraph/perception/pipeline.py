@@ -27,7 +27,7 @@ from verigraph.perception.config import PerceptionConfig
 from verigraph.perception.graphing import assign_ids, tabletop_graph
 from verigraph.perception.imageio import as_bgr
 from verigraph.perception.labelling import ColourShapeLabeller, Labeller, Shape, shape_error
-from verigraph.perception.noise import denoise
+from verigraph.perception.noise import blur_warning, denoise
 from verigraph.perception.occlusion import unexplained_areas
 from verigraph.perception.photometry import correct_colours
 from verigraph.perception.result import DetectedObject, PerceptionResult
@@ -45,7 +45,7 @@ DEFAULT_CONFIG = PerceptionConfig()
 DEFAULT_LABELLER = ColourShapeLabeller()
 CAVITY_FLOOR_TOLERANCE = 0.5  # world units, as in sim2d.readback
 UNION = "all"  # load_dictionary(None): the built-ins together; the family is inferred
-FAMILY_MARGIN = 0.05
+FAMILY_MARGIN = 0.03
 ILL_FORMED_PENALTY = 0.05
 SHAPE_PENALTY = 0.1  # per unit of mean shape error: a red block is no mug by its outline
 
@@ -68,6 +68,7 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
                 "the graph is empty"])
         result.seconds = time.perf_counter() - start
         return result
+    blurred = blur_warning(bgr)
     bgr = denoise(bgr)
     view = choose_view(bgr, d, config.view)
     if view == "tangram":
@@ -76,6 +77,8 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
         result = _choose_family(bgr, config, labeller)
     else:
         result = _perceive_tabletop(bgr, d, config, labeller)
+    if blurred is not None:
+        result.warnings.insert(0, blurred)
     if not result.family_reason:
         result.family_reason = (
             f"{result.family}: the dictionary given" if d.name != UNION else
