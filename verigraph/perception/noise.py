@@ -47,8 +47,17 @@ def sharpness(image: np.ndarray) -> float:
     grey = cv2.medianBlur(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY), 3).astype(np.float32)
     gx = cv2.Sobel(grey, cv2.CV_32F, 1, 0)
     gy = cv2.Sobel(grey, cv2.CV_32F, 0, 1)
-    return min(float(np.percentile(np.abs(d), SHARP_PERCENTILE))
-               for d in (gx, gy, (gx + gy) / np.float32(1.414), (gx - gy) / np.float32(1.414)))
+    gx, gy = gx[::2, ::2].ravel(), gy[::2, ::2].ravel()  # every fourth pixel is plenty
+    return min(_percentile(d) for d in (gx, gy, (gx + gy) / np.float32(1.414),
+                                        (gx - gy) / np.float32(1.414)))
+
+
+def _percentile(values: np.ndarray) -> float:
+    """SHARP_PERCENTILE of |values| by counting (Sobel values are integers below 1,100;
+    a sort-based percentile of mostly-zero data is many times slower)."""
+    counts = np.bincount(np.abs(values).astype(np.int64))
+    rank = SHARP_PERCENTILE / 100 * (len(values) - 1)
+    return float(np.searchsorted(np.cumsum(counts), rank, side="right"))
 
 
 def blur_warning(image: np.ndarray) -> str | None:

@@ -53,10 +53,11 @@ def correct_colours(image: np.ndarray, palette_bgr: list[tuple[int, int, int]],
     repainted, wall = constancy.repaint_wall(toned, background)
     gain = lighting.estimate_gain(repainted, references)
     lit = lighting.correct(repainted, gain)
-    if lit is not repainted and constancy.palette_fit(lit, palette_bgr) > \
-            constancy.palette_fit(repainted, palette_bgr):
-        gain, lit = lighting.GainField(), repainted
     residual = constancy.palette_fit(lit, palette_bgr)
+    if lit is not repainted:
+        unlit = constancy.palette_fit(repainted, palette_bgr)
+        if unlit < residual:
+            gain, lit, residual = lighting.GainField(), repainted, unlit
     notes = []
     if wall is not None:
         notes.append(f"the wall's colour {wall} (BGR) is not the renderer's; it was taken "
