@@ -167,6 +167,32 @@ def test_an_image_perception_cannot_read_waits_for_the_agents_graph() -> None:
     assert state.awaiting_scene_graph and state.graph is None
 
 
+def test_unsure_perception_is_a_proposal_to_confirm_not_a_fact() -> None:
+    """A picture with a grey bar in front: perception joins the table and says so, and
+    the tools return its graph as a proposal (not accepted) with the reason, start an
+    image episode without it, and refuse it as a goal."""
+    from verigraph.sim2d import Degradation, degrade, generate_scene
+
+    scene = generate_scene("blocks", 20_000)
+    barred = degrade(scene.world.render(), Degradation(occlusion=0.02), seed=1)
+    photo = base64.b64encode(encode_png(barred)).decode()
+    box = Toolbox()
+    out = box.call("generate_scene_graph", {"image": photo, "dictionary": "blocks"})
+    assert not out.accepted and out.graph.nodes
+    doubts = [p for p in out.problems if p.rule == "perception_uncertain"]
+    assert doubts and all(p.field == "image" and "submit_scene_graph" in p.fix
+                          for p in doubts)
+    state = box.call("load_scene", {"image": photo, "dictionary": "blocks"})
+    assert state.awaiting_scene_graph and state.graph is None
+    eid = box.call("load_scene", {"graph": scene.graph.model_dump(),
+                                  "simulate": False}).episode_id
+    with pytest.raises(ToolArgumentError) as err:
+        box.call("set_goal", {"episode_id": eid, "image": photo})
+    assert err.value.field == "image" and "unsure" in str(err.value)
+    clean = base64.b64encode(encode_png(scene.world.render())).decode()
+    assert box.call("generate_scene_graph", {"image": clean, "dictionary": "blocks"}).accepted
+
+
 @pytest.mark.parametrize("payload, message", [
     ("not base64 at all!", "not valid base64"),
     (base64.b64encode(b"GIF89a....").decode(), "not a PNG or JPEG"),

@@ -168,12 +168,13 @@ def check_align(state: WorldState, a: AlignAction) -> Violation | None:
                               f"use a side index between 0 and {n_sides - 1}")
     if not state.objects[a.object].props.movable:
         return _violation(a, "not_movable", f"{a.object} is fixed", "move another piece")
-    if state.contacts.get((a.object, a.side)) == (a.target, a.target_side):
+    if (a.target, a.target_side) in state.partners((a.object, a.side)):
         return _violation(a, "already_there",
                           f"side {a.side} of {a.object} already touches side {a.target_side} "
                           f"of {a.target}", "drop this action; it changes nothing")
-    taken = state.contacts.get((a.target, a.target_side))
-    if taken is not None and taken[0] != a.object:
+    taken = next((s for s in state.partners((a.target, a.target_side)) if s[0] != a.object),
+                 None)
+    if taken is not None:
         return _violation(a, "side_occupied",
                           f"side {a.target_side} of {a.target} already touches side {taken[1]} "
                           f"of {taken[0]}", f"align with a free side of {a.target}, or move "

@@ -4,7 +4,9 @@ The verifier predicts the next graph; a `World` (the sim2d simulator, or an arm 
 performs the action and reports the graph it really ends in. `execute_in_world` is the
 one place that joins the two: only actions that passed `validate_action` on the current
 graph reach `World.perform`, and a world that ends somewhere else than predicted makes
-its observed graph the truth and reports `execution_failed`.
+its observed graph the truth and reports `execution_failed`. An aligned piece that also
+lands against new neighbours is not a failure: those contacts are added to the
+prediction as observed (`new_contacts`).
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
 from verigraph.actions.validator import GraphEdit, apply_action, validate_action
 from verigraph.graph.goal import diff
-from verigraph.graph.model import SceneGraph
+from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 
 
@@ -69,7 +71,10 @@ def execute_in_world(state: WorldState, actions: Sequence[AnyAction], world: Wor
             return executed, edits, refused, False, current
         predicted = current.copy()
         edit = apply_action(predicted, action)
-        observed = WorldState.from_graph(world.observe(), current.dictionary, partial=True)
+        seen = world.observe()
+        observed = WorldState.from_graph(seen, current.dictionary, partial=True)
+        if isinstance(action, AlignAction):
+            edit.added += new_contacts(predicted, seen, action.object)
         mismatch = diff(observed, predicted.to_graph())
         executed.append(action)
         if not mismatch.satisfied:
@@ -83,3 +88,21 @@ def execute_in_world(state: WorldState, actions: Sequence[AnyAction], world: Wor
         edits.append(edit)
         current = predicted
     return executed, edits, None, False, current
+
+
+def new_contacts(predicted: WorldState, observed: SceneGraph, moved: str) -> list[Edge]:
+    """Contacts the aligned piece makes beyond the one asked for (its new neighbours),
+    as the world observes them: added to the prediction (in place), not a failure.
+
+    Geometry decides which other sides the moved piece lands against, and the symbolic
+    state has no geometry; so they are taken from the observation, and only for the
+    moved piece (any other change still counts as the world ending elsewhere).
+    """
+    known = {e.key() for e in predicted.edges()}
+    added = []
+    for e in observed.edges:
+        if e.relation != "touches" or moved not in (e.source, e.target) or e.key() in known:
+            continue
+        added.append(predicted.add_contact((e.source, e.source_side or 0),
+                                           (e.target, e.target_side or 0)))
+    return added

@@ -45,7 +45,7 @@ def goal_moves(state: WorldState, goal: Goal) -> list[AnyAction]:
             if edge.relation == "touches":
                 a, sa, b, sb = edge.source, edge.source_side or 0, edge.target, \
                     edge.target_side or 0
-                if state.contacts.get((a, sa)) == (b, sb):
+                if (b, sb) in state.contacts.get((a, sa), []):
                     continue
                 # move the piece that is out of the figure (fewer contacts), once per call:
                 # a second align of the same piece would undo the first

@@ -18,6 +18,14 @@ MAX_DEPTH = 6
 MAX_NODES = 20_000
 
 
+Contacts = frozenset[tuple[tuple[str, int], tuple[tuple[str, int], ...]]]
+
+
+def contact_key(state: WorldState) -> Contacts:
+    """The contacts of a state as a hashable value (each side's partners, in order)."""
+    return frozenset((side, tuple(others)) for side, others in state.contacts.items())
+
+
 def missing_contacts(state: WorldState, goal: Goal) -> list[AlignAction]:
     """Aligns that would create a goal contact that does not hold now (both directions)."""
     assert goal.graph is not None
@@ -26,7 +34,7 @@ def missing_contacts(state: WorldState, goal: Goal) -> list[AlignAction]:
         if edge.relation != "touches":
             continue
         a, sa, b, sb = edge.source, edge.source_side or 0, edge.target, edge.target_side or 0
-        if state.contacts.get((a, sa)) == (b, sb):
+        if (b, sb) in state.contacts.get((a, sa), []):
             continue
         out += [AlignAction(object=a, side=sa, target=b, target_side=sb),
                 AlignAction(object=b, side=sb, target=a, target_side=sa)]
@@ -38,7 +46,7 @@ def tangram_plan(state: WorldState, goal: Goal) -> list[AlignAction] | None:
     if check_goal(state, goal).satisfied:
         return []
     layer: list[tuple[WorldState, list[AlignAction]]] = [(state, [])]
-    seen = {frozenset(state.contacts.items())}
+    seen = {contact_key(state)}
     for _ in range(MAX_DEPTH):
         nxt: list[tuple[WorldState, list[AlignAction]]] = []
         for current, plan in layer:
@@ -47,7 +55,7 @@ def tangram_plan(state: WorldState, goal: Goal) -> list[AlignAction] | None:
                     continue
                 trial = current.copy()
                 apply_action(trial, action)
-                key = frozenset(trial.contacts.items())
+                key = contact_key(trial)
                 if key in seen:
                     continue
                 seen.add(key)

@@ -79,6 +79,10 @@ def run_perceive(args: argparse.Namespace) -> int:
         print(f"# {result.view} view, {len(result.graph.nodes)} objects"
               + (f", {result.family}" if result.family else ""))
         print("\n".join(lines))
+    if result.family_reason and not args.json:
+        print(f"family: {result.family_reason}", file=sys.stderr)
     for warning in result.warnings:
         print(f"warning: {warning}", file=sys.stderr)
+    for item in result.uncertain:
+        print(f"uncertain: {item.item} ({item.confidence:.2f}): {item.reason}", file=sys.stderr)
     return EXIT_OK

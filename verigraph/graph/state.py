@@ -39,7 +39,8 @@ class WorldState:
         self.objects: dict[str, ObjectInfo] = {}
         self.support: dict[str, tuple[str, str]] = {}
         self.carried: dict[str, dict[str, str]] = {}
-        self.contacts: dict[Side, Side] = {}
+        # Every contact of every side: a long side can touch two small pieces at once.
+        self.contacts: dict[Side, list[Side]] = {}
         self._fixed_surfaces: list[str] = []
 
     @classmethod
@@ -59,10 +60,8 @@ class WorldState:
                 state._fixed_surfaces.append(node.id)
         for edge in graph.edges:
             if edge.relation == "touches":
-                a: Side = (edge.source, edge.source_side or 0)
-                b: Side = (edge.target, edge.target_side or 0)
-                state.contacts[a] = b
-                state.contacts[b] = a
+                state.add_contact((edge.source, edge.source_side or 0),
+                                  (edge.target, edge.target_side or 0))
             else:
                 state.support[edge.source] = (edge.relation, edge.target)
                 state.carried[edge.target][edge.source] = edge.relation
@@ -76,7 +75,7 @@ class WorldState:
         other.objects = self.objects
         other.support = dict(self.support)
         other.carried = {k: dict(v) for k, v in self.carried.items()}
-        other.contacts = dict(self.contacts)
+        other.contacts = {k: list(v) for k, v in self.contacts.items()}
         other._fixed_surfaces = self._fixed_surfaces
         return other
 
@@ -121,35 +120,45 @@ class WorldState:
         self.support[obj] = (relation, target)
         self.carried[target][obj] = relation
 
+    def partners(self, side: Side) -> list[Side]:
+        """The sides touching a side (none, one, or several along a long side)."""
+        return self.contacts.get(side, [])
+
     def detach_contacts(self, obj: str) -> list[Edge]:
         """Remove every tangram contact of `obj` (it is being moved); returns them."""
         removed = []
         n_sides = self.side_count(obj) or 0
         for side in range(n_sides):
-            other = self.contacts.pop((obj, side), None)
-            if other is not None:
-                self.contacts.pop(other, None)
+            for other in self.contacts.pop((obj, side), []):
+                rest = [s for s in self.contacts.get(other, []) if s != (obj, side)]
+                if rest:
+                    self.contacts[other] = rest
+                else:
+                    self.contacts.pop(other, None)
                 removed.append(Edge(source=obj, relation="touches", target=other[0],
                                     source_side=side, target_side=other[1]))
         return removed
 
     def add_contact(self, a: Side, b: Side) -> Edge:
-        self.contacts[a] = b
-        self.contacts[b] = a
+        for x, y in ((a, b), (b, a)):
+            mine = self.contacts.setdefault(x, [])
+            if y not in mine:
+                mine.append(y)
         return Edge(source=a[0], relation="touches", target=b[0], source_side=a[1],
                     target_side=b[1])
 
     # -- export ----------------------------------------------------------------------------
     def edges(self) -> list[Edge]:
         edges = [Edge(source=o, relation=r, target=t) for o, (r, t) in self.support.items()]
-        seen: set[Side] = set()
-        for a, b in self.contacts.items():
-            if a in seen:
-                continue
-            seen.add(a)
-            seen.add(b)
-            edges.append(Edge(source=a[0], relation="touches", target=b[0], source_side=a[1],
-                              target_side=b[1]))
+        seen: set[frozenset[Side]] = set()
+        for a, others in self.contacts.items():
+            for b in others:
+                pair = frozenset((a, b))
+                if pair in seen:
+                    continue
+                seen.add(pair)
+                edges.append(Edge(source=a[0], relation="touches", target=b[0],
+                                  source_side=a[1], target_side=b[1]))
         return edges
 
     def to_graph(self) -> SceneGraph:

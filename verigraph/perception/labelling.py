@@ -19,7 +19,9 @@ import cv2
 import numpy as np
 
 from verigraph.perception.catalogue import ObjectModel
+from verigraph.perception.constancy import lab
 from verigraph.perception.regions import Region
+from verigraph.sim2d import palette
 
 OUTLINE_INSET = 3.0  # a fill is about one outline width smaller than the shape
 HOLLOW_SOLIDITY = 0.8
@@ -71,7 +73,15 @@ def shape_error(shape: Shape, model: ObjectModel, scale: float) -> float:
 
 
 class ColourShapeLabeller:
-    """The default labeller: colour class first, then size and hollowness."""
+    """The default labeller: colour and shape weigh alike.
+
+    Candidates are the movable models whose palette colour lies within `COLOUR_MARGIN`
+    (CIELab) of the region's own mean colour, the segmentation's colour class among
+    them; each costs its colour distance in units of `COLOUR_UNIT` plus its shape
+    error, so a lid whose teal a camera has turned towards steel is still a lid by its
+    outline rather than a knife by its colour. Furniture (fixed models) is labelled by
+    colour. The confidence is the margin between the best and the second-best cost.
+    """
 
     name = "colour-shape"
 
@@ -82,12 +92,51 @@ class ColourShapeLabeller:
 
     def choose(self, image: np.ndarray, region: Region, colour: str,
                models: Sequence[ObjectModel], scale: float) -> tuple[ObjectModel, float]:
-        candidates = [m for m in models if m.colour == colour]
-        if not candidates:
+        own = [m for m in models if m.colour == colour]
+        if not own:
             raise LookupError(f"no object of colour {colour}")
+        if any(m.fixed for m in own):
+            candidates, colour_cost = own, dict.fromkeys(range(len(own)), 0.0)
+        else:
+            candidates, colour_cost = _near_colours(image, region, colour, models)
         if len(candidates) == 1:
             return candidates[0], 1.0
         shape = Shape.of(region)
-        scored = sorted(candidates, key=lambda m: shape_error(shape, m, scale))
-        best, second = shape_error(shape, scored[0], scale), shape_error(shape, scored[1], scale)
-        return scored[0], float(min(1.0, max(0.0, second - best)))
+        costs = sorted((colour_cost[i] + shape_error(shape, m, scale), i)
+                       for i, m in enumerate(candidates))
+        (best, i), (second, _) = costs[0], costs[1]
+        return candidates[i], float(min(1.0, max(0.0, second - best)))
+
+
+COLOUR_MARGIN = 14.0  # CIELab distance beyond the nearest colour still considered
+COLOUR_UNIT = 10.0  # CIELab distance that costs as much as a shape error of 1
+OWN_CLEAR = 10.0  # a core colour this close to its class colour leaves no doubt
+MAX_PIXELS = 2000
+
+
+def _palette_lab(colour: str) -> np.ndarray:
+    return lab(np.array([palette.COLORS.get(colour, palette.FALLBACK)], dtype=np.uint8))[0]
+
+
+def _near_colours(image: np.ndarray, region: Region, colour: str,
+                  models: Sequence[ObjectModel]) -> tuple[list[ObjectModel], dict[int, float]]:
+    """Movable models whose colour is close to the region's core colour (its own class
+    always among them), with their colour costs. The core colour is the median of the
+    quarter of its pixels nearest its class colour (thin parts are mostly outline
+    blend); when that is plainly its class colour, the class alone is the candidate."""
+    movable = [m for m in models if not m.fixed]
+    own = [m for m in movable if m.colour == colour]
+    pixels = image[region.y0:region.y1, region.x0:region.x1][region.mask].reshape(-1, 3)
+    if len(pixels) == 0:
+        return own, dict.fromkeys(range(len(own)), 0.0)
+    pixel_lab = lab(pixels[:: max(1, len(pixels) // MAX_PIXELS)])
+    own_lab = _palette_lab(colour)
+    to_own = np.linalg.norm(pixel_lab - own_lab, axis=1)
+    core = np.median(pixel_lab[to_own <= np.percentile(to_own, 25)], axis=0)
+    if float(np.linalg.norm(core - own_lab)) < OWN_CLEAR:
+        return own, dict.fromkeys(range(len(own)), 0.0)
+    dist = [float(np.linalg.norm(_palette_lab(m.colour) - core)) for m in movable]
+    nearest = min(dist)
+    chosen = [(m, d) for m, d in zip(movable, dist, strict=True)
+              if m.colour == colour or d <= nearest + COLOUR_MARGIN]
+    return [m for m, _ in chosen], {i: d / COLOUR_UNIT for i, (_, d) in enumerate(chosen)}

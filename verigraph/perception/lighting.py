@@ -29,6 +29,8 @@ RANSAC_SUBSET = 600
 INLIER_TOLERANCE = 0.015
 CLIPPED = 248
 NEUTRAL = 0.03  # gains this close to 1 everywhere are left alone
+MIN_SPAN = 0.3  # share of the image samples must span for a slope in that direction
+EXTRAPOLATION = 0.05  # gain margin beyond the measured range
 SMOOTH_STEP = 0.05  # largest gain change within a 3x3 thumbnail window of one surface
 
 
@@ -40,6 +42,8 @@ class GainField:
     b: float = 0.0
     c: float = 0.0
     samples: int = 0
+    low: float = 0.0  # the field is clipped to the gains its samples showed, plus a margin:
+    high: float = float("inf")  # a plane through the floor alone must not run off upwards
 
     @property
     def is_identity(self) -> bool:
@@ -53,7 +57,8 @@ class GainField:
         """The gain at every pixel centre of a height x width image, float32."""
         u = (np.arange(width, dtype=np.float32) + 0.5) / width
         v = (np.arange(height, dtype=np.float32) + 0.5) / height
-        return np.asarray(self.at(u[None, :], v[:, None]), dtype=np.float32)
+        field = np.asarray(self.at(u[None, :], v[:, None]), dtype=np.float32)
+        return np.asarray(np.clip(field, self.low, self.high), dtype=np.float32)
 
 
 def estimate_gain(image: np.ndarray, references: list[tuple[int, int, int]]) -> GainField:
@@ -84,8 +89,15 @@ def estimate_gain(image: np.ndarray, references: list[tuple[int, int, int]]) -> 
     keep = _ransac_inliers(design, g, RANSAC_SUBSET)
     if keep.sum() < MIN_SAMPLES:
         return GainField(samples=int(keep.sum()))
-    coef, *_ = np.linalg.lstsq(design[keep], g[keep], rcond=None)
-    return GainField(float(coef[0]), float(coef[1]), float(coef[2]), int(keep.sum()))
+    # A direction the samples barely span (the floor band alone spans no height) gets no
+    # slope: extrapolating one would invent a gradient nothing measured.
+    spans = [True, float(np.ptp(u[keep])) >= MIN_SPAN, float(np.ptp(v[keep])) >= MIN_SPAN]
+    coef = np.zeros(3)
+    fit, *_ = np.linalg.lstsq(design[keep][:, spans], g[keep], rcond=None)
+    coef[np.array(spans)] = fit
+    return GainField(float(coef[0]), float(coef[1]), float(coef[2]), int(keep.sum()),
+                     low=float(g[keep].min()) - EXTRAPOLATION,
+                     high=float(g[keep].max()) + EXTRAPOLATION)
 
 
 def border_surfaces(ok: np.ndarray, gain: np.ndarray) -> np.ndarray:

@@ -12,21 +12,31 @@ from typing import Any
 
 import numpy as np
 
-from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, Dictionary, load_dictionary
+from verigraph.graph.dictionary import (
+    BUILTIN_DICTIONARIES,
+    Dictionary,
+    builtin_dictionary,
+    load_dictionary,
+)
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.wellformed import check_well_formed
-from verigraph.perception import colors, lighting
+from verigraph.perception import colors
 from verigraph.perception.catalogue import models_by_colour
+from verigraph.perception.confidence import graph_confidence
 from verigraph.perception.config import PerceptionConfig
 from verigraph.perception.graphing import assign_ids, tabletop_graph
 from verigraph.perception.imageio import as_bgr
-from verigraph.perception.labelling import ColourShapeLabeller, Labeller
-from verigraph.perception.noise import denoise
+from verigraph.perception.labelling import ColourShapeLabeller, Labeller, Shape, shape_error
+from verigraph.perception.noise import blur_warning, denoise
+from verigraph.perception.occlusion import unexplained_areas
+from verigraph.perception.photometry import correct_colours
 from verigraph.perception.result import DetectedObject, PerceptionResult
+from verigraph.perception.roll import MIN_DEGREES as ROLL_NOTE
+from verigraph.perception.roll import estimate_roll, unroll
 from verigraph.perception.support import infer_supports, label_map
-from verigraph.perception.tabletop import detect_tabletop
+from verigraph.perception.tabletop import Detection, detect_tabletop
 from verigraph.perception.tangram import perceive_tangram
-from verigraph.perception.views import choose_view, family_of
+from verigraph.perception.views import FAMILY_ORDER, choose_view, family_of
 from verigraph.sim2d import palette
 
 log = logging.getLogger("verigraph.perception")
@@ -34,6 +44,10 @@ log = logging.getLogger("verigraph.perception")
 DEFAULT_CONFIG = PerceptionConfig()
 DEFAULT_LABELLER = ColourShapeLabeller()
 CAVITY_FLOOR_TOLERANCE = 0.5  # world units, as in sim2d.readback
+UNION = "all"  # load_dictionary(None): the built-ins together; the family is inferred
+FAMILY_MARGIN = 0.03
+ILL_FORMED_PENALTY = 0.05
+SHAPE_PENALTY = 0.1  # per unit of mean shape error: a red block is no mug by its outline
 
 
 def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
@@ -54,12 +68,22 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
                 "the graph is empty"])
         result.seconds = time.perf_counter() - start
         return result
+    blurred = blur_warning(bgr)
     bgr = denoise(bgr)
     view = choose_view(bgr, d, config.view)
     if view == "tangram":
         result = perceive_tangram(bgr, d, config, labeller)
+    elif d.name == UNION:
+        result = _choose_family(bgr, config, labeller)
     else:
         result = _perceive_tabletop(bgr, d, config, labeller)
+    if blurred is not None:
+        result.warnings.insert(0, blurred)
+    if not result.family_reason:
+        result.family_reason = (
+            f"{result.family}: the dictionary given" if d.name != UNION else
+            f"{result.family}: a top view of coloured pieces on a neutral table"
+            if view == "tangram" else f"{result.family}: the objects seen")
     result.seconds = time.perf_counter() - start
     for w in result.warnings:
         log.warning("perception: %s", w)
@@ -69,14 +93,23 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
 def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
                        labeller: Labeller) -> PerceptionResult:
     models = models_by_colour(d)
-    gain = lighting.estimate_gain(bgr, [palette.BACKGROUND, palette.FLOOR])
-    corrected = lighting.correct(bgr, gain)
     table = colors.colour_table(tuple(sorted(models)), tangram=False)
+    photo = correct_colours(bgr, [c for i, c in enumerate(table.bgr) if i not in
+                                  (colors.UNKNOWN, colors.MIXED)],
+                            palette.BACKGROUND, [palette.BACKGROUND, palette.FLOOR])
+    corrected = photo.image
     classes = colors.classify(corrected, table)
+    notes = list(photo.notes)
+    degrees = estimate_roll(classes)
+    if degrees is not None and abs(degrees) >= ROLL_NOTE:
+        corrected = unroll(corrected, degrees)
+        classes = colors.classify(corrected, table)
+        notes.append(f"the camera is rolled {degrees:+.1f} degrees (the floor line is not "
+                     "level); the image was turned back before supports were read")
     colors.refine_edges(corrected, classes, table)
     scene = detect_tabletop(corrected, classes, table, models, labeller, config)
     detections = scene.detections
-    warnings = list(scene.warnings)
+    warnings = notes + list(scene.warnings)
     if not detections:
         warnings.append("no objects of the dictionary were found in the image")
     assign_ids(detections)
@@ -89,12 +122,66 @@ def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
     graph = tabletop_graph(detections, supports, name)
     problems = check_well_formed(graph, d)
     warnings += [f"perceived graph: {p.message}" for p in problems]
+    unexplained, explained = unexplained_areas(classes, [det.region for det in detections],
+                                    scene.floor_row, _min_unexplained(scene.scale))
+    if unexplained:
+        boxes = ", ".join(f"{b}" for b in unexplained[:4])
+        warnings.append(f"{len(unexplained)} area(s) of the image are not explained by any "
+                        f"detected object (boxes x0, y0, x1, y1: {boxes}); something unknown, "
+                        "or an object that was missed, is there")
+    confidence, uncertain = graph_confidence(graph, detections, corrected, table,
+                                               scene.scale)
     objects = [DetectedObject(id=det.id, label=det.label, colour=det.colour,
                               box=(det.region.x0, det.region.y0, det.region.x1, det.region.y1),
                               score=det.score) for det in detections]
     return PerceptionResult(graph=graph, view="tabletop", family=family,
                             labeller=labeller.name, objects=objects, warnings=warnings,
-                            scale=scene.scale)
+                            confidence=confidence, uncertain=uncertain, scale=scene.scale,
+                            explained=explained, shape_error=_shape_error(detections,
+                                                                          scene.scale))
+
+
+def _choose_family(bgr: np.ndarray, config: PerceptionConfig,
+                   labeller: Labeller) -> PerceptionResult:
+    """Perceive with each tabletop family's dictionary and keep the one that explains
+    the picture best (share of the scene its objects account for, less a penalty per
+    ill-formed fact and per uncertain object, and a penalty for outlines that fit their
+    labels badly); refuse (empty graph, a warning naming both) when two come within
+    `FAMILY_MARGIN` of each other."""
+    tried = []
+    for name in FAMILY_ORDER:
+        result = _perceive_tabletop(bgr, builtin_dictionary(name), config, labeller)
+        problems = sum(w.startswith("perceived graph:") for w in result.warnings)
+        problems += sum(" " not in u.item for u in result.uncertain)  # doubtful objects
+        fit = (result.explained - ILL_FORMED_PENALTY * problems
+               - SHAPE_PENALTY * result.shape_error) if result.objects else 0.0
+        tried.append((fit, name, result))
+    tried.sort(key=lambda t: -t[0])
+    (best, name, result), (second, other, _) = tried[0], tried[1]
+    scores = ", ".join(f"{n} {f:.2f}" for f, n, _ in tried)
+    if best - second < FAMILY_MARGIN:
+        return PerceptionResult(
+            graph=SceneGraph(), view="tabletop", family=None, labeller=labeller.name,
+            family_reason=f"refused: {name} and {other} explain the picture about equally "
+                          f"(share of the scene explained: {scores})",
+            warnings=[f"the picture fits the {name} and {other} families about equally "
+                      f"({scores}); give the dictionary (--family) to perceive it"])
+    result.family_reason = (f"{name}: its objects explain the most of the picture "
+                            f"(share of the scene explained: {scores})")
+    return result
+
+
+def _shape_error(detections: list[Detection], scale: float) -> float:
+    """Mean shape error of the movable objects (how well outlines fit their labels)."""
+    errors = [shape_error(Shape.of(d.region), d.model, scale) for d in detections
+              if not d.model.fixed]
+    return float(np.mean(errors)) if errors and scale > 0 else 0.0
+
+
+def _min_unexplained(scale: float) -> int:
+    """Smallest unexplained area worth a warning: a square of 1.5 world units (about a
+    spoon's bowl), at least 40 px."""
+    return max(40, int((1.5 * scale) ** 2)) if scale > 0 else 150
 
 
 def perceive(image: Any, dictionary: Dictionary | str | None = None, task: str | None = None,

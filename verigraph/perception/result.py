@@ -1,10 +1,13 @@
-"""What perception returns: the graph plus what the detector noticed on the way."""
+"""What perception returns: the graph plus what the detector noticed on the way, with a
+confidence per node and edge and the items it is unsure of."""
 
 from __future__ import annotations
 
 from pydantic import BaseModel, Field
 
 from verigraph.graph.model import SceneGraph
+
+CONFIDENT = 0.5  # items below this confidence are listed as uncertain
 
 
 class DetectedObject(BaseModel):
@@ -17,14 +20,40 @@ class DetectedObject(BaseModel):
     score: float = Field(ge=0.0, le=1.0, description="the labeller's confidence")
 
 
+class Uncertain(BaseModel):
+    """A node or edge perception is unsure of, and why."""
+
+    item: str = Field(description="node id, or an edge as 'source relation target'")
+    confidence: float = Field(ge=0.0, le=1.0)
+    reason: str
+
+
 class PerceptionResult(BaseModel):
-    """A perceived scene graph with what the detector noticed along the way."""
+    """A perceived scene graph with what the detector noticed along the way.
+
+    `confidence` holds a value in [0, 1] for every node id and every edge (written
+    'source relation target'); `uncertain` lists those below `CONFIDENT` with the
+    reason. A result with warnings or uncertain items is a proposal to confirm, not a
+    fact (`confident` is False).
+    """
 
     graph: SceneGraph
     view: str = Field(description="tabletop (side view) or tangram (top view)")
     family: str | None = Field(description="built-in dictionary the objects belong to")
+    family_reason: str = Field(default="", description="why this family was chosen")
     labeller: str
     objects: list[DetectedObject] = Field(default_factory=list)
     warnings: list[str] = Field(default_factory=list)
+    confidence: dict[str, float] = Field(default_factory=dict)
+    uncertain: list[Uncertain] = Field(default_factory=list)
     scale: float = Field(default=0.0, description="pixels per world unit (0 = unknown)")
+    explained: float = Field(default=1.0, description="share of the scene (not wall or "
+                                                      "floor) the detected objects explain")
+    shape_error: float = Field(default=0.0, description="mean shape error of the movable "
+                                                        "objects (0 = as drawn)")
     seconds: float = 0.0
+
+    @property
+    def confident(self) -> bool:
+        """No warnings and nothing uncertain: the graph can be taken as perceived."""
+        return not self.warnings and not self.uncertain

@@ -19,6 +19,7 @@ from verigraph.perception.catalogue import ObjectModel
 from verigraph.perception.colors import BACKGROUND, FLOOR, UNKNOWN, ColourTable
 from verigraph.perception.config import PerceptionConfig
 from verigraph.perception.labelling import Labeller
+from verigraph.perception.occlusion import join_occluded
 from verigraph.perception.regions import (
     Region,
     colour_fragments,
@@ -104,8 +105,10 @@ def _expected_pixels(models: Sequence[ObjectModel], scale: float) -> tuple[float
 
 
 def assemble(fragments: list[Region], table: ColourTable,
-             models: dict[str, list[ObjectModel]], scale: float) -> list[Region]:
-    """Join fragments of one colour that together still fit one object."""
+             models: dict[str, list[ObjectModel]], scale: float, classes: np.ndarray,
+             notes: list[str]) -> list[Region]:
+    """Join fragments of one colour that together still fit one object (furniture:
+    parts an occluder split; notes say where)."""
     out: list[Region] = []
     by_class: dict[int, list[Region]] = {}
     for r in fragments:
@@ -113,7 +116,9 @@ def assemble(fragments: list[Region], table: ColourTable,
     for cls, parts in by_class.items():
         colour_models = models.get(table.names[cls], [])
         if all(m.fixed for m in colour_models):
-            out.extend(parts)  # furniture is drawn in one piece: nothing to join
+            joined, found = join_occluded(parts, classes)  # drawn in one piece
+            out.extend(joined)
+            notes.extend(found)
             continue
         longest, largest = _expected_pixels(colour_models, scale)
         objects: list[Region] = []
@@ -186,7 +191,7 @@ def detect_tabletop(image: np.ndarray, classes: np.ndarray, table: ColourTable,
         pockets = [r.shifted(x0, y0) for r in enclosed_bright(
             crop_image, crop_classes, table, min_core=config.min_core_pixels)]
         fragments += bright_objects(pockets, image, table, models, scale)
-    objects = assemble(fragments, table, models, scale)
+    objects = assemble(fragments, table, models, scale, classes, warnings)
     all_models = [m for ms in models.values() for m in ms]
     objects = [r for r in objects if table.names[r.cls] in models]
     labels = labeller.label(image, objects, [table.names[r.cls] for r in objects],

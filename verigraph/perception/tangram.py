@@ -16,14 +16,16 @@ import numpy as np
 
 from verigraph.graph.dictionary import Dictionary
 from verigraph.graph.model import Edge, Node, SceneGraph
-from verigraph.perception import colors, lighting
+from verigraph.perception import colors
 from verigraph.perception.catalogue import ObjectModel
 from verigraph.perception.config import PerceptionConfig
 from verigraph.perception.labelling import Labeller
+from verigraph.perception.photometry import correct_colours
 from verigraph.perception.regions import Region, colour_fragments
-from verigraph.perception.result import DetectedObject, PerceptionResult
+from verigraph.perception.result import CONFIDENT, DetectedObject, PerceptionResult, Uncertain
 from verigraph.perception.tangram_sides import (
     PlacedPiece,
+    borderline,
     canonical_start,
     clockwise,
     contacts,
@@ -40,6 +42,7 @@ REJECT_FIT_ERROR = 1.0  # beyond this the region is not that piece at all (e.g. 
 # Pieces drawn early lose half an outline along edges later pieces share, so their
 # areas understate the scale; the upper part of the distribution is the honest one.
 SCALE_PERCENTILE = 80
+GAP_SAMPLES = 7
 
 
 def piece_models(dictionary: Dictionary) -> list[ObjectModel]:
@@ -90,10 +93,13 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
     models = piece_models(dictionary)
     if not models:
         raise ValueError("the dictionary has no tangram pieces with known shapes")
-    gain = lighting.estimate_gain(image, [palette.TANGRAM_BACKGROUND])
-    corrected = lighting.correct(image, gain)
     colour_names = tuple(sorted({m.colour for m in models}))
     table = colors.colour_table(colour_names, tangram=True)
+    photo = correct_colours(image, [c for i, c in enumerate(table.bgr)
+                                    if i not in (colors.UNKNOWN, colors.MIXED, colors.FLOOR)],
+                            palette.TANGRAM_BACKGROUND, [palette.TANGRAM_BACKGROUND])
+    corrected = photo.image
+    warnings += photo.notes
     classes = colors.classify(corrected, table)
     fragments = colour_fragments(corrected, classes, table, min_core=config.min_core_pixels)
     pieces = _largest_per_colour(fragments)
@@ -149,22 +155,57 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
         placed[model.label] = piece
     ids = sorted(placed)
     edges = []
+    unsure: list[str] = []
+    tolerances = {"max_angle": math.radians(config.side_angle_degrees),
+                  "max_distance": config.side_distance, "min_overlap": config.side_overlap}
     for i, a in enumerate(ids):
         for b in ids[i + 1:]:
-            for sa, sb in contacts(placed[a], placed[b],
-                                   max_angle=math.radians(config.side_angle_degrees),
-                                   max_distance=config.side_distance,
-                                   min_overlap=config.side_overlap):
+            touching = [pair for pair in contacts(placed[a], placed[b], **tolerances)
+                        if not gap_visible(classes, scale, placed[a], placed[b], pair)]
+            for sa, sb in touching:
                 edges.append(Edge(source=a, relation="touches", target=b, source_side=sa,
                                   target_side=sb))
+            for sa in range(len(placed[a].vertices)):
+                for sb in range(len(placed[b].vertices)):
+                    if borderline(placed[a], placed[b], (sa, sb), **tolerances):
+                        unsure.append(f"{a} touches {b} ({sa}, {sb})")
     by_label = {m.label: m for m, _ in found}
     nodes = [Node(id=p, label=p, attrs={"color": by_label[p].colour}) for p in ids]
     if not nodes:
         warnings.append("no tangram pieces were found in the image")
     graph = SceneGraph(nodes=nodes, edges=edges, dictionary="tangram").canonical()
+    confidence, uncertain = _confidence(graph, placed, objects)
+    uncertain += [Uncertain(item=name, confidence=0.4, reason="the sides lie near the "
+                            "limit of touching; the picture cannot tell whether they touch")
+                  for name in unsure]
     return PerceptionResult(graph=graph, view="tangram", family="tangram",
                             labeller=labeller.name, objects=[objects[p] for p in ids],
-                            warnings=warnings, scale=scale)
+                            warnings=warnings, scale=scale, confidence=confidence,
+                            uncertain=uncertain)
+
+
+def _confidence(graph: SceneGraph, placed: dict[str, PlacedPiece],
+                objects: dict[str, DetectedObject]) -> tuple[dict[str, float], list[Uncertain]]:
+    """A piece is as sure as its labelling and its shape fit (falling to 0 at the
+    rejection error); a contact as its less sure piece."""
+    confidence: dict[str, float] = {}
+    uncertain: list[Uncertain] = []
+    for label, piece in placed.items():
+        fit = max(0.0, 1.0 - max(0.0, piece.fit_error - MAX_FIT_ERROR / 2) / REJECT_FIT_ERROR)
+        value = round(min(objects[label].score, fit), 3)
+        confidence[label] = value
+        if value < CONFIDENT:
+            uncertain.append(Uncertain(item=label, confidence=value,
+                                       reason=f"its outline is {piece.fit_error:.2f} units "
+                                              "off the piece's shape"))
+    for e in graph.edges:
+        name = f"{e.source} touches {e.target} ({e.source_side}, {e.target_side})"
+        value = min(confidence.get(e.source, 1.0), confidence.get(e.target, 1.0))
+        confidence[name] = value
+        if value < CONFIDENT:
+            uncertain.append(Uncertain(item=name, confidence=value,
+                                       reason="one of its pieces is uncertain"))
+    return confidence, uncertain
 
 
 def _scale(found: list[tuple[ObjectModel, np.ndarray]]) -> float:
@@ -172,3 +213,29 @@ def _scale(found: list[tuple[ObjectModel, np.ndarray]]) -> float:
     ratios = [math.sqrt(abs(float(cv2.contourArea(poly.astype(np.float32)))) / m.area)
               for m, poly in found if m.area > 0]
     return float(np.percentile(ratios, SCALE_PERCENTILE)) if ratios else 0.0
+
+
+def gap_visible(classes: np.ndarray, scale: float, a: PlacedPiece, b: PlacedPiece,
+                sides: tuple[int, int]) -> bool:
+    """Whether the table shows between two sides the fit calls touching: most points
+    halfway between them are background. Touching pieces share one outline there; a
+    gap of a quarter unit leaves table between two outlines, which the fitted models
+    (placed within a few tenths of a unit) cannot tell from a contact."""
+    i, j = sides
+    p0, p1 = np.array(a.vertices[i]), np.array(a.vertices[(i + 1) % len(a.vertices)])
+    q0, q1 = np.array(b.vertices[j]), np.array(b.vertices[(j + 1) % len(b.vertices)])
+    direction = (p1 - p0) / max(float(np.linalg.norm(p1 - p0)), 1e-9)
+    ts = sorted([0.0, float(np.linalg.norm(p1 - p0)), float((q0 - p0) @ direction),
+                 float((q1 - p0) @ direction)])[1:3]  # the overlap along side i
+    h, w = classes.shape
+    hits = total = 0
+    for t in np.linspace(ts[0], ts[1], GAP_SAMPLES + 2)[1:-1]:
+        on_p = p0 + t * direction
+        on_q = q0 + ((on_p - q0) @ (q1 - q0)) / max(float((q1 - q0) @ (q1 - q0)), 1e-9) \
+            * (q1 - q0)
+        mid = (on_p + on_q) / 2 * scale
+        x, y = int(round(mid[0] - 0.5)), int(round(-mid[1] - 0.5))
+        if 0 <= x < w and 0 <= y < h:
+            total += 1
+            hits += int(classes[y, x] == colors.BACKGROUND)
+    return total > 0 and hits > total / 2

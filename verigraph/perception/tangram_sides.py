@@ -19,6 +19,9 @@ import numpy as np
 from verigraph.sim2d.tangram_geometry import piece_model, sides_touch, signed_area
 
 Vec = tuple[float, float]
+MARGIN = 1.4
+CLOSE = 1.7  # sides this much closer than the tolerance touch beyond doubt (a gap of a
+# quarter unit hides under the outlines at the default scale: 3 px at 14 px per unit)
 
 
 @dataclass(frozen=True, slots=True)
@@ -101,3 +104,19 @@ def contacts(a: PlacedPiece, b: PlacedPiece, *, max_angle: float, max_distance: 
                            max_distance=max_distance, min_overlap=min_overlap):
                 out.append((i, j))
     return out
+
+
+def borderline(a: PlacedPiece, b: PlacedPiece, sides: tuple[int, int], *, max_angle: float,
+               max_distance: float, min_overlap: float) -> bool:
+    """Whether a pair of sides touches under tolerances `MARGIN` times as wide as the
+    given ones but not under narrower ones (offset `CLOSE` times smaller, angle and
+    overlap `MARGIN` times stricter): a contact the measurement cannot settle."""
+    i, j = sides
+    p = (a.vertices[i], a.vertices[(i + 1) % len(a.vertices)])
+    q = (b.vertices[j], b.vertices[(j + 1) % len(b.vertices)])
+    loose = sides_touch(p, q, max_angle=MARGIN * max_angle,
+                        max_distance=MARGIN * max_distance, min_overlap=min_overlap / MARGIN)
+    tight = sides_touch(p, q, max_angle=max_angle / MARGIN,
+                        max_distance=max_distance / CLOSE,
+                        min_overlap=min(0.95, MARGIN * min_overlap))
+    return loose and not tight

@@ -1,33 +1,67 @@
-"""Image degradations for perception tests: sensor noise, blur, uneven lighting, JPEG.
+"""Image degradations for perception tests and benchmarks: sensor noise, blur, uneven
+lighting, JPEG, and what a real camera adds (colour casts, tone curves, another wall
+colour, roll, tilt, zoom, framing, shake, an occluder).
 
-Seeded: the same image, settings and seed always give the same degraded image.
+Seeded: the same image, settings and seed always give the same degraded image. The
+order is that of a camera: the scene (wall colour, occluder in front), the light
+(white balance, lighting gradient), the optics (pose, framing, blur), the sensor (tone
+curve, hue error, noise), then compression.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import cv2
 import numpy as np
 
+from verigraph.sim2d import degrade_ops as ops
+from verigraph.sim2d import palette
+
+Colour = tuple[int, int, int]
+
 
 @dataclass(frozen=True, slots=True)
 class Degradation:
-    """How much to spoil a render; all zero (the default) leaves it untouched.
+    """How much to spoil a render; all default values leave it untouched.
 
     noise: standard deviation of Gaussian pixel noise (0-255 scale);
     blur: Gaussian blur sigma in pixels; lighting: 0-1, strength of a global gain
-    change plus a linear brightness gradient; jpeg: JPEG quality 1-100 (None = none).
+    change plus a linear brightness gradient; jpeg: JPEG quality 1-100 (None = none);
+    hue: degrees every hue is turned by; gamma: tone-curve exponent (1 = none);
+    white_balance: per-channel gains (B, G, R); wall: BGR the background is repainted;
+    rotation: camera roll in degrees; scale: zoom factor of the whole image;
+    crop: up to this share of each side cut off (never into the objects);
+    perspective: corner displacement as a share of the frame (camera tilt);
+    motion_blur: shake length in pixels; occlusion: width of a grey bar in front of
+    the scene as a share of the image width.
     """
 
     noise: float = 0.0
     blur: float = 0.0
     lighting: float = 0.0
     jpeg: int | None = None
+    hue: float = 0.0
+    gamma: float = 1.0
+    white_balance: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    wall: Colour | None = None
+    rotation: float = 0.0
+    scale: float = 1.0
+    crop: float = 0.0
+    perspective: float = 0.0
+    motion_blur: int = 0
+    occlusion: float = 0.0
 
     @property
     def active(self) -> bool:
-        return bool(self.noise or self.blur or self.lighting or self.jpeg is not None)
+        return any(getattr(self, f.name) != f.default for f in fields(self))
+
+
+def _background(image: np.ndarray) -> Colour:
+    """The background colour the render was drawn on (side-view wall or tangram table)."""
+    counts = [int(np.count_nonzero((image == np.array(c, dtype=np.uint8)).all(axis=2)))
+              for c in (palette.BACKGROUND, palette.TANGRAM_BACKGROUND)]
+    return palette.BACKGROUND if counts[0] >= counts[1] else palette.TANGRAM_BACKGROUND
 
 
 def degrade(image: np.ndarray, spec: Degradation, seed: int = 0) -> np.ndarray:
@@ -35,14 +69,47 @@ def degrade(image: np.ndarray, spec: Degradation, seed: int = 0) -> np.ndarray:
     if not spec.active:
         return image.copy()
     rng = np.random.default_rng(seed)
-    out = image.astype(np.float32)
+    background = _background(image)
+    keep = ops.content_box(image, [background, palette.FLOOR])
+    out = image
+    if spec.wall is not None:
+        out = ops.recolour(out, background, spec.wall)
+    if spec.occlusion > 0:
+        out = ops.occlude(out, spec.occlusion, keep, rng)
+    if spec.white_balance != (1.0, 1.0, 1.0):
+        out = ops.white_balance(out, spec.white_balance)
     if spec.lighting > 0:
-        h, w = out.shape[:2]
-        angle = rng.uniform(0, 2 * np.pi)
-        xs = (np.arange(w, dtype=np.float32) / w - 0.5) * np.float32(np.cos(angle))
-        ys = (np.arange(h, dtype=np.float32) / h - 0.5) * np.float32(np.sin(angle))
-        gain = 1.0 + spec.lighting * (rng.uniform(-0.3, 0.3) + 0.6 * (ys[:, None] + xs[None, :]))
-        out *= gain.astype(np.float32)[:, :, None]
+        out = _lighting(out, spec.lighting, rng)
+    if spec.crop > 0:
+        out = ops.crop(out, spec.crop, keep, rng)
+    if spec.rotation or spec.scale != 1.0:
+        out = ops.rotate(out, spec.rotation, 1.0)
+        if spec.scale != 1.0:
+            out = ops.rescale(out, spec.scale)
+    if spec.perspective > 0:
+        out = ops.perspective(out, spec.perspective, rng)
+    if spec.motion_blur > 1:
+        out = ops.motion_blur(out, spec.motion_blur, float(rng.uniform(0, 180)))
+    if spec.gamma != 1.0:
+        out = ops.gamma(out, spec.gamma)
+    if spec.hue:
+        out = ops.hue_shift(out, spec.hue)
+    return _sensor(out, spec, rng)
+
+
+def _lighting(image: np.ndarray, strength: float, rng: np.random.Generator) -> np.ndarray:
+    out = image.astype(np.float32)
+    h, w = out.shape[:2]
+    angle = rng.uniform(0, 2 * np.pi)
+    xs = (np.arange(w, dtype=np.float32) / w - 0.5) * np.float32(np.cos(angle))
+    ys = (np.arange(h, dtype=np.float32) / h - 0.5) * np.float32(np.sin(angle))
+    gain = 1.0 + strength * (rng.uniform(-0.3, 0.3) + 0.6 * (ys[:, None] + xs[None, :]))
+    out *= gain.astype(np.float32)[:, :, None]
+    return np.clip(out, 0, 255).astype(np.uint8)
+
+
+def _sensor(image: np.ndarray, spec: Degradation, rng: np.random.Generator) -> np.ndarray:
+    out = image.astype(np.float32)
     if spec.blur > 0:
         out = np.asarray(cv2.GaussianBlur(out, (0, 0), sigmaX=spec.blur), dtype=np.float32)
     if spec.noise > 0:

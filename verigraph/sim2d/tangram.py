@@ -173,8 +173,8 @@ def build_tangram(graph: SceneGraph) -> TangramWorld:
         wanted[frozenset({(edge.source, edge.source_side or 0),
                           (edge.target, edge.target_side or 0)})] = None
     neighbours: dict[str, list[tuple[int, str, int]]] = {p: [] for p in labels}
-    for (a, sa), (b, sb) in state.contacts.items():
-        neighbours[a].append((sa, b, sb))
+    for (a, sa), others in state.contacts.items():
+        neighbours[a].extend((sa, b, sb) for b, sb in others)
     world = TangramWorld(list(graph.nodes), labels,
                          {p: TPose(1000.0 + 50 * i, 0.0, 0.0) for i, p in enumerate(labels)},
                          graph.dictionary)

@@ -13,7 +13,6 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 from verigraph.graph.goal import PREDICATES, Goal, GraphDiff, check_goal
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import check_well_formed
-from verigraph.perception import perceive
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.fields import (
@@ -24,6 +23,7 @@ from verigraph.tools.fields import (
     problems_text,
 )
 from verigraph.tools.images import decode_image
+from verigraph.tools.perceived import perceive
 
 Instruction = Field(default=None, max_length=4000,
                     description="the task in words (shown, not checked)")
@@ -109,7 +109,15 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
         if image is not None:
             dictionary = (episode.state.dictionary if episode.state
                           else dictionary_for(episode.dictionary_name))
-            graph = perceive(image, dictionary=dictionary)
+            seen = perceive(image, dictionary)
+            if not seen.confident:
+                raise ToolArgumentError(
+                    "built-in perception is unsure of the goal image: "
+                    + "; ".join(d.message for d in seen.doubts[:5]),
+                    field="image", value=None,
+                    fix="give the goal as a graph (generate_scene_graph returns the "
+                        "perceived proposal to check and correct)")
+            graph = seen.graph
         goal: Goal | None = None
         if graph is not None or params.predicate is not None:
             goal = Goal(graph=graph, partial=params.partial, predicate=params.predicate,

@@ -15,7 +15,6 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.perception import perceive
 from verigraph.sim2d import SimWorld, generate_scene, world_for_graph
 from verigraph.sim2d.persist import world_state
 from verigraph.tools.context import ToolContext
@@ -33,6 +32,7 @@ from verigraph.tools.fields import (
 )
 from verigraph.tools.goals import Instruction, check_goal_against
 from verigraph.tools.images import decode_image
+from verigraph.tools.perceived import perceive
 from verigraph.tools.store import DEFAULT_K, DEFAULT_T, Episode
 from verigraph.tools.summaries import EpisodeState, describe
 
@@ -125,11 +125,12 @@ def _read_source(params: LoadSceneInput, executor: str) -> _Source:
                        getattr(generated, "goal_world", None) if keep else None)
     assert params.image is not None
     image = decode_image(params.image)
-    perceived = perceive(image, dictionary=dictionary_for(params.dictionary))
-    # Built-in perception found nothing it knows: the agent's own vision model may do
-    # better, so the episode waits for submit_scene_graph instead of starting from an
-    # empty scene.
-    return _Source("image", perceived if perceived.nodes else None, image=image)
+    seen = perceive(image, dictionary_for(params.dictionary))
+    # Built-in perception found nothing it knows, or is unsure: the agent's own vision
+    # model may do better, so the episode waits for submit_scene_graph instead of
+    # starting from an empty or doubtful scene.
+    confident = seen.graph.nodes and seen.confident
+    return _Source("image", seen.graph if confident else None, image=image)
 
 
 def load_scene(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:

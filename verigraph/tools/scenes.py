@@ -22,7 +22,6 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.submission import Rename, SubmittedGraph, check_submission
 from verigraph.graph.wellformed import GraphProblem
-from verigraph.perception import perceive
 from verigraph.prompts.filling import scene_graph_prompt
 from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph
@@ -37,6 +36,7 @@ from verigraph.tools.fields import (
     with_dictionary_advice,
 )
 from verigraph.tools.images import KeptImage, decode_image, encode_png
+from verigraph.tools.perceived import perceive
 from verigraph.tools.store import Episode
 from verigraph.tools.texts import graph_lines
 
@@ -278,6 +278,10 @@ def generate_scene_graph(ctx: ToolContext, params: GenerateSceneGraphInput
                     value=episode.id, fix="pass image (a base64 photo of the scene), or "
                     "read the graph the episode already has with get_state")
             image = _picture(episode)
-    graph = perceive(image, dictionary=dictionary)
-    submitted = SubmittedGraph.model_validate(graph.model_dump())
-    return _checked(submitted, dictionary)
+    perceived = perceive(image, dictionary)
+    submitted = SubmittedGraph.model_validate(perceived.graph.model_dump())
+    out = _checked(submitted, dictionary)
+    if not perceived.confident:  # a proposal for the agent to confirm, not a fact
+        out.problems += perceived.doubts
+        out.accepted = False
+    return out

@@ -1,0 +1,85 @@
+"""Confidence per node and edge of a perceived tabletop graph, and the uncertain items.
+
+A node's confidence is the labeller's (how clearly colour and shape chose its label)
+times how well its pixels show that colour after correction (a region far from its
+palette colour may be something else altogether); an edge is as sure as the less sure
+of its two ends. Items under `CONFIDENT` are listed as uncertain, with the reason.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from verigraph.graph.model import SceneGraph
+from verigraph.perception.colors import ColourTable, purity
+from verigraph.perception.labelling import Shape, shape_error
+from verigraph.perception.result import CONFIDENT, Uncertain
+from verigraph.perception.tabletop import Detection
+
+PURE_DISTANCE = 10.0  # median palette distance of a region that shows its colour plainly
+DOUBT_RANGE = 20.0  # distance over which colour confidence falls from 1 to 0
+SHAPE_SLACK = 0.35  # shape error (labelling.shape_error) of a cleanly drawn object
+SHAPE_RANGE = 0.5  # shape error over which shape confidence falls from 1 to 0
+
+
+def edge_name(source: str, relation: str, target: str) -> str:
+    return f"{source} {relation} {target}"
+
+
+def colour_confidence(image: np.ndarray, det: Detection, table: ColourTable) -> float:
+    """1 when the region's pixels sit on its palette colour, falling to 0 far from it."""
+    cls = table.index(det.colour)
+    r = det.region
+    if cls is None or table.names[r.cls] != det.colour:
+        # Labelled by shape across colours (or a bright object): the labeller's score
+        # already weighed the colour.
+        return 1.0
+    pixels = image[r.y0:r.y1, r.x0:r.x1][r.mask]
+    if len(pixels) == 0:
+        return 0.0
+    distance = float(np.median(purity(pixels.reshape(-1, 3), table)))
+    return float(np.clip(1.0 - (distance - PURE_DISTANCE) / DOUBT_RANGE, 0.0, 1.0))
+
+
+def shape_confidence(det: Detection, scale: float) -> float:
+    """For objects whose colour is per instance (blocks: any colour, one shape), 1 when
+    the region has the model's size and hollowness, falling to 0 well past what a clean
+    render shows (a blurred rim of a red block that passes for a thin maroon block has
+    half a block's height). Objects with a class colour are confirmed by it; their thin
+    parts (a knife, a spoon) vary too much in outline at small scales to add anything."""
+    if det.model.fixed or det.model.own_colour or scale <= 0:
+        return 1.0
+    error = shape_error(Shape.of(det.region), det.model, scale)
+    return float(np.clip(1.0 - (error - SHAPE_SLACK) / SHAPE_RANGE, 0.0, 1.0))
+
+
+def graph_confidence(graph: SceneGraph, detections: Sequence[Detection], image: np.ndarray,
+                     table: ColourTable, scale: float
+                     ) -> tuple[dict[str, float], list[Uncertain]]:
+    """Confidence of every node id and edge, and the items below `CONFIDENT`."""
+    confidence: dict[str, float] = {}
+    uncertain: list[Uncertain] = []
+    for det in detections:
+        colour = round(colour_confidence(image, det, table), 3)
+        shape = round(shape_confidence(det, scale), 3)
+        value = min(round(det.score, 3), colour, shape)
+        confidence[det.id] = value
+        if value < CONFIDENT:
+            if shape == value:
+                why = f"its outline does not have a {det.label}'s size or form"
+            elif colour == value:
+                why = "its colour is far from the dictionary's " + det.colour
+            else:
+                why = (f"its shape and colour fit {det.label} only a little better than "
+                       "another object")
+            uncertain.append(Uncertain(item=det.id, confidence=value, reason=why))
+    for e in graph.edges:
+        name = edge_name(e.source, e.relation, e.target)
+        value = min(confidence.get(e.source, 1.0), confidence.get(e.target, 1.0))
+        confidence[name] = value
+        if value < CONFIDENT:
+            uncertain.append(Uncertain(item=name, confidence=value,
+                                       reason="one of its objects is uncertain"))
+    return confidence, uncertain

@@ -1,0 +1,95 @@
+"""The robustness suite: what a real camera does to a render, at a mild and a strong
+level, and how perception copes (exact accuracy and the silent-wrong rate).
+
+A wrong graph that comes with a warning (or uncertain items) is forgivable: the agent
+is told to check it. A wrong graph that comes with neither is the failure this suite
+counts as **silent-wrong**. Mild levels are what a decent camera in a lit room gives;
+strong ones are well past that (and perception is expected to say so, not to be right).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from verigraph.perception.metrics import score_graph
+from verigraph.perception.pipeline import perceive_image
+from verigraph.sim2d.degrade import Degradation, degrade
+from verigraph.sim2d.generator import generate_scene
+
+SUITE: dict[str, dict[str, Degradation]] = {
+    "hue": {"mild": Degradation(hue=6.0), "strong": Degradation(hue=25.0)},
+    "gamma": {"mild": Degradation(gamma=1.25), "strong": Degradation(gamma=1.8)},
+    "white balance": {"mild": Degradation(white_balance=(0.9, 1.0, 1.1)),
+                      "strong": Degradation(white_balance=(0.7, 1.0, 1.3))},
+    "wall colour": {"mild": Degradation(wall=(212, 208, 205)),
+                    "strong": Degradation(wall=(170, 215, 175))},
+    "rotation": {"mild": Degradation(rotation=2.0), "strong": Degradation(rotation=8.0)},
+    "scale": {"mild": Degradation(scale=0.75), "strong": Degradation(scale=0.5)},
+    "crop": {"mild": Degradation(crop=0.1), "strong": Degradation(crop=0.3)},
+    "perspective": {"mild": Degradation(perspective=0.015),
+                    "strong": Degradation(perspective=0.05)},
+    "noise": {"mild": Degradation(noise=8.0), "strong": Degradation(noise=20.0)},
+    "blur": {"mild": Degradation(blur=1.0), "strong": Degradation(motion_blur=9)},
+    "occlusion": {"mild": Degradation(occlusion=0.01), "strong": Degradation(occlusion=0.04)},
+}
+DESCRIPTIONS = {
+    "hue": "hue turned 6 / 25 degrees",
+    "gamma": "tone curve exponent 1.25 / 1.8",
+    "white balance": "B, R gains 0.9, 1.1 / 0.7, 1.3",
+    "wall colour": "wall repainted darker grey / pale green",
+    "rotation": "camera roll 2 / 8 degrees",
+    "scale": "image scaled 0.75 / 0.5",
+    "crop": "up to 10% / 30% of each side cut (never into objects)",
+    "perspective": "corners moved up to 1.5% / 5% (tilt)",
+    "noise": "Gaussian noise sigma 8 / 20",
+    "blur": "Gaussian sigma 1 px / 9-px motion blur",
+    "occlusion": "grey bar 1% / 4% of the width in front of the scene",
+}
+FAMILIES = ("blocks", "kitchen", "tableware", "tangram")
+FIRST_SEED = 20_000
+
+
+@dataclass(frozen=True, slots=True)
+class CellResult:
+    """Outcome counts of one (family, degradation, level) cell."""
+
+    family: str
+    degradation: str
+    level: str
+    images: int
+    exact: int
+    flagged: int  # results that carried warnings or uncertain items
+    silent_wrong: int
+
+    @property
+    def exact_rate(self) -> float:
+        return self.exact / self.images if self.images else 0.0
+
+    @property
+    def silent_wrong_rate(self) -> float:
+        return self.silent_wrong / self.images if self.images else 0.0
+
+
+def run_suite(families: Iterable[str] = FAMILIES, n: int = 20,
+              degradations: Iterable[str] | None = None,
+              levels: Iterable[str] = ("mild", "strong"),
+              first_seed: int = FIRST_SEED) -> list[CellResult]:
+    """Perceive n generated scenes per family under every degradation and level."""
+    names = list(degradations) if degradations is not None else list(SUITE)
+    out = []
+    for family in families:
+        scenes = [generate_scene(family, first_seed + i) for i in range(n)]
+        renders = [scene.world.render() for scene in scenes]
+        for name in names:
+            for level in levels:
+                exact = flagged = silent = 0
+                for scene, image in zip(scenes, renders, strict=True):
+                    spoilt = degrade(image, SUITE[name][level], seed=scene.seed)
+                    result = perceive_image(spoilt, dictionary=family)
+                    right = score_graph(result.graph, scene.graph, family).exact
+                    exact += right
+                    flagged += not result.confident
+                    silent += (not right) and result.confident
+                out.append(CellResult(family, name, level, n, exact, flagged, silent))
+    return out
