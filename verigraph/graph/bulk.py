@@ -51,9 +51,11 @@ def collector_paused(items: int = LARGE_GRAPH_ITEMS) -> Iterator[None]:
 
 
 def graph_items(data: object) -> int:
-    """Nodes plus edges of a graph given as decoded JSON (0 for anything else)."""
+    """Nodes plus edges of a graph given as decoded JSON, also one under a `graph` key
+    (a goal); 0 for anything else."""
     if not isinstance(data, dict):
         return 0
     nodes, edges = data.get("nodes"), data.get("edges")
     return (len(nodes) if isinstance(nodes, list) else 0) + (
-        len(edges) if isinstance(edges, list) else 0)
+        len(edges) if isinstance(edges, list) else 0) + (
+        graph_items(data["graph"]) if isinstance(data.get("graph"), dict) else 0)
