@@ -57,9 +57,11 @@ class WorldState:
     def _index(self, graph: SceneGraph, resolved: dict[str, tuple[str, ObjectProperties]]
                ) -> WorldState:
         """Fill the indexes from a checked graph (one pass over nodes, one over edges)."""
-        nodes = graph.nodes
-        self.objects = {n.id: ObjectInfo(n.id, *resolved[n.id], dict(n.attrs)) for n in nodes}
-        carried: dict[str, dict[str, str]] = {n.id: {} for n in nodes}
+        # A checked graph has unique ids and every node resolved, in node order.
+        self.objects = {n.id: ObjectInfo(n.id, label, props, dict(n.attrs))
+                        for n, (label, props) in zip(graph.nodes, resolved.values(),
+                                                     strict=True)}
+        carried: dict[str, dict[str, str]] = {node_id: {} for node_id in resolved}
         self.carried = carried
         self._fixed_surfaces = [i for i, (_, p) in resolved.items() if p.surface and not p.movable]
         support, contacts = self.support, self.contacts
