@@ -201,18 +201,30 @@ async def arm_rows(quick: bool) -> list[list[str]]:
     return rows
 
 
-def replace_arm_rows(path: Path, rows: list[list[str]], load: float) -> str:
-    """The stored table with only the arm rows measured again (and said so)."""
-    note = "The arm rows were measured again"
+TOWER_ROW = "load + check the 100,000-block tower (library)"
+
+
+def tower_row() -> list[str]:
+    return [TOWER_ROW, "-", f"{tower_load_s(100_000) * 1000:.0f}", "-", "parse, check, index"]
+
+
+async def some_rows(parts: list[str], quick: bool) -> list[list[str]]:
+    rows = await arm_rows(quick) if "arm" in parts else []
+    return rows + ([tower_row()] if "tower" in parts else [])
+
+
+def replace_rows(path: Path, rows: list[list[str]], parts: list[str], load: float) -> str:
+    """The stored table with only the rows of `parts` measured again (and said so)."""
+    note = "Measured again on "
     lines = [line for line in path.read_text().rstrip("\n").splitlines()
              if not line.startswith(note)]
     while lines and not lines[-1]:
         lines.pop()
-    fresh = iter("| " + " | ".join(r) + " |" for r in rows)
-    out = [next(fresh) if line.startswith(tuple(f"| {name}" for name in ARM_ROWS)) else line
+    fresh = {row[0].split(" (")[0]: "| " + " | ".join(row) + " |" for row in rows}
+    out = [next((text for name, text in fresh.items() if line.startswith(f"| {name}")), line)
            for line in lines]
-    out += ["", f"{note} on {time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC "
-                f"(`--arm-only`; 1-minute load average {load:.2f})."]
+    out += ["", f"{note}{time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC with "
+                f"`--only {' '.join(parts)}`: those rows (1-minute load average {load:.2f})."]
     return "\n".join(out) + "\n"
 
 
@@ -252,8 +264,7 @@ async def run(quick: bool) -> list[list[str]]:
         proc.terminate()
         proc.wait(timeout=10)
     rows += await arm_rows(quick)
-    rows.append(["load + check the 100,000-block tower (library)", "-",
-                 f"{tower_load_s(100_000) * 1000:.0f}", "-", "parse, check, index"])
+    rows.append(tower_row())
     exits = [await sigterm_exit(4) for _ in range(1 if quick else 3)]
     rows.append(["SIGTERM to exit, 4 heavy calls in flight", "-",
                  f"{statistics.median(exits) * 1000:.0f}", "-",
@@ -264,14 +275,15 @@ async def run(quick: bool) -> list[list[str]]:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer calls (smoke test)")
-    parser.add_argument("--arm-only", action="store_true",
-                        help="measure only the arm server's RSS rows and update them in "
-                             "the stored table")
+    parser.add_argument("--only", nargs="+", choices=["arm", "tower"],
+                        help="measure only these rows (the arm server's RSS, the tower "
+                             "load) and update them in the stored table")
     args = parser.parse_args()
     load = os.getloadavg()[0]
-    if args.arm_only:
+    if args.only:
         path = RESULTS / "server_load.md"
-        text = replace_arm_rows(path, asyncio.run(arm_rows(args.quick)), load)
+        text = replace_rows(path, asyncio.run(some_rows(args.only, args.quick)), args.only,
+                            load)
         path.write_text(text)
         print(text)
         return 0
