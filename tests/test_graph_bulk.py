@@ -4,14 +4,15 @@ shared by concurrent builds, and always given back."""
 from __future__ import annotations
 
 import gc
+import json
 import threading
 
 import pytest
 
-from verigraph.errors import MalformedGraphError
+from verigraph.errors import InputFileError, MalformedGraphError
 from verigraph.graph import Edge, Node, SceneGraph, WorldState
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, graph_items
-from verigraph.graph.io import scene_from_data
+from verigraph.graph.io import scene_from_data, scene_from_json
 
 
 def test_small_builds_leave_the_collector_alone() -> None:
@@ -81,3 +82,19 @@ def test_a_refused_large_graph_gives_the_collector_back() -> None:
     assert gc.isenabled()
     data = {"nodes": [{"id": f"n{i}", "label": "block"} for i in range(n)], "edges": []}
     assert len(scene_from_data(data).nodes) == n and gc.isenabled()
+
+
+def test_scene_from_json_reads_what_model_validate_reads_and_names_bad_fields() -> None:
+    data = {"nodes": [{"id": "table", "label": "table"}] + [
+        {"id": f"b{i}", "label": "block"} for i in range(LARGE_GRAPH_ITEMS)],
+        "edges": [{"source": "b0", "relation": "on", "target": "table"}],
+        "dictionary": "blocks"}
+    text = json.dumps(data)
+    assert scene_from_json(text) == SceneGraph.model_validate(data)
+    assert scene_from_json(text.encode()) == SceneGraph.model_validate(data)
+    assert gc.isenabled()
+    data["nodes"][3]["id"] = "no spaces"
+    with pytest.raises(InputFileError) as bad:
+        scene_from_json(json.dumps(data))
+    assert bad.value.field == "scene.nodes.3.id"
+    assert gc.isenabled()
