@@ -33,9 +33,10 @@ import httpx2  # noqa: E402
 import numpy as np  # noqa: E402
 from bench_load import tower  # noqa: E402
 from bench_server import percentile, start_http, wire_call  # noqa: E402
-from common import write_table  # noqa: E402
+from common import RESULTS, write_table  # noqa: E402
 
-from verigraph.graph import SceneGraph, WorldState  # noqa: E402
+from verigraph.graph import WorldState  # noqa: E402
+from verigraph.graph.io import scene_from_json  # noqa: E402
 
 
 def rss_mib(pid: int) -> float:
@@ -170,12 +171,61 @@ async def sigterm_exit(in_flight: int) -> float:
 def tower_load_s(n: int) -> float:
     text = json.dumps(tower(n))
     start = time.perf_counter()
-    WorldState.from_graph(SceneGraph.model_validate_json(text))
+    WorldState.from_graph(scene_from_json(text))
     return time.perf_counter() - start
 
 
 def ms(values: list[float], q: float) -> str:
     return f"{percentile(values, q) * 1000:.1f}"
+
+
+ARM_ROWS = ("RSS per open episode: arm:pybullet", "RSS over 10 open/end rounds, arm:pybullet")
+
+
+async def arm_rows(quick: bool) -> list[list[str]]:
+    """RSS of an arm server (dry-run Panda): per open episode, and over 10 open/end
+    rounds after a warm-up round (what end_episode fails to release shows as growth)."""
+    rows: list[list[str]] = []
+    arm_proc, arm_url = start_http(["--executor", "arm:pybullet"])
+    try:
+        arm = {"scene_id": "three_blocks", "executor": "arm:pybullet"}
+        per = await rss_per_episode(arm_url, arm_proc.pid, "arm", arm, 2 if quick else 4)
+        rows.append([f"{ARM_ROWS[0]} (dry-run)", "-", "-", "-", f"{per:.1f} MiB"])
+        start, peak, end = await open_end_rounds(arm_url, arm_proc.pid, arm, 10)
+        rows.append([ARM_ROWS[1], "-", "-", "-",
+                     f"{start:.0f} -> {end:.0f} MiB (peak {peak:.0f}): "
+                     f"{end - start:+.0f} MiB"])
+    finally:
+        arm_proc.terminate()
+        arm_proc.wait(timeout=10)
+    return rows
+
+
+TOWER_ROW = "load + check the 100,000-block tower (library)"
+
+
+def tower_row() -> list[str]:
+    return [TOWER_ROW, "-", f"{tower_load_s(100_000) * 1000:.0f}", "-", "parse, check, index"]
+
+
+async def some_rows(parts: list[str], quick: bool) -> list[list[str]]:
+    rows = await arm_rows(quick) if "arm" in parts else []
+    return rows + ([tower_row()] if "tower" in parts else [])
+
+
+def replace_rows(path: Path, rows: list[list[str]], parts: list[str], load: float) -> str:
+    """The stored table with only the rows of `parts` measured again (and said so)."""
+    note = "Measured again on "
+    lines = [line for line in path.read_text().rstrip("\n").splitlines()
+             if not line.startswith(note)]
+    while lines and not lines[-1]:
+        lines.pop()
+    fresh = {row[0].split(" (")[0]: "| " + " | ".join(row) + " |" for row in rows}
+    out = [next((text for name, text in fresh.items() if line.startswith(f"| {name}")), line)
+           for line in lines]
+    out += ["", f"{note}{time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC with "
+                f"`--only {' '.join(parts)}`: those rows (1-minute load average {load:.2f})."]
+    return "\n".join(out) + "\n"
 
 
 async def run(quick: bool) -> list[list[str]]:
@@ -213,21 +263,8 @@ async def run(quick: bool) -> list[list[str]]:
     finally:
         proc.terminate()
         proc.wait(timeout=10)
-    arm_proc, arm_url = start_http(["--executor", "arm:pybullet"])
-    try:
-        arm = {"scene_id": "three_blocks", "executor": "arm:pybullet"}
-        per = await rss_per_episode(arm_url, arm_proc.pid, "arm", arm, 2 if quick else 4)
-        rows.append(["RSS per open episode: arm:pybullet (dry-run)", "-", "-", "-",
-                     f"{per:.1f} MiB"])
-        start, peak, end = await open_end_rounds(arm_url, arm_proc.pid, arm, 10)
-        rows.append(["RSS over 10 open/end rounds, arm:pybullet", "-", "-", "-",
-                     f"{start:.0f} -> {end:.0f} MiB (peak {peak:.0f}): "
-                     f"{end - start:+.0f} MiB"])
-    finally:
-        arm_proc.terminate()
-        arm_proc.wait(timeout=10)
-    rows.append(["load + check the 100,000-block tower (library)", "-",
-                 f"{tower_load_s(100_000) * 1000:.0f}", "-", "parse, check, index"])
+    rows += await arm_rows(quick)
+    rows.append(tower_row())
     exits = [await sigterm_exit(4) for _ in range(1 if quick else 3)]
     rows.append(["SIGTERM to exit, 4 heavy calls in flight", "-",
                  f"{statistics.median(exits) * 1000:.0f}", "-",
@@ -238,8 +275,18 @@ async def run(quick: bool) -> list[list[str]]:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer calls (smoke test)")
+    parser.add_argument("--only", nargs="+", choices=["arm", "tower"],
+                        help="measure only these rows (the arm server's RSS, the tower "
+                             "load) and update them in the stored table")
     args = parser.parse_args()
     load = os.getloadavg()[0]
+    if args.only:
+        path = RESULTS / "server_load.md"
+        text = replace_rows(path, asyncio.run(some_rows(args.only, args.quick)), args.only,
+                            load)
+        path.write_text(text)
+        print(text)
+        return 0
     rows = asyncio.run(run(args.quick))
     notes = ("All clients and servers on loopback on the same machine. Light calls run on "
              "the event loop; heavy calls (large graphs or plans, images, simulator, "

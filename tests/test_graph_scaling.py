@@ -2,11 +2,17 @@
 
 from __future__ import annotations
 
+import random
+
 import pytest
 
 from verigraph.graph import Edge, Node, SceneGraph, WorldState, builtin_dictionary, wellformed
 from verigraph.graph.dictionary import Dictionary
-from verigraph.graph.wellformed import check_well_formed, find_support_cycle
+from verigraph.graph.wellformed import (
+    check_well_formed,
+    find_single_support_cycle,
+    find_support_cycle,
+)
 
 BLOCKS = builtin_dictionary("blocks")
 
@@ -69,3 +75,38 @@ def test_spelling_suggestions_are_capped(monkeypatch: pytest.MonkeyPatch):
     assert len(calls) == wellformed.MAX_SPELLING_SUGGESTIONS
     assert "block" in problems[0].fix  # the first ones carry the real suggestion
     assert problems[-1].fix.startswith("use a known label such as")
+
+
+def random_supports(rng: random.Random, n: int) -> dict[str, str]:
+    """Each object on a random other object or on the table: cycles appear often."""
+    names = [f"o{i}" for i in range(n)]
+    below = {name: rng.choice(names + ["table"]) for name in names}
+    return {k: below[k] for k in rng.sample(names, n)}  # any insertion order
+
+
+def test_single_support_cycle_walk_finds_the_cycle_the_general_search_finds():
+    rng = random.Random(7)
+    found = 0
+    for _ in range(2000):
+        below = random_supports(rng, rng.randint(1, 12))
+        expected = find_support_cycle({k: [v] for k, v in below.items()})
+        assert find_single_support_cycle(below) == expected
+        found += expected is not None
+    assert found > 100  # the cases exercised both answers
+
+
+def test_problems_keep_their_order_and_words_on_a_large_broken_graph():
+    g = tower(20_000)
+    nodes = [*g.nodes, Node(id="b4", label="block"), Node(id="extra", label="block")]
+    edges = list(g.edges)
+    edges[9999] = Edge(source="b9999", relation="on", target="b10000")  # a cycle
+    edges += [Edge(source="b4", relation="on", target="table"),  # b4 on two supports
+              Edge(source="extra", relation="on", target="b3")]  # b3 now carries two
+    problems = check_well_formed(g.model_copy(update={"nodes": nodes, "edges": edges}), BLOCKS)
+    assert [(p.rule, p.node) for p in problems] == [
+        ("duplicate_id", "b4"), ("over_capacity", "b3"), ("multiple_supports", "b4"),
+        ("over_capacity", "b10000"), ("cycle", "b9999")]
+    assert problems[2].message == ("'b4' rests on or in 2 objects; an object has exactly "
+                                   "one support")
+    assert problems[3].message == "'b10000' carries 2 objects but its capacity is 1"
+    assert problems[-1].message == "support edges form a cycle: b9999 -> b10000 -> b9999"

@@ -45,9 +45,18 @@ def open_arm_world(config: ArmConfig, graph: SceneGraph, *, confirm: ConfirmHook
         from verigraph.arm.sim.panda_scene import PandaScene
 
         scene = PandaScene.from_graph(graph, config.pybullet)
-        driver = PyBulletPandaDriver(scene)
+        panda = PyBulletPandaDriver(scene)
+        driver = panda
         locator = locator or PyBulletCameraLocator(scene)
-        on_close = scene.close
+
+        def release() -> None:
+            """Disconnect every PyBullet client the cell opened (the scene and the IK)."""
+            try:
+                panda.close()
+            finally:
+                scene.close()
+
+        on_close = release
         view = config.pybullet.cameras[0]
 
         def render(width: int | None = None, height: int | None = None) -> np.ndarray:
@@ -66,8 +75,17 @@ def open_arm_world(config: ArmConfig, graph: SceneGraph, *, confirm: ConfirmHook
                              field="locator", value=config.driver,
                              fix="pass an ObjectLocator (a camera pipeline), or give the "
                                  "config a layout: the measured box of every object")
-    controller = ArmController(config, driver, confirm=confirm, audit=audit,
-                               whole_arm=whole_arm_check(config))
+    checker: PathCheck | None = None
+    try:  # a failure here must not leave the cell's physics clients open
+        checker = whole_arm_check(config)
+        controller = ArmController(config, driver, confirm=confirm, audit=audit,
+                                   whole_arm=checker)
+    except BaseException:
+        if checker is not None:
+            checker.close()
+        if on_close is not None:
+            on_close()
+        raise
     try:
         controller.connect()
     except BaseException:

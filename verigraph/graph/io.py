@@ -10,6 +10,7 @@ import yaml
 from pydantic import ValidationError
 
 from verigraph.errors import GoalError, InputFileError
+from verigraph.graph.bulk import collector_paused, graph_items
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 
@@ -67,7 +68,23 @@ def scene_from_data(data: Any, *, what: str = "scene") -> SceneGraph:
         raise InputFileError(f"{what} must be a mapping with 'nodes' and 'edges'", field=what,
                              value=type(data).__name__, fix=f"use {SCENE_EXAMPLE}")
     try:
-        return SceneGraph.model_validate(data)
+        with collector_paused(graph_items(data)):
+            return SceneGraph.model_validate(data)
+    except ValidationError as exc:
+        raise _pydantic_error(exc, what, SCENE_EXAMPLE) from None
+
+
+# The fewest bytes a node or an edge takes as JSON: text of this size holds at most
+# len // JSON_ITEM_BYTES items, enough to tell a large graph from a small one.
+JSON_ITEM_BYTES = 24
+
+
+def scene_from_json(text: str | bytes, *, what: str = "scene") -> SceneGraph:
+    """A scene graph straight from JSON text (one pass in pydantic's parser, no
+    intermediate Python dicts): the fastest way to load a large graph."""
+    try:
+        with collector_paused(len(text) // JSON_ITEM_BYTES):
+            return SceneGraph.model_validate_json(text)
     except ValidationError as exc:
         raise _pydantic_error(exc, what, SCENE_EXAMPLE) from None
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from verigraph.errors import MalformedGraphError
+from verigraph.graph.bulk import collector_paused
 from verigraph.graph.dictionary import Dictionary, ObjectProperties, load_dictionary
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.wellformed import check_and_resolve
@@ -48,24 +49,32 @@ class WorldState:
                    partial: bool = False) -> WorldState:
         """Check the graph and index it; raises MalformedGraphError listing every problem."""
         d = load_dictionary(dictionary if dictionary is not None else graph.dictionary)
-        problems, resolved = check_and_resolve(graph, d, partial=partial)
-        if problems:
-            raise MalformedGraphError(problems)
-        state = cls(d)
-        for node in graph.nodes:
-            label, props = resolved[node.id]
-            state.objects[node.id] = ObjectInfo(node.id, label, props, dict(node.attrs))
-            state.carried[node.id] = {}
-            if props.surface and not props.movable:
-                state._fixed_surfaces.append(node.id)
+        with collector_paused(len(graph.nodes) + len(graph.edges)):
+            problems, resolved = check_and_resolve(graph, d, partial=partial)
+            if problems:
+                raise MalformedGraphError(problems)
+            return cls(d)._index(graph, resolved)
+
+    def _index(self, graph: SceneGraph, resolved: dict[str, tuple[str, ObjectProperties]]
+               ) -> WorldState:
+        """Fill the indexes from a checked graph (one pass over nodes, one over edges)."""
+        # A checked graph has unique ids and every node resolved, in node order.
+        self.objects = {n.id: ObjectInfo(n.id, label, props, dict(n.attrs))
+                        for n, (label, props) in zip(graph.nodes, resolved.values(),
+                                                     strict=True)}
+        carried: dict[str, dict[str, str]] = {node_id: {} for node_id in resolved}
+        self.carried = carried
+        self._fixed_surfaces = [i for i, (_, p) in resolved.items() if p.surface and not p.movable]
+        support = self.support
         for edge in graph.edges:
-            if edge.relation == "touches":
-                state.add_contact((edge.source, edge.source_side or 0),
-                                  (edge.target, edge.target_side or 0))
+            relation = edge.relation
+            if relation == "touches":
+                self.add_contact((edge.source, edge.source_side or 0),
+                                 (edge.target, edge.target_side or 0))
             else:
-                state.support[edge.source] = (edge.relation, edge.target)
-                state.carried[edge.target][edge.source] = edge.relation
-        return state
+                support[edge.source] = (relation, edge.target)
+                carried[edge.target][edge.source] = relation
+        return self
 
     def copy(self) -> WorldState:
         """Independent copy (objects are shared: they never change)."""

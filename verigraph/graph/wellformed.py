@@ -8,11 +8,12 @@ cycle. A partial graph (a goal listing only some edges) skips the completeness r
 
 from __future__ import annotations
 
-from collections import Counter, defaultdict
+from collections import Counter
 
 from pydantic import BaseModel
 
 from verigraph.budget import checkpoint
+from verigraph.graph.cycles import find_single_support_cycle, find_support_cycle
 from verigraph.graph.dictionary import Dictionary, ObjectProperties
 from verigraph.graph.model import Edge, SceneGraph
 
@@ -20,6 +21,8 @@ SUPPORT_RELATIONS = ("on", "in")
 # Spelling suggestions cost a fuzzy match each; past this many unknown labels the fix
 # names a few known labels instead, so a large bad graph is refused in linear time.
 MAX_SPELLING_SUGGESTIONS = 20
+__all__ = ["GraphProblem", "check_and_resolve", "check_well_formed",
+           "find_single_support_cycle", "find_support_cycle", "resolve_properties"]
 
 
 class GraphProblem(BaseModel):
@@ -75,28 +78,34 @@ def check_well_formed(graph: SceneGraph, dictionary: Dictionary, *,
 
 def check_and_resolve(graph: SceneGraph, dictionary: Dictionary, *, partial: bool = False
                       ) -> tuple[list[GraphProblem], dict[str, tuple[str, ObjectProperties]]]:
-    """check_well_formed plus each node's (canonical label, properties), resolved once."""
+    """check_well_formed plus each node's (canonical label, properties), resolved once.
+
+    Written for 100,000-node graphs: plain dicts in the loops, messages built only for
+    the rules a graph breaks, and the cycle search on the one-support-per-object map
+    whenever no object has two supports (the rule that is already a problem otherwise).
+    """
     problems: list[GraphProblem] = []
-    counts = Counter(n.id for n in graph.nodes)
-    for node_id, count in counts.items():
-        if count > 1:
-            problems.append(GraphProblem(
-                rule="duplicate_id", node=node_id, field="nodes",
-                message=f"node id '{node_id}' is used {count} times",
-                fix=f"give each object its own id, e.g. {node_id}_2"))
+    id_list = [n.id for n in graph.nodes]
+    ids = set(id_list)
+    if len(ids) != len(id_list):
+        for node_id, count in Counter(id_list).items():
+            if count > 1:
+                problems.append(GraphProblem(
+                    rule="duplicate_id", node=node_id, field="nodes",
+                    message=f"node id '{node_id}' is used {count} times",
+                    fix=f"give each object its own id, e.g. {node_id}_2"))
     resolved = resolve_properties(graph, dictionary, problems)
-    ids = set(counts)
-    carried: Counter[str] = Counter()
-    below: dict[str, list[str]] = defaultdict(list)  # object -> what supports it
+    below: dict[str, str] = {}  # object -> its (first) support
+    more_below: dict[str, list[str]] = {}  # objects with several supports -> all of them
     relations = dictionary.relations
+    resolved_get = resolved.get
     for i, edge in enumerate(graph.edges):
         if not i & 4095:
             checkpoint()
-        where = f"edges[{i}]"
         relation, source, target_id = edge.relation, edge.source, edge.target
         if relation not in relations:
             problems.append(GraphProblem(
-                rule="unknown_relation", node=edge.source, field=f"{where}.relation",
+                rule="unknown_relation", node=edge.source, field=f"edges[{i}].relation",
                 message=f"relation '{edge.relation}' ({edge.sentence()}) is not in R = "
                         f"{{{', '.join(dictionary.relations)}}}",
                 fix=f"use one of {', '.join(dictionary.relations)}"))
@@ -104,46 +113,86 @@ def check_and_resolve(graph: SceneGraph, dictionary: Dictionary, *, partial: boo
         if source not in ids or target_id not in ids:
             missing = [x for x in (source, target_id) if x not in ids]
             problems.append(GraphProblem(
-                rule="dangling_edge", node=missing[0], field=where,
+                rule="dangling_edge", node=missing[0], field=f"edges[{i}]",
                 message=f"edge '{edge.sentence()}' names '{missing[0]}', which is not a node",
                 fix=f"add a node with id '{missing[0]}' or remove the edge"))
             continue
         if source == target_id:
             problems.append(GraphProblem(
-                rule="self_loop", node=edge.source, field=where,
+                rule="self_loop", node=edge.source, field=f"edges[{i}]",
                 message=f"edge '{edge.sentence()}' relates '{edge.source}' to itself",
                 fix="remove the edge"))
             continue
         if relation == "touches":
-            problems.extend(_check_sides(edge, where, resolved))
+            problems.extend(_check_sides(edge, f"edges[{i}]", resolved))
             continue
-        carried[target_id] += 1
-        below[source].append(target_id)
-        target = resolved.get(target_id)
+        if source in below:
+            more_below.setdefault(source, [below[source]]).append(target_id)
+        else:
+            below[source] = target_id
+        target = resolved_get(target_id)
         if target is None:
             continue
         props = target[1]
-        if relation == "on" and not props.surface:
+        if relation == "on":
+            if not props.surface:
+                problems.append(GraphProblem(
+                    rule="target_not_surface", node=edge.target, field=f"edges[{i}]",
+                    message=f"'{edge.sentence()}': {edge.target} ({target[0]}) is not a "
+                            "surface",
+                    fix=f"use '{edge.source} in {edge.target}'" if props.container else
+                        f"put {edge.source} on a surface"))
+        elif relation == "in" and not props.container:
             problems.append(GraphProblem(
-                rule="target_not_surface", node=edge.target, field=where,
-                message=f"'{edge.sentence()}': {edge.target} ({target[0]}) is not a surface",
-                fix=f"use '{edge.source} in {edge.target}'" if props.container else
-                    f"put {edge.source} on a surface"))
-        if relation == "in" and not props.container:
-            problems.append(GraphProblem(
-                rule="target_not_container", node=edge.target, field=where,
+                rule="target_not_container", node=edge.target, field=f"edges[{i}]",
                 message=f"'{edge.sentence()}': {edge.target} ({target[0]}) is not a container",
                 fix=f"use '{edge.source} on {edge.target}'" if props.surface else
                     f"put {edge.source} in a container"))
+    problems += _node_problems(resolved, below, more_below, partial)
+    if more_below:
+        cycle = find_support_cycle({k: more_below.get(k) or [v] for k, v in below.items()})
+    else:
+        cycle = find_single_support_cycle(below)
+    if cycle:
+        first = cycle[0]
+        problems.append(GraphProblem(
+            rule="cycle", node=first, field="edges",
+            message=f"support edges form a cycle: {' -> '.join([*cycle, first])}",
+            fix=f"remove one edge of the cycle, e.g. the one from '{first}'"))
+    return problems, resolved
+
+
+def _node_problems(resolved: dict[str, tuple[str, ObjectProperties]], below: dict[str, str],
+                   more_below: dict[str, list[str]], partial: bool) -> list[GraphProblem]:
+    """The per-object rules (support count, capacity), in node order.
+
+    Only objects that may break one are visited: those with two supports, those with
+    none, and those carrying more than the smallest capacity any object has; the
+    candidates come from set operations, so a well-formed graph costs no Python loop.
+    """
+    carried = Counter(below.values())  # every support edge counts at its target
+    for supports in more_below.values():
+        carried.update(supports[1:])
+    capacities = {id(p): p.capacity for _, p in resolved.values()
+                  if p.capacity is not None and (p.surface or p.container)}
+    flagged = set(more_below) | (resolved.keys() - below.keys())
+    if capacities:
+        least = min(capacities.values())
+        flagged.update(t for t, n in carried.items() if n > least)
+    problems: list[GraphProblem] = []
+    if not flagged:
+        return problems
     for node_id, (label, props) in resolved.items():
-        n_supports = len(below.get(node_id, ()))
-        if n_supports > 1:
+        if node_id not in flagged:
+            continue
+        if node_id in more_below:
+            n_supports = len(more_below[node_id])
             problems.append(GraphProblem(
                 rule="multiple_supports", node=node_id, field="edges",
                 message=f"'{node_id}' rests on or in {n_supports} objects; an object has "
                         "exactly one support",
                 fix=f"keep one of the edges from '{node_id}'"))
-        elif n_supports == 0 and props.movable and not partial and props.sides is None:
+        elif node_id not in below and props.movable and not partial and props.sides is None:
             problems.append(GraphProblem(
                 rule="missing_support", node=node_id, field="edges",
                 message=f"movable object '{node_id}' ({label}) has no support edge",
@@ -155,47 +204,7 @@ def check_and_resolve(graph: SceneGraph, dictionary: Dictionary, *, partial: boo
                 message=f"'{node_id}' carries {carried[node_id]} objects but its capacity is "
                         f"{props.capacity}",
                 fix=f"move objects off '{node_id}' or raise attrs.capacity"))
-    cycle = find_support_cycle(below)
-    if cycle:
-        first = cycle[0]
-        problems.append(GraphProblem(
-            rule="cycle", node=first, field="edges",
-            message=f"support edges form a cycle: {' -> '.join([*cycle, first])}",
-            fix=f"remove one edge of the cycle, e.g. the one from '{first}'"))
-    return problems, resolved
-
-
-def find_support_cycle(below: dict[str, list[str]]) -> list[str] | None:
-    """One cycle of the support relation (its nodes in order), or None.
-
-    An iterative three-colour depth-first search: every node and edge is visited once,
-    so a 100,000-block tower costs O(nodes + edges) with no recursion limit.
-    (`networkx.find_cycle` restarts an edge search per node and grows quadratically
-    on a single tall stack.)
-    """
-    done: set[str] = set()
-    for root in below:
-        if root in done:
-            continue
-        path: list[str] = [root]
-        on_path: dict[str, int] = {root: 0}
-        iterators = [iter(below.get(root, ()))]
-        while iterators:
-            nxt = next(iterators[-1], None)
-            if nxt is None:
-                node = path.pop()
-                del on_path[node]
-                done.add(node)
-                iterators.pop()
-                continue
-            if nxt in on_path:
-                return path[on_path[nxt]:]
-            if nxt in done:
-                continue
-            on_path[nxt] = len(path)
-            path.append(nxt)
-            iterators.append(iter(below.get(nxt, ())))
-    return None
+    return problems
 
 
 def _check_sides(edge: Edge, where: str, resolved: dict[str, tuple[str, ObjectProperties]]

@@ -20,6 +20,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from verigraph.actions.report import ValidationReport
+from verigraph.graph.bulk import collector_paused, graph_items
 from verigraph.tools import acting, arm, episodes, goals, loading, scenes, solving, summaries
 from verigraph.tools.context import ToolConfig, ToolContext
 from verigraph.tools.errors import InvalidArgumentsError, StaleEpisodeError, ToolArgumentError
@@ -221,8 +222,11 @@ def parse_arguments(spec: ToolSpec, arguments: Mapping[str, Any] | None) -> Base
         raise ToolArgumentError("arguments must be a JSON object", field="arguments",
                                 value=type(arguments).__name__,
                                 fix="send the arguments as an object of name: value")
+    parsed = _pre_parse(spec.input_model, arguments or {})
     try:
-        return spec.input_model.model_validate(_pre_parse(spec.input_model, arguments or {}))
+        with collector_paused(sum(graph_items(v) + (len(v) if isinstance(v, list) else 0)
+                                  for v in parsed.values())):
+            return spec.input_model.model_validate(parsed)
     except ValidationError as exc:
         raise argument_error(spec, exc) from None
 

@@ -56,6 +56,14 @@ class PyBulletPandaDriver:
 
     def disconnect(self) -> None:
         self._connected = False
+        self.close()
+
+    def close(self) -> None:
+        """Release the driver's own IK client (idempotent).
+
+        Called when the world closes whether or not the driver was ever connected: a
+        dry run never connects, and its IK client would otherwise stay in the process.
+        """
         self._kinematics.close()
 
     def _run(self, steps: list[Step]) -> None:

@@ -52,11 +52,17 @@ class Kinematics:
     def __init__(self, urdf: str = "franka_panda/panda.urdf", tcp_link: str = "panda_grasptarget",
                  joint_names: tuple[str, ...] | None = None) -> None:
         self._client = pb.connect(pb.DIRECT)
+        try:
+            self._load(urdf, tcp_link, joint_names)
+        except BaseException:
+            pb.disconnect(self._client)  # a refused model keeps no client open
+            raise
+
+    def _load(self, urdf: str, tcp_link: str, joint_names: tuple[str, ...] | None) -> None:
         pb.setAdditionalSearchPath(pybullet_data.getDataPath(), physicsClientId=self._client)
         try:
             self._robot = pb.loadURDF(urdf, useFixedBase=True, physicsClientId=self._client)
         except pb.error:
-            pb.disconnect(self._client)
             raise InfeasibleMotionError(f"cannot load the arm model '{urdf}'",
                                         field="rosbridge.urdf", value=urdf,
                                         fix="give a pybullet_data path or a URDF file") from None

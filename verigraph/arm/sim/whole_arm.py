@@ -84,12 +84,16 @@ class WholeArmCheck:
         self._kin = Kinematics(self.model.urdf, self.model.ik_link, self.model.joints)
         self._lock = threading.Lock()
         c, robot = self._kin.client, self._kin.robot
-        names = {pb.getJointInfo(robot, j, physicsClientId=c)[12].decode(): j
-                 for j in range(pb.getNumJoints(robot, physicsClientId=c))}
-        self._links = {n: i for n, i in names.items() if n not in self.model.base_links
-                       and pb.getCollisionShapeData(robot, i, physicsClientId=c)}
-        self._hand = {n for n in self.model.hand_links if n in self._links}
-        self._zones = {zone.name: (zone, _box_body(c, zone)) for zone in config.keep_out}
+        try:
+            names = {pb.getJointInfo(robot, j, physicsClientId=c)[12].decode(): j
+                     for j in range(pb.getNumJoints(robot, physicsClientId=c))}
+            self._links = {n: i for n, i in names.items() if n not in self.model.base_links
+                           and pb.getCollisionShapeData(robot, i, physicsClientId=c)}
+            self._hand = {n for n in self.model.hand_links if n in self._links}
+            self._zones = {zone.name: (zone, _box_body(c, zone)) for zone in config.keep_out}
+        except BaseException:
+            self._kin.close()
+            raise
 
     def close(self) -> None:
         self._kin.close()
