@@ -20,14 +20,13 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 from common import write_table  # noqa: E402
 
-from verigraph.actions import AlignAction  # noqa: E402
 from verigraph.actions.executor import execute_in_world  # noqa: E402
 from verigraph.actions.validator import validate_action  # noqa: E402
 from verigraph.graph.state import WorldState  # noqa: E402
 from verigraph.sim2d import generate_scene  # noqa: E402
 from verigraph.sim2d.generator import valid_moves  # noqa: E402
 from verigraph.sim2d.room import room_violation  # noqa: E402
-from verigraph.sim2d.tangram_geometry import piece_model  # noqa: E402
+from verigraph.sim2d.sampling import random_align  # noqa: E402
 
 FIRST_SEED = 10_000
 PER_SCENE = 15
@@ -71,9 +70,7 @@ def aligns(n: int) -> tuple[list[str], list[str]]:
         rng = random.Random(seed)
         ids = sorted(state.objects)
         for _ in range(30):
-            p, q = rng.sample(ids, 2)
-            action = AlignAction(object=p, side=rng.randrange(len(piece_model(p))), target=q,
-                                 target_side=rng.randrange(len(piece_model(q))))
+            action = random_align(rng, ids)
             if executed >= n or validate_action(state, action) is not None:
                 continue
             _, _, violation, _, new_state = execute_in_world(state, [action], world)

@@ -12,7 +12,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Iterator
+from collections.abc import AsyncIterator, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,7 +20,12 @@ from typing import IO, Any
 
 import cv2
 import numpy as np
+import pytest
+from mcp import Client
 from mcp.types import CallToolResult
+
+from verigraph.server import build_server
+from verigraph.tools import Toolbox
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -29,6 +34,14 @@ def verigraph_command() -> list[str]:
     """The installed console script next to this Python, else `python -m verigraph`."""
     exe = shutil.which("verigraph", path=str(Path(sys.executable).parent))
     return [exe] if exe else [sys.executable, "-m", "verigraph"]
+
+
+@pytest.fixture(name="client")
+async def in_process_client() -> AsyncIterator[Client]:
+    """The `client` fixture: the SDK client on a fresh server with a fresh Toolbox, in memory.
+    A test module that imports this name gets the fixture."""
+    async with Client(build_server(Toolbox())) as c:
+        yield c
 
 
 def structured(result: CallToolResult) -> dict[str, Any]:

@@ -1,4 +1,5 @@
-"""A real Redis server for the store tests, on a free loopback port, stopped after."""
+"""For the store tests: a real Redis server on a free loopback port (stopped after), and
+an MCP client over streamable HTTP to a running `verigraph serve`."""
 
 from __future__ import annotations
 
@@ -6,9 +7,15 @@ import shutil
 import socket
 import subprocess
 import time
-from collections.abc import Iterator
+from collections.abc import AsyncIterator, Iterator
+from contextlib import asynccontextmanager
+from typing import Any
 
+import httpx2
 import pytest
+from mcp import Client
+from mcp.client.streamable_http import streamable_http_client
+from mcp_helpers import structured
 
 from optional import in_ci
 
@@ -51,3 +58,15 @@ def redis_url() -> Iterator[str]:
     finally:
         proc.terminate()
         proc.wait(timeout=10)
+
+
+@asynccontextmanager
+async def connect(url: str) -> AsyncIterator[Client]:
+    """A client of the server at url; reads wait up to 2 minutes (moves are serialised)."""
+    async with httpx2.AsyncClient(timeout=httpx2.Timeout(30, read=120)) as http, \
+            Client(streamable_http_client(url, http_client=http)) as client:
+        yield client
+
+
+async def call(client: Client, name: str, **arguments: Any) -> dict[str, Any]:
+    return structured(await client.call_tool(name, arguments))

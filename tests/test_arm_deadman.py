@@ -53,6 +53,15 @@ def sim_config(tmp_path: Path) -> dict[str, Any]:
             "pybullet": PyBulletOptions(real_time_factor=1.0).model_dump()}
 
 
+def stdio_sim_server(tmp_path: Path) -> tuple[StdioServerParameters, Path]:
+    """(how to start `verigraph serve` on the simulated arm in its own process, its audit log)."""
+    config = tmp_path / "arm.json"
+    config.write_text(json.dumps(sim_config(tmp_path)))
+    params = StdioServerParameters(command=sys.executable, args=[
+        "-m", "verigraph", "serve", "--arm-config", str(config)], env=dict(os.environ))
+    return params, tmp_path / "audit.jsonl"
+
+
 class StopClock:
     """Wraps a driver's stop to note when it was called; `moving` is set when the arm
     first follows a trajectory."""
@@ -114,11 +123,7 @@ async def test_a_client_that_disconnects_mid_motion_stops_the_arm(tmp_path: Path
 
 
 async def test_sigterm_stops_the_motion_before_the_server_exits(tmp_path: Path) -> None:
-    config = tmp_path / "arm.json"
-    config.write_text(json.dumps(sim_config(tmp_path)))
-    log = tmp_path / "audit.jsonl"
-    params = StdioServerParameters(command=sys.executable, args=[
-        "-m", "verigraph", "serve", "--arm-config", str(config)], env=dict(os.environ))
+    params, log = stdio_sim_server(tmp_path)
 
     async def motion_started() -> dict[str, Any]:
         while True:  # the server is another process: watch its audit log
@@ -154,11 +159,7 @@ async def test_sigterm_stops_the_motion_before_the_server_exits(tmp_path: Path) 
 
 async def test_a_stdio_client_that_goes_away_mid_motion_stops_the_arm(tmp_path: Path) -> None:
     """The same over the real stdio transport: the client process's end closes the pipe."""
-    config = tmp_path / "arm.json"
-    config.write_text(json.dumps(sim_config(tmp_path)))
-    log = tmp_path / "audit.jsonl"
-    params = StdioServerParameters(command=sys.executable, args=[
-        "-m", "verigraph", "serve", "--arm-config", str(config)], env=dict(os.environ))
+    params, log = stdio_sim_server(tmp_path)
 
     async def session() -> None:
         async with Client(params) as client:

@@ -11,9 +11,9 @@ import math
 import threading
 from collections.abc import Iterator
 from pathlib import Path
-from typing import Any
 
 import pytest
+from panda_helpers import arm_moving
 
 from verigraph.arm.testing.deps import require
 
@@ -177,19 +177,6 @@ def test_timeout_halts_the_arm_and_latches_the_stop(tmp_path: Path) -> None:
         assert not w.status().stop_latched
     finally:
         w.close()
-
-
-def arm_moving(scene: PandaScene) -> threading.Event:
-    """An event set when the scene's arm first follows a joint trajectory."""
-    moving = threading.Event()
-    follow = scene.follow
-
-    def follow_and_signal(*args: Any, **kwargs: Any) -> Any:
-        moving.set()
-        return follow(*args, **kwargs)
-
-    scene.follow = follow_and_signal  # type: ignore[method-assign]
-    return moving
 
 
 def test_stop_during_a_motion_cancels_it(tmp_path: Path) -> None:

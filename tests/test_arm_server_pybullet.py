@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 import math
-import threading
 from collections.abc import AsyncIterator
 from pathlib import Path
 from typing import Any
@@ -23,6 +22,7 @@ import pytest
 from arm_server_helpers import BLOCKS, loose_blocks
 from mcp import Client
 from mcp_helpers import decode_png, structured, text
+from panda_helpers import arm_moving
 
 from verigraph.arm import ArmWorld, CameraView, PyBulletOptions, load_arm_config, parse_arm_config
 from verigraph.arm.testing.deps import require
@@ -121,19 +121,6 @@ async def test_dry_run_panda_predicts_but_the_physics_does_not_move() -> None:
         assert [scene.body_position(b) for b in BLOCKS] == before
         assert scene.arm_positions() == joints
         await client.call_tool("end_episode", {"episode_id": eid})
-
-
-def arm_moving(scene: PandaScene) -> threading.Event:
-    """An event set when the scene's arm first follows a joint trajectory."""
-    moving = threading.Event()
-    follow = scene.follow
-
-    def follow_and_signal(*args: Any, **kwargs: Any) -> Any:
-        moving.set()
-        return follow(*args, **kwargs)
-
-    scene.follow = follow_and_signal  # type: ignore[method-assign]
-    return moving
 
 
 async def test_the_stop_latches_the_arm_across_episodes_and_restarts(tmp_path: Path) -> None:

@@ -2,14 +2,9 @@
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator
-
 import pytest
 from mcp import Client
-from mcp_helpers import structured, text
-
-from verigraph.server import build_server
-from verigraph.tools import Toolbox
+from mcp_helpers import in_process_client, structured, text  # noqa: F401 - the client fixture
 
 pytestmark = pytest.mark.anyio
 
@@ -17,12 +12,6 @@ pytestmark = pytest.mark.anyio
 @pytest.fixture()
 def anyio_backend() -> str:
     return "asyncio"
-
-
-@pytest.fixture()
-async def client() -> AsyncIterator[Client]:
-    async with Client(build_server(Toolbox())) as c:
-        yield c
 
 
 async def test_a_retry_returns_the_original_result_and_applies_nothing(client: Client) -> None:

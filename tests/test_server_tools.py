@@ -5,13 +5,18 @@ from __future__ import annotations
 import json
 import threading
 import time
-from collections.abc import AsyncIterator
 from typing import Any
 
 import anyio
 import pytest
 from mcp import Client, MCPError
-from mcp_helpers import decode_png, png_b64, structured, text
+from mcp_helpers import (  # noqa: F401 - in_process_client: the client fixture
+    decode_png,
+    in_process_client,
+    png_b64,
+    structured,
+    text,
+)
 
 from verigraph.server import INSTRUCTIONS, build_server
 from verigraph.tools import TOOL_SPECS, TOOLS, Toolbox
@@ -24,12 +29,6 @@ STATEFUL = [s.name for s in TOOL_SPECS if "episode_id" in s.input_model.model_fi
 @pytest.fixture()
 def anyio_backend() -> str:
     return "asyncio"
-
-
-@pytest.fixture()
-async def client() -> AsyncIterator[Client]:
-    async with Client(build_server(Toolbox())) as c:
-        yield c
 
 
 async def load(client: Client, **args: Any) -> str:

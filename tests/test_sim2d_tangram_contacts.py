@@ -9,13 +9,12 @@ from __future__ import annotations
 
 import random
 
-from verigraph.actions import AlignAction
 from verigraph.actions.executor import execute_in_world
 from verigraph.actions.validator import validate_action
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.sim2d import generate_scene
-from verigraph.sim2d.tangram_geometry import piece_model
+from verigraph.sim2d.sampling import random_align
 
 ALIGNS = 200
 
@@ -31,9 +30,7 @@ def random_aligns(aligns: int, first_seed: int = 0) -> tuple[int, list[str]]:
         rng = random.Random(seed)
         ids = sorted(state.objects)
         for _ in range(30):
-            p, q = rng.sample(ids, 2)
-            action = AlignAction(object=p, side=rng.randrange(len(piece_model(p))), target=q,
-                                 target_side=rng.randrange(len(piece_model(q))))
+            action = random_align(rng, ids)
             if validate_action(state, action) is not None:
                 continue
             _, _, violation, _, new_state = execute_in_world(state, [action], world)

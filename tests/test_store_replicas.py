@@ -9,17 +9,12 @@ from __future__ import annotations
 
 import random
 from collections import Counter
-from collections.abc import AsyncIterator
-from contextlib import asynccontextmanager
 from typing import Any
 
 import anyio
-import httpx2
 import pytest
-from mcp import Client
-from mcp.client.streamable_http import streamable_http_client
-from mcp_helpers import http_server, structured
-from store_helpers import redis_url  # noqa: F401 - the session fixture
+from mcp_helpers import http_server
+from store_helpers import call, connect, redis_url  # noqa: F401 - redis_url: the session fixture
 
 pytestmark = pytest.mark.anyio
 BLOCKS = ["red_block", "blue_block", "green_block"]
@@ -28,17 +23,6 @@ BLOCKS = ["red_block", "blue_block", "green_block"]
 @pytest.fixture()
 def anyio_backend() -> str:
     return "asyncio"
-
-
-@asynccontextmanager
-async def connect(url: str) -> AsyncIterator[Client]:
-    async with httpx2.AsyncClient(timeout=httpx2.Timeout(30, read=120)) as http, \
-            Client(streamable_http_client(url, http_client=http)) as client:
-        yield client
-
-
-async def call(client: Client, name: str, **arguments: Any) -> dict[str, Any]:
-    return structured(await client.call_tool(name, arguments))
 
 
 async def test_replicas_share_episodes_and_serialise_moves(redis_url: str) -> None:  # noqa: F811

@@ -6,16 +6,12 @@ of the simulated world are exactly what the killed process reported.
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator
-from contextlib import asynccontextmanager
 from pathlib import Path
-from typing import Any
 
-import httpx2
 import pytest
 from mcp import Client
-from mcp.client.streamable_http import streamable_http_client
-from mcp_helpers import http_server, structured
+from mcp_helpers import http_server
+from store_helpers import call, connect
 
 pytestmark = pytest.mark.anyio
 
@@ -23,17 +19,6 @@ pytestmark = pytest.mark.anyio
 @pytest.fixture()
 def anyio_backend() -> str:
     return "asyncio"
-
-
-@asynccontextmanager
-async def connect(url: str) -> AsyncIterator[Client]:
-    async with httpx2.AsyncClient(timeout=httpx2.Timeout(30, read=120)) as http, \
-            Client(streamable_http_client(url, http_client=http)) as client:
-        yield client
-
-
-async def call(client: Client, name: str, **arguments: Any) -> dict[str, Any]:
-    return structured(await client.call_tool(name, arguments))
 
 
 async def render(client: Client, episode_id: str) -> str:
