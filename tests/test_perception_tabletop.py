@@ -165,13 +165,14 @@ def test_a_named_dictionary_limits_the_labels() -> None:
 
 
 def test_perceive_is_what_the_tools_layer_calls() -> None:
-    """The tools (load_scene, set_goal, generate_scene_graph) call `perceive(image,
-    dictionary=D)` itself."""
+    """The tools (load_scene, set_goal, generate_scene_graph) all call one wrapper of
+    `perceive_image`, which keeps the graph and turns warnings into doubts."""
     from verigraph.graph.dictionary import load_dictionary
-    from verigraph.tools import goals, loading
+    from verigraph.tools import goals, loading, perceived
     from verigraph.tools import scenes as scene_tools
 
-    assert loading.perceive is goals.perceive is scene_tools.perceive is perceive
-    graph = perceive(render("kitchen", 1), dictionary=load_dictionary("kitchen"))
-    assert isinstance(graph, SceneGraph)
-    assert score_graph(graph, scenes("kitchen")[1].graph, "kitchen").exact
+    assert loading.perceive is goals.perceive is scene_tools.perceive is perceived.perceive
+    seen = perceived.perceive(render("kitchen", 1), load_dictionary("kitchen"))
+    assert isinstance(seen.graph, SceneGraph) and seen.confident
+    assert score_graph(seen.graph, scenes("kitchen")[1].graph, "kitchen").exact
+    assert seen.graph == perceive(render("kitchen", 1), dictionary=load_dictionary("kitchen"))
