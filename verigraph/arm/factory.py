@@ -20,7 +20,7 @@ from verigraph.arm.errors import ArmConfigError, ArmConnectionError
 from verigraph.arm.locators import LayoutLocator
 from verigraph.arm.protocols import ArmDriver, ConfirmHook, ObjectLocator, PathCheck
 from verigraph.arm.world import ArmWorld
-from verigraph.extras import require
+from verigraph.extras import EXTRAS, require
 from verigraph.graph.model import SceneGraph
 
 
@@ -108,7 +108,7 @@ def whole_arm_check(config: ArmConfig) -> PathCheck | None:
             return None
         raise ArmConfigError("the whole-arm geometry check needs pybullet", field="driver",
                              value=config.driver,
-                             fix="install the arm extra: pip install 'verigraph[arm]'") from None
+                             fix=f"install the arm extra: {EXTRAS['arm'].install}") from None
     return WholeArmCheck(config)
 
 

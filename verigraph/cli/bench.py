@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from verigraph.errors import VeriGraphError
+from verigraph.extras import require
 
 
 def benchmarks_dir() -> Path | None:
@@ -67,11 +68,8 @@ def run_report(argv: list[str]) -> int:
     if args.out:
         Path(args.out).write_text(text)
     if args.plot:
-        try:
-            from verigraph.agent.evaluation.plots import write_plots
-        except ImportError as exc:
-            raise VeriGraphError(f"--plot needs matplotlib ({exc})", field="--plot",
-                                 fix='pip install "verigraph[scale]"') from None
+        require("scale", "matplotlib")
+        from verigraph.agent.evaluation.plots import write_plots
 
         for path in write_plots(records, args.plot):
             print(f"wrote {path}", file=sys.stderr)

@@ -35,17 +35,16 @@ from verigraph.agent.evaluation.results import EpisodeRecord, blank_record
 from verigraph.agent.evaluation.spec import EpisodeJob
 from verigraph.agent.evaluation.tasks import Task
 from verigraph.errors import VeriGraphError
+from verigraph.extras import require
 
 QUEUE_PER_SLOT = 2  # jobs queued per concurrent slot: workers never idle, Ctrl-C stays quick
 WORKER_RESTARTS = 2  # a dead worker actor is restarted and its episodes retried (idempotent)
 
 
 def _ray() -> Any:
-    try:
-        import ray
-    except ImportError:
-        raise VeriGraphError("Ray is not installed", field="--ray",
-                             fix='pip install "verigraph[scale]"') from None
+    require("scale", "ray")
+    import ray
+
     return ray
 
 
