@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-import importlib.util
+import importlib
+import tomllib
+from pathlib import Path.util
 
 import pytest
 
@@ -12,7 +14,9 @@ from verigraph.extras import EXTRAS, Extra, ExtraMissingError
 
 
 def test_every_extra_installs_from_the_distribution() -> None:
-    assert set(EXTRAS) == {"arm", "clip", "llm"}
+    project = tomllib.loads((Path(__file__).parents[1] / "pyproject.toml").read_text())
+    assert set(EXTRAS) == {"arm", "clip", "llm", "scale"}
+    assert set(EXTRAS) <= set(project["project"]["optional-dependencies"])
     for name, extra in EXTRAS.items():
         assert extra.name == name and extra.modules
         assert extra.install == f"pip install 'verigraph-mcp[{name}]'"
