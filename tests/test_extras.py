@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-import importlib
+import importlib.util
 import tomllib
-from pathlib import Path.util
+from pathlib import Path
 
 import pytest
 
