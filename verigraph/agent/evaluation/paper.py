@@ -1,9 +1,12 @@
 """The paper's Table 2 (Ekpo et al., "VeriGraph: Scene Graphs for Execution Verifiable
 Robot Planning"), printed in its own table, never as a row among ours.
 
-Values are success rates in percent, per task group. The VeriGraph (iterative) row and
-the Direct LLM language cell are as recorded for this project; cells not recorded here
-print as "-" rather than being guessed.
+Values are success rates in percent, per task group: VeriGraph's own row as the paper
+reports it (stacking 65, language 73, kitchen and blocks reference images 55 and 86,
+tangram 72, as also listed by public paper indexes). Its abstract states the margins over
+the baselines (+58 points on language, +56 on tangram, +30 on image-based tasks); the
+baselines' per-group cells are not reproduced here, so they are not printed rather than
+guessed.
 """
 
 from __future__ import annotations
@@ -18,11 +21,12 @@ GROUP_TITLES: dict[GroupName, str] = {
     "tangram": "Tangram",
 }
 PAPER_ROWS: dict[str, dict[GroupName, float]] = {
-    "Direct LLM (GPT-4V, one shot)": {"language": 73},
-    "VeriGraph (GPT-4V, iterative)": {"stacking": 65, "language": 65,
+    "VeriGraph (GPT-4V, iterative)": {"stacking": 65, "language": 73,
                                       "ref_image_kitchen": 55, "ref_image_blocks": 86,
                                       "tangram": 72},
 }
+PAPER_MARGINS = ("The paper's abstract: VeriGraph is ahead of its baseline methods by 58 "
+                 "points on language tasks, 56 on tangram and 30 on image-based tasks.")
 COMPARABILITY = (
     "Not comparable in value: the paper's planner is GPT-4V on its own scenes, images and "
     "instructions; the rows above are offline planners (a privileged solver, a translator, "
@@ -40,4 +44,4 @@ def paper_table() -> list[str]:
     for name, cells in PAPER_ROWS.items():
         values = [f"{cells[g]:.0f}%" if g in cells else "-" for g in GROUPS]
         lines.append(f"| {name} | " + " | ".join(values) + " |")
-    return [*lines, "", COMPARABILITY]
+    return [*lines, "", PAPER_MARGINS, "", COMPARABILITY]
