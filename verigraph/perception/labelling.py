@@ -37,11 +37,10 @@ class Shape:
 
     @classmethod
     def of(cls, region: Region) -> Shape:
-        pts = region.points()
-        if len(pts) < 3:
+        if region.area < 3:
             return cls(float(region.width), float(region.height), 1.0)
-        (_, _), (w, h), _ = cv2.minAreaRect(pts)
-        hull = cv2.convexHull(pts)
+        hull = region.hull()
+        (_, _), (w, h), _ = cv2.minAreaRect(hull)  # the hull's rectangle is the region's
         hull_area = max(float(cv2.contourArea(hull)), 1.0)
         return cls(max(w, h) + 1 + OUTLINE_INSET, min(w, h) + 1 + OUTLINE_INSET,
                    min(1.0, region.area / (hull_area + 0.5 * cv2.arcLength(hull, True))))

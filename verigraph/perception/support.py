@@ -100,7 +100,7 @@ class Cavities:
         self.hulls: dict[int, tuple[np.ndarray, float]] = {}
         for i, d in enumerate(detections):
             if d.model.container:
-                hull = cv2.convexHull(d.region.points())
+                hull = d.region.hull()
                 self.hulls[i] = (hull, float(cv2.contourArea(hull)))
 
     def holds(self, container: int, point: tuple[float, float]) -> bool:
