@@ -91,9 +91,15 @@ def flat_samples(image: np.ndarray, seed: int = 0) -> np.ndarray:
 
 
 def _nearest(samples: np.ndarray, palette_lab: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    d = np.linalg.norm(lab(samples)[:, None, :] - palette_lab[None, :, :], axis=2)
+    """Nearest palette colour (index, CIELab distance) of each uint8 BGR sample. A
+    render's flat areas hold a few dozen distinct colours among thousands of samples,
+    so the distances are computed once per distinct colour."""
+    pixels = samples.astype(np.int32)
+    keys = (pixels[:, 0] << 16) | (pixels[:, 1] << 8) | pixels[:, 2]
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    d = np.linalg.norm(lab(samples[first])[:, None, :] - palette_lab[None, :, :], axis=2)
     best = np.argmin(d, axis=1)
-    return best, d[np.arange(len(best)), best]
+    return best[inverse], d[np.arange(len(best)), best][inverse]
 
 
 def _fit(observed: np.ndarray, target: np.ndarray, keep: np.ndarray, min_pairs: int = 3
@@ -114,16 +120,18 @@ def _fit(observed: np.ndarray, target: np.ndarray, keep: np.ndarray, min_pairs: 
 
 def estimate_tone(image: np.ndarray, palette_bgr: list[tuple[int, int, int]],
                   anchors: list[tuple[np.ndarray, tuple[int, int, int]]] | None = None,
-                  wall: tuple[int, int, int] | None = None) -> ToneMap:
+                  wall: tuple[int, int, int] | None = None,
+                  samples: np.ndarray | None = None) -> ToneMap:
     """The tone map that best brings the image's flat colours onto the palette.
 
     The pairing loop starts from the identity and, when `anchors` are given (observed
     colours of known surfaces: the wall at the top border, the floor at the bottom),
     also from the map those surfaces alone imply; the start that ends closest to the
     palette wins (a strong curve moves the floor next to the grey counter, where a
-    start from the identity would pair them).
+    start from the identity would pair them). `samples` are the image's
+    `flat_samples`, when the caller has them already.
     """
-    samples = flat_samples(image)
+    samples = flat_samples(image) if samples is None else samples
     palette = np.array(palette_bgr, dtype=np.float64)
     palette_lab = lab(palette.astype(np.uint8))
     if len(samples) < 50:
@@ -227,11 +235,13 @@ def repaint_wall(image: np.ndarray, background: tuple[int, int, int]
     return out.astype(np.uint8), wall
 
 
-def palette_fit(image: np.ndarray, palette_bgr: list[tuple[int, int, int]]) -> float:
+def palette_fit(image: np.ndarray, palette_bgr: list[tuple[int, int, int]],
+                samples: np.ndarray | None = None) -> float:
     """How well an image's flat colours match the palette, one vote per colour: the
     mean over matched palette colours of their samples' median CIELab distance, plus a
-    penalty for the share of samples no palette colour explains. Lower is better."""
-    samples = flat_samples(image)
+    penalty for the share of samples no palette colour explains. Lower is better.
+    `samples` are the image's `flat_samples`, when the caller has them already."""
+    samples = flat_samples(image) if samples is None else samples
     if len(samples) < 50:
         return 0.0
     best, dist = _nearest(samples, lab(np.array(palette_bgr, dtype=np.uint8)))

@@ -121,13 +121,15 @@ def _ransac_inliers(design: np.ndarray, g: np.ndarray, subset: int) -> np.ndarra
     hue, such as a grey counter, form a smaller plane of their own and are dropped)."""
     rng = np.random.default_rng(0)
     scored = rng.choice(len(g), size=min(subset, len(g)), replace=False)
+    scored_design, scored_g = design[scored], g[scored]
     best_coef, best_count = None, -1
     for trial in rng.integers(0, len(g), size=(RANSAC_TRIALS, 3)):
         a = design[trial]
         if abs(float(np.linalg.det(a))) < 1e-6:
             continue
         coef = np.linalg.solve(a, g[trial])
-        count = int((np.abs(design[scored] @ coef - g[scored]) < INLIER_TOLERANCE).sum())
+        count = int(np.count_nonzero(np.abs(scored_design @ coef - scored_g)
+                                     < INLIER_TOLERANCE))
         if count > best_count:
             best_coef, best_count = coef, count
     if best_coef is None:
