@@ -168,6 +168,26 @@ def _plausible(a: np.ndarray, b: np.ndarray) -> bool:
                            | (np.abs(a - 1) > 0.05)))
 
 
+def _group_medians(samples: np.ndarray, groups: np.ndarray, count: int, at_least: float
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """The groups (0..count-1) with at least `at_least` uint8 samples, and the
+    per-channel median of each, from one sort per channel instead of a mask and a
+    median per group (the values are integers, so the medians are exact)."""
+    sizes = np.bincount(groups, minlength=count)
+    voters = np.flatnonzero(sizes >= at_least)
+    if len(voters) == 0:
+        return voters, np.zeros((0, 3))
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])[voters]
+    lower = starts + (sizes[voters] - 1) // 2
+    upper = starts + sizes[voters] // 2
+    medians = np.empty((len(voters), 3))
+    for ch in range(3):
+        ordered = np.sort(groups.astype(np.int64) * 256 + samples[:, ch])  # by group, value
+        values = (ordered % 256).astype(np.float64)
+        medians[:, ch] = (values[lower] + values[upper]) / 2
+    return voters, medians
+
+
 def _refine(tone: ToneMap, samples: np.ndarray, palette: np.ndarray,
             palette_lab: np.ndarray) -> ToneMap:
     """Pair flat colours with palette colours under the map, refit, repeat."""
@@ -175,15 +195,11 @@ def _refine(tone: ToneMap, samples: np.ndarray, palette: np.ndarray,
         corrected = tone.apply(samples.reshape(-1, 1, 3)).reshape(-1, 3)
         best, dist = _nearest(corrected, palette_lab)
         ok = dist < MATCH_DELTA_E
-        observed, target = [], []
-        for c in range(len(palette)):
-            mine = ok & (best == c)
-            if np.count_nonzero(mine) >= max(8, MIN_SHARE * len(samples)):
-                observed.append(np.median(samples[mine].astype(np.float64), axis=0))
-                target.append(palette[c])
-        if len(observed) < 2:
+        voters, obs = _group_medians(samples[ok], best[ok], len(palette),
+                                     max(8, MIN_SHARE * len(samples)))
+        if len(voters) < 2:
             break
-        obs, tgt = np.array(observed), np.array(target)
+        tgt = palette[voters]
         keep = np.ones(len(obs), dtype=bool)
         a, b = _fit(obs, tgt, keep)
         residual = np.abs(np.log(np.maximum(obs, LOW) / 255.0) * a + b
@@ -221,7 +237,13 @@ def repaint_wall(image: np.ndarray, background: tuple[int, int, int]
     Returns the image (unchanged when the wall has the background's hue, perhaps
     dimmer: that is lighting, undone later) and the wall colour found, if repainted.
     """
-    wall = wall_colour(image)
+    return repaint_measured_wall(image, background, wall_colour(image))
+
+
+def repaint_measured_wall(image: np.ndarray, background: tuple[int, int, int],
+                          wall: tuple[int, int, int] | None
+                          ) -> tuple[np.ndarray, tuple[int, int, int] | None]:
+    """`repaint_wall` with the wall's colour (`wall_colour(image)`) already measured."""
     if wall is None:
         return image, None
     wall_lab, background_lab = lab(np.array([wall, background], dtype=np.uint8))

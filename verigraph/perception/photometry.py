@@ -51,7 +51,8 @@ def correct_colours(image: np.ndarray, palette_bgr: list[tuple[int, int, int]],
     samples = constancy.flat_samples(image)  # reused below while the image is unchanged
     tone = constancy.estimate_tone(image, palette_bgr, anchors, top, samples)
     toned = tone.apply(image)
-    repainted, wall = constancy.repaint_wall(toned, background)
+    repainted, wall = (constancy.repaint_measured_wall(toned, background, top)
+                       if toned is image else constancy.repaint_wall(toned, background))
     gain = lighting.estimate_gain(repainted, references)
     lit = lighting.correct(repainted, gain)
     residual = constancy.palette_fit(lit, palette_bgr, samples if lit is image else None)
