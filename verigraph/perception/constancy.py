@@ -78,16 +78,18 @@ def lab(bgr: np.ndarray) -> np.ndarray:
 def flat_samples(image: np.ndarray, seed: int = 0) -> np.ndarray:
     """BGR pixels (n, 3) from the insides of uniform areas (not outlines or blur edges),
     read on every second row and column (a fill's inside is many pixels wide)."""
-    half = np.ascontiguousarray(image[::2, ::2]) if min(image.shape[:2]) >= 64 else image
-    grey = cv2.cvtColor(half, cv2.COLOR_BGR2GRAY)
+    stride = 2 if min(image.shape[:2]) >= 64 else 1
+    grey = np.ascontiguousarray(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)[::stride, ::stride])
     k = np.ones((3, 3), np.uint8)
     flat = cv2.subtract(cv2.dilate(grey, k), cv2.erode(grey, k)) <= FLAT_RANGE
-    pixels = half[flat]
-    if len(pixels) > MAX_SAMPLES:
-        step = len(pixels) / MAX_SAMPLES
+    # Positions first, pixels last: only the chosen few are gathered from the image.
+    where = np.flatnonzero(flat)
+    if len(where) > MAX_SAMPLES:
+        step = len(where) / MAX_SAMPLES
         offset = np.random.default_rng(seed).uniform(0, step)
-        pixels = pixels[(offset + np.arange(MAX_SAMPLES) * step).astype(np.int64)]
-    return np.asarray(pixels)
+        where = where[(offset + np.arange(MAX_SAMPLES) * step).astype(np.int64)]
+    rows, cols = np.divmod(where, flat.shape[1])
+    return np.asarray(image[rows * stride, cols * stride])
 
 
 def _nearest(samples: np.ndarray, palette_lab: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
