@@ -121,19 +121,16 @@ def _ransac_inliers(design: np.ndarray, g: np.ndarray, subset: int) -> np.ndarra
     hue, such as a grey counter, form a smaller plane of their own and are dropped)."""
     rng = np.random.default_rng(0)
     scored = rng.choice(len(g), size=min(subset, len(g)), replace=False)
-    scored_design, scored_g = design[scored], g[scored]
-    best_coef, best_count = None, -1
-    for trial in rng.integers(0, len(g), size=(RANSAC_TRIALS, 3)):
-        a = design[trial]
-        if abs(float(np.linalg.det(a))) < 1e-6:
-            continue
-        coef = np.linalg.solve(a, g[trial])
-        count = int(np.count_nonzero(np.abs(scored_design @ coef - scored_g)
-                                     < INLIER_TOLERANCE))
-        if count > best_count:
-            best_coef, best_count = coef, count
-    if best_coef is None:
+    trials = rng.integers(0, len(g), size=(RANSAC_TRIALS, 3))
+    # Every trial's plane at once (batched solves, one product for all the scores).
+    systems = design[trials]
+    usable = np.abs(np.linalg.det(systems)) >= 1e-6
+    if not usable.any():
         return np.zeros(len(g), dtype=bool)
+    coefs = np.linalg.solve(systems[usable], g[trials[usable]][..., None])[..., 0]
+    counts = np.count_nonzero(np.abs(design[scored] @ coefs.T - g[scored][:, None])
+                              < INLIER_TOLERANCE, axis=0)
+    best_coef = coefs[int(np.argmax(counts))]  # the first of the best, as a loop finds it
     return np.asarray(np.abs(design @ best_coef - g) < INLIER_TOLERANCE)
 
 
