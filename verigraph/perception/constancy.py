@@ -39,6 +39,7 @@ WALL_CHROMA = 8.0  # CIELab a*b* distance that says "another hue", not "dimmer"
 WALL_MATCH = 40.0
 WALL_NEAR = 12  # grey levels: samples this close to the wall's colour are the wall
 LOW = 6.0  # observed values are clipped here before logarithms
+BETTER_BY = 0.2  # CIELab residual a tone map must gain over the best so far to replace it
 
 
 @dataclass(frozen=True, slots=True)
@@ -138,6 +139,22 @@ def estimate_tone(image: np.ndarray, palette_bgr: list[tuple[int, int, int]],
     palette_lab = lab(palette.astype(np.uint8))
     if len(samples) < 50:
         return ToneMap()
+    judged = samples
+    if wall is not None:
+        away = np.abs(samples.astype(np.int32) - np.array(wall)).max(axis=1) > WALL_NEAR
+        judged = samples[away] if np.count_nonzero(away) >= 50 else samples
+
+    def judge(tone: ToneMap) -> ToneMap:
+        corrected = tone.apply(judged.reshape(-1, 1, 3)).reshape(-1, 3)
+        _, dist = _nearest(corrected, palette_lab)
+        return ToneMap(tone.a, tone.b, tone.colours, float(np.mean(np.minimum(dist, 60.0))))
+
+    # The identity is judged first; a candidate must beat the best by BETTER_BY, and
+    # residuals are never negative, so an image already on the palette (a clean
+    # render) keeps the identity without any fit.
+    best = judge(ToneMap())
+    if best.residual <= BETTER_BY:
+        return best
     starts = [ToneMap()]
     if anchors:
         obs = np.array([a for a, _ in anchors], dtype=np.float64)
@@ -145,18 +162,14 @@ def estimate_tone(image: np.ndarray, palette_bgr: list[tuple[int, int, int]],
         a, b = _fit(obs, tgt, np.ones(len(obs), dtype=bool), min_pairs=2)
         if _plausible(a, b):
             starts.append(ToneMap(_triple(a), _triple(b)))
-    judged = samples
-    if wall is not None:
-        away = np.abs(samples.astype(np.int32) - np.array(wall)).max(axis=1) > WALL_NEAR
-        judged = samples[away] if np.count_nonzero(away) >= 50 else samples
-    best: ToneMap | None = None
-    for tone in starts + [_refine(start, samples, palette, palette_lab) for start in starts]:
-        corrected = tone.apply(judged.reshape(-1, 1, 3)).reshape(-1, 3)
-        _, dist = _nearest(corrected, palette_lab)
-        tone = ToneMap(tone.a, tone.b, tone.colours, float(np.mean(np.minimum(dist, 60.0))))
-        if best is None or tone.residual < best.residual - 0.2:
+    for start in starts[1:]:
+        tone = judge(start)
+        if tone.residual < best.residual - BETTER_BY:
             best = tone
-    assert best is not None
+    for start in starts:
+        tone = judge(_refine(start, samples, palette, palette_lab))
+        if tone.residual < best.residual - BETTER_BY:
+            best = tone
     return best
 
 
