@@ -98,7 +98,7 @@ def _open_wall(classes: np.ndarray, regions: Sequence[Region], floor_row: int | 
     is_open = np.zeros(n, dtype=np.uint8)  # a lookup per label is far cheaper than isin
     is_open[np.concatenate(edge)] = 1
     is_open[0] = 0
-    out = is_open[labels]
+    out = np.take(is_open, labels)
     hulls = np.zeros_like(out)
     for r in regions:
         if r.area >= 3:
