@@ -145,7 +145,8 @@ def colour_index(image: np.ndarray) -> np.ndarray:
     the shifts contiguous (three times faster than on interleaved channels)."""
     if image.size == 0:
         return np.zeros(image.shape[:-1], dtype=np.uint16)
-    b, g, r = cv2.split((image >> SHIFT).reshape(-1, 1, 3))
+    b, g, r = (np.asarray(p, dtype=np.uint8)
+               for p in cv2.split((image >> SHIFT).reshape(-1, 1, 3)))
     out = b.astype(np.uint16) << 10
     out |= g.astype(np.uint16) << 5
     out |= r
