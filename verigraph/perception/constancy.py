@@ -39,6 +39,7 @@ WALL_CHROMA = 8.0  # CIELab a*b* distance that says "another hue", not "dimmer"
 WALL_MATCH = 40.0
 WALL_NEAR = 12  # grey levels: samples this close to the wall's colour are the wall
 LOW = 6.0  # observed values are clipped here before logarithms
+BETTER_BY = 0.2  # CIELab residual a tone map must gain over the best so far to replace it
 
 
 @dataclass(frozen=True, slots=True)
@@ -78,22 +79,30 @@ def lab(bgr: np.ndarray) -> np.ndarray:
 def flat_samples(image: np.ndarray, seed: int = 0) -> np.ndarray:
     """BGR pixels (n, 3) from the insides of uniform areas (not outlines or blur edges),
     read on every second row and column (a fill's inside is many pixels wide)."""
-    half = np.ascontiguousarray(image[::2, ::2]) if min(image.shape[:2]) >= 64 else image
-    grey = cv2.cvtColor(half, cv2.COLOR_BGR2GRAY)
+    stride = 2 if min(image.shape[:2]) >= 64 else 1
+    grey = np.ascontiguousarray(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)[::stride, ::stride])
     k = np.ones((3, 3), np.uint8)
     flat = cv2.subtract(cv2.dilate(grey, k), cv2.erode(grey, k)) <= FLAT_RANGE
-    pixels = half[flat]
-    if len(pixels) > MAX_SAMPLES:
-        step = len(pixels) / MAX_SAMPLES
+    # Positions first, pixels last: only the chosen few are gathered from the image.
+    where = np.flatnonzero(flat)
+    if len(where) > MAX_SAMPLES:
+        step = len(where) / MAX_SAMPLES
         offset = np.random.default_rng(seed).uniform(0, step)
-        pixels = pixels[(offset + np.arange(MAX_SAMPLES) * step).astype(np.int64)]
-    return np.asarray(pixels)
+        where = where[(offset + np.arange(MAX_SAMPLES) * step).astype(np.int64)]
+    rows, cols = np.divmod(where, flat.shape[1])
+    return np.asarray(image[rows * stride, cols * stride])
 
 
 def _nearest(samples: np.ndarray, palette_lab: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    d = np.linalg.norm(lab(samples)[:, None, :] - palette_lab[None, :, :], axis=2)
+    """Nearest palette colour (index, CIELab distance) of each uint8 BGR sample. A
+    render's flat areas hold a few dozen distinct colours among thousands of samples,
+    so the distances are computed once per distinct colour."""
+    pixels = samples.astype(np.int32)
+    keys = (pixels[:, 0] << 16) | (pixels[:, 1] << 8) | pixels[:, 2]
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    d = np.linalg.norm(lab(samples[first])[:, None, :] - palette_lab[None, :, :], axis=2)
     best = np.argmin(d, axis=1)
-    return best, d[np.arange(len(best)), best]
+    return best[inverse], d[np.arange(len(best)), best][inverse]
 
 
 def _fit(observed: np.ndarray, target: np.ndarray, keep: np.ndarray, min_pairs: int = 3
@@ -114,20 +123,38 @@ def _fit(observed: np.ndarray, target: np.ndarray, keep: np.ndarray, min_pairs: 
 
 def estimate_tone(image: np.ndarray, palette_bgr: list[tuple[int, int, int]],
                   anchors: list[tuple[np.ndarray, tuple[int, int, int]]] | None = None,
-                  wall: tuple[int, int, int] | None = None) -> ToneMap:
+                  wall: tuple[int, int, int] | None = None,
+                  samples: np.ndarray | None = None) -> ToneMap:
     """The tone map that best brings the image's flat colours onto the palette.
 
     The pairing loop starts from the identity and, when `anchors` are given (observed
     colours of known surfaces: the wall at the top border, the floor at the bottom),
     also from the map those surfaces alone imply; the start that ends closest to the
     palette wins (a strong curve moves the floor next to the grey counter, where a
-    start from the identity would pair them).
+    start from the identity would pair them). `samples` are the image's
+    `flat_samples`, when the caller has them already.
     """
-    samples = flat_samples(image)
+    samples = flat_samples(image) if samples is None else samples
     palette = np.array(palette_bgr, dtype=np.float64)
     palette_lab = lab(palette.astype(np.uint8))
     if len(samples) < 50:
         return ToneMap()
+    judged = samples
+    if wall is not None:
+        away = np.abs(samples.astype(np.int32) - np.array(wall)).max(axis=1) > WALL_NEAR
+        judged = samples[away] if np.count_nonzero(away) >= 50 else samples
+
+    def judge(tone: ToneMap) -> ToneMap:
+        corrected = tone.apply(judged.reshape(-1, 1, 3)).reshape(-1, 3)
+        _, dist = _nearest(corrected, palette_lab)
+        return ToneMap(tone.a, tone.b, tone.colours, float(np.mean(np.minimum(dist, 60.0))))
+
+    # The identity is judged first; a candidate must beat the best by BETTER_BY, and
+    # residuals are never negative, so an image already on the palette (a clean
+    # render) keeps the identity without any fit.
+    best = judge(ToneMap())
+    if best.residual <= BETTER_BY:
+        return best
     starts = [ToneMap()]
     if anchors:
         obs = np.array([a for a, _ in anchors], dtype=np.float64)
@@ -135,18 +162,14 @@ def estimate_tone(image: np.ndarray, palette_bgr: list[tuple[int, int, int]],
         a, b = _fit(obs, tgt, np.ones(len(obs), dtype=bool), min_pairs=2)
         if _plausible(a, b):
             starts.append(ToneMap(_triple(a), _triple(b)))
-    judged = samples
-    if wall is not None:
-        away = np.abs(samples.astype(np.int32) - np.array(wall)).max(axis=1) > WALL_NEAR
-        judged = samples[away] if np.count_nonzero(away) >= 50 else samples
-    best: ToneMap | None = None
-    for tone in starts + [_refine(start, samples, palette, palette_lab) for start in starts]:
-        corrected = tone.apply(judged.reshape(-1, 1, 3)).reshape(-1, 3)
-        _, dist = _nearest(corrected, palette_lab)
-        tone = ToneMap(tone.a, tone.b, tone.colours, float(np.mean(np.minimum(dist, 60.0))))
-        if best is None or tone.residual < best.residual - 0.2:
+    for start in starts[1:]:
+        tone = judge(start)
+        if tone.residual < best.residual - BETTER_BY:
             best = tone
-    assert best is not None
+    for start in starts:
+        tone = judge(_refine(start, samples, palette, palette_lab))
+        if tone.residual < best.residual - BETTER_BY:
+            best = tone
     return best
 
 
@@ -160,6 +183,26 @@ def _plausible(a: np.ndarray, b: np.ndarray) -> bool:
                            | (np.abs(a - 1) > 0.05)))
 
 
+def _group_medians(samples: np.ndarray, groups: np.ndarray, count: int, at_least: float
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """The groups (0..count-1) with at least `at_least` uint8 samples, and the
+    per-channel median of each, from one sort per channel instead of a mask and a
+    median per group (the values are integers, so the medians are exact)."""
+    sizes = np.bincount(groups, minlength=count)
+    voters = np.flatnonzero(sizes >= at_least)
+    if len(voters) == 0:
+        return voters, np.zeros((0, 3))
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])[voters]
+    lower = starts + (sizes[voters] - 1) // 2
+    upper = starts + sizes[voters] // 2
+    medians = np.empty((len(voters), 3))
+    for ch in range(3):
+        ordered = np.sort(groups.astype(np.int64) * 256 + samples[:, ch])  # by group, value
+        values = (ordered % 256).astype(np.float64)
+        medians[:, ch] = (values[lower] + values[upper]) / 2
+    return voters, medians
+
+
 def _refine(tone: ToneMap, samples: np.ndarray, palette: np.ndarray,
             palette_lab: np.ndarray) -> ToneMap:
     """Pair flat colours with palette colours under the map, refit, repeat."""
@@ -167,15 +210,11 @@ def _refine(tone: ToneMap, samples: np.ndarray, palette: np.ndarray,
         corrected = tone.apply(samples.reshape(-1, 1, 3)).reshape(-1, 3)
         best, dist = _nearest(corrected, palette_lab)
         ok = dist < MATCH_DELTA_E
-        observed, target = [], []
-        for c in range(len(palette)):
-            mine = ok & (best == c)
-            if np.count_nonzero(mine) >= max(8, MIN_SHARE * len(samples)):
-                observed.append(np.median(samples[mine].astype(np.float64), axis=0))
-                target.append(palette[c])
-        if len(observed) < 2:
+        voters, obs = _group_medians(samples[ok], best[ok], len(palette),
+                                     max(8, MIN_SHARE * len(samples)))
+        if len(voters) < 2:
             break
-        obs, tgt = np.array(observed), np.array(target)
+        tgt = palette[voters]
         keep = np.ones(len(obs), dtype=bool)
         a, b = _fit(obs, tgt, keep)
         residual = np.abs(np.log(np.maximum(obs, LOW) / 255.0) * a + b
@@ -213,7 +252,13 @@ def repaint_wall(image: np.ndarray, background: tuple[int, int, int]
     Returns the image (unchanged when the wall has the background's hue, perhaps
     dimmer: that is lighting, undone later) and the wall colour found, if repainted.
     """
-    wall = wall_colour(image)
+    return repaint_measured_wall(image, background, wall_colour(image))
+
+
+def repaint_measured_wall(image: np.ndarray, background: tuple[int, int, int],
+                          wall: tuple[int, int, int] | None
+                          ) -> tuple[np.ndarray, tuple[int, int, int] | None]:
+    """`repaint_wall` with the wall's colour (`wall_colour(image)`) already measured."""
     if wall is None:
         return image, None
     wall_lab, background_lab = lab(np.array([wall, background], dtype=np.uint8))
@@ -227,11 +272,13 @@ def repaint_wall(image: np.ndarray, background: tuple[int, int, int]
     return out.astype(np.uint8), wall
 
 
-def palette_fit(image: np.ndarray, palette_bgr: list[tuple[int, int, int]]) -> float:
+def palette_fit(image: np.ndarray, palette_bgr: list[tuple[int, int, int]],
+                samples: np.ndarray | None = None) -> float:
     """How well an image's flat colours match the palette, one vote per colour: the
     mean over matched palette colours of their samples' median CIELab distance, plus a
-    penalty for the share of samples no palette colour explains. Lower is better."""
-    samples = flat_samples(image)
+    penalty for the share of samples no palette colour explains. Lower is better.
+    `samples` are the image's `flat_samples`, when the caller has them already."""
+    samples = flat_samples(image) if samples is None else samples
     if len(samples) < 50:
         return 0.0
     best, dist = _nearest(samples, lab(np.array(palette_bgr, dtype=np.uint8)))

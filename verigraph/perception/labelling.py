@@ -37,11 +37,10 @@ class Shape:
 
     @classmethod
     def of(cls, region: Region) -> Shape:
-        pts = region.points()
-        if len(pts) < 3:
+        if region.area < 3:
             return cls(float(region.width), float(region.height), 1.0)
-        (_, _), (w, h), _ = cv2.minAreaRect(pts)
-        hull = cv2.convexHull(pts)
+        hull = region.hull()
+        (_, _), (w, h), _ = cv2.minAreaRect(hull)  # the hull's rectangle is the region's
         hull_area = max(float(cv2.contourArea(hull)), 1.0)
         return cls(max(w, h) + 1 + OUTLINE_INSET, min(w, h) + 1 + OUTLINE_INSET,
                    min(1.0, region.area / (hull_area + 0.5 * cv2.arcLength(hull, True))))
@@ -126,10 +125,12 @@ def _near_colours(image: np.ndarray, region: Region, colour: str,
     blend); when that is plainly its class colour, the class alone is the candidate."""
     movable = [m for m in models if not m.fixed]
     own = [m for m in movable if m.colour == colour]
-    pixels = image[region.y0:region.y1, region.x0:region.x1][region.mask].reshape(-1, 3)
-    if len(pixels) == 0:
+    if region.area == 0:
         return own, dict.fromkeys(range(len(own)), 0.0)
-    pixel_lab = lab(pixels[:: max(1, len(pixels) // MAX_PIXELS)])
+    # Every k-th pixel of the region, gathered from their positions (not all of them).
+    where = np.flatnonzero(region.mask)[:: max(1, region.area // MAX_PIXELS)]
+    rows, cols = np.divmod(where, region.width)
+    pixel_lab = lab(image[region.y0 + rows, region.x0 + cols])
     own_lab = _palette_lab(colour)
     to_own = np.linalg.norm(pixel_lab - own_lab, axis=1)
     core = np.median(pixel_lab[to_own <= np.percentile(to_own, 25)], axis=0)

@@ -44,10 +44,11 @@ def sharpness(image: np.ndarray) -> float:
     absolute Sobel derivative along x, y and both diagonals, the smallest of the four.
     Outlines are the image's strongest edges; a shake smears those across its own
     direction only, which the weakest direction catches."""
-    grey = cv2.medianBlur(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY), 3).astype(np.float32)
-    gx = cv2.Sobel(grey, cv2.CV_32F, 1, 0)
-    gy = cv2.Sobel(grey, cv2.CV_32F, 0, 1)
-    gx, gy = gx[::2, ::2].ravel(), gy[::2, ::2].ravel()  # every fourth pixel is plenty
+    grey = cv2.medianBlur(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY), 3)
+    # On 8-bit grey the derivatives are integers: 16-bit Sobel gives them exactly, at a
+    # fraction of the float cost; every fourth pixel is plenty.
+    gx = cv2.Sobel(grey, cv2.CV_16S, 1, 0)[::2, ::2].astype(np.float32).ravel()
+    gy = cv2.Sobel(grey, cv2.CV_16S, 0, 1)[::2, ::2].astype(np.float32).ravel()
     return min(_percentile(d) for d in (gx, gy, (gx + gy) / np.float32(1.414),
                                         (gx - gy) / np.float32(1.414)))
 

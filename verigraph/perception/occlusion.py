@@ -72,10 +72,14 @@ def unexplained_areas(classes: np.ndarray, regions: Sequence[Region], floor_row:
     rest = ((explained | objects) == 0).view(np.uint8)
     rest = cv2.erode(rest, np.ones((3, 3), np.uint8))
     scene = max(1, int(np.count_nonzero(explained == 0)))
-    share = 1.0 - min(1.0, np.count_nonzero(rest) / scene)
-    n, _, stats, _ = cv2.connectedComponentsWithStats(rest, connectivity=4)
-    return [(int(x), int(y), int(x + w), int(y + h)) for x, y, w, h, area in stats[1:n]
-            if area >= min_area], share
+    left = int(np.count_nonzero(rest))
+    share = 1.0 - min(1.0, left / scene)
+    if left < min_area:  # no area can be large enough: skip the labelling
+        return [], share
+    x, y, w, h = cv2.boundingRect(rest)  # label only the box the leftovers lie in
+    n, _, stats, _ = cv2.connectedComponentsWithStats(rest[y:y + h, x:x + w], connectivity=4)
+    return [(int(x + bx), int(y + by), int(x + bx + bw), int(y + by + bh))
+            for bx, by, bw, bh, area in stats[1:n] if area >= min_area], share
 
 
 def _open_wall(classes: np.ndarray, regions: Sequence[Region], floor_row: int | None
@@ -91,11 +95,12 @@ def _open_wall(classes: np.ndarray, regions: Sequence[Region], floor_row: int | 
     edge = [labels[0], labels[-1], labels[:, 0], labels[:, -1]]
     if floor_row is not None and floor_row > 0:
         edge.append(labels[floor_row - 1])
-    open_ids = np.unique(np.concatenate(edge))
-    out = np.isin(labels, open_ids[open_ids > 0]).view(np.uint8)
+    is_open = np.zeros(n, dtype=np.uint8)  # a lookup per label is far cheaper than isin
+    is_open[np.concatenate(edge)] = 1
+    is_open[0] = 0
+    out = np.take(is_open, labels)
     hulls = np.zeros_like(out)
     for r in regions:
-        points = r.points()
-        if len(points) >= 3:
-            cv2.fillConvexPoly(hulls, cv2.convexHull(points), 1)
+        if r.area >= 3:
+            cv2.fillConvexPoly(hulls, r.hull(), 1)
     return np.asarray(out | (hulls & wall))

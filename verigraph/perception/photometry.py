@@ -48,14 +48,17 @@ def correct_colours(image: np.ndarray, palette_bgr: list[tuple[int, int, int]],
     floor = constancy.wall_colour(image, bottom=True)
     if floor is not None and palette.FLOOR in references:
         anchors.append((np.array(floor, dtype=np.float64), palette.FLOOR))
-    tone = constancy.estimate_tone(image, palette_bgr, anchors, top)
+    samples = constancy.flat_samples(image)  # reused below while the image is unchanged
+    tone = constancy.estimate_tone(image, palette_bgr, anchors, top, samples)
     toned = tone.apply(image)
-    repainted, wall = constancy.repaint_wall(toned, background)
+    repainted, wall = (constancy.repaint_measured_wall(toned, background, top)
+                       if toned is image else constancy.repaint_wall(toned, background))
     gain = lighting.estimate_gain(repainted, references)
     lit = lighting.correct(repainted, gain)
-    residual = constancy.palette_fit(lit, palette_bgr)
+    residual = constancy.palette_fit(lit, palette_bgr, samples if lit is image else None)
     if lit is not repainted:
-        unlit = constancy.palette_fit(repainted, palette_bgr)
+        unlit = constancy.palette_fit(repainted, palette_bgr,
+                                      samples if repainted is image else None)
         if unlit < residual:
             gain, lit, residual = lighting.GainField(), repainted, unlit
     notes = []

@@ -33,6 +33,7 @@ class Region:
     y0: int
     mask: np.ndarray
     area: int = field(init=False)
+    _hull: np.ndarray | None = field(default=None, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         self.area = int(np.count_nonzero(self.mask))
@@ -63,6 +64,22 @@ class Region:
         """Pixel coordinates (x, y) of the region, shape (n, 2), int32."""
         ys, xs = np.nonzero(self.mask)
         return np.stack([xs + self.x0, ys + self.y0], axis=1).astype(np.int32)
+
+    def hull(self) -> np.ndarray:
+        """Convex hull of the region's pixels (as `cv2.convexHull` of `points()` gives
+        it), computed once. Only the left-most and right-most pixel of each row can be a
+        hull vertex, so the hull is taken over those: the same polygon from a few hundred
+        points instead of every pixel of a table."""
+        if self._hull is None:
+            m = self.mask
+            rows = np.flatnonzero(m.any(axis=1))
+            left = np.argmax(m[rows], axis=1)
+            right = m.shape[1] - 1 - np.argmax(m[rows, ::-1], axis=1)
+            xs = np.concatenate([left, right]) + self.x0
+            ys = np.concatenate([rows, rows]) + self.y0
+            self._hull = np.asarray(cv2.convexHull(np.stack([xs, ys], axis=1)
+                                                   .astype(np.int32)))
+        return self._hull
 
     def shifted(self, dx: int, dy: int) -> Region:
         """The same region with its box moved by (dx, dy) (crop -> image coordinates)."""

@@ -57,7 +57,8 @@ def direct_support(index: int, detections: Sequence[Detection], labels: np.ndarr
     if len(cols) == 0:
         return DirectSupport(None)
     h = labels.shape[0]
-    found: dict[int, list[int]] = {}
+    hit_values: list[np.ndarray] = []  # what each column meets, in the order met
+    hit_columns: list[np.ndarray] = []
     for step in range(1, gap + 1):
         ys = r.y0 + lowest[cols] + step
         ok = ys < h
@@ -67,18 +68,23 @@ def direct_support(index: int, detections: Sequence[Detection], labels: np.ndarr
         hits = np.zeros(len(cols), dtype=np.int32)
         hits[ok] = labels[ys[ok], xs[ok]]
         new = (hits != NOTHING) & (hits != index + 1)
-        for c, v in zip(cols[new], hits[new], strict=True):
-            found.setdefault(int(v), []).append(int(c))
+        hit_values.append(hits[new])
+        hit_columns.append(cols[new])
         cols = cols[~new]
         if len(cols) == 0:
             break
+    found: dict[int, np.ndarray] = {}  # thing -> its columns, things in order first met
+    if hit_values:
+        values, columns = np.concatenate(hit_values), np.concatenate(hit_columns)
+        distinct, first = np.unique(values, return_index=True)
+        for value in distinct[np.argsort(first)]:
+            found[int(value)] = columns[values == value]
     if not found:
         return DirectSupport(None)
     com_x = detections[index].region.centroid()[0] - r.x0
     near = max(UNDER_TOLERANCE, 0.1 * r.width)
     best: tuple[tuple[bool, int], int] | None = None
-    for value, columns in found.items():
-        cs = np.asarray(columns)
+    for value, cs in found.items():
         # Columns, not their span: blur can leave a sliver of the table's colour on
         # both sides of a block, which spans everything but touches little.
         score = (bool(np.any(np.abs(cs - com_x) <= near)), len(cs))
@@ -100,7 +106,7 @@ class Cavities:
         self.hulls: dict[int, tuple[np.ndarray, float]] = {}
         for i, d in enumerate(detections):
             if d.model.container:
-                hull = cv2.convexHull(d.region.points())
+                hull = d.region.hull()
                 self.hulls[i] = (hull, float(cv2.contourArea(hull)))
 
     def holds(self, container: int, point: tuple[float, float]) -> bool:

@@ -147,8 +147,17 @@ def bright_objects(candidates: list[Region], image: np.ndarray, table: ColourTab
     options = [c for c in table.bright if table.names[c] in models]
     if not options:
         return []
+    expected = {c: _expected_pixels(models[table.names[c]], scale) for c in options}
+
+    def too_large(region: Region, c: int) -> bool:
+        longest, largest = expected[c]
+        size = max(region.width, region.height)
+        return size > MERGE_SLACK * longest + MERGE_PIXELS or region.area > MERGE_SLACK * largest
+
     out = []
     for region in candidates:
+        if all(too_large(region, c) for c in options):
+            continue  # larger than any bright object, whatever its colour (the wall)
         pixels = image[region.y0:region.y1, region.x0:region.x1][region.mask].reshape(-1, 3)
         # The brightest quarter: blur darkens a thin white plate towards its outline.
         bright = pixels.astype(np.float32)
@@ -158,11 +167,10 @@ def bright_objects(candidates: list[Region], image: np.ndarray, table: ColourTab
                    key=lambda c: float(np.linalg.norm(mean - np.array(table.bgr[c]))))
         if best == BACKGROUND:
             continue
-        longest, largest = _expected_pixels(models[table.names[best]], scale)
-        size = max(region.width, region.height)
-        if size > MERGE_SLACK * longest + MERGE_PIXELS or region.area > MERGE_SLACK * largest:
+        if too_large(region, best):
             continue
-        if float(mean.max()) >= CLIPPED_MEAN and size < 0.5 * longest:
+        longest = expected[best][0]
+        if float(mean.max()) >= CLIPPED_MEAN and max(region.width, region.height) < 0.5 * longest:
             continue
         out.append(Region(best, region.x0, region.y0, region.mask))
     return out
