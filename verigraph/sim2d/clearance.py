@@ -1,0 +1,102 @@
+"""Symbolic clearance over a raised target: may a neighbour be in the way of lowering?
+
+The simulator puts an object down by lowering it over the target until it touches the
+highest thing under it (`placement`), and the placement counts only if that thing is
+the target. So a neighbour standing higher than where the object would come to rest
+blocks every position its footprint reaches: a tray lowered onto a cup in a mug meets
+a bowl on the book next door, a bowl lowered onto a mug meets a plate resting across
+a cup on the neighbouring book and hanging over the mug. Only when the target stands
+directly on furniture does the simulator push neighbours aside; higher up it cannot.
+
+The state holds no positions, so this check assumes the worst: every other stack on
+the same furniture may stand right next to the target's stack, and anything above
+the bottom of a stack may hang over its edge. The heights are nominal (dictionary
+sizes, contents on a container's floor when they fit through its opening, on its rim
+otherwise), with a margin for tilts.
+"""
+
+from __future__ import annotations
+
+from verigraph.graph.state import WorldState
+from verigraph.sim2d.bodies import movable_spec
+
+HEIGHT_MARGIN = 1.0
+FIT_CLEARANCE = 0.4
+
+
+def _height(state: WorldState, obj: str) -> float:
+    info = state.objects[obj]
+    return movable_spec(info.label, info.props).height
+
+
+def _rests_inside(state: WorldState, obj: str, container: str) -> tuple[bool, float]:
+    """(goes through the opening, floor height above the container's bottom)."""
+    info = state.objects[container]
+    cavity = movable_spec(info.label, info.props).cavity
+    if cavity is None:
+        return False, 0.0
+    width = float(state.objects[obj].props.width or 6.0)
+    return width <= cavity[1] - cavity[0] - FIT_CLEARANCE, cavity[2]
+
+
+def bottom(state: WorldState, obj: str, relation: str | None = None,
+           holder: str | None = None) -> float:
+    """Nominal height of the object's underside above the furniture carrying its stack
+    (`relation`, `holder`: where it would be put; by default where it is)."""
+    if holder is None:
+        current = state.support.get(obj)
+        if current is None:
+            return 0.0
+        relation, holder = current
+    if not state.objects[holder].props.movable:
+        return 0.0
+    if relation == "in":
+        inside, floor = _rests_inside(state, obj, holder)
+        if inside:
+            return bottom(state, holder) + floor
+    return top(state, holder)
+
+
+def top(state: WorldState, obj: str) -> float:
+    """Nominal height of the object's top above the furniture carrying its stack."""
+    if not state.objects[obj].props.movable:
+        return 0.0
+    return bottom(state, obj) + _height(state, obj)
+
+
+def _stack_root(state: WorldState, obj: str) -> tuple[str, str | None]:
+    """(the object of the stack standing on furniture, that furniture)."""
+    current, seen = obj, {obj}
+    while True:
+        below = state.support.get(current)
+        if below is None:
+            return current, None
+        if not state.objects[below[1]].props.movable:
+            return current, below[1]
+        if below[1] in seen:
+            return current, None
+        current = below[1]
+        seen.add(current)
+
+
+def lowering_blockers(state: WorldState, obj: str, relation: str, target: str) -> list[str]:
+    """Neighbours that may stand in the way of lowering `obj` `relation` `target`: for a
+    target raised on another movable object, every object of another stack on the same
+    furniture that reaches above where `obj` would come to rest."""
+    below = state.support.get(target)
+    if below is None or not state.objects[below[1]].props.movable:
+        return []  # on furniture (neighbours are pushed aside) or furniture itself
+    root, furniture = _stack_root(state, target)
+    if furniture is None:
+        return []
+    rest = bottom(state, obj, relation, target)
+    blockers = []
+    for other in state.objects:
+        if other == obj or not state.objects[other].props.movable:
+            continue
+        other_root, other_furniture = _stack_root(state, other)
+        if other_furniture != furniture or other_root in (root, obj):
+            continue
+        if top(state, other) > rest - HEIGHT_MARGIN:
+            blockers.append(other)
+    return sorted(blockers)
