@@ -145,8 +145,8 @@ def room_violation(state: WorldState, action: MoveAction) -> Violation | None:
     blockers = lowering_blockers(state, obj, rel, target)
     if blockers:
         return _fail(action, f"{target} is raised on {below[1] if below else target} and "
-                     f"{blockers[0]} may stand as high right beside it: {obj} could not be "
-                     f"lowered {rel} {target} past it", blockers,
+                     f"{blockers[0]} may stand as high right beside it or over it: {obj} could "
+                     f"not be lowered {rel} {target} past it", blockers,
                      f"move {blockers[0]} off its stack first, or put {obj} somewhere lower")
     if rel == "on":
         width = _width(state, target)
