@@ -5,14 +5,16 @@ highest thing under it (`placement`), and the placement counts only if that thin
 the target. So a neighbour standing higher than where the object would come to rest
 blocks every position its footprint reaches: a tray lowered onto a cup in a mug meets
 a bowl on the book next door, a bowl lowered onto a mug meets a plate resting across
-a cup on the neighbouring book and hanging over the mug. Only when the target stands
-directly on furniture does the simulator push neighbours aside; higher up it cannot.
+a cup on the neighbouring book and hanging over the mug, and a bowl lowered onto a cup
+on a tray meets a book lying across a mug beside it on the same tray. Only when the
+target stands directly on furniture does the simulator push neighbours aside; higher
+up it cannot.
 
-The state holds no positions, so this check assumes the worst: every other stack on
-the same furniture may stand right next to the target's stack, and anything above
-the bottom of a stack may hang over its edge. The heights are nominal (dictionary
-sizes, contents on a container's floor when they fit through its opening, on its rim
-otherwise), with a margin for tilts.
+The state holds no positions, so this check assumes the worst: anything on the same
+furniture (other than what carries the target or lies on or in it) may stand right
+next to the target, and anything above the bottom of a stack may hang over its edge.
+The heights are nominal (dictionary sizes, contents on a container's floor when they
+fit through its opening, on its rim otherwise), with a margin for tilts.
 """
 
 from __future__ import annotations
@@ -79,23 +81,34 @@ def _stack_root(state: WorldState, obj: str) -> tuple[str, str | None]:
         seen.add(current)
 
 
+def _chain_below(state: WorldState, obj: str) -> list[str]:
+    """What carries `obj`, directly or not."""
+    out: list[str] = []
+    below = state.support.get(obj)
+    while below is not None and below[1] not in out:
+        out.append(below[1])
+        below = state.support.get(below[1])
+    return out
+
+
 def lowering_blockers(state: WorldState, obj: str, relation: str, target: str) -> list[str]:
     """Neighbours that may stand in the way of lowering `obj` `relation` `target`: for a
-    target raised on another movable object, every object of another stack on the same
-    furniture that reaches above where `obj` would come to rest."""
+    target raised on another movable object, every object on the same furniture, other
+    than what carries the target or lies on or in it, that reaches above where `obj`
+    would come to rest (a neighbour on the same tray, or in another stack)."""
     below = state.support.get(target)
     if below is None or not state.objects[below[1]].props.movable:
         return []  # on furniture (neighbours are pushed aside) or furniture itself
-    root, furniture = _stack_root(state, target)
+    _, furniture = _stack_root(state, target)
     if furniture is None:
         return []
     rest = bottom(state, obj, relation, target)
+    skip = {obj, target} | set(state.carried[target]) | set(_chain_below(state, target))
     blockers = []
     for other in state.objects:
-        if other == obj or not state.objects[other].props.movable:
+        if other in skip or not state.objects[other].props.movable:
             continue
-        other_root, other_furniture = _stack_root(state, other)
-        if other_furniture != furniture or other_root in (root, obj):
+        if _stack_root(state, other)[1] != furniture:
             continue
         if top(state, other) > rest - HEIGHT_MARGIN:
             blockers.append(other)
