@@ -144,6 +144,7 @@ def test_room_check_explains_a_blocked_container() -> None:
 @pytest.mark.parametrize(("seed", "blocked", "blockers"), [
     (50151, "move(tray, in, cup)", ["bowl"]),  # the cup stands in a mug, a bowl next door
     (50199, "move(bowl, in, mug)", ["cup", "plate"]),  # a plate across a cup hangs over
+    (10071, "move(bowl, in, cup)", ["book", "mug"]),  # a book across a mug, same tray
 ])
 def test_room_check_sees_neighbours_beside_a_raised_target(
         seed: int, blocked: str, blockers: list[str]) -> None:
