@@ -13,6 +13,9 @@ up it cannot.
 The state holds no positions, so this check assumes the worst: anything on the same
 furniture (other than what carries the target or lies on or in it) may stand right
 next to the target, and anything above the bottom of a stack may hang over its edge.
+An object that stays within the target's outline (through a container's opening, or
+alone on a wide enough surface) can only meet something hanging over the target, so
+then neighbours standing on the furniture itself do not count.
 The heights are nominal (dictionary sizes, contents on a container's floor when they
 fit through its opening, on its rim otherwise), with a margin for tilts.
 """
@@ -91,6 +94,17 @@ def _chain_below(state: WorldState, obj: str) -> list[str]:
     return out
 
 
+def _within(state: WorldState, obj: str, relation: str, target: str) -> bool:
+    """`obj` would stay within the target's outline: through a container's opening, or
+    alone on a surface at least as wide. Then only something hanging over the target
+    can be in its way: a neighbour standing on the furniture cannot be above it."""
+    if relation == "in":
+        return _rests_inside(state, obj, target)[0]
+    width = float(state.objects[obj].props.width or 6.0)
+    return not state.carried[target] and width <= float(state.objects[target].props.width
+                                                        or 6.0)
+
+
 def lowering_blockers(state: WorldState, obj: str, relation: str, target: str) -> list[str]:
     """Neighbours that may stand in the way of lowering `obj` `relation` `target`: for a
     target raised on another movable object, every object on the same furniture, other
@@ -103,11 +117,15 @@ def lowering_blockers(state: WorldState, obj: str, relation: str, target: str) -
     if furniture is None:
         return []
     rest = bottom(state, obj, relation, target)
+    within = _within(state, obj, relation, target)
     skip = {obj, target} | set(state.carried[target]) | set(_chain_below(state, target))
     blockers = []
     for other in state.objects:
         if other in skip or not state.objects[other].props.movable:
             continue
+        other_below = state.support.get(other)
+        if within and (other_below is None or not state.objects[other_below[1]].props.movable):
+            continue  # standing on furniture, it cannot be over the target's opening
         if _stack_root(state, other)[1] != furniture:
             continue
         if top(state, other) > rest - HEIGHT_MARGIN:
