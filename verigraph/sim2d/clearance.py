@@ -15,7 +15,7 @@ furniture (other than what carries the target or lies on or in it) may stand rig
 next to the target, and anything above the bottom of a stack may hang over its edge.
 An object that stays within the target's outline (through a container's opening, or
 alone on a wide enough surface) can only meet something hanging over the target, so
-then neighbours standing on the furniture itself do not count.
+then only things whose underside may be as high as the target's top count.
 The heights are nominal (dictionary sizes, contents on a container's floor when they
 fit through its opening, on its rim otherwise), with a margin for tilts.
 """
@@ -94,10 +94,20 @@ def _chain_below(state: WorldState, obj: str) -> list[str]:
     return out
 
 
+def _highest_bottom(state: WorldState, obj: str) -> float:
+    """The highest the object's underside can be: things in a container taken as
+    resting on its rim (on whatever else is inside), never as low as its floor."""
+    below = state.support.get(obj)
+    if below is None or not state.objects[below[1]].props.movable:
+        return 0.0
+    holder = below[1]
+    return _highest_bottom(state, holder) + _height(state, holder)
+
+
 def _within(state: WorldState, obj: str, relation: str, target: str) -> bool:
     """`obj` would stay within the target's outline: through a container's opening, or
     alone on a surface at least as wide. Then only something hanging over the target
-    can be in its way: a neighbour standing on the furniture cannot be above it."""
+    can be in its way, and that lies higher than the target's top."""
     if relation == "in":
         return _rests_inside(state, obj, target)[0]
     width = float(state.objects[obj].props.width or 6.0)
@@ -123,9 +133,8 @@ def lowering_blockers(state: WorldState, obj: str, relation: str, target: str) -
     for other in state.objects:
         if other in skip or not state.objects[other].props.movable:
             continue
-        other_below = state.support.get(other)
-        if within and (other_below is None or not state.objects[other_below[1]].props.movable):
-            continue  # standing on furniture, it cannot be over the target's opening
+        if within and _highest_bottom(state, other) < top(state, target) - HEIGHT_MARGIN:
+            continue  # lower than the target's top, it cannot hang over the target
         if _stack_root(state, other)[1] != furniture:
             continue
         if top(state, other) > rest - HEIGHT_MARGIN:
