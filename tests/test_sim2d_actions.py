@@ -174,18 +174,18 @@ def test_room_check_sees_neighbours_beside_a_raised_target(
 
 
 def test_clearance_counts_only_neighbours_that_can_be_in_the_way() -> None:
-    """A mug raised on a tray, a cup on a book beside it: a bowl resting on the mug's
+    """A bowl raised on a tray, a cup on a book beside it: a plate resting on the bowl's
     rim may meet the cup, a spoon going through the opening cannot (the cup stands
-    lower than the mug's top, so it cannot hang over it)."""
-    nodes = [Node(id=i, label=i) for i in ("table", "tray", "mug", "book", "cup", "bowl",
+    lower than the bowl's top, so it cannot hang over it)."""
+    nodes = [Node(id=i, label=i) for i in ("table", "tray", "bowl", "book", "cup", "plate",
                                             "spoon")]
     edges = [Edge(source="tray", relation="on", target="table"),
-             Edge(source="mug", relation="on", target="tray"),
+             Edge(source="bowl", relation="on", target="tray"),
              Edge(source="book", relation="on", target="table"),
              Edge(source="cup", relation="on", target="book"),
-             Edge(source="bowl", relation="on", target="table"),
+             Edge(source="plate", relation="on", target="table"),
              Edge(source="spoon", relation="on", target="table")]
     state = WorldState.from_graph(SceneGraph(nodes=nodes, edges=edges, dictionary="tableware"))
-    wide = room_violation(state, MoveAction(object="bowl", relation="in", target="mug"))
+    wide = room_violation(state, MoveAction(object="plate", relation="in", target="bowl"))
     assert wide is not None and wide.blocking == ["cup"]  # the book is too low
-    assert room_violation(state, MoveAction(object="spoon", relation="in", target="mug")) is None
+    assert room_violation(state, MoveAction(object="spoon", relation="in", target="bowl")) is None
