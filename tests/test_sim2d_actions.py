@@ -139,3 +139,53 @@ def test_room_check_explains_a_blocked_container() -> None:
     violation = room_violation(state, MoveAction(object="lid", relation="in", target="pot"))
     assert violation is not None and violation.blocking == ["pan"]
     assert "rim" in violation.message
+
+
+@pytest.mark.parametrize(("seed", "blocked", "blockers"), [
+    (50151, "move(tray, in, cup)", ["bowl"]),  # the cup stands in a mug, a bowl next door
+    (50199, "move(bowl, in, mug)", ["cup", "plate"]),  # a plate across a cup hangs over
+    (10071, "move(bowl, in, cup)", ["book", "mug"]),  # a book across a mug, same tray
+])
+def test_room_check_sees_neighbours_beside_a_raised_target(
+        seed: int, blocked: str, blockers: list[str]) -> None:
+    """Random valid moves replayed as the agreement benchmark samples them: the move
+    that once passed the room check and was refused by the simulator is now predicted,
+    and no move the check passes is refused."""
+    scene = generate_scene("tableware", seed)
+    world, state = scene.world, WorldState.from_graph(scene.graph)
+    rng = random.Random(f"tableware:{seed}")
+    seen = False
+    for _ in range(MOVES_PER_SCENE):
+        action = rng.choice(valid_moves(state))
+        room = room_violation(state, action)
+        before = world.observe()
+        _, _, violation, _, new_state = execute_in_world(state, [action], world)
+        if action.text() == blocked:
+            seen = True
+            assert room is not None and room.blocking == blockers, room
+            assert violation is not None and violation.constraint == "no_room"
+        if violation is None:
+            assert world.observe().edge_keys() == new_state.to_graph().edge_keys()
+            state = new_state
+        else:
+            assert room is not None, f"{action.text()}: {violation.message}"
+            assert world.observe() == before
+    assert seen
+
+
+def test_clearance_counts_only_neighbours_that_can_be_in_the_way() -> None:
+    """A bowl raised on a tray, a cup on a book beside it: a plate resting on the bowl's
+    rim may meet the cup, a spoon going through the opening cannot (the cup stands
+    lower than the bowl's top, so it cannot hang over it)."""
+    nodes = [Node(id=i, label=i) for i in ("table", "tray", "bowl", "book", "cup", "plate",
+                                            "spoon")]
+    edges = [Edge(source="tray", relation="on", target="table"),
+             Edge(source="bowl", relation="on", target="tray"),
+             Edge(source="book", relation="on", target="table"),
+             Edge(source="cup", relation="on", target="book"),
+             Edge(source="plate", relation="on", target="table"),
+             Edge(source="spoon", relation="on", target="table")]
+    state = WorldState.from_graph(SceneGraph(nodes=nodes, edges=edges, dictionary="tableware"))
+    wide = room_violation(state, MoveAction(object="plate", relation="in", target="bowl"))
+    assert wide is not None and wide.blocking == ["cup"]  # the book is too low
+    assert room_violation(state, MoveAction(object="spoon", relation="in", target="bowl")) is None

@@ -16,6 +16,9 @@ thing in or across it for a container):
 - a surface that balances several objects (it rests on something narrower, stands on
   a narrower foot like a plate, or its load hangs over its edges) takes no more load
   anywhere above it and gives none up: the rest could tip;
+- on or in a target raised on another movable object: no other stack on the same
+  furniture reaches above where the object would rest (see `clearance`: it may stand
+  right beside the target, or hang over it);
 - in a container: nothing lies across its rim; an object narrower than the opening
   goes inside if the contents side by side leave room (one that only just fits, only
   into an empty container; cutlery may stand upright in an empty narrow one); a wider
@@ -28,6 +31,7 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.model import MoveAction
 from verigraph.graph.state import WorldState
 from verigraph.sim2d.bodies import movable_spec
+from verigraph.sim2d.clearance import lowering_blockers
 
 CLEARANCE = 0.4
 GAP = 0.3
@@ -138,6 +142,12 @@ def room_violation(state: WorldState, action: MoveAction) -> Violation | None:
         return _fail(action, f"{target} stands on {balancing}, which would balance several "
                      "objects; more load could tip it", [balancing],
                      f"put {obj} somewhere steadier, or clear {balancing} first")
+    blockers = lowering_blockers(state, obj, rel, target)
+    if blockers:
+        return _fail(action, f"{target} is raised on {below[1] if below else target} and "
+                     f"{blockers[0]} may stand as high right beside it or over it: {obj} could "
+                     f"not be lowered {rel} {target} past it", blockers,
+                     f"move {blockers[0]} off its stack first, or put {obj} somewhere lower")
     if rel == "on":
         width = _width(state, target)
         used = sum(extent(state, c) for c in load) + GAP * len(load)
