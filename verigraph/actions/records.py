@@ -10,9 +10,6 @@ else goes through the full constraint list, which also produces the feedback.
 
 from __future__ import annotations
 
-import gc
-from collections.abc import Iterator
-from contextlib import contextmanager
 from typing import Any, TypeVar
 
 from pydantic import BaseModel
@@ -32,22 +29,6 @@ EDIT_FIELDS = frozenset({"removed", "added"})
 # (step, action, payload): payload is the old support (tuple or None) of an accepted move,
 # a GraphEdit for other accepted actions, or the Violation of a rejected one.
 Record = tuple[int, AnyAction, Any]
-
-
-@contextmanager
-def gc_paused() -> Iterator[None]:
-    """Pause the cyclic garbage collector while building many acyclic objects.
-
-    Tens of thousands of new models would otherwise trigger repeated full collections
-    over everything alive (about half the time of a 10,000-step report).
-    """
-    enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if enabled:
-            gc.enable()
 
 
 def trusted(cls: type[M], values: dict[str, Any], fields_set: frozenset[str]) -> M:

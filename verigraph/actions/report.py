@@ -15,11 +15,11 @@ from verigraph.actions.records import (
     STEP_FIELDS,
     Record,
     check_plan,
-    gc_paused,
     trusted,
 )
 from verigraph.actions.validator import GraphEdit
 from verigraph.budget import checkpoint
+from verigraph.graph.bulk import collector_paused
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.io import goal_from_data, scene_from_data
 from verigraph.graph.model import Edge, SceneGraph
@@ -99,7 +99,9 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
         graph = scene if isinstance(scene, SceneGraph) else scene_from_data(scene)
         state = WorldState.from_graph(graph)
     goal_model = None if goal is None else goal_from_data(goal)
-    with gc_paused():  # a long plan creates many acyclic objects; see gc_paused
+    size = len(plan) if isinstance(plan, list) else plan.count("\n") + 1 \
+        if isinstance(plan, str) else 0
+    with collector_paused(size):  # a long plan creates many acyclic objects
         actions: list[AnyAction] = (list(plan) if isinstance(plan, list) and _is_parsed(plan)
                                     else parse_plan(plan, allow_empty=True))
         records, violations, done, not_checked = check_plan(state, actions, all_errors)
@@ -130,7 +132,7 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
 
     Accepted moves, the bulk of any long plan, are built inline with `object.__new__`
     and the model's own slots (what `model_construct` does, minus its per-call
-    bookkeeping). The caller pauses the garbage collector (`gc_paused`).
+    bookkeeping). The caller pauses the garbage collector (`collector_paused`).
     """
     steps: list[Any] = []
     new, setattr_ = object.__new__, object.__setattr__

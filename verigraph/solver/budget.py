@@ -8,24 +8,21 @@ per call and a /proc read every `memory_every` calls.
 
 from __future__ import annotations
 
-import os
 import resource
 import time
 from dataclasses import dataclass, field
 
+from verigraph.budget import checkpoint, rss_bytes
+
 DEFAULT_TIME_LIMIT_S = 5.0
 DEFAULT_MEMORY_LIMIT_MB = 200
 DEFAULT_MAX_EXPANSIONS = 200_000
-_PAGE = os.sysconf("SC_PAGE_SIZE") if hasattr(os, "sysconf") else 4096
 
 
 def resident_mb() -> float:
-    """Current resident set size in MiB."""
-    try:
-        with open("/proc/self/statm", "rb") as f:
-            return int(f.read().split()[1]) * _PAGE / 2**20
-    except OSError:
-        return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    """Current resident set size in MiB (the peak, ru_maxrss, where /proc is missing)."""
+    rss = rss_bytes()
+    return rss / 2**20 if rss else resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
 class BudgetExhausted(Exception):  # noqa: N818 - a control-flow signal, not an error
@@ -60,7 +57,9 @@ class Budget:
 
     def check(self, *, memory: bool = False) -> None:
         """Call often (per expansion and inside large successor loops); `memory` forces
-        the resident-set read (for loops whose every step allocates a lot)."""
+        the resident-set read (for loops whose every step allocates a lot). The server's
+        per-call budget and cancellation (verigraph.budget) are checked first."""
+        checkpoint()
         self._calls += 1
         if self.expansions > self.max_expansions:
             raise BudgetExhausted(self.reason(f"{self.max_expansions} expansions"))

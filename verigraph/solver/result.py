@@ -10,8 +10,7 @@ from verigraph.actions.model import AnyAction
 from verigraph.graph.goal import Goal
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import check_well_formed
-
-RELATIONS = ("on", "in")
+from verigraph.solver.encoding import RELATIONS
 
 
 class SolveResult(BaseModel):

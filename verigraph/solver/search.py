@@ -98,7 +98,7 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
         return _decoded_goal_check(problem, state, codes, goal_model)
 
     if not anytime:
-        found, plan, _ = _astar(problem, h, is_goal, budget, weight=1.0, bound=math.inf)
+        found, plan = _astar(problem, h, is_goal, budget, weight=1.0, bound=math.inf)
         if found:
             return SolveResult(reachable=True, plan=plan, expanded=budget.expansions,
                                optimal=True, lower_bound=len(plan))
@@ -124,7 +124,7 @@ def _anytime(problem: Problem, wanted: dict[int, int], h: Callable[[Codes], int]
             if best is not None and len(best) <= lower:
                 break
             bound = math.inf if best is None else len(best)
-            found, plan, _ = _astar(problem, h, is_goal, budget, weight, bound,
+            found, plan = _astar(problem, h, is_goal, budget, weight, bound,
                                     proof if weight == 1.0 else None)
             if found:
                 best = plan
@@ -164,11 +164,11 @@ def _decoded_goal_check(problem: Problem, state: WorldState, codes: Codes, goal:
 
 def _astar(problem: Problem, h: Callable[[Codes], int], is_goal: Callable[[Codes], bool],
            budget: Budget, weight: float, bound: float,
-           proof: dict[str, int] | None = None) -> tuple[bool, list[AnyAction], int]:
-    """(found, plan, floor): a plan shorter than `bound`, and (w = 1) the f-floor proved.
+           proof: dict[str, int] | None = None) -> tuple[bool, list[AnyAction]]:
+    """(found, plan): a plan shorter than `bound`, if there is one.
 
-    With `proof`, the largest f popped so far is written there as the search goes, so a
-    budget stop still leaves a proven lower bound behind.
+    With `proof`, the largest f popped so far (the f-floor, a proven lower bound for
+    w = 1) is written there as the search goes, so a budget stop still leaves it behind.
     """
     start = problem.start
     counter = itertools.count()
@@ -193,7 +193,7 @@ def _astar(problem: Problem, h: Callable[[Codes], int], is_goal: Callable[[Codes
                 prev, move = parent[node]  # type: ignore[misc]
                 moves.append(problem.action(move))
                 node = prev
-            return True, list(reversed(moves)), floor
+            return True, list(reversed(moves))
         budget.expansions += 1
         budget.check()
         for nxt, move in problem.successors(codes, budget):
@@ -206,7 +206,7 @@ def _astar(problem: Problem, h: Callable[[Codes], int], is_goal: Callable[[Codes
                 parent[nxt] = (codes, move)
                 # Ties broken towards deeper nodes: fewer expansions, still optimal.
                 heapq.heappush(frontier, (ng + weight * hn, -ng, next(counter), nxt))
-    return False, [], int(bound) if bound != math.inf else floor
+    return False, []
 
 
 def _solve_tangram(state: WorldState, goal: Goal, budget: Budget,

@@ -15,8 +15,8 @@ from verigraph.actions.blocksworld.domain import BlocksDomain, recognise_domain
 from verigraph.actions.blocksworld.hand import HandModel
 from verigraph.actions.blocksworld.plans import parse_blocks_plan
 from verigraph.actions.blocksworld.problem import native_state, read_problem
-from verigraph.actions.records import gc_paused
 from verigraph.actions.report import ValidationReport
+from verigraph.graph.bulk import collector_paused
 
 
 @lru_cache(maxsize=64)
@@ -34,9 +34,9 @@ def validate_blocks_dict(domain_text: str, problem_text: str, plan_text: str
     """The JSON-ready report (what `verigraph validate --json` prints for PDDL input).
 
     Long plans make hundreds of thousands of small acyclic dicts: the cyclic garbage
-    collector is paused meanwhile (see `gc_paused`).
+    collector is paused meanwhile (see `collector_paused`).
     """
-    with gc_paused():
+    with collector_paused(plan_text.count("\n") + 1):
         return _report(domain_text, problem_text, plan_text)
 
 
