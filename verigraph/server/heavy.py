@@ -46,7 +46,6 @@ class HeavyCalls:
         self.limits = limits or HeavyLimits()
         self._workers = anyio.CapacityLimiter(self.limits.workers)
         self._clients: dict[str, tuple[anyio.CapacityLimiter, int]] = {}
-        self.running = 0
 
     def _client_limiter(self, client: str) -> anyio.CapacityLimiter:
         limiter, users = self._clients.get(client, (None, 0))
@@ -76,10 +75,6 @@ class HeavyCalls:
 
         try:
             async with limiter:
-                self.running += 1
-                try:
-                    return await anyio.to_thread.run_sync(guarded, limiter=self._workers)
-                finally:
-                    self.running -= 1
+                return await anyio.to_thread.run_sync(guarded, limiter=self._workers)
         finally:
             self._release_client(client)

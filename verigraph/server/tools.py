@@ -139,6 +139,9 @@ def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Execut
     large input) runs on a worker thread within its budget (see heavy).
     """
     slow_default = spec.name == "load_scene" and toolbox.context.config.executor != "graph"
+    # A durable store reads and writes on every call: trying the loop first would only
+    # run the tool's checks twice before it hops to a worker thread anyway.
+    off_loop = slow_default or toolbox.context.store.blocking_io
 
     def run(params: BaseModel) -> CallToolResult:
         try:
@@ -150,7 +153,7 @@ def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Execut
         if spec.name in URGENT_TOOLS:  # never queued behind the call they must interrupt
             return await anyio.to_thread.run_sync(run, params,
                                                   limiter=thread_limiter(spec.name))
-        if not (slow_default or may_block(spec, params) or big_episode(toolbox, spec, params)):
+        if not (off_loop or may_block(spec, params) or big_episode(toolbox, spec, params)):
             try:
                 with non_blocking():
                     return run(params)

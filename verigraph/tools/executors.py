@@ -9,8 +9,10 @@ operator's explicit opt-in in the config file.
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
 import ctypes.util
+import functools
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -236,11 +238,14 @@ def return_freed_memory() -> None:
     glibc keeps freed heap pages in its arenas, so the process would stay as large as
     its peak after every closed PyBullet world; malloc_trim releases them.
     """
-    try:
-        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
-        libc.malloc_trim(0)
-    except (OSError, AttributeError):
-        pass  # not glibc: nothing to trim
+    with contextlib.suppress(OSError, AttributeError):  # not glibc: nothing to trim
+        _libc().malloc_trim(0)
+
+
+@functools.cache
+def _libc() -> ctypes.CDLL:
+    """The C library, looked up once (find_library runs `ldconfig -p` in a subprocess)."""
+    return ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
 
 
 def _hardware_key(config: ArmConfig) -> str | None:

@@ -100,7 +100,7 @@ def to_record(episode: Episode, *, version: int, created_at: float, updated_at: 
     state = episode.state
     extras = dict(episode.extras)
     if isinstance(episode.world, ArmWorld):  # the latch as it is now, see store_durable
-        extras["arm_latched"] = episode.world.status().stop_latched
+        extras["arm_latched"] = episode.world.stop_latched
     return EpisodeRecord(
         id=episode.id, version=version, created_at=created_at, updated_at=updated_at,
         source=episode.source, executor=episode.executor, k=episode.k, t=episode.t,

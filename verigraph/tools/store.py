@@ -182,6 +182,10 @@ def new_episode_id() -> str:
 class EpisodeStore:
     """In-memory episodes by id, bounded, safe to use from many threads at once."""
 
+    # Whether reaching an episode may wait on I/O (a database or a network): then tool
+    # calls go straight to a worker thread instead of trying the event loop first.
+    blocking_io = False
+
     def __init__(self, max_episodes: int = DEFAULT_MAX_EPISODES,
                  idle_timeout: float = DEFAULT_IDLE_TIMEOUT_S,
                  clock: Callable[[], float] = time.monotonic,

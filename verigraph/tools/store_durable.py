@@ -56,7 +56,7 @@ def _note_arm_latch(episode: Episode) -> None:
     """Keep an arm's latched stop with the episode (arm_stop latches it without a commit),
     so a process that reloads the episode latches the new connection again."""
     if isinstance(episode.world, ArmWorld):
-        latched = episode.world.status().stop_latched
+        latched = episode.world.stop_latched  # the flag, not a poll of the driver
         if latched != episode.extras.get("arm_latched", False):
             episode.extras["arm_latched"] = latched
             episode.mark_changed()
@@ -84,6 +84,8 @@ def _stale(episode_id: str) -> StaleEpisodeError:
 
 class DurableStore(EpisodeStore):
     """An EpisodeStore whose episodes live in a backend shared by processes."""
+
+    blocking_io = True
 
     def __init__(self, backend: Backend, max_episodes: int = DEFAULT_MAX_EPISODES,
                  idle_timeout: float = DEFAULT_IDLE_TIMEOUT_S,
