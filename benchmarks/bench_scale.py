@@ -29,6 +29,7 @@ from verigraph.agent.evaluation import Setting, build_groups  # noqa: E402
 from verigraph.agent.evaluation.engine import RunOptions, execute  # noqa: E402
 from verigraph.agent.evaluation.episode import EngineConfig  # noqa: E402
 from verigraph.agent.evaluation.limiter import BackendLimits  # noqa: E402
+from verigraph.agent.evaluation.ray_runner import connect  # noqa: E402
 from verigraph.agent.evaluation.results import EpisodeRecord  # noqa: E402
 from verigraph.agent.evaluation.spec import EpisodeJob, jobs_for, task_index  # noqa: E402
 from verigraph.agent.evaluation.tasks import GROUPS, Task  # noqa: E402
@@ -74,7 +75,7 @@ def main(argv: list[str]) -> int:
     serial = timed(jobs, tasks, quiet)
 
     started = time.perf_counter()
-    ray.init(num_cpus=os.cpu_count(), include_dashboard=False, log_to_driver=False)
+    connect("local")
     ray_start_s = time.perf_counter() - started
     try:
         on_ray = timed(jobs, tasks, quiet.model_copy(update={"ray": "local"}))

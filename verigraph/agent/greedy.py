@@ -27,6 +27,7 @@ import re
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
 from verigraph.agent.models import PlannerReply, PlannerRequest
 from verigraph.agent.oracle import chunk
+from verigraph.agent.parsing import refused_action
 from verigraph.agent.translator import GoalReader
 from verigraph.graph.goal import Goal, check_goal, towers
 from verigraph.graph.state import WorldState
@@ -112,7 +113,7 @@ class GreedyPlanner:
             return []
         if feedback.violation is not None:  # full feedback
             v = feedback.violation
-            refused = _action(v.action)
+            refused = refused_action(v.action)
             if v.constraint not in CLEARING:
                 return []
             fix = SUGGESTED.search(v.suggestion)
@@ -151,10 +152,3 @@ def _contacts(state: WorldState, piece: str) -> int:
     return sum(1 for side in state.contacts if side[0] == piece)
 
 
-def _action(data: dict[str, object]) -> AnyAction | None:
-    try:
-        if data.get("action") == "align":
-            return AlignAction.model_validate(data)
-        return MoveAction.model_validate(data)
-    except ValueError:
-        return None

@@ -26,7 +26,6 @@ model's. Parameters (`NoiseProfile`):
 from __future__ import annotations
 
 import random
-import re
 from typing import Literal, get_args
 
 from pydantic import BaseModel, ConfigDict, Field
@@ -34,6 +33,7 @@ from pydantic import BaseModel, ConfigDict, Field
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
 from verigraph.agent.models import PlannerReply, PlannerRequest
 from verigraph.agent.oracle import chunk, reference_plan
+from verigraph.agent.parsing import refused_action
 from verigraph.agent.translator import GoalReader
 from verigraph.graph.state import WorldState
 
@@ -42,7 +42,6 @@ MistakeKind = Literal["random_move", "non_clear", "hallucinated", "wrong_relatio
 MISTAKE_KINDS: tuple[MistakeKind, ...] = get_args(MistakeKind)
 GARBAGE = ('{"actions": [{"action": "move", "object": ', "Sure! Here is the plan:\nmove(",
            '{"plan": "stack them"}')
-SUGGESTED_STEP = re.compile(r"step (\d+):")
 
 
 class NoiseProfile(BaseModel):
@@ -136,12 +135,7 @@ class NoisyPlanner:
         if fb is None or fb.kind != "violation" or self.rng.random() >= self.profile.repeat:
             return None
         if fb.violation is not None:
-            data = fb.violation.action
-            try:
-                return (AlignAction.model_validate(data) if data.get("action") == "align"
-                        else MoveAction.model_validate(data))
-            except ValueError:
-                return None
+            return refused_action(fb.violation.action)
         return self.last[0] if self.last else None
 
 

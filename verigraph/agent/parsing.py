@@ -15,7 +15,7 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from verigraph.actions.model import ActionAdapter, AnyAction
+from verigraph.actions.model import ActionAdapter, AlignAction, AnyAction, MoveAction
 from verigraph.actions.parser import parse_plan
 from verigraph.errors import PlanParseError
 
@@ -110,3 +110,13 @@ def _parse_answer(text: str) -> list[AnyAction]:
 def parse_tool_input(data: Any) -> list[AnyAction]:
     """Actions from a tool-call input object (Anthropic tool use, OpenAI tool calls)."""
     return [_action(i, item) for i, item in enumerate(_items(data))]
+
+
+def refused_action(data: dict[str, Any]) -> AnyAction | None:
+    """The action a violation reports (its `model_dump`), or None if it is not one."""
+    try:
+        if data.get("action") == "align":
+            return AlignAction.model_validate(data)
+        return MoveAction.model_validate(data)
+    except ValueError:
+        return None

@@ -119,8 +119,9 @@ def run_job(job: EpisodeJob, task: Task, env: ToolEnvironment, pool: PlannerPool
         trace = run_episode(env, planner, task.spec, config, on_iteration=iterations.append)
     except Exception as exc:  # noqa: BLE001 (every failure is this episode's outcome)
         record = blank_record(job, planner.name if planner else setting.planner)
-        kind = "planner" if planner is not None and planner.failed else \
-            "tool" if isinstance(exc, VeriGraphError) else "internal"
+        # A planner's own failure never lands here: the loop ends the episode with
+        # stop_reason planner_error (handled below); what is left is a tool or a bug.
+        kind = "tool" if isinstance(exc, VeriGraphError) else "internal"
         record.error_kind = kind
         record.error = f"{type(exc).__name__}: {exc}"[:500]
         record.stop_reason = f"{kind}_error"

@@ -95,15 +95,10 @@ class GuardedPlanner:
         self.rng = random.Random(seed)
         self.requests = 0
         self.retries = 0
-        self.failed = False
         self.usage = Usage()
 
     def propose(self, request: PlannerRequest) -> PlannerReply:
-        try:
-            reply = self._propose(request)
-        except Exception:
-            self.failed = True
-            raise
+        reply = self._propose(request)
         self.usage.add(reply.usage)
         return reply
 
