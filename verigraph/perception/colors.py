@@ -78,9 +78,10 @@ def colour_table(colours: tuple[str, ...], *, tangram: bool) -> ColourTable:
     names = ("unknown", "background", "floor", "dark", "mixed") + colours
     bgr = ((128, 128, 128), background, palette.FLOOR, palette.OUTLINE, (128, 128, 128)
            ) + tuple(palette.COLORS[c] for c in colours)
-    lab = _lab(np.array(bgr, dtype=np.uint8))
+    colours_lab = lab(np.array(bgr, dtype=np.uint8))
     bright = frozenset(i for i in range(FIRST_OBJECT, len(names))
-                       if float(np.linalg.norm(lab[i] - lab[BACKGROUND])) < BRIGHT_DELTA_E)
+                       if float(np.linalg.norm(colours_lab[i] - colours_lab[BACKGROUND]))
+                       < BRIGHT_DELTA_E)
     return ColourTable(names=names, bgr=bgr, lightness_weight=0.35 if tangram else 1.0,
                        unknown_distance=40.0 if tangram else 28.0, bright=bright,
                        confusable=_confusable(bgr))
@@ -96,14 +97,14 @@ def _confusable(bgr: tuple[tuple[int, int, int], ...]) -> frozenset[int]:
         others = [j for j in range(1, len(bgr)) if j not in (i, DARK, MIXED)]
         mixes = (shares[None, :, None] * colours[others][:, None, :]
                  + (1 - shares[None, :, None]) * dark).reshape(-1, 3)
-        mix_lab = _lab(np.clip(mixes, 0, 255).astype(np.uint8))
-        own = _lab(np.array([bgr[i]], dtype=np.uint8))[0]
+        mix_lab = lab(np.clip(mixes, 0, 255).astype(np.uint8))
+        own = lab(np.array([bgr[i]], dtype=np.uint8))[0]
         if float(np.min(np.linalg.norm(mix_lab - own, axis=1))) < CONFUSABLE_DELTA_E:
             out.add(i)
     return frozenset(out)
 
 
-def _lab(bgr: np.ndarray) -> np.ndarray:
+def lab(bgr: np.ndarray) -> np.ndarray:
     """CIELab (L in 0-100) of uint8 BGR colours, shape (n, 3) -> (n, 3) float32."""
     scaled = bgr.reshape(1, -1, 3).astype(np.float32) / 255.0
     return np.asarray(cv2.cvtColor(scaled, cv2.COLOR_BGR2Lab), dtype=np.float32).reshape(-1, 3)
@@ -127,8 +128,8 @@ def _tables(table: ColourTable) -> tuple[np.ndarray, np.ndarray]:
     b, g, r = np.meshgrid(levels, levels, levels, indexing="ij")
     grid = np.stack([b, g, r], axis=-1).reshape(-1, 3).astype(np.uint8)
     weight = np.array([table.lightness_weight, 1.0, 1.0], dtype=np.float32)
-    grid_lab = _lab(grid) * weight
-    classes = _lab(np.array(table.bgr[1:], dtype=np.uint8)) * weight
+    grid_lab = lab(grid) * weight
+    classes = lab(np.array(table.bgr[1:], dtype=np.uint8)) * weight
     dist = np.linalg.norm(grid_lab[:, None, :] - classes[None, :, :], axis=2)
     dist[:, MIXED - 1] = np.inf  # assigned by structure (edges), never by colour
     best = np.argmin(dist, axis=1)

@@ -27,6 +27,8 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
+from verigraph.perception.colors import lab
+
 FLAT_RANGE = 10  # grey levels between the darkest and brightest of a 3x3 window
 MAX_SAMPLES = 2500
 MATCH_DELTA_E = 30.0  # a flat area this far from every palette colour votes for none
@@ -68,12 +70,6 @@ class ToneMap:
         if self.is_identity:
             return image
         return np.asarray(cv2.LUT(image, self.lut()))
-
-
-def lab(bgr: np.ndarray) -> np.ndarray:
-    """CIELab (L 0-100) of uint8 BGR colours, shape (n, 3) -> (n, 3) float32."""
-    scaled = bgr.reshape(1, -1, 3).astype(np.float32) / 255.0
-    return np.asarray(cv2.cvtColor(scaled, cv2.COLOR_BGR2Lab), dtype=np.float32).reshape(-1, 3)
 
 
 def flat_samples(image: np.ndarray, seed: int = 0) -> np.ndarray:

@@ -19,7 +19,7 @@ import cv2
 import numpy as np
 
 from verigraph.perception.catalogue import ObjectModel
-from verigraph.perception.constancy import lab
+from verigraph.perception.colors import lab
 from verigraph.perception.regions import Region
 from verigraph.sim2d import palette
 

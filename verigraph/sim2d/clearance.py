@@ -84,16 +84,6 @@ def _stack_root(state: WorldState, obj: str) -> tuple[str, str | None]:
         seen.add(current)
 
 
-def _chain_below(state: WorldState, obj: str) -> list[str]:
-    """What carries `obj`, directly or not."""
-    out: list[str] = []
-    below = state.support.get(obj)
-    while below is not None and below[1] not in out:
-        out.append(below[1])
-        below = state.support.get(below[1])
-    return out
-
-
 def _highest_bottom(state: WorldState, obj: str) -> float:
     """The highest the object's underside can be: things in a container taken as
     resting on its rim (on whatever else is inside), never as low as its floor."""
@@ -128,12 +118,13 @@ def lowering_blockers(state: WorldState, obj: str, relation: str, target: str) -
         return []
     rest = bottom(state, obj, relation, target)
     within = _within(state, obj, relation, target)
-    skip = {obj, target} | set(state.carried[target]) | set(_chain_below(state, target))
+    skip = {obj, target} | set(state.carried[target]) | set(state.supports_chain(target))
+    target_top = top(state, target)
     blockers = []
     for other in state.objects:
         if other in skip or not state.objects[other].props.movable:
             continue
-        if within and _highest_bottom(state, other) < top(state, target) - HEIGHT_MARGIN:
+        if within and _highest_bottom(state, other) < target_top - HEIGHT_MARGIN:
             continue  # lower than the target's top, it cannot hang over the target
         if _stack_root(state, other)[1] != furniture:
             continue

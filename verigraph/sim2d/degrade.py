@@ -82,10 +82,10 @@ def degrade(image: np.ndarray, spec: Degradation, seed: int = 0) -> np.ndarray:
         out = _lighting(out, spec.lighting, rng)
     if spec.crop > 0:
         out = ops.crop(out, spec.crop, keep, rng)
-    if spec.rotation or spec.scale != 1.0:
+    if spec.rotation:
         out = ops.rotate(out, spec.rotation, 1.0)
-        if spec.scale != 1.0:
-            out = ops.rescale(out, spec.scale)
+    if spec.scale != 1.0:
+        out = ops.rescale(out, spec.scale)
     if spec.perspective > 0:
         out = ops.perspective(out, spec.perspective, rng)
     if spec.motion_blur > 1:

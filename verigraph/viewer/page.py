@@ -5,7 +5,6 @@ the `verigraph view` page, and as a self-contained report with the view embedded
 
 from __future__ import annotations
 
-import json
 from functools import cache
 from pathlib import Path
 
@@ -42,7 +41,3 @@ def report_html(view: EpisodeView) -> str:
     head = f'<meta http-equiv="Content-Security-Policy" content="{REPORT_CSP}">'
     script = f'<script id="verigraph-data" type="application/json">{data}</script>'
     return _with_head(app_html(), head).replace("<!--DATA-->", script, 1)
-
-
-def view_json(view: EpisodeView) -> str:
-    return json.dumps(view.model_dump(mode="json", exclude_none=True))
