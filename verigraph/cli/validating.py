@@ -116,15 +116,14 @@ def scene_report(scene: str | Path, plan: str | Path, goal: str | Path | None,
                          all_errors=all_errors)
 
 
-def write_html_report(path: str, scene: str, plan: str, goal: str | None,
+def write_html_report(path: str, graph: Any, plan_text: str, goal: Any,
                       all_errors: bool) -> None:
-    """The viewer's self-contained report of this validation (drawings embedded)."""
+    """The viewer's self-contained report of this validation (drawings embedded), from
+    the scene, plan and goal the text report was made from."""
     from verigraph.tools.registry import Toolbox
     from verigraph.viewer.inputs import write_report
 
-    graph, goal_value = scene_and_goal(scene, goal)
-    write_report(Toolbox().context, path, graph, read_text_file(plan, "plan"), goal_value,
-                 all_errors=all_errors)
+    write_report(Toolbox().context, path, graph, plan_text, goal, all_errors=all_errors)
     print(f"wrote {path}", file=sys.stderr)
 
 
@@ -159,9 +158,13 @@ def run_validate(args: argparse.Namespace) -> int:
             if not (args.scene and args.plan):
                 raise _usage_error("give --scene and --plan (or --domain/--problem/--plan, or "
                                    "--batch)", "verigraph validate --scene S.json --plan P.txt")
-            report = scene_report(args.scene, args.plan, args.goal, args.all_errors)
+            from verigraph.actions.report import validate_plan
+
+            graph, goal = scene_and_goal(args.scene, args.goal)
+            plan_text = read_text_file(args.plan, "plan")
+            report = validate_plan(graph, plan_text, goal, all_errors=args.all_errors)
             if args.html:
-                write_html_report(args.html, args.scene, args.plan, args.goal, args.all_errors)
+                write_html_report(args.html, graph, plan_text, goal, args.all_errors)
             if args.json:
                 print(report.model_dump_json(exclude_none=True))
                 return EXIT_OK if report.valid else EXIT_NEGATIVE
