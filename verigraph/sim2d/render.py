@@ -135,13 +135,19 @@ def tabletop_view(world: TabletopPicture) -> View:
     return x0, -3.0, x1, y1
 
 
-def render_tabletop(world: TabletopPicture, width: int | None = None, height: int | None = None,
-                    *, labels: bool = False, view: View | None = None) -> np.ndarray:
+def _tabletop_frame(world: TabletopPicture, width: int | None, height: int | None,
+                    view: View | None = None) -> tuple[_Camera, int, int]:
+    """The side-view camera and frame size a tabletop is drawn (and boxed) with."""
     view = view or tabletop_view(world)
     width, height = frame_size(view, width, height)
+    return _Camera(view, width, height, bottom=True), width, height
+
+
+def render_tabletop(world: TabletopPicture, width: int | None = None, height: int | None = None,
+                    *, labels: bool = False, view: View | None = None) -> np.ndarray:
+    cam, width, height = _tabletop_frame(world, width, height, view)
     img = np.empty((height, width, 3), dtype=np.uint8)
     img[:] = palette.BACKGROUND
-    cam = _Camera(view, width, height, bottom=True)
     floor_y = cam.pixel(0.0, 0.0)[1]
     img[max(floor_y, 0):, :] = palette.FLOOR
     colors = {n.id: n.attrs.get("color") for n in world.nodes}
@@ -171,9 +177,7 @@ def tabletop_boxes(world: TabletopPicture, width: int | None = None, height: int
                    ) -> dict[str, tuple[int, int, int, int]]:
     """Pixel boxes (x0, y0, x1, y1) of the objects in `render_tabletop`'s picture of the
     same size, so a caller can mark objects (e.g. the ones blocking an action)."""
-    view = tabletop_view(world)
-    width, height = frame_size(view, width, height)
-    cam = _Camera(view, width, height, bottom=True)
+    cam, _, _ = _tabletop_frame(world, width, height)
     boxes = {}
     for t in world.scene.things.values():
         if t.body.space is None:
