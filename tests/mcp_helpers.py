@@ -11,6 +11,7 @@ import socket
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from collections.abc import AsyncIterator, Iterator
 from contextlib import contextmanager
@@ -21,10 +22,12 @@ from typing import IO, Any
 import cv2
 import numpy as np
 import pytest
+import uvicorn
 from mcp import Client
 from mcp.types import CallToolResult
 
 from verigraph.server import build_server
+from verigraph.server.http import HttpOptions, http_app
 from verigraph.tools import Toolbox
 
 REPO = Path(__file__).resolve().parents[1]
@@ -126,6 +129,29 @@ def http_server(token: str | None = None, extra: list[str] | None = None
             yield server
         finally:
             server.stop()
+
+
+@contextmanager
+def http_in_thread(box: Toolbox, options: HttpOptions) -> Iterator[str]:
+    """`box` served over HTTP by uvicorn on a thread of this process (on options.port)."""
+    server = uvicorn.Server(uvicorn.Config(http_app(build_server(box), options),
+                                           host=options.host, port=options.port,
+                                           log_level="warning", access_log=False,
+                                           lifespan="on"))
+    thread = threading.Thread(target=server.run, daemon=True)
+    thread.start()
+    deadline = time.monotonic() + 30
+    while not server.started:
+        if not thread.is_alive() or time.monotonic() > deadline:
+            raise RuntimeError("the HTTP server did not start")
+        time.sleep(0.05)
+    with socket.create_connection(("127.0.0.1", options.port), timeout=1):
+        pass
+    try:
+        yield options.url()
+    finally:
+        server.should_exit = True
+        thread.join(timeout=30)
 
 
 def rpc(method: str, params: dict[str, Any] | None = None, request_id: int = 1) -> bytes:

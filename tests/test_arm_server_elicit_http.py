@@ -10,26 +10,20 @@ is `BlockCellStandIn`, a stand-in for hardware that cannot run here.
 
 from __future__ import annotations
 
-import socket
-import threading
-import time
-from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import AbstractContextManager
 from pathlib import Path
 from typing import Any
 
 import httpx2
 import pytest
-import uvicorn
 from arm_server_helpers import BlockCellStandIn, User, loose_blocks, xarm_toolbox
 from mcp import Client
 from mcp.client.streamable_http import streamable_http_client
 from mcp.types import CallToolResult
-from mcp_helpers import free_port, structured, text
+from mcp_helpers import free_port, http_in_thread, structured, text
 
 from verigraph.arm.testing.deps import require
-from verigraph.server import build_server
-from verigraph.server.http import HttpOptions, http_app
+from verigraph.server.http import HttpOptions
 from verigraph.tools import Toolbox
 
 require("xarm")
@@ -43,27 +37,8 @@ def anyio_backend() -> str:
     return "asyncio"
 
 
-@contextmanager
-def serving(box: Toolbox) -> Iterator[str]:
-    port = free_port()
-    options = HttpOptions(port=port, token=TOKEN)
-    server = uvicorn.Server(uvicorn.Config(http_app(build_server(box), options),
-                                           host=options.host, port=port, log_level="warning",
-                                           access_log=False, lifespan="on"))
-    thread = threading.Thread(target=server.run, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + 30
-    while not server.started:
-        if not thread.is_alive() or time.monotonic() > deadline:
-            raise RuntimeError("the HTTP server did not start")
-        time.sleep(0.05)
-    with socket.create_connection(("127.0.0.1", port), timeout=1):
-        pass
-    try:
-        yield options.url()
-    finally:
-        server.should_exit = True
-        thread.join(timeout=30)
+def serving(box: Toolbox) -> AbstractContextManager[str]:
+    return http_in_thread(box, HttpOptions(port=free_port(), token=TOKEN))
 
 
 def http() -> httpx2.AsyncClient:

@@ -14,7 +14,6 @@ import anyio
 from verigraph.errors import VeriGraphError
 
 TOKEN_ENV = "VERIGRAPH_TOKEN"
-LOOP_SWITCH_INTERVAL_S = 0.0005
 
 
 def register(sub: Any) -> None:
@@ -83,7 +82,7 @@ def run_serve(args: argparse.Namespace) -> int:
                         format="%(asctime)s %(levelname)s %(name)s: %(message)s")
     from verigraph.budget import Budget
     from verigraph.server.app import build_server
-    from verigraph.server.heavy import HeavyLimits
+    from verigraph.server.heavy import HeavyLimits, keep_loop_responsive
     from verigraph.server.http import HttpOptions, serve_http
     from verigraph.server.stdio import run_stdio
     from verigraph.tools.context import ToolConfig
@@ -126,9 +125,7 @@ def run_serve(args: argparse.Namespace) -> int:
     heavy = HeavyLimits(workers=args.heavy_workers, per_client=args.per_client,
                         budget=Budget(wall_s=args.tool_seconds, memory_mib=args.tool_mib))
     server = build_server(config=config, log_level=args.log_level, heavy=heavy)
-    # Heavy calls run on worker threads; a short GIL switch interval lets the event loop
-    # thread answer light calls between their bytecodes (the default is 5 ms per turn).
-    sys.setswitchinterval(LOOP_SWITCH_INTERVAL_S)
+    keep_loop_responsive()
     max_bytes = int(args.max_body_mib * 1024 * 1024)
     if args.transport == "stdio":
         anyio.run(run_stdio, server, max_bytes)

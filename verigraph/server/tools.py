@@ -13,6 +13,7 @@ import inspect
 import logging
 from collections.abc import Awaitable, Callable
 from contextvars import ContextVar
+from dataclasses import replace
 from typing import Annotated, Any
 
 import anyio.to_thread
@@ -33,6 +34,7 @@ from verigraph.server.confirmation import (
     thread_limiter,
 )
 from verigraph.server.heavy import CLIENT, HeavyCalls
+from verigraph.server.offload import CURRENT_SLOT, offload, slot_of
 from verigraph.server.schemas import compact_input_schema, compact_output_schema
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
 from verigraph.tools.registry import parse_arguments as parse_tool_arguments
@@ -42,8 +44,12 @@ from verigraph.tools.store import WouldBlock, non_blocking
 log = logging.getLogger("verigraph.server")
 
 
-def to_result(spec: ToolSpec, result: BaseModel | ImageResult) -> CallToolResult:
-    """Structured content + summary text, or image content for the image-only tools."""
+def to_result(spec: ToolSpec, result: BaseModel | ImageResult, off_loop: bool = False
+              ) -> CallToolResult:
+    """Structured content + summary text, or image content for the image-only tools.
+
+    On a worker thread (`off_loop`) a large structured result of an HTTP call is
+    serialised here and spliced into the answer (see offload)."""
     if isinstance(result, ImageResult):
         content: list[ImageContent | TextContent] = [ImageContent(
             type="image", data=base64.b64encode(result.png).decode("ascii"),
@@ -51,8 +57,10 @@ def to_result(spec: ToolSpec, result: BaseModel | ImageResult) -> CallToolResult
         if result.text:
             content.append(TextContent(type="text", text=result.text))
         return CallToolResult(content=list(content))
-    return CallToolResult(content=[TextContent(type="text", text=spec.summary(result))],
-                          structured_content=result.model_dump(mode="json"))
+    summary = [TextContent(type="text", text=spec.summary(result))]
+    placeholder = offload(result) if off_loop else None
+    return CallToolResult(content=list(summary), structured_content=(
+        placeholder if placeholder is not None else result.model_dump(mode="json")))
 
 
 def _parameters(model: type[BaseModel]) -> list[inspect.Parameter]:
@@ -143,9 +151,9 @@ def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Execut
     # run the tool's checks twice before it hops to a worker thread anyway.
     off_loop = slow_default or toolbox.context.store.blocking_io
 
-    def run(params: BaseModel) -> CallToolResult:
+    def run(params: BaseModel, off_loop: bool = False) -> CallToolResult:
         try:
-            return to_result(spec, toolbox.run(spec, params))
+            return to_result(spec, toolbox.run(spec, params), off_loop)
         except VeriGraphError as exc:
             raise ToolError(str(exc)) from None
 
@@ -159,7 +167,7 @@ def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Execut
                     return run(params)
             except WouldBlock:
                 pass
-        return await heavy.run(lambda: run(params), spec.name)
+        return await heavy.run(lambda: run(params, off_loop=True), spec.name)
 
     async def execute(params: BaseModel, answers: dict[str, Any] | None = None
                       ) -> CallToolResult:
@@ -274,7 +282,11 @@ class ArgumentGate:
         client = getattr(ctx.request, "client", None)
         if client is not None:
             CLIENT.set(f"{client.host}:{client.port}")
+        slot = slot_of(ctx.request)
         arguments = ctx.params.get("arguments")
+        if slot is not None and slot.arguments is not None:
+            arguments = slot.arguments  # a large call's, parsed off the loop (offload)
+            ctx = replace(ctx, params={**ctx.params, "arguments": arguments})
         try:
             if raw_is_large(arguments):
                 params = await self.heavy.run(lambda: parse_tool_arguments(spec, arguments),
@@ -285,9 +297,11 @@ class ArgumentGate:
             return CallToolResult(content=[TextContent(
                 type="text", text=f"Error executing tool {spec.name}: {exc}")], is_error=True)
         audit_client = AUDIT_CLIENT.set(client_label(ctx.session))
+        current_slot = CURRENT_SLOT.set(slot)
         try:
             return await self._run(spec, params, ctx, call_next)
         finally:
+            CURRENT_SLOT.reset(current_slot)
             AUDIT_CLIENT.reset(audit_client)
 
     async def _run(self, spec: ToolSpec, params: BaseModel,
