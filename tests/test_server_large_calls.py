@@ -90,19 +90,23 @@ def test_a_2025_era_client_gets_the_library_s_answer(url: str) -> None:
     assert reply["result"]["structuredContent"] == library_answer("validate_plan", LARGE_PLAN)
 
 
-@pytest.mark.parametrize("era", ["2026-07-28", LEGACY])
-def test_the_answer_was_spliced_in_on_both_eras(era: str, monkeypatch: pytest.MonkeyPatch
-                                                ) -> None:
-    """The server in this process, so the test can see the result leave as bytes."""
-    offloaded: list[int] = []
+@pytest.fixture()
+def offloaded(monkeypatch: pytest.MonkeyPatch) -> list[int]:
+    """The sizes of the results a server in this process spliced in as bytes."""
+    sizes: list[int] = []
 
     def spying(structured: Any) -> dict[str, Any] | None:
         placeholder = offload(structured)
         if placeholder is not None:
-            offloaded.append(len(CURRENT_SLOT.get().structured or b""))
+            sizes.append(len(CURRENT_SLOT.get().structured or b""))
         return placeholder
 
     monkeypatch.setattr(server_tools, "offload", spying)
+    return sizes
+
+
+@pytest.mark.parametrize("era", ["2026-07-28", LEGACY])
+def test_the_answer_was_spliced_in_on_both_eras(era: str, offloaded: list[int]) -> None:
     with http_in_thread(Toolbox(), HttpOptions(port=free_port(), token=TOKEN)) as here:
         body = rpc("tools/call", {"name": "validate_plan", "arguments": LARGE_PLAN}, 3)
         headers = {**JSON_HEADERS, **AUTH, "MCP-Protocol-Version": era}
@@ -150,6 +154,36 @@ def test_a_confirmed_tool_gets_its_large_arguments_back() -> None:
         state = legacy_call(small_threshold_url, "get_state", {"episode_id": episode}).json()
     edges = state["result"]["structuredContent"]["graph"]["edges"]
     assert sum(e["target"] == "table" for e in edges) == 51
+
+
+def test_execute_actions_without_an_arm_answers_large_results_too(offloaded: list[int]
+                                                                  ) -> None:
+    """execute_actions on an episode with no arm asks nothing, so the server answers it
+    itself and its large answer (the whole new graph) is spliced in like any other."""
+    with http_in_thread(Toolbox(), HttpOptions(port=free_port(), token=TOKEN)) as here:
+        loaded = legacy_call(here, "load_scene", {"graph": tower(2000)}).json()
+        episode = loaded["result"]["structuredContent"]["episode_id"]
+        offloaded.clear()
+        response = legacy_call(here, "execute_actions", {"episode_id": episode,
+                                                         "actions": unstack(2000, 1)})
+    assert len(offloaded) == 1 and offloaded[0] > 16 * 1024
+    assert PLACEHOLDER_KEY not in response.text
+    result = response.json()["result"]
+    assert result.get("isError") is not True, str(result)[:300]
+    assert result["structuredContent"]["executed"] == unstack(2000, 1)
+
+
+def test_the_viewer_s_tool_gets_its_large_arguments_too() -> None:
+    """view_episode (the MCP Apps viewer's tool, outside the tool registry) goes through
+    the SDK's path as well; this server offloads every body above 1 KiB."""
+    arguments = {"graph": tower(30), "plan": unstack(30, 20)}
+    assert len(json.dumps(arguments)) > 1024
+    options = HttpOptions(port=free_port(), token=TOKEN, large_call_bytes=1024)
+    with http_in_thread(Toolbox(), options) as small_threshold_url:
+        result = legacy_call(small_threshold_url, "view_episode", arguments).json()["result"]
+    assert result.get("isError") is not True, str(result)[:300]
+    steps = result["structuredContent"]["steps"]
+    assert len(steps) == 20 and all(step["ok"] for step in steps)
 
 
 def test_a_large_body_for_another_method_is_refused_by_name(url: str) -> None:

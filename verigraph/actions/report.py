@@ -132,7 +132,9 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
 
     Accepted moves, the bulk of any long plan, are built inline with `object.__new__`
     and the model's own slots (what `model_construct` does, minus its per-call
-    bookkeeping). The caller pauses the garbage collector (`collector_paused`).
+    bookkeeping). The caller pauses the garbage collector (`collector_paused`). One
+    fields-set object serves all instances of a class: StepReport's and GraphEdit's name
+    every field, so an assignment adds nothing to them, and Edge is frozen.
     """
     steps: list[Any] = []
     new, setattr_ = object.__new__, object.__setattr__

@@ -45,14 +45,14 @@ def build_server(toolbox: Toolbox | None = None, *, config: ToolConfig | None = 
     """
     toolbox = toolbox or Toolbox(config=config)
     runner = HeavyCalls(heavy)
-    gate = ArgumentGate(runner)
-    tools, direct = build_tools(toolbox, runner, meta=UI_META)
+    gate = ArgumentGate(runner, toolbox)
+    tools, executors = build_tools(toolbox, runner, meta=UI_META)
     server: MCPServer[Any] = MCPServer(
         "verigraph", title="VeriGraph", version=__version__, instructions=INSTRUCTIONS,
         description="Scene-graph verifier for LLM robot planning",
         middleware=[gate, AppsGate(), PromptGate()], log_level=log_level,
-        extensions=[episode_apps(toolbox)], tools=tools, subscriptions=False)
-    gate.direct = direct
+        extensions=[episode_apps(toolbox, runner)], tools=tools, subscriptions=False)
+    gate.executors = executors
     register_resources(server, toolbox)
     register_prompts(server, toolbox)
     return server

@@ -17,7 +17,6 @@ from __future__ import annotations
 import inspect
 from typing import Annotated, Any
 
-import anyio.to_thread
 from mcp.server.apps import Apps, ResourceCsp, client_supports_apps
 from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
 from mcp.server.mcpserver.exceptions import ToolError
@@ -25,6 +24,7 @@ from mcp.types import CallToolResult, ToolAnnotations
 from pydantic import BaseModel, ValidationError
 
 from verigraph.errors import VeriGraphError
+from verigraph.server.heavy import HeavyCalls
 from verigraph.server.tools import _parameters, to_result
 from verigraph.tools.registry import Toolbox, ToolSpec, argument_error
 from verigraph.viewer import EpisodeView, ViewInput, app_html, view
@@ -41,8 +41,9 @@ VIEW_SPEC = ToolSpec(
     idempotent=True)
 
 
-def _view_function(toolbox: Toolbox) -> Any:
-    """view_episode: validate like every tool, then draw on a worker thread."""
+def _view_function(toolbox: Toolbox, heavy: HeavyCalls) -> Any:
+    """view_episode: validate like every tool, then draw as a heavy call (worker thread,
+    budget, per-client limit)."""
 
     def run(params: ViewInput) -> CallToolResult:
         try:
@@ -55,7 +56,7 @@ def _view_function(toolbox: Toolbox) -> Any:
             params = ViewInput.model_validate(arguments)
         except ValidationError as exc:
             raise ToolError(str(argument_error(VIEW_SPEC, exc))) from None
-        return await anyio.to_thread.run_sync(run, params)
+        return await heavy.run(lambda: run(params), VIEW_SPEC.name)
 
     view_episode.__signature__ = inspect.Signature(  # type: ignore[attr-defined]
         _parameters(ViewInput), return_annotation=Annotated[CallToolResult, EpisodeView])
@@ -63,7 +64,7 @@ def _view_function(toolbox: Toolbox) -> Any:
     return view_episode
 
 
-def episode_apps(toolbox: Toolbox) -> Apps:
+def episode_apps(toolbox: Toolbox, heavy: HeavyCalls) -> Apps:
     """The extension: the viewer resource and the app-only view tool."""
     apps = Apps()
     apps.add_html_resource(
@@ -76,7 +77,7 @@ def episode_apps(toolbox: Toolbox) -> Apps:
               title=VIEW_SPEC.title, description=VIEW_SPEC.description,
               annotations=ToolAnnotations(title=VIEW_SPEC.title, read_only_hint=True,
                                           idempotent_hint=True, open_world_hint=False)
-              )(_view_function(toolbox))
+              )(_view_function(toolbox, heavy))
     return apps
 
 

@@ -238,6 +238,23 @@ def _arm_of(toolbox: Toolbox, params: BaseModel) -> tuple[str | None, ArmWorld |
     return episode_id, world if isinstance(world, ArmWorld) else None
 
 
+def asks_nothing(name: str, toolbox: Toolbox, params: BaseModel) -> bool:
+    """Whether a confirmed tool's call certainly has nothing to ask: execute_actions on
+    an existing episode that has no arm (graph or sim2d executor). Such a call may run
+    without the SDK's resolvers, with the same empty approval they would give it; any
+    doubt (another tool, no such episode, an arm executor) leaves it to them."""
+    if name not in MOTION_TOOLS:
+        return False
+    episode_id = getattr(params, "episode_id", None)
+    if not isinstance(episode_id, str):
+        return False
+    try:
+        episode = toolbox.context.store.peek(episode_id)
+    except Exception:
+        return False
+    return not episode.executor.startswith("arm") and not isinstance(episode.world, ArmWorld)
+
+
 def take_answers(arguments: dict[str, Any]) -> dict[str, Any]:
     """Take the resolved preview and answer out of a confirmed tool's arguments."""
     return {key: arguments.pop(key, None) for key in (PREVIEW_PARAM, ANSWER_PARAM)}

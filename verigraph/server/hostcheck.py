@@ -11,15 +11,15 @@ may be served from another port), never by prefix.
 
 from __future__ import annotations
 
-import json
 import logging
 import re
 from collections.abc import Iterable
 from urllib.parse import urlsplit
 
 from starlette.datastructures import Headers
-from starlette.responses import Response
 from starlette.types import ASGIApp, Receive, Scope, Send
+
+from verigraph.server.rpc_errors import rpc_error
 
 LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
 _HOST = re.compile(r"^(?P<name>\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9._~!$&'()*+,;=%-]+)"
@@ -80,12 +80,6 @@ class HostPolicy:
         return name.lower() in self.exact | self.any_port | {n for n, _ in self.fixed}
 
 
-def _refusal(status: int, message: str) -> Response:
-    body = json.dumps({"jsonrpc": "2.0", "id": None, "error": {"code": -32600,
-                                                               "message": message}})
-    return Response(body, status_code=status, media_type="application/json")
-
-
 class HostCheck:
     """421 for a Host this server is not, 403 for a foreign Origin (before any body)."""
 
@@ -99,14 +93,14 @@ class HostCheck:
             host = headers.get("host")
             if not self.policy.host_ok(host):
                 log.warning("refused Host header %r", (host or "")[:100])
-                await _refusal(421, "Misdirected request: the Host header names another "
+                await rpc_error(421, "Misdirected request: the Host header names another "
                                "server; connect to this server by a loopback name with its "
                                "port, or start it with --allow-host NAME")(scope, receive, send)
                 return
             origin = headers.get("origin")
             if not self.policy.origin_ok(origin):
                 log.warning("refused Origin header %r", (origin or "")[:100])
-                await _refusal(403, "Forbidden: requests from this web origin are not "
+                await rpc_error(403, "Forbidden: requests from this web origin are not "
                                "accepted (DNS-rebinding protection); use --allow-host NAME "
                                "for a trusted origin")(scope, receive, send)
                 return

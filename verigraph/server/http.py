@@ -33,6 +33,7 @@ from verigraph import __version__
 from verigraph.server.connections import guarded_protocol, quiet_accept_errors
 from verigraph.server.hostcheck import HostCheck, HostPolicy
 from verigraph.server.offload import DEFAULT_THRESHOLD_BYTES, LargeCalls
+from verigraph.server.rpc_errors import rpc_error
 
 DEFAULT_MAX_BODY_BYTES = 16 * 1024 * 1024
 log = logging.getLogger("verigraph.server")
@@ -58,13 +59,6 @@ class HttpOptions:
     def url(self) -> str:
         host = f"[{self.host}]" if ":" in self.host else self.host
         return f"http://{host}:{self.port}{self.path}"
-
-
-def _rpc_error(status: int, code: int, message: str,
-               headers: dict[str, str] | None = None) -> Response:
-    body = json.dumps({"jsonrpc": "2.0", "id": None,
-                       "error": {"code": code, "message": message}})
-    return Response(body, status_code=status, media_type="application/json", headers=headers)
 
 
 class BearerTokenAuth:
@@ -101,9 +95,7 @@ def _refusal(given: bytes) -> Response:
             "Forbidden: the token sent does not match; send 'Authorization: Bearer <token>' "
             "with the token this VeriGraph server was started with (--token or "
             "VERIGRAPH_TOKEN)")
-    body = json.dumps({"jsonrpc": "2.0", "id": None, "error": {
-        "code": -32001, "message": message, "data": {"reason": reason}}})
-    return Response(body, status_code=403, media_type="application/json")
+    return rpc_error(403, message, code=-32001, data={"reason": reason})
 
 
 class BodyLimit:
@@ -124,7 +116,7 @@ class BodyLimit:
     def _too_large(self, size: int | None) -> Response:
         mib = self.limit / (1024 * 1024)
         seen = f" ({size} bytes)" if size is not None else ""
-        return _rpc_error(413, -32600, f"Request body too large{seen}: this server accepts "
+        return rpc_error(413, f"Request body too large{seen}: this server accepts "
                           f"at most {mib:g} MiB per request. Send smaller images (downscale "
                           "or use JPEG) or split the request.")
 
@@ -156,7 +148,7 @@ class BodyLimit:
             if body is None:
                 return
         if body is None:
-            await _rpc_error(408, -32600, f"Request body not received within {self.timeout:g} "
+            await rpc_error(408, f"Request body not received within {self.timeout:g} "
                              "s: send the whole body promptly")(scope, receive, send)
             return
         if isinstance(body, Response):

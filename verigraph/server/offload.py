@@ -32,7 +32,10 @@ from typing import Any
 
 import anyio
 import anyio.to_thread
+from starlette.responses import Response
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
+
+from verigraph.server.rpc_errors import rpc_error
 
 SCOPE_KEY = "verigraph.call_slot"
 PLACEHOLDER_KEY = "verigraph_offloaded"
@@ -89,33 +92,30 @@ def offload(structured: Any) -> dict[str, Any] | None:
     return slot.placeholder()
 
 
-def _refusal(request_id: Any, method: Any, size: int) -> bytes:
+def _refusal(message: Any, size: int) -> Response:
+    method = message.get("method") if isinstance(message, dict) else None
+    request_id = message.get("id") if isinstance(message, dict) else None
     what = repr(method) if isinstance(method, str) else "a message that is no single request"
-    message = (f"Request too large for {what} ({size} bytes): only tools/call "
-               "arguments may be this large; send a smaller request")
-    return json.dumps({"jsonrpc": "2.0", "id": request_id if isinstance(
-        request_id, str | int) else None, "error": {"code": -32600, "message": message}}
-    ).encode()
+    return rpc_error(413, f"Request too large for {what} ({size} bytes): only tools/call "
+                          "arguments may be this large; send a smaller request",
+                     request_id=request_id if isinstance(request_id, str | int) else None)
 
 
-def _split(body: bytes, threshold: int) -> tuple[bytes, dict[str, Any] | None, bool]:
-    """(body for the SDK, the tools/call arguments taken out, whether it is refused).
+def _split(body: bytes, threshold: int) -> tuple[bytes, dict[str, Any] | None] | Response:
+    """(body for the SDK, the tools/call arguments taken out), or the refusal.
 
     Runs on a worker thread: parsing is the expensive part."""
     try:
         message = json.loads(body)
     except (ValueError, RecursionError):
-        return b"{", None, False  # the SDK answers its parse error without the cost
-    if not isinstance(message, dict):
-        return _refusal(None, None, len(body)), None, True
-    params = message.get("params")
-    if message.get("method") == "tools/call" and isinstance(params, dict) \
+        return b"{", None  # the SDK answers its parse error without the cost
+    params = message.get("params") if isinstance(message, dict) else None
+    if isinstance(params, dict) and message.get("method") == "tools/call" \
             and isinstance(params.get("arguments"), dict):
-        arguments = params["arguments"]
         envelope = json.dumps({**message, "params": {**params, "arguments": {}}}).encode()
         if len(envelope) <= threshold:
-            return envelope, arguments, False
-    return _refusal(message.get("id"), message.get("method"), len(body)), None, True
+            return envelope, params["arguments"]
+    return _refusal(message, len(body))
 
 
 class LargeCalls:
@@ -143,11 +143,12 @@ class LargeCalls:
         body = b"".join(chunks)
         slot = CallSlot()
         if len(body) > self.threshold:
-            body, slot.arguments, refused = await anyio.to_thread.run_sync(
-                _split, body, self.threshold, limiter=self._parsers)
-            if refused:
-                await _send_json(send, 413, body)
+            split = await anyio.to_thread.run_sync(_split, body, self.threshold,
+                                                   limiter=self._parsers)
+            if isinstance(split, Response):
+                await split(scope, receive, send)
                 return
+            body, slot.arguments = split
         scope = {**scope, SCOPE_KEY: slot}
         await self.app(scope, _replaying(body, receive), _splicing(slot, send))
 
@@ -190,9 +191,3 @@ def _splicing(slot: CallSlot, send: Send) -> Send:
 
     return spliced
 
-
-async def _send_json(send: Send, status: int, body: bytes) -> None:
-    await send({"type": "http.response.start", "status": status,
-                "headers": [(b"content-type", b"application/json"),
-                            (b"content-length", str(len(body)).encode())]})
-    await send({"type": "http.response.body", "body": body})

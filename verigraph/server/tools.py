@@ -28,6 +28,7 @@ from verigraph.server.confirmation import CLIENT as AUDIT_CLIENT
 from verigraph.server.confirmation import (
     PREVIEWS,
     arm_call,
+    asks_nothing,
     client_label,
     resolver_parameters,
     take_answers,
@@ -44,12 +45,13 @@ from verigraph.tools.store import WouldBlock, non_blocking
 log = logging.getLogger("verigraph.server")
 
 
-def to_result(spec: ToolSpec, result: BaseModel | ImageResult, off_loop: bool = False
+def to_result(spec: ToolSpec, result: BaseModel | ImageResult, splice: bool = False
               ) -> CallToolResult:
     """Structured content + summary text, or image content for the image-only tools.
 
-    On a worker thread (`off_loop`) a large structured result of an HTTP call is
-    serialised here and spliced into the answer (see offload)."""
+    With `splice` (on a heavy call's worker thread, for a tool the SDK does not check) a
+    large structured result of an HTTP call is serialised here and spliced into the
+    answer (see offload)."""
     if isinstance(result, ImageResult):
         content: list[ImageContent | TextContent] = [ImageContent(
             type="image", data=base64.b64encode(result.png).decode("ascii"),
@@ -58,7 +60,7 @@ def to_result(spec: ToolSpec, result: BaseModel | ImageResult, off_loop: bool = 
             content.append(TextContent(type="text", text=result.text))
         return CallToolResult(content=list(content))
     summary = [TextContent(type="text", text=spec.summary(result))]
-    placeholder = offload(result) if off_loop else None
+    placeholder = offload(result) if splice else None
     return CallToolResult(content=list(summary), structured_content=(
         placeholder if placeholder is not None else result.model_dump(mode="json")))
 
@@ -84,21 +86,37 @@ SLOW_ARGUMENTS = ("image", "generator", "simulate", "executor")
 URGENT_TOOLS = frozenset({"arm_status", "arm_stop", "arm_reset"})
 
 
-BIG_GRAPH_NODES = 300
-BIG_PLAN_CHARS = 20_000
+BIG_GRAPH_ITEMS = 300  # nodes or edges
+BIG_PLAN_ITEMS = 100
+BIG_PLAN_CHARS = 2000
+BIG_IMAGE_CHARS = 100_000
+
+
+def _field(obj: Any, name: str) -> Any:
+    return obj.get(name) if isinstance(obj, dict) else getattr(obj, name, None)
+
+
+def large_input(arguments: Any) -> bool:
+    """Whether a call's input, raw JSON arguments or the validated model alike, is large
+    enough that checking or running it would hold the event loop: a graph (or goal graph)
+    of more than 300 nodes or edges, a plan of more than 100 items or 2,000 characters, an
+    image of more than 100,000 characters."""
+    goal = _field(arguments, "goal")
+    for graph in (_field(arguments, "graph"), _field(goal, "graph")):
+        if any(isinstance(items := _field(graph, key), list) and len(items) > BIG_GRAPH_ITEMS
+               for key in ("nodes", "edges")):
+            return True
+    image, plan = _field(arguments, "image"), _field(arguments, "plan")
+    return (isinstance(image, str) and len(image) > BIG_IMAGE_CHARS) or (
+        isinstance(plan, str) and len(plan) > BIG_PLAN_CHARS) or (
+        isinstance(plan, list) and len(plan) > BIG_PLAN_ITEMS)
 
 
 def may_block(spec: ToolSpec, params: BaseModel) -> bool:
     """Whether a call could hold the event loop for long (decode, render, simulate, search,
     or a large graph or plan)."""
-    if spec.name in SLOW_TOOLS or any(getattr(params, a, None) for a in SLOW_ARGUMENTS):
-        return True
-    graphs = [getattr(params, "graph", None), getattr(getattr(params, "goal", None), "graph",
-                                                      None)]
-    if any(len(getattr(g, "nodes", ())) > BIG_GRAPH_NODES for g in graphs):
-        return True
-    plan = getattr(params, "plan", None)
-    return isinstance(plan, str | list) and len(plan) > BIG_PLAN_CHARS
+    return spec.name in SLOW_TOOLS or any(getattr(params, a, None) for a in SLOW_ARGUMENTS) \
+        or large_input(params)
 
 
 def big_episode(toolbox: Toolbox, spec: ToolSpec, params: BaseModel) -> bool:
@@ -112,23 +130,7 @@ def big_episode(toolbox: Toolbox, spec: ToolSpec, params: BaseModel) -> bool:
         state = toolbox.context.store.peek(episode_id).state
     except VeriGraphError:
         return False  # the tool reports it
-    return state is not None and len(state.objects) > BIG_GRAPH_NODES
-
-
-def raw_is_large(arguments: Any) -> bool:
-    """Whether raw arguments are big enough that validating them would hold the loop."""
-    if not isinstance(arguments, dict):
-        return False
-    graphs = [arguments.get("graph"), (arguments.get("goal") or {}).get("graph")
-              if isinstance(arguments.get("goal"), dict) else None]
-    for graph in graphs:
-        if isinstance(graph, dict) and any(
-                isinstance(graph.get(k), list) and len(graph[k]) > BIG_GRAPH_NODES
-                for k in ("nodes", "edges")):
-            return True
-    image, plan = arguments.get("image"), arguments.get("plan")
-    return (isinstance(image, str) and len(image) > 100_000) or (
-        isinstance(plan, str) and len(plan) > 2000) or (isinstance(plan, list) and len(plan) > 100)
+    return state is not None and len(state.objects) > BIG_GRAPH_ITEMS
 
 
 def _gated_params(name: str) -> BaseModel | None:
@@ -151,13 +153,13 @@ def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Execut
     # run the tool's checks twice before it hops to a worker thread anyway.
     off_loop = slow_default or toolbox.context.store.blocking_io
 
-    def run(params: BaseModel, off_loop: bool = False) -> CallToolResult:
+    def run(params: BaseModel, splice: bool = False) -> CallToolResult:
         try:
-            return to_result(spec, toolbox.run(spec, params), off_loop)
+            return to_result(spec, toolbox.run(spec, params), splice)
         except VeriGraphError as exc:
             raise ToolError(str(exc)) from None
 
-    async def placed(params: BaseModel) -> CallToolResult:
+    async def placed(params: BaseModel, splice: bool) -> CallToolResult:
         if spec.name in URGENT_TOOLS:  # never queued behind the call they must interrupt
             return await anyio.to_thread.run_sync(run, params,
                                                   limiter=thread_limiter(spec.name))
@@ -167,13 +169,15 @@ def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Execut
                     return run(params)
             except WouldBlock:
                 pass
-        return await heavy.run(lambda: run(params, off_loop=True), spec.name)
+        return await heavy.run(lambda: run(params, splice), spec.name)
 
-    async def execute(params: BaseModel, answers: dict[str, Any] | None = None
-                      ) -> CallToolResult:
+    async def execute(params: BaseModel, answers: dict[str, Any] | None = None, *,
+                      by_gate: bool = False) -> CallToolResult:
+        """`by_gate`: ArgumentGate answers the client itself, so a large result may be
+        spliced in as bytes; the SDK checks what it answers, which a placeholder fails."""
         # The arm's scope of the call: audit identity, confirmation, heartbeat, deadman.
         async with arm_call(spec.name, toolbox, params, answers):
-            return await placed(params)
+            return await placed(params, splice=by_gate)
 
     return execute
 
@@ -234,15 +238,13 @@ def build_tools(toolbox: Toolbox, heavy: HeavyCalls,
                 ) -> tuple[list[Tool], dict[str, Executor]]:
     """Every tool in TOOL_SPECS order (the order tools/list reports), with the compact
     published schemas of verigraph.server.schemas; `meta` gives some tools a `_meta`
-    (the MCP Apps viewer link). Also returns the executors ArgumentGate runs directly
-    (every tool that asks no confirmation)."""
+    (the MCP Apps viewer link). Also returns each tool's executor, which ArgumentGate
+    runs directly unless the call may ask for a confirmation."""
     tools = []
-    direct: dict[str, Executor] = {}
+    executors: dict[str, Executor] = {}
     documented: set[str] = set()
     for spec in TOOL_SPECS:
-        execute = tool_executor(spec, toolbox, heavy)
-        if spec.name not in PREVIEWS:
-            direct[spec.name] = execute
+        execute = executors[spec.name] = tool_executor(spec, toolbox, heavy)
         tool = Tool.from_function(
             tool_function(spec, toolbox, execute), name=spec.name, title=spec.title,
             description=spec.description, annotations=tool_annotations(spec),
@@ -251,7 +253,7 @@ def build_tools(toolbox: Toolbox, heavy: HeavyCalls,
         if tool.fn_metadata.output_schema is not None:
             tool.fn_metadata.output_schema = compact_output_schema(tool.fn_metadata.output_schema)
         tools.append(tool)
-    return tools, direct
+    return tools, executors
 
 
 # The arguments ArgumentGate validated for the tools/call being handled (tool, input).
@@ -267,28 +269,38 @@ class ArgumentGate:
     exactly the input it validated.
     """
 
-    def __init__(self, heavy: HeavyCalls) -> None:
+    def __init__(self, heavy: HeavyCalls, toolbox: Toolbox) -> None:
         self.heavy = heavy
-        self.direct: dict[str, Executor] = {}  # filled by build_server
+        self.toolbox = toolbox
+        self.executors: dict[str, Executor] = {}  # filled by build_server
 
     async def __call__(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
                        ) -> HandlerResult:
         if ctx.method != "tools/call" or ctx.params is None:
             return await call_next(ctx)
-        name = ctx.params.get("name")
+        slot = slot_of(ctx.request)
+        if slot is not None and slot.arguments is not None:
+            # A large call's arguments, parsed off the loop (offload), back in place.
+            ctx = replace(ctx, params={**ctx.params, "arguments": slot.arguments})
+        current_slot = CURRENT_SLOT.set(slot)
+        try:
+            return await self._gate(ctx, call_next)
+        finally:
+            CURRENT_SLOT.reset(current_slot)
+
+    async def _gate(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
+                    ) -> HandlerResult:
+        request = ctx.params or {}
+        name = request.get("name")
         spec = TOOLS.get(name) if isinstance(name, str) else None
         if spec is None:
             return await call_next(ctx)
         client = getattr(ctx.request, "client", None)
         if client is not None:
             CLIENT.set(f"{client.host}:{client.port}")
-        slot = slot_of(ctx.request)
-        arguments = ctx.params.get("arguments")
-        if slot is not None and slot.arguments is not None:
-            arguments = slot.arguments  # a large call's, parsed off the loop (offload)
-            ctx = replace(ctx, params={**ctx.params, "arguments": arguments})
+        arguments = request.get("arguments")
         try:
-            if raw_is_large(arguments):
+            if large_input(arguments):
                 params = await self.heavy.run(lambda: parse_tool_arguments(spec, arguments),
                                               f"{spec.name} arguments")
             else:
@@ -297,22 +309,22 @@ class ArgumentGate:
             return CallToolResult(content=[TextContent(
                 type="text", text=f"Error executing tool {spec.name}: {exc}")], is_error=True)
         audit_client = AUDIT_CLIENT.set(client_label(ctx.session))
-        current_slot = CURRENT_SLOT.set(slot)
         try:
             return await self._run(spec, params, ctx, call_next)
         finally:
-            CURRENT_SLOT.reset(current_slot)
             AUDIT_CLIENT.reset(audit_client)
 
     async def _run(self, spec: ToolSpec, params: BaseModel,
                    ctx: ServerRequestContext[Any, Any], call_next: CallNext) -> HandlerResult:
-        direct = self.direct.get(spec.name)
-        if direct is not None:
+        confirmed = spec.name in PREVIEWS
+        if not confirmed or asks_nothing(spec.name, self.toolbox, params):
             # Run it here: the SDK would validate the arguments and the structured
             # result once more on the event loop (both already hold by construction),
-            # which for a large graph stalls every other client.
+            # which for a large graph stalls every other client. A confirmed tool with
+            # nothing to ask gets the empty approval the SDK's resolvers would give.
+            answers: dict[str, Any] | None = {} if confirmed else None
             try:
-                return await direct(params)
+                return await self.executors[spec.name](params, answers, by_gate=True)
             except ToolError as exc:
                 log.info("Tool %r failed: %r", spec.name, str(exc))
                 return CallToolResult(content=[TextContent(
