@@ -40,6 +40,12 @@ from verigraph.graph import WorldState  # noqa: E402
 from verigraph.graph.io import scene_from_json  # noqa: E402
 
 
+def children_checking(pid: int) -> list[int]:
+    """The server's children that check large bodies (verigraph.server.argument_process)."""
+    children = Path(f"/proc/{pid}/task/{pid}/children").read_text().split()
+    return [int(c) for c in children if b"spawn_main" in Path(f"/proc/{c}/cmdline").read_bytes()]
+
+
 def rss_mib(pid: int) -> float:
     for line in Path(f"/proc/{pid}/status").read_text().splitlines():
         if line.startswith("VmRSS:"):
@@ -86,27 +92,38 @@ def heavy_arguments(n: int = 5000) -> dict[str, Any]:
     return {"graph": tower(n), "plan": plan}
 
 
-def heavy_client(url: str, stop: Any, done: Any) -> None:
-    """validate_plan on a 5,000-block tower, back to back until `stop` is set; its own
-    process, as a real second client would be (its JSON work must not slow the light
-    client's measurements)."""
-    headers, body = wire_call("validate_plan", heavy_arguments(), 1)
+def hostile_arguments(nodes: int = 300_000) -> dict[str, Any]:
+    """An 11 MB graph of small nodes, far beyond the node limit: refused, after parsing."""
+    graph = {"nodes": [{"id": f"n{i}", "label": "block"} for i in range(nodes)], "edges": []}
+    return {"graph": graph, "plan": "done"}
+
+
+def heavy_client(url: str, kind: str, stop: Any, done: Any) -> None:
+    """Large calls back to back until `stop` is set: validate_plan on a 5,000-block tower
+    ("plan"), or a graph far beyond the limits ("hostile"). Its own process, as a real
+    second client would be (its JSON work must not slow the light client's measurements)."""
+    arguments = heavy_arguments() if kind == "plan" else hostile_arguments()
+    headers, body = wire_call("validate_plan", arguments, 1)
     with httpx2.Client(headers=headers, timeout=120) as http:
         while not stop.is_set():
-            result = http.post(url, content=body).json()["result"]
-            assert result["structuredContent"]["valid"], str(result)[:300]
+            reply = http.post(url, content=body).json()
+            if kind == "plan":
+                assert reply["result"]["structuredContent"]["valid"], str(reply)[:300]
+            else:  # refused: as an argument error, or as too large to parse
+                assert reply.get("error") or reply["result"]["isError"], str(reply)[:300]
             done.value += 1
 
 
-async def light_under_heavy(url: str, light_calls: int, heavy: bool) -> tuple[list[float], int]:
+async def light_under_heavy(url: str, light_calls: int, heavy: str | None
+                            ) -> tuple[list[float], int]:
     async with httpx2.AsyncClient() as http:
         episode = (await call(http, url, "load_scene", {"scene_id": "cup_on_book"}))[
             "episode_id"]
-    if not heavy:
+    if heavy is None:
         return await light_latencies(url, episode, light_calls), 0
     spawn = multiprocessing.get_context("spawn")
     stop, done = spawn.Event(), spawn.Value("i", 0)
-    process = spawn.Process(target=heavy_client, args=(url, stop, done))
+    process = spawn.Process(target=heavy_client, args=(url, heavy, stop, done))
     process.start()
     while done.value == 0:  # the heavy client is under way
         await asyncio.sleep(0.05)
@@ -244,14 +261,22 @@ async def run(quick: bool) -> list[list[str]]:
             rows.append([f"validate_action, {clients} concurrent clients", f"{rate:,.0f}",
                          ms(flat, 0.5), ms(flat, 0.99), f"{len(flat)} calls"])
         light = 50 if quick else 1000
-        alone, _ = await light_under_heavy(url, light, heavy=False)
-        loaded, heavy_calls = await light_under_heavy(url, light, heavy=True)
+        alone, _ = await light_under_heavy(url, light, None)
+        loaded, heavy_calls = await light_under_heavy(url, light, "plan")
+        hostile, hostile_calls = await light_under_heavy(url, light, "hostile")
         rows.append(["light client alone: validate_action", "-", ms(alone, 0.5),
                      ms(alone, 0.99), f"{light} calls"])
         rows.append(["light client while a heavy client runs", "-", ms(loaded, 0.5),
                      ms(loaded, 0.99), f"{light} calls; heavy: {heavy_calls} validate_plan "
                      "(5,000 blocks, 1,000 actions) meanwhile; p99 ratio "
                      f"{percentile(loaded, 0.99) / percentile(alone, 0.99):.1f}x"])
+        rows.append(["light client while a hostile client runs", "-", ms(hostile, 0.5),
+                     ms(hostile, 0.99), f"{light} calls; hostile: {hostile_calls} "
+                     "validate_plan with 300,000 nodes (11 MB, refused) meanwhile"])
+        checkers = children_checking(proc.pid)
+        rows.append(["RSS of the process that checks large bodies", "-", "-", "-",
+                     f"{sum(rss_mib(pid) for pid in checkers):.0f} MiB "
+                     f"({len(checkers)} process)"])
         count = 5 if quick else 20
         kinds = {"built-in scene": {"scene_id": "cup_on_book"},
                  "sim2d": {"scene_id": "three_blocks", "simulate": True},
@@ -298,8 +323,9 @@ def main() -> int:
              "a process of its own. Light calls run on the event loop; heavy calls (large "
              "graphs or plans, images, simulator, search, arms) on at most 2 worker threads, "
              "1 per client connection, each within its wall-clock and memory budget; bodies "
-             "over 64 KiB are parsed, and large results serialised, on worker threads too "
-             "(verigraph.server.offload). 1-minute load average at start: "
+             "over 64 KiB are parsed and checked in a child process, and large results "
+             "serialised on worker threads (verigraph.server.offload). 1-minute load "
+             "average at start: "
              f"{load:.2f} (other jobs share the 2 cores; absolute times are inflated by it).")
     write_table("server_load", "MCP server under load and faults",
                 ["what", "calls/s", "p50 ms", "p99 ms", "notes"], rows, notes)

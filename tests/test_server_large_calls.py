@@ -4,7 +4,11 @@ with answers equal to the library's, on both protocol eras and on the SDK's own 
 from __future__ import annotations
 
 import json
-from collections.abc import Iterator
+import os
+import signal
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
 from typing import Any
 
 import anyio
@@ -13,7 +17,15 @@ import pytest
 from mcp import Client
 from mcp.client.streamable_http import streamable_http_client
 from mcp.types import CallToolResult
-from mcp_helpers import JSON_HEADERS, free_port, http_in_thread, http_server, rpc, structured
+from mcp_helpers import (
+    JSON_HEADERS,
+    RunningServer,
+    free_port,
+    http_in_thread,
+    http_server,
+    rpc,
+    structured,
+)
 
 from verigraph.server import tools as server_tools
 from verigraph.server.http import HttpOptions
@@ -32,9 +44,14 @@ LEGACY = "2025-11-25"
 
 
 @pytest.fixture(scope="module")
-def url() -> Iterator[str]:
+def server() -> Iterator[RunningServer]:
     with http_server(token=TOKEN) as running:
-        yield running.url
+        yield running
+
+
+@pytest.fixture()
+def url(server: RunningServer) -> str:
+    return server.url
 
 
 def tower(n: int) -> dict[str, Any]:
@@ -209,6 +226,63 @@ def test_a_large_body_that_is_not_json_gets_the_parse_error(url: str) -> None:
     response = httpx2.post(url, content=body, headers={**JSON_HEADERS, **AUTH}, timeout=60)
     assert response.status_code == 400
     assert response.json()["error"]["code"] == -32700
+
+
+def test_an_oversized_graph_is_refused_by_the_checking_process(url: str) -> None:
+    nodes = [{"id": f"n{i}", "label": "block"} for i in range(100_000)]
+    response = legacy_call(url, "validate_plan", {"graph": {"nodes": nodes, "edges": []},
+                                                  "plan": "done"})
+    result = response.json()["result"]
+    assert result["isError"] is True
+    assert "graph: " in result["content"][0]["text"]
+    assert "at most 5000 nodes" in result["content"][0]["text"]
+
+
+def checking_processes(server_pid: int) -> list[int]:
+    """The server's children that check large bodies (not multiprocessing's tracker)."""
+    children = Path(f"/proc/{server_pid}/task/{server_pid}/children").read_text().split()
+    return [int(pid) for pid in children
+            if b"spawn_main" in Path(f"/proc/{pid}/cmdline").read_bytes()]
+
+
+def gone(pid: int) -> bool:
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except FileNotFoundError:
+        return True
+    return state == "Z"
+
+
+def wait_until(condition: Callable[[], bool], what: str) -> None:
+    deadline = time.monotonic() + 30  # only so that a broken server fails the test
+    while not condition():
+        assert time.monotonic() < deadline, what
+        time.sleep(0.05)
+
+
+def test_a_body_beyond_the_memory_budget_is_refused_and_the_child_dies_with_the_server(
+        ) -> None:
+    with http_server(token=TOKEN, extra=["--tool-mib", "64"]) as running:
+        nodes = [{"id": f"n{i}", "label": "block"} for i in range(400_000)]
+        response = legacy_call(running.url, "validate_plan",
+                               {"graph": {"nodes": nodes, "edges": []}, "plan": "done"})
+        assert response.status_code == 413
+        assert "needs more memory to parse" in response.json()["error"]["message"]
+        children = checking_processes(running.proc.pid)
+        assert len(children) == 1
+        running.proc.kill()  # no chance to clean up: the kernel takes the child along
+        running.proc.wait()
+        wait_until(lambda: gone(children[0]), "the checking process outlived the server")
+
+
+def test_a_checking_process_that_dies_is_replaced(server: RunningServer) -> None:
+    assert legacy_call(server.url, "validate_plan", LARGE_PLAN).status_code == 200
+    [child] = checking_processes(server.proc.pid)
+    os.kill(child, signal.SIGKILL)
+    wait_until(lambda: gone(child), "the checking process did not die")
+    reply = legacy_call(server.url, "validate_plan", LARGE_PLAN).json()
+    assert reply["result"]["structuredContent"] == library_answer("validate_plan", LARGE_PLAN)
+    assert checking_processes(server.proc.pid) not in ([], [child])
 
 
 def test_the_splice_replaces_only_its_own_placeholder() -> None:

@@ -134,7 +134,7 @@ def run_serve(args: argparse.Namespace) -> int:
                           max_body_bytes=max_bytes,
                           allowed_hosts=tuple(args.allow_host),
                           header_timeout_s=args.header_timeout, body_timeout_s=args.body_timeout,
-                          keep_alive_s=args.keep_alive,
+                          keep_alive_s=args.keep_alive, large_call_mib=args.tool_mib,
                           max_connections=args.max_connections or default_max_connections())
     serve_http(server, options, log_level=args.log_level)
     return 0

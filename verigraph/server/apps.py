@@ -26,21 +26,13 @@ from pydantic import BaseModel, ValidationError
 from verigraph.errors import VeriGraphError
 from verigraph.server.heavy import HeavyCalls
 from verigraph.server.tools import _parameters, to_result
-from verigraph.tools.registry import Toolbox, ToolSpec, argument_error
-from verigraph.viewer import EpisodeView, ViewInput, app_html, view
+from verigraph.tools.registry import Toolbox, argument_error
+from verigraph.viewer import VIEW_SPEC, EpisodeView, ViewInput, app_html, view
 
 EPISODE_UI = "ui://verigraph/episode"
 UI_TOOLS = ("execute_actions", "validate_plan", "render_scene", "get_state")
 UI_META: dict[str, dict[str, Any]] = {name: {"ui": {"resourceUri": EPISODE_UI}}
                                       for name in UI_TOOLS}
-VIEW_SPEC = ToolSpec(
-    "view_episode", "Episode view (viewer only)",
-    "For the episode viewer: per-step graphs, drawings and verdicts of an episode's trace "
-    "(episode_id) or of a plan on a scene (plan with scene_id, graph or episode_id).",
-    ViewInput, EpisodeView, lambda ctx, params: view(ctx, params), read_only=True,
-    idempotent=True)
-
-
 def _view_function(toolbox: Toolbox, heavy: HeavyCalls) -> Any:
     """view_episode: validate like every tool, then draw as a heavy call (worker thread,
     budget, per-client limit)."""

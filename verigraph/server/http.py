@@ -4,8 +4,8 @@ Layers, outermost first: uvicorn with a header deadline and a connection cap
 (connections), bearer-token check (headers only, so unauthenticated clients cannot
 make the server read large bodies), DNS-rebinding protection (Host and Origin parsed
 per RFC 9110; hostcheck), request body limit and deadline with a JSON-RPC error that
-says what to do and cancellation when the client leaves, large calls parsed and
-answered off the event loop (offload), then the SDK app.
+says what to do and cancellation when the client leaves, large calls checked in a
+child process and answered as bytes (offload), then the SDK app.
 """
 
 from __future__ import annotations
@@ -30,6 +30,7 @@ from starlette.responses import Response
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from verigraph import __version__
+from verigraph.server.argument_process import ArgumentChecker
 from verigraph.server.connections import guarded_protocol, quiet_accept_errors
 from verigraph.server.hostcheck import HostCheck, HostPolicy
 from verigraph.server.offload import DEFAULT_THRESHOLD_BYTES, LargeCalls
@@ -54,7 +55,8 @@ class HttpOptions:
     keep_alive_s: float = 75.0  # clients keep connections across long local steps
     max_connections: int = 512
     shutdown_s: float = 0.5  # SIGTERM: in-flight calls get this long, then are cancelled
-    large_call_bytes: int = DEFAULT_THRESHOLD_BYTES  # bodies parsed off the loop (offload)
+    large_call_bytes: int = DEFAULT_THRESHOLD_BYTES  # bodies checked in a child (offload)
+    large_call_mib: float = 512.0  # the child's memory budget for one body
 
     def url(self) -> str:
         host = f"[{self.host}]" if ":" in self.host else self.host
@@ -213,7 +215,7 @@ def http_app(server: MCPServer[Any], options: HttpOptions) -> ASGIApp:
         max_request_body_size=options.max_body_bytes,
         transport_security=TransportSecuritySettings(enable_dns_rebinding_protection=False),
         host=options.host)
-    app = LargeCalls(app, options.large_call_bytes)
+    app = LargeCalls(app, options.large_call_bytes, ArgumentChecker(options.large_call_mib))
     app = BodyLimit(app, options.max_body_bytes, options.body_timeout_s)
     app = HostCheck(app, HostPolicy(options.host, options.port, options.allowed_hosts))
     if options.token:

@@ -4,18 +4,17 @@ The MCP SDK parses each request body and walks each result several times (pydant
 validation and dumps, then `json.dumps`) on the event loop. For a 5,000-block plan
 (0.5 MB in, a 1 MB report out) that is about 40 ms of loop time per call on an idle
 machine, and no other client is answered meanwhile. Each of those steps is one C call
-that holds the GIL from start to end, so moving the tool alone to a thread does not
-help. LargeCalls moves them off the loop:
+that holds the GIL from start to end, so moving them to a thread helps only so much.
+LargeCalls moves them away:
 
-* A request body above `threshold` bytes is parsed on a worker thread. A `tools/call`
-  keeps its `arguments` in the request's CallSlot and the SDK gets the envelope with
-  empty arguments: it still checks the protocol version, id, method, name and `_meta`
-  as usual, and ArgumentGate takes the arguments from the slot. Any other method has
-  no business carrying that much and gets a JSON-RPC error saying so; a body that is
-  not JSON reaches the SDK as a one-byte stand-in, so the SDK answers its usual parse
-  error without parsing megabytes on the loop.
-* A heavy call's structured result is serialised on its worker thread (`offload`);
-  the SDK answers with a small placeholder, which `send` replaces with those bytes.
+* A request body above `threshold` bytes goes to a child process (argument_process),
+  which parses it, takes a `tools/call`'s arguments out and validates them. The SDK gets
+  the envelope with empty arguments (it still checks the protocol version, id, method,
+  name and `_meta`) and ArgumentGate takes the validated input, or the argument error,
+  from the request's CallSlot. Any other method has no business carrying that much and
+  gets a JSON-RPC error saying so.
+* A heavy call's structured result is serialised on its worker thread (`offload`); the
+  SDK answers with a small placeholder, which `send` replaces with those bytes.
 
 Only HTTP has other clients to be fair to; stdio serves one peer and keeps the SDK's
 own path.
@@ -23,18 +22,16 @@ own path.
 
 from __future__ import annotations
 
-import json
 import re
 import secrets
 from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Any
 
-import anyio
-import anyio.to_thread
-from starlette.responses import Response
+from pydantic import BaseModel
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from verigraph.server.argument_process import ArgumentChecker
 from verigraph.server.rpc_errors import rpc_error
 
 SCOPE_KEY = "verigraph.call_slot"
@@ -48,7 +45,9 @@ SPLICE_MIN_BYTES = 16 * 1024
 class CallSlot:
     """What LargeCalls and ArgumentGate hand each other for one HTTP request."""
 
-    arguments: dict[str, Any] | None = None  # parsed off the loop, taken out of the body
+    taken: bool = False  # the arguments were taken out of the body and checked
+    params: BaseModel | None = None  # the tool's validated input, if they are valid
+    error: str | None = None  # else what is wrong with them
     structured: bytes | None = None  # the result's structuredContent, serialised
     marker: str = field(default_factory=lambda: secrets.token_hex(16))
 
@@ -92,43 +91,20 @@ def offload(structured: Any) -> dict[str, Any] | None:
     return slot.placeholder()
 
 
-def _refusal(message: Any, size: int) -> Response:
-    method = message.get("method") if isinstance(message, dict) else None
-    request_id = message.get("id") if isinstance(message, dict) else None
-    what = repr(method) if isinstance(method, str) else "a message that is no single request"
-    return rpc_error(413, f"Request too large for {what} ({size} bytes): only tools/call "
-                          "arguments may be this large; send a smaller request",
-                     request_id=request_id if isinstance(request_id, str | int) else None)
-
-
-def _split(body: bytes, threshold: int) -> tuple[bytes, dict[str, Any] | None] | Response:
-    """(body for the SDK, the tools/call arguments taken out), or the refusal.
-
-    Runs on a worker thread: parsing is the expensive part."""
-    try:
-        message = json.loads(body)
-    except (ValueError, RecursionError):
-        return b"{", None  # the SDK answers its parse error without the cost
-    params = message.get("params") if isinstance(message, dict) else None
-    if isinstance(params, dict) and message.get("method") == "tools/call" \
-            and isinstance(params.get("arguments"), dict):
-        envelope = json.dumps({**message, "params": {**params, "arguments": {}}}).encode()
-        if len(envelope) <= threshold:
-            return envelope, params["arguments"]
-    return _refusal(message, len(body))
-
-
 class LargeCalls:
-    """ASGI middleware (inside the body limit): large bodies are parsed, and large results
-    serialised, on worker threads; see the module docstring."""
+    """ASGI middleware (inside the body limit): large bodies are parsed and checked in a
+    child process, large results serialised on worker threads; see the module docstring."""
 
     def __init__(self, app: ASGIApp, threshold: int = DEFAULT_THRESHOLD_BYTES,
-                 parsers: int = 2) -> None:
+                 checker: ArgumentChecker | None = None) -> None:
         self.app = app
         self.threshold = threshold
-        self._parsers = anyio.CapacityLimiter(parsers)
+        self.checker = checker or ArgumentChecker()
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] == "lifespan":
+            await self.app(scope, self._closing_on_shutdown(receive), send)
+            return
         if scope["type"] != "http" or scope["method"] != "POST":
             await self.app(scope, receive, send)
             return
@@ -143,14 +119,24 @@ class LargeCalls:
         body = b"".join(chunks)
         slot = CallSlot()
         if len(body) > self.threshold:
-            split = await anyio.to_thread.run_sync(_split, body, self.threshold,
-                                                   limiter=self._parsers)
-            if isinstance(split, Response):
-                await split(scope, receive, send)
+            prepared = await self.checker.prepare(body, self.threshold)
+            if prepared.refusal is not None:
+                await rpc_error(413, prepared.refusal, request_id=prepared.request_id)(
+                    scope, receive, send)
                 return
-            body, slot.arguments = split
+            body, slot.taken = prepared.envelope, True
+            slot.params, slot.error = prepared.params, prepared.error
         scope = {**scope, SCOPE_KEY: slot}
         await self.app(scope, _replaying(body, receive), _splicing(slot, send))
+
+    def _closing_on_shutdown(self, receive: Receive) -> Receive:
+        async def watched() -> Message:
+            message = await receive()
+            if message["type"] == "lifespan.shutdown":
+                self.checker.close()
+            return message
+
+        return watched
 
 
 def _replaying(body: bytes, receive: Receive) -> Receive:

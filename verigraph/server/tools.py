@@ -35,7 +35,7 @@ from verigraph.server.confirmation import (
     thread_limiter,
 )
 from verigraph.server.heavy import CLIENT, HeavyCalls
-from verigraph.server.offload import CURRENT_SLOT, offload, slot_of
+from verigraph.server.offload import CURRENT_SLOT, CallSlot, offload, slot_of
 from verigraph.server.schemas import compact_input_schema, compact_output_schema
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
 from verigraph.tools.registry import parse_arguments as parse_tool_arguments
@@ -256,6 +256,21 @@ def build_tools(toolbox: Toolbox, heavy: HeavyCalls,
     return tools, executors
 
 
+def _error_result(spec: ToolSpec, exc: Exception) -> CallToolResult:
+    return CallToolResult(content=[TextContent(
+        type="text", text=f"Error executing tool {spec.name}: {exc}")], is_error=True)
+
+
+def _with_arguments(ctx: ServerRequestContext[Any, Any], slot: CallSlot | None
+                    ) -> ServerRequestContext[Any, Any]:
+    """`ctx` as the SDK needs it when it runs the tool itself: with the arguments a large
+    body had taken out (as the validated input's JSON; offload) put back."""
+    if slot is None or slot.params is None or ctx.params is None:
+        return ctx
+    arguments = slot.params.model_dump(mode="json", exclude_unset=True)
+    return replace(ctx, params={**ctx.params, "arguments": arguments})
+
+
 # The arguments ArgumentGate validated for the tools/call being handled (tool, input).
 _GATED: ContextVar[tuple[str, BaseModel] | None] = ContextVar("verigraph_gated", default=None)
 
@@ -279,43 +294,48 @@ class ArgumentGate:
         if ctx.method != "tools/call" or ctx.params is None:
             return await call_next(ctx)
         slot = slot_of(ctx.request)
-        if slot is not None and slot.arguments is not None:
-            # A large call's arguments, parsed off the loop (offload), back in place.
-            ctx = replace(ctx, params={**ctx.params, "arguments": slot.arguments})
         current_slot = CURRENT_SLOT.set(slot)
         try:
-            return await self._gate(ctx, call_next)
+            return await self._gate(ctx, call_next, slot)
         finally:
             CURRENT_SLOT.reset(current_slot)
 
-    async def _gate(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
-                    ) -> HandlerResult:
+    async def _gate(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext,
+                    slot: CallSlot | None) -> HandlerResult:
         request = ctx.params or {}
         name = request.get("name")
         spec = TOOLS.get(name) if isinstance(name, str) else None
         if spec is None:
-            return await call_next(ctx)
+            return await call_next(_with_arguments(ctx, slot))
         client = getattr(ctx.request, "client", None)
         if client is not None:
             CLIENT.set(f"{client.host}:{client.port}")
-        arguments = request.get("arguments")
         try:
-            if large_input(arguments):
-                params = await self.heavy.run(lambda: parse_tool_arguments(spec, arguments),
-                                              f"{spec.name} arguments")
-            else:
-                params = parse_tool_arguments(spec, arguments)
+            params = await self._params(spec, request.get("arguments"), slot)
         except VeriGraphError as exc:
-            return CallToolResult(content=[TextContent(
-                type="text", text=f"Error executing tool {spec.name}: {exc}")], is_error=True)
+            return _error_result(spec, exc)
         audit_client = AUDIT_CLIENT.set(client_label(ctx.session))
         try:
-            return await self._run(spec, params, ctx, call_next)
+            return await self._run(spec, params, ctx, call_next, slot)
         finally:
             AUDIT_CLIENT.reset(audit_client)
 
+    async def _params(self, spec: ToolSpec, arguments: Any, slot: CallSlot | None
+                      ) -> BaseModel:
+        """The tool's input: checked already (a large HTTP body, see offload), or parsed
+        here (on a worker thread if large)."""
+        if slot is not None and slot.taken:
+            if slot.params is None:
+                raise VeriGraphError(slot.error or "invalid arguments")
+            return slot.params
+        if large_input(arguments):
+            return await self.heavy.run(lambda: parse_tool_arguments(spec, arguments),
+                                        f"{spec.name} arguments")
+        return parse_tool_arguments(spec, arguments)
+
     async def _run(self, spec: ToolSpec, params: BaseModel,
-                   ctx: ServerRequestContext[Any, Any], call_next: CallNext) -> HandlerResult:
+                   ctx: ServerRequestContext[Any, Any], call_next: CallNext,
+                   slot: CallSlot | None) -> HandlerResult:
         confirmed = spec.name in PREVIEWS
         if not confirmed or asks_nothing(spec.name, self.toolbox, params):
             # Run it here: the SDK would validate the arguments and the structured
@@ -327,15 +347,13 @@ class ArgumentGate:
                 return await self.executors[spec.name](params, answers, by_gate=True)
             except ToolError as exc:
                 log.info("Tool %r failed: %r", spec.name, str(exc))
-                return CallToolResult(content=[TextContent(
-                    type="text", text=f"Error executing tool {spec.name}: {exc}")],
-                    is_error=True)
+                return _error_result(spec, exc)
             except Exception:  # a bug: logged in full, the client learns only that
                 log.exception("Tool %r raised an unexpected exception", spec.name)
                 return CallToolResult(content=[TextContent(
                     type="text", text=f"Error executing tool {spec.name}")], is_error=True)
         token = _GATED.set((spec.name, params))
         try:
-            return await call_next(ctx)
+            return await call_next(_with_arguments(ctx, slot))
         finally:
             _GATED.reset(token)

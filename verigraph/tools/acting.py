@@ -43,6 +43,11 @@ from verigraph.tools.texts import edges_line
 
 MAX_ACTIONS_PER_CALL = 50
 MAX_PLAN_ACTIONS = 1000
+# A text plan of MAX_PLAN_ACTIONS lines with room for comments; longer text is refused
+# before it is split into lines and parsed.
+MAX_PLAN_CHARS = 400_000
+PlanText = Annotated[str, Field(max_length=MAX_PLAN_CHARS)]
+PlanList = Annotated[list[ActionInput], Field(max_length=MAX_PLAN_ACTIONS)]
 
 
 # -- validate_action ------------------------------------------------------------------------
@@ -252,7 +257,7 @@ class ValidatePlanInput(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
 
-    plan: str | Annotated[list[ActionInput], Field(max_length=MAX_PLAN_ACTIONS)] = Field(
+    plan: PlanText | PlanList = Field(
         description="text plan (one action per line) or a list of actions")
     scene_id: SceneId | None = Field(default=None, description="start from a built-in scene")
     graph: BoundedGraph | None = Field(default=None, description="initial scene graph")

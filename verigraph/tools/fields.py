@@ -12,7 +12,7 @@ import json
 from collections.abc import Sequence
 from typing import Annotated, Any
 
-from pydantic import AfterValidator, Field
+from pydantic import AfterValidator, BeforeValidator, Field
 
 from verigraph.actions.model import Action, AnyAction, DoneAction
 from verigraph.actions.parser import parse_text_plan
@@ -80,11 +80,30 @@ def check_attrs_size(nodes: Sequence[Any]) -> None:
                          f"{MAX_GRAPH_ATTRS_BYTES} bytes per graph are kept")
 
 
+def _check_counts(nodes: int, edges: int) -> None:
+    if nodes > MAX_GRAPH_NODES or edges > MAX_GRAPH_EDGES:
+        raise ValueError(f"the graph has {nodes} nodes and {edges} edges; at most "
+                         f"{MAX_GRAPH_NODES} nodes and {MAX_GRAPH_EDGES} edges are accepted")
+
+
+def _counted(value: Any) -> Any:
+    """Refuse an oversized raw graph before its nodes and edges are validated one by one
+    (300,000 nodes would take a second to validate only to be refused)."""
+    if isinstance(value, dict):
+        nodes, edges = value.get("nodes"), value.get("edges")
+        _check_counts(len(nodes) if isinstance(nodes, list) else 0,
+                      len(edges) if isinstance(edges, list) else 0)
+    return value
+
+
+def _counted_goal(value: Any) -> Any:
+    if isinstance(value, dict):
+        _counted(value.get("graph"))
+    return value
+
+
 def _bounded(graph: SceneGraph) -> SceneGraph:
-    if len(graph.nodes) > MAX_GRAPH_NODES or len(graph.edges) > MAX_GRAPH_EDGES:
-        raise ValueError(f"the graph has {len(graph.nodes)} nodes and {len(graph.edges)} edges; "
-                         f"at most {MAX_GRAPH_NODES} nodes and {MAX_GRAPH_EDGES} edges are "
-                         "accepted")
+    _check_counts(len(graph.nodes), len(graph.edges))
     check_attrs_size(graph.nodes)
     return graph
 
@@ -95,8 +114,8 @@ def _bounded_goal(goal: Goal) -> Goal:
     return goal
 
 
-BoundedGraph = Annotated[SceneGraph, AfterValidator(_bounded)]
-BoundedGoal = Annotated[Goal, AfterValidator(_bounded_goal)]
+BoundedGraph = Annotated[SceneGraph, BeforeValidator(_counted), AfterValidator(_bounded)]
+BoundedGoal = Annotated[Goal, BeforeValidator(_counted_goal), AfterValidator(_bounded_goal)]
 
 
 def parse_actions(items: Sequence[Any], *, field: str = "actions", indexed: bool = True

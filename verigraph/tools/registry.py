@@ -12,6 +12,7 @@ import difflib
 import json
 import logging
 import random
+import reprlib
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -148,8 +149,19 @@ def _pre_parse(model: type[BaseModel], arguments: Mapping[str, Any]) -> dict[str
     return parsed
 
 
+def _short_repr() -> reprlib.Repr:
+    short = reprlib.Repr()
+    short.maxlevel, short.maxdict, short.maxlist, short.maxtuple = 2, 3, 3, 3
+    short.maxstring = short.maxother = short.maxlong = 60
+    return short
+
+
+_SHORT = _short_repr()
+
+
 def _shown(value: Any) -> str:
-    text = repr(value)
+    """The start of a value's repr (never the repr of all of a large input)."""
+    text = _SHORT.repr(value)
     return text if len(text) <= 60 else text[:57] + "..."
 
 

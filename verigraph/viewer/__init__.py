@@ -9,6 +9,7 @@ results out per step and draws them.
 
 from verigraph.viewer.page import APP_HTML_PATH, app_html, report_html
 from verigraph.viewer.views import (
+    VIEW_SPEC,
     EpisodeView,
     StepView,
     ViewInput,
@@ -17,5 +18,5 @@ from verigraph.viewer.views import (
     view,
 )
 
-__all__ = ["APP_HTML_PATH", "EpisodeView", "StepView", "ViewInput", "app_html", "episode_view",
-           "plan_view", "report_html", "view"]
+__all__ = ["APP_HTML_PATH", "VIEW_SPEC", "EpisodeView", "StepView", "ViewInput", "app_html",
+           "episode_view", "plan_view", "report_html", "view"]

@@ -14,7 +14,7 @@ current scene (the `render_scene` tool function).
 from __future__ import annotations
 
 import base64
-from typing import Literal
+from typing import Annotated, Literal
 
 import cv2
 import numpy as np
@@ -24,12 +24,13 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.report import ValidationReport
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.tools.acting import ValidatePlanInput, validate_plan
+from verigraph.tools.acting import MAX_PLAN_ACTIONS, PlanText, ValidatePlanInput, validate_plan
 from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph
 from verigraph.tools.fields import BoundedGoal, BoundedGraph, EpisodeId, SceneId
 from verigraph.tools.images import encode_png
 from verigraph.tools.loading import stateless_source
+from verigraph.tools.registry import ToolSpec
 from verigraph.tools.scenes import RenderSceneInput, render_scene
 from verigraph.viewer.frames import boxes, outline, step_frames
 
@@ -97,7 +98,8 @@ class ViewInput(BaseModel):
 
     episode_id: EpisodeId | None = Field(default=None, description="show this episode's "
                                          "trace; with plan: check the plan from its graph")
-    plan: str | list[str | dict[str, object]] | None = Field(
+    plan: PlanText | Annotated[list[str | dict[str, object]], Field(
+        max_length=MAX_PLAN_ACTIONS)] | None = Field(
         default=None, description="plan text (one action per line) or a list of actions")
     scene_id: SceneId | None = None
     graph: BoundedGraph | None = None
@@ -238,3 +240,11 @@ def _assemble(title: str, source: Literal["plan", "episode"], state: WorldState,
         initial_render=_picture(initial, colors, "initial scene"), steps=steps,
         not_checked=report.not_checked, valid=report.valid, goal_reached=report.goal_reached,
         goal_summary=report.goal_diff.summary() if report.goal_diff else None)
+
+
+VIEW_SPEC = ToolSpec(
+    "view_episode", "Episode view (viewer only)",
+    "For the episode viewer: per-step graphs, drawings and verdicts of an episode's trace "
+    "(episode_id) or of a plan on a scene (plan with scene_id, graph or episode_id).",
+    ViewInput, EpisodeView, lambda ctx, params: view(ctx, params), read_only=True,
+    idempotent=True)
