@@ -25,7 +25,7 @@ from __future__ import annotations
 import re
 import secrets
 from contextvars import ContextVar
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from pydantic import BaseModel
@@ -49,15 +49,17 @@ class CallSlot:
     params: BaseModel | None = None  # the tool's validated input, if they are valid
     error: str | None = None  # else what is wrong with them
     structured: bytes | None = None  # the result's structuredContent, serialised
-    marker: str = field(default_factory=lambda: secrets.token_hex(16))
+    marker: str | None = None  # unguessable, so no client text can pass for the placeholder
 
     def placeholder(self) -> dict[str, str]:
+        if self.marker is None:
+            self.marker = secrets.token_hex(16)
         return {PLACEHOLDER_KEY: self.marker}
 
     def splice(self, body: bytes) -> bytes | None:
         """`body` with the placeholder replaced by the serialised result, or None if the
         SDK's answer does not hold the placeholder (it answered an error instead)."""
-        if self.structured is None:
+        if self.structured is None or self.marker is None:
             return None
         pattern = (rb'\{\s*"' + PLACEHOLDER_KEY.encode() + rb'"\s*:\s*"'
                    + self.marker.encode() + rb'"\s*\}')
