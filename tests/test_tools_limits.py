@@ -46,3 +46,25 @@ def test_large_node_attributes_are_refused_naming_the_node(tool: str, arguments:
         Toolbox().call(tool, {**arguments, "graph": graph})
     assert "nodes[1].attrs of 'cup'" in str(info.value)
     assert info.value.field == "graph"
+
+
+@pytest.mark.parametrize("where", ["graph", "goal"])
+def test_an_oversized_graph_is_refused_before_its_items_are_checked(where: str) -> None:
+    """Its nodes are not even valid: the count alone refuses it, and the error shows only
+    the start of the value."""
+    nodes = [{"id": i} for i in range(100_000)]  # no labels: item checks would complain
+    graph = {"nodes": nodes, "edges": []}
+    arguments = {"graph": graph} if where == "graph" else {
+        "graph": {"nodes": [], "edges": []}, "goal": {"graph": graph}}
+    with pytest.raises(VeriGraphError) as info:
+        Toolbox().call("validate_plan", {**arguments, "plan": "done"})
+    text = str(info.value)
+    assert "the graph has 100000 nodes" in text and "at most 5000 nodes" in text
+    assert "label" not in text and len(text) < 1000
+
+
+def test_a_text_plan_longer_than_its_limit_is_refused() -> None:
+    graph = {"nodes": [{"id": "table", "label": "table"}], "edges": []}
+    with pytest.raises(VeriGraphError) as info:
+        Toolbox().call("validate_plan", {"graph": graph, "plan": "done\n" * 100_000})
+    assert info.value.field == "plan" and "at most 400000 characters" in str(info.value)
