@@ -203,6 +203,17 @@ def test_the_viewer_s_tool_gets_its_large_arguments_too() -> None:
     assert len(steps) == 20 and all(step["ok"] for step in steps)
 
 
+def test_the_viewer_s_tool_gets_the_checking_process_s_argument_error() -> None:
+    options = HttpOptions(port=free_port(), token=TOKEN, large_call_bytes=1024)
+    with http_in_thread(Toolbox(), options) as small_threshold_url:
+        result = legacy_call(small_threshold_url, "view_episode",
+                             {"graph": tower(30), "plan": unstack(30, 20),
+                              "colour": "x" * 2000}).json()["result"]
+    assert result["isError"] is True
+    assert result["content"][0]["text"].startswith("Error executing tool view_episode: ")
+    assert "colour" in result["content"][0]["text"]
+
+
 def test_a_large_body_for_another_method_is_refused_by_name(url: str) -> None:
     body = rpc("prompts/get", {"name": "plan_episode", "arguments": {"x": "y" * 100_000}})
     response = httpx2.post(url, content=body, headers={**JSON_HEADERS, **AUTH}, timeout=60)

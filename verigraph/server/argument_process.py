@@ -27,6 +27,7 @@ import multiprocessing.process
 import os
 import resource
 import signal
+import sys
 from concurrent.futures import Future, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
@@ -97,7 +98,12 @@ def _prepare(body: bytes, threshold: int) -> Prepared:
 
 
 def _vm_bytes() -> int:
-    for line in Path("/proc/self/status").read_text().splitlines():
+    """This process's address-space size (0 where /proc does not say)."""
+    try:
+        status = Path("/proc/self/status").read_text()
+    except OSError:
+        return 0
+    for line in status.splitlines():
         if line.startswith("VmSize:"):
             return int(line.split()[1]) * 1024
     return 0
@@ -108,8 +114,9 @@ PR_SET_PDEATHSIG = 1  # linux/prctl.h
 
 def _start_child(memory_mib: float, parent: int) -> None:
     """The child dies with the server (even a killed one) and its address space is what
-    start-up mapped plus the memory budget."""
-    ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+    start-up mapped plus the memory budget (both Linux only)."""
+    if sys.platform == "linux":
+        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
     if os.getppid() != parent:  # the server died before the line above
         os._exit(0)
     size = _vm_bytes()

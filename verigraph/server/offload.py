@@ -45,7 +45,7 @@ SPLICE_MIN_BYTES = 16 * 1024
 class CallSlot:
     """What LargeCalls and ArgumentGate hand each other for one HTTP request."""
 
-    taken: bool = False  # the arguments were taken out of the body and checked
+    # A large body's arguments, taken out and checked (argument_process):
     params: BaseModel | None = None  # the tool's validated input, if they are valid
     error: str | None = None  # else what is wrong with them
     structured: bytes | None = None  # the result's structuredContent, serialised
@@ -126,8 +126,7 @@ class LargeCalls:
                 await rpc_error(413, prepared.refusal, request_id=prepared.request_id)(
                     scope, receive, send)
                 return
-            body, slot.taken = prepared.envelope, True
-            slot.params, slot.error = prepared.params, prepared.error
+            body, slot.params, slot.error = prepared.envelope, prepared.params, prepared.error
         scope = {**scope, SCOPE_KEY: slot}
         await self.app(scope, _replaying(body, receive), _splicing(slot, send))
 

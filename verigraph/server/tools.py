@@ -256,9 +256,9 @@ def build_tools(toolbox: Toolbox, heavy: HeavyCalls,
     return tools, executors
 
 
-def _error_result(spec: ToolSpec, exc: Exception) -> CallToolResult:
+def _error_result(name: str, error: object) -> CallToolResult:
     return CallToolResult(content=[TextContent(
-        type="text", text=f"Error executing tool {spec.name}: {exc}")], is_error=True)
+        type="text", text=f"Error executing tool {name}: {error}")], is_error=True)
 
 
 def _with_arguments(ctx: ServerRequestContext[Any, Any], slot: CallSlot | None
@@ -304,6 +304,8 @@ class ArgumentGate:
                     slot: CallSlot | None) -> HandlerResult:
         request = ctx.params or {}
         name = request.get("name")
+        if slot is not None and slot.error is not None:  # found by the checking process
+            return _error_result(str(name), slot.error)
         spec = TOOLS.get(name) if isinstance(name, str) else None
         if spec is None:
             return await call_next(_with_arguments(ctx, slot))
@@ -313,7 +315,7 @@ class ArgumentGate:
         try:
             params = await self._params(spec, request.get("arguments"), slot)
         except VeriGraphError as exc:
-            return _error_result(spec, exc)
+            return _error_result(spec.name, exc)
         audit_client = AUDIT_CLIENT.set(client_label(ctx.session))
         try:
             return await self._run(spec, params, ctx, call_next, slot)
@@ -324,9 +326,7 @@ class ArgumentGate:
                       ) -> BaseModel:
         """The tool's input: checked already (a large HTTP body, see offload), or parsed
         here (on a worker thread if large)."""
-        if slot is not None and slot.taken:
-            if slot.params is None:
-                raise VeriGraphError(slot.error or "invalid arguments")
+        if slot is not None and slot.params is not None:
             return slot.params
         if large_input(arguments):
             return await self.heavy.run(lambda: parse_tool_arguments(spec, arguments),
@@ -347,7 +347,7 @@ class ArgumentGate:
                 return await self.executors[spec.name](params, answers, by_gate=True)
             except ToolError as exc:
                 log.info("Tool %r failed: %r", spec.name, str(exc))
-                return _error_result(spec, exc)
+                return _error_result(spec.name, exc)
             except Exception:  # a bug: logged in full, the client learns only that
                 log.exception("Tool %r raised an unexpected exception", spec.name)
                 return CallToolResult(content=[TextContent(
