@@ -82,16 +82,27 @@ def start_http(extra: list[str] | None = None) -> tuple[subprocess.Popen[bytes],
     proc = subprocess.Popen([*verigraph_command(), "serve", "--transport", "http", "--port",
                              str(port), "--token", TOKEN, *(extra or [])],
                             stderr=subprocess.DEVNULL)
-    url = f"http://127.0.0.1:{port}/mcp"
+    try:
+        wait_port(port, proc)
+    except RuntimeError:
+        proc.kill()
+        raise
+    return proc, f"http://127.0.0.1:{port}/mcp"
+
+
+def wait_port(port: int, proc: subprocess.Popen[bytes]) -> None:
+    """Return once `proc` accepts connections on loopback `port` (RuntimeError if it
+    exits first, or after 30 s)."""
     deadline = time.monotonic() + 30
     while time.monotonic() < deadline:
+        if proc.poll() is not None:
+            raise RuntimeError(f"process exited with {proc.returncode}")
         try:
             with socket.create_connection(("127.0.0.1", port), timeout=0.2):
-                return proc, url
+                return
         except OSError:
-            time.sleep(0.1)
-    proc.kill()
-    raise RuntimeError("HTTP server did not start")
+            time.sleep(0.05)
+    raise RuntimeError("port did not open")
 
 
 async def http_latency(url: str, n: int) -> list[float]:

@@ -18,7 +18,6 @@ import argparse
 import asyncio
 import os
 import shutil
-import socket
 import statistics
 import subprocess
 import sys
@@ -29,24 +28,17 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).parent))
 
 import httpx2  # noqa: E402
-from bench_server import free_port, percentile, verigraph_command, wire_call  # noqa: E402
+from bench_server import (  # noqa: E402
+    free_port,
+    percentile,
+    verigraph_command,
+    wait_port,
+    wire_call,
+)
 from common import write_table  # noqa: E402
 
 CLIENTS = 10
 MOVES = ["move(cup, desk)", "move(cup, book)"]
-
-
-def wait_port(port: int, proc: subprocess.Popen[bytes]) -> None:
-    deadline = time.monotonic() + 30
-    while time.monotonic() < deadline:
-        if proc.poll() is not None:
-            raise RuntimeError(f"process exited with {proc.returncode}")
-        try:
-            with socket.create_connection(("127.0.0.1", port), timeout=0.2):
-                return
-        except OSError:
-            time.sleep(0.05)
-    raise RuntimeError("port did not open")
 
 
 def start_server(store: str) -> tuple[subprocess.Popen[bytes], str]:

@@ -79,6 +79,22 @@ def free_port() -> int:
         return int(s.getsockname()[1])
 
 
+def wait_for_port(port: int, proc: subprocess.Popen[bytes], what: str,
+                  timeout: float = 30.0) -> None:
+    """Return once `proc` accepts connections on loopback `port`; RuntimeError if it
+    exits first or not within `timeout` seconds."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if proc.poll() is not None:
+            raise RuntimeError(f"{what} exited with {proc.returncode}")
+        try:
+            with socket.create_connection(("127.0.0.1", port), timeout=0.5):
+                return
+        except OSError:
+            time.sleep(0.05)  # polling a port, not waiting for an effect
+    raise RuntimeError(f"{what} did not open its port within {timeout:g} s")
+
+
 @dataclass
 class RunningServer:
     """A `verigraph serve --transport http` subprocess; its output goes to temp files."""
@@ -115,17 +131,10 @@ def http_server(token: str | None = None, extra: list[str] | None = None
         proc = subprocess.Popen(args + (extra or []), env=env, stdout=out, stderr=err)
         server = RunningServer(f"http://127.0.0.1:{port}/mcp", proc, out, err)
         try:
-            deadline = time.monotonic() + 30
-            while True:
-                if proc.poll() is not None:
-                    raise RuntimeError(f"server exited: {server.stop()[1][-2000:]!r}")
-                try:
-                    with socket.create_connection(("127.0.0.1", port), timeout=0.2):
-                        break
-                except OSError:
-                    if time.monotonic() > deadline:
-                        raise
-                    time.sleep(0.1)
+            try:
+                wait_for_port(port, proc, "verigraph serve")
+            except RuntimeError as exc:
+                raise RuntimeError(f"{exc}: {server.stop()[1][-2000:]!r}") from None
             yield server
         finally:
             server.stop()
