@@ -15,7 +15,7 @@ import numpy as np
 from verigraph.graph.model import SceneGraph
 from verigraph.perception.colors import ColourTable, purity
 from verigraph.perception.labelling import Shape, shape_error
-from verigraph.perception.result import CONFIDENT, Uncertain
+from verigraph.perception.result import CONFIDENT, Uncertain, add_edge_confidence
 from verigraph.perception.tabletop import Detection
 
 PURE_DISTANCE = 10.0  # median palette distance of a region that shows its colour plainly
@@ -75,11 +75,6 @@ def graph_confidence(graph: SceneGraph, detections: Sequence[Detection], image: 
                 why = (f"its shape and colour fit {det.label} only a little better than "
                        "another object")
             uncertain.append(Uncertain(item=det.id, confidence=value, reason=why))
-    for e in graph.edges:
-        name = edge_name(e.source, e.relation, e.target)
-        value = min(confidence.get(e.source, 1.0), confidence.get(e.target, 1.0))
-        confidence[name] = value
-        if value < CONFIDENT:
-            uncertain.append(Uncertain(item=name, confidence=value,
-                                       reason="one of its objects is uncertain"))
+    add_edge_confidence(graph, confidence, uncertain,
+                        lambda e: edge_name(e.source, e.relation, e.target), "objects")
     return confidence, uncertain

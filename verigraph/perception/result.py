@@ -3,9 +3,11 @@ confidence per node and edge and the items it is unsure of."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from pydantic import BaseModel, Field
 
-from verigraph.graph.model import SceneGraph
+from verigraph.graph.model import Edge, SceneGraph
 
 CONFIDENT = 0.5  # items below this confidence are listed as uncertain
 
@@ -26,6 +28,20 @@ class Uncertain(BaseModel):
     item: str = Field(description="node id, or an edge as 'source relation target'")
     confidence: float = Field(ge=0.0, le=1.0)
     reason: str
+
+
+def add_edge_confidence(graph: SceneGraph, confidence: dict[str, float],
+                        uncertain: list[Uncertain], name: Callable[[Edge], str],
+                        parts: str) -> None:
+    """Each edge of `graph` is as sure as the less sure of its two ends (their values in
+    `confidence`), entered under `name(edge)`; those below CONFIDENT join `uncertain`."""
+    for edge in graph.edges:
+        item = name(edge)
+        value = min(confidence.get(edge.source, 1.0), confidence.get(edge.target, 1.0))
+        confidence[item] = value
+        if value < CONFIDENT:
+            uncertain.append(Uncertain(item=item, confidence=value,
+                                       reason=f"one of its {parts} is uncertain"))
 
 
 class PerceptionResult(BaseModel):

@@ -22,7 +22,13 @@ from verigraph.perception.config import PerceptionConfig
 from verigraph.perception.labelling import Labeller
 from verigraph.perception.photometry import correct_colours
 from verigraph.perception.regions import Region, colour_fragments
-from verigraph.perception.result import CONFIDENT, DetectedObject, PerceptionResult, Uncertain
+from verigraph.perception.result import (
+    CONFIDENT,
+    DetectedObject,
+    PerceptionResult,
+    Uncertain,
+    add_edge_confidence,
+)
 from verigraph.perception.tangram_sides import (
     PlacedPiece,
     borderline,
@@ -198,13 +204,10 @@ def _confidence(graph: SceneGraph, placed: dict[str, PlacedPiece],
             uncertain.append(Uncertain(item=label, confidence=value,
                                        reason=f"its outline is {piece.fit_error:.2f} units "
                                               "off the piece's shape"))
-    for e in graph.edges:
-        name = f"{e.source} touches {e.target} ({e.source_side}, {e.target_side})"
-        value = min(confidence.get(e.source, 1.0), confidence.get(e.target, 1.0))
-        confidence[name] = value
-        if value < CONFIDENT:
-            uncertain.append(Uncertain(item=name, confidence=value,
-                                       reason="one of its pieces is uncertain"))
+    add_edge_confidence(
+        graph, confidence, uncertain,
+        lambda e: f"{e.source} touches {e.target} ({e.source_side}, {e.target_side})",
+        "pieces")
     return confidence, uncertain
 
 
