@@ -166,10 +166,6 @@ class ArgumentChecker:
         processes = getattr(self._pool, "_processes", None) or {}
         return list(processes.values())
 
-    def child_pids(self) -> list[int]:
-        """The running children's process ids (for monitoring and tests)."""
-        return [p.pid for p in self._children() if p.pid is not None]
-
     def close(self) -> None:
         """Stop the children now (at server shutdown); a later call starts new ones."""
         children = self._children()

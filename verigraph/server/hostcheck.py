@@ -94,14 +94,14 @@ class HostCheck:
             if not self.policy.host_ok(host):
                 log.warning("refused Host header %r", (host or "")[:100])
                 await rpc_error(421, "Misdirected request: the Host header names another "
-                               "server; connect to this server by a loopback name with its "
-                               "port, or start it with --allow-host NAME")(scope, receive, send)
+                                "server; connect to this server by a loopback name with its "
+                                "port, or start it with --allow-host NAME")(scope, receive, send)
                 return
             origin = headers.get("origin")
             if not self.policy.origin_ok(origin):
                 log.warning("refused Origin header %r", (origin or "")[:100])
                 await rpc_error(403, "Forbidden: requests from this web origin are not "
-                               "accepted (DNS-rebinding protection); use --allow-host NAME "
-                               "for a trusted origin")(scope, receive, send)
+                                "accepted (DNS-rebinding protection); use --allow-host NAME "
+                                "for a trusted origin")(scope, receive, send)
                 return
         await self.app(scope, receive, send)
