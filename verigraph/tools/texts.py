@@ -11,11 +11,12 @@ from verigraph.errors import VeriGraphError
 from verigraph.graph.dictionary import Dictionary, ObjectProperties, load_dictionary
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Node, SceneGraph
+from verigraph.tools.fields import dictionary_for
 
 
 def _dictionary(name: str | None) -> Dictionary:
     try:
-        return load_dictionary(None if name in (None, "all") else name)
+        return dictionary_for(name)
     except VeriGraphError:  # a name the tools would have refused already; fall back
         return load_dictionary(None)
 
