@@ -27,12 +27,12 @@ from common import write_table  # noqa: E402
 
 from verigraph.agent.evaluation import Setting, build_groups  # noqa: E402
 from verigraph.agent.evaluation.engine import RunOptions, execute  # noqa: E402
-from verigraph.agent.evaluation.episode import EngineConfig  # noqa: E402
 from verigraph.agent.evaluation.limiter import BackendLimits  # noqa: E402
 from verigraph.agent.evaluation.ray_runner import connect  # noqa: E402
-from verigraph.agent.evaluation.results import EpisodeRecord  # noqa: E402
+from verigraph.agent.evaluation.results import BenchRecord  # noqa: E402
 from verigraph.agent.evaluation.spec import EpisodeJob, jobs_for, task_index  # noqa: E402
 from verigraph.agent.evaluation.tasks import GROUPS, Task  # noqa: E402
+from verigraph.agent.evaluation.worker import EngineConfig  # noqa: E402
 
 SETTINGS = [*(Setting(planner="noisy", threshold=t) for t in (2, 3, 5, 10)),
             *(Setting(planner="noisy", k=k) for k in (2, 3, 5, 10))]
@@ -41,7 +41,7 @@ SETTINGS = [*(Setting(planner="noisy", threshold=t) for t in (2, 3, 5, 10)),
 class Timing(NamedTuple):
     wall_s: float  # everything, worker start-up included
     run_s: float  # from the workers being ready to the last record
-    records: list[EpisodeRecord]
+    records: list[BenchRecord]
 
     @property
     def rate(self) -> float:

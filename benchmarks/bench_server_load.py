@@ -4,9 +4,15 @@ Reports, into benchmarks/results/server_load.md:
 * validate_action calls/s and p50/p99 with 10 and 50 concurrent HTTP clients;
 * a light client's validate_action p99 alone and while a heavy client posts
   5,000-block graphs with 1,000-action plans (validate_plan) back to back;
+* the light client beside the heavy and the hostile client on `--workers 2`, with and
+  without the child process that checks large bodies (`--only workers`);
+* a 280 KB load_scene's latency while another client posts 15 MB bodies from 4
+  connections back to back (`--only fair` measures just this row);
 * server RSS per open episode of each kind (built-in scene, sim2d, image, arm) and
   after 10 rounds of open/end on an arm server;
 * loading the 100,000-block tower (library) and a 5,000-block tower (load_scene);
+* a token client's p99 beside 1,000 half-open connections, and another client's beside
+  one holding 600 event streams (bench_admission; `--only admission`);
 * seconds from SIGTERM to exit with heavy calls in flight.
 
 Run: python benchmarks/bench_server_load.py [--quick]
@@ -23,6 +29,7 @@ import os
 import signal
 import statistics
 import sys
+import tempfile
 import time
 from pathlib import Path
 from typing import Any
@@ -32,6 +39,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 import cv2  # noqa: E402
 import httpx2  # noqa: E402
 import numpy as np  # noqa: E402
+from bench_admission import admission_rows  # noqa: E402
 from bench_load import tower  # noqa: E402
 from bench_server import percentile, start_http, wire_call  # noqa: E402
 from common import RESULTS, write_table  # noqa: E402
@@ -134,6 +142,155 @@ async def light_under_heavy(url: str, light_calls: int, heavy: str | None
     return times, done.value
 
 
+WORKER_SETUPS = {
+    "2 worker processes": ["--workers", "2"],
+    "2 worker processes, no checking process": ["--workers", "2", "--check-above-kib", "0"],
+}
+
+
+async def light_beside_hostile_on_one_process(url: str, pid: int, light_calls: int
+                                              ) -> tuple[list[float], int]:
+    """The light client's latencies when its connection and the hostile client's were
+    both accepted by the same worker process (the other is stopped while they connect,
+    then resumed): what a keep-alive connection that lands beside a hostile one gets."""
+    children = [int(c) for c in Path(f"/proc/{pid}/task/{pid}/children").read_text().split()]
+    spawn = multiprocessing.get_context("spawn")
+    stop, done = spawn.Event(), spawn.Value("i", 0)
+    os.kill(children[1], signal.SIGSTOP)
+    resumed = False
+    try:
+        async with httpx2.AsyncClient() as http:
+            episode = (await call(http, url, "load_scene", {"scene_id": "cup_on_book"}))[
+                "episode_id"]
+        process = spawn.Process(target=heavy_client, args=(url, "hostile", stop, done))
+        process.start()
+        while done.value == 0:
+            await asyncio.sleep(0.05)
+        headers, body = wire_call("validate_action", {"episode_id": episode,
+                                                      "action": "move(cup, on, desk)"}, 2)
+        async with httpx2.AsyncClient(headers=headers) as http:
+            assert (await http.post(url, content=body)).status_code == 200  # connected
+            os.kill(children[1], signal.SIGCONT)
+            resumed = True
+            times = []
+            for _ in range(light_calls):
+                start = time.perf_counter()
+                response = await http.post(url, content=body)
+                times.append(time.perf_counter() - start)
+                assert response.status_code == 200
+        stop.set()
+        process.join(timeout=120)
+    finally:
+        if not resumed:
+            os.kill(children[1], signal.SIGCONT)
+    return times, done.value
+
+
+async def worker_rows(quick: bool) -> list[list[str]]:
+    """The light client beside a heavy and a hostile client on `verigraph serve --workers
+    2` (one socket, one SQLite store): with the in-process protections, and without the
+    child process that checks large bodies (the SDK parses every body on the loop of
+    the process that accepted the connection)."""
+    rows: list[list[str]] = []
+    light = 50 if quick else 1000
+    with tempfile.TemporaryDirectory() as tmp:
+        for n, (label, extra) in enumerate(WORKER_SETUPS.items()):
+            proc, url = start_http([*extra, "--store", f"sqlite:///{tmp}/episodes{n}.db"])
+            try:
+                alone, _ = await light_under_heavy(url, light, None)
+                loaded, heavy_calls = await light_under_heavy(url, light, "plan")
+                hostile, hostile_calls = await light_under_heavy(url, light, "hostile")
+                shared, shared_calls = await light_beside_hostile_on_one_process(
+                    url, proc.pid, light)
+            finally:
+                proc.terminate()
+                proc.wait(timeout=20)
+            rows += [[f"{label}: light client alone", "-", ms(alone, 0.5), ms(alone, 0.99),
+                      f"{light} calls"],
+                     [f"{label}: light client while a heavy client runs", "-",
+                      ms(loaded, 0.5), ms(loaded, 0.99),
+                      f"{light} calls; heavy: {heavy_calls} validate_plan meanwhile"],
+                     [f"{label}: light client while a hostile client runs", "-",
+                      ms(hostile, 0.5), ms(hostile, 0.99),
+                      f"{light} calls; hostile: {hostile_calls} 11 MB bodies meanwhile"],
+                     [f"{label}: same, both connections on one process", "-",
+                      ms(shared, 0.5), ms(shared, 0.99),
+                      f"{light} calls; hostile: {shared_calls} 11 MB bodies meanwhile"]]
+    return rows
+
+
+FLOOD_NODES = 420_000  # about 15 MB of small nodes: refused by the checker, after parsing
+FLOOD_CONNECTIONS = 4
+FAIR_BLOCKS = 3000  # a 3,000-block tower: a 280 KB load_scene
+
+
+def flood_connection(url: str, stop: Any, done: Any) -> None:
+    graph = {"nodes": [{"id": f"n{i}", "label": "block"} for i in range(FLOOD_NODES)],
+             "edges": []}
+    headers, body = wire_call("validate_plan", {"graph": graph, "plan": "done"}, 1)
+    with httpx2.Client(headers=headers, timeout=120) as http:
+        while not stop.is_set():
+            reply = http.post(url, content=body)
+            assert reply.status_code in (200, 413, 503), reply.text[:300]
+            with done.get_lock():
+                done.value += 1
+
+
+def flooding_client(url: str, stop: Any, done: Any) -> None:
+    """One client posting 15 MB bodies from FLOOD_CONNECTIONS connections at once, each
+    back to back until `stop` is set (its own process, threads for the connections)."""
+    import threading
+
+    threads = [threading.Thread(target=flood_connection, args=(url, stop, done))
+               for _ in range(FLOOD_CONNECTIONS)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+
+
+async def large_beside_floods(url: str, calls: int) -> tuple[list[float], int, int]:
+    """Latencies of a 280 KB load_scene while one client floods the server with 15 MB
+    bodies from 4 connections; also the body size and how many floods were answered."""
+    headers, body = wire_call("load_scene", {"graph": tower(FAIR_BLOCKS)}, 3)
+    async with httpx2.AsyncClient(headers=headers, timeout=120) as http:
+        await http.post(url, content=body)  # warm-up: starts what checks large bodies
+    spawn = multiprocessing.get_context("spawn")
+    stop, done = spawn.Event(), spawn.Value("i", 0)
+    process = spawn.Process(target=flooding_client, args=(url, stop, done))
+    process.start()
+    times = []
+    try:
+        while done.value < FLOOD_CONNECTIONS:  # every connection has had a body answered
+            await asyncio.sleep(0.05)
+        async with httpx2.AsyncClient(headers=headers, timeout=120) as http:
+            for _ in range(calls):
+                start = time.perf_counter()
+                reply = (await http.post(url, content=body)).json()
+                times.append(time.perf_counter() - start)
+                assert not reply["result"].get("isError"), str(reply)[:300]
+    finally:
+        stop.set()
+        process.join(timeout=120)
+    return times, len(body), done.value
+
+
+FAIR_ROW = "280 KB load_scene beside 4 connections posting 15 MB bodies"
+
+
+async def fair_row(quick: bool) -> list[str]:
+    proc, url = start_http()
+    try:
+        calls = 5 if quick else 20
+        times, size, floods = await large_beside_floods(url, calls)
+    finally:
+        proc.terminate()
+        proc.wait(timeout=10)
+    return [FAIR_ROW, "-", ms(times, 0.5), ms(times, 0.99),
+            f"max {max(times) * 1000:.0f} ms of {calls} calls ({size // 1024} KB each); "
+            f"{floods} floods of 15 MB answered meanwhile; target < 1,500 ms"]
+
+
 def jpeg_b64(width: int = 1600, height: int = 1200) -> str:
     image = np.full((height, width, 3), 180, dtype=np.uint8)
     ok, buf = cv2.imencode(".jpg", image)
@@ -233,6 +390,9 @@ def tower_row() -> list[str]:
 
 async def some_rows(parts: list[str], quick: bool) -> list[list[str]]:
     rows = await arm_rows(quick) if "arm" in parts else []
+    rows += [await fair_row(quick)] if "fair" in parts else []
+    rows += await worker_rows(quick) if "workers" in parts else []
+    rows += await admission_rows(quick) if "admission" in parts else []
     return rows + ([tower_row()] if "tower" in parts else [])
 
 
@@ -246,6 +406,10 @@ def replace_rows(path: Path, rows: list[list[str]], parts: list[str], load: floa
     fresh = {row[0].split(" (")[0]: "| " + " | ".join(row) + " |" for row in rows}
     out = [next((text for name, text in fresh.items() if line.startswith(f"| {name}")), line)
            for line in lines]
+    last_row = max(i for i, line in enumerate(out) if line.startswith("|"))
+    missing = [text for name, text in fresh.items()
+               if not any(line.startswith(f"| {name}") for line in lines)]
+    out[last_row + 1:last_row + 1] = missing  # rows the stored table does not have yet
     out += ["", f"{note}{time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC with "
                 f"`--only {' '.join(parts)}`: those rows (1-minute load average {load:.2f})."]
     return "\n".join(out) + "\n"
@@ -294,6 +458,9 @@ async def run(quick: bool) -> list[list[str]]:
     finally:
         proc.terminate()
         proc.wait(timeout=10)
+    rows.append(await fair_row(quick))
+    rows += await worker_rows(quick)
+    rows += await admission_rows(quick)
     rows += await arm_rows(quick)
     rows.append(tower_row())
     exits = [await sigterm_exit(4) for _ in range(1 if quick else 3)]
@@ -306,9 +473,12 @@ async def run(quick: bool) -> list[list[str]]:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer calls (smoke test)")
-    parser.add_argument("--only", nargs="+", choices=["arm", "tower"],
-                        help="measure only these rows (the arm server's RSS, the tower "
-                             "load) and update them in the stored table")
+    parser.add_argument("--only", nargs="+", choices=["admission", "arm", "fair", "tower",
+                                                        "workers"],
+                        help="measure only these rows (the arm server's RSS, the large call "
+                             "beside floods, the tower load, --workers 2, a client beside "
+                             "half-open connections or event streams) and update them "
+                             "in the stored table")
     args = parser.parse_args()
     load = os.getloadavg()[0]
     if args.only:
@@ -323,8 +493,10 @@ def main() -> int:
              "a process of its own. Light calls run on the event loop; heavy calls (large "
              "graphs or plans, images, simulator, search, arms) on at most 2 worker threads, "
              "1 per client connection, each within its wall-clock and memory budget; bodies "
-             "over 64 KiB are parsed and checked in a child process, and large results "
-             "serialised on worker threads (verigraph.server.offload). 1-minute load "
+             "over 64 KiB are parsed and checked in a child process (one for bodies up "
+             "to 4 MiB, one for larger ones, each answering within 10 s), and large "
+             "results serialised on worker threads (verigraph.server.offload). The worker "
+             "rows run `verigraph serve --workers 2` on one SQLite store. 1-minute load "
              "average at start: "
              f"{load:.2f} (other jobs share the 2 cores; absolute times are inflated by it).")
     write_table("server_load", "MCP server under load and faults",

@@ -1,10 +1,12 @@
 """Does the simulator do what the verifier predicts? Random valid actions, counted.
 
 Tabletop: N random valid moves per family over generated scenes (seeds from 10000,
-apart from the tests'); every move that passes the symbolic room check
-(`room_violation`) must be carried out and end in the predicted graph. Tangram: N
-random valid aligns; each must end in the predicted graph (the contacts an aligned
-piece makes with new neighbours are added to the prediction as observed).
+apart from the tests), the built-in families and `user` (a random dictionary of the
+client's own kinds, built as generic bodies from their roles); every move that
+passes the symbolic room check (`room_violation`) must be carried out and end in the
+predicted graph. Tangram: N random valid aligns; each must end in the predicted graph
+(the contacts an aligned piece makes with new neighbours are added to the prediction
+as observed).
 
 Run: verigraph bench sim2d_agreement [--moves 1000] [--aligns 500]
 """
@@ -93,7 +95,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--aligns", type=int, default=500)
     args = parser.parse_args(argv)
     rows, failures = [], []
-    for family in ("blocks", "kitchen", "tableware"):
+    for family in ("blocks", "kitchen", "tableware", "user"):
         row, bad = moves(family, args.moves)
         rows.append(row)
         failures += bad
@@ -102,6 +104,8 @@ def main(argv: list[str] | None = None) -> int:
     rows.append(row)
     failures += bad
     notes = ("Random valid actions (seeds from 10000, 15 moves or 30 tries per scene). "
+             "user: scenes of a generated inline dictionary (surfaces, containers and "
+             "plain objects of random sizes that no built-in dictionary has). "
              "refused: the room check predicted `no_room` and the simulator refused too "
              "(tangram: the world refused an overlapping align). failures: a move the room "
              "check passed that the simulator refused, or an action that ended in a graph "

@@ -5,8 +5,14 @@
 * the same plan as PDDL 4-op blocks world (20,000 hand actions): our native validator,
   unified-planning's SequentialPlanValidator (on a slice: it is slow), and VAL's
   `Validate` on the whole file when `--val PATH` names a binary (nothing is built);
+* the general STRIPS engine on the same blocks plan and on a 20,000-action typed
+  logistics plan, against unified-planning (a slice) and VAL (the whole plan);
 * `verigraph validate --batch` on PlanBench-sized items against one validator run per plan;
 * CLI start-up on a 2-step plan.
+
+VAL: `--val PATH`, else $VERIGRAPH_VAL, else ~/.cache/verigraph/val/Validate when it
+exists (docs/validator.md says how to build it: VAL's parser must be compiled with a
+larger YYMAXDEPTH, or it refuses plans of more than about 10,000 steps).
 
 Run: python benchmarks/bench_validate.py [--val /path/to/Validate] [--up-actions 300]
 Results: benchmarks/results/validate.md (rates are wall clock; CPU-time rates beside them
@@ -17,6 +23,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import random
 import resource
 import subprocess
@@ -32,11 +39,38 @@ from common import median_time, write_table  # noqa: E402
 
 from verigraph.actions import MoveAction, parse_plan, validate_plan  # noqa: E402
 from verigraph.actions.blocksworld import validate_blocks_dict  # noqa: E402
+from verigraph.actions.pddl import validate_strips_dict  # noqa: E402
 from verigraph.actions.validator import run_until_violation  # noqa: E402
 from verigraph.graph import Edge, Node, SceneGraph, WorldState  # noqa: E402
 
 N_OBJECTS, N_ACTIONS = 1000, 10_000
 EXAMPLES = Path(__file__).parent.parent / "examples" / "scenes"
+DEFAULT_VAL = Path.home() / ".cache" / "verigraph" / "val" / "Validate"
+
+
+def find_val(given: str | None) -> str | None:
+    path = given or os.environ.get("VERIGRAPH_VAL") or (str(DEFAULT_VAL) if DEFAULT_VAL.exists()
+                                                        else None)
+    return path
+
+
+def run_val(val: str, domain: Path, problem_file: Path, plan_file: Path, runs: int = 5
+            ) -> tuple[float, float, str]:
+    """Median wall seconds and best CPU seconds (as for our in-process rows) of VAL's
+    Validate on one plan (its library beside it), and the verdict it printed."""
+    env = dict(os.environ, LD_LIBRARY_PATH=str(Path(val).parent))
+    times, cpu, out = [], [], ""
+    for _ in range(runs):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        start = time.perf_counter()
+        done = subprocess.run([val, str(domain), str(problem_file), str(plan_file)],
+                              capture_output=True, text=True, check=False, env=env)
+        times.append(time.perf_counter() - start)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu.append(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
+        out = done.stdout
+    verdict = "valid" if "Plan valid" in out else "NOT VALID: " + out.strip()[-80:]
+    return sorted(times)[len(times) // 2], min(cpu), verdict
 
 
 def big_scene(seed: int = 0) -> SceneGraph:
@@ -162,12 +196,14 @@ def main() -> None:
     rows: list[list[str]] = []
 
     def row(name: str, seconds: float, n: int, cpu: float | None = None,
-            up_rate: float | None = None, val_rate: float | None = None) -> None:
+            up_rate: float | None = None, val_rate: float | None = None,
+            val_cpu: float | None = None) -> None:
         rate = n / seconds
         rows.append([name, f"{seconds * 1000:.1f}", f"{rate:,.0f}",
                      "-" if cpu is None else f"{cpu:,.0f}",
                      "-" if up_rate is None else f"{rate / up_rate:,.1f}x",
-                     "-" if val_rate is None else f"{rate / val_rate:.2f}x"])
+                     "-" if val_rate is None else f"{rate / val_rate:.2f}x",
+                     "-" if val_cpu is None or cpu is None else f"{cpu / val_cpu:.2f}x"])
         print(rows[-1], flush=True)
 
     # PDDL form of the same plan, and the peers on it
@@ -177,14 +213,13 @@ def main() -> None:
     domain_text = DOMAIN_FILE.read_text()
     up_seconds = up_validate(DOMAIN_FILE, work / "big.pddl", hand[:args.up_actions])
     up_rate = args.up_actions / up_seconds
-    val_rate = val_process = None
-    if args.val:
-        start = time.perf_counter()
-        subprocess.run([args.val, str(DOMAIN_FILE), str(work / "big.pddl"),
-                        str(work / "big_plan.txt")], capture_output=True, check=False)
-        val_process = time.perf_counter() - start
-        val_rate = len(hand) / val_process
-
+    val_rate = val_process = val_cpu = None
+    val = find_val(args.val)
+    if val:
+        val_process, val_seconds_cpu, verdict = run_val(val, DOMAIN_FILE, work / "big.pddl",
+                                                        work / "big_plan.txt")
+        assert verdict == "valid", verdict  # a refused plan would time nothing
+        val_rate, val_cpu = len(hand) / val_process, len(hand) / val_seconds_cpu
     def core() -> None:
         executed, _, violation, _ = run_until_violation(state.copy(), plan, record_edits=False)
         assert violation is None and len(executed) == N_ACTIONS
@@ -192,39 +227,48 @@ def main() -> None:
     def report() -> None:
         assert validate_plan(state, plan).valid
 
+    hand_text = "\n".join(hand)  # the plan file's text, as VAL reads it from its file
+
     def pddl() -> None:
-        assert validate_blocks_dict(domain_text, problem_text, "\n".join(hand))["valid"]
+        assert validate_blocks_dict(domain_text, problem_text, hand_text)["valid"]
+
+    def pddl_strips() -> None:
+        assert validate_strips_dict(domain_text, problem_text, hand_text)["valid"]
 
     for name, fn, n in [("scene: validate + apply (core loop)", core, N_ACTIONS),
                         ("scene: validate_plan with per-step report", report, N_ACTIONS),
                         ("scene: parse 10,000-line text plan",
                          lambda: parse_plan(text), N_ACTIONS),
                         ("PDDL 4-op: native validator with report (20,000 actions)", pddl,
-                         len(hand))]:
+                         len(hand)),
+                        ("PDDL 4-op: general STRIPS engine with report (20,000 actions)",
+                         pddl_strips, len(hand))]:
         med, _ = median_time(fn, runs=5)
-        row(name, med, n, cpu_rate(fn, n), up_rate, val_rate)
+        row(name, med, n, cpu_rate(fn, n), up_rate, val_rate, val_cpu)
     rows.append(["unified-planning SequentialPlanValidator (first "
                  f"{args.up_actions} hand actions)", f"{up_seconds * 1000:.1f}",
-                 f"{up_rate:,.0f}", "-", "1.0x", "-"])
+                 f"{up_rate:,.0f}", "-", "1.0x", "-", "-"])
     (work / "scene.json").write_text(scene.model_dump_json())
     (work / "plan.txt").write_text(text)
     cmd = [*py, "validate", "--scene", str(work / "scene.json"), "--plan",
            str(work / "plan.txt"), "--json"]
     seconds = process_time(cmd)
     row("process: verigraph validate --json, scene, 10,000 moves", seconds, N_ACTIONS,
-        N_ACTIONS / last_cpu(cmd), up_rate=up_rate, val_rate=val_rate)
+        N_ACTIONS / last_cpu(cmd), up_rate=up_rate, val_rate=val_rate, val_cpu=val_cpu)
     cmd = [*py, "validate", "--domain", str(DOMAIN_FILE), "--problem", str(work / "big.pddl"),
            "--plan", str(work / "big_plan.txt"), "--json"]
     seconds = process_time(cmd)
     row("process: verigraph validate --json, PDDL, 20,000 actions", seconds, len(hand),
-        len(hand) / last_cpu(cmd), up_rate=up_rate, val_rate=val_rate)
+        len(hand) / last_cpu(cmd), up_rate=up_rate, val_rate=val_rate, val_cpu=val_cpu)
     if val_process is not None:
-        rows.append(["process: VAL Validate, PDDL, 20,000 actions",
-                     f"{val_process * 1000:.1f}", f"{len(hand) / val_process:,.0f}", "-", "-",
+        rows.append(["process: VAL Validate, PDDL, 20,000 actions (wall: median of 5)",
+                     f"{val_process * 1000:.1f}", f"{len(hand) / val_process:,.0f}",
+                     f"{val_cpu:,.0f}", f"{len(hand) / val_process / up_rate:,.1f}x", "1.00x",
                      "1.00x"])
+    logistics_rows(args, work, val, rows)
     bare_python = process_time([sys.executable, "-c", "pass"], runs=5)
     rows.append(["process: `python -c pass` (the floor for any Python command)",
-                 f"{bare_python * 1000:.0f}", "-", "-", "-", "-"])
+                 f"{bare_python * 1000:.0f}", "-", "-", "-", "-", "-"])
     for what, cmd in [
             ("scene", [*py, "validate", "--scene", str(EXAMPLES / "cup_on_book.json"), "--plan",
                        str(EXAMPLES / "cup_on_book_fixed.txt")]),
@@ -235,16 +279,63 @@ def main() -> None:
         ratio = startup / bare_python  # how much the CLI adds to starting Python at all
         rows.append([f"process: start-up + small plan ({what}); CPU ms in the CPU column; "
                      f"{ratio:.1f}x `python -c pass`",
-                     f"{startup * 1000:.0f}", "-", f"{last_cpu(cmd) * 1000:.0f} ms", "-", "-"])
+                     f"{startup * 1000:.0f}", "-", f"{last_cpu(cmd) * 1000:.0f} ms", "-", "-",
+                     "-"])
     batch_rows(args, work, py, rows)
     write_table("validate", "Validator throughput against unified-planning and VAL",
                 ["what", "median ms", "actions/s (wall)", "actions/s (CPU)",
-                 "vs unified-planning", "vs VAL"], rows,
+                 "vs unified-planning", "vs VAL (wall)", "vs VAL (CPU)"], rows,
                 notes=f"{N_ACTIONS:,} valid moves on a {N_OBJECTS:,}-object blocks scene "
                       "(as PDDL: 20,000 4-op actions). In-process rows: median of 5 runs "
                       "after a warm-up (wall), best of 5 (CPU). Ratios compare wall-clock "
-                      "rates measured in this run. VAL column: "
-                      + ("measured" if args.val else "not measured (no --val given)") + ".")
+                      "rates measured in this run, the CPU ratio CPU rates (best of 5 on both "
+                      "sides; steadier on a shared machine); the VAL ratio of an in-process "
+                      "row compares it with VAL's whole process on the same files (VAL has "
+                      "no library form; its start-up is a few milliseconds). VAL: "
+                      + ("measured (Validate built with YYMAXDEPTH=10000000, docs/validator.md)"
+                         if val
+                         else "not measured (no VAL binary)") + ".")
+
+
+def logistics_rows(args: argparse.Namespace, work: Path, val: str | None,
+                   rows: list[list[str]]) -> None:
+    """The general STRIPS engine on a long typed-logistics plan, against the peers."""
+    sys.path.insert(0, str(Path(__file__).parent.parent / "tests"))
+    from pddl_corpus import PDDL_DATA, logistics_walk
+
+    domain_file = PDDL_DATA / "logistics_typed_domain.pddl"
+    problem_text, plan = logistics_walk(50, 500, 20_000, seed=3)
+    (work / "log.pddl").write_text(problem_text)
+    (work / "log_plan.txt").write_text("\n".join(plan) + "\n")
+    domain_text = domain_file.read_text()
+    text = "\n".join(plan)
+    up_seconds = up_validate(domain_file, work / "log.pddl", plan[:args.up_actions])
+    up_rate = args.up_actions / up_seconds
+    val_rate = val_cpu = None
+    if val:
+        val_seconds, val_seconds_cpu, verdict = run_val(val, domain_file, work / "log.pddl",
+                                                        work / "log_plan.txt")
+        assert verdict == "valid", verdict
+        val_rate, val_cpu = len(plan) / val_seconds, len(plan) / val_seconds_cpu
+
+    def strips() -> None:
+        assert validate_strips_dict(domain_text, problem_text, text)["valid"]
+
+    med, _ = median_time(strips, runs=5)
+    rate = len(plan) / med
+    cpu = cpu_rate(strips, len(plan))
+    rows.append(["STRIPS logistics (typed, equality, negative precondition, constant): "
+                 "general engine with report, 20,000 actions", f"{med * 1000:.1f}",
+                 f"{rate:,.0f}", f"{cpu:,.0f}", f"{rate / up_rate:,.1f}x",
+                 "-" if val_rate is None else f"{rate / val_rate:.2f}x",
+                 "-" if val_cpu is None else f"{cpu / val_cpu:.2f}x"])
+    rows.append([f"unified-planning SequentialPlanValidator, logistics (first {args.up_actions} "
+                 "actions)", f"{up_seconds * 1000:.1f}", f"{up_rate:,.0f}", "-", "1.0x", "-",
+                 "-"])
+    if val_rate is not None and val_cpu is not None:
+        rows.append(["process: VAL Validate, logistics, 20,000 actions (wall: median of 5)",
+                     f"{len(plan) / val_rate * 1000:.1f}", f"{val_rate:,.0f}", f"{val_cpu:,.0f}",
+                     f"{val_rate / up_rate:,.1f}x", "1.00x", "1.00x"])
 
 
 def batch_rows(args: argparse.Namespace, work: Path, py: list[str],
@@ -272,22 +363,29 @@ def batch_rows(args: argparse.Namespace, work: Path, py: list[str],
     k = min(100, args.batch_items)
     up_seconds = sum(up_validate(DOMAIN_FILE, p, a) for p, a in plans[:k])
     up_rate = k / up_seconds
-    val_rate = None
-    if args.val:
+    val_rate = val_cpu = None
+    val = find_val(args.val)
+    if val:
+        env = dict(os.environ, LD_LIBRARY_PATH=str(Path(val).parent))
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         start = time.perf_counter()
         for i in range(k):
-            subprocess.run([args.val, str(DOMAIN_FILE), str(work / f"bp{i}.pddl"),
-                            str(work / f"bplan{i}.txt")], capture_output=True, check=False)
+            subprocess.run([val, str(DOMAIN_FILE), str(work / f"bp{i}.pddl"),
+                            str(work / f"bplan{i}.txt")], capture_output=True, check=False,
+                           env=env)
         val_rate = k / (time.perf_counter() - start)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        val_cpu = k / (after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
+    cpu = args.batch_items / last_cpu(cmd)
     rows.append([f"process: verigraph validate --batch, {args.batch_items:,} PlanBench-sized "
-                 "plans (plans/s)", f"{seconds * 1000:.0f}", f"{rate:,.0f}",
-                 f"{args.batch_items / last_cpu(cmd):,.0f}",
-                 f"{rate / up_rate:,.1f}x", "-" if val_rate is None else f"{rate / val_rate:.1f}x"])
+                 "plans (plans/s)", f"{seconds * 1000:.0f}", f"{rate:,.0f}", f"{cpu:,.0f}",
+                 f"{rate / up_rate:,.1f}x", "-" if val_rate is None else f"{rate / val_rate:.1f}x",
+                 "-" if val_cpu is None else f"{cpu / val_cpu:.1f}x"])
     rows.append([f"unified-planning, one validation per plan ({k} plans, parse excluded)",
-                 f"{up_seconds * 1000:.0f}", f"{up_rate:,.0f}", "-", "1.0x", "-"])
-    if val_rate is not None:
+                 f"{up_seconds * 1000:.0f}", f"{up_rate:,.0f}", "-", "1.0x", "-", "-"])
+    if val_rate is not None and val_cpu is not None:
         rows.append([f"VAL Validate, one process per plan ({k} plans)", "-", f"{val_rate:,.0f}",
-                     "-", "-", "1.0x"])
+                     f"{val_cpu:,.0f}", "-", "1.0x", "1.0x"])
 
 
 if __name__ == "__main__":

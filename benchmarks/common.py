@@ -1,28 +1,21 @@
-"""Shared helpers for benchmarks: machine description, medians, Markdown tables."""
+"""Shared helpers for benchmarks: machine description, medians, Markdown tables.
+
+Tables and the machine line come from `verigraph.agent.evaluation.markdown`, the one
+formatter every results writer (these scripts, `bench plan`, `bench report`) uses.
+"""
 
 from __future__ import annotations
 
-import os
-import platform
 import statistics
 import time
 from collections.abc import Callable
 from pathlib import Path
 
+from verigraph.agent.evaluation.markdown import machine, table
+
 RESULTS = Path(__file__).parent / "results"
 
-
-def machine() -> str:
-    cpu = platform.processor() or platform.machine()
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return (f"{cpu}, {os.cpu_count()} cores, Python {platform.python_version()}, "
-            f"{platform.system()} {platform.release()}")
+__all__ = ["RESULTS", "machine", "median_time", "write_table"]
 
 
 def median_time(fn: Callable[[], object], runs: int = 7) -> tuple[float, list[float]]:
@@ -40,8 +33,7 @@ def write_table(name: str, title: str, header: list[str], rows: list[list[str]],
                 notes: str = "") -> Path:
     RESULTS.mkdir(parents=True, exist_ok=True)
     lines = [f"# {title}", "", f"Machine: {machine()}  ", f"Date: {time.strftime('%Y-%m-%d')}",
-             "", "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(r) + " |" for r in rows]
+             "", *table(header, rows)]
     if notes:
         lines += ["", notes]
     path = RESULTS / f"{name}.md"

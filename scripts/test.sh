@@ -10,7 +10,7 @@ SLOW=0
 if [ "${1:-}" = "--slow" ]; then SLOW=1; shift; fi
 # Redis and Chromium from Debian's packages, started by the tests on loopback.
 bash scripts/install_services.sh
-VERIGRAPH_EXTRAS="${VERIGRAPH_EXTRAS:-dev,pddl,arm,clip,scale}" bash scripts/setup.sh
+VERIGRAPH_EXTRAS="${VERIGRAPH_EXTRAS:-dev,pddl,arm,clip,scale,env}" bash scripts/setup.sh
 # The official MCP Inspector (a client nobody here wrote) for the interoperability test.
 bash scripts/install_inspector.sh
 export VERIGRAPH_INSPECTOR="$PWD/.tools/bin/mcp-inspector"

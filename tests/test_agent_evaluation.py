@@ -3,14 +3,26 @@
 from __future__ import annotations
 
 import io
+from collections.abc import Sequence
 
 import pytest
 
-from verigraph.agent.evaluation import Setting, build_groups, run_setting
-from verigraph.agent.evaluation.bench import run
-from verigraph.agent.evaluation.runner import Progress
+from verigraph.agent.evaluation import GroupTasks, Setting, build_groups
+from verigraph.agent.evaluation.engine import RunOptions, run_jobs
+from verigraph.agent.evaluation.progress_bar import EpisodeProgress
+from verigraph.agent.evaluation.spec import jobs_for, task_index
+from verigraph.agent.evaluation.tables import GroupStats, stats_by_group
+from verigraph.agent.evaluation.tasks import GroupName
+from verigraph.cli.bench import plan_report as run
 
 generator = pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")
+
+
+def run_setting(setting: Setting, groups: Sequence[GroupTasks]) -> dict[GroupName, GroupStats]:
+    """One setting over the groups, through the engine (serial, no results file)."""
+    records = run_jobs(jobs_for(setting, groups, "test"), task_index(groups),
+                       RunOptions(progress=False))
+    return stats_by_group(records)
 
 
 def test_reference_image_groups_run_with_perception() -> None:
@@ -53,8 +65,11 @@ def test_report_groups_planner_kinds_and_keeps_the_paper_in_its_own_table() -> N
     assert "### Rule-based translator: instruction to goal" in text and "| all | " in text
     assert "| Stacking | 3 | " in text  # the difficulty table
     assert "Suite version 2" in text
+    assert "Reliability" not in text  # one sample per task: no pass^k table
     paper = text[text.index("### The paper's numbers"):]
-    assert "| VeriGraph (GPT-4V, iterative) | 65% | 73% | 55% | 86% | 72% |" in paper
+    assert "| Ours (iterative) | 0.65 | 0.65 | 0.86 | 0.55 | 0.72 |" in paper
+    assert "| Ours (Direct) | 0.35 | 0.73 | 0.67 | 0.50 | 0.72 |" in paper
+    assert "| SayCan | 0.07 | 0.17 | - | 0.00 | - |" in paper
     assert "58 points on language" in paper
     assert "Not comparable in value" in paper
     for t in (2, 3, 5, 10):
@@ -68,16 +83,23 @@ def test_bench_rejects_unknown_groups_and_planners() -> None:
         run(["--groups", "juggling"])
     with pytest.raises(VeriGraphError, match="--planners"):
         run(["--planners", "gpt-17", "--groups", "stacking"])
+    with pytest.raises(VeriGraphError, match="--samples"):
+        run(["--samples", "0", "--groups", "stacking"])
 
 
 def test_progress_bar_reports_on_a_pipe() -> None:
+    groups = build_groups(("stacking",), 4, 0, ground_truth=True)
+    records = run_jobs(jobs_for(Setting(planner="oracle"), groups, "test"), task_index(groups),
+                       RunOptions(progress=False))
     stream = io.StringIO()
-    bar = Progress(20, stream=stream)
-    for _ in range(20):
-        bar.advance("x")
-    lines = stream.getvalue().splitlines()
-    assert 2 <= len(lines) <= 11
-    assert lines[-1].startswith("[" + "#" * 30 + "] 20/20 episodes")
+    bar = EpisodeProgress(len(records), stream=stream)
+    for record in records:
+        bar.update(record)
+    bar.close()
+    lines = [line for line in stream.getvalue().replace("\r", "\n").splitlines() if line]
+    assert 1 <= len(lines) <= 3  # a pipe gets a few lines, not one per refresh
+    assert "4/4" in lines[-1] and "stacking 4/4" in lines[-1]
+    assert bar.summary().startswith("finished: 4/4 episodes done (0 from the results file")
 
 
 def test_a_failing_llm_planner_is_counted_and_the_bench_goes_on(

@@ -188,7 +188,7 @@ def test_goal_graph_can_be_hidden_from_the_prompt_but_is_still_checked() -> None
     assert "Put the book on the shelf, cup on the desk." in prompt
     assert "Goal graph" not in prompt
     assert planner.requests[0].goal is None  # only the words are shown
-    assert planner.requests[0].privileged_goal is not None  # the ceiling (oracle) reads it
+    assert planner.requests[0].privileged_goal is None  # only a privileged planner gets it
     assert trace.success
 
 

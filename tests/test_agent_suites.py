@@ -11,8 +11,8 @@ from verigraph.agent.evaluation.suite_blocks import block_graph, stacking_task
 from verigraph.agent.evaluation.suite_tangram import tangram_task
 from verigraph.agent.evaluation.tasks import GROUPS, SUITE_VERSION, build_groups, suite_stats
 from verigraph.agent.tangram_plan import tangram_plan
-from verigraph.agent.translator import TranslationError, same_goal, translate
 from verigraph.graph import Goal, SceneGraph, WorldState, check_goal
+from verigraph.graph.translator import TranslationError, same_goal, translate
 from verigraph.solver import solve
 
 generator = pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")

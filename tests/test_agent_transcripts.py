@@ -60,7 +60,7 @@ def test_cli_records_then_replays_without_the_planner(tmp_path: Path) -> None:
 
 def test_bench_replays_its_own_recording(tmp_path: Path) -> None:
     pytest.importorskip("verigraph.sim2d.generator")
-    from verigraph.agent.evaluation.bench import run
+    from verigraph.cli.bench import plan_report as run
 
     args = ["--episodes", "2", "--groups", "stacking", "--planners", "noisy",
             "--no-ablations"]

@@ -151,27 +151,24 @@ def test_declined_or_impossible_confirmation_moves_nothing(
     assert_unchanged(cell, state)
 
 
-def test_async_confirmation_from_inside_an_event_loop_moves_nothing(tmp_path: Path) -> None:
+def test_an_async_hook_is_refused_and_moves_nothing(tmp_path: Path) -> None:
+    """Hooks are synchronous: a coroutine is not a yes, and it is never awaited."""
     async def approve(request: ConfirmationRequest) -> bool:
         return True
 
-    cell = Cell(tmp_path, confirm=approve)
-
-    async def main() -> Violation | None:
-        return cell.run(STACK[:1])[0]  # called synchronously on the loop: cannot await
-
-    violation = anyio.run(main)
-    assert violation is not None and "running event loop" in violation.message
+    cell = Cell(tmp_path, confirm=approve)  # type: ignore[arg-type]
+    violation, state = cell.run(STACK[:1])
+    assert violation is not None and "asynchronous" in violation.message
     assert cell.motions() == []
+    assert_unchanged(cell, state)
 
 
-def test_async_confirmation_from_a_worker_thread_is_awaited(tmp_path: Path) -> None:
-    """How the server plugs it: execute_in_world in a worker thread, elicitation async."""
-    asked_on_loop: list[bool] = []
+def test_a_confirmation_in_a_worker_thread_is_asked_there(tmp_path: Path) -> None:
+    """How the server plugs it: execute_in_world in a worker thread, a synchronous hook."""
+    asked_in: list[str] = []
 
-    async def approve(request: ConfirmationRequest) -> bool:
-        await anyio.sleep(0)
-        asked_on_loop.append(True)
+    def approve(request: ConfirmationRequest) -> bool:
+        asked_in.append(threading.current_thread().name)
         return True
 
     cell = Cell(tmp_path, confirm=approve)
@@ -180,7 +177,7 @@ def test_async_confirmation_from_a_worker_thread_is_awaited(tmp_path: Path) -> N
         return await anyio.to_thread.run_sync(cell.run, STACK[:1])
 
     violation, state = anyio.run(main)
-    assert asked_on_loop == [True]
+    assert len(asked_in) == 1 and asked_in[0] != threading.main_thread().name
     assert "set_position" in cell.motions()
     # Closed loop: the declared layout never sees the block move, so the world reports
     # what it observes instead of the prediction.
@@ -395,7 +392,7 @@ def test_request_scoped_confirmation_follows_the_call_into_the_worker_thread(
     cell = Cell(tmp_path, hook=scoped_confirm)
     asked: list[str] = []
 
-    async def elicit(request: ConfirmationRequest) -> bool:
+    def elicit(request: ConfirmationRequest) -> bool:
         asked.append(request.motion)
         return False
 

@@ -18,8 +18,8 @@ from verigraph.arm import (
     StaleLocationError,
     UnsafeMotionError,
 )
+from verigraph.arm.approval import ValidatedAction, authorize
 from verigraph.arm.planning import MotionPlan, plan_motion
-from verigraph.arm.receipt import ValidatedAction, authorize
 from verigraph.arm.safety import check_caps, check_path
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState

@@ -107,10 +107,18 @@ def test_cli_pddl_text_json_and_bad_input(tmp_path):
     (tmp_path / "arity.txt").write_text("(unstack d c)\n(unstack b)\n")
     r = verigraph(*base, "--plan", str(tmp_path / "arity.txt"), cwd=DATA)
     assert r.returncode == 2 and "line 2" in r.stderr and "Traceback" not in r.stderr
+    # a domain outside the blocks-world family goes to the STRIPS engine, which judges it
     (tmp_path / "d.pddl").write_text(PLANBENCH.replace("(holding ?x)", "(holding ?x) (wet ?x)"))
     r = verigraph("validate", "--domain", str(tmp_path / "d.pddl"), "--problem",
-                  "planbench_instance.pddl", "--plan", "planbench_plan.txt", cwd=DATA)
-    assert r.returncode == 2 and "unsupported domain" in r.stderr and "Traceback" not in r.stderr
+                  "planbench_instance.pddl", "--plan", "planbench_plan.pddl", "--json", cwd=DATA)
+    assert r.returncode == 0 and json.loads(r.stdout)["engine"] == "strips"
+    # and what neither engine supports is refused with the requirement named
+    (tmp_path / "d.pddl").write_text(PLANBENCH.replace("(:requirements :strips)",
+                                                       "(:requirements :strips :fluents)"))
+    r = verigraph("validate", "--domain", str(tmp_path / "d.pddl"), "--problem",
+                  "planbench_instance.pddl", "--plan", "planbench_plan.pddl", cwd=DATA)
+    assert r.returncode == 2 and "unsupported requirement :fluents" in r.stderr
+    assert "Traceback" not in r.stderr
 
 
 def test_three_op_self_move_is_refused_when_the_domain_allows_it():

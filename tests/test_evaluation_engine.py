@@ -18,13 +18,12 @@ import pytest
 from verigraph.agent.environment import InProcessTools
 from verigraph.agent.evaluation import Setting, build_groups
 from verigraph.agent.evaluation.engine import RunOptions, run_jobs
-from verigraph.agent.evaluation.episode import EngineConfig
 from verigraph.agent.evaluation.guard import RetryPolicy
 from verigraph.agent.evaluation.limiter import BackendLimits, Gate, RateLimiter
 from verigraph.agent.evaluation.results import ResultsFile
-from verigraph.agent.evaluation.runner import run_task
-from verigraph.agent.evaluation.spec import jobs_for, task_index
+from verigraph.agent.evaluation.spec import job_for, jobs_for, task_index
 from verigraph.agent.evaluation.tables import outcome_part, render_report
+from verigraph.agent.evaluation.worker import EngineConfig, PlannerPool, run_job
 from verigraph.agent.factory import PlannerOptions
 from verigraph.agent.testing import RecordedResponse as R
 from verigraph.agent.testing import (
@@ -167,8 +166,10 @@ def test_planner_failures_are_outcomes_and_the_run_goes_on() -> None:
     assert records[2].stop_reason == "planner_error" and records[2].retries == 2
     assert "HTTP 503" in (records[2].error or "")
     # A planner that raises something other than an endpoint error.
-    result = run_task(InProcessTools(), tasks[0], Setting(planner="openai"),
-                      shared=ScriptedPlannerForTests([RuntimeError("model client crashed")]))
+    pool = PlannerPool(EngineConfig(), Gate(None), shared={
+        "openai": ScriptedPlannerForTests([RuntimeError("model client crashed")])})
+    result = run_job(job_for(tasks[0], Setting(planner="openai"), "suite"), tasks[0],
+                     InProcessTools(), pool)
     assert not result.success and "model client crashed" in (result.error or "")
 
 
@@ -206,8 +207,8 @@ def _png_size(path: Path) -> tuple[int, int]:
 
 
 def test_report_and_plots_from_a_results_file(tmp_path: Path) -> None:
-    from verigraph.agent.evaluation.bench import run
     from verigraph.cli import main
+    from verigraph.cli.bench import plan_report as run
 
     results = tmp_path / "r.jsonl"
     run(["--episodes", "2", "--groups", "stacking,language", "--results", str(results),
@@ -260,7 +261,7 @@ def test_bad_engine_flags_are_rejected_by_name(flags: list[str]) -> None:
 def test_progress_counts_success_per_group_and_traces_are_written(tmp_path: Path) -> None:
     import io
 
-    from verigraph.agent.evaluation.progress import EpisodeProgress
+    from verigraph.agent.evaluation.progress_bar import EpisodeProgress
 
     groups = build_groups(("stacking", "language"), 2, 0, ground_truth=True)
     jobs = jobs_for(Setting(planner="noisy", noise=1.0, mode="direct"), groups, "suite")
@@ -283,8 +284,8 @@ def test_progress_counts_success_per_group_and_traces_are_written(tmp_path: Path
 
 
 def test_named_backend_limits_override_the_default_budget() -> None:
-    from verigraph.agent.evaluation.engine import parse_limit
     from verigraph.cli import main
+    from verigraph.cli.bench import parse_limit
 
     name, limits = parse_limit("openai:gpt-4o-mini=500/16")
     assert name == "openai:gpt-4o-mini" and (limits.requests, limits.concurrency) == (500, 16)

@@ -13,10 +13,10 @@ import pytest
 
 from verigraph.agent.evaluation import Setting, build_groups
 from verigraph.agent.evaluation.engine import RunOptions, run_jobs
-from verigraph.agent.evaluation.episode import EngineConfig
 from verigraph.agent.evaluation.guard import RetryPolicy
 from verigraph.agent.evaluation.limiter import BackendLimits
 from verigraph.agent.evaluation.spec import jobs_for, task_index
+from verigraph.agent.evaluation.worker import EngineConfig
 from verigraph.agent.factory import PlannerOptions
 from verigraph.agent.testing import RecordedResponse as R
 from verigraph.agent.testing import RecordedResponseServerForTests, chat_completion

@@ -1,4 +1,4 @@
-"""execute_until_violation, goal checks and predicates (DESIGN section 6)."""
+"""execute_until_violation, goal checks and predicates (docs/design.md section 6)."""
 
 from scenes import graph
 from verigraph.actions import MoveAction, execute_until_violation, parse_plan, validate_plan

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from verigraph.perception import perceive_image, score_graph
-from verigraph.perception.constancy import estimate_tone, repaint_wall, wall_colour
-from verigraph.perception.lighting import estimate_gain
-from verigraph.perception.photometry import correct_colours
+from verigraph.perception.correct.constancy import estimate_tone, repaint_wall, wall_colour
+from verigraph.perception.correct.lighting import estimate_gain
+from verigraph.perception.correct.photometry import correct_colours
 from verigraph.sim2d import degrade_ops as ops
 from verigraph.sim2d import palette
 from verigraph.sim2d.generator import generate_scene

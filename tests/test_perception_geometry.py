@@ -7,9 +7,10 @@ import numpy as np
 import pytest
 
 from verigraph.graph.dictionary import load_dictionary
-from verigraph.perception import colors, perceive_image, score_graph
-from verigraph.perception.catalogue import models_by_colour
-from verigraph.perception.roll import estimate_roll
+from verigraph.perception import perceive_image, score_graph
+from verigraph.perception.correct.roll import estimate_roll
+from verigraph.perception.detect import colors
+from verigraph.perception.label.catalogue import models_by_colour
 from verigraph.sim2d import degrade_ops as ops
 from verigraph.sim2d.degrade import Degradation, degrade
 from verigraph.sim2d.generator import generate_scene
@@ -47,7 +48,9 @@ def test_a_table_split_by_a_bar_is_one_table_and_the_occlusion_is_reported() -> 
     result = perceive_image(barred, dictionary="blocks")
     assert [n.label for n in result.graph.nodes].count("table") == 1
     assert score_graph(result.graph, scene.graph, "blocks").exact
-    assert any("hides columns" in w for w in result.warnings)
+    assert result.occluded == ["table"]
+    assert any("something in front hides part of the scene" in w and "touches table" in w
+               for w in result.warnings)
     assert not result.confident
 
 

@@ -21,7 +21,7 @@ import pytest
 from verigraph.cli import main
 from verigraph.errors import VeriGraphError
 from verigraph.perception import perceive_image
-from verigraph.perception.clip import (
+from verigraph.perception.label.clip import (
     PROMPT,
     ClipLabeller,
     ClipSource,
@@ -29,7 +29,7 @@ from verigraph.perception.clip import (
     object_crop,
     prompt_text,
 )
-from verigraph.perception.labelling import ColourShapeLabeller
+from verigraph.perception.label.labelling import ColourShapeLabeller
 from verigraph.perception.metrics import score_graph
 from verigraph.sim2d.generator import generate_scene
 

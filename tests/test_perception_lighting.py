@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from verigraph.perception.lighting import GainField, correct, estimate_gain
+from verigraph.perception.correct.lighting import GainField, correct, estimate_gain
 from verigraph.sim2d import palette
 from verigraph.sim2d.generator import generate_scene
 

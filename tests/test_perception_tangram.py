@@ -9,8 +9,7 @@ import numpy as np
 import pytest
 
 from verigraph.perception import perceive_image
-from verigraph.perception.metrics import score_graph
-from verigraph.perception.tangram_sides import (
+from verigraph.perception.detect.tangram_sides import (
     PlacedPiece,
     canonical_start,
     clockwise,
@@ -18,6 +17,7 @@ from verigraph.perception.tangram_sides import (
     fit_model,
     to_world,
 )
+from verigraph.perception.metrics import score_graph
 from verigraph.sim2d import Degradation, degrade
 from verigraph.sim2d.generator import GeneratedScene, generate_scene
 from verigraph.sim2d.tangram_geometry import PIECE_NAMES, TPose, piece_model, placed

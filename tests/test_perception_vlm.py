@@ -24,8 +24,8 @@ from verigraph.agent.testing import RecordedResponseServerForTests, chat_complet
 from verigraph.cli import main
 from verigraph.graph.dictionary import builtin_dictionary
 from verigraph.llm.formats import response_format_field
+from verigraph.perception.label.vlm import VlmClient, VlmConfig, VlmError, graph_schema
 from verigraph.perception.metrics import score_graph
-from verigraph.perception.vlm import VlmClient, VlmConfig, VlmError, graph_schema
 from verigraph.sim2d.generator import generate_scene
 
 RECORDED_LLAMA_CPP_ANSWER = json.loads(

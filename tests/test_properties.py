@@ -10,8 +10,8 @@ from scenes import random_blocks, random_tableware, raw_move, scene_and_seed
 from verigraph.actions import MoveAction, apply_action, validate_action, validate_plan
 from verigraph.graph import Goal, WorldState, check_well_formed
 from verigraph.solver import solve
-from verigraph.solver.budget import Budget
-from verigraph.solver.encoding import Problem
+from verigraph.solver.budget import SearchBudget
+from verigraph.solver.encoding import SearchProblem
 from verigraph.solver.search import _decoded_goal_check
 
 SETTINGS = settings(max_examples=150, deadline=None,
@@ -63,8 +63,8 @@ def test_solver_plans_validate_and_reach_the_goal(n, seed, kind):
 def brute_force_length(start, goal, limit=8):
     """Breadth-first search over the same encoding: the true optimum."""
     state = WorldState.from_graph(start)
-    problem = Problem(state)
-    budget = Budget(time_limit_s=600, memory_limit_mb=4096, max_expansions=10**9)
+    problem = SearchProblem(state)
+    budget = SearchBudget(time_limit_s=600, memory_limit_mb=4096, max_expansions=10**9)
     frontier = deque([(problem.start, 0)])
     seen = {problem.start}
     while frontier:

@@ -56,7 +56,7 @@ async def test_clients_without_it_see_nothing_of_it_and_get_the_same_content() -
         eid = structured(await c.call_tool("load_scene", {"scene_id": "cup_on_book"}))[
             "episode_id"]
         image = await c.call_tool("render_scene", {"episode_id": eid})
-        assert [b.type for b in image.content] == ["image"]
+        assert [b.type for b in image.content] == ["image", "text"]  # the image, its caption
         assert image.structured_content is None
 
 

@@ -17,7 +17,7 @@ from mcp import Client
 from mcp_helpers import JSON_HEADERS, free_port, rpc, text
 
 from verigraph.actions import records
-from verigraph.budget import Budget, BudgetExceeded, checkpoint
+from verigraph.budget import CallBudget, BudgetExceeded, checkpoint
 from verigraph.server import build_server
 from verigraph.server.heavy import HeavyLimits
 from verigraph.server.http import HttpOptions, uvicorn_config
@@ -87,7 +87,7 @@ async def test_a_call_over_its_wall_clock_budget_gets_a_tool_error(
         monkeypatch: pytest.MonkeyPatch) -> None:
     held = HeldStep()
     monkeypatch.setattr(records, "move_accepted", held)
-    server = build_server(Toolbox(), heavy=HeavyLimits(budget=Budget(wall_s=0.2)))
+    server = build_server(Toolbox(), heavy=HeavyLimits(budget=CallBudget(wall_s=0.2)))
     async with Client(server) as client:
         result = await client.call_tool("validate_plan", {
             "scene_id": "cup_on_book", "plan": "move(cup, on, desk)   \n" * 1000})

@@ -57,17 +57,33 @@ def test_a_silent_connection_is_closed_too(port: int) -> None:
 
 
 def test_connections_beyond_the_cap_get_a_clean_503(port: int) -> None:
-    idle = [connect(port) for _ in range(4)]
+    busy: list[socket.socket] = []
     try:
-        for sock in idle:  # each is accepted: a byte of headers keeps it waiting
-            sock.sendall(b"P")
+        for _ in range(4):  # headers complete, the body promised and never sent: busy
+            busy.append(sock := connect(port))
+            sock.sendall(b"POST /mcp HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 100\r\n"
+                         b"Expect: 100-continue\r\n\r\n")
+            got = sock.recv(300)
+            assert got.startswith(b"HTTP/1.1 100"), got  # the app waits for the body
         with connect(port) as extra:
             reply = read_all(extra)
         assert reply.startswith(b"HTTP/1.1 503")
-        assert b"4 open connections" in reply
+        assert b"4 open connections with requests in progress" in reply
     finally:
-        for sock in idle:
+        for sock in busy:
             sock.close()
+
+
+def test_waiting_connections_make_room_for_a_new_one(port: int) -> None:
+    """With 4 slots, one may wait for its headers; an older waiting one is closed."""
+    with connect(port) as old:
+        old.sendall(b"POST /mcp HTTP/1.1\r\n")
+        assert post(port, "127.0.0.1") == 200  # a new connection evicts the waiting one
+        try:  # closed: with a 503 that says why, or reset if it came before its bytes were read
+            reply = read_all(old)
+        except ConnectionResetError:
+            reply = b"reset"
+        assert reply == b"reset" or b"waiting for their request headers" in reply, reply
 
 
 @pytest.mark.parametrize("host,expected", [

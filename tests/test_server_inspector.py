@@ -66,7 +66,9 @@ def test_inspector_calls_a_tool_over_stdio() -> None:
     result = payload["result"]
     assert result["isError"] is False
     assert result["structuredContent"]["valid"] is True
-    assert result["content"][0]["text"] == "VALID: 2 step(s) checked; goal reached"
+    assert result["content"][0]["text"] == (
+        "VALID: 2 step(s) checked; goal reached (a check only, nothing was executed)\n"
+        "  1 ok    move(cup, on, desk)\n  2 ok    move(book, on, shelf)")
 
 
 def test_inspector_sees_tool_errors_over_stdio() -> None:

@@ -30,12 +30,12 @@ from mcp_helpers import (
 from verigraph.server import tools as server_tools
 from verigraph.server.http import HttpOptions
 from verigraph.server.offload import (
-    CURRENT_SLOT,
     DEFAULT_THRESHOLD_BYTES,
     PLACEHOLDER_KEY,
     CallSlot,
     offload,
 )
+from verigraph.server.scope import current_scope
 from verigraph.tools.registry import TOOLS, Toolbox, parse_arguments
 
 TOKEN = "large-calls-token"
@@ -115,7 +115,8 @@ def offloaded(monkeypatch: pytest.MonkeyPatch) -> list[int]:
     def spying(structured: Any) -> dict[str, Any] | None:
         placeholder = offload(structured)
         if placeholder is not None:
-            sizes.append(len(CURRENT_SLOT.get().structured or b""))
+            slot = current_scope().slot
+            sizes.append(len(slot.structured or b"") if slot else 0)
         return placeholder
 
     monkeypatch.setattr(server_tools, "offload", spying)

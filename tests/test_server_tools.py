@@ -38,7 +38,7 @@ async def load(client: Client, **args: Any) -> str:
 
 async def test_server_identity_and_instructions(client: Client) -> None:
     assert client.server_info is not None and client.server_info.name == "verigraph"
-    assert client.instructions == INSTRUCTIONS and "episode_id" in INSTRUCTIONS
+    assert client.instructions.startswith(INSTRUCTIONS) and "episode_id" in INSTRUCTIONS
 
 
 async def test_tools_list_matches_the_tool_table(client: Client) -> None:
@@ -70,7 +70,7 @@ async def test_cup_on_book_episode_end_to_end(client: Client) -> None:
                                                      "actions": ["move(book, on, shelf)"]})
     out = structured(bad)
     assert out["violation"]["constraint"] == "object_not_clear" and out["tau"] == 1
-    assert text(bad).startswith("executed 0: nothing; stopped: step 1: [object_not_clear]")
+    assert text(bad).startswith("executed none; stopped: step 1: [object_not_clear]")
     good = structured(await client.call_tool("execute_actions", {"episode_id": eid, "actions": [
         {"action": "move", "object": "cup", "relation": "on", "target": "desk"},
         "move(book, on, shelf)", "done"]}))
@@ -104,7 +104,7 @@ async def test_structured_results_and_summaries(client: Client) -> None:
     check = await client.call_tool("validate_action", {"episode_id": eid,
                                                        "action": "move(cup, on, desk)"})
     assert structured(check)["would_change"]["added"][0]["target"] == "desk"
-    assert text(check) == "valid: move(cup, on, desk) (-cup on book, +cup on desk)"
+    assert text(check).startswith("valid: move(cup, on, desk) (-cup on book, +cup on desk)\n")
     report = await client.call_tool("validate_plan", {"scene_id": "cup_on_book",
                                                       "plan": "move(book, shelf)"})
     assert structured(report)["violations"][0]["constraint"] == "object_not_clear"
@@ -123,7 +123,7 @@ async def test_image_tools_return_image_content_only(client: Client) -> None:
     render = await client.call_tool("render_scene", {"episode_id": eid, "width": 200,
                                                      "height": 100})
     assert not render.is_error and render.structured_content is None
-    assert [c.type for c in render.content] == ["image"]
+    assert [c.type for c in render.content] == ["image", "text"]  # the image, its caption
     assert render.content[0].mime_type == "image/png"
     assert decode_png(render.content[0].data).shape == (100, 200, 3)
     scene = await client.call_tool("get_scene_image", {"episode_id": eid, "task": "tidy"})
@@ -139,7 +139,8 @@ async def test_agent_vlm_route_through_the_server(client: Client) -> None:
             "nodes": [{"id": "desk", "label": "desk"}, {"id": "Cup", "label": "teacup"}],
             "edges": [{"source": "Cup", "relation": "on", "target": "desk"}]}}))
     assert submitted["accepted"] and submitted["adopted"]
-    assert {"field": "nodes[1].label", "before": "teacup", "after": "cup"} in submitted[
+    assert {"field": "nodes[1].label", "before": "teacup", "after": "cup",
+            "reading": "teacup read as cup (synonym, tableware dictionary)"} in submitted[
         "normalised"]
     state = structured(await client.call_tool("get_state", {"episode_id": eid}))
     assert state["graph"]["edges"] == [{"source": "cup", "relation": "on", "target": "desk",
@@ -151,7 +152,8 @@ async def test_simulated_episode_renders_the_simulator(client: Client) -> None:
     state = structured(await client.call_tool("get_state", {"episode_id": eid}))
     assert state["simulated"] and state["relations"] == ["touches"]
     render = await client.call_tool("render_scene", {"episode_id": eid, "view": "goal"})
-    assert [c.type for c in render.content] == ["image"]
+    assert [c.type for c in render.content] == ["image", "text"]
+    assert "simulator's picture" in text(render)
     assert decode_png(render.content[0].data).std() > 5
 
 

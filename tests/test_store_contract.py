@@ -218,8 +218,8 @@ def test_every_episode_field_is_stored(monkeypatch: pytest.MonkeyPatch, tmp_path
     stored in its JSON form all the same."""
     import dataclasses
 
-    from verigraph.tools import Episode, records
-    names = {f.name for f in dataclasses.fields(Episode)}
+    from verigraph.tools import LiveEpisode, records
+    names = {f.name for f in dataclasses.fields(LiveEpisode)}
     assert names <= records.EXPLICIT | records.PER_PROCESS | set(records._adapters())
     monkeypatch.setattr(records, "EXPLICIT", records.EXPLICIT - {"tau"})
     records._adapters.cache_clear()

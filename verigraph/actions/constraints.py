@@ -2,7 +2,9 @@
 
 Each check looks only at the object, the target and their neighbours in the
 `WorldState` indexes, so validating an action costs O(degree + stack height).
-The first failing check wins; its Violation says what failed, why, and a concrete fix.
+Execution stops at the first failing check; `validator.all_violations` runs them all,
+so a reader sees every reason at once. A Violation says what failed, why, and a concrete
+fix that covers every blocker.
 """
 
 from __future__ import annotations
@@ -38,6 +40,41 @@ def _nearest_ids(state: WorldState, name: str) -> list[str]:
 def _place_hint(state: WorldState, obj: str, exclude: set[str]) -> str:
     place = state.free_place_for(obj, exclude)
     return f"move({obj}, on, {place})" if place else f"move({obj}, on, <a free surface>)"
+
+
+# A suggestion names at most this many blockers one by one, then how many more there are.
+MAX_NAMED_BLOCKERS = 5
+
+
+def _names(items: list[str]) -> str:
+    """`knife`, `knife and spoon`, `knife, spoon and lid`."""
+    return items[0] if len(items) == 1 else f"{', '.join(items[:-1])} and {items[-1]}"
+
+
+def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str]) -> str:
+    """`move knife, spoon and lid somewhere else first, e.g. move(knife, on, counter), ...`
+
+    Every blocker gets its own move, and the places account for each other: a surface
+    that the earlier hints fill up is not offered again, so the suggested moves are valid
+    in sequence. Only runs on failure, O(blockers x fixed surfaces).
+    """
+    named = blockers[:MAX_NAMED_BLOCKERS]
+    full = set(exclude)
+    planned: dict[str, int] = {}
+    hints = []
+    for obj in named:
+        place = state.free_place_for(obj, full | set(blockers))
+        if place is None:
+            hints.append(f"move({obj}, on, <a free surface>)")
+            continue
+        planned[place] = planned.get(place, 0) + 1
+        cap = state.objects[place].props.capacity
+        if cap is not None and len(state.carried[place]) + planned[place] >= cap:
+            full.add(place)
+        hints.append(f"move({obj}, on, {place})")
+    more = len(blockers) - len(named)
+    who = _names(named) if not more else f"{', '.join(named)} and {more} more"
+    return f"move {who} somewhere else first, e.g. {', '.join(hints)}"
 
 
 # -- move ------------------------------------------------------------------------------------
@@ -105,10 +142,8 @@ def check_clear(state: WorldState, a: MoveAction) -> Violation | None:
     if on_top:
         blockers = list(on_top)
         what = ", ".join(f"{b} is {on_top[b]} {a.object}" for b in blockers)
-        first = blockers[0]
         return _violation(a, "object_not_clear", f"cannot move {a.object}: {what}",
-                          f"move {first} somewhere else first, e.g. "
-                          f"{_place_hint(state, first, {a.object})}", blockers)
+                          _clear_hint(state, blockers, {a.object}), blockers)
     return None
 
 
@@ -137,14 +172,19 @@ def check_capacity(state: WorldState, a: MoveAction) -> Violation | None:
         a, "target_full",
         f"{a.target} already carries {len(carried)} object(s) ({', '.join(carried)}), "
         f"its capacity is {cap}",
-        f"clear {a.target} first, e.g. {_place_hint(state, first, {a.target, a.object})}, "
-        f"or choose another target", carried)
+        f"make room on {a.target} first (any one of {_names(carried[:MAX_NAMED_BLOCKERS])}"
+        f"{' or more' if len(carried) > MAX_NAMED_BLOCKERS else ''} elsewhere), e.g. "
+        f"{_place_hint(state, first, {a.target, a.object})}, or choose another target",
+        carried)
 
 
 MOVE_CHECKS: tuple[Callable[[WorldState, MoveAction], Violation | None], ...] = (
     check_known_objects, check_relation, check_same_object, check_movable, check_already_there,
     check_cycle, check_clear, check_target_kind, check_capacity,
 )
+# Checks whose failure makes the later ones meaningless (or unsafe to run: they index the
+# object and the target); all_violations stops at them.
+GATE_CHECKS = frozenset({check_known_objects, check_relation, check_same_object})
 
 
 # -- align (tangram, symbolic part; geometry is checked by sim2d) ---------------------------

@@ -11,6 +11,7 @@ ConstraintId = Literal[
     "target_full", "target_not_surface", "target_not_container", "would_create_cycle",
     "already_there", "unknown_side", "side_occupied", "overlap", "execution_failed",
     "arm_refused", "no_room", "malformed_action", "hand_full", "not_held", "wrong_source",
+    "precondition_unsatisfied", "wrong_type",
 ]
 
 CONSTRAINT_DESCRIPTIONS: dict[str, str] = {
@@ -38,11 +39,13 @@ CONSTRAINT_DESCRIPTIONS: dict[str, str] = {
     "not_held": "blocks world with a hand: a release of a block the hand does not hold",
     "wrong_source": "blocks world: the action names a place the block is not taken from "
                     "(pick-up of a block on a block, unstack from the wrong block)",
+    "precondition_unsatisfied": "PDDL (STRIPS): a precondition of the action is false now",
+    "wrong_type": "PDDL (STRIPS): an argument's type is not the parameter's type",
 }
 
 
 class Violation(BaseModel):
-    """Feedback for one rejected action (DESIGN section 5)."""
+    """Feedback for one rejected action (docs/design.md section 5)."""
 
     ok: Literal[False] = False
     step: int | None = Field(default=None, description="1-based index of the action in the plan")
@@ -53,6 +56,6 @@ class Violation(BaseModel):
                                 description="objects that stand in the way")
     suggestion: str
 
-    def text(self) -> str:
-        where = f"step {self.step}: " if self.step is not None else ""
+    def text(self, with_step: bool = True) -> str:
+        where = f"step {self.step}: " if self.step is not None and with_step else ""
         return f"{where}[{self.constraint}] {self.message}. Suggestion: {self.suggestion}"

@@ -1,4 +1,4 @@
-"""Validation and execution semantics (DESIGN section 6, the paper's Algorithm 1 core).
+"""Validation and execution semantics (docs/design.md section 6, the paper's Algorithm 1 core).
 
 `validate_action` checks one action against the constraints and changes nothing;
 `apply_action` is the graph edit of a valid action; `execute_until_violation` runs a
@@ -11,7 +11,12 @@ from collections.abc import Iterable, Sequence
 
 from pydantic import BaseModel, Field
 
-from verigraph.actions.constraints import MOVE_CHECKS, check_align
+from verigraph.actions.constraints import (
+    GATE_CHECKS,
+    MOVE_CHECKS,
+    check_align,
+    check_capacity,
+)
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
 from verigraph.graph.model import Edge, SceneGraph
@@ -44,6 +49,36 @@ def validate_action(state: WorldState, action: AnyAction, step: int | None = Non
     if violation is not None and step is not None:
         violation.step = step
     return violation
+
+
+TARGET_KINDS = ("target_not_surface", "target_not_container")
+
+
+def all_violations(state: WorldState, action: AnyAction, step: int | None = None
+                   ) -> list[Violation]:
+    """Every constraint `action` breaks on `state`, in check order. Never mutates `state`.
+
+    Execution needs only the first; a reader fixing the action needs them all (a move of
+    a covered board onto a pot breaks object_not_clear AND target_not_surface, and
+    clearing the board alone would not make it valid). The gate checks (unknown object or
+    relation, an object moved onto itself) make the others meaningless, so one of them
+    failing is reported alone.
+    """
+    if not isinstance(action, MoveAction):
+        first = validate_action(state, action, step)
+        return [first] if first is not None else []
+    found: list[Violation] = []
+    for check in MOVE_CHECKS:
+        if check is check_capacity and found and found[-1].constraint in TARGET_KINDS:
+            continue  # a target that is not a surface (container) has no room to report
+        violation = check(state, action)
+        if violation is None:
+            continue
+        violation.step = step
+        if check in GATE_CHECKS:
+            return [violation]
+        found.append(violation)
+    return found
 
 
 def apply_action(state: WorldState, action: AnyAction) -> GraphEdit:

@@ -1,6 +1,6 @@
 """One episode's bookkeeping for the loop: its settings, how it starts, and the tool calls.
 
-`LoopConfig` and `EpisodeSpec` are the loop's inputs; `Episode` keeps the mutable state
+`LoopConfig` and `EpisodeSpec` are the loop's inputs; `EpisodeRun` keeps the mutable state
 of one run (graph, goal, history, the trace) and wraps the tools (`load_scene`,
 `set_goal`, `execute_actions`, `end_episode`) and the planner call, so `loop.py` holds
 only Algorithm 1's control flow.
@@ -27,7 +27,7 @@ from verigraph.agent.models import (
     PlannerReply,
     PlannerRequest,
 )
-from verigraph.agent.planner import Planner
+from verigraph.agent.planner import Planner, is_privileged
 from verigraph.agent.progress import goal_distance, shape_feedback
 from verigraph.agent.prompting import planner_prompt
 from verigraph.errors import VeriGraphError
@@ -91,7 +91,7 @@ def _prompt_goal(goal: Goal | None, show_graph: bool) -> Goal | None:
     return goal.model_copy(update={"graph": None})
 
 
-class Episode:
+class EpisodeRun:
     """Mutable bookkeeping of one run; the public result is the EpisodeTrace."""
 
     def __init__(self, env: ToolEnvironment, planner: Planner, spec: EpisodeSpec,
@@ -175,12 +175,14 @@ class Episode:
         k = self.config.k if self.config.mode == "iterative" else None
         shown_goal = _prompt_goal(self.goal, self.spec.show_goal_graph)
         shown_feedback = shape_feedback(feedback, self.config.feedback)
+        privileged = is_privileged(self.planner)
         prompt = planner_prompt(
             self.config.mode, WorldState.from_graph(self.graph), shown_goal, k=k,
             instruction=self.instruction, history=self.history, feedback=shown_feedback,
             iteration=iteration)
         request = PlannerRequest(mode=self.config.mode, iteration=iteration, graph=self.graph,
-                                 goal=shown_goal, privileged_goal=self.goal,
+                                 goal=shown_goal,
+                                 privileged_goal=self.goal if privileged else None,
                                  instruction=self.instruction, feedback=shown_feedback,
                                  history=list(self.history), k=k, prompt=prompt)
         reply = self.planner.propose(request)

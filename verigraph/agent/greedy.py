@@ -16,7 +16,7 @@ is full. What it learns of a refusal depends on the loop's feedback mode:
 - `none`: nothing; it just asks itself again (with a new random order).
 
 It reads the goal its prompt shows; with only an instruction it uses the rule-based
-translator. Not privileged: it never reads `request.privileged_goal`.
+translator. Not privileged: the episode never hands it `request.privileged_goal`.
 """
 
 from __future__ import annotations
@@ -25,10 +25,10 @@ import random
 import re
 
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
+from verigraph.agent.goal_reader import GoalReader
 from verigraph.agent.models import PlannerReply, PlannerRequest
 from verigraph.agent.oracle import chunk
 from verigraph.agent.parsing import refused_action
-from verigraph.agent.translator import GoalReader
 from verigraph.graph.goal import Goal, check_goal, towers
 from verigraph.graph.state import WorldState
 

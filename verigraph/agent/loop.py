@@ -1,4 +1,4 @@
-"""Algorithm 1 (DESIGN section 6) as an agent that works only through the tools.
+"""Algorithm 1 (docs/design.md section 6) as an agent that works only through the tools.
 
 Iterative mode, per iteration: render the planner prompt for the current graph, ask the
 planner for at most k actions (or the end token), send them to `execute_actions`
@@ -40,7 +40,7 @@ from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.agent.environment import ToolEnvironment
 from verigraph.agent.episode import (
     MAX_ACTIONS_PER_CALL,
-    Episode,
+    EpisodeRun,
     EpisodeSpec,
     IterationHook,
     LoopConfig,
@@ -73,7 +73,7 @@ def split_proposal(actions: list[AnyAction], k: int | None
     return moves, done, rest
 
 
-def _iterate(ep: Episode) -> None:
+def _iterate(ep: EpisodeRun) -> None:
     config = ep.config
     tau = 0
     feedback: Feedback | None = None
@@ -146,7 +146,7 @@ def _iterate(ep: Episode) -> None:
     ep.trace.stop_reason = "iteration_limit"
 
 
-def _direct(ep: Episode) -> None:
+def _direct(ep: EpisodeRun) -> None:
     started = time.perf_counter()
     try:
         reply, prompt = ep.ask(1, None)
@@ -196,7 +196,7 @@ def run_episode(env: ToolEnvironment, planner: Planner, spec: EpisodeSpec,
     with `end_episode` and propagates.
     """
     config = config or LoopConfig()
-    ep = Episode(env, planner, spec, config, on_iteration)
+    ep = EpisodeRun(env, planner, spec, config, on_iteration)
     started = time.perf_counter()
     try:
         ep.start()

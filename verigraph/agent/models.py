@@ -45,8 +45,8 @@ class PlannerRequest(BaseModel):
     the structured fields, which carry exactly what the prompt shows: `goal` is the goal
     as the prompt states it (None when the prompt shows only an instruction), and
     `feedback` is what the prompt shows of the last failure. `privileged_goal` is the
-    verifier's ground truth; only the `oracle` reads it, which makes it a ceiling, not
-    a competitor.
+    verifier's ground truth, set only for a planner that declares `privileged = True`
+    (the `oracle`, a ceiling, not a competitor); every other planner receives None.
     """
 
     model_config = ConfigDict(extra="forbid")

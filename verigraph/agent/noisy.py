@@ -2,7 +2,7 @@
 
 An offline stand-in for an imperfect LLM, so the value of feedback and of the threshold
 t can be measured reproducibly. It plans towards the goal its prompt shows (language
-tasks: the rule-based translator's goal; it never reads the privileged goal) and then
+tasks: the rule-based translator's goal; it is never handed the privileged goal) and then
 spoils the proposal. Mistakes are drawn without asking the verifier, so some are
 refused and some are valid but useless (or harmful: they undo progress), like a real
 model's. Parameters (`NoiseProfile`):
@@ -31,10 +31,10 @@ from typing import Literal, get_args
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
+from verigraph.agent.goal_reader import GoalReader
 from verigraph.agent.models import PlannerReply, PlannerRequest
 from verigraph.agent.oracle import chunk, reference_plan
 from verigraph.agent.parsing import refused_action
-from verigraph.agent.translator import GoalReader
 from verigraph.graph.state import WorldState
 
 MistakeKind = Literal["random_move", "non_clear", "hallucinated", "wrong_relation",

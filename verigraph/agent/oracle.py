@@ -48,6 +48,7 @@ class OraclePlanner:
     """First k actions of an optimal plan; `done` once the goal holds."""
 
     name = "oracle"
+    privileged = True  # the episode hands it the ground-truth goal (planner.py)
 
     def propose(self, request: PlannerRequest) -> PlannerReply:
         plan, note = reference_plan(request, request.privileged_goal or request.goal)

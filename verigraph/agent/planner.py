@@ -2,6 +2,11 @@
 
 A planner turns a `PlannerRequest` into a `PlannerReply`. It never talks to the verifier
 itself: the loop does, so every backend is checked by exactly the same tools.
+
+Privilege is declared, not promised: a planner whose class sets `privileged = True`
+(only the oracle, the ceiling of every table) receives the ground-truth goal in
+`PlannerRequest.privileged_goal`; every other planner gets None there, so it cannot
+read what it must not. Wrappers (retries, transcripts, latency) pass the flag through.
 """
 
 from __future__ import annotations
@@ -24,3 +29,8 @@ class Planner(Protocol):
     def close(self) -> None:
         """Release connections or subprocesses; a closed planner is not used again."""
         ...
+
+
+def is_privileged(planner: object) -> bool:
+    """Whether `planner` declared itself privileged (`privileged = True`); default no."""
+    return getattr(planner, "privileged", False) is True

@@ -9,9 +9,9 @@ separately.
 
 from __future__ import annotations
 
+from verigraph.agent.goal_reader import GoalReader
 from verigraph.agent.models import PlannerReply, PlannerRequest
 from verigraph.agent.oracle import chunk, reference_plan
-from verigraph.agent.translator import GoalReader
 
 
 class RuleBasedPlanner:

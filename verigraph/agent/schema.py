@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from verigraph.graph.dictionary import SUPPORT_RELATIONS
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 
@@ -40,7 +41,7 @@ def action_schema(graph: SceneGraph | None = None, *, constrain_ids: bool = True
         ids = sorted(state.objects) if constrain_ids else []
         tangram = any(o.props.sides for o in state.objects.values())
         tabletop = not tangram
-        relations = [r for r in state.dictionary.relations if r in ("on", "in")] or relations
+        relations = [r for r in state.dictionary.relations if r in SUPPORT_RELATIONS] or relations
     variants: list[dict[str, Any]] = []
     if tabletop:
         variants.append(_object({

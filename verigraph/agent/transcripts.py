@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.agent.planner import Planner
+from verigraph.agent.planner import Planner, is_privileged
 
 VERSION = 1
 
@@ -40,6 +40,7 @@ class RecordingPlanner:
                  close_inner: bool = True) -> None:
         self.inner = inner
         self.name = inner.name
+        self.privileged = is_privileged(inner)
         self.path = transcript_path(directory, key)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self.path.write_text(json.dumps({"transcript": VERSION, "planner": inner.name,

@@ -6,6 +6,16 @@ before `ArmWorld.perform`; the world validates again on the graph it observes, a
 the `ArmController` gate checks, confirms, times and logs every command.
 """
 
+from verigraph.arm.approval import (
+    Approval,
+    NotApproved,
+    NoWayToAsk,
+    PreApproved,
+    ValidatedAction,
+    authorize,
+    confirm_scope,
+    scoped_confirm,
+)
 from verigraph.arm.audit import AuditLog
 from verigraph.arm.config import (
     DRIVER_NAMES,
@@ -18,8 +28,7 @@ from verigraph.arm.config import (
     load_arm_config,
     parse_arm_config,
 )
-from verigraph.arm.confirm import NotApproved, NoWayToAsk, confirm_scope, scoped_confirm
-from verigraph.arm.controller import Approval, ArmController, MotionOutcome
+from verigraph.arm.controller import ArmController, MotionOutcome
 from verigraph.arm.errors import (
     ArmBusyError,
     ArmConfigError,
@@ -49,9 +58,7 @@ from verigraph.arm.models import (
     Placement,
     Pose,
 )
-from verigraph.arm.preapproval import PreApproved
 from verigraph.arm.protocols import ArmDriver, ConfirmHook, ObjectLocator
-from verigraph.arm.receipt import ValidatedAction, authorize
 from verigraph.arm.world import ArmWorld, RelationCheck
 
 __all__ = [

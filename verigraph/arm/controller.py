@@ -13,7 +13,6 @@ latches). The stop path waits on nothing.
 from __future__ import annotations
 
 import contextlib
-import math
 import threading
 import time
 import weakref
@@ -23,9 +22,9 @@ from typing import Any, Literal
 
 from pydantic import BaseModel
 
+from verigraph.arm.approval import Approval, ConfirmationAnswer, ask_confirmation, redeem
 from verigraph.arm.audit import AuditLog, AuditWriteError
 from verigraph.arm.config import ArmConfig
-from verigraph.arm.confirm import ConfirmationAnswer, ask_confirmation
 from verigraph.arm.errors import (
     ArmBusyError,
     ArmConnectionError,
@@ -40,13 +39,10 @@ from verigraph.arm.latch import ArmLatch
 from verigraph.arm.models import ArmStatus, AuditOutcome, AuditRecord, ConfirmationRequest, Pose
 from verigraph.arm.planning import MotionPlan, PathSegment, describe
 from verigraph.arm.protocols import ArmDriver, ConfirmHook, PathCheck
-from verigraph.arm.receipt import redeem
 from verigraph.arm.safety import check_caps, check_path
 from verigraph.arm.threads import StatusPoll, start
 
 STOP_GRACE_S = 5.0  # how long a stopped driver may take to end its motion
-APPROVAL_TOLERANCE_M = 0.01
-APPROVAL_TOLERANCE_RAD = math.radians(5)
 
 
 class MotionOutcome(BaseModel):
@@ -54,23 +50,6 @@ class MotionOutcome(BaseModel):
 
     status: Literal["done", "recorded", "timeout", "failed", "cancelled"]
     detail: str | None = None
-
-
-class Approval:
-    """A human's yes to one set of waypoints; its controller accepts it once."""
-
-    __slots__ = ("__weakref__", "approved_at", "waypoints")
-
-    def __init__(self, waypoints: list[Pose]) -> None:
-        self.waypoints = waypoints
-        self.approved_at = time.time()
-
-    def covers(self, waypoints: list[Pose]) -> bool:
-        """True if `waypoints` are the approved ones (within 1 cm and 5 degrees)."""
-        return len(waypoints) == len(self.waypoints) and all(
-            math.dist(a.point(), b.point()) <= APPROVAL_TOLERANCE_M
-            and abs(math.remainder(a.yaw - b.yaw, math.pi)) <= APPROVAL_TOLERANCE_RAD
-            for a, b in zip(waypoints, self.waypoints, strict=True))
 
 
 class ArmController:

@@ -14,11 +14,11 @@ from dataclasses import dataclass
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from verigraph.arm.approval import ValidatedAction
 from verigraph.arm.config import ArmConfig
 from verigraph.arm.errors import InfeasibleMotionError, StaleLocationError
 from verigraph.arm.geometry import wrap_angle
 from verigraph.arm.models import Grasp, ObjectLocation, Placement, Pose
-from verigraph.arm.receipt import ValidatedAction
 
 
 @dataclass(frozen=True, slots=True)

@@ -6,7 +6,7 @@ PyBullet camera, a fixed layout, or a real depth camera can each feed any driver
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable, Collection
+from collections.abc import Callable, Collection
 from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
 from verigraph.arm.models import (
@@ -71,5 +71,5 @@ class PathCheck(Protocol):
     def close(self) -> None: ...
 
 
-ConfirmHook = Callable[[ConfirmationRequest], bool | Awaitable[bool]]
-"""Asked before every `real` motion; only a literal True lets the arm move."""
+ConfirmHook = Callable[[ConfirmationRequest], bool]
+"""Asked before every `real` motion, synchronously; only a literal True lets the arm move."""

@@ -19,6 +19,7 @@ import numpy as np
 
 from verigraph.actions.feedback import ConstraintId, Violation
 from verigraph.actions.model import AlignAction, MoveAction
+from verigraph.arm.approval import authorize
 from verigraph.arm.config import ArmConfig
 from verigraph.arm.controller import ArmController, MotionOutcome
 from verigraph.arm.errors import ArmError, ArmRefusal, ObjectNotFoundError
@@ -32,7 +33,6 @@ from verigraph.arm.models import (
 )
 from verigraph.arm.planning import MotionPlan, plan_motion
 from verigraph.arm.protocols import ObjectLocator
-from verigraph.arm.receipt import authorize
 from verigraph.arm.scene_inference import InferenceTolerances, infer_graph
 from verigraph.graph.dictionary import Dictionary, load_dictionary
 from verigraph.graph.goal import GraphDiff, diff
@@ -132,6 +132,17 @@ class ArmWorld:
     @property
     def stop_latched(self) -> bool:
         return self._controller.stop_latched
+
+    def extras_to_keep(self) -> dict[str, object]:
+        """What a stored episode keeps of this world: whether its stop is latched (the
+        flag, never a poll of the driver). The driver connection itself is never stored."""
+        return {"arm_latched": self.stop_latched}
+
+    def restore_extras(self, extras: dict[str, object]) -> None:
+        """On a fresh connection in the process that reloads the episode: latch the stop
+        again if it was latched when the record was written."""
+        if extras.get("arm_latched"):
+            self.stop("stop latched before the episode was reloaded")
 
     def log_confirmation(self, question: str, outcome: AuditOutcome, detail: str) -> None:
         """Record a human's answer given outside this world (MCP elicitation)."""

@@ -6,6 +6,12 @@ from the batch file's folder). Each output line is `{"id": ..., <the --json repo
 or `{"id": ..., "ok": false, "error": ..., "message": ..., "field": ..., "fix": ...}`
 for an item that cannot be validated; the batch always goes on. Exit 0 when every item
 is valid, 1 when any is invalid or failed, 2 when the batch file itself cannot be read.
+
+Every output line is strict JSON whatever the input line held: a line nested too deep,
+an integer too long to read, `NaN`/`Infinity` or an id that is not a short string or a
+64-bit integer gets an error line (id `"line N"`) and the batch goes on. PDDL items may
+name `"engine"` (auto, blocksworld, strips; default `--engine`); `--planbench` adds
+PlanBench task 3's verdict to every PDDL item's report.
 """
 
 from __future__ import annotations
@@ -26,9 +32,69 @@ from verigraph.errors import InputFileError, VeriGraphError
 
 PDDL_KEYS = ("domain", "problem", "plan")
 SCENE_KEYS = ("scene", "plan")
+MAX_LINE_CHARS = 1 << 20  # an item is a few paths; a longer line is refused unread
+MAX_ID_CHARS = 200
+INT64 = 1 << 63
 
 
-def _item_report(item: Any, base: Path, cache: dict[str, str]) -> dict[str, Any]:
+def _reject_constant(name: str) -> Any:
+    raise ValueError(f"{name} is not a JSON number")
+
+
+def _read_item(line: str, number: int) -> Any:
+    """The JSON value of one line, or InputFileError saying why it is not one."""
+    if len(line) > MAX_LINE_CHARS:
+        raise InputFileError(f"line {number} is {len(line):,} characters long", field="item",
+                             value=None, fix=f"keep batch lines under {MAX_LINE_CHARS:,} "
+                             "characters (an item names files; it does not hold them)")
+    try:
+        return json.loads(line, parse_constant=_reject_constant)
+    except json.JSONDecodeError as exc:
+        raise InputFileError(f"line {number} is not JSON: {exc.msg}", field="item",
+                             value=None, fix="one JSON object per line") from None
+    except RecursionError:
+        raise InputFileError(f"line {number} nests too deep to read", field="item",
+                             value=None, fix="write one flat JSON object per line") from None
+    except ValueError as exc:  # NaN/Infinity, or an integer beyond Python's digit limit
+        raise InputFileError(f"line {number} is not strict JSON: {str(exc)[:120]}",
+                             field="item", value=None,
+                             fix="use finite numbers of at most 18 digits") from None
+
+
+def _item_id(item: Any, number: int) -> Any:
+    """The item's id when it is a short string or a 64-bit integer, else InputFileError."""
+    if not isinstance(item, dict) or "id" not in item:
+        return f"line {number}"
+    value = item["id"]
+    if isinstance(value, str) and len(value) <= MAX_ID_CHARS:
+        return value
+    if isinstance(value, int) and not isinstance(value, bool) and -INT64 <= value < INT64:
+        return value
+    raise InputFileError("'id' must be a string of at most 200 characters or a 64-bit "
+                         "integer", field="id", value=None,
+                         fix='give "id" as a short string or an integer')
+
+
+def _error_line(item_id: Any, exc: BaseException) -> str:
+    if isinstance(exc, VeriGraphError):
+        body = exc.to_dict()
+    else:
+        body = {"error": "InternalError", "message": f"{type(exc).__name__}: {str(exc)[:200]}",
+                "field": None, "value": None,
+                "fix": "report this item; the batch went on without it"}
+    value = body.get("value")
+    if isinstance(value, float) and value != value or isinstance(value, str | int) \
+            and len(str(value)) > 200:
+        body["value"] = str(value)[:80]
+    try:
+        return json.dumps({"id": item_id, "ok": False, **body}, allow_nan=False)
+    except (ValueError, TypeError, RecursionError):
+        return json.dumps({"id": item_id, "ok": False, "error": body["error"],
+                           "message": str(body["message"])[:200]})
+
+
+def _item_report(item: Any, base: Path, cache: dict[str, str], planbench: bool,
+                 engine_default: str) -> dict[str, Any]:
     if not isinstance(item, dict):
         raise InputFileError("a batch item is a JSON object", field="item",
                              value=str(item)[:80], fix='write {"id": ..., "domain": ..., '
@@ -36,24 +102,30 @@ def _item_report(item: Any, base: Path, cache: dict[str, str]) -> dict[str, Any]
     def path(key: str) -> Path:
         value = item.get(key)
         if not isinstance(value, str) or not value:
-            raise InputFileError(f"'{key}' must be a file path", field=key, value=value,
-                                 fix=f"give '{key}' as a path string")
+            raise InputFileError(f"'{key}' must be a file path", field=key,
+                                 value=str(value)[:80], fix=f"give '{key}' as a path string")
         p = Path(value)
         return p if p.is_absolute() else base / p
 
     if "domain" in item or "problem" in item:
-        return pddl_report(path("domain"), path("problem"), path("plan"), cache)
+        engine = item.get("engine", engine_default)
+        if engine not in ("auto", "blocksworld", "strips"):
+            raise InputFileError("'engine' is auto, blocksworld or strips", field="engine",
+                                 value=str(engine)[:80], fix='drop "engine" or give "auto"')
+        return pddl_report(path("domain"), path("problem"), path("plan"), cache,
+                           engine=str(engine), planbench=planbench)
     if "scene" in item:
         goal = path("goal") if item.get("goal") is not None else None
         report = scene_report(path("scene"), path("plan"), goal)
         data: dict[str, Any] = report.model_dump(mode="json", exclude_none=True)
         return data
     raise InputFileError("a batch item needs domain/problem/plan or scene/plan[/goal]",
-                         field="item", value=", ".join(map(str, item)),
+                         field="item", value=", ".join(map(str, item))[:80],
                          fix='add "domain", "problem" and "plan", or "scene" and "plan"')
 
 
-def run_batch(batch: Path, *, progress: bool = True) -> int:
+def run_batch(batch: Path, *, progress: bool = True, planbench: bool = False,
+              engine: str = "auto") -> int:
     try:
         lines = batch.read_text(encoding="utf-8").splitlines()
     except (OSError, UnicodeDecodeError) as exc:
@@ -75,19 +147,14 @@ def run_batch(batch: Path, *, progress: bool = True) -> int:
             continue
         item_id: Any = f"line {number}"
         try:
-            try:
-                item = json.loads(line)
-            except json.JSONDecodeError as exc:
-                raise InputFileError(f"line {number} is not JSON: {exc.msg}", field="item",
-                                     value=line[:80], fix="one JSON object per line") from None
-            if isinstance(item, dict) and "id" in item:
-                item_id = item["id"]
-            report = _item_report(item, base, cache)
+            item = _read_item(line, number)
+            item_id = _item_id(item, number)
+            report = _item_report(item, base, cache, planbench, engine)
             all_valid = all_valid and bool(report["valid"])
-            out.write(json.dumps({"id": item_id, **report}) + "\n")
-        except VeriGraphError as exc:
+            out.write(json.dumps({"id": item_id, **report}, allow_nan=False) + "\n")
+        except Exception as exc:  # noqa: BLE001 - one item never ends the batch
             all_valid = False
-            out.write(json.dumps({"id": item_id, "ok": False, **exc.to_dict()}) + "\n")
+            out.write(_error_line(item_id, exc) + "\n")
     if bar is not None:
         bar.close()
     return EXIT_OK if all_valid else EXIT_NEGATIVE

@@ -34,6 +34,9 @@ def register(sub: Any) -> None:
                                    "expansions, seconds and MB).")
     s.add_argument("--scene", required=True)
     s.add_argument("--goal", required=True, help="goal file, or a predicate name (single_stack)")
+    s.add_argument("--dictionary", metavar="NAME|FILE.json",
+                   help="the scene's dictionary D: a built-in name, all, or a JSON file of "
+                        "your own labels {extends, objects} (see docs/worlds.md)")
     s.add_argument("--json", action="store_true")
     s.add_argument("--max-expansions", type=int, default=DEFAULT_MAX_EXPANSIONS,
                    help=f"search nodes to expand at most (default {DEFAULT_MAX_EXPANSIONS:,})")
@@ -56,6 +59,7 @@ def register(sub: Any) -> None:
 
 
 def run_solve(args: argparse.Namespace) -> int:
+    from verigraph.cli.scenes import with_dictionary
     from verigraph.graph.io import load_scene
     from verigraph.solver import solve
 
@@ -66,7 +70,7 @@ def run_solve(args: argparse.Namespace) -> int:
                                              value=value, fix=f"give {name} a positive number"),
                               args.json)
     try:
-        scene = load_scene(args.scene)
+        scene = with_dictionary(load_scene(args.scene), args.dictionary)
         goal = load_goal_arg(args.goal)
         result = solve(scene, goal, max_expansions=args.max_expansions,
                        time_limit=args.time_limit, memory_limit_mb=args.memory_limit,

@@ -9,9 +9,10 @@ from datetime import UTC, datetime
 from typing import Any
 
 from verigraph.errors import VeriGraphError
-from verigraph.tools.records import EpisodeRecord, action_texts
+from verigraph.tools.records import action_texts
 from verigraph.tools.store import DEFAULT_IDLE_TIMEOUT_S
 from verigraph.tools.store_backend import Backend
+from verigraph.tools.store_durable import decode_record
 from verigraph.tools.stores import STORE_HELP, default_store_url, open_backend, redacted
 
 
@@ -69,7 +70,7 @@ def _run(args: argparse.Namespace, backend: Backend) -> int:
             raise VeriGraphError(f"no stored episode '{args.episode_id[:48]}'",
                                  field="episode_id", value=args.episode_id[:48],
                                  fix="verigraph episodes list shows the stored ids")
-        record = EpisodeRecord.model_validate_json(text)
+        record = decode_record(text)  # a damaged record: one message, exit 2
         if args.json:
             print(record.model_dump_json())
             return 0

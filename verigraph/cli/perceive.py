@@ -52,7 +52,7 @@ def run_perceive(args: argparse.Namespace) -> int:
     image = read_image(args.image, limits)
     notes: list[str] = []
     if args.vlm_model:
-        from verigraph.perception.vlm import VlmClient, VlmConfig
+        from verigraph.perception import VlmClient, VlmConfig
 
         client = VlmClient(VlmConfig.from_env(model=args.vlm_model, base_url=args.vlm_base_url,
                                               response_format=args.vlm_response_format))
@@ -61,7 +61,7 @@ def run_perceive(args: argparse.Namespace) -> int:
         finally:
             client.close()
     else:
-        from verigraph.perception.clip import ClipSource, make_labeller
+        from verigraph.perception import ClipSource, make_labeller
 
         source = ClipSource(**{k: v for k, v in (("model", args.clip_model),
                                                  ("pretrained", args.clip_pretrained))

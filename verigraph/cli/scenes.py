@@ -3,6 +3,7 @@ built-in scene id (cup_on_book, ...), or (agent only) the generator as FAMILY:SE
 
 from __future__ import annotations
 
+import json
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -53,3 +54,56 @@ def scene_graph(scene: str) -> tuple[Any, Any]:
         return resolved.graph, None
     goal = BUILTIN_GOALS.get(resolved.builtin)
     return BUILTIN_SCENES[resolved.builtin](), goal() if goal else None
+
+
+MAX_DICTIONARY_FILE_BYTES = 1024 * 1024
+
+
+def dictionary_argument(value: str) -> Any:
+    """`--dictionary NAME|FILE.json`: a built-in dictionary (or all), or a JSON file
+    holding a dictionary of the user's own, in the inline form a scene may carry
+    (`{"extends": "tableware", "objects": {"laptop": {"surface": true}}}`, docs/worlds.md).
+    A file is fine here: the CLI runs on the user's machine (the MCP path stays inline).
+    Errors name the option and the problem, never the file's content."""
+    from pydantic import ValidationError
+
+    from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, InlineDictionary
+
+    names = (*BUILTIN_DICTIONARIES, "all")
+    if value in names:
+        return value
+    path = Path(value)
+    fix = (f"use one of {', '.join(names)}, or a .json file "
+           "{\"extends\": ..., \"objects\": {label: {surface, container, capacity}}}")
+    if not path.is_file():
+        raise VeriGraphError(f"'{value[:120]}' is neither a built-in dictionary nor a file",
+                             field="--dictionary", value=value[:120], fix=fix)
+    if path.stat().st_size > MAX_DICTIONARY_FILE_BYTES:
+        raise VeriGraphError(f"dictionary file {value[:120]} is over 1 MiB",
+                             field="--dictionary", value=value[:120], fix=fix)
+    try:
+        data = json.loads(path.read_bytes())
+        return InlineDictionary.model_validate(data)
+    except (ValueError, RecursionError, UnicodeDecodeError) as exc:
+        where = ""
+        if isinstance(exc, ValidationError) and exc.errors():
+            first = exc.errors()[0]
+            loc = ".".join(str(p) for p in first["loc"])
+            where = f": {loc + ': ' if loc else ''}{first['msg']}"
+        elif isinstance(exc, json.JSONDecodeError):
+            where = f": not JSON (line {exc.lineno} column {exc.colno})"
+        elif isinstance(exc, RecursionError):
+            where = ": nested too deeply"
+        raise VeriGraphError(f"dictionary file {value[:120]} is not a dictionary{where}",
+                             field="--dictionary", value=value[:120], fix=fix) from None
+
+
+def with_dictionary(graph: Any, value: str | None) -> Any:
+    """The scene graph with `--dictionary` as its dictionary (unchanged without it)."""
+    if value is None:
+        return graph
+    from verigraph.graph.model import SceneGraph
+
+    data = graph.model_dump(mode="python")
+    data["dictionary"] = dictionary_argument(value)
+    return SceneGraph.model_validate(data)

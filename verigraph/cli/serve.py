@@ -41,6 +41,12 @@ def register(sub: Any) -> None:
                    help="HTTP: seconds a client has to send its request body (default 30)")
     p.add_argument("--keep-alive", type=float, default=75.0, metavar="S",
                    help="HTTP: seconds an idle connection stays open (default 75)")
+    p.add_argument("--stream-idle", type=float, default=30.0, metavar="S",
+                   help="HTTP: seconds an event stream (GET /mcp) stays open with no event "
+                        "(default 30)")
+    p.add_argument("--streams-per-client", type=int, default=8, metavar="N",
+                   help="HTTP: event streams one client (token or address) may hold open "
+                        "(default 8)")
     p.add_argument("--tool-seconds", type=float, default=30.0, metavar="S",
                    help="wall-clock budget of one heavy tool call (default 30)")
     p.add_argument("--tool-mib", type=float, default=512.0, metavar="MIB",
@@ -72,6 +78,15 @@ def register(sub: Any) -> None:
                    help="arm configuration (YAML or JSON): driver, host, workspace, keep-out "
                         "zones, speeds, force cap, timeouts, mode (dry-run unless the file "
                         "says sim or real)")
+    p.add_argument("--workers", type=int, default=1,
+                   help="HTTP: server processes sharing the port (default 1); more than 1 "
+                        "needs a durable --store (sqlite or redis) and no arm")
+    p.add_argument("--check-above-kib", type=float, default=64.0, metavar="KIB",
+                   help="HTTP: bodies above this are parsed and checked in a child process, "
+                        "off the server's event loop (default 64; 0 turns that off)")
+    p.add_argument("--check-seconds", type=float, default=10.0, metavar="S",
+                   help="HTTP: seconds the process that checks a large body has to answer; "
+                        "later, it is killed and replaced and the caller told (default 10)")
     p.add_argument("--log-level", default="WARNING",
                    choices=("DEBUG", "INFO", "WARNING", "ERROR"), help="stderr log level")
     p.set_defaults(handler=run_serve)
@@ -80,11 +95,12 @@ def register(sub: Any) -> None:
 def run_serve(args: argparse.Namespace) -> int:
     logging.basicConfig(stream=sys.stderr, level=args.log_level,
                         format="%(asctime)s %(levelname)s %(name)s: %(message)s")
-    from verigraph.budget import Budget
+    from verigraph.budget import CallBudget
     from verigraph.server.app import build_server
     from verigraph.server.heavy import HeavyLimits, keep_loop_responsive
     from verigraph.server.http import HttpOptions, serve_http
     from verigraph.server.stdio import run_stdio
+    from verigraph.server.workers import listening_socket, run_workers
     from verigraph.tools.context import ToolConfig
     from verigraph.tools.executors import server_executor
     from verigraph.tools.stores import default_store_url, redacted
@@ -116,18 +132,27 @@ def run_serve(args: argparse.Namespace) -> int:
                         executor=executor, arm=arm, max_arm_worlds=args.max_arm_episodes,
                         store=store, idle_timeout_s=args.idle_timeout)
     numbers = (args.header_timeout, args.body_timeout, args.keep_alive, args.tool_seconds,
-               args.tool_mib, args.heavy_workers, args.per_client)
+               args.tool_mib, args.heavy_workers, args.per_client, args.stream_idle,
+               args.streams_per_client)
     if min(numbers) <= 0:
         raise VeriGraphError("timeouts, budgets and worker counts must be positive",
-                             field="--header-timeout/--body-timeout/--keep-alive/"
+                             field="--header-timeout/--body-timeout/--keep-alive/--stream-idle/"
+                                   "--streams-per-client/"
                                    "--tool-seconds/--tool-mib/--heavy-workers/--per-client",
                              value=None, fix="give each a positive number")
+    if args.workers < 1 or args.check_seconds <= 0 or args.check_above_kib < 0:
+        raise VeriGraphError("--workers, --check-seconds or --check-above-kib out of range",
+                             field="--workers/--check-seconds/--check-above-kib", value=None,
+                             fix="use --workers >= 1, --check-seconds > 0 and "
+                                 "--check-above-kib >= 0")
+    if args.workers > 1:
+        check_workers(args.transport, store, arm)
     heavy = HeavyLimits(workers=args.heavy_workers, per_client=args.per_client,
-                        budget=Budget(wall_s=args.tool_seconds, memory_mib=args.tool_mib))
-    server = build_server(config=config, log_level=args.log_level, heavy=heavy)
-    keep_loop_responsive()
+                        budget=CallBudget(wall_s=args.tool_seconds, memory_mib=args.tool_mib))
     max_bytes = int(args.max_body_mib * 1024 * 1024)
     if args.transport == "stdio":
+        server = build_server(config=config, log_level=args.log_level, heavy=heavy)
+        keep_loop_responsive()
         anyio.run(run_stdio, server, max_bytes)
         return 0
     options = HttpOptions(host=args.host, port=args.port, token=token,
@@ -135,9 +160,36 @@ def run_serve(args: argparse.Namespace) -> int:
                           allowed_hosts=tuple(args.allow_host),
                           header_timeout_s=args.header_timeout, body_timeout_s=args.body_timeout,
                           keep_alive_s=args.keep_alive, large_call_mib=args.tool_mib,
+                          large_call_deadline_s=args.check_seconds,
+                          large_call_bytes=int(args.check_above_kib * 1024),
+                          stream_idle_s=args.stream_idle,
+                          streams_per_client=args.streams_per_client,
                           max_connections=args.max_connections or default_max_connections())
-    serve_http(server, options, log_level=args.log_level)
+
+    def serve(sock: Any = None) -> None:
+        server = build_server(config=config, log_level=args.log_level, heavy=heavy)
+        keep_loop_responsive()
+        serve_http(server, options, log_level=args.log_level, sock=sock)
+
+    if args.workers > 1:  # each process builds its own server after the fork
+        return run_workers(args.workers, listening_socket(options.host, options.port), serve)
+    serve()
     return 0
+
+
+def check_workers(transport: str, store: str, arm: Any) -> None:
+    """Several server processes share episodes only through a durable store, and an arm
+    world lives in one process."""
+    if transport != "http":
+        raise VeriGraphError("--workers needs --transport http", field="--workers",
+                             value=transport, fix="drop --workers for stdio")
+    if store.startswith("memory:"):
+        raise VeriGraphError("--workers above 1 needs a store the processes share",
+                             field="--store", value=store,
+                             fix="use --store sqlite:///path/episodes.db or redis://host:port/db")
+    if arm is not None:
+        raise VeriGraphError("an arm is served by one process only", field="--workers",
+                             value=None, fix="drop --workers (or use --workers 1) with an arm")
 
 
 def default_max_connections() -> int:

@@ -3,7 +3,9 @@
 Three inputs, one report shape (the `--json` report of ValidationReport):
 
 * `--scene S --plan P [--goal G]`: a scene graph and a move/align plan;
-* `--domain D --problem P --plan PLAN`: PDDL blocks world (4-op with a hand, or 3-op);
+* `--domain D --problem P --plan PLAN`: PDDL: the native blocks world for any domain that
+  is one (under any names), STRIPS with typing, negative preconditions and equality
+  otherwise; `--planbench` adds PlanBench task 3's verdict and explanation;
 * `--batch FILE.jsonl`: one item per line, one JSON line out per item, errors per item.
 
 Heavy modules are imported where used, so validating a small plan starts quickly.
@@ -34,12 +36,22 @@ def register_validate(sub: Any) -> None:
     p.add_argument("--plan", help="plan file: text (one action per line) or JSON; with "
                                   "--domain: (op args) lines or PlanBench sentences")
     p.add_argument("--goal", help="goal file: a scene graph, {graph, partial} or {predicate}")
-    p.add_argument("--domain", help="PDDL blocks-world domain file (4-op with a hand, or 3-op)")
+    p.add_argument("--dictionary", metavar="NAME|FILE.json",
+                   help="the scene's dictionary D: a built-in name, all, or a JSON file of "
+                        "your own labels {extends, objects} (see docs/worlds.md)")
+    p.add_argument("--domain", help="PDDL domain file: any blocks world (native), or STRIPS "
+                                    "with :typing :negative-preconditions :equality")
     p.add_argument("--problem", help="PDDL problem file for --domain")
     p.add_argument("--batch", help="JSON Lines file: one {id, domain, problem, plan} or "
                                    "{id, scene, plan, goal} per line (paths relative to the "
                                    "file); prints one JSON report line per item")
     p.add_argument("--json", action="store_true", help="print the report as JSON")
+    p.add_argument("--planbench", action="store_true",
+                   help="PDDL: PlanBench task 3's verdict (valid / the action and its unmet "
+                        "precondition / the unmet goal); in JSON under 'planbench'")
+    p.add_argument("--engine", choices=("auto", "blocksworld", "strips"), default="auto",
+                   help="PDDL engine (default auto: native blocks world when the domain is "
+                        "one, else STRIPS)")
     p.add_argument("--all-errors", action="store_true",
                    help="continue past violations (skipping failed actions) to list all "
                         "(scene plans only)")
@@ -83,9 +95,11 @@ def emit_error(exc: VeriGraphError, as_json: bool) -> int:
 
 
 def pddl_report(domain: str | Path, problem: str | Path, plan: str | Path,
-                cache: dict[str, str] | None = None) -> dict[str, Any]:
+                cache: dict[str, str] | None = None, *, engine: str = "auto",
+                planbench: bool = False) -> dict[str, Any]:
     """The JSON-ready report for a PDDL item (domain texts cached per path in a batch)."""
-    from verigraph.actions.blocksworld.validate import validate_blocks_dict
+    from verigraph.actions.pddl.text import planbench_verdict
+    from verigraph.actions.pddl.validate import validate_pddl_dict
 
     key = str(domain)
     if cache is not None and key in cache:
@@ -94,8 +108,11 @@ def pddl_report(domain: str | Path, problem: str | Path, plan: str | Path,
         domain_text = read_text_file(domain, "domain")
         if cache is not None:
             cache[key] = domain_text
-    return validate_blocks_dict(domain_text, read_text_file(problem, "problem"),
-                                read_text_file(plan, "plan"))
+    data = validate_pddl_dict(domain_text, read_text_file(problem, "problem"),
+                              read_text_file(plan, "plan"), engine=engine)
+    if planbench:
+        data["planbench"] = planbench_verdict(data)
+    return data
 
 
 def scene_and_goal(scene: str | Path, goal: str | Path | None) -> tuple[Any, Any]:
@@ -134,33 +151,44 @@ def _usage_error(message: str, fix: str) -> VeriGraphError:
 def run_validate(args: argparse.Namespace) -> int:
     try:
         if args.batch:
-            if args.scene or args.domain or args.plan:
+            if args.scene or args.domain or args.plan or args.dictionary:
                 raise _usage_error("--batch takes no other input", "give only --batch FILE")
             from verigraph.cli.batch import run_batch
 
-            return run_batch(Path(args.batch), progress=not args.no_progress)
+            return run_batch(Path(args.batch), progress=not args.no_progress,
+                             planbench=args.planbench, engine=args.engine)
         if args.domain or args.problem:
             if not (args.domain and args.problem and args.plan) or args.scene or args.goal:
                 raise _usage_error("PDDL input needs --domain, --problem and --plan (no --scene "
                                    "or --goal: the goal is in the problem)",
                                    "verigraph validate --domain D.pddl --problem P.pddl --plan F")
-            if args.all_errors or args.html:
-                raise _usage_error("--all-errors and --html apply to scene plans only",
+            if args.all_errors or args.html or args.dictionary:
+                raise _usage_error("--all-errors, --html and --dictionary apply to scene "
+                                   "plans only",
                                    "drop --all-errors; PDDL plans stop at the first failure")
-            data = pddl_report(args.domain, args.problem, args.plan)
+            data = pddl_report(args.domain, args.problem, args.plan, engine=args.engine,
+                               planbench=args.planbench)
             if args.json:
                 print(json.dumps(data))
-                return EXIT_OK if data["valid"] else EXIT_NEGATIVE
-            from verigraph.actions.report import ValidationReport
+            else:
+                from verigraph.actions.pddl.text import report_text
 
-            report = ValidationReport.model_validate(data)
+                print(data["planbench"]["message"] if args.planbench else report_text(data))
+            return EXIT_OK if data["valid"] else EXIT_NEGATIVE
         else:
+            if args.planbench:
+                raise _usage_error("--planbench applies to PDDL input",
+                                   "give --domain, --problem and --plan")
             if not (args.scene and args.plan):
                 raise _usage_error("give --scene and --plan (or --domain/--problem/--plan, or "
                                    "--batch)", "verigraph validate --scene S.json --plan P.txt")
             from verigraph.actions.report import validate_plan
 
             graph, goal = scene_and_goal(args.scene, args.goal)
+            if args.dictionary:
+                from verigraph.cli.scenes import with_dictionary
+
+                graph = with_dictionary(graph, args.dictionary)
             plan_text = read_text_file(args.plan, "plan")
             report = validate_plan(graph, plan_text, goal, all_errors=args.all_errors)
             if args.html:

@@ -7,18 +7,39 @@ container), so the validator, the simulator and perception all read them from he
 from __future__ import annotations
 
 import difflib
+import json
 import re
+from collections import OrderedDict
 from functools import cache
 from importlib import resources
 from pathlib import Path
+from typing import Annotated, Any
 
 import yaml
-from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    PrivateAttr,
+    StringConstraints,
+    ValidationError,
+    field_validator,
+    model_validator,
+)
 
 from verigraph.errors import DictionaryError, InputFileError
 
 BUILTIN_DICTIONARIES = ("blocks", "kitchen", "tableware", "tangram")
-KNOWN_RELATIONS = ("on", "in", "touches")
+# The relations by which one object rests on or in another (tangram's `touches` is not one).
+SUPPORT_RELATIONS = ("on", "in")
+
+# Bounds of a dictionary given inline by a client: it is stored with the episode and
+# shown in texts and prompts, so it stays the size of a tabletop's vocabulary.
+MAX_USER_LABELS = 200
+MAX_LABEL_LENGTH = 64
+MAX_SYNONYMS = 16
+MAX_INLINE_BYTES = 32_768
+ROLE_KEYS = ("movable", "surface", "container")
 
 _SEPARATORS = re.compile(r"[\s\-]+")
 _NUMBER_SUFFIX = re.compile(r"_\d+$")
@@ -64,14 +85,218 @@ def canonical_token(name: str) -> str:
     return _SEPARATORS.sub("_", name.strip().lower())
 
 
+def _props_text(props: ObjectProperties) -> str:
+    kinds = [k for k, on in (("surface", props.surface), ("container", props.container)) if on]
+    text = " ".join(["movable" if props.movable else "fixed", *kinds])
+    if kinds:
+        text += f", capacity {'unlimited' if props.capacity is None else props.capacity}"
+    return text
+
+
+def open_label_properties(attrs: dict[str, Any]) -> ObjectProperties | None:
+    """Properties of a label no dictionary knows, from the role its node's attrs declare.
+
+    None when the attrs declare no role (none of movable, surface, container). The
+    defaults: movable true, surface and container false; a movable surface or container
+    carries 1 object unless `capacity` says otherwise (as a block does), a fixed one any
+    number (as a table does). Raises DictionaryError for a role of the wrong type.
+    """
+    if not any(key in attrs for key in ROLE_KEYS):
+        return None
+    base = ObjectProperties()
+    movable = attrs.get("movable", True)
+    if "capacity" not in attrs and movable is True and (
+            attrs.get("surface") is True or attrs.get("container") is True):
+        base = ObjectProperties(capacity=1)
+    return base.overridden(attrs)
+
+
+LabelName = Annotated[str, StringConstraints(
+    strict=True, min_length=1, max_length=MAX_LABEL_LENGTH, pattern=r"^[A-Za-z0-9][\w \-]*$")]
+
+
+class UserObject(BaseModel):
+    """One kind of object a client defines: its role, synonyms and how it looks."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    synonyms: tuple[LabelName, ...] = Field(default=(), max_length=MAX_SYNONYMS)
+    movable: bool = Field(default=True, strict=True)
+    surface: bool = Field(default=False, strict=True)
+    container: bool = Field(default=False, strict=True)
+    capacity: int | None = Field(default=None, ge=0, le=1000, strict=True)
+    width: float | None = Field(default=None, gt=0, le=500)
+    height: float | None = Field(default=None, gt=0, le=500)
+    color: str | None = Field(default=None, max_length=32)
+    shape: str | None = Field(default=None, max_length=32)
+
+    @field_validator("synonyms", mode="before")
+    @classmethod
+    def _strings(cls, value: Any) -> Any:
+        if isinstance(value, list | tuple):
+            for item in value:
+                if not isinstance(item, str):
+                    raise ValueError(f"synonyms are words, got {str(item)[:32]!r} (fix: write "
+                                     'each synonym as a string, e.g. ["notebook computer"])')
+        return value
+
+
+def _json_size(value: object) -> int:
+    try:
+        return len(json.dumps(value, default=str))
+    except (TypeError, ValueError, RecursionError):
+        return MAX_INLINE_BYTES + 1
+
+
+class InlineDictionary(BaseModel):
+    """A dictionary D given by the client: its own labels, optionally extending a built-in.
+
+    `{"extends": "tableware", "objects": {"laptop": {"surface": true, "capacity": 1}}}`.
+    Without `extends` only the client's labels are known. A label or synonym may not give
+    a built-in word other properties (one name, one kind: a node overrides properties in
+    its attrs instead).
+    """
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    name: str | None = Field(default=None, min_length=1, max_length=32,
+                             pattern=r"^[A-Za-z0-9][\w\-]*$", strict=True,
+                             description="shown in texts; default: <extends>+yours")
+    extends: str | None = Field(default=None, max_length=32, strict=True,
+                                description=f"{', '.join(BUILTIN_DICTIONARIES)} or all")
+    objects: dict[LabelName, UserObject] = Field(min_length=1)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _bounded(cls, data: Any) -> Any:
+        """Refuse a huge dictionary before its labels are validated one by one."""
+        if not isinstance(data, dict):
+            return data
+        objects = data.get("objects")
+        if isinstance(objects, dict) and any(not isinstance(k, str) for k in objects):
+            raise ValueError("every label in objects must be a string (fix: name each kind "
+                             'as text, e.g. "laptop")')
+        if isinstance(objects, dict) and len(objects) > MAX_USER_LABELS:
+            raise ValueError(f"objects has {len(objects)} labels; at most {MAX_USER_LABELS} "
+                             "are accepted (fix: keep the labels of this scene only)")
+        size = _json_size(data)
+        if size > MAX_INLINE_BYTES:
+            raise ValueError(f"the dictionary is {size} bytes as JSON; at most "
+                             f"{MAX_INLINE_BYTES} are accepted (fix: fewer labels or synonyms, "
+                             f"at most {MAX_SYNONYMS} synonyms each)")
+        return data
+
+    @field_validator("extends")
+    @classmethod
+    def _known_base(cls, value: str | None) -> str | None:
+        if value is not None and value not in (*BUILTIN_DICTIONARIES, "all"):
+            raise ValueError(f"no built-in dictionary '{value[:32]}' to extend (fix: use one "
+                             f"of {', '.join(BUILTIN_DICTIONARIES)}, all, or leave extends out)")
+        return value
+
+    @model_validator(mode="after")
+    def _one_name_one_kind(self) -> InlineDictionary:
+        words = _builtin_words()
+        mine: dict[str, str] = {}
+        for label, obj in self.objects.items():
+            props = ObjectProperties(**obj.model_dump())
+            for word in (label, *obj.synonyms):
+                token = canonical_token(word)
+                if token in mine and mine[token] != label:
+                    raise ValueError(f"'{word}' names both {mine[token]} and {label} (fix: "
+                                     "give each word to one label only)")
+                mine[token] = label
+                for home, canonical, theirs in words.get(token, ()):
+                    if word == label and _same_kind(props, theirs):
+                        continue
+                    what = "label" if word == label else f"synonym of {label}"
+                    raise ValueError(
+                        f"{what} '{word}' is the built-in {canonical} ({home} dictionary: "
+                        f"{_props_text(theirs)}) with other properties ({_props_text(props)})"
+                        f" (fix: call yours something else, e.g. my_{token}, or use "
+                        f"{canonical} and override properties in a node's attrs)")
+        return self
+
+    def build(self) -> Dictionary:
+        return _built(self.model_dump_json())
+
+
+def _same_kind(a: ObjectProperties, b: ObjectProperties) -> bool:
+    keys = ("movable", "surface", "container", "capacity")
+    return all(getattr(a, k) == getattr(b, k) for k in keys)
+
+
+@cache
+def _builtin_words() -> dict[str, tuple[tuple[str, str, ObjectProperties], ...]]:
+    """Every built-in word (name or synonym) -> (dictionary, canonical name, properties)."""
+    words: dict[str, list[tuple[str, str, ObjectProperties]]] = {}
+    for name in BUILTIN_DICTIONARIES:
+        d = builtin_dictionary(name)
+        for canonical, props in d.objects.items():
+            for word in (canonical, *props.synonyms):
+                words.setdefault(canonical_token(word), []).append((name, canonical, props))
+    return {k: tuple(v) for k, v in words.items()}
+
+
+_BUILT: OrderedDict[str, Dictionary] = OrderedDict()
+_MAX_BUILT = 64
+
+
+def _built(spec_json: str) -> Dictionary:
+    """The Dictionary of an inline spec; the last few are kept (texts rebuild it often)."""
+    hit = _BUILT.get(spec_json)
+    if hit is not None:
+        _BUILT.move_to_end(spec_json)
+        return hit
+    spec = InlineDictionary.model_validate_json(spec_json)
+    base = load_dictionary(spec.extends) if spec.extends is not None else None
+    objects = dict(base.objects) if base is not None else {}
+    user = []
+    for label, obj in spec.objects.items():
+        canonical = canonical_token(label)
+        objects[canonical] = ObjectProperties(**obj.model_dump())
+        user.append(canonical)
+    name = spec.name or (f"{spec.extends}+yours" if spec.extends else "yours")
+    built = Dictionary(name=name, relations=base.relations if base else SUPPORT_RELATIONS,
+                       objects=objects, inline=spec, user_labels=tuple(user),
+                       ambiguous=dict(base.ambiguous) if base else {})
+    _BUILT[spec_json] = built
+    while len(_BUILT) > _MAX_BUILT:
+        _BUILT.popitem(last=False)
+    return built
+
+
+def parse_inline(data: object, *, field: str = "dictionary") -> InlineDictionary:
+    """An InlineDictionary from JSON data, or a DictionaryError naming the field and fix."""
+    try:
+        return InlineDictionary.model_validate(data)
+    except ValidationError as exc:
+        err = exc.errors()[0]
+        where = ".".join([field, *(str(p) for p in err["loc"])])
+        message = str(err["msg"]).removeprefix("Value error, ")
+        fix = "see docs/worlds.md, e.g. {\"extends\": \"tableware\", \"objects\": " \
+              "{\"laptop\": {\"surface\": true, \"capacity\": 1}}}"
+        if " (fix: " in message:
+            message, fix = message.split(" (fix: ", 1)
+            fix = fix.removesuffix(")")
+        raise DictionaryError(message, field=where, value=None, fix=fix) from None
+
+
 class Dictionary(BaseModel):
     """A named set of object kinds with synonyms and the relations R that go with them."""
 
     model_config = ConfigDict(extra="forbid", frozen=True)
 
     name: str
-    relations: tuple[str, ...] = ("on", "in")
+    relations: tuple[str, ...] = SUPPORT_RELATIONS
     objects: dict[str, ObjectProperties]
+    inline: InlineDictionary | None = Field(
+        default=None, description="the client's own dictionary this one was built from")
+    user_labels: tuple[str, ...] = Field(
+        default=(), description="labels the client defined (inline or in a node's attrs)")
+    ambiguous: dict[str, tuple[str, ...]] = Field(
+        default_factory=dict, description="words that name different kinds in the "
+                                          "dictionaries merged here -> the choices")
     _lookup: dict[str, str] = PrivateAttr(default_factory=dict)
 
     def model_post_init(self, __context: object) -> None:
@@ -80,14 +305,25 @@ class Dictionary(BaseModel):
             lookup[canonical_token(canonical)] = canonical
             for synonym in props.synonyms:
                 lookup.setdefault(canonical_token(synonym), canonical)
+        for token in self.ambiguous:
+            if token not in self.objects:
+                lookup.pop(token, None)
         self._lookup = lookup
 
     @property
     def names(self) -> list[str]:
         return sorted(self.objects)
 
+    def reference(self) -> str | InlineDictionary | None:
+        """What a scene graph names this dictionary by (the union: nothing)."""
+        if self.inline is not None:
+            return self.inline
+        return None if self.name == "all" else self.name
+
     def resolve(self, name: str) -> str | None:
-        """Canonical name for `name` (synonyms, case, spaces, `_2` suffixes), or None."""
+        """Canonical name for `name` (synonyms, case, spaces, `_2` suffixes), or None.
+
+        None also for a word that names different kinds here (see `choices`)."""
         lookup = self._lookup
         token = canonical_token(name)
         if token in lookup:
@@ -95,11 +331,64 @@ class Dictionary(BaseModel):
         stripped = _NUMBER_SUFFIX.sub("", token)
         return lookup.get(stripped)
 
+    def choices(self, name: str) -> tuple[str, ...]:
+        """The kinds an ambiguous word may mean (empty when it is not ambiguous)."""
+        token = canonical_token(name)
+        return self.ambiguous.get(token) or self.ambiguous.get(
+            _NUMBER_SUFFIX.sub("", token), ())
+
+    def reading(self, name: str) -> str | None:
+        """How a label was read when it is not written as its canonical name, e.g.
+        `box read as block (synonym, blocks dictionary)`; None when nothing changed."""
+        canonical = self.resolve(name)
+        if canonical is None or name == canonical:
+            return None
+        token = canonical_token(name)
+        stripped = _NUMBER_SUFFIX.sub("", token)
+        if token == canonical or (token not in self._lookup and stripped == canonical):
+            how = "case and spacing" if token == canonical else "number suffix dropped"
+        else:
+            how = "synonym"
+        return f"{name} read as {canonical} ({how}, {self.home(canonical)})"
+
+    def home(self, canonical: str) -> str:
+        """`your label`, or the dictionary a label comes from (`kitchen dictionary`)."""
+        if canonical in self.user_labels:
+            return "your label"
+        if self.name in BUILTIN_DICTIONARIES:
+            return f"{self.name} dictionary"
+        homes = [n for n in BUILTIN_DICTIONARIES if canonical in builtin_dictionary(n).objects]
+        return f"{' and '.join(homes) or self.name} dictionary"
+
+    def with_open_labels(self, labels: dict[str, ObjectProperties]) -> Dictionary:
+        """This dictionary plus labels that nodes declared in their attrs."""
+        new = {k: v for k, v in labels.items() if k not in self.objects}
+        if not new:
+            return self
+        # Built anew (not model_copy): the word lookup is made at construction.
+        return Dictionary(name=self.name, relations=self.relations,
+                          objects={**self.objects, **new}, inline=self.inline,
+                          user_labels=(*self.user_labels, *new), ambiguous=self.ambiguous)
+
+    def user_lines(self, limit: int = 20) -> list[str]:
+        """`laptop: movable surface, capacity 1` for each of the client's labels."""
+        lines = [f"{label}: {_props_text(self.objects[label])}"
+                 for label in self.user_labels[:limit] if label in self.objects]
+        if len(self.user_labels) > limit:
+            lines.append(f"... and {len(self.user_labels) - limit} more of your labels")
+        return lines
+
     def normalise(self, name: str, *, field: str = "label") -> str:
         """Canonical name, or a DictionaryError listing the nearest known names."""
         canonical = self.resolve(name)
         if canonical is not None:
             return canonical
+        choices = self.choices(name)
+        if choices:
+            raise DictionaryError(
+                f"'{name}' is ambiguous in the {self.name} dictionary: it may mean "
+                f"{' or '.join(choices)}", field=field, value=name,
+                fix=f"write one of {', '.join(choices)}, or name the dictionary you mean")
         examples = self.nearest(name) or self.names[:5]
         raise DictionaryError(
             f"'{name}' is not in the {self.name} dictionary", field=field, value=name,
@@ -119,6 +408,25 @@ class Dictionary(BaseModel):
         return self.objects[self.normalise(label)]
 
 
+def merge_dictionaries(name: str, parts: list[Dictionary]) -> Dictionary:
+    """Several dictionaries as one. A word (name or synonym) that names different kinds
+    in different parts is kept as ambiguous with its choices, never mapped one way."""
+    objects: dict[str, ObjectProperties] = {}
+    relations: list[str] = []
+    meanings: dict[str, dict[str, None]] = {}
+    for d in parts:
+        for rel in d.relations:
+            if rel not in relations:
+                relations.append(rel)
+        for label, props in d.objects.items():
+            objects.setdefault(label, props)
+            for word in (label, *props.synonyms):
+                meanings.setdefault(canonical_token(word), {})[label] = None
+    ambiguous = {token: tuple(kinds) for token, kinds in meanings.items() if len(kinds) > 1}
+    return Dictionary(name=name, relations=tuple(relations), objects=objects,
+                      ambiguous=ambiguous)
+
+
 @cache
 def builtin_dictionary(name: str) -> Dictionary:
     """One of the dictionaries shipped in `verigraph/graph/data`."""
@@ -133,24 +441,18 @@ def builtin_dictionary(name: str) -> Dictionary:
 @cache
 def union_dictionary() -> Dictionary:
     """All built-in dictionaries merged: what applies when a scene names none."""
-    objects: dict[str, ObjectProperties] = {}
-    relations: list[str] = []
-    for name in BUILTIN_DICTIONARIES:
-        d = builtin_dictionary(name)
-        for rel in d.relations:
-            if rel not in relations:
-                relations.append(rel)
-        for label, props in d.objects.items():
-            objects.setdefault(label, props)
-    return Dictionary(name="all", relations=tuple(relations), objects=objects)
+    return merge_dictionaries("all", [builtin_dictionary(n) for n in BUILTIN_DICTIONARIES])
 
 
-def load_dictionary(spec: str | Path | Dictionary | None) -> Dictionary:
-    """Resolve a dictionary given by built-in name, file path, model, or None (the union)."""
+def load_dictionary(spec: str | Path | Dictionary | InlineDictionary | None) -> Dictionary:
+    """Resolve a dictionary given by built-in name, file path, model, inline spec, or None
+    (the union)."""
     if spec is None:
         return union_dictionary()
     if isinstance(spec, Dictionary):
         return spec
+    if isinstance(spec, InlineDictionary):
+        return spec.build()
     if isinstance(spec, str) and spec in BUILTIN_DICTIONARIES:
         return builtin_dictionary(spec)
     if isinstance(spec, str) and spec == "all":

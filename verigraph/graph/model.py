@@ -6,14 +6,20 @@ supports or contains the source. Tangram contacts carry the side index on each p
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, WithJsonSchema
+
+from verigraph.graph.dictionary import InlineDictionary
 
 if TYPE_CHECKING:  # networkx loads only where a graph is converted (fast CLI start-up)
     import networkx as nx
 
 ID_PATTERN = r"^[A-Za-z0-9_][A-Za-z0-9_.\-]*$"
+# A built-in dictionary's name, or the client's own (published as a plain object: the
+# full model is validated all the same, and its schema would repeat in every tool).
+DictionaryRef = Annotated[str | InlineDictionary | None,
+                          WithJsonSchema({"type": ["string", "object", "null"]})]
 
 
 class Node(BaseModel):
@@ -53,13 +59,13 @@ class Edge(BaseModel):
 
 
 class SceneGraph(BaseModel):
-    """A scene as JSON (DESIGN section 2). Checked by `check_well_formed` before use."""
+    """A scene as JSON (docs/design.md section 2). Checked by `check_well_formed` before use."""
 
     model_config = ConfigDict(extra="forbid")
 
     nodes: list[Node] = Field(default_factory=list)
     edges: list[Edge] = Field(default_factory=list)
-    dictionary: str | None = Field(
+    dictionary: DictionaryRef = Field(
         default=None, description="dictionary D; none = all built-ins")
 
     def node(self, node_id: str) -> Node | None:

@@ -11,9 +11,14 @@ from dataclasses import dataclass
 
 from verigraph.errors import MalformedGraphError
 from verigraph.graph.bulk import collector_paused
-from verigraph.graph.dictionary import Dictionary, ObjectProperties, load_dictionary
+from verigraph.graph.dictionary import (
+    SUPPORT_RELATIONS,
+    Dictionary,
+    ObjectProperties,
+    load_dictionary,
+)
 from verigraph.graph.model import Edge, Node, SceneGraph
-from verigraph.graph.wellformed import check_and_resolve
+from verigraph.graph.wellformed import check_and_resolve, open_labels
 
 Side = tuple[str, int]
 
@@ -36,7 +41,7 @@ class WorldState:
 
     def __init__(self, dictionary: Dictionary) -> None:
         self.dictionary = dictionary
-        self.move_relations = tuple(r for r in dictionary.relations if r in ("on", "in"))
+        self.move_relations = tuple(r for r in dictionary.relations if r in SUPPORT_RELATIONS)
         self.objects: dict[str, ObjectInfo] = {}
         self.support: dict[str, tuple[str, str]] = {}
         self.carried: dict[str, dict[str, str]] = {}
@@ -53,7 +58,7 @@ class WorldState:
             problems, resolved = check_and_resolve(graph, d, partial=partial)
             if problems:
                 raise MalformedGraphError(problems)
-            return cls(d)._index(graph, resolved)
+            return cls(open_labels(d, resolved))._index(graph, resolved)
 
     def _index(self, graph: SceneGraph, resolved: dict[str, tuple[str, ObjectProperties]]
                ) -> WorldState:
@@ -173,6 +178,5 @@ class WorldState:
     def to_graph(self) -> SceneGraph:
         """Back to the boundary format (canonical labels, stable order)."""
         nodes = [Node(id=o.id, label=o.label, attrs=dict(o.attrs)) for o in self.objects.values()]
-        name = self.dictionary.name
         return SceneGraph(nodes=nodes, edges=self.edges(),
-                          dictionary=None if name == "all" else name).canonical()
+                          dictionary=self.dictionary.reference()).canonical()

@@ -14,8 +14,9 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.graph.dictionary import Dictionary, canonical_token
-from verigraph.graph.model import ID_PATTERN, Edge, Node, SceneGraph
+from verigraph.errors import DictionaryError
+from verigraph.graph.dictionary import Dictionary, canonical_token, open_label_properties
+from verigraph.graph.model import ID_PATTERN, DictionaryRef, Edge, Node, SceneGraph
 from verigraph.graph.wellformed import GraphProblem, check_well_formed
 
 RELATION_SYNONYMS = {
@@ -51,13 +52,13 @@ class SubmittedEdge(BaseModel):
 
 
 class SubmittedGraph(BaseModel):
-    """A scene graph in the DESIGN format, before normalisation."""
+    """A scene graph in the format of docs/design.md section 2, before normalisation."""
 
     model_config = ConfigDict(extra="forbid")
 
     nodes: list[SubmittedNode] = Field(max_length=500)
     edges: list[SubmittedEdge] = Field(default_factory=list, max_length=2000)
-    dictionary: str | None = Field(default=None, max_length=32)
+    dictionary: DictionaryRef = None
 
 
 class Rename(BaseModel):
@@ -66,6 +67,7 @@ class Rename(BaseModel):
     field: str
     before: str
     after: str
+    reading: str | None = None  # a label's: box read as block (synonym, blocks dictionary)
 
 
 def normalise_id(raw: str) -> str:
@@ -99,9 +101,12 @@ def normalise_graph(graph: SubmittedGraph, dictionary: Dictionary
             renames.append(Rename(field=f"nodes[{i}].id", before=raw.id, after=node_id))
         id_map.setdefault(raw.id, node_id)
         id_map.setdefault(node_id, node_id)
-        label = dictionary.resolve(raw.label) or raw.label
+        label = dictionary.resolve(raw.label) or _own_label(raw)
         if label != raw.label:
-            renames.append(Rename(field=f"nodes[{i}].label", before=raw.label, after=label))
+            renames.append(Rename(field=f"nodes[{i}].label", before=raw.label, after=label,
+                                  reading=dictionary.reading(raw.label)
+                                  or f"{raw.label} read as {label} (case and spacing, your "
+                                     "label)"))
         nodes.append(Node.model_construct(id=node_id, label=label, attrs=dict(raw.attrs)))
     by_label: dict[str, list[str]] = {}
     for node in nodes:
@@ -122,8 +127,18 @@ def normalise_graph(graph: SubmittedGraph, dictionary: Dictionary
                                           source_side=raw_edge.source_side,
                                           target_side=raw_edge.target_side))
     scene = SceneGraph.model_construct(
-        nodes=nodes, edges=edges, dictionary=None if dictionary.name == "all" else dictionary.name)
+        nodes=nodes, edges=edges, dictionary=dictionary.reference())
     return scene, renames, problems
+
+
+def _own_label(node: SubmittedNode) -> str:
+    """A label no dictionary knows: in its canonical form when the attrs declare a role
+    (the client's own kind), else as written (refused later with how to declare one)."""
+    try:
+        declared = open_label_properties(node.attrs)
+    except DictionaryError:
+        declared = None
+    return canonical_token(node.label) if declared is not None else node.label
 
 
 def _endpoint(name: str, id_map: dict[str, str], by_label: dict[str, list[str]],

@@ -14,15 +14,23 @@ from pydantic import BaseModel
 
 from verigraph.budget import checkpoint
 from verigraph.graph.cycles import find_single_support_cycle, find_support_cycle
-from verigraph.graph.dictionary import Dictionary, ObjectProperties
+from verigraph.graph.dictionary import (
+    Dictionary,
+    ObjectProperties,
+    canonical_token,
+    open_label_properties,
+)
 from verigraph.graph.model import Edge, SceneGraph
 
-SUPPORT_RELATIONS = ("on", "in")
 # Spelling suggestions cost a fuzzy match each; past this many unknown labels the fix
 # names a few known labels instead, so a large bad graph is refused in linear time.
 MAX_SPELLING_SUGGESTIONS = 20
-__all__ = ["GraphProblem", "check_and_resolve", "check_well_formed",
-           "find_single_support_cycle", "find_support_cycle", "resolve_properties"]
+# How a client declares a label of its own, shown wherever an unknown label is refused.
+DECLARE_EXAMPLE = ('or declare your own: {"id": "laptop", "label": "laptop", "attrs": '
+                   '{"movable": true, "surface": true, "capacity": 1}}')
+__all__ = ["DECLARE_EXAMPLE", "GraphProblem", "check_and_resolve", "check_well_formed",
+           "find_single_support_cycle", "find_support_cycle", "label_readings", "open_labels",
+           "resolve_properties"]
 
 
 class GraphProblem(BaseModel):
@@ -48,6 +56,24 @@ def resolve_properties(graph: SceneGraph, dictionary: Dictionary,
         else:
             label = labels[node.label] = dictionary.resolve(node.label)
         if label is None:
+            choices = dictionary.choices(node.label)
+            if choices:
+                problems.append(GraphProblem(
+                    rule="ambiguous_label", node=node.id, field=f"nodes[{i}].label",
+                    message=f"node '{node.id}' has label '{node.label}', which means "
+                            f"{' or '.join(choices)} in the {dictionary.name} dictionary",
+                    fix=f"write one of {', '.join(choices)}, or name the dictionary you mean"))
+                continue
+            try:
+                declared = open_label_properties(node.attrs)
+            except Exception as exc:  # DictionaryError: a role of the wrong type
+                problems.append(GraphProblem(rule="bad_attribute", node=node.id,
+                                             field=f"nodes[{i}].attrs", message=str(exc),
+                                             fix="give roles as booleans, e.g. surface: true"))
+                continue
+            if declared is not None:  # the client's own kind of object
+                resolved.setdefault(node.id, (canonical_token(node.label), declared))
+                continue
             unknown += 1
             near = dictionary.nearest(node.label) if unknown <= MAX_SPELLING_SUGGESTIONS else []
             known = known or dictionary.names[:5]
@@ -55,7 +81,8 @@ def resolve_properties(graph: SceneGraph, dictionary: Dictionary,
                 rule="unknown_label", node=node.id, field=f"nodes[{i}].label",
                 message=f"node '{node.id}' has label '{node.label}', which is not in the "
                         f"{dictionary.name} dictionary",
-                fix=f"use a known label such as {', '.join(near or known)}"))
+                fix=f"use a known label such as {', '.join(near or known)}, "
+                    + DECLARE_EXAMPLE))
             continue
         try:
             props = dictionary.objects[label]
@@ -68,6 +95,35 @@ def resolve_properties(graph: SceneGraph, dictionary: Dictionary,
             continue
         resolved.setdefault(node.id, (label, props))
     return resolved
+
+
+def open_labels(dictionary: Dictionary, resolved: dict[str, tuple[str, ObjectProperties]]
+                ) -> Dictionary:
+    """`dictionary` plus the labels nodes declared in their attrs (the first node's role
+    gives a label's entry; every node keeps its own properties all the same)."""
+    objects = dictionary.objects
+    found: dict[str, ObjectProperties] = {}
+    for label, props in resolved.values():
+        if label not in objects and label not in found:
+            found[label] = props
+    return dictionary.with_open_labels(found) if found else dictionary
+
+
+MAX_READINGS = 40
+
+
+def label_readings(graph: SceneGraph, dictionary: Dictionary) -> list[str]:
+    """Every label not written as its canonical name, once per spelling: `box read as
+    block (synonym, blocks dictionary)`. `dictionary` includes the graph's own labels
+    (WorldState.dictionary), so those read as `your label`."""
+    readings: dict[str, str | None] = {}
+    for node in graph.nodes:
+        if node.label not in readings:
+            readings[node.label] = dictionary.reading(node.label)
+    found = [text for text in readings.values() if text]
+    if len(found) > MAX_READINGS:
+        found = [*found[:MAX_READINGS], f"... and {len(found) - MAX_READINGS} more"]
+    return found
 
 
 def check_well_formed(graph: SceneGraph, dictionary: Dictionary, *,

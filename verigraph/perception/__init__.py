@@ -13,13 +13,13 @@ detected objects and timings. Labellers: the default colour/shape one, or OpenCL
 path (`VlmClient`) asks an OpenAI-compatible vision model instead.
 """
 
-from verigraph.perception.clip import ClipSource, make_labeller
 from verigraph.perception.config import ImageLimits, PerceptionConfig
 from verigraph.perception.imageio import ImageInputError, decode_image, read_image
+from verigraph.perception.label.clip import ClipSource, make_labeller
+from verigraph.perception.label.vlm import VlmClient, VlmConfig, VlmError
 from verigraph.perception.metrics import GraphScore, score_graph, summarise
 from verigraph.perception.pipeline import perceive, perceive_image
 from verigraph.perception.result import DetectedObject, PerceptionResult
-from verigraph.perception.vlm import VlmClient, VlmConfig, VlmError
 
 __all__ = [
     "ClipSource", "DetectedObject", "GraphScore", "ImageInputError", "ImageLimits",

@@ -20,22 +20,30 @@ from verigraph.graph.dictionary import (
 )
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.wellformed import check_well_formed
-from verigraph.perception import colors
-from verigraph.perception.catalogue import models_by_colour
-from verigraph.perception.confidence import graph_confidence
 from verigraph.perception.config import PerceptionConfig
-from verigraph.perception.graphing import assign_ids, tabletop_graph
+from verigraph.perception.correct.deblur import restore
+from verigraph.perception.correct.noise import BLURRED, SOFT, blur_warning, denoise, sharpness
+from verigraph.perception.correct.photometry import correct_colours
+from verigraph.perception.correct.roll import MIN_DEGREES as ROLL_NOTE
+from verigraph.perception.correct.roll import estimate_roll, unroll
+from verigraph.perception.detect import colors
+from verigraph.perception.detect.occlusion import (
+    area_occluders,
+    find_occluders,
+    hidden_mask,
+    occluded_by,
+    unexplained_areas,
+)
+from verigraph.perception.detect.tabletop import Detection, detect_tabletop
+from verigraph.perception.detect.tangram import perceive_tangram
 from verigraph.perception.imageio import as_bgr
-from verigraph.perception.labelling import ColourShapeLabeller, Labeller, Shape, shape_error
-from verigraph.perception.noise import blur_warning, denoise
-from verigraph.perception.occlusion import unexplained_areas
-from verigraph.perception.photometry import correct_colours
+from verigraph.perception.label.catalogue import models_by_colour
+from verigraph.perception.label.labelling import ColourShapeLabeller, Labeller, Shape, shape_error
+from verigraph.perception.relate.confidence import edge_name, graph_confidence, upright_doubts
+from verigraph.perception.relate.graphing import assign_ids, tabletop_graph
+from verigraph.perception.relate.occluded import HIDDEN_REASON, merge_doubts, occlusion_doubts
+from verigraph.perception.relate.support import infer_supports, label_map
 from verigraph.perception.result import DetectedObject, PerceptionResult
-from verigraph.perception.roll import MIN_DEGREES as ROLL_NOTE
-from verigraph.perception.roll import estimate_roll, unroll
-from verigraph.perception.support import infer_supports, label_map
-from verigraph.perception.tabletop import Detection, detect_tabletop
-from verigraph.perception.tangram import perceive_tangram
 from verigraph.perception.views import FAMILY_ORDER, choose_view, family_of
 from verigraph.sim2d import palette
 
@@ -43,7 +51,6 @@ log = logging.getLogger("verigraph.perception")
 
 DEFAULT_CONFIG = PerceptionConfig()
 DEFAULT_LABELLER = ColourShapeLabeller()
-CAVITY_FLOOR_TOLERANCE = 0.5  # world units, as in sim2d.readback
 UNION = "all"  # load_dictionary(None): the built-ins together; the family is inferred
 FAMILY_MARGIN = 0.03
 ILL_FORMED_PENALTY = 0.05
@@ -68,17 +75,23 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
                 "the graph is empty"])
         result.seconds = time.perf_counter() - start
         return result
-    blurred = blur_warning(bgr)
-    bgr = denoise(bgr)
+    level = sharpness(bgr)
+    bgr, noisy = denoise(bgr)
+    restored = restore(bgr, level, noisy=noisy) if level < BLURRED else None
+    if restored is not None:
+        bgr = restored.image
+    blurred = blur_warning(level) if restored is None else None
     view = choose_view(bgr, d, config.view)
     if view == "tangram":
         result = perceive_tangram(bgr, d, config, labeller)
     elif d.name == UNION:
-        result = _choose_family(bgr, config, labeller)
+        result = _choose_family(bgr, config, labeller, level < SOFT)
     else:
-        result = _perceive_tabletop(bgr, d, config, labeller)
+        result = _perceive_tabletop(bgr, d, config, labeller, level < SOFT)
     if blurred is not None:
         result.warnings.insert(0, blurred)
+    if restored is not None:
+        result.restored = restored.note()
     if not result.family_reason:
         result.family_reason = (
             f"{result.family}: the dictionary given" if d.name != UNION else
@@ -91,7 +104,8 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
 
 
 def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
-                       labeller: Labeller) -> PerceptionResult:
+                       labeller: Labeller, soft: bool = False) -> PerceptionResult:
+    """A side view; `soft`: the picture is blurred (thin objects are checked by shape)."""
     models = models_by_colour(d)
     table = colors.colour_table(tuple(sorted(models)), tangram=False)
     photo = correct_colours(bgr, [c for i, c in enumerate(table.bgr) if i not in
@@ -107,42 +121,59 @@ def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
         notes.append(f"the camera is rolled {degrees:+.1f} degrees (the floor line is not "
                      "level); the image was turned back before supports were read")
     colors.refine_edges(corrected, classes, table)
-    scene = detect_tabletop(corrected, classes, table, models, labeller, config)
+    occluders = find_occluders(corrected, [palette.BACKGROUND, palette.FLOOR],
+                               _object_colours(table))
+    hidden = hidden_mask(occluders, classes.shape)
+    if hidden is not None:
+        classes[hidden] = colors.UNKNOWN  # no object is read off an occluder's pixels
+    scene = detect_tabletop(corrected, classes, table, models, labeller, config, occluders)
     detections = scene.detections
     warnings = notes + list(scene.warnings)
     if not detections:
         warnings.append("no objects of the dictionary were found in the image")
     assign_ids(detections)
     labels = label_map(classes.shape, detections, scene.floor_row)
-    supports = infer_supports(detections, labels, gap=config.contact_gap,
-                              cavity_tolerance=CAVITY_FLOOR_TOLERANCE * scene.scale + 1.0)
+    supports = infer_supports(detections, labels, gap=config.contact_gap, scale=scene.scale)
     family = family_of({det.label for det in detections}, d)
     name = family if family is not None else (d.name if d.name in BUILTIN_DICTIONARIES
                                               else None)
     graph = tabletop_graph(detections, supports, name)
     problems = check_well_formed(graph, d)
     warnings += [f"perceived graph: {p.message}" for p in problems]
-    unexplained, explained = unexplained_areas(classes, [det.region for det in detections],
-                                    scene.floor_row, _min_unexplained(scene.scale))
+    regions = [det.region for det in detections]
+    leftover, explained = unexplained_areas(classes, regions, scene.floor_row,
+                                            _min_unexplained(scene.scale), hidden)
+    unexplained = [(r.x0, r.y0, r.x1, r.y1) for r in leftover]
+    ids = [det.id for det in detections]
+    areas = area_occluders(leftover, corrected)
     if unexplained:
         boxes = ", ".join(f"{b}" for b in unexplained[:4])
+        near = sorted({ids[i] for hits in occluded_by(areas, regions, classes.shape)
+                       for i in hits})
         warnings.append(f"{len(unexplained)} area(s) of the image are not explained by any "
                         f"detected object (boxes x0, y0, x1, y1: {boxes}); something unknown, "
-                        "or an object that was missed, is there")
+                        "or an object that was missed, is there"
+                        + (f"; it borders {', '.join(near)}" if near else ""))
     confidence, uncertain = graph_confidence(graph, detections, corrected, table,
-                                               scene.scale)
+                                             scene.scale, floor_row=scene.floor_row,
+                                             soft=soft)
+    hiding, doubts, occluded = occlusion_doubts(
+        graph, ids, regions, occluders + areas, classes.shape,
+        edge_name=lambda e: edge_name(e.source, e.relation, e.target))
+    warnings += hiding[:len(occluders)]  # the areas' warning is the one above
+    merge_doubts(confidence, uncertain, doubts + upright_doubts(graph, detections))
     objects = [DetectedObject(id=det.id, label=det.label, colour=det.colour,
                               box=(det.region.x0, det.region.y0, det.region.x1, det.region.y1),
                               score=det.score) for det in detections]
     return PerceptionResult(graph=graph, view="tabletop", family=family,
                             labeller=labeller.name, objects=objects, warnings=warnings,
                             confidence=confidence, uncertain=uncertain, scale=scene.scale,
-                            explained=explained, shape_error=_shape_error(detections,
-                                                                          scene.scale))
+                            explained=explained, occluded=occluded,
+                            shape_error=_shape_error(detections, scene.scale))
 
 
 def _choose_family(bgr: np.ndarray, config: PerceptionConfig,
-                   labeller: Labeller) -> PerceptionResult:
+                   labeller: Labeller, soft: bool = False) -> PerceptionResult:
     """Perceive with each tabletop family's dictionary and keep the one that explains
     the picture best (share of the scene its objects account for, less a penalty per
     ill-formed fact and per uncertain object, and a penalty for outlines that fit their
@@ -150,9 +181,10 @@ def _choose_family(bgr: np.ndarray, config: PerceptionConfig,
     `FAMILY_MARGIN` of each other."""
     tried = []
     for name in FAMILY_ORDER:
-        result = _perceive_tabletop(bgr, builtin_dictionary(name), config, labeller)
+        result = _perceive_tabletop(bgr, builtin_dictionary(name), config, labeller, soft)
         problems = sum(w.startswith("perceived graph:") for w in result.warnings)
-        problems += sum(" " not in u.item for u in result.uncertain)  # doubtful objects
+        problems += sum(" " not in u.item and not u.reason.startswith(HIDDEN_REASON)
+                        for u in result.uncertain)  # doubtful objects (not what is hidden)
         fit = (result.explained - ILL_FORMED_PENALTY * problems
                - SHAPE_PENALTY * result.shape_error) if result.objects else 0.0
         tried.append((fit, name, result))
@@ -169,6 +201,11 @@ def _choose_family(bgr: np.ndarray, config: PerceptionConfig,
     result.family_reason = (f"{name}: its objects explain the most of the picture "
                             f"(share of the scene explained: {scores})")
     return result
+
+
+def _object_colours(table: colors.ColourTable) -> list[tuple[int, int, int]]:
+    """BGR of the colour classes objects are drawn in (not wall, floor, outline)."""
+    return [table.bgr[c] for c in table.object_classes]
 
 
 def _shape_error(detections: list[Detection], scale: float) -> float:

@@ -67,6 +67,10 @@ class PerceptionResult(BaseModel):
                                                       "floor) the detected objects explain")
     shape_error: float = Field(default=0.0, description="mean shape error of the movable "
                                                         "objects (0 = as drawn)")
+    occluded: list[str] = Field(default_factory=list, description="ids of objects "
+                                "something in front of the scene hides part of")
+    restored: str = Field(default="", description="what was undone before detection (a "
+                                                  "motion blur), when it could be")
     seconds: float = 0.0
 
     @property

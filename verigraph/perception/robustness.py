@@ -5,6 +5,11 @@ A wrong graph that comes with a warning (or uncertain items) is forgivable: the 
 is told to check it. A wrong graph that comes with neither is the failure this suite
 counts as **silent-wrong**. Mild levels are what a decent camera in a lit room gives;
 strong ones are well past that (and perception is expected to say so, not to be right).
+
+`SHAKE_AND_OCCLUDERS` adds what a camera on a moving arm sees: motion blur of several
+lengths and directions, bars of several widths, tilts and positions in front of the
+scene (the arm itself), and a blob (a hand). Under an occluder a wrong graph must also
+name the objects the occluder hides (`CellResult.unnamed` counts those that do not).
 """
 
 from __future__ import annotations
@@ -46,8 +51,30 @@ DESCRIPTIONS = {
     "blur": "Gaussian sigma 1 px / 9-px motion blur",
     "occlusion": "grey bar 1% / 4% of the width in front of the scene",
 }
+SHAKE_AND_OCCLUDERS: dict[str, dict[str, Degradation]] = {
+    "motion blur": {
+        "5 px": Degradation(motion_blur=5),
+        "9 px": Degradation(motion_blur=9),
+        "9 px horizontal": Degradation(motion_blur=9, motion_angle=0.0),
+        "9 px vertical": Degradation(motion_blur=9, motion_angle=90.0),
+        "13 px": Degradation(motion_blur=13),
+    },
+    "bar": {
+        "2% vertical": Degradation(occlusion=0.02),
+        "6% vertical": Degradation(occlusion=0.06),
+        "4% through the middle": Degradation(occlusion=0.04, occlusion_at=0.5),
+        "3% horizontal": Degradation(occlusion=0.03, occlusion_angle=90.0),
+        "3% tilted 30 deg": Degradation(occlusion=0.03, occlusion_angle=30.0),
+    },
+    "blob": {
+        "radius 15%": Degradation(blob=0.15),
+        "radius 30%": Degradation(blob=0.3),
+    },
+}
+OCCLUDERS = ("occlusion", "bar", "blob")  # degradations that put something in front
 FAMILIES = ("blocks", "kitchen", "tableware", "tangram")
 FIRST_SEED = 20_000
+SHAKE_SEED = 40_000  # SHAKE_AND_OCCLUDERS runs on scenes of its own
 
 
 @dataclass(frozen=True, slots=True)
@@ -61,6 +88,7 @@ class CellResult:
     exact: int
     flagged: int  # results that carried warnings or uncertain items
     silent_wrong: int
+    unnamed: int = 0  # wrong graphs that name no occluded object
 
     @property
     def exact_rate(self) -> float:
@@ -73,23 +101,28 @@ class CellResult:
 
 def run_suite(families: Iterable[str] = FAMILIES, n: int = 20,
               degradations: Iterable[str] | None = None,
-              levels: Iterable[str] = ("mild", "strong"),
-              first_seed: int = FIRST_SEED) -> list[CellResult]:
-    """Perceive n generated scenes per family under every degradation and level."""
-    names = list(degradations) if degradations is not None else list(SUITE)
+              levels: Iterable[str] | None = ("mild", "strong"),
+              first_seed: int = FIRST_SEED,
+              suite: dict[str, dict[str, Degradation]] | None = None) -> list[CellResult]:
+    """Perceive n generated scenes per family under every degradation and level of
+    `suite` (default `SUITE`; `levels` None: every level the suite has)."""
+    suite = SUITE if suite is None else suite
+    names = list(degradations) if degradations is not None else list(suite)
     out = []
     for family in families:
         scenes = [generate_scene(family, first_seed + i) for i in range(n)]
         renders = [scene.world.render() for scene in scenes]
         for name in names:
-            for level in levels:
-                exact = flagged = silent = 0
+            for level in (list(suite[name]) if levels is None else levels):
+                exact = flagged = silent = unnamed = 0
                 for scene, image in zip(scenes, renders, strict=True):
-                    spoilt = degrade(image, SUITE[name][level], seed=scene.seed)
+                    spoilt = degrade(image, suite[name][level], seed=scene.seed)
                     result = perceive_image(spoilt, dictionary=family)
                     right = score_graph(result.graph, scene.graph, family).exact
                     exact += right
                     flagged += not result.confident
                     silent += (not right) and result.confident
-                out.append(CellResult(family, name, level, n, exact, flagged, silent))
+                    unnamed += (not right) and not result.occluded
+                out.append(CellResult(family, name, level, n, exact, flagged, silent,
+                                      unnamed))
     return out

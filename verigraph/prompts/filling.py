@@ -12,7 +12,7 @@ from collections.abc import Sequence
 from verigraph import prompts
 from verigraph.actions.feedback import CONSTRAINT_DESCRIPTIONS, Violation
 from verigraph.actions.model import AnyAction
-from verigraph.graph.dictionary import Dictionary
+from verigraph.graph.dictionary import SUPPORT_RELATIONS, Dictionary
 from verigraph.graph.goal import Goal
 from verigraph.graph.state import WorldState
 
@@ -72,7 +72,7 @@ def actions_text(relations: Sequence[str]) -> str:
         return ("- align(piece, side, target_piece, target_side): slide a piece so that one "
                 "of its sides touches a side of another piece (sides are numbered clockwise "
                 "from 0)\n- done: the end token, when the goal holds")
-    moves = [r for r in relations if r in ("on", "in")]
+    moves = [r for r in relations if r in SUPPORT_RELATIONS]
     return (f"- move(object, relation, target) with relation in {{{', '.join(moves)}}}: pick "
             "up the object (with nothing on or in it) and put it on or in the target\n"
             "- move(object, target): short for move(object, on, target)\n"
@@ -126,6 +126,8 @@ def planner_prompt(name: str, state: WorldState, goal: Goal | None, *, k: int = 
 
 
 def dictionary_text(dictionary: Dictionary) -> str:
+    """One line per label with its role; the client's own labels are marked, so that a
+    vision model labels with them rather than with the nearest built-in word."""
     lines = []
     for name in dictionary.names:
         p = dictionary.objects[name]
@@ -134,8 +136,11 @@ def dictionary_text(dictionary: Dictionary) -> str:
             kinds.append("surface")
         if p.container:
             kinds.append("container")
+        if (p.surface or p.container) and p.capacity is not None:
+            kinds.append(f"capacity {p.capacity}")
+        mine = " (your label)" if name in dictionary.user_labels else ""
         synonyms = f"; also called {', '.join(p.synonyms)}" if p.synonyms else ""
-        lines.append(f"- {name}: {', '.join(kinds)}{synonyms}")
+        lines.append(f"- {name}{mine}: {', '.join(kinds)}{synonyms}")
     return "\n".join(lines)
 
 

@@ -7,13 +7,15 @@ from typing import Any, Literal
 from mcp.server.mcpserver import MCPServer
 
 from verigraph import __version__
-from verigraph.server.apps import UI_META, AppsGate, episode_apps
+from verigraph.server.apps import UI_META, AppsGate, episode_apps, view_executor
 from verigraph.server.heavy import HeavyCalls, HeavyLimits
 from verigraph.server.prompts import PromptGate, register_prompts
 from verigraph.server.resources import register_resources
 from verigraph.server.tools import ArgumentGate, build_tools
 from verigraph.tools.context import ToolConfig
+from verigraph.tools.executors import enabled_executors
 from verigraph.tools.registry import Toolbox
+from verigraph.viewer import VIEW_SPEC
 
 INSTRUCTIONS = """\
 VeriGraph checks robot manipulation plans against a scene graph before anything moves.
@@ -29,6 +31,14 @@ Edges read `source relation target` ("cup on book": the book carries the cup).
    on a real arm the user approves each call's motions. arm_stop halts it and latches
    a stop that only arm_reset clears; arm_status reports it.
 """
+
+
+
+def executors_instruction(config: ToolConfig) -> str:
+    """The line of the instructions that names this server's executors and arm."""
+    return ("5. Executors on this server (load_scene executor=...; results name the one\n"
+            f"   an episode runs on): {enabled_executors(config.executor, config.arm)}.\n")
+
 
 LogLevel = Literal["DEBUG", "INFO", "WARNING", "ERROR", "CRITICAL"]
 
@@ -47,11 +57,14 @@ def build_server(toolbox: Toolbox | None = None, *, config: ToolConfig | None = 
     runner = HeavyCalls(heavy)
     gate = ArgumentGate(runner, toolbox)
     tools, executors = build_tools(toolbox, runner, meta=UI_META)
+    view = executors[VIEW_SPEC.name] = view_executor(toolbox, runner)
+    gate.specs[VIEW_SPEC.name] = VIEW_SPEC
     server: MCPServer[Any] = MCPServer(
-        "verigraph", title="VeriGraph", version=__version__, instructions=INSTRUCTIONS,
+        "verigraph", title="VeriGraph", version=__version__,
+        instructions=INSTRUCTIONS + executors_instruction(toolbox.context.config),
         description="Scene-graph verifier for LLM robot planning",
         middleware=[gate, AppsGate(), PromptGate()], log_level=log_level,
-        extensions=[episode_apps(toolbox, runner)], tools=tools, subscriptions=False)
+        extensions=[episode_apps(view)], tools=tools, subscriptions=False)
     gate.executors = executors
     register_resources(server, toolbox)
     register_prompts(server, toolbox)

@@ -15,6 +15,13 @@ The child's address space is capped (RLIMIT_AS) at its size after start-up plus 
 heavy-call memory budget: a body that would parse into gigabytes fails there, with an
 error that says so. A child that dies is replaced. Parsing and checking are bounded by
 the body limit, so a call is not cancelled once the child has it.
+
+Fair between clients: bodies up to 4 MiB and larger ones go to different children,
+each with its own queue, so one client posting 15 MB bodies from several connections
+delays only others that post bodies that large (measured: a 280 KB call beside four
+connections posting 15 MB bodies, benchmarks/results/server_load.md). And every answer
+has a deadline: a child that has not answered a body within it (stopped with SIGSTOP,
+stuck) is killed and replaced, and the caller gets a 503 saying to send it again.
 """
 
 from __future__ import annotations
@@ -36,14 +43,17 @@ from typing import Any
 
 import anyio
 import anyio.to_thread
+import pydantic_core
 from pydantic import BaseModel
 
 from verigraph.errors import VeriGraphError
+from verigraph.server.jsonrpc_screen import INVALID_REQUEST, PARSE_ERROR, top_level_id
 from verigraph.tools.registry import TOOLS, ToolSpec, parse_arguments
 from verigraph.viewer import VIEW_SPEC
 
 log = logging.getLogger("verigraph.server")
 INPUT_SPECS: dict[str, ToolSpec] = {**TOOLS, VIEW_SPEC.name: VIEW_SPEC}
+ID_SCAN_BYTES = 4096
 
 
 @dataclass(frozen=True)
@@ -54,8 +64,10 @@ class Prepared:
     # its own parse error without parsing megabytes on the event loop
     params: BaseModel | None = None  # the tool's validated input
     error: str | None = None  # or why the arguments are invalid, field by field
-    refusal: str | None = None  # the body is not servable (413, JSON-RPC -32600)
+    refusal: str | None = None  # the body is not servable (JSON-RPC -32600) ...
     request_id: str | int | None = None
+    status: int = 413  # ... with this HTTP status
+    code: int = INVALID_REQUEST  # ... and this JSON-RPC error code
 
 
 def _refusal(message: Any, size: int) -> Prepared:
@@ -65,6 +77,23 @@ def _refusal(message: Any, size: int) -> Prepared:
     return Prepared(refusal=f"Request too large for {what} ({size} bytes): only tools/call "
                             "arguments may be this large; send a smaller request",
                     request_id=request_id if isinstance(request_id, str | int) else None)
+
+
+def _parse_error(body: bytes) -> Prepared:
+    """Why a large body is not JSON, with where: the SDK's own parser words a small
+    body's error, so the same parser (pydantic_core, which stops at its nesting limit
+    instead of recursing) words this one, and the answer is the JSON-RPC parse error.
+    The request's id is looked for in the first few KiB only (a scan of megabytes
+    would hold the checker)."""
+    try:
+        pydantic_core.from_json(body)
+        reason = "not one JSON value"  # json refused what pydantic_core reads
+    except ValueError as exc:
+        reason = str(exc).replace("recursion limit exceeded", "nesting too deep")
+    request_id = top_level_id(body[:ID_SCAN_BYTES].decode("utf-8", errors="replace"))
+    return Prepared(refusal=f"Parse error: {reason[:200]}; send one JSON-RPC message of "
+                            "valid JSON, nested a few hundred levels at most",
+                    request_id=request_id, status=400, code=PARSE_ERROR)
 
 
 def prepare(body: bytes, threshold: int) -> Prepared:
@@ -80,7 +109,7 @@ def _prepare(body: bytes, threshold: int) -> Prepared:
     try:
         message = json.loads(body)
     except (ValueError, RecursionError):
-        return Prepared()
+        return _parse_error(body)
     params = message.get("params") if isinstance(message, dict) else None
     if not (isinstance(params, dict) and message.get("method") == "tools/call"
             and isinstance(params.get("arguments"), dict)):
@@ -125,52 +154,125 @@ def _start_child(memory_mib: float, parent: int) -> None:
         resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 
 
-class ArgumentChecker:
-    """The server's child process for large bodies (one per HTTP server)."""
+DEFAULT_DEADLINE_S = 10.0
+STARTUP_S = 60.0  # a new child's imports, on a busy machine
 
-    def __init__(self, memory_mib: float = 512.0, processes: int = 1) -> None:
+
+def _started() -> bool:
+    """In a new child: proof that it has started (imports done)."""
+    return True
+
+# Bodies up to this size and larger ones are checked by different children, so a client
+# posting bodies near the body limit delays only others that do the same.
+LANE_SPLIT_BYTES = 4 * 1024 * 1024
+
+
+class _Lane:
+    """One child process and the queue in front of it."""
+
+    def __init__(self, memory_mib: float, deadline_s: float) -> None:
         self.memory_mib = memory_mib
-        self.processes = processes
+        self.deadline_s = deadline_s
         self._pool: ProcessPoolExecutor | None = None
-        self._limiter = anyio.CapacityLimiter(processes)
+        self._limiter = anyio.CapacityLimiter(1)
 
-    def _current_pool(self) -> ProcessPoolExecutor:
+    async def _current_pool(self) -> ProcessPoolExecutor:
+        """The lane's pool, its child started (start-up is not part of any deadline)."""
         if self._pool is None:
-            self._pool = ProcessPoolExecutor(
-                self.processes, mp_context=multiprocessing.get_context("spawn"),
+            pool = ProcessPoolExecutor(
+                1, mp_context=multiprocessing.get_context("spawn"),
                 initializer=_start_child, initargs=(self.memory_mib, os.getpid()))
+            started: Future[bool] = pool.submit(_started)
+            self._pool = pool
+            with anyio.fail_after(max(STARTUP_S, self.deadline_s)):
+                await anyio.to_thread.run_sync(started.result, abandon_on_cancel=True)
         return self._pool
 
     async def prepare(self, body: bytes, threshold: int) -> Prepared:
-        """`prepare(body)` in the child; the caller waits without holding the loop.
-
-        A child that died (killed, or out of memory on an earlier body) is replaced and
-        the body tried once more; a body that takes the new child down too is refused."""
         async with self._limiter:
             for _ in range(2):
-                pool = self._current_pool()
+                try:
+                    pool = await self._current_pool()
+                except (BrokenProcessPool, TimeoutError):
+                    log.warning("the argument-checking process did not start")
+                    if self._pool is not None:
+                        self._discard(self._pool)
+                    continue
                 try:
                     future: Future[Prepared] = pool.submit(prepare, body, threshold)
-                    return await anyio.to_thread.run_sync(future.result,
-                                                          abandon_on_cancel=True)
+                    with anyio.fail_after(self.deadline_s):
+                        return await anyio.to_thread.run_sync(future.result,
+                                                              abandon_on_cancel=True)
                 except BrokenProcessPool:
                     log.warning("the argument-checking process died; starting a new one")
-                    if self._pool is pool:
-                        self._pool = None
-                    pool.shutdown(wait=False, cancel_futures=True)
+                    self._discard(pool)
+                except TimeoutError:
+                    log.warning("the argument-checking process did not answer within %g s "
+                                "(stopped or stuck); killing it and starting a new one",
+                                self.deadline_s)
+                    self._discard(pool)
+                    return _late(body, self.deadline_s)
         return Prepared(refusal=f"Request of {len(body)} bytes could not be parsed within "
                                 "one call's memory: send a smaller request")
 
-    def _children(self) -> list[multiprocessing.process.BaseProcess]:
-        # The pool's own table (Python 3.14 adds kill_workers() for this).
-        processes = getattr(self._pool, "_processes", None) or {}
-        return list(processes.values())
+    def _discard(self, pool: ProcessPoolExecutor) -> None:
+        """Kill `pool`'s child (the next body starts a new one); a waiting caller's
+        future fails at once, so its worker thread ends too."""
+        children = _children(pool)
+        if self._pool is pool:
+            self._pool = None
+        pool.shutdown(wait=False, cancel_futures=True)
+        for child in children:
+            child.kill()
+
+    def children(self) -> list[multiprocessing.process.BaseProcess]:
+        return _children(self._pool)
+
+    def close(self) -> None:
+        if self._pool is not None:
+            self._discard(self._pool)
+
+
+def _children(pool: ProcessPoolExecutor | None) -> list[multiprocessing.process.BaseProcess]:
+    # The pool's own table (Python 3.14 adds kill_workers() for this).
+    processes = getattr(pool, "_processes", None) or {}
+    return list(processes.values())
+
+
+def _late(body: bytes, deadline_s: float) -> Prepared:
+    """The answer to a body whose checker missed its deadline (the id, if it is among
+    the first bytes: the body is not parsed here)."""
+    request_id = top_level_id(body[:ID_SCAN_BYTES].decode("utf-8", errors="replace"))
+    return Prepared(refusal=f"The server could not check this request's arguments within "
+                            f"{deadline_s:g} s (its checking process was stuck and has been "
+                            "replaced): send the request again", request_id=request_id,
+                    status=503)
+
+
+class ArgumentChecker:
+    """The server's child processes for large bodies (one per HTTP server).
+
+    Two lanes, each a child process with its own queue: bodies up to LANE_SPLIT_BYTES,
+    and larger ones. Each body's check has `deadline_s`: a child that has not answered
+    by then (stopped, stuck) is killed and replaced, and its caller told so (503)."""
+
+    def __init__(self, memory_mib: float = 512.0, deadline_s: float = DEFAULT_DEADLINE_S,
+                 lane_split_bytes: int = LANE_SPLIT_BYTES) -> None:
+        self.lane_split_bytes = lane_split_bytes
+        self._lanes = (_Lane(memory_mib, deadline_s), _Lane(memory_mib, deadline_s))
+
+    async def prepare(self, body: bytes, threshold: int) -> Prepared:
+        """`prepare(body)` in a child; the caller waits without holding the loop.
+
+        A child that died (killed, or out of memory on an earlier body) is replaced and
+        the body tried once more; a body that takes the new child down too is refused."""
+        lane = self._lanes[0 if len(body) <= self.lane_split_bytes else 1]
+        return await lane.prepare(body, threshold)
+
+    def children(self) -> list[multiprocessing.process.BaseProcess]:
+        return [child for lane in self._lanes for child in lane.children()]
 
     def close(self) -> None:
         """Stop the children now (at server shutdown); a later call starts new ones."""
-        children = self._children()
-        pool, self._pool = self._pool, None
-        if pool is not None:
-            pool.shutdown(wait=False, cancel_futures=True)
-        for child in children:
-            child.kill()
+        for lane in self._lanes:
+            lane.close()

@@ -29,9 +29,8 @@ closures they refer to once annotations are strings.
 import inspect
 import threading
 import time
-from collections.abc import AsyncIterator, Callable
+from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
-from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Annotated, Any, Literal
 
@@ -49,9 +48,9 @@ from pydantic import BaseModel, Field
 
 from verigraph.arm import ArmWorld, PreApproved, confirm_scope
 from verigraph.arm.audit import audit_scope
-from verigraph.tools.arm import ArmQuestion, preview_execute, preview_reset
-from verigraph.tools.context import ToolContext
-from verigraph.tools.registry import Toolbox
+from verigraph.server.scope import current_scope
+from verigraph.tools.arm import ArmQuestion
+from verigraph.tools.registry import Confirmation, Toolbox, ToolSpec
 
 
 class ArmApproval(BaseModel):
@@ -77,17 +76,8 @@ class NotAsked:
     reason: Literal["nothing_to_ask", "client_cannot_ask"]
 
 
-Previewer = Callable[[ToolContext, BaseModel], ArmQuestion | None]
-
-# Tools that can make a real arm act, and what each would ask.
-PREVIEWS: dict[str, Previewer] = {"execute_actions": preview_execute,
-                                  "arm_reset": preview_reset}
 PREVIEW_PARAM = "arm_preview"
 ANSWER_PARAM = "arm_confirmation"
-
-# What stays true after a refusal, per tool.
-UNCHANGED = {"execute_actions": "nothing moved and the episode is unchanged",
-             "arm_reset": "the stop stays latched"}
 
 
 def can_elicit(ctx: Context) -> bool:
@@ -97,18 +87,23 @@ def can_elicit(ctx: Context) -> bool:
     return elicitation is not None and (elicitation.form is not None or elicitation.url is None)
 
 
-def resolver_parameters(name: str, toolbox: Toolbox,
-                        params_of_call: Callable[[], BaseModel | None]
-                        ) -> list[inspect.Parameter]:
-    """Two keyword parameters the SDK fills by running resolvers before `name` runs.
+def _confirmation(spec: ToolSpec) -> Confirmation:
+    if spec.confirmation is None:
+        raise ValueError(f"{spec.name} asks the user nothing")
+    return spec.confirmation
 
-    `params_of_call` returns the input the argument gate validated for this call (None
-    if there is none: then nothing is previewed, so nothing real may move).
+
+def resolver_parameters(spec: ToolSpec, toolbox: Toolbox) -> list[inspect.Parameter]:
+    """Two keyword parameters the SDK fills by running resolvers before the tool runs.
+
+    The preview reads the input the argument gate validated for this call from the
+    call's scope (none: then nothing is previewed, so nothing real may move).
     """
-    previewer = PREVIEWS[name]
+    previewer = _confirmation(spec).preview
+    name = spec.name
 
     async def arm_preview(ctx: Context) -> Preview:
-        params = params_of_call()
+        params = current_scope().params_for(name)
         if params is None:
             return Preview(None)
         question = await anyio.to_thread.run_sync(previewer, toolbox.context, params)
@@ -140,10 +135,11 @@ def resolver_parameters(name: str, toolbox: Toolbox,
     ]
 
 
-def approval_hook(name: str, arguments: dict[str, Any]) -> PreApproved:
+def approval_hook(spec: ToolSpec, arguments: dict[str, Any]) -> PreApproved:
     """The hook for this call, from the resolved preview and answer (taken out of
     `arguments`); a ToolError (logged in the arm's audit) when the user declined, could
     not be asked, or answered after the deadline."""
+    name, unchanged = spec.name, _confirmation(spec).unchanged
     preview = arguments.pop(PREVIEW_PARAM, None)
     answer = arguments.pop(ANSWER_PARAM, None)
     question = preview.question if isinstance(preview, Preview) else None
@@ -161,19 +157,19 @@ def approval_hook(name: str, arguments: dict[str, Any]) -> PreApproved:
                         "the client cannot ask the user (no elicitation)")
         raise ToolError(
             f"{name} would make the real arm act ({what}), and this client cannot ask the "
-            f"user to confirm (it declared no elicitation support), so {UNCHANGED[name]} "
+            f"user to confirm (it declared no elicitation support), so {unchanged} "
             "(fix: use an MCP client that supports elicitation, or have the operator run "
             "the arm in mode sim or dry-run)")
     if late:
         question.record(preview.shown, "timeout",
                         f"answered after the {question.timeout_s:g} s deadline: counted as no")
         raise ToolError(f"the user answered after the {question.timeout_s:g} s deadline, "
-                        f"which counts as no, so {UNCHANGED[name]} (fix: send the action "
+                        f"which counts as no, so {unchanged} (fix: send the action "
                         "again and answer within the time shown)")
     said = "did not approve" if isinstance(data, ArmApproval) else \
         f"answered {getattr(answer, 'action', 'nothing')}"
     question.record(preview.shown, "declined", f"the user {said}")
-    raise ToolError(f"the user {said} the real arm's action ({what}), so {UNCHANGED[name]} "
+    raise ToolError(f"the user {said} the real arm's action ({what}), so {unchanged} "
                     "(fix: change the plan, or send it again and approve)")
 
 
@@ -200,9 +196,6 @@ class AskedQuestions:
 
 _ASKED = AskedQuestions()
 
-# The MCP client of the request being handled (set by the server's ArgumentGate).
-CLIENT: ContextVar[str | None] = ContextVar("verigraph_mcp_client", default=None)
-
 
 def client_label(session: Any) -> str:
     """A label for the client behind `session`: its declared name and version, and the
@@ -211,20 +204,6 @@ def client_label(session: Any) -> str:
     info = getattr(params, "client_info", None)
     name = f"{info.name} {info.version}" if info is not None else "unnamed client"
     return f"{name} (connection {id(session):x})"
-
-
-def thread_limiter(name: str) -> anyio.CapacityLimiter | None:
-    """The worker-thread limiter for a tool call (None: the default one).
-
-    arm_stop gets a limiter of its own for each call, so it never queues behind calls
-    that hold the shared worker threads (a motion, calls waiting for the episode's
-    lock, slow status polls): the stop path waits on nothing.
-    """
-    return anyio.CapacityLimiter(1) if name == "arm_stop" else None
-
-
-# Tools whose call, once gone, must take the arm's motion with it.
-MOTION_TOOLS = frozenset({"execute_actions"})
 
 
 def _arm_of(toolbox: Toolbox, params: BaseModel) -> tuple[str | None, ArmWorld | None]:
@@ -238,12 +217,12 @@ def _arm_of(toolbox: Toolbox, params: BaseModel) -> tuple[str | None, ArmWorld |
     return episode_id, world if isinstance(world, ArmWorld) else None
 
 
-def asks_nothing(name: str, toolbox: Toolbox, params: BaseModel) -> bool:
+def asks_nothing(spec: ToolSpec, toolbox: Toolbox, params: BaseModel) -> bool:
     """Whether a confirmed tool's call certainly has nothing to ask: execute_actions on
     an existing episode that has no arm (graph or sim2d executor). Such a call may run
     without the SDK's resolvers, with the same empty approval they would give it; any
     doubt (another tool, no such episode, an arm executor) leaves it to them."""
-    if name not in MOTION_TOOLS:
+    if not spec.moves_arm:
         return False
     episode_id = getattr(params, "episode_id", None)
     if not isinstance(episode_id, str):
@@ -261,7 +240,7 @@ def take_answers(arguments: dict[str, Any]) -> dict[str, Any]:
 
 
 @asynccontextmanager
-async def arm_call(name: str, toolbox: Toolbox, params: BaseModel,
+async def arm_call(spec: ToolSpec, toolbox: Toolbox, params: BaseModel,
                    answers: dict[str, Any] | None) -> AsyncIterator[None]:
     """The scope of one tool call for the arm: audit identity, the confirmation hook
     from `answers` (see `take_answers`; None for tools that ask nothing), heartbeat
@@ -269,17 +248,17 @@ async def arm_call(name: str, toolbox: Toolbox, params: BaseModel,
     episode_id, world = _arm_of(toolbox, params)
     if world is not None:
         world.touch()
-    with audit_scope(episode_id=episode_id, client=CLIENT.get()):
-        hook = approval_hook(name, answers) if answers is not None else None
+    with audit_scope(episode_id=episode_id, client=current_scope().client):
+        hook = approval_hook(spec, answers) if answers is not None else None
         with confirm_scope(hook):
-            async with _deadman(name, world):
+            async with _deadman(spec, world):
                 yield
 
 
 @asynccontextmanager
-async def _deadman(name: str, world: ArmWorld | None) -> AsyncIterator[None]:
+async def _deadman(spec: ToolSpec, world: ArmWorld | None) -> AsyncIterator[None]:
     """While a motion tool runs: stop and latch the arm if the call is cancelled."""
-    if world is None or name not in MOTION_TOOLS or world.config.mode == "dry-run":
+    if world is None or not spec.moves_arm or world.config.mode == "dry-run":
         yield  # a dry run moves nothing: there is nothing to stop
         return
     finished = False

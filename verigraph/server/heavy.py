@@ -16,7 +16,6 @@ import gc
 import logging
 import sys
 from collections.abc import Callable
-from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import TypeVar
 
@@ -24,7 +23,8 @@ import anyio
 import anyio.from_thread
 import anyio.to_thread
 
-from verigraph.budget import Budget, within
+from verigraph.budget import CallBudget, within
+from verigraph.server.scope import current_scope
 
 T = TypeVar("T")
 # A short GIL switch interval lets the event loop thread answer light calls between a
@@ -35,8 +35,6 @@ LOOP_SWITCH_INTERVAL_S = 0.0005
 # towards the full collections that hold the GIL longest.
 GC_THRESHOLDS = (20_000, 20, 50)
 log = logging.getLogger("verigraph.server")
-# Who is calling: "host:port" of the HTTP connection, or "stdio". Set per request.
-CLIENT: ContextVar[str] = ContextVar("verigraph_client", default="stdio")
 
 
 @dataclass(frozen=True)
@@ -45,7 +43,7 @@ class HeavyLimits:
 
     workers: int = 2
     per_client: int = 1
-    budget: Budget = field(default_factory=Budget)
+    budget: CallBudget = field(default_factory=CallBudget)
 
 
 class HeavyCalls:
@@ -73,7 +71,7 @@ class HeavyCalls:
     async def run(self, fn: Callable[[], T], name: str) -> T:
         """`fn()` on a worker thread under the budget; cancelling the caller stops it at
         its next checkpoint (BudgetExceeded inside, the caller's cancellation outside)."""
-        client = CLIENT.get()
+        client = current_scope().connection
         limiter = self._client_limiter(client)
         budget = self.limits.budget
 

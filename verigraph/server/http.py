@@ -1,9 +1,11 @@
 """Streamable HTTP transport: stateless JSON responses behind auth and a body limit.
 
-Layers, outermost first: uvicorn with a header deadline and a connection cap
-(connections), bearer-token check (headers only, so unauthenticated clients cannot
+Layers, outermost first: uvicorn with a header deadline, a bounded share of the
+slots for connections still sending headers and a connection cap (connections),
+bearer-token check (headers only, so unauthenticated clients cannot
 make the server read large bodies), DNS-rebinding protection (Host and Origin parsed
-per RFC 9110; hostcheck), request body limit and deadline with a JSON-RPC error that
+per RFC 9110; hostcheck), event streams capped per client and closed when idle
+(streams), request body limit and deadline with a JSON-RPC error that
 says what to do and cancellation when the client leaves, large calls checked in a
 child process and answered as bytes (offload), then the SDK app.
 """
@@ -30,11 +32,12 @@ from starlette.responses import Response
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from verigraph import __version__
-from verigraph.server.argument_process import ArgumentChecker
+from verigraph.server.argument_process import DEFAULT_DEADLINE_S, ArgumentChecker
 from verigraph.server.connections import guarded_protocol, quiet_accept_errors
 from verigraph.server.hostcheck import HostCheck, HostPolicy
 from verigraph.server.offload import DEFAULT_THRESHOLD_BYTES, LargeCalls
 from verigraph.server.rpc_errors import rpc_error
+from verigraph.server.streams import DEFAULT_STREAM_IDLE_S, DEFAULT_STREAMS_PER_CLIENT, EventStreams
 
 DEFAULT_MAX_BODY_BYTES = 16 * 1024 * 1024
 log = logging.getLogger("verigraph.server")
@@ -57,6 +60,13 @@ class HttpOptions:
     shutdown_s: float = 0.5  # SIGTERM: in-flight calls get this long, then are cancelled
     large_call_bytes: int = DEFAULT_THRESHOLD_BYTES  # bodies checked in a child (offload)
     large_call_mib: float = 512.0  # the child's memory budget for one body
+    large_call_deadline_s: float = DEFAULT_DEADLINE_S  # the child's time for one body
+    streams_per_client: int = DEFAULT_STREAMS_PER_CLIENT  # open GET event streams per client
+    stream_idle_s: float = DEFAULT_STREAM_IDLE_S  # a stream with no event this long is ended
+
+    def max_streams(self) -> int:
+        """Event streams open at once in all: a quarter of the connection slots."""
+        return max(1, self.max_connections // 4)
 
     def url(self) -> str:
         host = f"[{self.host}]" if ":" in self.host else self.host
@@ -215,8 +225,12 @@ def http_app(server: MCPServer[Any], options: HttpOptions) -> ASGIApp:
         max_request_body_size=options.max_body_bytes,
         transport_security=TransportSecuritySettings(enable_dns_rebinding_protection=False),
         host=options.host)
-    app = LargeCalls(app, options.large_call_bytes, ArgumentChecker(options.large_call_mib))
+    if options.large_call_bytes > 0:  # 0: every body is parsed by this process (measured)
+        app = LargeCalls(app, options.large_call_bytes, ArgumentChecker(
+            options.large_call_mib, options.large_call_deadline_s))
     app = BodyLimit(app, options.max_body_bytes, options.body_timeout_s)
+    app = EventStreams(app, options.path, options.streams_per_client, options.max_streams(),
+                       options.stream_idle_s)
     app = HostCheck(app, HostPolicy(options.host, options.port, options.allowed_hosts))
     if options.token:
         app = BearerTokenAuth(app, options.token)
@@ -258,8 +272,10 @@ def _hard_exit() -> None:
     os._exit(0)
 
 
-def serve_http(server: MCPServer[Any], options: HttpOptions, log_level: str = "warning") -> None:
-    """Run uvicorn in the foreground until interrupted (SIGINT/SIGTERM).
+def serve_http(server: MCPServer[Any], options: HttpOptions, log_level: str = "warning",
+               sock: socket.socket | None = None) -> None:
+    """Run uvicorn in the foreground until interrupted (SIGINT/SIGTERM), on `sock` if
+    given (a socket shared by several server processes, see workers).
 
     On SIGTERM uvicorn stops accepting, gives running requests `shutdown_s`, then
     cancels them; their worker threads stop at their next budget checkpoint.
@@ -270,6 +286,7 @@ def serve_http(server: MCPServer[Any], options: HttpOptions, log_level: str = "w
 
     async def main() -> None:
         quiet_accept_errors(asyncio.get_running_loop())
-        await StoppableServer(config, options.shutdown_s + 0.8).serve()
+        await StoppableServer(config, options.shutdown_s + 0.8).serve(
+            sockets=[sock] if sock is not None else None)
 
     anyio.run(main)

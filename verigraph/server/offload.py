@@ -7,7 +7,8 @@ machine, and no other client is answered meanwhile. Each of those steps is one C
 that holds the GIL from start to end, so moving them to a thread helps only so much.
 LargeCalls moves them away:
 
-* A request body above `threshold` bytes goes to a child process (argument_process),
+* A request body above `threshold` bytes goes to a child process (argument_process:
+  one for bodies up to 4 MiB and one for larger ones, each answering within a deadline),
   which parses it, takes a `tools/call`'s arguments out and validates them. The SDK gets
   the envelope with empty arguments (it still checks the protocol version, id, method,
   name and `_meta`) and ArgumentGate takes the validated input, or the argument error,
@@ -22,55 +23,20 @@ own path.
 
 from __future__ import annotations
 
-import re
-import secrets
-from contextvars import ContextVar
-from dataclasses import dataclass
 from typing import Any
 
-from pydantic import BaseModel
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from verigraph.server.argument_process import ArgumentChecker
 from verigraph.server.rpc_errors import rpc_error
+from verigraph.server.scope import PLACEHOLDER_KEY, CallSlot, current_scope
 
+__all__ = ["DEFAULT_THRESHOLD_BYTES", "PLACEHOLDER_KEY", "CallSlot", "LargeCalls", "offload",
+           "slot_of"]
 SCOPE_KEY = "verigraph.call_slot"
-PLACEHOLDER_KEY = "verigraph_offloaded"
 DEFAULT_THRESHOLD_BYTES = 64 * 1024
 # Results smaller than this are cheaper to hand to the SDK than to splice.
 SPLICE_MIN_BYTES = 16 * 1024
-
-
-@dataclass
-class CallSlot:
-    """What LargeCalls and ArgumentGate hand each other for one HTTP request."""
-
-    # A large body's arguments, taken out and checked (argument_process):
-    params: BaseModel | None = None  # the tool's validated input, if they are valid
-    error: str | None = None  # else what is wrong with them
-    structured: bytes | None = None  # the result's structuredContent, serialised
-    marker: str | None = None  # unguessable, so no client text can pass for the placeholder
-
-    def placeholder(self) -> dict[str, str]:
-        if self.marker is None:
-            self.marker = secrets.token_hex(16)
-        return {PLACEHOLDER_KEY: self.marker}
-
-    def splice(self, body: bytes) -> bytes | None:
-        """`body` with the placeholder replaced by the serialised result, or None if the
-        SDK's answer does not hold the placeholder (it answered an error instead)."""
-        if self.structured is None or self.marker is None:
-            return None
-        pattern = (rb'\{\s*"' + PLACEHOLDER_KEY.encode() + rb'"\s*:\s*"'
-                   + self.marker.encode() + rb'"\s*\}')
-        found = re.search(pattern, body)
-        if found is None:
-            return None
-        return body[:found.start()] + self.structured + body[found.end():]
-
-
-# The slot of the tools/call being handled, for `offload` on the call's worker thread.
-CURRENT_SLOT: ContextVar[CallSlot | None] = ContextVar("verigraph_call_slot", default=None)
 
 
 def slot_of(request: Any) -> CallSlot | None:
@@ -82,8 +48,9 @@ def slot_of(request: Any) -> CallSlot | None:
 
 def offload(structured: Any) -> dict[str, Any] | None:
     """On a heavy call's worker thread: keep a large pydantic result as JSON bytes in the
-    current slot and return the placeholder the SDK sends instead (None: send it as is)."""
-    slot = CURRENT_SLOT.get()
+    current call's slot and return the placeholder the SDK sends instead (None: send it
+    as is)."""
+    slot = current_scope().slot
     if slot is None:
         return None
     data: bytes = structured.model_dump_json().encode()
@@ -123,7 +90,9 @@ class LargeCalls:
         if len(body) > self.threshold:
             prepared = await self.checker.prepare(body, self.threshold)
             if prepared.refusal is not None:
-                await rpc_error(413, prepared.refusal, request_id=prepared.request_id)(
+                retry = {"Retry-After": "1"} if prepared.status == 503 else None
+                await rpc_error(prepared.status, prepared.refusal, code=prepared.code,
+                                request_id=prepared.request_id, headers=retry)(
                     scope, receive, send)
                 return
             body, slot.params, slot.error = prepared.envelope, prepared.params, prepared.error

@@ -24,6 +24,7 @@ from verigraph.graph.state import WorldState
 from verigraph.prompts.filling import planner_prompt, scene_graph_prompt
 from verigraph.tools.fields import builtin_scene, dictionary_for
 from verigraph.tools.registry import Toolbox
+from verigraph.tools.scenes import episode_dictionary
 
 EpisodeArg = Annotated[str, Field(
     description="an episode_id from load_scene: fill in its graph, goal, history and last "
@@ -83,8 +84,10 @@ def register_prompts(server: MCPServer[Any], toolbox: Toolbox) -> None:
     def scene_graph_generation(dictionary: DictionaryArg = "all", task: TaskArg = "",
                                episode_id: ImageEpisodeArg = "") -> str:
         def build() -> str:
-            return scene_graph_prompt(dictionary_for(dictionary or None), task or None,
-                                      episode_id=episode_id or None)
+            d = dictionary_for(dictionary or None)
+            if episode_id and dictionary in ("", "all"):  # the episode's, its own labels too
+                d = episode_dictionary(toolbox.context, episode_id)
+            return scene_graph_prompt(d, task or None, episode_id=episode_id or None)
         return _guard(build)
 
 

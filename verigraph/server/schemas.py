@@ -11,12 +11,14 @@ argument gate) and every result (the SDK); these functions only rewrite what is
   them instead), nested unions flattened into one `anyOf` without the OpenAPI-only
   `discriminator`, the action kinds merged into one `Action` shape, a description on
   every top-level property (lifted from its union member when only that member had
-  one), and the fields of a shared definition described only where tools/list first
+  one; the member's own words, such as "from load_scene", only where tools/list first
+  sends them), and the fields of a shared definition described only where tools/list first
   defines it;
 - outputs: structure only (types, properties, `$defs`, unions, consts and short
   enums). The text content and the input descriptions carry the meaning; an output
   schema is what a client validates results with, so it stays exact about shapes and
-  never stricter than the results.
+  never stricter than the results; a shape repeated across its fields (a list of
+  strings) is written once under `$defs`.
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ _INPUT_DROPPED = (*_NEVER, "minLength", "maxLength", "pattern", "maxItems", "min
 _OUTPUT_KEPT = ("type", "properties", "items", "$defs", "$ref", "anyOf", "oneOf",
                 "allOf", "const", "enum", "additionalProperties", "prefixItems")
 NULL: Schema = {"type": "null"}
+_INNER = "x-type-description"  # working mark only, never published
 MAX_OUTPUT_ENUM = 4
 
 
@@ -82,6 +85,7 @@ def _merge_single(schema: Schema, key: str) -> Schema:
     merged = {**schema, **member}
     if outer and inner and inner != outer:
         merged["description"] = f"{outer}; {inner}"
+        merged[_INNER] = inner  # the type's own words: sent once (compact_input_schema)
     elif outer or inner:
         merged["description"] = outer or inner
     return merged
@@ -94,6 +98,9 @@ def _input_node(schema: Schema) -> Schema:
         del schema["default"]
     if isinstance(schema.get("additionalProperties"), bool):
         del schema["additionalProperties"]
+    kinds = schema.get("type")
+    if isinstance(kinds, list) and "null" in kinds and len(kinds) > 1:
+        schema["type"] = [k for k in kinds if k != "null"]  # omit the argument instead
     schema = _flatten_unions(schema)
     for key in ("anyOf", "oneOf"):
         if key in schema:
@@ -118,6 +125,11 @@ def _output_node(schema: Schema) -> Schema:
         if set(other) == {"type"} and isinstance(other["type"], str):
             return {"type": [other["type"], "null"]}
     return kept
+
+
+def _unmarked(schema: Schema) -> Schema:
+    schema.pop(_INNER, None)
+    return schema
 
 
 def _without_repeats(schema: Any, seen: set[str]) -> Any:
@@ -195,6 +207,13 @@ def compact_input_schema(schema: Schema, documented: set[str] | None = None) -> 
         out = _merge_tagged(out)
     for definition in out.get("$defs", {}).values():
         definition.pop("description", None)  # class docstrings; the properties say it
+    for prop in out.get("properties", {}).values():
+        inner = prop.pop(_INNER, None)
+        if documented is not None and inner is not None:
+            if inner in documented:  # "from load_scene", the scene ids, the image format
+                prop["description"] = prop["description"].removesuffix(f"; {inner}")
+            documented.add(inner)
+    out = _walk(out, _unmarked)
     if documented is None:
         return out
     out["$defs"] = {name: _without_repeats(definition, documented)
@@ -209,13 +228,38 @@ def compact_input_schema(schema: Schema, documented: set[str] | None = None) -> 
     return out
 
 
+# Shapes that recur across one result's fields (lists of edge texts, node ids, labels):
+# written once under `$defs` and referenced, the same contract in fewer bytes.
+SHARED_OUTPUT_SHAPES: dict[str, Schema] = {"Strings": {"items": {"type": "string"},
+                                                       "type": "array"}}
+
+
+def _share_shapes(schema: Schema) -> Schema:
+    """Each shape of SHARED_OUTPUT_SHAPES used twice or more becomes one `$ref`."""
+    text = json.dumps(schema, sort_keys=True)
+    used = {name: shape for name, shape in SHARED_OUTPUT_SHAPES.items()
+            if text.count(json.dumps(shape, sort_keys=True)) >= 2
+            and name not in schema.get("$defs", {})}
+    if not used:
+        return schema
+    refs = {json.dumps(shape, sort_keys=True): {"$ref": f"#/$defs/{name}"}
+            for name, shape in used.items()}
+
+    def node(sub: Schema) -> Schema:
+        return refs.get(json.dumps(sub, sort_keys=True), sub)
+
+    out: Schema = _walk(schema, node)
+    out["$defs"] = {**out.get("$defs", {}), **used}
+    return out
+
+
 def compact_output_schema(schema: Schema) -> Schema:
     """The published outputSchema of a tool: the result's shape, nothing stricter.
 
     No `required`: every result carries all of its fields (null when unset), so the list
     would only repeat the property names.
     """
-    out: Schema = _walk(schema, _output_node)
+    out: Schema = _share_shapes(_walk(schema, _output_node))
     return out
 
 

@@ -4,15 +4,20 @@ Each wrapper's signature is generated from the tool's pydantic input model, so t
 wire inputSchema and the library's model cannot drift apart. The body validates into
 that model, runs the tool, and returns structured content plus a one-line summary
 (image tools: image content only).
+
+A tools/call's path, all in this file: ArgumentGate opens the call's CallScope (scope),
+validates the arguments (or takes them from a large body's slot, offload), then runs
+the tool's executor itself, or, when the call may ask the user first (the ToolSpec's
+`confirmation`), hands it to the SDK, whose resolvers ask and whose wrapper
+(`tool_function`) then runs the same executor. The executor places the call by the
+ToolSpec's `placement`: on the event loop, as a heavy call, or on a thread of its own.
 """
 
 from __future__ import annotations
 
-import base64
 import inspect
 import logging
 from collections.abc import Awaitable, Callable
-from contextvars import ContextVar
 from dataclasses import replace
 from typing import Annotated, Any
 
@@ -24,19 +29,18 @@ from mcp.types import CallToolResult, ImageContent, TextContent, ToolAnnotations
 from pydantic import BaseModel, Field, ValidationError
 
 from verigraph.errors import VeriGraphError
-from verigraph.server.confirmation import CLIENT as AUDIT_CLIENT
 from verigraph.server.confirmation import (
-    PREVIEWS,
     arm_call,
     asks_nothing,
     client_label,
     resolver_parameters,
     take_answers,
-    thread_limiter,
 )
-from verigraph.server.heavy import CLIENT, HeavyCalls
-from verigraph.server.offload import CURRENT_SLOT, CallSlot, offload, slot_of
+from verigraph.server.heavy import HeavyCalls
+from verigraph.server.offload import offload, slot_of
 from verigraph.server.schemas import compact_input_schema, compact_output_schema
+from verigraph.server.scope import CallScope, CallSlot, call_scope, current_scope
+from verigraph.tools.images import png_base64
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
 from verigraph.tools.registry import parse_arguments as parse_tool_arguments
 from verigraph.tools.scenes import ImageResult
@@ -54,7 +58,7 @@ def to_result(spec: ToolSpec, result: BaseModel | ImageResult, splice: bool = Fa
     answer (see offload)."""
     if isinstance(result, ImageResult):
         content: list[ImageContent | TextContent] = [ImageContent(
-            type="image", data=base64.b64encode(result.png).decode("ascii"),
+            type="image", data=png_base64(result.png),
             mime_type=result.mime_type)]
         if result.text:
             content.append(TextContent(type="text", text=result.text))
@@ -77,13 +81,9 @@ def _parameters(model: type[BaseModel]) -> list[inspect.Parameter]:
     return params
 
 
-# Tools that may take long (images, search, perception, a robot arm's controller) always
-# run on a worker thread.
-SLOW_TOOLS = frozenset({"render_scene", "get_scene_image", "solve", "generate_scene_graph",
-                        "arm_status", "arm_stop", "arm_reset"})
+# Arguments that make any tool's call slow (an image to decode, a scene to generate, the
+# simulator, an executor that opens a world): such a call runs as a heavy call.
 SLOW_ARGUMENTS = ("image", "generator", "simulate", "executor")
-# The arm's own controls answer while a motion runs: their own thread, no heavy queue.
-URGENT_TOOLS = frozenset({"arm_status", "arm_stop", "arm_reset"})
 
 
 BIG_GRAPH_ITEMS = 300  # nodes or edges
@@ -115,16 +115,16 @@ def large_input(arguments: Any) -> bool:
 def may_block(spec: ToolSpec, params: BaseModel) -> bool:
     """Whether a call could hold the event loop for long (decode, render, simulate, search,
     or a large graph or plan)."""
-    return spec.name in SLOW_TOOLS or any(getattr(params, a, None) for a in SLOW_ARGUMENTS) \
+    return spec.placement == "heavy" or any(getattr(params, a, None) for a in SLOW_ARGUMENTS) \
         or large_input(params)
 
 
 def big_episode(toolbox: Toolbox, spec: ToolSpec, params: BaseModel) -> bool:
     """Whether the call works on (and mostly returns) a large episode graph: then its
-    result alone takes long to build, so it runs as a heavy call. validate_action
-    answers in O(degree) and stays on the loop."""
+    result alone takes long to build, so it runs as a heavy call. A tool whose work does
+    not grow with the episode (validate_action answers in O(degree)) stays on the loop."""
     episode_id = getattr(params, "episode_id", None)
-    if spec.name == "validate_action" or not isinstance(episode_id, str):
+    if not spec.episode_sized or not isinstance(episode_id, str):
         return False
     try:
         state = toolbox.context.store.peek(episode_id).state
@@ -133,22 +133,20 @@ def big_episode(toolbox: Toolbox, spec: ToolSpec, params: BaseModel) -> bool:
     return state is not None and len(state.objects) > BIG_GRAPH_ITEMS
 
 
-def _gated_params(name: str) -> BaseModel | None:
-    gated = _GATED.get()
-    return gated[1] if gated is not None and gated[0] == name else None
-
-
 Executor = Callable[..., Awaitable[CallToolResult]]
 
 
 def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Executor:
-    """Run the tool on validated input: on the loop if fast, else as a heavy call.
+    """Run the tool on validated input where its ToolSpec's `placement` says.
 
     Fast calls run directly on the event loop: a thread hop costs more than the
     verification itself. A call that could block (slow tool, busy episode, simulator,
-    large input) runs on a worker thread within its budget (see heavy).
+    large input) runs on a worker thread within its budget (see heavy). The arm's
+    controls answer while a motion runs: a worker thread outside the heavy queue, and
+    for arm_stop a thread of its own, so the stop path waits on nothing (not even
+    calls that hold the shared worker threads).
     """
-    slow_default = spec.name == "load_scene" and toolbox.context.config.executor != "graph"
+    slow_default = spec.opens_world and toolbox.context.config.executor != "graph"
     # A durable store reads and writes on every call: trying the loop first would only
     # run the tool's checks twice before it hops to a worker thread anyway.
     off_loop = slow_default or toolbox.context.store.blocking_io
@@ -160,9 +158,9 @@ def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Execut
             raise ToolError(str(exc)) from None
 
     async def placed(params: BaseModel, splice: bool) -> CallToolResult:
-        if spec.name in URGENT_TOOLS:  # never queued behind the call they must interrupt
-            return await anyio.to_thread.run_sync(run, params,
-                                                  limiter=thread_limiter(spec.name))
+        if spec.placement in ("thread", "own_thread"):  # never behind what they interrupt
+            own = anyio.CapacityLimiter(1) if spec.placement == "own_thread" else None
+            return await anyio.to_thread.run_sync(run, params, limiter=own)
         if not (off_loop or may_block(spec, params) or big_episode(toolbox, spec, params)):
             try:
                 with non_blocking():
@@ -176,7 +174,7 @@ def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Execut
         """`by_gate`: ArgumentGate answers the client itself, so a large result may be
         spliced in as bytes; the SDK checks what it answers, which a placeholder fails."""
         # The arm's scope of the call: audit identity, confirmation, heartbeat, deadman.
-        async with arm_call(spec.name, toolbox, params, answers):
+        async with arm_call(spec, toolbox, params, answers):
             return await placed(params, splice=by_gate)
 
     return execute
@@ -189,11 +187,11 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox, execute: Executor) -> Callab
     there). A tool that can make a real arm act also takes the user's answer, which
     the SDK elicits before the body runs (see confirmation).
     """
-    confirmed = spec.name in PREVIEWS
+    confirmed = spec.confirmation is not None
 
     async def call(**arguments: Any) -> CallToolResult:
         answers = take_answers(arguments) if confirmed else None
-        params = _gated_params(spec.name)  # validated from the raw JSON by ArgumentGate
+        params = current_scope().params_for(spec.name)  # validated by ArgumentGate
         if params is None:
             try:
                 params = spec.input_model.model_validate(arguments)
@@ -205,7 +203,7 @@ def tool_function(spec: ToolSpec, toolbox: Toolbox, execute: Executor) -> Callab
                     else CallToolResult)
     parameters = _parameters(spec.input_model)
     if confirmed:
-        extra = resolver_parameters(spec.name, toolbox, lambda: _gated_params(spec.name))
+        extra = resolver_parameters(spec, toolbox)
         parameters += extra
         # The SDK finds resolvers with typing.get_type_hints, which reads __annotations__.
         call.__annotations__ = {p.name: p.annotation for p in extra}
@@ -271,56 +269,51 @@ def _with_arguments(ctx: ServerRequestContext[Any, Any], slot: CallSlot | None
     return replace(ctx, params={**ctx.params, "arguments": arguments})
 
 
-# The arguments ArgumentGate validated for the tools/call being handled (tool, input).
-_GATED: ContextVar[tuple[str, BaseModel] | None] = ContextVar("verigraph_gated", default=None)
-
-
 class ArgumentGate:
     """Server middleware: validate tools/call arguments with our models, from the raw JSON.
 
     The SDK ignores unknown argument names, words type errors for Python readers, and
     decodes JSON-looking strings (so an episode_id "null" would become None). The gate
     rejects misspelt arguments, answers in terms of fields and fixes, and hands the tool
-    exactly the input it validated.
+    exactly the input it validated. It opens the call's CallScope, which the rest of
+    the path reads. `specs` holds the registry's tools and the extensions' tools that
+    build_server adds (view_episode), so no tool is left to the SDK's looser checks.
     """
 
     def __init__(self, heavy: HeavyCalls, toolbox: Toolbox) -> None:
         self.heavy = heavy
         self.toolbox = toolbox
         self.executors: dict[str, Executor] = {}  # filled by build_server
+        # The tools whose calls it checks: the registry's, and the extensions' tools
+        # added by build_server (view_episode), so every tool has one argument path.
+        self.specs: dict[str, ToolSpec] = dict(TOOLS)
 
     async def __call__(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
                        ) -> HandlerResult:
         if ctx.method != "tools/call" or ctx.params is None:
             return await call_next(ctx)
-        slot = slot_of(ctx.request)
-        current_slot = CURRENT_SLOT.set(slot)
-        try:
-            return await self._gate(ctx, call_next, slot)
-        finally:
-            CURRENT_SLOT.reset(current_slot)
+        peer = getattr(ctx.request, "client", None)
+        scope = CallScope(connection=f"{peer.host}:{peer.port}" if peer else "stdio",
+                          client=client_label(ctx.session), slot=slot_of(ctx.request))
+        with call_scope(scope):
+            return await self._gate(ctx, call_next, scope)
 
     async def _gate(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext,
-                    slot: CallSlot | None) -> HandlerResult:
+                    scope: CallScope) -> HandlerResult:
         request = ctx.params or {}
         name = request.get("name")
+        slot = scope.slot
         if slot is not None and slot.error is not None:  # found by the checking process
             return _error_result(str(name), slot.error)
-        spec = TOOLS.get(name) if isinstance(name, str) else None
+        spec = self.specs.get(name) if isinstance(name, str) else None
         if spec is None:
             return await call_next(_with_arguments(ctx, slot))
-        client = getattr(ctx.request, "client", None)
-        if client is not None:
-            CLIENT.set(f"{client.host}:{client.port}")
         try:
             params = await self._params(spec, request.get("arguments"), slot)
         except VeriGraphError as exc:
             return _error_result(spec.name, exc)
-        audit_client = AUDIT_CLIENT.set(client_label(ctx.session))
-        try:
-            return await self._run(spec, params, ctx, call_next, slot)
-        finally:
-            AUDIT_CLIENT.reset(audit_client)
+        scope.tool, scope.params = spec.name, params
+        return await self._run(spec, params, ctx, call_next, slot)
 
     async def _params(self, spec: ToolSpec, arguments: Any, slot: CallSlot | None
                       ) -> BaseModel:
@@ -336,8 +329,8 @@ class ArgumentGate:
     async def _run(self, spec: ToolSpec, params: BaseModel,
                    ctx: ServerRequestContext[Any, Any], call_next: CallNext,
                    slot: CallSlot | None) -> HandlerResult:
-        confirmed = spec.name in PREVIEWS
-        if not confirmed or asks_nothing(spec.name, self.toolbox, params):
+        confirmed = spec.confirmation is not None
+        if not confirmed or asks_nothing(spec, self.toolbox, params):
             # Run it here: the SDK would validate the arguments and the structured
             # result once more on the event loop (both already hold by construction),
             # which for a large graph stalls every other client. A confirmed tool with
@@ -352,8 +345,4 @@ class ArgumentGate:
                 log.exception("Tool %r raised an unexpected exception", spec.name)
                 return CallToolResult(content=[TextContent(
                     type="text", text=f"Error executing tool {spec.name}")], is_error=True)
-        token = _GATED.set((spec.name, params))
-        try:
-            return await call_next(_with_arguments(ctx, slot))
-        finally:
-            _GATED.reset(token)
+        return await call_next(_with_arguments(ctx, slot))

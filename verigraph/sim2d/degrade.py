@@ -33,8 +33,12 @@ class Degradation:
     rotation: camera roll in degrees; scale: zoom factor of the whole image;
     crop: up to this share of each side cut off (never into the objects);
     perspective: corner displacement as a share of the frame (camera tilt);
-    motion_blur: shake length in pixels; occlusion: width of a grey bar in front of
-    the scene as a share of the image width.
+    motion_blur: shake length in pixels; motion_angle: its direction in degrees
+    (None = drawn from the seed); occlusion: width of a grey bar in front of the scene
+    as a share of the image width; occlusion_angle: the bar's tilt from vertical in
+    degrees (90 = a horizontal bar); occlusion_at: where it crosses the content box,
+    0-1 (None = drawn from the seed); blob: radius of a grey blob in front of the
+    scene as a share of the content box's height.
     """
 
     noise: float = 0.0
@@ -51,6 +55,10 @@ class Degradation:
     perspective: float = 0.0
     motion_blur: int = 0
     occlusion: float = 0.0
+    motion_angle: float | None = None
+    occlusion_angle: float = 0.0
+    occlusion_at: float | None = None
+    blob: float = 0.0
 
     @property
     def active(self) -> bool:
@@ -74,8 +82,13 @@ def degrade(image: np.ndarray, spec: Degradation, seed: int = 0) -> np.ndarray:
     out = image
     if spec.wall is not None:
         out = ops.recolour(out, background, spec.wall)
-    if spec.occlusion > 0:
+    if spec.occlusion > 0 and spec.occlusion_angle == 0.0 and spec.occlusion_at is None:
         out = ops.occlude(out, spec.occlusion, keep, rng)
+    elif spec.occlusion > 0:
+        out = ops.occlude_bar(out, spec.occlusion, keep, rng, degrees=spec.occlusion_angle,
+                              at=spec.occlusion_at)
+    if spec.blob > 0:
+        out = ops.occlude_blob(out, spec.blob, keep, rng)
     if spec.white_balance != (1.0, 1.0, 1.0):
         out = ops.white_balance(out, spec.white_balance)
     if spec.lighting > 0:
@@ -89,7 +102,9 @@ def degrade(image: np.ndarray, spec: Degradation, seed: int = 0) -> np.ndarray:
     if spec.perspective > 0:
         out = ops.perspective(out, spec.perspective, rng)
     if spec.motion_blur > 1:
-        out = ops.motion_blur(out, spec.motion_blur, float(rng.uniform(0, 180)))
+        angle = float(rng.uniform(0, 180))  # drawn either way: same seed, same stream
+        out = ops.motion_blur(out, spec.motion_blur,
+                              angle if spec.motion_angle is None else spec.motion_angle)
     if spec.gamma != 1.0:
         out = ops.gamma(out, spec.gamma)
     if spec.hue:

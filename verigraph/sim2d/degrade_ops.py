@@ -125,3 +125,51 @@ def occlude(image: np.ndarray, width_fraction: float, keep: tuple[int, int, int,
     cv2.line(out, (left, 0), (left, h), (25, 25, 25), 1)
     cv2.line(out, (left + bar - 1, 0), (left + bar - 1, h), (25, 25, 25), 1)
     return out
+
+
+def occlude_bar(image: np.ndarray, width_fraction: float, keep: tuple[int, int, int, int],
+                rng: np.random.Generator, *, degrees: float = 0.0, at: float | None = None,
+                colour: tuple[int, int, int] = (118, 118, 118)) -> np.ndarray:
+    """A straight bar (an arm reaching in) of the given share of the width, tilted
+    `degrees` from vertical (90 = horizontal), crossing the content box at `at` (0-1
+    along its width, or its height for a bar nearer horizontal; None = at random),
+    drawn across the whole frame with dark edges."""
+    h, w = image.shape[:2]
+    bar = max(2, int(round(width_fraction * w)))
+    x0, y0, x1, y1 = keep
+    share = float(rng.uniform(0, 1)) if at is None else float(at)
+    t = np.radians(degrees)
+    if abs(degrees) <= 45:  # nearer vertical: placed along x, through the box's middle row
+        centre = (x0 + share * (x1 - x0), (y0 + y1) / 2)
+    else:
+        centre = ((x0 + x1) / 2, y0 + share * (y1 - y0))
+    along = np.array([np.sin(t), np.cos(t)])  # direction of the bar's length
+    across = np.array([along[1], -along[0]]) * bar / 2
+    reach = along * (h + w)
+    c = np.array(centre)
+    corners = np.array([c - reach - across, c + reach - across, c + reach + across,
+                        c - reach + across])
+    out = image.copy()
+    cv2.fillConvexPoly(out, np.round(corners).astype(np.int32), colour, cv2.LINE_AA)
+    for a, b in ((corners[0], corners[1]), (corners[3], corners[2])):
+        cv2.line(out, tuple(int(v) for v in np.round(a)), tuple(int(v) for v in np.round(b)),
+                 (25, 25, 25), 1, cv2.LINE_AA)
+    return out
+
+
+def occlude_blob(image: np.ndarray, radius_fraction: float, keep: tuple[int, int, int, int],
+                 rng: np.random.Generator, colour: tuple[int, int, int] = (118, 118, 118)
+                 ) -> np.ndarray:
+    """A grey blob (a hand, a passing object) of radius `radius_fraction` of the content
+    box's height, an irregular ellipse centred somewhere inside the box."""
+    x0, y0, x1, y1 = keep
+    radius = max(3.0, radius_fraction * (y1 - y0))
+    cx, cy = rng.uniform(x0, x1), rng.uniform(y0 + 0.3 * (y1 - y0), y1)
+    angles = np.linspace(0, 2 * np.pi, 24, endpoint=False)
+    radii = radius * rng.uniform(0.75, 1.25, size=len(angles))
+    points = np.stack([cx + radii * np.cos(angles), cy + 0.8 * radii * np.sin(angles)], axis=1)
+    out = image.copy()
+    hull = cv2.convexHull(np.round(points).astype(np.int32))
+    cv2.fillConvexPoly(out, hull, colour, cv2.LINE_AA)
+    cv2.polylines(out, [hull], True, (25, 25, 25), 1, cv2.LINE_AA)
+    return out

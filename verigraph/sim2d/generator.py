@@ -2,8 +2,11 @@
 
 Families: `blocks` (equal blocks of distinct colours in towers of varied height),
 `kitchen` and `tableware` (furniture plus 3-7 objects, some stacked, some in
-containers; tableware often has the paper's cup on a book), and `tangram` (a target
-figure and a single-move perturbation of it). Tabletop graphs are drawn so that they
+containers; tableware often has the paper's cup on a book), `tangram` (a target
+figure and a single-move perturbation of it), and `user`: a dictionary of its own
+(kinds that no built-in has, with random roles, sizes and colours, given inline as a
+client gives one) on a bench and a side table, to check that generic bodies behave as
+the verifier predicts. Tabletop graphs are drawn so that they
 are physically plausible (things fit where they are put) and then laid out in the
 simulator, which checks them; a draw the physics rejects is replaced by the next draw
 of the same random stream. Tabletop goals are the graph after 2-4 random valid moves
@@ -19,7 +22,12 @@ from dataclasses import dataclass
 from verigraph.actions.executor import execute_in_world
 from verigraph.actions.model import MoveAction
 from verigraph.actions.validator import validate_action
-from verigraph.graph.dictionary import ObjectProperties, builtin_dictionary
+from verigraph.graph.dictionary import (
+    InlineDictionary,
+    ObjectProperties,
+    builtin_dictionary,
+    canonical_token,
+)
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
@@ -33,6 +41,7 @@ from verigraph.sim2d.tangram_figures import perturb, random_pieces, target_figur
 from verigraph.sim2d.world import SimWorld
 
 FAMILIES = ("blocks", "kitchen", "tableware", "tangram")
+USER_FAMILY = "user"  # generated on demand; not one of the built-in families above
 MIN_OBJECTS, MAX_OBJECTS = 3, 7
 TABLETOP_LIMIT = 12
 DRAWS = 30
@@ -64,9 +73,9 @@ class GeneratedScene:
 def generate_scene(family: str, seed: int, n_objects: int | None = None) -> GeneratedScene:
     """A reproducible scene of `family` (see FAMILIES); `n_objects` movable objects
     (default: 3-7 drawn from the seed; tangram: 7 pieces)."""
-    if family not in FAMILIES:
+    if family not in FAMILIES and family != USER_FAMILY:
         raise SimError(f"unknown scene family '{family}'", field="family", value=family,
-                       fix=f"use one of {', '.join(FAMILIES)}")
+                       fix=f"use one of {', '.join(FAMILIES)} or {USER_FAMILY}")
     rng = random.Random(f"verigraph-sim2d:{family}:{seed}")
     if family == "tangram":
         target = target_figure(rng, random_pieces(rng, n_objects))
@@ -99,6 +108,8 @@ def generate_scene(family: str, seed: int, n_objects: int | None = None) -> Gene
 def _draw_tabletop(family: str, rng: random.Random, n: int) -> SceneGraph:
     if family == "blocks":
         return _draw_blocks(rng, n)
+    if family == USER_FAMILY:
+        return _draw_user(rng, n)
     d = builtin_dictionary(family)
     pool: tuple[str, ...]
     if family == "kitchen":
@@ -120,6 +131,52 @@ def _draw_tabletop(family: str, rng: random.Random, n: int) -> SceneGraph:
     props = {node.id: d.objects[node.label] for node in nodes}
     return SceneGraph(nodes=nodes, edges=_draw_supports(rng, fixed, ids, props, forced),
                       dictionary=family)
+
+
+# Kinds a user might bring, by role; sizes and capacities are drawn per scene.
+USER_SURFACES = ("laptop", "tablet", "cutting_mat", "sketchbook", "placemat")
+USER_CONTAINERS = ("pen_holder", "basket", "tin", "planter", "caddy")
+USER_THINGS = ("stapler", "phone", "mouse", "charger", "candle", "figurine")
+
+
+def user_dictionary(rng: random.Random, n: int) -> InlineDictionary:
+    """A random inline dictionary: a fixed bench and side table, then n movable kinds."""
+    objects: dict[str, dict[str, object]] = {
+        "bench": {"movable": False, "surface": True, "width": 60, "height": 4,
+                  "color": "walnut"},
+        "side_table": {"movable": False, "surface": True, "capacity": 3, "width": 30,
+                       "height": 3, "color": "gray"}}
+    pools = {"surface": list(USER_SURFACES), "container": list(USER_CONTAINERS),
+             "thing": list(USER_THINGS)}
+    for pool in pools.values():
+        rng.shuffle(pool)
+    for _ in range(n):
+        role = rng.choice([r for r, pool in pools.items() if pool])
+        label = pools[role].pop()
+        color = rng.choice(BLOCK_COLORS)
+        if role == "surface":
+            objects[label] = {"surface": True, "capacity": rng.randint(1, 2),
+                              "width": rng.randint(10, 18), "height": rng.randint(1, 3),
+                              "color": color}
+        elif role == "container":
+            objects[label] = {"container": True, "capacity": rng.randint(1, 2),
+                              "width": rng.randint(9, 14), "height": rng.randint(4, 8),
+                              "color": color}
+        else:
+            objects[label] = {"width": rng.randint(3, 7), "height": rng.randint(2, 5),
+                              "color": color}
+    return InlineDictionary.model_validate({"name": "generated", "objects": objects})
+
+
+def _draw_user(rng: random.Random, n: int) -> SceneGraph:
+    spec = user_dictionary(rng, n)
+    d = spec.build()
+    fixed = ["bench", "side_table"]
+    ids = [canonical_token(label) for label in spec.objects if label not in fixed]
+    nodes = [Node(id=i, label=i) for i in [*fixed, *ids]]
+    props = {i: d.objects[i] for i in [*fixed, *ids]}
+    return SceneGraph(nodes=nodes, edges=_draw_supports(rng, fixed, ids, props, {}),
+                      dictionary=spec)
 
 
 def _draw_blocks(rng: random.Random, n: int) -> SceneGraph:

@@ -19,7 +19,7 @@ from verigraph.graph.state import WorldState
 from verigraph.sim2d import physics
 from verigraph.sim2d.bodies import furniture_spec, movable_spec
 from verigraph.sim2d.errors import SimError
-from verigraph.sim2d.physics import Pose
+from verigraph.sim2d.physics import BodyPose
 from verigraph.sim2d.placement import FIXED_GAP
 from verigraph.sim2d.putdown import put_down
 from verigraph.sim2d.readback import read_supports
@@ -60,7 +60,7 @@ def build_tabletop(graph: SceneGraph, seed: int = 0) -> TabletopWorld:
         width = max(float(obj.props.width or 40.0),
                     _room_needed(obj.props, list(widths.values())) + carried_fixed)
         spec = furniture_spec(obj.label, obj.props, width)
-        body = physics.make_body(spec, Pose(cursor + width / 2, 0.0), fixed=True)
+        body = physics.make_body(spec, BodyPose(cursor + width / 2, 0.0), fixed=True)
         scene.add(Thing(obj.id, obj.label, obj.props, spec, body, fixed=True))
         cursor += width + FURNITURE_GAP
     for obj in fixed:
@@ -78,7 +78,7 @@ def build_tabletop(graph: SceneGraph, seed: int = 0) -> TabletopWorld:
         w = float(obj.props.width or 10.0)
         spec = furniture_spec(obj.label, obj.props, w)
         # Furniture specs stand on the floor; lift this one onto its support's top.
-        body = physics.make_body(spec, Pose(left + w / 2, base.spec.top), fixed=True)
+        body = physics.make_body(spec, BodyPose(left + w / 2, base.spec.top), fixed=True)
         scene.add(Thing(obj.id, obj.label, obj.props, spec, body, fixed=True))
     _place_movables(scene, state, random.Random(seed))
     supports, _ = read_supports(scene)
@@ -113,12 +113,12 @@ def _place_movables(scene: TabletopScene, state: WorldState, rng: random.Random)
         info = state.objects[obj]
         relation, target = state.support[obj]
         spec = movable_spec(info.label, info.props)
-        body = physics.make_body(spec, Pose(0.0, -100.0), fixed=False)
+        body = physics.make_body(spec, BodyPose(0.0, -100.0), fixed=False)
         scene.add(Thing(obj, info.label, info.props, spec, body, fixed=False), in_space=False)
         outcome = put_down(scene, obj, relation, target)
         if outcome == "no_room":
-            raise SimError(f"no free, stable place for '{obj} {relation} {target}' in the "
-                           "simulator", field="edges", value=f"{obj} {relation} {target}",
+            raise SimError(f"no_room: no free, stable place for '{obj} {relation} {target}' "
+                           "in the simulator", field="edges", value=f"{obj} {relation} {target}",
                            fix=f"give {target} fewer or smaller objects, or put {obj} "
                                "somewhere larger")
         if outcome == "unstable":

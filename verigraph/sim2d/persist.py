@@ -13,11 +13,11 @@ from typing import Any
 
 import pymunk
 
-from verigraph.graph.dictionary import Dictionary, ObjectProperties
+from verigraph.graph.dictionary import Dictionary, InlineDictionary, ObjectProperties
 from verigraph.graph.model import Node
 from verigraph.sim2d import physics
 from verigraph.sim2d.bodies import BodySpec
-from verigraph.sim2d.physics import Pose
+from verigraph.sim2d.physics import BodyPose
 from verigraph.sim2d.scene import TabletopScene, Thing
 from verigraph.sim2d.tabletop import TabletopWorld
 from verigraph.sim2d.tangram import TangramWorld
@@ -50,12 +50,21 @@ def _spec_from(data: dict[str, Any]) -> BodySpec:
                     if cavity else None, wall=data["wall"])
 
 
+def _reference(name: str | InlineDictionary | None) -> Any:
+    """How a world's graphs name their dictionary, as JSON (a client's own: its object)."""
+    return name.model_dump(mode="json") if isinstance(name, InlineDictionary) else name
+
+
+def _reference_from(data: Any) -> str | InlineDictionary | None:
+    return InlineDictionary.model_validate(data) if isinstance(data, dict) else data
+
+
 def world_state(world: SimWorld) -> dict[str, Any]:
     """Everything needed to rebuild `world` exactly (JSON-ready)."""
     nodes = [n.model_dump(mode="json") for n in world.nodes]
     if isinstance(world, TangramWorld):
         return {"format": FORMAT, "kind": "tangram", "nodes": nodes, "labels": world.labels,
-                "dictionary_name": world.dictionary_name,
+                "dictionary_name": _reference(world.dictionary_name),
                 "bodies": {p: _motion(b) for p, b in world.bodies.items()}}
     if isinstance(world, TabletopWorld):
         things = [{"id": t.id, "label": t.label, "props": t.props.model_dump(mode="json"),
@@ -64,7 +73,7 @@ def world_state(world: SimWorld) -> dict[str, Any]:
                   for t in world.scene.things.values()]
         return {"format": FORMAT, "kind": "tabletop", "nodes": nodes, "things": things,
                 "dictionary": world.dictionary.model_dump(mode="json"),
-                "dictionary_name": world.dictionary_name}
+                "dictionary_name": _reference(world.dictionary_name)}
     raise TypeError(f"no persistent form for {type(world).__name__}")
 
 
@@ -83,16 +92,16 @@ def world_from_state(data: dict[str, Any]) -> SimWorld:
         bodies = data["bodies"]
         world = TangramWorld(nodes, data["labels"],
                              {p: TPose(m["x"], m["y"], m["angle"]) for p, m in bodies.items()},
-                             data["dictionary_name"])
+                             _reference_from(data["dictionary_name"]))
         for piece, m in bodies.items():
             _set_velocity(world.bodies[piece], m)
         return world
     scene = TabletopScene()
     for t in data["things"]:
         spec = _spec_from(t["spec"])
-        body = physics.make_body(spec, Pose(t["x"], t["y"], t["angle"]), fixed=t["fixed"])
+        body = physics.make_body(spec, BodyPose(t["x"], t["y"], t["angle"]), fixed=t["fixed"])
         _set_velocity(body, t)
         scene.add(Thing(t["id"], t["label"], ObjectProperties.model_validate(t["props"]),
                         spec, body, t["fixed"]), in_space=t["present"])
     return TabletopWorld(scene, nodes, Dictionary.model_validate(data["dictionary"]),
-                         data["dictionary_name"])
+                         _reference_from(data["dictionary_name"]))

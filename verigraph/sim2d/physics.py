@@ -30,7 +30,7 @@ FLOOR_HALF_WIDTH = 5000.0
 
 
 @dataclass(frozen=True, slots=True)
-class Pose:
+class BodyPose:
     """Position of a body's origin (bottom centre for tabletop objects) and its angle."""
 
     x: float
@@ -66,7 +66,7 @@ def add_floor(space: pymunk.Space) -> pymunk.Body:
     return body
 
 
-def make_body(spec: BodySpec, pose: Pose, *, fixed: bool) -> pymunk.Body:
+def make_body(spec: BodySpec, pose: BodyPose, *, fixed: bool) -> pymunk.Body:
     """A pymunk body with one convex Poly per part (not yet added to a space)."""
     body = pymunk.Body(body_type=pymunk.Body.STATIC if fixed else pymunk.Body.DYNAMIC)
     for part in spec.parts:
@@ -87,7 +87,7 @@ def remove_body(space: pymunk.Space, body: pymunk.Body) -> None:
     space.remove(body, *body.shapes)
 
 
-def set_pose(body: pymunk.Body, pose: Pose) -> None:
+def set_pose(body: pymunk.Body, pose: BodyPose) -> None:
     # Angle first: Chipmunk turns a body about its centre of gravity, so setting the
     # angle after the position would move the origin away from (x, y).
     body.angle = pose.angle
@@ -102,8 +102,8 @@ def set_pose(body: pymunk.Body, pose: Pose) -> None:
             shape.cache_bb()
 
 
-def pose_of(body: pymunk.Body) -> Pose:
-    return Pose(float(body.position.x), float(body.position.y), float(body.angle))
+def pose_of(body: pymunk.Body) -> BodyPose:
+    return BodyPose(float(body.position.x), float(body.position.y), float(body.angle))
 
 
 def settle(space: pymunk.Space, max_steps: int = MAX_SETTLE_STEPS) -> int:

@@ -17,7 +17,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from verigraph.sim2d import physics
-from verigraph.sim2d.physics import Pose
+from verigraph.sim2d.physics import BodyPose
 from verigraph.sim2d.readback import (
     DirectSupport,
     direct_support,
@@ -36,10 +36,10 @@ MIN_FOOTING = 2.0
 
 
 @dataclass(frozen=True, slots=True)
-class Placement:
+class PoseChoice:
     """A pose for the moved object, and how it was found."""
 
-    pose: Pose
+    pose: BodyPose
     mode: str
 
 
@@ -202,7 +202,7 @@ def _ordered(lo: float, hi: float, obj: Thing, target: Thing, relation: str,
 
 def find_placements(scene: TabletopScene, obj: str, relation: str, target: str,
                     supports: dict[str, tuple[str, str]], direct: dict[str, DirectSupport],
-                    *, limit: int = 3) -> list[Placement]:
+                    *, limit: int = 3) -> list[PoseChoice]:
     """Up to `limit` stable placements of `obj` (currently lifted) `relation` `target`.
 
     `supports` and `direct` describe the scene without `obj` (see readback).
@@ -213,7 +213,7 @@ def find_placements(scene: TabletopScene, obj: str, relation: str, target: str,
     angles = [math.pi / 2, 0.0] if _upright(thing, tgt, relation) else [0.0]
     terrain = _Terrain(scene, skip=obj)
     bal_lo, bal_hi = balance_interval(scene, direct, target, thing.mass)
-    out: list[Placement] = []
+    out: list[PoseChoice] = []
     tries = 0
     for angle in angles:
         fp = _footprint(thing, angle)
@@ -230,15 +230,15 @@ def find_placements(scene: TabletopScene, obj: str, relation: str, target: str,
             tries += 1
             if tries > MAX_TRIES:
                 return out
-            pose = Pose(ox, rest - fp.y0 + DROP_GAP, angle)
+            pose = BodyPose(ox, rest - fp.y0 + DROP_GAP, angle)
             if _accept(scene, thing, pose, relation, target, supports):
-                out.append(Placement(pose, "upright" if angle else "flat"))
+                out.append(PoseChoice(pose, "upright" if angle else "flat"))
                 if len(out) >= limit:
                     return out
     return out
 
 
-def _accept(scene: TabletopScene, thing: Thing, pose: Pose, relation: str, target: str,
+def _accept(scene: TabletopScene, thing: Thing, pose: BodyPose, relation: str, target: str,
             supports: dict[str, tuple[str, str]]) -> bool:
     """Would the object, put down at `pose`, rest stably `relation` `target`?"""
     scene.put(thing.id, pose)
@@ -279,11 +279,11 @@ def _resulting_support(scene: TabletopScene, thing: Thing, supporter: str,
     return supports.get(supporter)
 
 
-def drop_placement(scene: TabletopScene, obj: str, target: str) -> Placement:
+def drop_placement(scene: TabletopScene, obj: str, target: str) -> PoseChoice:
     """Unverified fallback: lower the object over the target's centre, whatever is there."""
     thing = scene.things[obj]
     fp = _footprint(thing, 0.0)
     cx = scene.things[target].com()[0]
     ox = cx - fp.com_dx
     rest = _Terrain(scene, skip=obj).rest_height(ox + fp.x0, ox + fp.x1)
-    return Placement(Pose(ox, rest - fp.y0 + DROP_GAP, 0.0), "drop")
+    return PoseChoice(BodyPose(ox, rest - fp.y0 + DROP_GAP, 0.0), "drop")

@@ -17,10 +17,10 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 from verigraph.sim2d import physics
-from verigraph.sim2d.physics import Pose
+from verigraph.sim2d.physics import BodyPose
 from verigraph.sim2d.placement import (
     FIXED_GAP,
-    Placement,
+    PoseChoice,
     drop_placement,
     find_placements,
     margin,
@@ -46,14 +46,14 @@ Slide = tuple[tuple[str, ...], float]
 class Plan:
     """A placement, possibly after sliding groups of objects sideways on their support."""
 
-    placement: Placement
+    placement: PoseChoice
     slides: tuple[Slide, ...] = field(default=())
 
 
 def _shift(scene: TabletopScene, ids: tuple[str, ...], dx: float) -> None:
     for obj in ids:
         pose = physics.pose_of(scene.things[obj].body)
-        scene.put(obj, Pose(pose.x + dx, pose.y, pose.angle))
+        scene.put(obj, BodyPose(pose.x + dx, pose.y, pose.angle))
 
 
 def _slide(scene: TabletopScene, slides: tuple[Slide, ...], sign: float = 1.0) -> None:

@@ -14,6 +14,7 @@ Objects on the floor, or touching nothing below, have no support edge.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 from verigraph.sim2d.physics import Contact, probe_contacts
@@ -91,20 +92,37 @@ def _cavity_area(thing: Thing) -> float:
 def relation_to(scene: TabletopScene, thing: Thing, supporter: Thing) -> str | None:
     """`on`/`in` for an object resting directly on `supporter`, or None if neither fits."""
     props = supporter.props
-    if props.container and in_cavity(supporter, thing.com()):
+    return support_relation(surface=props.surface, container=props.container,
+                            centre_in_cavity=props.container and in_cavity(supporter,
+                                                                          thing.com()))
+
+
+def support_relation(*, surface: bool, container: bool, centre_in_cavity: bool
+                     ) -> str | None:
+    """The rule for an object resting directly on a supporter, shared with perception
+    (which reads the same facts off pixels): inside a container's cavity `in`, on a
+    surface `on`, on a container's rim `in`, on anything else (a spoon) None."""
+    if container and centre_in_cavity:
         return "in"
-    if props.surface:
+    if surface:
         return "on"
-    if props.container:
+    if container:
         return "in"
     return None
 
 
-def read_supports(scene: TabletopScene) -> tuple[dict[str, tuple[str, str]],
-                                                 dict[str, DirectSupport]]:
-    """Every present object's (relation, target) as physics shows it, and the raw contacts."""
-    direct = {t.id: direct_support(scene, t) for t in scene.things.values()
-              if scene.present(t.id)}
+def resolve_supports(direct: Mapping[str, DirectSupport],
+                     relation: Callable[[str, str], str | None],
+                     holder: Callable[[str], str | None]) -> dict[str, tuple[str, str]]:
+    """(relation, target) of every object from what it directly rests on.
+
+    `relation(obj, supporter)` applies `support_relation`; `holder(obj)` is the
+    innermost container whose cavity holds the object's centre. An object resting on
+    something that is neither surface nor container is `in` its holder, else whatever
+    its supporter is on; one resting on nothing (wedged between walls) is `in` its
+    holder; one on the floor has no edge. Shared with perception, whose direct supports
+    and cavities come from pixels instead of contacts.
+    """
     resolved: dict[str, tuple[str, str] | None] = {}
 
     def resolve(obj: str, visiting: set[str]) -> tuple[str, str] | None:
@@ -115,23 +133,37 @@ def read_supports(scene: TabletopScene) -> tuple[dict[str, tuple[str, str]],
         visiting.add(obj)
         result: tuple[str, str] | None = None
         sup = direct[obj].supporter
-        thing = scene.things[obj]
         if sup is not None:
-            rel = relation_to(scene, thing, scene.things[sup])
+            rel = relation(obj, sup)
             if rel is not None:
                 result = (rel, sup)
             else:
-                holder = innermost_container(scene, thing, exclude={obj})
-                result = ("in", holder.id) if holder is not None else resolve(sup, visiting)
+                inside = holder(obj)
+                result = ("in", inside) if inside is not None else resolve(sup, visiting)
         elif not direct[obj].on_floor:
             # Held between a container's walls without resting on anything (wedged).
-            holder = innermost_container(scene, thing, exclude={obj})
-            result = ("in", holder.id) if holder is not None else None
+            inside = holder(obj)
+            result = ("in", inside) if inside is not None else None
         visiting.discard(obj)
         resolved[obj] = result
         return result
 
     for obj in direct:
         resolve(obj, set())
-    supports = {obj: rel for obj, rel in resolved.items() if rel is not None}
+    return {obj: rel for obj, rel in resolved.items() if rel is not None}
+
+
+def read_supports(scene: TabletopScene) -> tuple[dict[str, tuple[str, str]],
+                                                 dict[str, DirectSupport]]:
+    """Every present object's (relation, target) as physics shows it, and the raw contacts."""
+    direct = {t.id: direct_support(scene, t) for t in scene.things.values()
+              if scene.present(t.id)}
+
+    def holder(obj: str) -> str | None:
+        inside = innermost_container(scene, scene.things[obj], exclude={obj})
+        return inside.id if inside is not None else None
+
+    supports = resolve_supports(
+        direct, lambda obj, sup: relation_to(scene, scene.things[obj], scene.things[sup]),
+        holder)
     return supports, direct

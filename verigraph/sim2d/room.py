@@ -13,6 +13,7 @@ thing in or across it for a container):
 - on a movable surface: alone, anything (centred); beside a load, the load's extents
   plus half the object fit within the width (the object may overhang the far edge),
   and a surface resting on something narrower than itself carries a single object;
+- on or in a target lying in a movable container: only what passes its opening;
 - a surface that balances several objects (it rests on something narrower, stands on
   a narrower foot like a plate, or its load hangs over its edges) takes no more load
   anywhere above it and gives none up: the rest could tip;
@@ -148,6 +149,13 @@ def room_violation(state: WorldState, action: MoveAction) -> Violation | None:
                      f"{blockers[0]} may stand as high right beside it or over it: {obj} could "
                      f"not be lowered {rel} {target} past it", blockers,
                      f"move {blockers[0]} off its stack first, or put {obj} somewhere lower")
+    if below is not None and below[0] == "in" and state.objects[below[1]].props.movable:
+        opening = _inner(state, below[1])[0]
+        if need > opening - CLEARANCE:  # it would have to pass the outer rim
+            return _fail(action, f"{target} lies in {below[1]}, whose opening is "
+                         f"{opening:.1f} wide: {obj} ({need:g} wide) cannot be lowered "
+                         f"{rel} it", [below[1]],
+                         f"take {target} out of {below[1]} first, or choose a larger target")
     if rel == "on":
         width = _width(state, target)
         used = sum(extent(state, c) for c in load) + GAP * len(load)

@@ -14,7 +14,7 @@ import pymunk
 from verigraph.graph.dictionary import ObjectProperties
 from verigraph.sim2d import physics
 from verigraph.sim2d.bodies import BodySpec
-from verigraph.sim2d.physics import Pose
+from verigraph.sim2d.physics import BodyPose
 
 
 @dataclass(slots=True)
@@ -50,7 +50,7 @@ class Thing:
                 max(b.right for b in bbs), max(b.top for b in bbs))
 
 
-Snapshot = dict[str, tuple[Pose, bool]]
+Snapshot = dict[str, tuple[BodyPose, bool]]
 
 
 class TabletopScene:
@@ -77,7 +77,7 @@ class TabletopScene:
         if body.space is not None:
             physics.remove_body(self.space, body)
 
-    def put(self, obj: str, pose: Pose) -> None:
+    def put(self, obj: str, pose: BodyPose) -> None:
         """Put an object back into the world at `pose`, at rest."""
         body = self.things[obj].body
         physics.set_pose(body, pose)

@@ -18,7 +18,7 @@ import numpy as np
 
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AlignAction, MoveAction
-from verigraph.graph.dictionary import Dictionary
+from verigraph.graph.dictionary import Dictionary, InlineDictionary
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.sim2d import physics
 from verigraph.sim2d.carry import carry_over
@@ -38,7 +38,7 @@ class TabletopWorld(SimWorld):
     kind: WorldKind = "tabletop"
 
     def __init__(self, scene: TabletopScene, nodes: list[Node], dictionary: Dictionary,
-                 dictionary_name: str | None) -> None:
+                 dictionary_name: str | InlineDictionary | None) -> None:
         self.scene = scene
         self.nodes = [n.model_copy(deep=True) for n in nodes]
         self.dictionary = dictionary

@@ -1,6 +1,6 @@
 """The tangram world (top view, no gravity): align pieces side to side, read contacts back.
 
-Pieces are kinematic pymunk bodies; `align` computes the rigid motion of DESIGN
+Pieces are kinematic pymunk bodies; `align` computes the rigid motion of docs/design.md
 section 2, asks the physics engine which pieces the moved piece would touch, refuses
 with `overlap` (nothing moves) if it penetrates any of them, and otherwise applies it. The graph
 is read from geometry: a `touches` edge for every pair of sides that are antiparallel,
@@ -16,6 +16,7 @@ import pymunk
 
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AlignAction, MoveAction
+from verigraph.graph.dictionary import InlineDictionary
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.sim2d.errors import SimError
@@ -40,7 +41,7 @@ class TangramWorld(SimWorld):
     kind: WorldKind = "tangram"
 
     def __init__(self, nodes: list[Node], labels: dict[str, str], poses: dict[str, TPose],
-                 dictionary_name: str | None = "tangram") -> None:
+                 dictionary_name: str | InlineDictionary | None = "tangram") -> None:
         self.nodes = [n.model_copy(deep=True) for n in nodes]
         self.labels = dict(labels)
         self.dictionary_name = dictionary_name

@@ -1,6 +1,6 @@
 """Tangram target figures and their single-move perturbations, from a seed.
 
-A figure grows piece by piece: each new piece is aligned (DESIGN section 2: midpoints
+A figure grows piece by piece: each new piece is aligned (docs/design.md section 2: midpoints
 together, normals opposite) with a free side of a piece already placed, and kept only
 if it overlaps nothing and touches exactly that one side; of several such placements the
 most compact is kept, so figures look like tangram figures. Every side therefore touches

@@ -3,7 +3,7 @@
 Sizes follow the standard set with the small triangle's leg `UNIT`: small triangles
 (legs 1), medium (legs sqrt 2), large (legs 2), square (side 1), parallelogram (sides
 sqrt 2 and 1, acute angle 45 degrees). Vertices are listed clockwise as seen from
-above, starting at the canonical vertex of DESIGN section 2, and side i runs from
+above, starting at the canonical vertex of docs/design.md section 2, and side i runs from
 vertex i to vertex i+1: a triangle's right-angle vertex (sides 0 and 2 are the legs,
 side 1 the hypotenuse), the parallelogram's acute vertex that starts a long side, the
 square's vertex 0. Local coordinates put the centroid at the origin; pieces are never

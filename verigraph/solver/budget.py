@@ -25,13 +25,13 @@ def resident_mb() -> float:
     return rss / 2**20 if rss else resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
-class BudgetExhausted(Exception):  # noqa: N818 - a control-flow signal, not an error
+class SearchBudgetSpent(Exception):  # noqa: N818 - a control-flow signal, not an error
     """Raised inside a search when a limit is reached; carries the reason."""
 
 
 @dataclass(slots=True)
-class Budget:
-    """Limits for one solve call; `check()` raises BudgetExhausted when one is passed."""
+class SearchBudget:
+    """Limits for one solve call; `check()` raises SearchBudgetSpent when one is passed."""
 
     time_limit_s: float = DEFAULT_TIME_LIMIT_S
     memory_limit_mb: float = DEFAULT_MEMORY_LIMIT_MB
@@ -62,9 +62,9 @@ class Budget:
         checkpoint()
         self._calls += 1
         if self.expansions > self.max_expansions:
-            raise BudgetExhausted(self.reason(f"{self.max_expansions} expansions"))
+            raise SearchBudgetSpent(self.reason(f"{self.max_expansions} expansions"))
         if time.perf_counter() - self.started > self.time_limit_s:
-            raise BudgetExhausted(self.reason(f"time limit {self.time_limit_s:g} s"))
+            raise SearchBudgetSpent(self.reason(f"time limit {self.time_limit_s:g} s"))
         if (memory or self._calls % self.memory_every == 0) \
                 and self.used_mb() > self.memory_limit_mb:
-            raise BudgetExhausted(self.reason(f"memory limit {self.memory_limit_mb:g} MB"))
+            raise SearchBudgetSpent(self.reason(f"memory limit {self.memory_limit_mb:g} MB"))

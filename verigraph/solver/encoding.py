@@ -12,16 +12,17 @@ import math
 from collections.abc import Callable, Iterator
 
 from verigraph.actions.model import MoveAction
+from verigraph.graph.dictionary import SUPPORT_RELATIONS
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.solver.budget import Budget
+from verigraph.solver.budget import SearchBudget
 
-RELATIONS = ("on", "in")
+RELATIONS = SUPPORT_RELATIONS  # a move's relation is coded as its index here
 Codes = tuple[int, ...]
 Move = tuple[int, int, int]  # (object index, relation, target index)
 
 
-class Problem:
+class SearchProblem:
     """A tabletop scene as integers: movable objects, kinds, capacities, fixed loads."""
 
     def __init__(self, state: WorldState) -> None:
@@ -59,7 +60,7 @@ class Problem:
     def accepts(self, j: int, r: int) -> bool:
         return (r == 0 and self.surface[j]) or (r == 1 and self.container[j])
 
-    def successors(self, codes: Codes, budget: Budget) -> Iterator[tuple[Codes, Move]]:
+    def successors(self, codes: Codes, budget: SearchBudget) -> Iterator[tuple[Codes, Move]]:
         load = self.loads(codes)
         n = len(self.ids)
         every = max(16, 200_000 // max(1, len(codes)))
@@ -90,7 +91,7 @@ class Problem:
         return MoveAction(object=self.ids[i], relation=RELATIONS[r], target=self.ids[j])
 
 
-def goal_codes(problem: Problem, goal_graph: SceneGraph) -> dict[int, int]:
+def goal_codes(problem: SearchProblem, goal_graph: SceneGraph) -> dict[int, int]:
     """Wanted support code per movable slot, from the goal graph's on/in edges."""
     wanted: dict[int, int] = {}
     for e in goal_graph.edges:
@@ -101,7 +102,7 @@ def goal_codes(problem: Problem, goal_graph: SceneGraph) -> dict[int, int]:
     return wanted
 
 
-def needs_to_move(problem: Problem, wanted: dict[int, int], codes: Codes | list[int],
+def needs_to_move(problem: SearchProblem, wanted: dict[int, int], codes: Codes | list[int],
                   *, goal_only: bool = False) -> list[bool]:
     """Per slot: the object must move at least once (misplaced, or above one that must).
 
@@ -132,14 +133,14 @@ def needs_to_move(problem: Problem, wanted: dict[int, int], codes: Codes | list[
     return [bool(m) and (not goal_only or k in wanted) for k, m in enumerate(memo)]
 
 
-def misplaced_heuristic(problem: Problem, wanted: dict[int, int]) -> Callable[[Codes], int]:
+def misplaced_heuristic(problem: SearchProblem, wanted: dict[int, int]) -> Callable[[Codes], int]:
     """Objects with a goal position that must move at least once: admissible, consistent."""
     def h(codes: Codes) -> int:
         return sum(needs_to_move(problem, wanted, codes, goal_only=True))
     return h
 
 
-def stack_heuristic(problem: Problem) -> Callable[[Codes], int]:
+def stack_heuristic(problem: SearchProblem) -> Callable[[Codes], int]:
     """single_stack: every object outside the deepest chain standing on a fixed object."""
     def h(codes: Codes) -> int:
         children: dict[int, list[int]] = {}

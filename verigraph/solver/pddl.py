@@ -15,10 +15,11 @@ from itertools import product
 
 from verigraph.actions.model import AnyAction, MoveAction
 from verigraph.errors import GoalError, VeriGraphError
+from verigraph.graph.dictionary import SUPPORT_RELATIONS
 from verigraph.graph.goal import Goal
 from verigraph.graph.state import WorldState
 
-RELATIONS = ("on", "in")
+RELATIONS = SUPPORT_RELATIONS
 _UNSAFE = re.compile(r"[^A-Za-z0-9_\-]")
 
 

@@ -1,6 +1,6 @@
 """Reference solver: optimal A* over graph edits, an anytime mode, and a hard budget.
 
-Every solve runs under a `Budget` (wall clock, memory growth, expansions); running out
+Every solve runs under a `SearchBudget` (wall clock, memory growth, expansions); running out
 is an answer (`status="budget_exhausted"` with the numbers), never a crash. Optimal
 mode is A* with the misplaced-objects bound (see `encoding`). Anytime mode first takes
 the polynomial strategy's plan (`strategy`), then refines it with weighted A* (w = 2,
@@ -25,14 +25,14 @@ from verigraph.solver.budget import (
     DEFAULT_MAX_EXPANSIONS,
     DEFAULT_MEMORY_LIMIT_MB,
     DEFAULT_TIME_LIMIT_S,
-    Budget,
-    BudgetExhausted,
+    SearchBudget,
+    SearchBudgetSpent,
 )
 from verigraph.solver.encoding import (
     RELATIONS,
     Codes,
     Move,
-    Problem,
+    SearchProblem,
     goal_codes,
     misplaced_heuristic,
     stack_heuristic,
@@ -53,11 +53,11 @@ def solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, *,
     >>> [a.text() for a in solve(cup_on_book(), cup_on_book_goal()).plan]
     ['move(cup, on, desk)', 'move(book, on, shelf)']
     """
-    budget = Budget(time_limit_s=time_limit, memory_limit_mb=memory_limit_mb,
+    budget = SearchBudget(time_limit_s=time_limit, memory_limit_mb=memory_limit_mb,
                     max_expansions=max_expansions)
     try:
         return _finish(_solve(scene, goal, budget, anytime), budget)
-    except BudgetExhausted as exc:
+    except SearchBudgetSpent as exc:
         return _finish(SolveResult(reachable=None, status="budget_exhausted", reason=str(exc),
                                    expanded=budget.expansions), budget)
     except MemoryError:
@@ -66,13 +66,13 @@ def solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, *,
                                    reason=budget.reason("out of memory")), budget)
 
 
-def _finish(result: SolveResult, budget: Budget) -> SolveResult:
+def _finish(result: SolveResult, budget: SearchBudget) -> SolveResult:
     result.elapsed_s = round(budget.elapsed(), 3)
     result.memory_mb = round(max(budget.peak_mb, budget.used_mb()), 1)
     return result
 
 
-def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget: Budget,
+def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget: SearchBudget,
            anytime: bool) -> SolveResult:
     state = scene.copy() if isinstance(scene, WorldState) else WorldState.from_graph(scene)
     goal_model = Goal.parse(goal)
@@ -83,7 +83,7 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
         return SolveResult(reachable=False, status="unreachable", reason=reason)
     if state.contacts or any(o.props.sides for o in state.objects.values()):
         return _solve_tangram(state, goal_model, budget)
-    problem = Problem(state)
+    problem = SearchProblem(state)
     wanted = goal_codes(problem, goal_model.graph) if goal_model.graph is not None else {}
     h_graph = misplaced_heuristic(problem, wanted)
     h_stack = stack_heuristic(problem) if goal_model.predicate == "single_stack" else None
@@ -108,8 +108,8 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
     return _anytime(problem, wanted, h, is_goal, budget)
 
 
-def _anytime(problem: Problem, wanted: dict[int, int], h: Callable[[Codes], int],
-             is_goal: Callable[[Codes], bool], budget: Budget) -> SolveResult:
+def _anytime(problem: SearchProblem, wanted: dict[int, int], h: Callable[[Codes], int],
+             is_goal: Callable[[Codes], bool], budget: SearchBudget) -> SolveResult:
     from verigraph.solver.strategy import greedy_plan
 
     lower = h(problem.start)
@@ -135,7 +135,7 @@ def _anytime(problem: Problem, wanted: dict[int, int], h: Callable[[Codes], int]
                                        expanded=budget.expansions,
                                        reason="no sequence of valid moves reaches the goal")
                 lower = len(best)  # A* finished: nothing shorter exists
-    except BudgetExhausted as exc:
+    except SearchBudgetSpent as exc:
         if best is None:
             raise
         lower = max(lower, proof["floor"])
@@ -147,14 +147,15 @@ def _anytime(problem: Problem, wanted: dict[int, int], h: Callable[[Codes], int]
                        optimal=len(best) <= lower, lower_bound=lower, first_plan_s=first_plan_s)
 
 
-def _replay(problem: Problem, moves: list[Move]) -> Codes:
+def _replay(problem: SearchProblem, moves: list[Move]) -> Codes:
     codes = list(problem.start)
     for i, r, j in moves:
         codes[problem.slot[i]] = j * 2 + r
     return tuple(codes)
 
 
-def _decoded_goal_check(problem: Problem, state: WorldState, codes: Codes, goal: Goal) -> bool:
+def _decoded_goal_check(problem: SearchProblem, state: WorldState, codes: Codes,
+                        goal: Goal) -> bool:
     trial = state.copy()
     for k, i in enumerate(problem.movable):
         code = codes[k]
@@ -162,8 +163,8 @@ def _decoded_goal_check(problem: Problem, state: WorldState, codes: Codes, goal:
     return check_goal(trial, goal).satisfied
 
 
-def _astar(problem: Problem, h: Callable[[Codes], int], is_goal: Callable[[Codes], bool],
-           budget: Budget, weight: float, bound: float,
+def _astar(problem: SearchProblem, h: Callable[[Codes], int], is_goal: Callable[[Codes], bool],
+           budget: SearchBudget, weight: float, bound: float,
            proof: dict[str, int] | None = None) -> tuple[bool, list[AnyAction]]:
     """(found, plan): a plan shorter than `bound`, if there is one.
 
@@ -209,7 +210,7 @@ def _astar(problem: Problem, h: Callable[[Codes], int], is_goal: Callable[[Codes
     return False, []
 
 
-def _solve_tangram(state: WorldState, goal: Goal, budget: Budget,
+def _solve_tangram(state: WorldState, goal: Goal, budget: SearchBudget,
                    max_depth: int = 2) -> SolveResult:
     """Breadth-first search over symbolic align actions (depth-limited)."""
     pieces = [o.id for o in state.objects.values() if o.props.sides and o.props.movable]

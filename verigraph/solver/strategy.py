@@ -16,11 +16,12 @@ has room) the strategy gives up and the caller falls back to search.
 
 from __future__ import annotations
 
-from verigraph.solver.budget import Budget
-from verigraph.solver.encoding import Move, Problem, needs_to_move
+from verigraph.solver.budget import SearchBudget
+from verigraph.solver.encoding import Move, SearchProblem, needs_to_move
 
 
-def _parking(problem: Problem, load: list[int], i: int, current: int) -> tuple[int, int] | None:
+def _parking(problem: SearchProblem, load: list[int], i: int, current: int
+             ) -> tuple[int, int] | None:
     """A fixed object with room for object i (not where it is), most free room first."""
     best: tuple[float, int, int] | None = None
     for j in problem.fixed_ids:
@@ -36,7 +37,8 @@ def _parking(problem: Problem, load: list[int], i: int, current: int) -> tuple[i
     return None if best is None else (best[1], best[2])
 
 
-def greedy_plan(problem: Problem, wanted: dict[int, int], budget: Budget) -> list[Move] | None:
+def greedy_plan(problem: SearchProblem, wanted: dict[int, int], budget: SearchBudget
+                ) -> list[Move] | None:
     """Moves that reach every wanted support, or None when the strategy is stuck.
 
     Only the moved object's "must move" flag can change after a move (it was clear, and

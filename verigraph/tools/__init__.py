@@ -19,10 +19,10 @@ from verigraph.tools.errors import (
 )
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec
 from verigraph.tools.scenes import ImageResult
-from verigraph.tools.store import Episode, EpisodeStore, TraceEntry
+from verigraph.tools.store import EpisodeStore, LiveEpisode, TraceEntry
 
 __all__ = [
-    "TOOLS", "TOOL_SPECS", "Episode", "EpisodeLimitError", "EpisodeStateError", "EpisodeStore",
+    "TOOLS", "TOOL_SPECS", "LiveEpisode", "EpisodeLimitError", "EpisodeStateError", "EpisodeStore",
     "FeatureUnavailableError", "ImageResult", "InvalidArgumentsError", "ToolArgumentError",
     "ToolConfig", "ToolContext", "ToolSpec", "Toolbox", "TraceEntry", "UnknownEpisodeError",
 ]

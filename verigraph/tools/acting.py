@@ -16,16 +16,19 @@ from verigraph.actions.executor import execute_in_world
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.actions.parser import parse_plan
+from verigraph.actions.pddl.conversion import as_validation_report
+from verigraph.actions.pddl.validate import validate_pddl_dict
 from verigraph.actions.report import ValidationReport
 from verigraph.actions.report import validate_plan as core_validate_plan
-from verigraph.actions.validator import GraphEdit, apply_action
-from verigraph.actions.validator import validate_action as core_check
-from verigraph.errors import PlanParseError
+from verigraph.actions.validator import GraphEdit, all_violations, apply_action
+from verigraph.errors import PlanParseError, VeriGraphError
 from verigraph.graph.goal import Goal, GraphDiff
 from verigraph.graph.goal import check_goal as core_check_goal
 from verigraph.graph.model import SceneGraph
+from verigraph.graph.wellformed import label_readings
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import EpisodeStateError, ToolArgumentError
+from verigraph.tools.executors import arm_mode_of
 from verigraph.tools.fields import (
     ActionInput,
     BoundedGoal,
@@ -39,7 +42,7 @@ from verigraph.tools.fields import (
 from verigraph.tools.goals import check_goal_against
 from verigraph.tools.loading import stateless_source
 from verigraph.tools.store import TraceEntry
-from verigraph.tools.texts import edges_line
+from verigraph.tools.texts import edges_line, readings_line, runs_on
 
 MAX_ACTIONS_PER_CALL = 50
 MAX_PLAN_ACTIONS = 1000
@@ -57,7 +60,7 @@ class ValidateActionInput(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     episode_id: EpisodeId
-    action: ActionInput = Field(description="an action as JSON or text")
+    action: ActionInput = Field(description="the action")
 
 
 class ActionCheck(BaseModel):
@@ -66,17 +69,31 @@ class ActionCheck(BaseModel):
     ok: bool
     action: str = Field(description="the action in text form")
     violation: Violation | None = None
+    violations: list[Violation] = Field(default_factory=list,
+                                        description="every constraint it breaks")
     would_change: GraphEdit | None = Field(default=None,
                                            description="edges it would remove and add")
     goal_satisfied_after: bool | None = Field(
         default=None, description="whether the goal would hold right after it")
+    runs_on: str | None = Field(default=None, description="the episode's executor")
 
     def summary(self) -> str:
+        checked = "checked only, nothing was executed"
+        if self.runs_on is not None:
+            checked += f"; episode executor: {self.runs_on}"
         if self.violation is not None:
-            return f"INVALID {self.action}: {self.violation.text()}"
+            found = self.violations or [self.violation]
+            if len(found) == 1:
+                return f"INVALID {self.action}: {found[0].text()}\n{checked}"
+            lines = [f"INVALID {self.action}: breaks {len(found)} constraints (fix all):"]
+            lines += [f"- {v.text()}" for v in found]
+            return "\n".join([*lines, checked])
+        if self.action == "done":
+            return f"valid: done (the end token; execute_actions then end_episode)\n{checked}"
         change = f" ({self.would_change.text()})" if self.would_change else ""
         goal = " - goal would be reached" if self.goal_satisfied_after else ""
-        return f"valid: {self.action}{change}{goal}"
+        return f"valid: {self.action}{change}{goal}\n{checked}"
+
 
 
 def validate_action(ctx: ToolContext, params: ValidateActionInput) -> ActionCheck:
@@ -89,16 +106,18 @@ def validate_action(ctx: ToolContext, params: ValidateActionInput) -> ActionChec
     action = actions[0]
     with ctx.store.use(params.episode_id) as episode:
         state = episode.require_state()
+        where = runs_on(episode.executor, arm_mode_of(episode.world))
         if isinstance(action, DoneAction):
-            return ActionCheck(ok=True, action="done")
-        violation = core_check(state, action)
-        if violation is not None:
-            return ActionCheck(ok=False, action=action.text(), violation=violation)
+            return ActionCheck(ok=True, action="done", runs_on=where)
+        found = all_violations(state, action)
+        if found:
+            return ActionCheck(ok=False, action=action.text(), violation=found[0],
+                               violations=found, runs_on=where)
         after = state.copy()
         edit = apply_action(after, action)
         reached = core_check_goal(after, episode.goal).satisfied if episode.goal else None
         return ActionCheck(ok=True, action=action.text(), would_change=edit,
-                           goal_satisfied_after=reached)
+                           goal_satisfied_after=reached, runs_on=where)
 
 
 # -- execute_actions ------------------------------------------------------------------------
@@ -110,10 +129,9 @@ class ExecuteActionsInput(BaseModel):
     episode_id: EpisodeId
     actions: list[ActionInput] = Field(
         min_length=1, max_length=MAX_ACTIONS_PER_CALL,
-        description="JSON actions or text (a text item may hold several lines)")
+        description="JSON or text (an item may hold several lines)")
     request_id: RequestId | None = Field(
-        default=None, description="a retry with the same id returns the first "
-                                  "result, not a second run")
+        default=None, description="retry key: a repeat returns the first result")
     expected_calls: int | None = Field(
         default=None, ge=0, description="run only after this many "
                                         "execute_actions calls")
@@ -135,9 +153,15 @@ class ExecutionOutput(BaseModel):
     done: bool = Field(description="the end token was reached")
     goal_satisfied: bool | None
     goal_diff: GraphDiff | None
+    runs_on: str | None = Field(default=None, description="the episode's executor")
 
     def summary(self) -> str:
-        parts = [f"executed {len(self.executed)}: {', '.join(self.executed) or 'nothing'}"]
+        if self.executed:
+            parts = [f"executed {len(self.executed)}: {', '.join(self.executed)}"]
+        elif self.done and self.violation is None:
+            parts = ["no action to execute: done received"]
+        else:
+            parts = ["executed none"]
         if self.violation is not None:
             parts.append(f"stopped: {self.violation.text()}")
         if self.goal_diff is not None:
@@ -147,7 +171,8 @@ class ExecutionOutput(BaseModel):
             parts.append("threshold reached: call end_episode")
         elif self.done:
             parts.append("end token received: call end_episode for the verdict")
-        return "; ".join(parts) + "\n" + edges_line(self.graph, "graph now")
+        where = [f"executor: {self.runs_on}"] if self.runs_on else []
+        return "\n".join(["; ".join(parts), *where, edges_line(self.graph, "graph now")])
 
 
 def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionOutput:
@@ -207,7 +232,8 @@ def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionO
             not_executed=[a.text() for a in actions[len(executed):]] if violation else [],
             violation=violation, edits=edits, graph=new_state.to_graph(), tau=tau,
             t=episode.t, threshold_reached=episode.threshold_reached, done=done,
-            goal_satisfied=diff.satisfied if diff else None, goal_diff=diff)
+            goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
+            runs_on=runs_on(episode.executor, arm_mode_of(episode.world)))
         if params.request_id is not None:
             episode.requests.record(params.request_id, proposed, output.model_dump(mode="json"))
             episode.mark_changed()  # an in-place edit: durable stores save it with the rest
@@ -222,7 +248,7 @@ class CheckGoalInput(BaseModel):
 
     episode_id: EpisodeId
     goal: BoundedGoal | None = Field(default=None,
-                              description="check this goal instead of the episode's")
+                              description="instead of the episode's")
 
 
 class GoalCheck(BaseModel):
@@ -252,24 +278,38 @@ def check_goal(ctx: ToolContext, params: CheckGoalInput) -> GoalCheck:
 
 
 # -- validate_plan --------------------------------------------------------------------------
+MAX_PDDL_CHARS = 1_000_000  # a domain or problem text; the reader also bounds depth and size
+PDDL_KEYS = ("domain", "problem")
+
+
 class ValidatePlanInput(BaseModel):
     """A whole plan against an initial scene (stateless; episodes are only read)."""
 
     model_config = ConfigDict(extra="forbid")
 
     plan: PlanText | PlanList = Field(
-        description="text plan (one action per line) or a list of actions")
-    scene_id: SceneId | None = Field(default=None, description="start from a built-in scene")
-    graph: BoundedGraph | None = Field(default=None, description="initial scene graph")
+        description="one action per line, or a list")
+    scene_id: SceneId | None = Field(default=None, description="a built-in scene")
+    graph: BoundedGraph | None = Field(default=None, description="initial graph")
     episode_id: EpisodeId | None = Field(
-        default=None, description="start from this episode's graph and goal")
-    goal: BoundedGoal | None = Field(default=None, description="check the final graph against it")
-    all_errors: bool = Field(default=False, description="skip failing actions and report "
-                                                        "every violation")
+        default=None, description="this episode's graph and goal")
+    goal: BoundedGoal | None = Field(default=None, description="check the final graph")
+    all_errors: bool = Field(default=False, description="go on after a failing action")
+    pddl: dict[str, str] | None = Field(default=None,
+                                        description="{domain, problem} PDDL text, not a scene")
 
     @model_validator(mode="after")
     def _one_scene(self) -> ValidatePlanInput:
         given = [n for n in ("scene_id", "graph", "episode_id") if getattr(self, n) is not None]
+        if self.pddl is not None:
+            if sorted(self.pddl) != sorted(PDDL_KEYS):
+                raise ValueError("pddl holds exactly 'domain' and 'problem' (PDDL texts)")
+            if any(len(t) > MAX_PDDL_CHARS for t in self.pddl.values()):
+                raise ValueError(f"a pddl text is longer than {MAX_PDDL_CHARS} characters")
+            if given or self.goal is not None or not isinstance(self.plan, str):
+                raise ValueError("with pddl, give the plan as text and no scene or goal (the "
+                                 "goal is in the problem)")
+            return self
         if len(given) != 1:
             raise ValueError("give exactly one initial scene: scene_id, graph or episode_id "
                              f"(got {', '.join(given) or 'none'})")
@@ -297,24 +337,95 @@ def _plan_actions(plan: str | list[ActionInput]) -> list[AnyAction]:
     return actions
 
 
-def validate_plan(ctx: ToolContext, params: ValidatePlanInput) -> ValidationReport:
+class PlanReport(ValidationReport):
+    """validate_plan's report: the validator's, plus how the labels of the graphs the
+    client wrote were read, as load_scene reports them (never a silent normalisation)."""
+
+    label_readings: list[str] = Field(default_factory=list)
+
+
+def validate_plan(ctx: ToolContext, params: ValidatePlanInput) -> PlanReport:
     """Per-step report for a plan; nothing is stored or modified."""
+    if params.pddl is not None:
+        return _plan_report(_validate_pddl(params.pddl, str(params.plan)), [])
     actions = _plan_actions(params.plan)
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
                                    graph=params.graph, goal=params.goal)
     if params.goal is not None:
         check_goal_against(params.goal, state, field="goal")
-    return core_validate_plan(state, actions, goal, all_errors=params.all_errors)
+    written = [g for g in (params.graph, params.goal.graph if params.goal else None)
+               if g is not None]
+    readings = list(dict.fromkeys(r for g in written
+                                  for r in label_readings(g, state.dictionary)))
+    return _plan_report(core_validate_plan(state, actions, goal, all_errors=params.all_errors),
+                        readings)
+
+
+def _plan_report(report: ValidationReport, readings: list[str]) -> PlanReport:
+    """The report as PlanReport without validating its (possibly 5,000) steps again."""
+    fields = {name: getattr(report, name) for name in ValidationReport.model_fields}
+    return PlanReport.model_construct(**fields, label_readings=readings)
+
+
+# The text of a plan report shows the first steps and every failure (up to a bound)
+# in full; a long plan's other accepted steps are only counted.
+SHOWN_FIRST_STEPS = 20
+SHOWN_MAX_FAILURES = 50
+
+
+def _validate_pddl(pddl: dict[str, str], plan: str) -> ValidationReport:
+    try:
+        data = validate_pddl_dict(pddl["domain"], pddl["problem"], plan)
+        if len(data["steps"]) + data["not_checked"] > MAX_PLAN_ACTIONS:
+            raise ToolArgumentError(f"the plan has more than {MAX_PLAN_ACTIONS} actions",
+                                    field="plan", value=None,
+                                    fix="use verigraph validate --batch for longer plans")
+        return as_validation_report(data)
+    except VeriGraphError as exc:
+        field = exc.field if exc.field in ("domain", "problem") else exc.field or "plan"
+        raise ToolArgumentError(exc.message, field=f"pddl.{field}" if field in (
+            "domain", "problem") else field, value=exc.value if isinstance(
+            exc.value, int | None) else str(exc.value)[:120], fix=exc.fix) from None
 
 
 def report_summary(report: ValidationReport) -> str:
-    """One line: the verdict and, when invalid, the first violation."""
+    """The verdict, then the per-step report: the first 20 steps and every failure.
+
+    Many clients hand a model only the text of a result, so every violation found (with
+    all_errors, one per failed step) is in it, with its fix; accepted steps beyond the
+    first 20 are counted, as are failures beyond 50. Nothing is executed or stored.
+    """
     verdict = "VALID" if report.valid else "INVALID"
-    parts = [f"{verdict}: {len(report.steps)} step(s) checked"]
+    head = f"{verdict}: {len(report.steps)} step(s) checked"
     if report.violations:
-        parts.append(report.violations[0].text())
-        if len(report.violations) > 1:
-            parts.append(f"and {len(report.violations) - 1} more violation(s)")
+        head += f", {len(report.violations)} violation(s)"
     if report.goal_diff is not None:
-        parts.append(report.goal_diff.summary())
-    return "; ".join(parts)
+        head += f"; {report.goal_diff.summary()}"
+    lines = [head + " (a check only, nothing was executed)"]
+    hidden_ok = hidden_failed = 0
+    failures = 0
+    for step in report.steps:
+        if step.ok:
+            if step.step <= SHOWN_FIRST_STEPS:
+                lines.append(f"{step.step:>3} ok    {step.text}")
+            else:
+                hidden_ok += 1
+            continue
+        failures += 1
+        if failures > SHOWN_MAX_FAILURES:
+            hidden_failed += 1
+            continue
+        assert step.violation is not None
+        lines.append(f"{step.step:>3} FAIL  {step.text}: "
+                     f"{step.violation.text(with_step=False)}")
+    if hidden_ok:
+        lines.append(f"... and {hidden_ok} more accepted step(s) after step "
+                     f"{SHOWN_FIRST_STEPS}")
+    if hidden_failed:
+        lines.append(f"... and {hidden_failed} more failed step(s) (see structured content)")
+    if report.not_checked:
+        lines.append(f"... {report.not_checked} later action(s) not checked: it stopped at "
+                     "the first violation (all_errors=true checks them)")
+    if isinstance(report, PlanReport) and report.label_readings:
+        lines.append(readings_line(report.label_readings))
+    return "\n".join(lines)

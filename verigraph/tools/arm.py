@@ -24,7 +24,7 @@ from verigraph.errors import VeriGraphError
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import EpisodeStateError
 from verigraph.tools.fields import EpisodeId, count_moves, parse_actions
-from verigraph.tools.store import Episode
+from verigraph.tools.store import LiveEpisode
 
 
 class ArmRef(BaseModel):
@@ -56,7 +56,7 @@ class ArmStatusOutput(ArmStatus):
         return (f"{self.note}; " if self.note else "") + super().summary()
 
 
-def _arm(episode: Episode) -> ArmWorld:
+def _arm(episode: LiveEpisode) -> ArmWorld:
     """The episode's arm, or an error saying how to get one."""
     if isinstance(episode.world, ArmWorld):
         return episode.world
@@ -71,7 +71,7 @@ def _arm(episode: Episode) -> ArmWorld:
         fix="load the scene with executor arm:<driver> (the server's arm) to use arm tools")
 
 
-def _output(episode: Episode, status: ArmStatus, note: str | None = None) -> ArmStatusOutput:
+def _output(episode: LiveEpisode, status: ArmStatus, note: str | None = None) -> ArmStatusOutput:
     return ArmStatusOutput(**status.model_dump(), episode_id=episode.id,
                            executor=episode.executor, note=note)
 

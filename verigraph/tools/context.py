@@ -10,11 +10,12 @@ from verigraph.tools.executors import (
     ArmSetup,
     arm_setup_for,
 )
+from verigraph.tools.records import WorldExtras
 from verigraph.tools.store import (
     DEFAULT_IDLE_TIMEOUT_S,
     DEFAULT_MAX_EPISODES,
-    Episode,
     EpisodeStore,
+    LiveEpisode,
 )
 from verigraph.tools.store_durable import DurableStore
 from verigraph.tools.stores import open_store
@@ -54,11 +55,11 @@ class ToolContext:
         if isinstance(self.store, DurableStore):
             self.store.revive = self._revive
 
-    def _drop(self, episode: Episode) -> None:
+    def _drop(self, episode: LiveEpisode) -> None:
         """An ended or evicted episode lets go of its arm (disconnects, frees the cell)."""
         self.arms.close(episode.world)
 
-    def _revive(self, episode: Episode) -> None:
+    def _revive(self, episode: LiveEpisode) -> None:
         """A stored arm episode gets a fresh driver connection in this process.
 
         The connection is never assumed to survive; a stop latched before the record
@@ -69,5 +70,5 @@ class ToolContext:
         setup = arm_setup_for(episode.executor, self.config.arm)
         world, _ = self.arms.open(setup, episode.state, self.store.evict_idle)
         object.__setattr__(episode, "world", world)
-        if episode.extras.get("arm_latched") and hasattr(world, "stop"):
-            world.stop("stop latched before the episode was reloaded")
+        if isinstance(world, WorldExtras):
+            world.restore_extras(episode.extras)  # e.g. latch a stop latched before

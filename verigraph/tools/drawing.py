@@ -164,3 +164,19 @@ def _draw_node(image: np.ndarray, center: tuple[int, int], box_w: int, box_h: in
             (tw, _), _ = cv2.getTextSize(text, FONT, scale, 1)
         origin = (center[0] - tw // 2, first_baseline + row * 14)
         cv2.putText(image, text, origin, FONT, scale, ink, 1, cv2.LINE_AA)
+
+
+def render_caption(view: str, *, simulated: bool, photo: bool) -> str:
+    """What render_scene's image is, for a reader that cannot tell a diagram from a photo.
+
+    Only a simulated episode has a picture of its own; a graph-only episode gets this
+    module's diagram, and the caption says how to get a picture instead.
+    """
+    what = "the goal" if view == "goal" else "the current scene"
+    if simulated:
+        return f"the 2D simulator's picture of {what}"
+    if photo:
+        return "the photo the episode was loaded from (it does not change as actions run)"
+    return (f"a DIAGRAM of {what}'s graph (boxes and support edges), not a picture: this "
+            "episode has no simulator; load the scene with simulate=true for the simulator's "
+            "picture")

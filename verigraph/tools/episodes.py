@@ -15,10 +15,11 @@ from pydantic import BaseModel, ConfigDict, Field
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.tools.context import ToolContext
+from verigraph.tools.executors import arm_mode_of
 from verigraph.tools.fields import EpisodeId
 from verigraph.tools.store import TraceEntry
 from verigraph.tools.summaries import EpisodeState, describe
-from verigraph.tools.texts import edges_line
+from verigraph.tools.texts import edges_line, runs_on
 
 
 # -- get_state ------------------------------------------------------------------------------
@@ -56,6 +57,7 @@ class EpisodeVerdict(BaseModel):
     t: int
     threshold_reached: bool
     trace: list[TraceEntry]
+    runs_on: str | None = Field(default=None, description="the episode's executor")
 
     def summary(self) -> str:
         text = {"goal_reached": "SUCCESS: goal reached",
@@ -66,6 +68,8 @@ class EpisodeVerdict(BaseModel):
         detail = f" ({self.goal_diff.summary()})" if self.goal_diff and not self.success else ""
         text = (f"{text}{detail}; {self.steps} action(s) in {self.calls} call(s); "
                 f"episode {self.episode_id} closed")
+        if self.runs_on is not None:
+            text += f"\nexecutor: {self.runs_on}"
         if self.final_graph is not None:
             text += "\n" + edges_line(self.final_graph, "final graph")
         return text
@@ -92,6 +96,7 @@ def end_episode(ctx: ToolContext, params: EpisodeRef) -> EpisodeVerdict:
             final_graph=state.to_graph() if state is not None else None, goal=episode.goal,
             goal_diff=diff, executed=[a.text() for a in episode.executed],
             steps=len(episode.executed), calls=episode.calls, tau=episode.tau, t=episode.t,
-            threshold_reached=episode.threshold_reached, trace=list(episode.trace))
+            threshold_reached=episode.threshold_reached, trace=list(episode.trace),
+            runs_on=runs_on(episode.executor, arm_mode_of(episode.world)))
         ctx.store.remove(episode.id)
         return result

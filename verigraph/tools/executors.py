@@ -31,11 +31,12 @@ from verigraph.arm import (
     probe_arm,
     scoped_confirm,
 )
+from verigraph.arm.models import RunMode
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.tools.errors import EpisodeLimitError, ToolArgumentError
 
-EXECUTOR_HELP = "graph (verify only), sim2d or arm:<driver> (pybullet, rosbridge, xarm)"
+EXECUTOR_HELP = "graph (verify only), sim2d or arm:<pybullet|rosbridge|xarm>"
 DEFAULT_MAX_ARM_WORLDS = 8
 
 ArmOpener = Callable[[ArmConfig, SceneGraph], ArmWorld]
@@ -62,13 +63,35 @@ class ArmSetup:
         return f"arm:{self.config.driver}"
 
 
-def check_executor(name: str, *, field: str = "executor") -> str:
-    """`graph`, `sim2d` or a known `arm:<driver>`; anything else names the choices."""
+def arm_mode_of(world: object) -> RunMode | None:
+    """An arm episode's mode (dry-run, sim, real); None for graph and sim2d episodes."""
+    return world.config.mode if isinstance(world, ArmWorld) else None
+
+
+def enabled_executors(default: str, arm: ArmSetup | None) -> str:
+    """The executors this server runs, its default marked: what a client may pick.
+
+    `graph (verified only, default), sim2d (simulated), arm:xarm (real arm)`; shown in the
+    server's instructions and in every refusal of an executor, so no client has to find
+    the configured arm by trial and error.
+    """
+    names = {"graph": "verified only", "sim2d": "simulated"}
+    if arm is not None:
+        names[arm.executor] = {"real": "real arm", "sim": "simulated arm",
+                               "dry-run": "arm dry-run, nothing moves"}[arm.config.mode]
+    return ", ".join(f"{n} ({what}{', default' if n == default else ''})"
+                     for n, what in names.items())
+
+
+def check_executor(name: str, *, field: str = "executor", enabled: str | None = None) -> str:
+    """`graph`, `sim2d` or a known `arm:<driver>`; anything else names the choices
+    (`enabled`: the server's own, see enabled_executors)."""
     if name in ("graph", "sim2d"):
         return name
     if not name.startswith("arm:"):
+        choices = f"this server runs {enabled}" if enabled else f"use {EXECUTOR_HELP}"
         raise ToolArgumentError(f"unknown executor '{name[:64]}'", field=field,
-                                value=name[:64], fix=f"use {EXECUTOR_HELP}")
+                                value=name[:64], fix=choices)
     try:
         driver_from_executor(name)
     except ArmConfigError as exc:
@@ -89,8 +112,8 @@ def arm_setup_for(executor: str, server_arm: ArmSetup | None) -> ArmSetup:
         raise ToolArgumentError(
             f"this server has no arm, so executor {executor} is not available",
             field="executor", value=executor,
-            fix="use executor graph or sim2d; arm episodes need a server started with "
-                "--executor arm:<driver> or --arm-config")
+            fix="this server runs graph (verified only) and sim2d (simulated); arm episodes "
+                "need a server started with --executor arm:<driver> or --arm-config")
     if server_arm.executor != executor:
         raise ToolArgumentError(
             f"this server's arm is {server_arm.executor}, not {executor}", field="executor",

@@ -1,9 +1,9 @@
 """Input types and conversions shared by several tools.
 
 Actions arrive as JSON objects or as text (`move(cup, on, table)`); scenes as built-in
-ids or graphs; dictionaries by built-in name only (a path would let a remote client
-make the server read its files). Every conversion error names the argument, the
-offending value and the fix.
+ids or graphs; dictionaries by built-in name or inline as the client's own labels
+(never a path: that would let a remote client make the server read its files).
+Every conversion error names the argument, the offending value and the fix.
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ import json
 from collections.abc import Sequence
 from typing import Annotated, Any
 
-from pydantic import AfterValidator, BeforeValidator, Field
+from pydantic import AfterValidator, BeforeValidator, Field, WithJsonSchema
 
 from verigraph.actions.model import Action, AnyAction, DoneAction
 from verigraph.actions.parser import parse_text_plan
@@ -21,6 +21,7 @@ from verigraph.graph.builtin_scenes import BUILTIN_GOALS, BUILTIN_SCENES
 from verigraph.graph.dictionary import (
     BUILTIN_DICTIONARIES,
     Dictionary,
+    InlineDictionary,
     load_dictionary,
     wrong_dictionary_advice,
 )
@@ -43,12 +44,14 @@ ActionText = Annotated[str, Field(
 ActionInput = Action | ActionText
 SceneId = Annotated[str, Field(min_length=1, max_length=64,
                                description=f"{', '.join(BUILTIN_SCENES)}")]
-DictionaryName = Annotated[str, Field(
-    min_length=1, max_length=32,
-    description=f"{', '.join(BUILTIN_DICTIONARIES)} or all")]
+DictionaryName = Annotated[
+    Annotated[str, Field(min_length=1, max_length=32)] | InlineDictionary,
+    WithJsonSchema({"type": ["string", "object"]}),
+    Field(description=f"{', '.join(BUILTIN_DICTIONARIES)}, all, or your own "
+                      "{extends, objects: {label: {surface, container, capacity}}}")]
 ImageData = Annotated[str, Field(
     min_length=1, max_length=17_000_000,
-    description="base64 PNG or JPEG (data: URL accepted)")]
+    description="base64 PNG/JPEG or a data: URL")]
 
 
 MAX_GRAPH_NODES = 5000
@@ -144,8 +147,12 @@ def count_moves(actions: Sequence[AnyAction]) -> int:
     return sum(1 for a in actions if not isinstance(a, DoneAction))
 
 
-def dictionary_for(name: str | None, *, field: str = "dictionary") -> Dictionary:
-    """A built-in dictionary (or the union for None/"all"); paths are refused."""
+def dictionary_for(name: str | InlineDictionary | None, *, field: str = "dictionary"
+                   ) -> Dictionary:
+    """A built-in dictionary (or the union for None/"all"), or the client's own inline
+    one; paths are refused."""
+    if isinstance(name, InlineDictionary):
+        return name.build()
     if name is None or name == "all":
         return load_dictionary(None)
     if name not in BUILTIN_DICTIONARIES:
@@ -186,13 +193,14 @@ def state_from_graph(graph: SceneGraph, *, field: str = "graph", partial: bool =
 
 
 def with_dictionary_advice(graph: SceneGraph, problems: list[GraphProblem],
-                           chosen: str | None = None) -> list[GraphProblem]:
+                           chosen: str | InlineDictionary | None = None
+                           ) -> list[GraphProblem]:
     """Unknown labels that another built-in dictionary knows become one problem on
     `dictionary` saying which one, instead of spelling suggestions per label.
     `chosen`: the dictionary the graph was checked against (default: the one it names)."""
     chosen = chosen or graph.dictionary
     unknown = [p for p in problems if p.rule == "unknown_label" and p.node is not None]
-    if not unknown or chosen in (None, "all") or chosen not in BUILTIN_DICTIONARIES:
+    if not unknown or not isinstance(chosen, str) or chosen not in BUILTIN_DICTIONARIES:
         return problems
     labels = {node.id: node.label for node in graph.nodes}
     found = wrong_dictionary_advice([labels[p.node] for p in unknown if p.node in labels],

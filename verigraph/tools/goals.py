@@ -1,18 +1,25 @@
 """Goals: the set_goal tool and the check every goal passes before it is stored.
 
-A goal graph must be well formed and name only objects of the scene; an image goal is
-read by built-in perception. An invalid goal changes nothing.
+A goal graph must be well formed and name only objects of the scene; goal edges may be
+given as text (`cup on table; spoon in pot`), nodes taken from the episode; an image goal
+is read by built-in perception and its objects matched to the episode's ids; words alone
+are translated by the rule-based translator into a proposal the client confirms. An
+invalid goal changes nothing, and neither does a proposal.
 """
 
 from __future__ import annotations
 
+import re
+from dataclasses import dataclass, field
 from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from verigraph.graph.goal import PREDICATES, Goal, GraphDiff, check_goal
+from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.graph.wellformed import check_well_formed
+from verigraph.graph.translator import read_instruction
+from verigraph.graph.wellformed import check_well_formed, label_readings
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.fields import (
@@ -23,10 +30,16 @@ from verigraph.tools.fields import (
     problems_text,
 )
 from verigraph.tools.images import decode_image
-from verigraph.tools.perceived import perceive
+from verigraph.tools.perceived import Perceived, perceive
+from verigraph.tools.texts import goal_edges_text, goal_line, readings_line
 
 Instruction = Field(default=None, max_length=4000,
                     description="the task in words (shown, not checked)")
+MAX_GOAL_EDGES_CHARS = 20_000
+# Below this, a perceived object's or edge's confidence is named in set_goal's text.
+NOTED_CONFIDENCE = 0.9
+# set_goal's text lists at most this many photo-object matches (the rest are counted).
+MAX_LISTED_MATCHES = 40
 
 
 def check_goal_against(goal: Goal, state: WorldState | None, *, field: str) -> None:
@@ -65,20 +78,23 @@ class SetGoalInput(BaseModel):
 
     episode_id: EpisodeId
     graph: BoundedGraph | None = Field(default=None, description="goal scene graph")
+    edges: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
+                              description="goal edges as text")
     partial: bool = Field(default=False, description="only the listed edges must hold")
     predicate: Literal["single_stack"] | None = Field(
         default=None, description="single_stack: every movable object in one tower")
-    image: ImageData | None = Field(default=None, description="reference image of the goal "
-                                                              "(needs built-in perception)")
-    instruction: str | None = Instruction
+    image: ImageData | None = Field(default=None, description="picture of the goal "
+                                                              "(built-in perception)")
+    instruction: str | None = Field(default=None, max_length=4000,
+                                    description="the task in words")
 
     @model_validator(mode="after")
     def _something(self) -> SetGoalInput:
-        if not any(v is not None for v in (self.graph, self.predicate, self.image,
+        if not any(v is not None for v in (self.graph, self.edges, self.predicate, self.image,
                                            self.instruction)):
-            raise ValueError("give a goal: graph, predicate, image or instruction")
-        if self.image is not None and self.graph is not None:
-            raise ValueError("give either graph or image, not both")
+            raise ValueError("give a goal: graph, edges, predicate, image or instruction")
+        if sum(v is not None for v in (self.graph, self.edges, self.image)) > 1:
+            raise ValueError("give only one of graph, edges and image")
         return self
 
 
@@ -91,21 +107,199 @@ class GoalOutput(BaseModel):
     checkable: bool = Field(description="false when only an instruction was given")
     goal_satisfied: bool | None
     goal_diff: GraphDiff | None
+    accepted: bool = Field(default=True, description="false: `proposal` is not set yet")
+    proposal: Goal | None = None
+    notes: list[str] = Field(default_factory=list)
+    # How the goal graph's labels were read, as load_scene reports them (`box read as
+    # block (synonym, blocks dictionary)`).
+    label_readings: list[str] = Field(default_factory=list)
 
     def summary(self) -> str:
+        notes = [f"- {n}" for n in self.notes]
+        if self.label_readings:
+            notes.append(readings_line(self.label_readings))
+        if not self.accepted:
+            return "\n".join(self._proposal_lines() + notes)
         if not self.checkable:
-            return ("instruction recorded; it is not checkable by itself: give a goal graph "
-                    "or a predicate (" + ", ".join(PREDICATES) + ") to verify it")
+            return "\n".join([
+                "instruction recorded; it is not checkable by itself: give goal edges "
+                "(edges='cup on table; spoon in pot'), a goal graph or a predicate ("
+                + ", ".join(PREDICATES) + ") to verify it", *notes])
+        assert self.goal is not None
+        head = "goal set"
         if self.goal_diff is None:
-            return "goal set; it will be checked once the scene graph is submitted"
-        return f"goal set; {self.goal_diff.summary()}"
+            head += "; it will be checked once the scene graph is submitted"
+        else:
+            head += f"; {self.goal_diff.summary()}"
+        return "\n".join([head, goal_line(self.goal) or "", *notes])
+
+    def _proposal_lines(self) -> list[str]:
+        kept = (f"the episode keeps its goal: {goal_line(self.goal)}" if self.goal is not None
+                else "the episode has no goal yet")
+        if self.proposal is None or self.proposal.graph is None or \
+                not self.proposal.graph.edges:
+            return ["goal PROPOSAL: nothing to propose (accepted: false, nothing set); "
+                    f"{kept}; it is not checkable: give goal edges (edges='cup on table; "
+                    "spoon in pot') or a predicate (" + ", ".join(PREDICATES) + ")"]
+        edges = goal_edges_text(self.proposal)
+        return [f"goal PROPOSAL (accepted: false, nothing set; {kept}):",
+                f"proposed {goal_line(self.proposal)}",
+                f"to accept it, call set_goal with edges=\"{edges}\" (corrected where "
+                "needed)"]
+
+
+@dataclass
+class _Reading:
+    """A goal as set_goal read it: the goal, whether to store it, and what to tell."""
+
+    goal: Goal | None
+    accepted: bool = True
+    notes: list[str] = field(default_factory=list)
+
+
+_EDGE_TEXT = re.compile(r"\s*(?:move\s*\()?\s*([\w.-]+)\s*,?\s+([a-z_]+)\s*,?\s+([\w.-]+)"
+                        r"\s*\)?\s*")
+
+
+def goal_from_edges(text: str, state: WorldState | None) -> Goal:
+    """`cup on table; spoon in pot` (or one per line, or move(...) forms) as a partial goal.
+
+    The nodes come from the episode, so a goal names only what must hold. Every bad
+    item is reported at once, each with the fix.
+    """
+    if state is None:
+        raise ToolArgumentError("the episode has no scene graph yet, so goal edges cannot "
+                                "name its objects", field="edges", value=text[:80],
+                                fix="submit the scene graph first (submit_scene_graph)")
+    items = [i for i in re.split(r"[;\n]", text) if i.strip()]
+    if len(items) == 1 and "," in items[0] and "(" not in items[0]:
+        items = [i for i in items[0].split(",") if i.strip()]
+    edges: list[Edge] = []
+    problems: list[str] = []
+    relations = state.move_relations
+    for item in items:
+        m = _EDGE_TEXT.fullmatch(item)
+        if m is None:
+            problems.append(f"'{item.strip()[:60]}' is not 'source relation target'")
+            continue
+        source, relation, target = m.groups()
+        unknown = [n for n in (source, target) if n not in state.objects]
+        if unknown:
+            problems.append(f"'{item.strip()[:60]}': no object {', '.join(unknown)} in the "
+                            "scene")
+        elif relation not in relations:
+            problems.append(f"'{item.strip()[:60]}': relation '{relation}' is not one of "
+                            f"{', '.join(relations)}")
+        else:
+            edges.append(Edge(source=source, relation=relation, target=target))
+    if problems or not edges:
+        raise ToolArgumentError(
+            "goal edges: " + ("; ".join(problems[:10]) or "no edge given"), field="edges",
+            value=text[:80], fix="write one 'source relation target' per item, separated by "
+                                 f"';', with ids from the scene: "
+                                 f"{', '.join(sorted(state.objects)[:20])}")
+    graph = state.to_graph()
+    return Goal(graph=SceneGraph(nodes=graph.nodes, edges=edges, dictionary=graph.dictionary),
+                partial=True)
+
+
+def _match_perceived(seen: Perceived, state: WorldState | None) -> _Reading:
+    """The perceived goal with its objects matched to the episode's ids, and the notes.
+
+    A photo object takes the episode id it shares, else the one episode object of the
+    same label and colour. Two or more look-alikes make the match a guess: the goal is
+    then only proposed. Each match carries perception's confidence.
+    """
+    graph = seen.graph
+    if state is None:
+        return _Reading(Goal(graph=graph), notes=["objects not matched: the episode has no "
+                                                   "scene graph yet"])
+    rename: dict[str, str] = {}
+    shown: dict[str, str] = {}
+    ambiguous: list[str] = []
+
+    def alike(node: Node) -> list[str]:
+        colour = node.attrs.get("color")
+        return sorted(o for o, info in state.objects.items()
+                      if info.label == node.label and info.attrs.get("color") == colour)
+
+    for node in graph.nodes:  # first the unmistakable ones: same id, no look-alike
+        if node.id in state.objects and len(alike(node)) <= 1:
+            rename[node.id] = node.id
+            shown[node.id] = f"{node.id} -> {node.id} {seen.confidence.get(node.id, 1.0):.2f}"
+    for node in graph.nodes:
+        if node.id in rename:
+            continue
+        same = alike(node)
+        free = [o for o in same if o not in rename.values()]
+        conf = seen.confidence.get(node.id, 1.0)
+        if not free:
+            colour = node.attrs.get("color")
+            shown[node.id] = (f"{node.id} -> no episode object ({node.label}"
+                              f"{', ' + str(colour) if colour else ''})")
+            continue
+        match = node.id if node.id in free else free[0]
+        how = " (by label and colour)"
+        if len(same) > 1:
+            how = f" (AMBIGUOUS: could be any of {', '.join(same)})"
+            conf /= len(same)
+            ambiguous.append(node.id)
+        rename[node.id] = match
+        shown[node.id] = f"{node.id} -> {match} {conf:.2f}{how}"
+    nodes = [n.model_copy(update={"id": rename.get(n.id, n.id)}) for n in graph.nodes]
+    edges = [e.model_copy(update={"source": rename.get(e.source, e.source),
+                                  "target": rename.get(e.target, e.target)})
+             for e in graph.edges]
+    matched = graph.model_copy(update={"nodes": nodes, "edges": edges})
+    listed = [shown[n.id] for n in graph.nodes if n.id in shown]
+    more = f"; ... and {len(listed) - MAX_LISTED_MATCHES} more" \
+        if len(listed) > MAX_LISTED_MATCHES else ""
+    notes = ["photo objects -> episode ids, confidence: "
+             + "; ".join(listed[:MAX_LISTED_MATCHES]) + more]
+    for edge in graph.edges:
+        sentence = edge.sentence()
+        edge_conf = seen.confidence.get(sentence)
+        if edge_conf is not None and edge_conf < NOTED_CONFIDENCE:
+            notes.append(f"uncertain reading: {sentence} (confidence {edge_conf:.2f})")
+        info = state.objects.get(rename.get(edge.source, edge.source))
+        if edge.relation == "in" and info is not None and info.props.surface:
+            notes.append(f"check: {sentence} was read as `in` because the {edge.source} lies "
+                         f"inside the {edge.target}'s outline; if it rests across the rim, "
+                         "the photo means `on`, and set_goal with edges is the way to say so")
+    if ambiguous:
+        notes.append("look-alike objects make the match a guess, so this goal is only "
+                     "proposed: confirm or correct it with edges")
+    return _Reading(Goal(graph=matched), accepted=not ambiguous, notes=notes)
+
+
+def _from_words(instruction: str, state: WorldState | None) -> _Reading:
+    """The rule-based translation of words alone: always a proposal, never stored."""
+    if state is None:
+        return _Reading(None, accepted=False,
+                        notes=["not translated: the episode has no scene graph yet"])
+    reading = read_instruction(instruction, state.to_graph())
+    notes = [f"understood: '{c}'" for c in reading.understood]
+    notes += [f"not understood: '{c}' ({why})" for c, why in reading.not_understood]
+    if not reading.edges:
+        return _Reading(None, accepted=False, notes=notes)
+    graph = state.to_graph()
+    goal = Goal(graph=SceneGraph(nodes=graph.nodes, edges=reading.edges,
+                                 dictionary=graph.dictionary),
+                partial=True, instruction=instruction)
+    return _Reading(goal, accepted=False, notes=notes)
 
 
 def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
-    """Replace the goal (or record an instruction); an invalid goal changes nothing."""
+    """Replace the goal (or record an instruction); an invalid goal changes nothing.
+
+    Words alone are translated into a proposal (accepted: false) that is not stored: the
+    client confirms it by sending its edges back, so a misread word never becomes the
+    goal unseen.
+    """
     graph = params.graph
     image = decode_image(params.image) if params.image is not None else None
     with ctx.store.use(params.episode_id) as episode:
+        reading = _Reading(None)
         if image is not None:
             dictionary = (episode.state.dictionary if episode.state
                           else dictionary_for(episode.dictionary_name))
@@ -115,14 +309,40 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
                     "built-in perception is unsure of the goal image: "
                     + "; ".join(d.message for d in seen.doubts[:5]),
                     field="image", value=None,
-                    fix="give the goal as a graph (generate_scene_graph returns the "
-                        "perceived proposal to check and correct)")
-            graph = seen.graph
+                    fix="give the goal as edges or a graph (generate_scene_graph returns "
+                        "the perceived proposal to check and correct)")
+            reading = _match_perceived(seen, episode.state)
+            assert reading.goal is not None
+            graph = reading.goal.graph
         goal: Goal | None = None
+        partial = params.partial
+        if params.edges is not None:
+            edges_goal = goal_from_edges(params.edges, episode.state)
+            graph, partial = edges_goal.graph, True
+        readings: list[str] = []
         if graph is not None or params.predicate is not None:
-            goal = Goal(graph=graph, partial=params.partial, predicate=params.predicate,
+            goal = Goal(graph=graph, partial=partial, predicate=params.predicate,
                         instruction=params.instruction)
             check_goal_against(goal, episode.state, field="goal" if graph is None else "graph")
+            if params.graph is not None:  # a graph the client wrote (not edges or a photo)
+                readings = label_readings(params.graph, episode.state.dictionary
+                                          if episode.state is not None else
+                                          dictionary_for(params.graph.dictionary
+                                                         or episode.dictionary_name))
+        elif params.instruction is not None:
+            reading = _from_words(params.instruction, episode.state)
+        if not reading.accepted:
+            if params.instruction is not None:  # the words are kept; the proposal is not
+                episode.instruction = params.instruction
+            proposal = goal or reading.goal
+            current = episode.goal
+            diff = (check_goal(episode.state, current)
+                    if current and episode.state is not None else None)
+            return GoalOutput(episode_id=episode.id, goal=current,
+                              instruction=episode.instruction, checkable=current is not None,
+                              goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
+                              accepted=False, proposal=proposal, notes=reading.notes,
+                              label_readings=readings)
         if goal is not None:
             episode.goal = goal
         if params.instruction is not None:
@@ -131,4 +351,5 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
         diff = check_goal(episode.state, goal) if goal and episode.state is not None else None
         return GoalOutput(episode_id=episode.id, goal=goal,
                           instruction=episode.instruction, checkable=goal is not None,
-                          goal_satisfied=diff.satisfied if diff else None, goal_diff=diff)
+                          goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
+                          notes=reading.notes, label_readings=readings)

@@ -12,14 +12,22 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, InlineDictionary
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.graph.wellformed import label_readings
 from verigraph.sim2d import SimWorld, generate_scene, world_for_graph
 from verigraph.sim2d.persist import world_state
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import ToolArgumentError
-from verigraph.tools.executors import EXECUTOR_HELP, SceneCheck, arm_setup_for, check_executor
+from verigraph.tools.executors import (
+    EXECUTOR_HELP,
+    SceneCheck,
+    arm_setup_for,
+    check_executor,
+    enabled_executors,
+)
 from verigraph.tools.fields import (
     BoundedGoal,
     BoundedGraph,
@@ -33,7 +41,7 @@ from verigraph.tools.fields import (
 from verigraph.tools.goals import Instruction, check_goal_against
 from verigraph.tools.images import decode_image
 from verigraph.tools.perceived import perceive
-from verigraph.tools.store import DEFAULT_K, DEFAULT_T, Episode
+from verigraph.tools.store import DEFAULT_K, DEFAULT_T, LiveEpisode
 from verigraph.tools.summaries import EpisodeState, describe
 
 
@@ -57,19 +65,21 @@ class LoadSceneInput(BaseModel):
     scene_id: SceneId | None = Field(default=None, description="built-in scene id")
     graph: BoundedGraph | None = Field(default=None, description="a scene graph to start from")
     image: ImageData | None = Field(
-        default=None, description="photo; if perception finds no object, "
-                                   "call submit_scene_graph next")
+        default=None, description="photo (no object found: call "
+                                   "submit_scene_graph)")
     generator: GeneratorSpec | None = Field(default=None,
                                             description="generate a scene with sim2d")
     dictionary: DictionaryName | None = Field(
-        default=None, description="dictionary D for an image or graph")
-    goal: BoundedGoal | None = Field(default=None, description="goal now (else the built-in one, "
-                                                        "or set_goal later)")
+        default=None, description="D for an image or graph; "
+                                  f"{', '.join(BUILTIN_DICTIONARIES)}, all or your own "
+                                  "{extends, objects: {label: {surface, container, capacity}}}")
+    goal: BoundedGoal | None = Field(default=None, description="else the built-in one, or set_goal "
+                                                        "later")
     instruction: str | None = Instruction
     simulate: bool = Field(default=False, description="same as executor=sim2d")
     executor: str | None = Field(
         default=None, min_length=1, max_length=32,
-        description=f"where actions run: {EXECUTOR_HELP}; default: the server's")
+        description=f"{EXECUTOR_HELP}; default: the server's")
     seed: int = Field(default=0, ge=0, le=2**31 - 1, description="simulator seed")
     k: int = Field(default=DEFAULT_K, ge=1, le=50, description="max actions per "
                                                                "execute_actions call")
@@ -102,7 +112,8 @@ def choose_executor(ctx: ToolContext, params: LoadSceneInput) -> str:
     """The call's executor, else simulate=true (sim2d), else the server's default."""
     if params.executor is None:
         return "sim2d" if params.simulate else ctx.config.executor
-    name = check_executor(params.executor)
+    name = check_executor(params.executor,
+                          enabled=enabled_executors(ctx.config.executor, ctx.config.arm))
     if params.simulate and name != "sim2d":
         raise ToolArgumentError(f"simulate=true runs the 2D simulator, but executor={name}",
                                 field="simulate", value=True,
@@ -162,8 +173,8 @@ def load_scene(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
         if state is not None:
             world, scene_check = ctx.arms.open(setup, state, ctx.store.evict_idle)
 
-    def make(episode_id: str) -> Episode:
-        return Episode(id=episode_id, state=state, source=source.name, k=params.k, t=params.t,
+    def make(episode_id: str) -> LiveEpisode:
+        return LiveEpisode(id=episode_id, state=state, source=source.name, k=params.k, t=params.t,
                        goal=goal, instruction=params.instruction, world=world,
                        goal_world=source.goal_world, image=source.image,
                        dictionary_name=params.dictionary, executor=executor,
@@ -173,19 +184,22 @@ def load_scene(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
                        else None)
 
     try:
-        return describe(ctx.store.add(make))
+        out = describe(ctx.store.add(make))
     except BaseException:
         ctx.arms.close(world)  # e.g. the episode limit: do not keep the arm connected
         raise
+    if state is not None and source.graph is not None:
+        out.label_readings = label_readings(source.graph, state.dictionary)
+    return out
 
 
-def _with_dictionary(graph: SceneGraph, name: str | None) -> SceneGraph:
+def _with_dictionary(graph: SceneGraph, name: str | InlineDictionary | None) -> SceneGraph:
     if name is None:
         return graph
     if graph.dictionary is not None and graph.dictionary != name:
         raise ToolArgumentError(
-            f"the graph names dictionary '{graph.dictionary}' but dictionary='{name}' was "
-            "given", field="dictionary", value=name, fix="give only one of them")
+            "the graph names a dictionary and another one was given in `dictionary`",
+            field="dictionary", value=None, fix="give only one of them")
     return graph.model_copy(update={"dictionary": name})
 
 

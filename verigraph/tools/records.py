@@ -1,13 +1,14 @@
 """An episode as a stored record: everything another process needs to continue it.
 
-`EpisodeRecord` is the versioned, JSON-only form of an `Episode`: the scene graph, goal,
+`EpisodeRecord` is the versioned, JSON-only form of an `LiveEpisode`: the scene graph, goal,
 dictionary, k, t, tau, trace, executed actions, executor kind and the simulator's world
 state (poses and velocities, see `sim2d.persist`), plus `extras` for small per-episode
-records other features keep (any JSON value; an arm episode's latched stop is kept as
-`extras["arm_latched"]`). An Episode field added later without a place of its own here
-is stored all the same, in its pydantic JSON form (`fields`). Live things are never
-stored: an arm's driver connection is opened again by whoever loads the record (`revive`
-hook), a lock is per process. No secret is part of an episode, so none is stored.
+records other features keep (any JSON value; a world keeps its own there through
+`WorldExtras`, e.g. an arm's latched stop as `extras["arm_latched"]`). An LiveEpisode
+field added later without a place of its own here is stored all the same, in its
+pydantic JSON form (`fields`). Live things are never stored: an arm's driver connection
+is opened again by whoever loads the record (`revive` hook), a lock is per process. No
+secret is part of an episode, so none is stored.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ import base64
 import dataclasses
 import functools
 import typing
-from typing import Any, Literal
+from typing import Any, Literal, Protocol, runtime_checkable
 
 import cv2
 import numpy as np
@@ -24,7 +25,7 @@ from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
 
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction
-from verigraph.arm import ArmWorld
+from verigraph.graph.dictionary import InlineDictionary
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
@@ -32,10 +33,27 @@ from verigraph.sim2d.persist import world_from_state, world_state
 from verigraph.sim2d.world import SimWorld
 from verigraph.tools.executors import SceneCheck
 from verigraph.tools.fields import dictionary_for
-from verigraph.tools.images import KeptImage
-from verigraph.tools.store import Episode, TraceEntry
+from verigraph.tools.images import KeptImage, png_base64
+from verigraph.tools.store import PER_PROCESS, LiveEpisode, TraceEntry
 
 SCHEMA_VERSION: Literal[1] = 1
+
+
+@runtime_checkable
+class WorldExtras(Protocol):
+    """A world (an arm's) that keeps small JSON facts with its stored episode and takes
+    them back when the episode is reloaded; the store never needs to know its type."""
+
+    def extras_to_keep(self) -> dict[str, object]: ...
+
+    def restore_extras(self, extras: dict[str, object]) -> None: ...
+
+
+def world_extras(world: object) -> dict[str, object]:
+    """What `world` keeps with its episode (nothing for worlds that keep nothing)."""
+    return world.extras_to_keep() if isinstance(world, WorldExtras) else {}
+
+
 _ACTIONS: TypeAdapter[list[AnyAction]] = TypeAdapter(list[AnyAction])
 
 
@@ -55,7 +73,7 @@ class EpisodeRecord(BaseModel):
     t: int
     state: SceneGraph | None
     initial_graph: SceneGraph | None
-    dictionary_name: str | None
+    dictionary_name: str | InlineDictionary | None
     goal: Goal | None
     instruction: str | None
     tau: int
@@ -70,16 +88,16 @@ class EpisodeRecord(BaseModel):
     image_png: str | None = Field(description="the scene photo (base64 PNG), image episodes")
     extras: dict[str, Any] = Field(default_factory=dict)
     fields: dict[str, Any] = Field(
-        default_factory=dict, description="any other Episode field, in its JSON form")
+        default_factory=dict, description="any other LiveEpisode field, in its JSON form")
 
 
 def _png(image: np.ndarray | KeptImage | None) -> str | None:
     if image is None:
         return None
     if isinstance(image, KeptImage):  # already encoded: store the same bytes
-        return base64.b64encode(image.png).decode("ascii")
+        return png_base64(image.png)
     ok, buffer = cv2.imencode(".png", image)
-    return base64.b64encode(buffer.tobytes()).decode("ascii") if ok else None
+    return png_base64(buffer.tobytes()) if ok else None
 
 
 def _image(text: str | None) -> KeptImage | None:
@@ -94,13 +112,12 @@ def _sim(world: Any) -> dict[str, Any] | None:
     return world_state(world) if isinstance(world, SimWorld) else None
 
 
-def to_record(episode: Episode, *, version: int, created_at: float, updated_at: float
+def to_record(episode: LiveEpisode, *, version: int, created_at: float, updated_at: float
               ) -> EpisodeRecord:
     """The record of `episode` as it is now (the caller holds its lock)."""
     state = episode.state
     extras = dict(episode.extras)
-    if isinstance(episode.world, ArmWorld):  # the latch as it is now, see store_durable
-        extras["arm_latched"] = episode.world.stop_latched
+    extras.update(world_extras(episode.world))  # as it is now, see store_durable
     return EpisodeRecord(
         id=episode.id, version=version, created_at=created_at, updated_at=updated_at,
         source=episode.source, executor=episode.executor, k=episode.k, t=episode.t,
@@ -114,23 +131,22 @@ def to_record(episode: Episode, *, version: int, created_at: float, updated_at: 
         extras=extras, fields=_other_fields(episode))
 
 
-# Episode fields with their own place in the record, and the ones that are per process.
+# LiveEpisode fields with their own place in the record (PER_PROCESS ones have none).
 EXPLICIT = frozenset({
     "id", "state", "source", "k", "t", "goal", "instruction", "world", "executor",
     "scene_check", "goal_world", "image", "initial_graph", "dictionary_name", "tau", "calls",
     "executed", "trace", "last_violation", "done", "extras"})
-PER_PROCESS = frozenset({"lock", "last_used"})
 
 
 @functools.cache
 def _adapters() -> dict[str, TypeAdapter[Any]]:
-    """A JSON adapter for every other Episode field (one added later is stored too)."""
-    hints = typing.get_type_hints(Episode)
-    return {f.name: TypeAdapter(hints[f.name]) for f in dataclasses.fields(Episode)
+    """A JSON adapter for every other LiveEpisode field (one added later is stored too)."""
+    hints = typing.get_type_hints(LiveEpisode)
+    return {f.name: TypeAdapter(hints[f.name]) for f in dataclasses.fields(LiveEpisode)
             if f.name not in EXPLICIT | PER_PROCESS}
 
 
-def _other_fields(episode: Episode) -> dict[str, Any]:
+def _other_fields(episode: LiveEpisode) -> dict[str, Any]:
     return {name: adapter.dump_python(getattr(episode, name), mode="json")
             for name, adapter in _adapters().items()}
 
@@ -141,7 +157,7 @@ def restore_state(graph: SceneGraph | None) -> WorldState | None:
     return WorldState.from_graph(graph, dictionary_for(graph.dictionary), partial=True)
 
 
-def fill_episode(episode: Episode, record: EpisodeRecord) -> None:
+def fill_episode(episode: LiveEpisode, record: EpisodeRecord) -> None:
     """Overwrite `episode` (same object, same lock) with the record's state.
 
     The world is rebuilt from the stored poses for sim2d; an arm episode's world is left
@@ -167,8 +183,8 @@ def fill_episode(episode: Episode, record: EpisodeRecord) -> None:
             object.__setattr__(episode, name, adapter.validate_python(data))
 
 
-def from_record(record: EpisodeRecord) -> Episode:
-    episode = Episode(id=record.id, state=None, source=record.source)
+def from_record(record: EpisodeRecord) -> LiveEpisode:
+    episode = LiveEpisode(id=record.id, state=None, source=record.source)
     fill_episode(episode, record)
     return episode
 

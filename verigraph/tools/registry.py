@@ -16,21 +16,37 @@ import reprlib
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Literal
 
 from pydantic import BaseModel, ValidationError
 
-from verigraph.actions.report import ValidationReport
 from verigraph.graph.bulk import collector_paused, graph_items
 from verigraph.tools import acting, arm, episodes, goals, loading, scenes, solving, summaries
 from verigraph.tools.context import ToolConfig, ToolContext
 from verigraph.tools.errors import InvalidArgumentsError, StaleEpisodeError, ToolArgumentError
 from verigraph.tools.scenes import ImageResult
 
+# Where a server runs a tool's call (see verigraph.server.tools):
+#   inline:     on the event loop, unless its input, arguments or episode are large;
+#   heavy:      always a heavy call (worker thread, budget, the client's share);
+#   thread:     a worker thread outside the heavy queue (the arm's controls answer mid-motion);
+#   own_thread: a thread of its own for each call, waiting on nothing (arm_stop).
+Placement = Literal["inline", "heavy", "thread", "own_thread"]
+
+
+@dataclass(frozen=True)
+class Confirmation:
+    """A tool that can make a real arm act asks the user first: what it would ask
+    (None: nothing to ask for this call) and what stays true when the answer is no."""
+
+    preview: Callable[[ToolContext, Any], arm.ArmQuestion | None]
+    unchanged: str
+
 
 @dataclass(frozen=True)
 class ToolSpec:
-    """One tool: what it takes, what it returns, how it behaves, how to summarise it."""
+    """One tool: what it takes, what it returns, how it behaves, how to summarise it,
+    and how a server runs it (placement, confirmation, viewer), so a tool is one entry."""
 
     name: str
     title: str
@@ -43,89 +59,98 @@ class ToolSpec:
     idempotent: bool = False
     open_world: bool = False  # may reach outside the server: a robot arm and its controller
     summary: Callable[[Any], str] = lambda result: str(result.summary())
+    placement: Placement = "inline"
+    opens_world: bool = False  # heavy when the server's default executor is not the graph
+    episode_sized: bool = True  # its work grows with the episode's graph (heavy if large)
+    confirmation: Confirmation | None = None  # asks the user before a real arm acts
+    moves_arm: bool = False  # the arm stops when the call is cancelled (deadman)
+    viewer: bool = False  # links the MCP Apps episode viewer (`_meta.ui`)
 
 
 TOOL_SPECS: tuple[ToolSpec, ...] = (
     ToolSpec("load_scene", "Start an episode",
              "Start an episode from a built-in scene_id, a graph, an image or the sim2d "
-             "generator. Returns the episode_id the other tools take, the graph and the goal.",
+             "generator. Returns the episode_id the other tools take, graph, goal, executor.",
              loading.LoadSceneInput, summaries.EpisodeState, loading.load_scene,
-             read_only=False, open_world=True),
+             read_only=False, open_world=True, opens_world=True),
     ToolSpec("set_goal", "Set the goal",
-             "Set the goal: a goal graph (partial: only its edges must hold), a predicate, a "
-             "reference image, or words. An invalid goal changes nothing.",
+             "Set the goal: edges ('cup on table; spoon in pot'), a graph, a predicate or an "
+             "image. Words alone: a proposal to confirm. An invalid goal changes nothing.",
              goals.SetGoalInput, goals.GoalOutput, goals.set_goal,
              read_only=False, idempotent=True),
     ToolSpec("get_state", "Episode state",
              "Current graph, goal and its difference, executed actions, tau (consecutive "
              "failed calls), k and t.",
              episodes.EpisodeRef, summaries.EpisodeState, episodes.get_state,
-             read_only=True, idempotent=True),
+             read_only=True, idempotent=True, viewer=True),
     ToolSpec("validate_action", "Check one action",
              "Check one action (JSON or text, e.g. move(cup, on, table)) without executing it:"
-             " the violated constraint and a fix, or the edges it would change.",
+             " every violated constraint with a fix, or the edges it would change.",
              acting.ValidateActionInput, acting.ActionCheck, acting.validate_action,
-             read_only=True, idempotent=True),
+             read_only=True, idempotent=True, episode_sized=False),
     ToolSpec("execute_actions", "Execute actions",
-             "Execute at most k actions in order until the first violation (the valid prefix "
-             "stays). Returns the graph, feedback with a fix, tau and whether the goal holds. "
-             "End with done. A real arm asks the user first.",
+             "Execute up to k actions (done not counted) until the first violation; the valid "
+             "prefix stays. Returns graph, feedback with a fix, tau, goal check, executor. End "
+             "with done. A real arm asks the user first.",
              acting.ExecuteActionsInput, acting.ExecutionOutput, acting.execute_actions,
-             read_only=False, destructive=True, open_world=True),
+             read_only=False, destructive=True, open_world=True, viewer=True, moves_arm=True,
+             confirmation=Confirmation(arm.preview_execute,
+                                       "nothing moved and the episode is unchanged")),
     ToolSpec("validate_plan", "Validate a whole plan",
              "Stateless: check a whole plan from a scene_id, graph or episode, optionally "
              "against a goal. Per-step report.",
-             acting.ValidatePlanInput, ValidationReport, acting.validate_plan,
-             read_only=True, idempotent=True, summary=acting.report_summary),
+             acting.ValidatePlanInput, acting.PlanReport, acting.validate_plan,
+             read_only=True, idempotent=True, summary=acting.report_summary, viewer=True),
     ToolSpec("check_goal", "Check the goal",
              "Missing and extra edges and objects between the episode's graph and its goal (or"
              " one given here).",
              acting.CheckGoalInput, acting.GoalCheck, acting.check_goal,
              read_only=True, idempotent=True),
     ToolSpec("generate_scene_graph", "Perceive a scene graph",
-             "Built-in perception: the image (given or the episode's) -> scene graph. For "
-             "other images use get_scene_image and submit_scene_graph.",
+             "Built-in perception: image (given or the episode's) -> scene graph. Else: "
+             "get_scene_image, then submit_scene_graph.",
              scenes.GenerateSceneGraphInput, scenes.SceneGraphSubmission,
-             scenes.generate_scene_graph, read_only=True, idempotent=True),
+             scenes.generate_scene_graph, read_only=True, idempotent=True,
+             placement="heavy"),
     ToolSpec("render_scene", "Render the scene",
-             "PNG of the episode's scene: the simulator's render, else a drawing of the graph "
-             "(view=goal: the goal).",
+             "PNG: the simulator's render, else a diagram of the graph (pictures need "
+             "simulate=true); view=goal: the goal.",
              scenes.RenderSceneInput, None, scenes.render_scene,
-             read_only=True, idempotent=True),
+             read_only=True, idempotent=True, placement="heavy", viewer=True),
     ToolSpec("solve", "Reference plan",
              "A reference plan by search to the goal, re-checked by the validator.",
              solving.SolveInput, solving.SolveOutput, solving.solve,
-             read_only=True, idempotent=True),
+             read_only=True, idempotent=True, placement="heavy"),
     ToolSpec("get_scene_image", "Scene image and prompt",
-             "The episode's image with the scene-graph prompt (relations R, dictionary D) for "
-             "your own vision model; answer with submit_scene_graph.",
+             "The episode's image and the scene-graph prompt (relations R, dictionary D) for "
+             "your vision model; answer with submit_scene_graph.",
              scenes.GetSceneImageInput, None, scenes.get_scene_image,
-             read_only=True, idempotent=True),
+             read_only=True, idempotent=True, placement="heavy"),
     ToolSpec("submit_scene_graph", "Submit a scene graph",
              "Check a scene graph you wrote against D and R (synonyms normalised, every "
-             "problem at once). An image episode starts from an accepted graph.",
+             "problem at once).",
              scenes.SubmitSceneGraphInput, scenes.SceneGraphSubmission,
              scenes.submit_scene_graph, read_only=False, idempotent=True, open_world=True),
     ToolSpec("end_episode", "End the episode",
-             "The end token: verdict (goal reached, threshold reached), final graph and trace."
-             " The episode_id stops working.",
+             "The end token: verdict, final graph and trace. The episode_id stops working.",
              episodes.EpisodeRef, episodes.EpisodeVerdict, episodes.end_episode,
              read_only=False, destructive=True),
     ToolSpec("arm_status", "Arm status",
-             "An arm episode's arm: driver, mode, connection, latched stop and why, busy, pose, "
-             "last outcome. Answers even mid-motion.",
+             "The arm: driver, mode, connection, latched stop and why, busy, pose, last "
+             "outcome. Answers mid-motion.",
              arm.ArmRef, arm.ArmStatusOutput, arm.arm_status,
-             read_only=True, idempotent=True, open_world=True),
+             read_only=True, idempotent=True, open_world=True, placement="thread"),
     ToolSpec("arm_stop", "Stop the arm",
              "Stop the arm now, even mid-motion, and latch the stop: later motions are refused"
              " until arm_reset.",
              arm.ArmStopInput, arm.ArmStatusOutput, arm.arm_stop,
-             read_only=False, idempotent=True, open_world=True),
+             read_only=False, idempotent=True, open_world=True, placement="own_thread"),
     ToolSpec("arm_reset", "Reset the arm's stop",
-             "Clear the latched stop after the motion ended; nothing moves. A real arm asks "
-             "the user; sim/dry-run only if the operator allows agent resets.",
+             "Clear the latched stop once the motion ended; nothing moves. A real arm asks "
+             "the user; sim/dry-run only if the operator allows it.",
              arm.ArmRef, arm.ArmStatusOutput, arm.arm_reset,
-             read_only=False, destructive=True, open_world=True),
+             read_only=False, destructive=True, open_world=True, placement="thread",
+             confirmation=Confirmation(arm.preview_reset, "the stop stays latched")),
 )
 TOOLS: dict[str, ToolSpec] = {spec.name: spec for spec in TOOL_SPECS}
 

@@ -23,8 +23,9 @@ from verigraph.graph.state import WorldState
 from verigraph.graph.submission import Rename, SubmittedGraph, check_submission
 from verigraph.graph.wellformed import GraphProblem
 from verigraph.prompts.filling import scene_graph_prompt
+from verigraph.sim2d import TabletopWorld
 from verigraph.tools.context import ToolContext
-from verigraph.tools.drawing import draw_graph
+from verigraph.tools.drawing import draw_graph, render_caption
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.executors import SceneCheck, arm_setup_for
 from verigraph.tools.fields import (
@@ -36,12 +37,12 @@ from verigraph.tools.fields import (
     with_dictionary_advice,
 )
 from verigraph.tools.images import KeptImage, decode_image, encode_png
-from verigraph.tools.perceived import perceive
-from verigraph.tools.store import Episode
+from verigraph.tools.perceived import USER_LABELS, perceive
+from verigraph.tools.store import LiveEpisode
 from verigraph.tools.texts import graph_lines
 
 Width = Field(default=None, ge=64, le=2048,
-              description="pixels; omit to let the scene choose (drawings 640x480)")
+              description="pixels; default: the scene's (drawings 640x480)")
 Height = Field(default=None, ge=64, le=2048,
                description="pixels; omit to keep the scene's shape")
 
@@ -59,12 +60,18 @@ def _colors(state: WorldState) -> dict[str, str]:
     return {o.id: o.props.color for o in state.objects.values() if o.props.color}
 
 
-def _picture(episode: Episode, width: int | None = None, height: int | None = None
+def _picture(episode: LiveEpisode, width: int | None = None, height: int | None = None
              ) -> np.ndarray:
     """What a camera would show: simulator render, the loaded photo, or a drawing."""
     render = getattr(episode.world, "render", None)
     if callable(render):
-        image = render(width=width, height=height)
+        if isinstance(episode.world, TabletopWorld) and episode.state is not None and \
+                episode.state.dictionary.user_labels:
+            # Generic bodies (slab, open box, block) say little alone: name each object.
+            # Built-in scenes stay unlabelled, as the perception tests see them.
+            image = render(width=width, height=height, labels=True)
+        else:
+            image = render(width=width, height=height)
         return np.asarray(image, dtype=np.uint8)
     if isinstance(episode.image, KeptImage):
         return episode.image.array()
@@ -104,7 +111,11 @@ def render_scene(ctx: ToolContext, params: RenderSceneInput) -> ImageResult:
                                title="goal graph (drawing)", colors=colors)
         else:
             image = _picture(episode, params.width, params.height)
-    return ImageResult(png=encode_png(image))
+        world = episode.goal_world if params.view == "goal" else episode.world
+        caption = render_caption(params.view, simulated=callable(getattr(world, "render", None)),
+                                 photo=params.view == "current"
+                                 and isinstance(episode.image, KeptImage))
+    return ImageResult(png=encode_png(image), text=caption)
 
 
 # -- get_scene_image ------------------------------------------------------------------------
@@ -118,6 +129,13 @@ class GetSceneImageInput(BaseModel):
                              description="what the graph is for")
     width: int | None = Width
     height: int | None = Height
+
+
+def episode_dictionary(ctx: ToolContext, episode_id: str) -> Dictionary:
+    """The dictionary an episode's scene is labelled with (the client's labels included)."""
+    with ctx.store.use(episode_id) as episode:
+        return (episode.state.dictionary if episode.state is not None
+                else dictionary_for(episode.dictionary_name))
 
 
 def get_scene_image(ctx: ToolContext, params: GetSceneImageInput) -> ImageResult:
@@ -143,11 +161,10 @@ class SubmitSceneGraphInput(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     graph: Annotated[SubmittedGraph, AfterValidator(_small_attrs)] = Field(
-        description="nodes with id/label, edges "
-                                              "source/relation/target")
+        description="the graph you wrote")
     episode_id: EpisodeId | None = Field(
-        default=None, description="an image episode adopts an accepted graph; others "
-                                  "only compare")
+        default=None, description="image episodes adopt an accepted graph; "
+                                  "others compare")
     dictionary: DictionaryName | None = Field(default=None, description="dictionary D to "
                                                                         "check against")
 
@@ -169,6 +186,9 @@ class SceneGraphSubmission(BaseModel):
     scene_check: SceneCheck | None = Field(
         default=None, description="arm episodes: whether the arm observes the scene as the "
                                   "adopted graph says")
+    # When built-in perception cannot read the client's labels: the scene-graph prompt
+    # for the client's own vision model.
+    prompt: str | None = None
 
     def summary(self) -> str:
         if not self.accepted:
@@ -176,6 +196,8 @@ class SceneGraphSubmission(BaseModel):
             lines += [f"- {p.field}: {p.message} (fix: {p.fix})" for p in self.problems[:20]]
             if len(self.problems) > 20:
                 lines.append(f"- ... and {len(self.problems) - 20} more")
+            if self.prompt is not None:
+                lines.append(f"prompt for your vision model:\n{self.prompt}")
             return "\n".join(lines)
         text = f"accepted: {len(self.graph.nodes)} objects, {len(self.graph.edges)} edges"
         if not self.graph.nodes:
@@ -183,6 +205,9 @@ class SceneGraphSubmission(BaseModel):
                      "get_scene_image and submit_scene_graph)")
         if self.normalised:
             text += f", {len(self.normalised)} name(s) normalised"
+            read = [r.reading for r in self.normalised if r.reading][:20]
+            if read:
+                text += " (" + "; ".join(read) + ")"
         if self.adopted:
             text += f"; episode {self.episode_id} now starts from this graph"
             if self.scene_check is not None:
@@ -250,7 +275,9 @@ class GenerateSceneGraphInput(BaseModel):
 
     image: ImageData | None = None
     episode_id: EpisodeId | None = Field(default=None, description="use this episode's image")
-    dictionary: DictionaryName | None = None
+    dictionary: DictionaryName | None = Field(default=None,
+                                              description="dictionary D; default: the "
+                                                          "episode's, else all")
     task: str | None = Field(default=None, max_length=4000, description="what the graph is for")
 
     @model_validator(mode="after")
@@ -270,6 +297,9 @@ def generate_scene_graph(ctx: ToolContext, params: GenerateSceneGraphInput
     else:
         assert params.episode_id is not None
         with ctx.store.use(params.episode_id) as episode:
+            if params.dictionary is None:  # the episode's own, with the client's labels
+                dictionary = (episode.state.dictionary if episode.state is not None
+                              else dictionary_for(episode.dictionary_name))
             if not callable(getattr(episode.world, "render", None)) and episode.image is None:
                 raise ToolArgumentError(
                     f"episode {episode.id} has no photo and no simulator, so there is "
@@ -284,4 +314,6 @@ def generate_scene_graph(ctx: ToolContext, params: GenerateSceneGraphInput
     if not perceived.confident:  # a proposal for the agent to confirm, not a fact
         out.problems += perceived.doubts
         out.accepted = False
+    if any(d.rule == USER_LABELS for d in perceived.doubts):
+        out.prompt = scene_graph_prompt(dictionary, params.task, episode_id=params.episode_id)
     return out

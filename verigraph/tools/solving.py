@@ -14,6 +14,7 @@ from verigraph.actions.report import validate_plan
 from verigraph.solver import solve as search_plan
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import FeatureUnavailableError, ToolArgumentError
+from verigraph.tools.executors import arm_mode_of
 from verigraph.tools.fields import (
     BoundedGoal,
     BoundedGraph,
@@ -22,6 +23,7 @@ from verigraph.tools.fields import (
 )
 from verigraph.tools.goals import check_goal_against
 from verigraph.tools.loading import stateless_source
+from verigraph.tools.texts import runs_on
 
 
 class SolveInput(BaseModel):
@@ -29,12 +31,12 @@ class SolveInput(BaseModel):
 
     model_config = ConfigDict(extra="forbid")
 
-    episode_id: EpisodeId | None = Field(default=None, description="plan from this "
-                                                                   "episode's current graph")
-    scene_id: SceneId | None = Field(default=None, description="plan from a built-in scene")
+    episode_id: EpisodeId | None = Field(default=None, description="this episode's "
+                                                                   "current graph")
+    scene_id: SceneId | None = Field(default=None, description="a built-in scene")
     graph: BoundedGraph | None = Field(default=None, description="plan from this graph")
-    goal: BoundedGoal | None = Field(default=None, description="defaults to the episode's or the "
-                                                        "built-in scene's goal")
+    goal: BoundedGoal | None = Field(default=None, description="default: the episode's or "
+                                                        "scene's goal")
     max_expansions: int = Field(default=200_000, ge=1, le=2_000_000,
                                 description="max nodes expanded")
     time_limit: float = Field(default=5.0, gt=0, le=600,
@@ -65,14 +67,23 @@ class SolveOutput(BaseModel):
     optimal: bool = Field(default=False, description="no shorter plan exists")
     expanded: int = Field(default=0, description="search nodes expanded")
     lower_bound: int | None = Field(default=None, description="no plan is shorter than this")
+    runs_on: str | None = Field(default=None, description="the episode's executor")
 
     def summary(self) -> str:
         if self.reachable is None:
-            return f"no plan found: {self.reason or 'search budget exhausted'}"
-        if not self.reachable:
-            return f"no plan: {self.reason or 'goal unreachable'}"
-        check = "verified" if self.verified else "NOT verified by the validator"
-        return f"plan of {self.length} action(s), {check}: {'; '.join(self.plan) or '(empty)'}"
+            head = f"no plan found: {self.reason or 'search budget exhausted'}"
+        elif not self.reachable:
+            head = f"no plan: {self.reason or 'goal unreachable'}"
+        else:
+            check = "verified" if self.verified else "NOT verified by the validator"
+            head = (f"plan of {self.length} action(s), {check}: "
+                    f"{'; '.join(self.plan) or '(empty)'}")
+        # Like validate_action: a plan is not a motion, and the executor says where
+        # execute_actions would run it.
+        planned = "planned only, nothing was executed"
+        if self.runs_on is not None:
+            planned += f"; episode executor: {self.runs_on}"
+        return f"{head}\n{planned}"
 
 
 def solve(ctx: ToolContext, params: SolveInput) -> SolveOutput:
@@ -98,4 +109,13 @@ def solve(ctx: ToolContext, params: SolveInput) -> SolveOutput:
                        actions=plan, length=len(plan), reason=result.reason,
                        verified=verified, optimal=bool(getattr(result, "optimal", False)),
                        expanded=int(getattr(result, "expanded", 0)),
-                       lower_bound=getattr(result, "lower_bound", None))
+                       lower_bound=getattr(result, "lower_bound", None),
+                       runs_on=_episode_executor(ctx, params.episode_id))
+
+
+def _episode_executor(ctx: ToolContext, episode_id: str | None) -> str | None:
+    """Where the episode's actions run (None for a plan on a scene or graph)."""
+    if episode_id is None:
+        return None
+    with ctx.store.use(episode_id) as episode:
+        return runs_on(episode.executor, arm_mode_of(episode.world))

@@ -24,6 +24,7 @@ from pydantic import BaseModel, Field
 from verigraph.actions.executor import World
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction
+from verigraph.graph.dictionary import InlineDictionary
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
@@ -106,11 +107,12 @@ class RequestRecords:
             del self.records[next(iter(self.records))]
 
 
-_UNTRACKED = frozenset({"lock", "last_used"})
+# Fields that belong to this process only: not counted as changes, never stored.
+PER_PROCESS = frozenset({"lock", "last_used"})
 
 
 @dataclass(eq=False)
-class Episode:
+class LiveEpisode:
     """Mutable state of one planning episode; only touched while its lock is held."""
 
     id: str
@@ -126,7 +128,7 @@ class Episode:
     goal_world: Any = None  # a simulator world in the goal state, for rendering it
     image: np.ndarray | KeptImage | None = None  # kept encoded (see __post_init__)
     initial_graph: SceneGraph | None = None
-    dictionary_name: str | None = None
+    dictionary_name: str | InlineDictionary | None = None  # the one load_scene was given
     tau: int = 0
     calls: int = 0
     executed: list[AnyAction] = field(default_factory=list)
@@ -147,7 +149,7 @@ class Episode:
         # Durable stores write an episode back only when it changed: every assignment
         # counts (in-place edits of a list or of `extras` call `mark_changed`).
         object.__setattr__(self, name, value)
-        if name not in _UNTRACKED:
+        if name not in PER_PROCESS:
             self.__dict__["changes"] = self.__dict__.get("changes", 0) + 1
 
     @property
@@ -189,14 +191,14 @@ class EpisodeStore:
     def __init__(self, max_episodes: int = DEFAULT_MAX_EPISODES,
                  idle_timeout: float = DEFAULT_IDLE_TIMEOUT_S,
                  clock: Callable[[], float] = time.monotonic,
-                 on_drop: Callable[[Episode], None] | None = None) -> None:
+                 on_drop: Callable[[LiveEpisode], None] | None = None) -> None:
         if max_episodes < 1:
             raise ValueError("max_episodes must be at least 1")
         self.max_episodes = max_episodes
         self.idle_timeout = idle_timeout
         self._clock = clock
         self._on_drop = on_drop  # releases what an ended or evicted episode holds (an arm)
-        self._episodes: dict[str, Episode] = {}
+        self._episodes: dict[str, LiveEpisode] = {}
         self._lock = threading.Lock()
 
     def __len__(self) -> int:
@@ -207,7 +209,7 @@ class EpisodeStore:
         with self._lock:
             return list(self._episodes)
 
-    def add(self, make: Callable[[str], Episode]) -> Episode:
+    def add(self, make: Callable[[str], LiveEpisode]) -> LiveEpisode:
         """Insert the episode `make(new_id)` builds; evicts idle episodes when full."""
         if len(self) >= self.max_episodes:
             self.evict_idle()
@@ -238,11 +240,11 @@ class EpisodeStore:
         for ep in stale:
             self._dropped(ep)
 
-    def _dropped(self, episode: Episode) -> None:
+    def _dropped(self, episode: LiveEpisode) -> None:
         if self._on_drop is not None:
             self._on_drop(episode)
 
-    def _get(self, episode_id: Any) -> Episode:
+    def _get(self, episode_id: Any) -> LiveEpisode:
         if not isinstance(episode_id, str):
             raise UnknownEpisodeError(repr(episode_id))
         with self._lock:
@@ -251,13 +253,13 @@ class EpisodeStore:
             raise UnknownEpisodeError(episode_id)
         return episode
 
-    def peek(self, episode_id: str) -> Episode:
+    def peek(self, episode_id: str) -> LiveEpisode:
         """The episode without taking its lock: only for calls that must not wait for a
         running one (arm_stop, arm_status), and that touch only thread-safe parts."""
         return self._get(episode_id)
 
     @contextmanager
-    def use(self, episode_id: str) -> Iterator[Episode]:
+    def use(self, episode_id: str) -> Iterator[LiveEpisode]:
         """Hold the episode's lock for the duration of one tool call.
 
         In `non_blocking` mode, an episode that is busy or has a (slow) simulator or

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Protocol
+from urllib.parse import urlsplit
 
 
 @dataclass(frozen=True)
@@ -49,3 +50,11 @@ class Backend(Protocol):
     def entries(self, now: float, idle: float) -> list[StoredEpisode]: ...
 
     def close(self) -> None: ...
+
+
+def redacted(url: str) -> str:
+    """The URL without a password, for logs, listings and error messages."""
+    parts = urlsplit(url)
+    if parts.password is None:
+        return url
+    return url.replace(f":{parts.password}@", ":***@", 1)

@@ -24,7 +24,6 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from verigraph.arm import ArmWorld
 from verigraph.tools.errors import (
     EpisodeLimitError,
     StaleEpisodeError,
@@ -37,43 +36,51 @@ from verigraph.tools.records import (
     fill_episode,
     from_record,
     to_record,
+    world_extras,
 )
 from verigraph.tools.store import (
     _NON_BLOCKING,
     DEFAULT_IDLE_TIMEOUT_S,
     DEFAULT_MAX_EPISODES,
-    Episode,
     EpisodeStore,
+    LiveEpisode,
     WouldBlock,
     new_episode_id,
 )
 from verigraph.tools.store_backend import Backend
 
-Revive = Callable[[Episode], None]
+Revive = Callable[[LiveEpisode], None]
 
 
-def _note_arm_latch(episode: Episode) -> None:
-    """Keep an arm's latched stop with the episode (arm_stop latches it without a commit),
-    so a process that reloads the episode latches the new connection again."""
-    if isinstance(episode.world, ArmWorld):
-        latched = episode.world.stop_latched  # the flag, not a poll of the driver
-        if latched != episode.extras.get("arm_latched", False):
-            episode.extras["arm_latched"] = latched
-            episode.mark_changed()
+def _note_world_extras(episode: LiveEpisode) -> None:
+    """Keep what the world keeps with the episode (an arm's stop latches without a
+    commit), so a process that reloads the episode restores it (latches again)."""
+    kept = world_extras(episode.world)
+    if any(episode.extras.get(key, False) != value for key, value in kept.items()):
+        episode.extras.update(kept)
+        episode.mark_changed()
 
 
-def _decode(text: str) -> EpisodeRecord:
-    """The stored record; a record this version cannot read is a clear StoreError."""
+def decode_record(text: str) -> EpisodeRecord:
+    """The stored record; one this version cannot read is a StoreError that says why
+    (another schema version, or a damaged record) and never quotes the record."""
     try:
         return EpisodeRecord.model_validate_json(text)
     except ValidationError as exc:
-        version = re.search(r'"schema_version":\s*(\d+)', text)
+        found = re.search(r'"schema_version":\s*(\d{1,9})\b', text[:4096])
+        first = exc.errors()[0]
+        where = ".".join(str(p) for p in first["loc"]) or "the record"
+        if found is not None and int(found.group(1)) != SCHEMA_VERSION:
+            raise StoreError(
+                f"a stored episode was written with schema version {found.group(1)}; this "
+                f"server reads version {SCHEMA_VERSION}", field="episode_id", value=None,
+                fix="run the server version that wrote it, or drop the episode with "
+                    "verigraph episodes purge ID") from None
         raise StoreError(
-            f"a stored episode cannot be read (schema version "
-            f"{version.group(1) if version else 'unknown'}; this server reads "
-            f"{SCHEMA_VERSION}): {exc.error_count()} problem(s)", field="episode_id",
-            value=None, fix="run the server version that wrote it, or drop the episode with "
-                            "verigraph episodes purge ID") from None
+            f"a stored episode is damaged and cannot be read: {exc.error_count()} "
+            f"problem(s), the first at {where[:80]} ({first['type']})", field="episode_id",
+            value=None, fix="drop the episode with verigraph episodes purge ID and start a "
+                            "new one with load_scene") from None
 
 
 def _stale(episode_id: str) -> StaleEpisodeError:
@@ -90,7 +97,7 @@ class DurableStore(EpisodeStore):
     def __init__(self, backend: Backend, max_episodes: int = DEFAULT_MAX_EPISODES,
                  idle_timeout: float = DEFAULT_IDLE_TIMEOUT_S,
                  clock: Callable[[], float] = time.time,
-                 on_drop: Callable[[Episode], None] | None = None) -> None:
+                 on_drop: Callable[[LiveEpisode], None] | None = None) -> None:
         super().__init__(max_episodes, idle_timeout, clock, on_drop)
         self.backend = backend
         self.revive: Revive | None = None  # reconnects an arm episode's driver on load
@@ -103,7 +110,7 @@ class DurableStore(EpisodeStore):
     def ids(self) -> list[str]:
         return [e.id for e in self.backend.entries(self._clock(), self.idle_timeout)]
 
-    def add(self, make: Callable[[str], Episode]) -> Episode:
+    def add(self, make: Callable[[str], LiveEpisode]) -> LiveEpisode:
         if _NON_BLOCKING.get():
             raise WouldBlock("load_scene")
         now = self._clock()
@@ -143,7 +150,7 @@ class DurableStore(EpisodeStore):
         if episode is not None:
             self._dropped(episode)
 
-    def _get(self, episode_id: Any) -> Episode:
+    def _get(self, episode_id: Any) -> LiveEpisode:
         if not isinstance(episode_id, str):
             raise UnknownEpisodeError(repr(episode_id))
         with self._lock:
@@ -153,7 +160,7 @@ class DurableStore(EpisodeStore):
         text = self.backend.load(episode_id, self._clock(), self.idle_timeout)
         if text is None:
             raise UnknownEpisodeError(episode_id)
-        record = _decode(text)
+        record = decode_record(text)
         episode = from_record(record)
         if self.revive is not None:
             self.revive(episode)
@@ -167,7 +174,7 @@ class DurableStore(EpisodeStore):
         self._dropped(episode)  # another thread loaded it first
         return cached
 
-    def _refresh(self, episode: Episode, now: float) -> int:
+    def _refresh(self, episode: LiveEpisode, now: float) -> int:
         """Make the cached episode the stored one; its current version."""
         with self._lock:
             if self._episodes.get(episode.id) is not episode:
@@ -184,7 +191,7 @@ class DurableStore(EpisodeStore):
             if text is None:
                 self._forget(episode.id)
                 raise UnknownEpisodeError(episode.id)
-            record = _decode(text)
+            record = decode_record(text)
             live_arm = episode.world if episode.executor.startswith("arm:") else None
             fill_episode(episode, record)
             if live_arm is not None:
@@ -197,7 +204,7 @@ class DurableStore(EpisodeStore):
         return version
 
     @contextmanager
-    def use(self, episode_id: str) -> Iterator[Episode]:
+    def use(self, episode_id: str) -> Iterator[LiveEpisode]:
         """One tool call on the stored episode; its changes are committed at the end."""
         if _NON_BLOCKING.get():
             raise WouldBlock(episode_id)  # the backend is I/O: run on a worker thread
@@ -213,13 +220,18 @@ class DurableStore(EpisodeStore):
                 if episode.changes != before:
                     self._forget(episode_id)  # half-changed: reload the stored state
                 raise
-            _note_arm_latch(episode)
+            _note_world_extras(episode)
             if episode.changes == before or episode_id not in self._episodes:
                 return  # read only, or ended (remove() deleted the record)
             record = to_record(episode, version=version + 1,
                                created_at=self._created.get(episode_id, now), updated_at=now)
-            if not self.backend.swap(episode_id, version, record.model_dump_json(), now,
-                                     self.idle_timeout):
+            try:
+                swapped = self.backend.swap(episode_id, version, record.model_dump_json(),
+                                            now, self.idle_timeout)
+            except StoreError:
+                self._forget(episode_id)  # not saved: the next call reloads the stored state
+                raise
+            if not swapped:
                 self._forget(episode_id)
                 raise _stale(episode_id)
             with self._lock:
@@ -238,4 +250,4 @@ class DurableStore(EpisodeStore):
         self.backend.close()
 
 
-__all__ = ["DurableStore"]
+__all__ = ["DurableStore", "decode_record"]

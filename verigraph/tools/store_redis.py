@@ -15,7 +15,7 @@ from typing import Any, TypeVar
 import redis
 
 from verigraph.tools.errors import StoreError
-from verigraph.tools.store_backend import StoredEpisode
+from verigraph.tools.store_backend import StoredEpisode, redacted
 
 PREFIX = "verigraph:"
 INDEX = PREFIX + "episodes"
@@ -69,7 +69,7 @@ class RedisBackend:
             self.client = redis.Redis.from_url(url, decode_responses=True,
                                                socket_timeout=10, socket_connect_timeout=5)
         except ValueError as exc:
-            raise StoreError(f"bad Redis URL: {exc}", field="--store", value=url,
+            raise StoreError(f"bad Redis URL: {exc}", field="--store", value=redacted(url),
                              fix="use redis://host:port/db, e.g. redis://127.0.0.1:6379/0"
                              ) from None
         self._create = self.client.register_script(_CREATE)
@@ -81,8 +81,9 @@ class RedisBackend:
         try:
             return fn(*args, **kwargs)
         except redis.RedisError as exc:
-            raise StoreError(f"the Redis store at {self.url} failed: {exc}", field="--store",
-                             value=self.url, fix="check that the Redis server is running and "
+            shown = redacted(self.url)  # never the password
+            raise StoreError(f"the Redis store at {shown} failed: {exc}", field="--store",
+                             value=shown, fix="check that the Redis server is running and "
                                                  "reachable; episodes are kept there") from None
 
     def create(self, episode_id: str, record: str, now: float, cap: int, idle: float

@@ -2,10 +2,13 @@
 
 WAL lets readers run while a writer commits; `synchronous=NORMAL` keeps every committed
 transaction through a process crash (kill -9), which is what a restart needs. The file
-(and its directory, when created here) is readable by its owner only; SQLite gives the
+(and its directory, when created here) is readable by its owner only (an existing file
+is made so only once it opened as a store: a refused file is left as it was); SQLite gives the
 -wal and -shm files the database file's permissions. Idle episodes are swept by the
 store on every load_scene and `verigraph episodes purge`; an expired episode is treated
-as gone at once even before the sweep. Each thread has its own connection.
+as gone at once even before the sweep. Each thread has its own connection. Every
+SQLite failure (disk full, damaged file, lock held too long) is a StoreError that says
+which, never a second error from the rollback.
 """
 
 from __future__ import annotations
@@ -13,6 +16,8 @@ from __future__ import annotations
 import os
 import sqlite3
 import threading
+from collections.abc import Iterator
+from contextlib import contextmanager, suppress
 from pathlib import Path
 
 from verigraph.tools.errors import StoreError
@@ -38,9 +43,34 @@ def create_private_file(path: Path) -> None:
     """Create `path` (and missing parents) so that only its owner can read it."""
     if not path.parent.exists():
         path.parent.mkdir(parents=True, mode=0o700)
-    fd = os.open(path, os.O_CREAT | os.O_RDWR, 0o600)
+    fd = os.open(path, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o600)
     os.close(fd)
-    os.chmod(path, 0o600)
+
+
+def store_error(path: Path, exc: sqlite3.Error | OSError, doing: str) -> StoreError:
+    """What went wrong with the store file, in words, with the fix that fits it (never
+    the file's content)."""
+    url = f"sqlite:///{path}"
+    code = (getattr(exc, "sqlite_errorcode", 0) or 0) & 0xFF
+    if code in (sqlite3.SQLITE_FULL,):
+        return StoreError(f"the episode store {path} is full (no space left on its disk, "
+                          f"or its size limit): {doing} was not saved", field="--store",
+                          value=url, fix="free space on that disk, drop idle episodes with "
+                                         "verigraph episodes purge, or give another --store")
+    if code in (sqlite3.SQLITE_CORRUPT, sqlite3.SQLITE_NOTADB):
+        return StoreError(f"{path} is not a readable SQLite episode store (the file is "
+                          "damaged or of another kind)", field="--store", value=url,
+                          fix="move that file aside (a new store is created in its place) "
+                              "or give another path: sqlite:///path/to/episodes.db")
+    if code in (sqlite3.SQLITE_BUSY, sqlite3.SQLITE_LOCKED):
+        return StoreError(f"the episode store {path} stayed locked by another process: "
+                          f"{doing} was not done", field="--store", value=url,
+                          fix="send the call again; if it persists, check what holds the file")
+    reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+    return StoreError(f"cannot use the SQLite store {path} ({doing}): {reason}",
+                      field="--store", value=url,
+                      fix="give a path in a folder this user can write: "
+                          "sqlite:///path/to/episodes.db")
 
 
 class SqliteBackend:
@@ -49,14 +79,25 @@ class SqliteBackend:
     def __init__(self, path: str | Path) -> None:
         self.path = Path(path).expanduser()
         self.url = f"sqlite:///{self.path}"
+        existed = self.path.exists()
         try:
-            create_private_file(self.path)
+            if not existed:
+                create_private_file(self.path)
             connection = self._connection()
             connection.executescript(_SCHEMA)
+            if existed:
+                os.chmod(self.path, 0o600)  # only once it is known to be a store
         except (OSError, sqlite3.Error) as exc:
-            raise StoreError(f"cannot open the SQLite store {self.path}: {exc}",
-                             field="--store", value=self.url,
-                             fix="give a writable path: sqlite:///path/to/episodes.db") from None
+            self.close()
+            raise store_error(self.path, exc, "opening it") from None
+
+    @contextmanager
+    def _guard(self, doing: str) -> Iterator[None]:
+        """sqlite3 errors as StoreError: the client hears what failed, once."""
+        try:
+            yield
+        except sqlite3.Error as exc:
+            raise store_error(self.path, exc, doing) from None
 
     _local = threading.local()
 
@@ -74,61 +115,72 @@ class SqliteBackend:
 
     def create(self, episode_id: str, record: str, now: float, cap: int, idle: float
                ) -> bool:
-        db = self._connection()
-        db.execute("BEGIN IMMEDIATE")
-        try:
-            db.execute("DELETE FROM episodes WHERE last_used < ?", (now - idle,))
-            (count,) = db.execute("SELECT count(*) FROM episodes").fetchone()
-            if count >= cap:
+        with self._guard("the new episode"):
+            db = self._connection()
+            db.execute("BEGIN IMMEDIATE")
+            try:
+                db.execute("DELETE FROM episodes WHERE last_used < ?", (now - idle,))
+                (count,) = db.execute("SELECT count(*) FROM episodes").fetchone()
+                if count >= cap:
+                    db.execute("COMMIT")
+                    return False
+                db.execute("INSERT INTO episodes VALUES (?, 1, ?, ?, ?, ?)",
+                           (episode_id, now, now, now, record))
                 db.execute("COMMIT")
-                return False
-            db.execute("INSERT INTO episodes VALUES (?, 1, ?, ?, ?, ?)",
-                       (episode_id, now, now, now, record))
-            db.execute("COMMIT")
-            return True
-        except BaseException:
-            db.execute("ROLLBACK")
-            raise
+                return True
+            except BaseException:
+                if db.in_transaction:  # SQLite may have rolled back already (disk full)
+                    db.execute("ROLLBACK")
+                raise
 
     def check(self, episode_id: str, now: float, idle: float) -> int | None:
-        db = self._connection()
-        row = db.execute("SELECT version, last_used FROM episodes WHERE id = ?",
-                         (episode_id,)).fetchone()
-        if row is None or row[1] < now - idle:
-            return None
-        if now - row[1] > min(TOUCH_EVERY_S, idle / 10):
-            db.execute("UPDATE episodes SET last_used = max(last_used, ?) WHERE id = ?",
-                       (now, episode_id))
-        return int(row[0])
+        with self._guard("reading the episode"):
+            db = self._connection()
+            row = db.execute("SELECT version, last_used FROM episodes WHERE id = ?",
+                             (episode_id,)).fetchone()
+            if row is None or row[1] < now - idle:
+                return None
+            if now - row[1] > min(TOUCH_EVERY_S, idle / 10):
+                with suppress(sqlite3.OperationalError):  # a missed touch costs nothing
+                    db.execute("UPDATE episodes SET last_used = max(last_used, ?) "
+                               "WHERE id = ?", (now, episode_id))
+            return int(row[0])
 
     def load(self, episode_id: str, now: float, idle: float) -> str | None:
-        row = self._connection().execute(
-            "SELECT record FROM episodes WHERE id = ? AND last_used >= ?",
-            (episode_id, now - idle)).fetchone()
+        with self._guard("reading the episode"):
+            row = self._connection().execute(
+                "SELECT record FROM episodes WHERE id = ? AND last_used >= ?",
+                (episode_id, now - idle)).fetchone()
         return None if row is None else str(row[0])
 
     def swap(self, episode_id: str, expected: int, record: str, now: float, idle: float
              ) -> bool:
-        cursor = self._connection().execute(
-            "UPDATE episodes SET version = version + 1, record = ?, updated_at = ?, "
-            "last_used = ? WHERE id = ? AND version = ?",
-            (record, now, now, episode_id, expected))
+        with self._guard("the episode's change"):
+            cursor = self._connection().execute(
+                "UPDATE episodes SET version = version + 1, record = ?, updated_at = ?, "
+                "last_used = ? WHERE id = ? AND version = ?",
+                (record, now, now, episode_id, expected))
         return cursor.rowcount == 1
 
     def delete(self, episode_id: str) -> bool:
-        cursor = self._connection().execute("DELETE FROM episodes WHERE id = ?",
-                                            (episode_id,))
+        with self._guard("ending the episode"):
+            cursor = self._connection().execute("DELETE FROM episodes WHERE id = ?",
+                                                (episode_id,))
         return cursor.rowcount == 1
 
     def sweep(self, now: float, idle: float) -> list[str]:
-        rows = self._connection().execute(
-            "DELETE FROM episodes WHERE last_used < ? RETURNING id", (now - idle,)).fetchall()
+        with self._guard("dropping idle episodes"):
+            rows = self._connection().execute(
+                "DELETE FROM episodes WHERE last_used < ? RETURNING id",
+                (now - idle,)).fetchall()
         return [str(r[0]) for r in rows]
 
     def entries(self, now: float, idle: float) -> list[StoredEpisode]:
-        rows = self._connection().execute(
-            "SELECT id, version, created_at, updated_at, last_used, length(record) "
-            "FROM episodes WHERE last_used >= ? ORDER BY created_at", (now - idle,)).fetchall()
+        with self._guard("listing the episodes"):
+            rows = self._connection().execute(
+                "SELECT id, version, created_at, updated_at, last_used, length(record) "
+                "FROM episodes WHERE last_used >= ? ORDER BY created_at",
+                (now - idle,)).fetchall()
         return [StoredEpisode(*row) for row in rows]
 
     def close(self) -> None:

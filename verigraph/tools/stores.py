@@ -17,10 +17,10 @@ from verigraph.tools.errors import StoreError
 from verigraph.tools.store import (
     DEFAULT_IDLE_TIMEOUT_S,
     DEFAULT_MAX_EPISODES,
-    Episode,
     EpisodeStore,
+    LiveEpisode,
 )
-from verigraph.tools.store_backend import Backend
+from verigraph.tools.store_backend import Backend, redacted
 from verigraph.tools.store_durable import DurableStore
 
 STORE_HELP = ("memory://, sqlite:///path/to/episodes.db or redis://host:port/db "
@@ -52,15 +52,10 @@ def open_backend(url: str) -> Backend:
 
 def open_store(url: str, max_episodes: int = DEFAULT_MAX_EPISODES,
                idle_timeout: float = DEFAULT_IDLE_TIMEOUT_S,
-               on_drop: Callable[[Episode], None] | None = None) -> EpisodeStore:
+               on_drop: Callable[[LiveEpisode], None] | None = None) -> EpisodeStore:
     if url in ("memory://", "memory"):
         return EpisodeStore(max_episodes, idle_timeout, on_drop=on_drop)
     return DurableStore(open_backend(url), max_episodes, idle_timeout, on_drop=on_drop)
 
 
-def redacted(url: str) -> str:
-    """The URL without a password, for logs and listings."""
-    parts = urlsplit(url)
-    if parts.password is None:
-        return url
-    return url.replace(f":{parts.password}@", ":***@", 1)
+__all__ = ["STORE_HELP", "default_store_url", "open_backend", "open_store", "redacted"]

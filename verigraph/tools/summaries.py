@@ -15,8 +15,8 @@ from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.tools.executors import SceneCheck
 from verigraph.tools.fields import dictionary_for
-from verigraph.tools.store import Episode
-from verigraph.tools.texts import goal_line, graph_lines
+from verigraph.tools.store import LiveEpisode
+from verigraph.tools.texts import dictionary_line, executor_line, goal_line, graph_lines
 
 
 class EpisodeState(BaseModel):
@@ -46,32 +46,38 @@ class EpisodeState(BaseModel):
                                   "graph says when the episode started")
     awaiting_scene_graph: bool
     dictionary: str
+    # The client's own labels with their roles; every synonym or case normalisation of
+    # a label the client wrote (`box read as block (synonym, blocks dictionary)`).
+    user_labels: list[str] = Field(default_factory=list)
+    label_readings: list[str] = Field(default_factory=list)
     relations: list[str]
     last_violation: Violation | None = Field(default=None,
                                              description="feedback of the last failed call")
 
     def summary(self) -> str:
+        executor = executor_line(self.executor, self.arm_mode)
         if self.graph is None:
             return (f"episode {self.episode_id}: waiting for a scene graph of its image "
-                    "(get_scene_image, then submit_scene_graph)")
+                    f"(get_scene_image, then submit_scene_graph)\n{executor}")
         goal = "no goal" if self.goal_diff is None else self.goal_diff.summary()
         text = (f"episode {self.episode_id}: {len(self.graph.nodes)} objects; {goal}; "
-                f"{len(self.executed)} executed, tau={self.tau}/{self.t}, k={self.k}")
-        if self.arm_mode is not None:
-            text += f"; runs on {self.executor} ({self.arm_mode})"
+                f"{len(self.executed)} executed, tau={self.tau}/{self.t}, k={self.k} "
+                "actions per execute_actions call (done not counted)")
         if self.scene_check is not None and not self.scene_check.matches:
             text += f"; {self.scene_check.summary()}"
-        lines = [text, graph_lines(self.graph, self.dictionary), goal_line(self.goal)]
+        lines = [text, executor, graph_lines(self.graph, self.dictionary),
+                 dictionary_line(self.dictionary, self.user_labels, self.label_readings),
+                 goal_line(self.goal)]
         if self.last_violation is not None:
             lines.append(f"last refusal: {self.last_violation.text()}")
         return "\n".join(line for line in lines if line)
 
 
-def describe(episode: Episode) -> EpisodeState:
+def describe(episode: LiveEpisode) -> EpisodeState:
     state = episode.state
     diff = check_goal(state, episode.goal) if state is not None and episode.goal else None
     dictionary = state.dictionary if state is not None else None
-    pending = episode.dictionary_name or "all"
+    pending = dictionary_for(episode.dictionary_name)
     return EpisodeState(
         episode_id=episode.id, source=episode.source,
         graph=state.to_graph() if state is not None else None, goal=episode.goal,
@@ -82,6 +88,7 @@ def describe(episode: Episode) -> EpisodeState:
         simulated=episode.executor == "sim2d", executor=episode.executor,
         arm_mode=episode.world.config.mode if isinstance(episode.world, ArmWorld) else None,
         scene_check=episode.scene_check, awaiting_scene_graph=state is None,
-        dictionary=dictionary.name if dictionary else pending,
-        relations=list((dictionary or dictionary_for(pending)).relations),
+        dictionary=(dictionary or pending).name,
+        user_labels=(dictionary or pending).user_lines(),
+        relations=list((dictionary or pending).relations),
         last_violation=episode.last_violation)

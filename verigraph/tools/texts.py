@@ -8,13 +8,19 @@ movable, surface, container, capacity) and every edge, in lines a model reads ea
 from __future__ import annotations
 
 from verigraph.errors import VeriGraphError
-from verigraph.graph.dictionary import Dictionary, ObjectProperties, load_dictionary
+from verigraph.graph.dictionary import (
+    Dictionary,
+    InlineDictionary,
+    ObjectProperties,
+    load_dictionary,
+    open_label_properties,
+)
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Node, SceneGraph
 from verigraph.tools.fields import dictionary_for
 
 
-def _dictionary(name: str | None) -> Dictionary:
+def _dictionary(name: str | InlineDictionary | None) -> Dictionary:
     try:
         return dictionary_for(name)
     except VeriGraphError:  # a name the tools would have refused already; fall back
@@ -23,8 +29,11 @@ def _dictionary(name: str | None) -> Dictionary:
 
 def _properties(node: Node, dictionary: Dictionary) -> ObjectProperties | None:
     label = dictionary.resolve(node.label)
-    if label is None:
-        return None
+    if label is None:  # a label of the client's own, if its attrs declare a role
+        try:
+            return open_label_properties(node.attrs)
+        except VeriGraphError:
+            return None
     try:
         return dictionary.objects[label].overridden(node.attrs)
     except VeriGraphError:
@@ -37,15 +46,49 @@ def role(props: ObjectProperties | None) -> str:
         return "unknown to the dictionary"
     kinds = [k for k, on in (("surface", props.surface), ("container", props.container)) if on]
     text = " ".join(["movable" if props.movable else "fixed", *kinds])
-    if kinds and props.capacity is not None:
-        text += f", capacity {props.capacity}"
+    if kinds:
+        text += f", capacity {props.capacity if props.capacity is not None else 'unlimited'}"
     return text
 
 
-def objects_line(graph: SceneGraph, dictionary: str | None = None) -> str:
+def runs_on(executor: str, arm_mode: str | None = None) -> str:
+    """Where the actions run, worded so that no reader takes a check for a motion.
+
+    `graph` and `sim2d` never move anything physical; an arm episode says its mode, and
+    only `real` means a robot moved.
+    """
+    if executor == "graph":
+        return "graph (verified only, nothing physical moved)"
+    if executor == "sim2d":
+        return "sim2d (simulated in the 2D simulator, nothing physical moved)"
+    what = {"real": "real arm: validated actions move the robot after the user approves",
+            "sim": "simulated arm, nothing physical moved",
+            "dry-run": "dry-run: motions recorded, nothing moved"}.get(
+                arm_mode or "", "robot arm")
+    return f"{executor} ({what})"
+
+
+def executor_line(executor: str, arm_mode: str | None = None) -> str:
+    """`executor: graph (verified only, nothing physical moved)`"""
+    return f"executor: {runs_on(executor, arm_mode)}"
+
+
+def _your_label(node: Node, dictionary: Dictionary) -> bool:
+    """Whether the node's label is the client's own (declared inline or in its attrs)."""
+    label = dictionary.resolve(node.label)
+    if label is None:
+        try:
+            return open_label_properties(node.attrs) is not None
+        except VeriGraphError:
+            return False
+    return label in dictionary.user_labels
+
+
+def objects_line(graph: SceneGraph, dictionary: str | InlineDictionary | None = None) -> str:
     """`objects: table (table: fixed surface); cup_2 (mug: movable container, capacity 1)`"""
     d = _dictionary(graph.dictionary or dictionary)
-    parts = [f"{n.id} ({n.label}: {role(_properties(n, d))})" for n in graph.nodes]
+    parts = [f"{n.id} ({n.label}: {'your label, ' if _your_label(n, d) else ''}"
+             f"{role(_properties(n, d))})" for n in graph.nodes]
     return "objects: " + ("; ".join(parts) or "none")
 
 
@@ -53,9 +96,31 @@ def edges_line(graph: SceneGraph, prefix: str = "edges") -> str:
     return f"{prefix}: " + ("; ".join(graph.sentences()) or "none")
 
 
-def graph_lines(graph: SceneGraph, dictionary: str | None = None) -> str:
+def graph_lines(graph: SceneGraph, dictionary: str | InlineDictionary | None = None) -> str:
     """Two lines: every object with label and role, then every edge."""
     return f"{objects_line(graph, dictionary)}\n{edges_line(graph)}"
+
+
+def dictionary_line(name: str, user_labels: list[str], readings: list[str]) -> str:
+    """`dictionary: home_office; your labels: laptop: movable surface, capacity 1`, then
+    every normalisation of a label (never silent)."""
+    text = f"dictionary: {name}"
+    if user_labels:
+        text += "; your labels: " + "; ".join(user_labels)
+    if readings:
+        text += "\n" + readings_line(readings)
+    return text
+
+
+def readings_line(readings: list[str]) -> str:
+    """`labels read: box read as block (synonym, blocks dictionary)`: every label the
+    client wrote that was taken as another name (never silent); empty when none."""
+    return "labels read: " + "; ".join(readings) if readings else ""
+
+
+def goal_edges_text(goal: Goal) -> str:
+    """A goal graph's edges as set_goal's `edges` text takes them back."""
+    return "; ".join(goal.graph.sentences()) if goal.graph is not None else ""
 
 
 def goal_line(goal: Goal | None) -> str | None:

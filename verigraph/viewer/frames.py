@@ -1,7 +1,7 @@
 """Simulator pictures of every step of a simulated episode, and red frames around objects.
 
 A sim2d world is seeded and deterministic, and `sim2d.persist` rebuilds one exactly, so
-an episode keeps only its world as it was loaded (`Episode.initial_world`, 2-7 KiB of
+an episode keeps only its world as it was loaded (`LiveEpisode.initial_world`, 2-7 KiB of
 JSON) and the viewer replays the executed actions on a rebuilt copy, rendering after
 each. Keeping a PNG per executed step instead would cost about 10 KiB per step in every
 episode (and in every durable record), viewed or not; the replay costs CPU only when

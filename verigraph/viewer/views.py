@@ -18,10 +18,10 @@ from typing import Annotated, Literal
 
 import cv2
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from verigraph.actions.feedback import Violation
-from verigraph.actions.report import ValidationReport
+from verigraph.actions.report import StepReport, ValidationReport
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.tools.acting import MAX_PLAN_ACTIONS, PlanText, ValidatePlanInput, validate_plan
@@ -30,7 +30,7 @@ from verigraph.tools.drawing import draw_graph
 from verigraph.tools.fields import BoundedGoal, BoundedGraph, EpisodeId, SceneId
 from verigraph.tools.images import encode_png
 from verigraph.tools.loading import stateless_source
-from verigraph.tools.registry import ToolSpec
+from verigraph.tools.registry import ToolSpec, argument_error
 from verigraph.tools.scenes import RenderSceneInput, render_scene
 from verigraph.viewer.frames import boxes, outline, step_frames
 
@@ -117,8 +117,11 @@ def view(ctx: ToolContext, params: ViewInput) -> EpisodeView:
     if params.plan is None:
         assert params.episode_id is not None
         return episode_view(ctx, params.episode_id)
-    return plan_view(ctx, ValidatePlanInput.model_validate(
-        params.model_dump(exclude_none=True)))
+    try:  # the plan's actions are checked here, in full (ViewInput keeps them loose)
+        checked = ValidatePlanInput.model_validate(params.model_dump(exclude_none=True))
+    except ValidationError as exc:
+        raise argument_error(VIEW_SPEC, exc) from None
+    return plan_view(ctx, checked)
 
 
 def plan_view(ctx: ToolContext, params: ValidatePlanInput, title: str = "plan check"
@@ -150,13 +153,22 @@ def episode_view(ctx: ToolContext, episode_id: str) -> EpisodeView:
         initial_world = episode.initial_world if simulated else None
         executed_actions = list(episode.executed)
         source = episode.source
-    plan = "\n".join(executed + ([refused] if refused else [])) or "done"
     start = WorldState.from_graph(initial, state.dictionary)
-    report = validate_plan(ctx, ValidatePlanInput(plan=plan, graph=initial, goal=goal))
-    if recorded is not None and report.steps and report.steps[-1].ok:
-        last_step = report.steps[-1]  # refused by the simulator or arm, not by the graph
-        report.steps[-1] = last_step.model_copy(update={
-            "ok": False, "violation": recorded, "edit": last_step.edit if failed else None})
+    # Only the executed prefix is checked again (it was applied, so it parses and passes);
+    # the refused action is shown from what the episode recorded, whatever it named.
+    report = validate_plan(ctx, ValidatePlanInput(plan="\n".join(executed) or "done",
+                                                  graph=initial, goal=goal))
+    if refused is not None:
+        stored = recorded or (last.violation if last is not None else None)
+        assert stored is not None  # a refused step is one with a recorded violation
+        violation = stored.model_copy(update={"step": len(executed) + 1})
+        report.steps.append(StepReport(step=len(executed) + 1, ok=False, text=refused,
+                                       violation=violation, action=violation.action))
+        report.violations = [violation]
+        report.valid = report.plan_valid = False
+    elif recorded is not None and report.steps and report.steps[-1].ok:
+        last_step = report.steps[-1]  # executed, but the simulator or arm ended otherwise
+        report.steps[-1] = last_step.model_copy(update={"ok": False, "violation": recorded})
         report.valid = report.plan_valid = False
     result = _assemble(f"episode ({source})", "episode", start, report)
     result.episode_id = episode_id

@@ -88,6 +88,17 @@ class BlocksDomain:
     def by_role(self, role: str) -> Operator:
         return next(op for op in self.operators.values() if op.role == role)
 
+    def call(self, role: str, *slots: str) -> str:
+        """The action of template `role` on template arguments `slots`, in the domain's own
+        names and parameter order: `call("unstack", "a", "b")` -> `(feast a b)`."""
+        op = self.by_role(role)
+        return "(" + " ".join((op.name, *(slots[op.order[i]] for i in range(len(slots))))) + ")"
+
+    def atom(self, role: str, *args: str) -> str:
+        """A fact in the domain's own predicate names: `atom("on", "a", "b")` -> `(craves a b)`."""
+        name = next(p for p, r in self.predicates.items() if r == role)
+        return "(" + " ".join((name, *args)) + ")"
+
 
 def _role(name: str) -> str | None:
     return ROLE_NAMES.get(name.replace("-", "").replace("_", ""))
@@ -101,8 +112,11 @@ def _conjuncts(expr: SExpr, where: str) -> list[SExpr]:
     return [expr]
 
 
-def _read_action(body: list[SExpr], predicates: dict[str, str]
-                 ) -> tuple[str, list[str], set[Atom], set[Atom], set[Atom], set[frozenset[int]]]:
+RawAction = tuple[str, list[str], set[Atom], set[Atom], set[Atom], set[frozenset[int]]]
+
+
+def _read_action(body: list[SExpr], arity: dict[str, int]) -> RawAction:
+    """An action's parameters and atoms over parameter indices, predicates by PDDL name."""
     name = body[1] if len(body) > 1 and isinstance(body[1], str) else "?"
     keys = {body[i]: body[i + 1] for i in range(2, len(body) - 1, 2) if isinstance(body[i], str)}
     params_expr = keys.get(":parameters", [])
@@ -115,11 +129,11 @@ def _read_action(body: list[SExpr], predicates: dict[str, str]
         if not (isinstance(expr, list) and expr and all(isinstance(a, str) for a in expr)):
             raise UnsupportedDomainError(f"action {name} uses {_show(expr)}; only plain atoms, "
                                          "negated effects and (not (= ?x ?y)) are supported")
-        role = predicates.get(str(expr[0]))
-        if role is None or any(a not in index for a in expr[1:]):
+        pred = str(expr[0])
+        if arity.get(pred) != len(expr) - 1 or any(a not in index for a in expr[1:]):
             raise UnsupportedDomainError(f"action {name} uses {_show(expr)}, which is not a "
                                          "blocks-world predicate over the action's parameters")
-        return role, tuple(index[str(a)] for a in expr[1:])
+        return pred, tuple(index[str(a)] for a in expr[1:])
 
     pre: set[Atom] = set()
     distinct: set[frozenset[int]] = set()
@@ -144,6 +158,65 @@ def _read_action(body: list[SExpr], predicates: dict[str, str]
     return str(name), params, pre, add, delete, distinct
 
 
+def _role_assignments(arity: dict[str, int]) -> list[dict[str, str]]:
+    """Every way to give the predicates blocks-world roles that fits their arities.
+
+    The conventional spelling (on, ontable, clear, ...) is tried first; then, because a
+    renamed domain (PlanBench's Mystery Blocksworld: craves, planet, province, harmony,
+    pain) is the same domain, every assignment by arity: one binary predicate is `on`,
+    a nullary one `handempty`, and the two or three unary ones are permuted (at most 6
+    tries, each checked against the operator templates).
+    """
+    out: list[dict[str, str]] = []
+    by_name = {p: _role(p) for p in arity}
+    if all(r is not None and ROLE_ARITY[r] == arity[p] for p, r in by_name.items()) \
+            and len(set(by_name.values())) == len(by_name):
+        out.append({p: str(r) for p, r in by_name.items()})
+    binary = [p for p, a in arity.items() if a == 2]
+    nullary = [p for p, a in arity.items() if a == 0]
+    unary = [p for p, a in arity.items() if a == 1]
+    if len(binary) != 1 or len(nullary) > 1 or len(arity) != len(binary + nullary + unary):
+        return out
+    roles = ("ontable", "clear", "holding") if nullary else ("ontable", "clear")
+    if len(unary) != len(roles):
+        return out
+    for chosen in permutations(roles):
+        assignment = {binary[0]: "on", **dict(zip(unary, chosen, strict=True))}
+        if nullary:
+            assignment[nullary[0]] = "handempty"
+        if assignment not in out:
+            out.append(assignment)
+    return out
+
+
+def _operators(raw: list[RawAction], roles: dict[str, str]) -> dict[str, Operator] | None:
+    """The operators under one role assignment, or None when an action fits no template."""
+    operators: dict[str, Operator] = {}
+    for op_name, params, pre, add, delete, distinct in raw:
+        def named(atoms: set[Atom]) -> set[Atom]:
+            return {(roles[p], args) for p, args in atoms}
+        matched = _match(params, named(pre), named(add), named(delete))
+        if matched is None:
+            return None
+        role, order = matched
+        slots = {order[i]: i for i in range(len(order))}  # template slot -> param index
+        forbidden = True
+        if role in SELF_MOVE:
+            a, b = SELF_MOVE[role]
+            forbidden = frozenset((slots[a], slots[b])) in distinct
+        operators[op_name] = Operator(op_name, role, order, forbidden)
+    return operators
+
+
+def _family(operators: dict[str, Operator]) -> str | None:
+    roles = sorted(op.role for op in operators.values())
+    if roles == sorted(FOUR_OPS):
+        return "4op"
+    if roles == sorted(THREE_OPS):
+        return "3op"
+    return None
+
+
 def _match(params: list[str], pre: set[Atom], add: set[Atom], delete: set[Atom]
            ) -> tuple[str, tuple[int, ...]] | None:
     for role, (t_pre, t_add, t_del) in TEMPLATES.items():
@@ -165,9 +238,12 @@ def _show(expr: SExpr) -> str:
 
 
 def recognise_domain(text: str) -> BlocksDomain:
-    """The blocks-world domain in `text`, or UnsupportedDomainError saying what differs."""
+    """The blocks-world domain in `text`, or UnsupportedDomainError saying what differs.
+
+    Recognition is by structure: predicates and actions may have any names.
+    """
     name, sections = define_body(text, what="domain", kind="domain")
-    predicates: dict[str, str] = {}
+    arity: dict[str, int] = {}
     block_types: set[str] = set()
     actions: list[list[SExpr]] = []
     for section in sections:
@@ -185,13 +261,7 @@ def recognise_domain(text: str) -> BlocksDomain:
             for pred in section[1:]:
                 if not isinstance(pred, list) or not pred or not isinstance(pred[0], str):
                     raise UnsupportedDomainError(f"malformed predicate {_show(pred)}")
-                role = _role(pred[0])
-                arity = len(typed_names(pred[1:], what="domain"))
-                if role is None or ROLE_ARITY[role] != arity:
-                    raise UnsupportedDomainError(
-                        f"predicate {_show(pred)} is not one of on/2, ontable/1, clear/1, "
-                        "handempty/0, holding/1")
-                predicates[pred[0]] = role
+                arity[pred[0]] = len(typed_names(pred[1:], what="domain"))
         elif head == ":functions":
             if section[1:] != [["total-cost"]]:
                 raise UnsupportedDomainError("only the (total-cost) function is supported")
@@ -199,27 +269,25 @@ def recognise_domain(text: str) -> BlocksDomain:
             actions.append(section)
         else:
             raise UnsupportedDomainError(f"section {head} is outside STRIPS blocks world")
-    operators: dict[str, Operator] = {}
-    for body in actions:
-        op_name, params, pre, add, delete, distinct = _read_action(body, predicates)
-        matched = _match(params, pre, add, delete)
-        if matched is None:
-            raise UnsupportedDomainError(
-                f"action {op_name} is not pick-up, put-down, stack, unstack or a 3-operator "
-                "move with the standard preconditions and effects")
-        role, order = matched
-        slots = {order[i]: i for i in range(len(order))}  # template slot -> param index
-        forbidden = True
-        if role in SELF_MOVE:
-            a, b = SELF_MOVE[role]
-            forbidden = frozenset((slots[a], slots[b])) in distinct
-        operators[op_name] = Operator(op_name, role, order, forbidden)
-    roles = sorted(op.role for op in operators.values())
-    if roles == sorted(FOUR_OPS):
-        family = "4op"
-    elif roles == sorted(THREE_OPS):
-        family = "3op"
-    else:
-        raise UnsupportedDomainError(f"the actions ({', '.join(operators) or 'none'}) are not "
-                                     "the four hand operators or the three move operators")
-    return BlocksDomain(name, family, operators, predicates, block_types)
+    assignments = _role_assignments(arity)
+    if not assignments:
+        shown = ", ".join(f"{p}/{a}" for p, a in arity.items())
+        raise UnsupportedDomainError(
+            f"predicate set ({shown}) is not blocks-world shaped: one binary predicate (on), "
+            "two or three unary ones (on-table, clear, holding) and at most one nullary one "
+            "(hand empty), under any names")
+    raw = [_read_action(body, arity) for body in actions]
+    for roles in assignments:
+        operators = _operators(raw, roles)
+        if operators is None:
+            continue
+        family = _family(operators)
+        if family is not None:
+            return BlocksDomain(name, family, operators, roles, block_types)
+    if _operators(raw, assignments[0]) is None:
+        raise UnsupportedDomainError(
+            "an action is not pick-up, put-down, stack, unstack or a 3-operator move with the "
+            "standard preconditions and effects (under any names): "
+            + ", ".join(str(r[0]) for r in raw))
+    raise UnsupportedDomainError(f"the actions ({', '.join(str(r[0]) for r in raw) or 'none'}) "
+                                 "are not the four hand operators or the three move operators")

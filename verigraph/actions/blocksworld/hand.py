@@ -54,17 +54,22 @@ class HandModel:
         if not on_top:
             return None
         top = on_top[0]
-        fix = (f"(unstack {top} {x}) and (put-down {top}) first" if self.hand
-               else f"(move-b-to-t {top} {x}) first")
-        return ("object_not_clear", f"{top} is on {x}", on_top, fix)
+        d = self.domain
+        fix = (f"{d.call('unstack', top, x)} and {d.call('put-down', top)} first" if self.hand
+               else f"{d.call('move-b-to-t', top, x)} first")
+        return ("object_not_clear",
+                f"{top} is on {x}: {d.atom('on', top, x)} holds, so {d.atom('clear', x)} is "
+                "false", on_top, fix)
 
     def _hand_full(self) -> Failure | None:
         assert self.hand is not None
         held = list(self.state.carried[self.hand])
         if not held:
             return None
-        return ("hand_full", f"the hand already holds {held[0]}", held,
-                f"release it first, e.g. (put-down {held[0]})")
+        d = self.domain
+        return ("hand_full", f"the hand already holds {held[0]}: {d.atom('holding', held[0])} "
+                f"holds, so {d.atom('handempty')} is false", held,
+                f"release it first, e.g. {d.call('put-down', held[0])}")
 
     def _source(self, x: str, source: str | None) -> Failure | None:
         """`source` None means the table."""
@@ -72,16 +77,19 @@ class HandModel:
         if self.state.support[x] == want:
             return None
         rel, below = self.state.support[x]
+        d = self.domain
         named = "the table" if source is None else source
+        needed = d.atom("ontable", x) if source is None else d.atom("on", x, source)
         if rel == "in":
             fix = "it is already held; release it instead"
         elif below == self.table:
-            fix = (f"(pick-up {x})" if self.hand else
-                   f"move it with (move-t-to-b {x} <block>)")
+            fix = (d.call("pick-up", x) if self.hand else
+                   f"move it with {d.call('move-t-to-b', x, '<block>')}")
         else:
-            fix = (f"(unstack {x} {below})" if self.hand else
-                   f"name its real source: {below}")
-        return ("wrong_source", f"{x} is {self._where(x)}, not on {named}", [], fix)
+            fix = (d.call("unstack", x, below) if self.hand else
+                   f"name its real source: {d.call('move-b-to-t', x, below)}")
+        return ("wrong_source", f"{x} is {self._where(x)}, not on {named}: {needed} is false",
+                [], fix)
 
     def _target(self, x: str, y: str, forbid_self: bool) -> Failure | None:
         if x == y:
@@ -105,9 +113,11 @@ class HandModel:
             return None
         held = list(self.state.carried[self.hand])
         holds = f"the hand holds {held[0]}" if held else "the hand is empty"
+        d = self.domain
         fix = (f"release {held[0]} instead" if held else
-               f"grasp {x} first with (pick-up {x}) or (unstack {x} ...)")
-        return ("not_held", f"cannot release {x}: {holds}", held, fix)
+               f"grasp {x} first with {d.call('pick-up', x)} or {d.call('unstack', x, '...')}")
+        return ("not_held", f"cannot release {x}: {holds}, so {d.atom('holding', x)} is false",
+                held, fix)
 
     def check(self, step: PlanStep, forbid_self: bool = True) -> Failure | None:
         """The first reason `step` cannot run now, or None (changes nothing)."""

@@ -8,6 +8,11 @@ Accepted per line, mixed freely:
 
 PlanBench names its objects a, b, c... and writes them as colours (a = red, b = blue, ...);
 a colour resolves to its letter unless the problem declares an object of that name.
+A sentence that starts with one of the domain's own operator names is read as that
+operator with the remaining words as arguments, filler words dropped: PlanBench's
+Mystery Blocksworld writes `feast object b from object c` for `(feast b c)`.
+Names are ASCII in every mode (as in the domain and problem files): a non-ASCII name is
+bad input naming its line.
 A line that is no action, names an unknown operator or has the wrong number of arguments
 is bad input (PlanParseError naming the line), never a verdict.
 """
@@ -35,6 +40,10 @@ _ENGLISH = [
     ("pick-up", re.compile(r"^pick[\s_-]*up\s+(?P<x>.+)$")),
     ("put-down", re.compile(r"^put[\s_-]*down\s+(?P<x>.+)$")),
 ]
+# One `(op a [b [c]])` per line, single spaces: what planners and VAL write.
+_PLAIN_LINE = re.compile(r"^(\(([^\s()]+) ([^\s()]+)(?: ([^\s()]+))?(?: ([^\s()]+))?\))$",
+                         re.MULTILINE)
+_FILLER = frozenset({"object", "the", "block", "from", "on", "top", "of", "onto", "to", "a"})
 _VERBS = re.compile(r"^(unstack|stack|pick[\s_-]*up|put[\s_-]*down)\b")
 FORMS = ("(op arg ...) with the domain's operators, or PlanBench text such as "
          "'unstack the red block from on top of the blue block'")
@@ -105,10 +114,99 @@ def _english_step(body: str, number: int, raw: str, domain: BlocksDomain,
     raise PlanParseError("not an action", line=number, column=1, text=raw, expected=FORMS)
 
 
-def parse_blocks_plan(text: str, domain: BlocksDomain, declared: set[str]) -> list[PlanStep]:
-    """Every action line of a plan, in order; an empty plan is valid input."""
-    steps: list[PlanStep] = []
+def _named_step(body: str, number: int, raw: str, domain: BlocksDomain,
+                declared: set[str]) -> PlanStep | None:
+    """`<operator> object b from object c` -> the operator on (b, c), or None."""
+    words = body.split()
+    if not words or words[0] not in domain.operators or _VERBS.match(body):
+        return None
+    args = [w for w in words[1:] if w not in _FILLER or w in declared]
+    objects = [_object(a, declared) for a in args]
+    return _sexpr_step(f"({' '.join((words[0], *objects))})", number, raw, domain)
+
+
+def _ascii_names(text: str) -> None:
     for number, raw in enumerate(text.splitlines(), start=1):
+        body = raw.split(";", 1)[0]
+        if not body.isascii():
+            raise PlanParseError("names are ASCII (letters, digits, '-' and '_'), as in PDDL "
+                                 "domain and problem files", line=number, column=1,
+                                 text=raw[:80], expected="the problem's ASCII object names")
+
+
+PlainLine = tuple[str, str, str, str, str]  # line, operator, up to three arguments ("" if none)
+
+
+def plain_actions(lowered: str, domain: BlocksDomain) -> list[PlainLine] | None:
+    """The regex matches when every line of the (lower-cased) plan is a plain `(op args)`
+    with single spaces and every operator takes its arguments in template order; else
+    None. Operator names and arities are not checked here."""
+    if any(op.order != _IDENTITY[len(op.order)] for op in domain.operators.values()):
+        return None
+    matches: list[PlainLine] = _PLAIN_LINE.findall(lowered)
+    lines = lowered.count("\n") + (0 if lowered.endswith("\n") else 1)
+    return matches if len(matches) == lines else None
+
+
+def _plain_plan(lowered: str, domain: BlocksDomain) -> list[PlanStep] | None:
+    """The steps when every line is a plain `(op args)` of the right arity, else None.
+
+    One regex pass over the whole text; a plan that needs anything more (comments,
+    prefixes, sentences, reordered parameters, blank lines, an error) returns None and
+    takes the line-by-line path, which gives the same steps.
+    """
+    matches = plain_actions(lowered, domain)
+    if matches is None:
+        return None
+    table = {name: (op.role, len(op.order)) for name, op in domain.operators.items()}
+    steps: list[PlanStep] = []
+    append = steps.append
+    make = tuple.__new__  # PlanStep's own constructor is a Python-level call
+    for number, (line, name, a, b, c) in enumerate(matches, start=1):
+        entry = table.get(name)
+        args = (a, b, c) if c else (a, b) if b else (a,)
+        if entry is None or entry[1] != len(args):
+            return None
+        append(make(PlanStep, (entry[0], args, line, number)))
+    return steps
+
+
+def parse_blocks_plan(text: str, domain: BlocksDomain, declared: set[str]) -> list[PlanStep]:
+    """Every action line of a plan, in order; an empty plan is valid input.
+
+    A line that is exactly `(op args)` with the right arity (VAL's and planners' format,
+    nearly every line of a long plan) takes an inlined path; any other line goes through
+    the general forms above, which also produce every error.
+    """
+    if not text.isascii():
+        _ascii_names(text)
+    plain = _plain_plan(text.lower(), domain)
+    if plain is not None:
+        return plain
+    fast = {name: (op.role, op.order, len(op.order), op.order == _IDENTITY[len(op.order)])
+            for name, op in domain.operators.items()}
+    steps: list[PlanStep] = []
+    append = steps.append
+    lines = text.splitlines()
+    for number, body in enumerate(text.lower().splitlines(), start=1):
+        body = body.strip()
+        if not body:
+            continue
+        if body[0] == "(" and body[-1] == ")" and ";" not in body:
+            inner = body[1:-1].split()
+            entry = fast.get(inner[0]) if inner else None
+            if entry is not None and len(inner) == entry[2] + 1:
+                role, order, _, identity = entry
+                args = tuple(inner[1:])
+                shown = "(" + " ".join(inner) + ")"
+                if not identity:
+                    slots = [""] * len(args)
+                    for i, a in enumerate(args):
+                        slots[order[i]] = a
+                    args = tuple(slots)
+                append(PlanStep(role, args, shown, number))
+                continue
+        raw = lines[number - 1]
         body = raw.split(";", 1)[0].strip().lower()
         if not body or body.startswith("[plan"):
             continue
@@ -117,7 +215,8 @@ def parse_blocks_plan(text: str, domain: BlocksDomain, declared: set[str]) -> li
             if not body:
                 continue
         if body[0] == "(":
-            steps.append(_sexpr_step(body, number, raw, domain))
+            append(_sexpr_step(body, number, raw, domain))
         else:
-            steps.append(_english_step(body, number, raw, domain, declared))
+            append(_named_step(body, number, raw, domain, declared)
+                   or _english_step(body, number, raw, domain, declared))
     return steps

@@ -63,6 +63,24 @@ def _atoms(expr: SExpr, domain: BlocksDomain, where: str) -> list[GoalAtom]:
     return out
 
 
+def _init_atoms(items: list[SExpr], domain: BlocksDomain) -> list[GoalAtom]:
+    """The initial atoms; a plain known atom takes one dict lookup, anything else (and
+    every error) goes through `_atoms`. `(= (total-cost) 0)` is skipped."""
+    roles = domain.predicates
+    out: list[GoalAtom] = []
+    for item in items:
+        if isinstance(item, list) and item:
+            role = roles.get(item[0]) if isinstance(item[0], str) else None
+            args = item[1:]
+            if role is not None and all(type(a) is str for a in args):
+                out.append((role, tuple(args)))  # type: ignore[arg-type]
+                continue
+            if item[0] == "=":
+                continue
+        out.extend(_atoms(item, domain, "initial state"))
+    return out
+
+
 def read_problem(text: str, domain: BlocksDomain) -> BlocksProblem:
     """Parse and check a problem file's text against a recognised domain."""
     name, sections = define_body(text, what="problem", kind="problem")
@@ -76,8 +94,7 @@ def read_problem(text: str, domain: BlocksDomain) -> BlocksProblem:
         if head == ":objects":
             objects = typed_names(section[1:], what="problem")
         elif head == ":init":
-            init = [a for item in section[1:] for a in _atoms(item, domain, "initial state")
-                    if not (isinstance(item, list) and item and item[0] == "=")]
+            init = _init_atoms(section[1:], domain)
         elif head == ":goal":
             goal = _atoms(section[1] if len(section) > 1 else [], domain, "goal")
         elif head in (":domain", ":requirements", ":metric"):
@@ -111,7 +128,7 @@ def _check_state(name: str, blocks: list[str], init: list[GoalAtom], goal: list[
     for role, args in [*init, *goal]:
         for a in args:
             if a not in known:
-                raise PddlSyntaxError(f"({role} {' '.join(args)}) names '{a}', which "
+                raise PddlSyntaxError(f"{domain.atom(role, *args)} names '{a}', which "
                                       "(:objects ...) does not declare", field="problem",
                                       value=a, fix=f"declare {a} in :objects")
     for role, args in init:
@@ -138,13 +155,14 @@ def _check_state(name: str, blocks: list[str], init: list[GoalAtom], goal: list[
             raise bad(f"more than one block is on {b}")
         should_be_clear = not below_count.get(b) and b not in held
         if should_be_clear != (b in clear):
-            raise bad(f"(clear {b}) is {'missing' if should_be_clear else 'stated'} though "
+            state = "missing" if should_be_clear else "stated"
+            raise bad(f"{domain.atom('clear', b)} is {state} though "
                       f"{'nothing is on it' if should_be_clear else 'it is covered or held'}")
     if domain.family == "4op":
         if len(held) > 1:
             raise bad(f"the hand holds {len(held)} blocks")
         if handempty == bool(held):
-            raise bad("(handempty) must hold exactly when nothing is held")
+            raise bad(f"{domain.atom('handempty')} must hold exactly when nothing is held")
     for b in blocks:  # cycles: walk down from every block
         seen: set[str] = set()
         cur: str | None = b

@@ -1,6 +1,11 @@
 """A small S-expression reader for PDDL: lists of lower-cased atoms, with line numbers.
 
 PDDL is case-insensitive, so every atom is lower-cased here once; `;` starts a comment.
+Two rules keep hostile files from reaching the rest of the code: nesting deeper than
+`MAX_DEPTH` is refused while reading (everything downstream may then recurse safely),
+and names are ASCII (PDDL's names are letters, digits, `-` and `_`; a non-ASCII name is
+refused in every mode, with its line, rather than judged in one mode and crashing in
+another). Comments may hold any text.
 """
 
 from __future__ import annotations
@@ -15,6 +20,7 @@ _FAST_TOKEN = re.compile(r"[()]|[^\s()]+")
 _COMMENT = re.compile(r";[^\n]*")
 
 SExpr = str | list["SExpr"]
+MAX_DEPTH = 64  # real domains nest about 8 deep; far below Python's recursion limit
 
 
 class PddlSyntaxError(VeriGraphError):
@@ -26,9 +32,14 @@ def parse_sexpr(text: str, *, what: str) -> list[SExpr]:
 
     The fast path tokenizes with one regex; line numbers are only computed for errors.
     """
+    body = _COMMENT.sub("", text)
+    if not body.isascii():
+        _non_ascii(text, what)
     stack: list[list[SExpr]] = [[]]
-    for token in _FAST_TOKEN.findall(_COMMENT.sub("", text).lower()):
+    for token in _FAST_TOKEN.findall(body.lower()):
         if token == "(":
+            if len(stack) > MAX_DEPTH:
+                _too_deep(text, what)
             stack.append([])
         elif token == ")":
             if len(stack) == 1:
@@ -40,6 +51,39 @@ def parse_sexpr(text: str, *, what: str) -> list[SExpr]:
     if len(stack) > 1:
         _locate_error(text, what)
     return stack[0]
+
+
+def _line_of(text: str, index: int) -> int:
+    return text.count("\n", 0, index) + 1
+
+
+def _too_deep(text: str, what: str) -> NoReturn:
+    depth = 0
+    for match in _TOKEN.finditer(text):
+        token = match.group()
+        if token == "(":
+            depth += 1
+            if depth > MAX_DEPTH:
+                line = _line_of(text, match.start())
+                raise PddlSyntaxError(
+                    f"parentheses nest more than {MAX_DEPTH} deep on line {line}",
+                    field=what, value=line,
+                    fix=f"PDDL domains and problems nest a few levels; keep it under {MAX_DEPTH}")
+        elif token == ")":
+            depth -= 1
+    raise AssertionError("unreachable: the fast reader saw the same nesting")
+
+
+def _non_ascii(text: str, what: str) -> NoReturn:
+    for match in _TOKEN.finditer(text):
+        token = match.group()
+        if token[0] != ";" and not token.isascii():
+            line = _line_of(text, match.start())
+            raise PddlSyntaxError(
+                f"name '{token[:40]}' on line {line} is not ASCII", field=what, value=line,
+                fix="PDDL names are ASCII letters, digits, '-' and '_'; rename it "
+                    "(comments may hold any text)")
+    raise AssertionError("unreachable: non-ASCII text outside comments was seen")
 
 
 def _locate_error(text: str, what: str) -> NoReturn:

@@ -1,7 +1,10 @@
-"""The planning evaluation behind `verigraph bench plan` (the paper's Table 2)."""
+"""The planning evaluation behind `verigraph bench plan` (the paper's Table 2).
 
-from verigraph.agent.evaluation.runner import EpisodeResult, GroupStats, Setting, run_setting
+The public entry point is `engine.run_jobs(jobs, tasks, options)`; jobs come from
+`spec.jobs_for`, tasks from `tasks.build_groups`, tables from `tables`.
+"""
+
+from verigraph.agent.evaluation.spec import EpisodeJob, Setting
 from verigraph.agent.evaluation.tasks import GROUPS, GroupTasks, Task, build_groups
 
-__all__ = ["GROUPS", "EpisodeResult", "GroupStats", "GroupTasks", "Setting", "Task",
-           "build_groups", "run_setting"]
+__all__ = ["GROUPS", "EpisodeJob", "GroupTasks", "Setting", "Task", "build_groups"]

@@ -22,7 +22,7 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.agent.evaluation.limiter import Gate
 from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.agent.planner import Planner
+from verigraph.agent.planner import Planner, is_privileged
 from verigraph.llm.http import RETRY_STATUS, LLMEndpointError
 
 _STATUS = re.compile(r"HTTP (\d{3})")
@@ -88,6 +88,7 @@ class GuardedPlanner:
                  sleep: Callable[[float], None] = time.sleep) -> None:
         self.inner = inner
         self.name = inner.name
+        self.privileged = is_privileged(inner)
         self.backend = backend or inner.name
         self.gate = gate
         self.policy = policy
@@ -126,6 +127,7 @@ class SimulatedLatencyPlanner:
                  sleep: Callable[[float], None] = time.sleep) -> None:
         self.inner = inner
         self.name = inner.name
+        self.privileged = is_privileged(inner)
         self.latency_s = latency_s
         self.sleep = sleep
 

@@ -24,8 +24,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
-from verigraph.agent.evaluation.report import GROUP_TITLES  # noqa: E402
-from verigraph.agent.evaluation.results import EpisodeRecord  # noqa: E402
+from verigraph.agent.evaluation.paper import GROUP_TITLES  # noqa: E402
+from verigraph.agent.evaluation.results import BenchRecord  # noqa: E402
 from verigraph.agent.evaluation.spec import Setting  # noqa: E402
 from verigraph.agent.evaluation.tables import by_setting, families, stats_by_group  # noqa: E402
 from verigraph.agent.evaluation.tasks import GROUPS  # noqa: E402
@@ -40,11 +40,11 @@ def _save(fig: Figure, path: Path) -> Path:
     return path
 
 
-def _rate(records: Sequence[EpisodeRecord]) -> float:
+def _rate(records: Sequence[BenchRecord]) -> float:
     return 100 * sum(r.success for r in records) / len(records) if records else 0.0
 
 
-def success_by_group(rows: dict[Setting, list[EpisodeRecord]], path: Path) -> Path:
+def success_by_group(rows: dict[Setting, list[BenchRecord]], path: Path) -> Path:
     common = Counter((s.k, s.threshold) for s in rows).most_common(1)[0][0]
     main = {s: rs for s, rs in rows.items() if (s.k, s.threshold) == common or s.mode == "direct"}
     groups = [g for g in GROUPS if any(r.group == g for rs in main.values() for r in rs)]
@@ -64,7 +64,7 @@ def success_by_group(rows: dict[Setting, list[EpisodeRecord]], path: Path) -> Pa
     return _save(fig, path)
 
 
-def ablation(rows: dict[Setting, list[EpisodeRecord]], knob: str, path: Path) -> Path | None:
+def ablation(rows: dict[Setting, list[BenchRecord]], knob: str, path: Path) -> Path | None:
     found = families(list(rows), knob)
     if not found:
         return None
@@ -90,7 +90,7 @@ def ablation(rows: dict[Setting, list[EpisodeRecord]], knob: str, path: Path) ->
     return _save(fig, path)
 
 
-def iterations_histogram(records: Sequence[EpisodeRecord], path: Path) -> Path:
+def iterations_histogram(records: Sequence[BenchRecord], path: Path) -> Path:
     iterative = [r for r in records if r.settings.get("mode") == "iterative"] or list(records)
     top = max((r.iterations for r in iterative), default=1)
     bins = range(0, top + 2)
@@ -106,7 +106,7 @@ def iterations_histogram(records: Sequence[EpisodeRecord], path: Path) -> Path:
     return _save(fig, path)
 
 
-def write_plots(records: Sequence[EpisodeRecord], directory: str | Path) -> list[Path]:
+def write_plots(records: Sequence[BenchRecord], directory: str | Path) -> list[Path]:
     """Every figure that the records support; returns the files written."""
     out = Path(directory)
     out.mkdir(parents=True, exist_ok=True)

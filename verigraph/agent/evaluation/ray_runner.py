@@ -29,11 +29,11 @@ from pathlib import Path
 from typing import Any
 
 import verigraph
-from verigraph.agent.evaluation.episode import EngineConfig, EpisodeWorker
 from verigraph.agent.evaluation.limiter import RateLimiter
-from verigraph.agent.evaluation.results import EpisodeRecord, blank_record
+from verigraph.agent.evaluation.results import BenchRecord, blank_record
 from verigraph.agent.evaluation.spec import EpisodeJob
 from verigraph.agent.evaluation.tasks import Task
+from verigraph.agent.evaluation.worker import EngineConfig, EpisodeWorker
 from verigraph.errors import VeriGraphError
 from verigraph.extras import require
 
@@ -104,7 +104,7 @@ class ActorLimiter:
         self.handle.release.remote(backend)
 
 
-def _lost(job: EpisodeJob, exc: Exception) -> EpisodeRecord:
+def _lost(job: EpisodeJob, exc: Exception) -> BenchRecord:
     record = blank_record(job, job.setting.planner)
     record.error_kind = "worker"
     record.stop_reason = "worker_error"
@@ -113,7 +113,7 @@ def _lost(job: EpisodeJob, exc: Exception) -> EpisodeRecord:
 
 
 def _dispatch(ray: Any, workers: list[Any], jobs: list[EpisodeJob],
-              budget: int) -> Iterator[EpisodeRecord]:
+              budget: int) -> Iterator[BenchRecord]:
     """Keep `budget` jobs queued over the workers (round robin); yield as they finish."""
     queue = iter(jobs)
     in_flight: dict[Any, EpisodeJob] = {}
@@ -136,7 +136,7 @@ def _dispatch(ray: Any, workers: list[Any], jobs: list[EpisodeJob],
 def run_on_ray(jobs: list[EpisodeJob], tasks: dict[str, Task], config: EngineConfig, *,
                address: str = "local", concurrency: int | None = None,
                limiter: RateLimiter | None = None,
-               on_ready: Callable[[], None] | None = None) -> Iterator[EpisodeRecord]:
+               on_ready: Callable[[], None] | None = None) -> Iterator[BenchRecord]:
     """Yield one record per job, in the order they finish.
 
     `on_ready` is called once every worker actor is up (its process started and the

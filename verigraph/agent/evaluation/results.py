@@ -17,13 +17,14 @@ from typing import Any
 
 from pydantic import BaseModel, Field, ValidationError
 
-from verigraph.agent.evaluation.spec import EpisodeJob, EpisodeResult
+from verigraph.agent.evaluation.spec import EpisodeJob
 from verigraph.agent.evaluation.tasks import GroupName
 from verigraph.errors import VeriGraphError
 
 
-class EpisodeRecord(BaseModel):
-    """Everything known about one finished episode (one line of the results file)."""
+class BenchRecord(BaseModel):
+    """Everything known about one finished benchmark episode (one line of the results
+    file); not the server's stored episode (`tools.records`), hence its own name."""
 
     key: str = Field(description="EpisodeJob.key(): identity for resuming")
     suite: str
@@ -34,6 +35,7 @@ class EpisodeRecord(BaseModel):
     settings: dict[str, Any] = Field(description="the Setting: mode, k, threshold, ...")
     label: str = Field(description="the setting's row label in tables")
     seed: int
+    sample: int = Field(default=0, description="which of k samples of the task (pass^k)")
     success: bool
     stop_reason: str | None = None
     iterations: int = 0
@@ -54,32 +56,26 @@ class EpisodeRecord(BaseModel):
     error_kind: str | None = Field(default=None, description="planner, tool or internal")
     worker: str | None = Field(default=None, description="host:pid that ran it")
 
-    def to_result(self) -> EpisodeResult:
-        return EpisodeResult(
-            group=self.group, task_id=self.task_id, success=self.success,
-            llm_calls=self.planner_calls, actions=self.actions, violations=self.violations,
-            malformed=self.malformed, premature_done=self.premature_done,
-            stop_reason=self.stop_reason, seconds=self.wall_s, error=self.error)
-
     def outcome(self) -> dict[str, Any]:
         """The fields a rerun must reproduce exactly (no timing, no place)."""
         return self.model_dump(exclude={"wall_s", "trace_path", "worker"})
 
 
-def blank_record(job: EpisodeJob, planner: str) -> EpisodeRecord:
-    return EpisodeRecord(key=job.key(), suite=job.suite, task_id=job.task_id,
+def blank_record(job: EpisodeJob, planner: str) -> BenchRecord:
+    return BenchRecord(key=job.key(), suite=job.suite, task_id=job.task_id,
                          task_hash=job.task_hash, group=job.group, planner=planner,
                          settings=job.setting.model_dump(mode="json"),
-                         label=job.setting.label(), seed=job.seed, success=False)
+                         label=job.setting.label(), seed=job.seed, sample=job.sample,
+                       success=False)
 
 
 class ResultsFile:
-    """Append-only JSONL of `EpisodeRecord`s."""
+    """Append-only JSONL of `BenchRecord`s."""
 
     def __init__(self, path: str | Path) -> None:
         self.path = Path(path)
 
-    def load(self, repair: bool = False) -> list[EpisodeRecord]:
+    def load(self, repair: bool = False) -> list[BenchRecord]:
         """Every whole record; with `repair`, cut a partial last line off the file."""
         if not self.path.exists():
             return []
@@ -93,7 +89,7 @@ class ResultsFile:
             if not line.strip():
                 continue
             try:
-                records.append(EpisodeRecord.model_validate(json.loads(line)))
+                records.append(BenchRecord.model_validate(json.loads(line)))
             except (json.JSONDecodeError, ValidationError) as exc:
                 raise VeriGraphError(
                     f"line {number} of {self.path} is not an episode record: "
@@ -102,7 +98,7 @@ class ResultsFile:
                         "a new file") from None
         return records
 
-    def append(self, records: Iterable[EpisodeRecord]) -> None:
+    def append(self, records: Iterable[BenchRecord]) -> None:
         self.path.parent.mkdir(parents=True, exist_ok=True)
         text = "".join(r.model_dump_json() + "\n" for r in records)
         if not text:

@@ -55,26 +55,13 @@ class Setting(BaseModel):
         return f"{self.label()}__{task_id}"
 
 
-class EpisodeResult(BaseModel):
-    """The numbers one episode contributes to a table."""
+def episode_seed(task_id: str, setting: Setting, sample: int = 0) -> int:
+    """The planner's seed: fixed by task, setting and sample, independent of run order.
 
-    group: GroupName
-    task_id: str
-    success: bool
-    llm_calls: int = 0
-    actions: int = 0
-    violations: int = 0
-    malformed: int = 0
-    premature_done: int = 0
-    stop_reason: str | None = None
-    seconds: float = 0.0
-    error: str | None = Field(default=None, description="tool or planner error, if any")
-    suite_version: str = SUITE_VERSION
-
-
-def episode_seed(task_id: str, setting: Setting) -> int:
-    """The planner's seed: fixed by task and setting, independent of run order."""
-    return zlib.crc32(f"{task_id}|{setting.label()}".encode())
+    Sample 0 keeps the seed it had before samples existed, so old results files resume.
+    """
+    suffix = f"|{sample}" if sample else ""
+    return zlib.crc32(f"{task_id}|{setting.label()}{suffix}".encode())
 
 
 def task_hash(task: Task) -> str:
@@ -100,6 +87,7 @@ class EpisodeJob(BaseModel):
     group: GroupName
     setting: Setting
     seed: int
+    sample: int = Field(default=0, ge=0, description="which of k samples of the task (pass^k)")
 
     @property
     def task_ref(self) -> str:
@@ -107,21 +95,26 @@ class EpisodeJob(BaseModel):
 
     def key(self) -> str:
         """Identity for resuming: the same key means the same outcome."""
-        payload = json.dumps([self.task_id, self.task_hash, self.setting.model_dump(mode="json"),
-                              self.seed], sort_keys=True)
+        parts: list[object] = [self.task_id, self.task_hash,
+                               self.setting.model_dump(mode="json"), self.seed]
+        if self.sample:
+            parts.append(self.sample)  # sample 0 keeps its key from before samples existed
+        payload = json.dumps(parts, sort_keys=True)
         return hashlib.sha256(payload.encode()).hexdigest()[:20]
 
 
-def job_for(task: Task, setting: Setting, suite: str) -> EpisodeJob:
+def job_for(task: Task, setting: Setting, suite: str, sample: int = 0) -> EpisodeJob:
     return EpisodeJob(suite=suite, task_id=task.task_id, task_hash=task_hash(task),
                       group=task.group, setting=setting,
-                      seed=episode_seed(task.task_id, setting))
+                      seed=episode_seed(task.task_id, setting, sample), sample=sample)
 
 
-def jobs_for(setting: Setting, groups: Iterable[GroupTasks], suite: str) -> list[EpisodeJob]:
-    """Every runnable episode of one setting (groups that cannot run are left out)."""
-    return [job_for(task, setting, suite) for group in groups if group.not_run is None
-            for task in group.tasks]
+def jobs_for(setting: Setting, groups: Iterable[GroupTasks], suite: str,
+             samples: int = 1) -> list[EpisodeJob]:
+    """Every runnable episode of one setting (groups that cannot run are left out),
+    `samples` times per task with a different planner seed each (for pass^k)."""
+    return [job_for(task, setting, suite, sample) for group in groups
+            if group.not_run is None for task in group.tasks for sample in range(samples)]
 
 
 def task_index(groups: Iterable[GroupTasks]) -> dict[str, Task]:

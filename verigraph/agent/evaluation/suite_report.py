@@ -6,26 +6,27 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Mapping, Sequence
 
+from verigraph.agent.evaluation.markdown import table
 from verigraph.agent.evaluation.paper import GROUP_TITLES
-from verigraph.agent.evaluation.runner import GroupStats
+from verigraph.agent.evaluation.tables import GroupStats
 from verigraph.agent.evaluation.tasks import GroupName, GroupTasks, suite_stats
-from verigraph.agent.translator import TranslationError, same_goal, translate
 from verigraph.graph.model import SceneGraph
+from verigraph.graph.translator import TranslationError, same_goal, translate
 
 
 def difficulty_table(groups: Sequence[GroupTasks]) -> list[str]:
     """Mean optimal plan length per group, its distribution and the task kinds."""
-    lines = ["| group | episodes | mean optimal length | distribution (length: count) | "
-             "kinds |", "|---|---|---|---|---|"]
+    body = []
     for group in groups:
         if group.not_run is not None:
             continue
         s = suite_stats(group)
         dist = ", ".join(f"{k}: {v}" for k, v in s.distribution.items())
         kinds = ", ".join(f"{k} {v}" for k, v in s.kinds.items())
-        lines.append(f"| {GROUP_TITLES[group.group]} | {s.episodes} | {s.mean_optimal:.2f} | "
-                     f"{dist} | {kinds} |")
-    return lines
+        body.append([GROUP_TITLES[group.group], str(s.episodes), f"{s.mean_optimal:.2f}",
+                     dist, kinds])
+    return table(["group", "episodes", "mean optimal length",
+                  "distribution (length: count)", "kinds"], body)
 
 
 def translation_accuracy(group: GroupTasks) -> dict[str, tuple[int, int]]:
@@ -47,10 +48,9 @@ def translation_accuracy(group: GroupTasks) -> dict[str, tuple[int, int]]:
 
 
 def translation_table(group: GroupTasks) -> list[str]:
-    lines = ["| category | translated exactly | accuracy |", "|---|---|---|"]
-    for key, (ok, n) in translation_accuracy(group).items():
-        lines.append(f"| {key} | {ok}/{n} | {100 * ok / n:.0f}% |")
-    return lines
+    return table(["category", "translated exactly", "accuracy"],
+                 [[key, f"{ok}/{n}", f"{100 * ok / n:.0f}%"]
+                  for key, (ok, n) in translation_accuracy(group).items()])
 
 
 def gap_table(full: Mapping[GroupName, GroupStats],
@@ -58,7 +58,7 @@ def gap_table(full: Mapping[GroupName, GroupStats],
     """Success with full feedback minus success with less, per group (percentage points)."""
     shown = list(full)
     header = ["greedy: full feedback minus", *[GROUP_TITLES[g] for g in shown], "all groups"]
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    body = []
 
     def overall(stats: Mapping[GroupName, GroupStats]) -> float:
         n = sum(s.episodes for s in stats.values()) or 1
@@ -67,6 +67,5 @@ def gap_table(full: Mapping[GroupName, GroupStats],
     for name, stats in others:
         cells = [f"{100 * (full[g].success_rate - stats[g].success_rate):+.0f} pp"
                  for g in shown if g in stats]
-        lines.append(f"| {name} | " + " | ".join(cells) +
-                     f" | {100 * (overall(full) - overall(stats)):+.0f} pp |")
-    return lines
+        body.append([name, *cells, f"{100 * (overall(full) - overall(stats)):+.0f} pp"])
+    return table(header, body)

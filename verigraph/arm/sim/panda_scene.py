@@ -22,7 +22,7 @@ from verigraph.arm.config import PyBulletOptions
 from verigraph.arm.errors import MotionCancelledError
 from verigraph.arm.models import Pose
 from verigraph.arm.sim.kinematics import PANDA_REST, JointTrajectory, sample
-from verigraph.graph.dictionary import load_dictionary
+from verigraph.graph.dictionary import SUPPORT_RELATIONS, load_dictionary
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.wellformed import resolve_properties
 
@@ -246,7 +246,7 @@ class PandaScene:
         dictionary = load_dictionary(graph.dictionary)
         props = resolve_properties(graph, dictionary, [])
         support = {e.source: (e.relation, e.target) for e in graph.edges
-                   if e.relation in ("on", "in")}
+                   if e.relation in SUPPORT_RELATIONS}
         fixed = [n.id for n in graph.nodes if n.id in props and not props[n.id][1].movable]
         ground = next((i for i in fixed if props[i][0] == "table"), fixed[0] if fixed else None)
         if ground is not None:

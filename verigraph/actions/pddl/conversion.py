@@ -1,0 +1,63 @@
+"""The PDDL report as a `ValidationReport`, the model the library and the MCP tools return.
+
+Both engines' dicts convert: the blocks world keeps its scene (blocks, table, hand) as
+`final_graph`; a STRIPS report has no scene, so `final_graph` is empty and the final
+atoms stay in the dict form. The explanations the model has no field for are folded into
+text it has: each unsatisfied precondition with the step that last made it false goes
+into the violation's message, and the achievers of each unmet goal into `goal_diff.detail`.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from verigraph.actions.report import ValidationReport
+from verigraph.errors import VeriGraphError
+
+MAX_DETAIL_GOALS = 10
+
+
+def _explained(items: list[dict[str, Any]]) -> str:
+    parts = []
+    for u in items[:MAX_DETAIL_GOALS]:
+        text = f"{u['literal']}: {u['explanation']}"
+        achievers = u.get("achievers") or []
+        if achievers:
+            now = achievers[0]["applicable_now"]
+            text += f", achieved by {achievers[0]['action']}" + (f" ({now} applies now)"
+                                                                  if now else "")
+        parts.append(text)
+    return "; ".join(parts)
+
+
+def as_validation_report(data: dict[str, Any]) -> ValidationReport:
+    """The report dict (either engine) as a ValidationReport."""
+    steps = []
+    for s in data["steps"]:
+        step = {k: v for k, v in s.items() if k != "edit"}
+        if s.get("edit") and data.get("engine") != "strips":
+            step["edit"] = s["edit"]
+        steps.append(step)
+    violations = []
+    for v in data["violations"]:
+        v = {k: x for k, x in v.items() if k != "unsatisfied"}
+        if data.get("engine") != "strips" and data["violations"][0].get("unsatisfied"):
+            v["message"] += " (needs " + _explained(data["violations"][0]["unsatisfied"]) + ")"
+        violations.append(v)
+    for s in steps:
+        if not s["ok"]:
+            s["violation"] = violations[0]
+    diff = dict(data["goal_diff"])
+    if data.get("unmet_goals"):
+        diff["detail"] = _explained(data["unmet_goals"])
+    body = {"valid": data["valid"], "plan_valid": data["plan_valid"],
+            "goal_reached": data["goal_reached"], "steps": steps, "violations": violations,
+            "not_checked": data["not_checked"], "done": False, "goal_diff": diff,
+            "final_graph": data.get("final_graph") or {"nodes": [], "edges": []}}
+    try:
+        return ValidationReport.model_validate(body)
+    except ValueError as exc:  # a name the scene model cannot hold (longer than 128)
+        raise VeriGraphError("the report cannot be given as a scene-graph report: "
+                             f"{str(exc).splitlines()[0][:120]}", field="problem", value=None,
+                             fix="use object names of at most 128 characters, or the JSON "
+                                 "report (verigraph validate --json)") from None

@@ -1,0 +1,103 @@
+"""Readable forms of a PDDL report: the per-step text, and PlanBench's verification answer.
+
+Both read the JSON-ready report dict directly (no pydantic model), so every name the
+report can hold prints the same in text mode as in `--json` and `--batch`.
+
+PlanBench task 3 ("plan verification") scores a verifier's answer by three fields, as
+its `response_evaluation.parse_output` extracts them: `valid`; for an inexecutable plan
+`unmet_precondition` = {`action`, `predicate`}; for a plan that misses its goal
+`unmet_goal`. `planbench_verdict` gives exactly those fields (atoms written as PlanBench
+writes them, `on_a_b`; the action as `(stack a b)`) and the answer in PlanBench's words.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+MAX_TEXT_UNMET = 10
+
+
+def _edit_text(edit: dict[str, Any]) -> str:
+    def one(e: Any) -> str:
+        if isinstance(e, str):
+            return e
+        return f"{e['source']} {e['relation']} {e['target']}"
+    return ", ".join([f"-{one(e)}" for e in edit.get("removed", [])]
+                     + [f"+{one(e)}" for e in edit.get("added", [])])
+
+
+def _achiever_text(item: dict[str, Any]) -> str:
+    achievers = item.get("achievers") or []
+    if not achievers:
+        return ""
+    first = achievers[0]
+    if first["applicable_now"]:
+        return f"; achieved by {first['action']}, applicable now as {first['applicable_now']}"
+    return f"; achieved by {', '.join(a['action'] for a in achievers)}"
+
+
+def report_text(data: dict[str, Any]) -> str:
+    """One line per step; the failing step explained in full; the goal; the verdict."""
+    lines = []
+    for s in data["steps"]:
+        if s["ok"]:
+            edit = _edit_text(s.get("edit") or {})
+            lines.append(f"{s['step']:>4} ok    {s['text']}" + (f"   {edit}" if edit else ""))
+            continue
+        v = s["violation"]
+        lines.append(f"{s['step']:>4} FAIL  {s['text']}   [{v['constraint']}] {v['message']}")
+        lines.append(f"{'':>10}fix: {v['suggestion']}")
+        for u in v.get("unsatisfied", [])[:MAX_TEXT_UNMET]:
+            lines.append(f"{'':>10}unsatisfied {u['literal']}: {u['explanation']}"
+                         + _achiever_text(u))
+    if data["not_checked"]:
+        lines.append(f"      ... {data['not_checked']} later action(s) not checked")
+    diff = data.get("goal_diff")
+    if diff is not None:
+        if diff["satisfied"]:
+            lines.append("goal reached")
+        else:
+            lines.append("goal not reached: missing: " + "; ".join(diff["missing_edges"]))
+            for u in data.get("unmet_goals", [])[:MAX_TEXT_UNMET]:
+                lines.append(f"{'':>10}{u['literal']}: {u['explanation']}" + _achiever_text(u))
+    reason = []
+    if not data["plan_valid"]:
+        reason.append(f"{len(data['violations'])} violation(s)")
+    if data.get("goal_reached") is False:
+        reason.append("goal not reached")
+    lines.append(f"{'VALID' if data['valid'] else 'INVALID'}: {len(data['steps'])} step(s) "
+                 "checked" + (f", {', '.join(reason)}" if reason else ""))
+    return "\n".join(lines)
+
+
+def planbench_atom(literal: str) -> str:
+    """`(on a b)` -> `on_a_b`, PlanBench's form of a ground atom."""
+    return "_".join(literal.replace("(not ", "").strip("()").split())
+
+
+def planbench_verdict(data: dict[str, Any]) -> dict[str, Any]:
+    """PlanBench task 3's answer for this report: its fields and its wording."""
+    if data["valid"]:
+        return {"valid": True, "message": "The above plan is valid."}
+    if data["violations"]:
+        v = data["violations"][0]
+        action = "(" + " ".join((v["action"]["action"], *v["action"]["args"])) + ")"
+        literals = [u["literal"] for u in v.get("unsatisfied", [])]
+        many = len(literals) > 1
+        message = ("The above plan is invalid. The following action at step "
+                   f"{v['step']} has {'unmet preconditions' if many else 'an unmet precondition'}"
+                   f":\n{action}\n")
+        if literals:
+            message += ("The unmet preconditions are:\n" if many else
+                        "The unmet precondition is:\n") + "\n".join(literals)
+        else:
+            message += f"It cannot be executed: {v['message']}"
+        return {"valid": False, "unmet_precondition": {
+            "action": action, "predicate": [planbench_atom(x) for x in literals]},
+            "message": message}
+    missing = data["goal_diff"]["missing_edges"]
+    many = len(missing) > 1
+    return {"valid": False, "unmet_goal": [planbench_atom(x) for x in missing],
+            "message": "The above plan is invalid. "
+                       + ("These are the unmet goal conditions:\n" if many else
+                          "This is the unmet goal condition:\n") + "\n".join(missing)}

@@ -1,0 +1,105 @@
+"""A loopback OpenAI-compatible endpoint that answers as a project planner would.
+
+A test stand-in, named as such, for a model server that cannot run in the normal suite:
+it speaks the real chat-completions protocol over a real socket, and its answers come
+from running a policy (verigraph.env.rollout, e.g. the oracle planner) on the same
+tasks beforehand. The answer to a request is looked up by the newest observation in
+it (the first prompt or the last tool result), so it works for tool-calling clients
+(it answers with a call of the first tool offered) and for text-only ones alike, in any
+order. An observation it was not scripted for gets HTTP 500 saying so, so a test that
+drifts fails loudly instead of hanging.
+"""
+
+from __future__ import annotations
+
+import json
+import threading
+from collections.abc import Iterable
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from typing import Any
+
+from verigraph.env.core import VeriGraphEnv
+from verigraph.env.rollout import Policy, RolloutJob, run_rollout
+
+
+def script_from_policy(env: VeriGraphEnv, policy: Policy, task_ids: Iterable[str],
+                       seed: int = 0) -> dict[str, str]:
+    """observation -> the policy's answer, over whole episodes of the given tasks."""
+    script: dict[str, str] = {}
+    for task_id in task_ids:
+        result = run_rollout(env, policy, RolloutJob(task_id=task_id, seed=seed))
+        for line in result.lines[1:]:
+            script[line.observation] = line.action or ""
+    return script
+
+
+def _completion(answer: str, tool: str | None, turn: int) -> dict[str, Any]:
+    message: dict[str, Any] = {"role": "assistant", "content": answer if tool is None else None}
+    finish = "stop"
+    if tool is not None:
+        finish = "tool_calls"
+        message["tool_calls"] = [{"id": f"call_{turn}", "type": "function", "function": {
+            "name": tool, "arguments": json.dumps({"actions": answer})}}]
+    return {"id": f"chatcmpl-scripted-{turn}", "object": "chat.completion",
+            "model": "scripted-planner", "created": 0,
+            "choices": [{"index": 0, "finish_reason": finish, "message": message}],
+            "usage": {"prompt_tokens": 0, "completion_tokens": 0, "total_tokens": 0}}
+
+
+class ScriptedPlannerEndpointForTests:
+    """Serves `script` (observation -> answer) as /v1/chat/completions on 127.0.0.1."""
+
+    def __init__(self, script: dict[str, str]) -> None:
+        self.script = dict(script)
+        self.requests: list[dict[str, Any]] = []
+        self._lock = threading.Lock()
+        server = self
+
+        class Handler(BaseHTTPRequestHandler):
+            def do_POST(self) -> None:  # noqa: N802 (http.server's naming)
+                length = int(self.headers.get("content-length") or 0)
+                body = json.loads(self.rfile.read(length) or b"{}")
+                status, payload = server.answer(body)
+                data = json.dumps(payload).encode("utf-8")
+                self.send_response(status)
+                self.send_header("content-type", "application/json")
+                self.send_header("content-length", str(len(data)))
+                self.end_headers()
+                self.wfile.write(data)
+
+            def log_message(self, format: str, *args: Any) -> None:
+                return None
+
+        self._server = ThreadingHTTPServer(("127.0.0.1", 0), Handler)
+        self._thread = threading.Thread(target=self._server.serve_forever,
+                                        kwargs={"poll_interval": 0.05}, daemon=True)
+
+    def answer(self, body: dict[str, Any]) -> tuple[int, dict[str, Any]]:
+        with self._lock:
+            self.requests.append(body)
+            turn = len(self.requests)
+        messages = body.get("messages") or []
+        latest: dict[str, Any] = next(
+            (m for m in reversed(messages) if m.get("role") in ("user", "tool")), {})
+        content = latest.get("content")
+        text = content if isinstance(content, str) else ""
+        if text not in self.script:
+            return 500, {"error": {"message": "no scripted answer for this observation "
+                                              f"(starts {text[:80]!r})"}}
+        tools = body.get("tools") or []
+        tool = tools[0]["function"]["name"] if tools else None
+        return 200, _completion(self.script[text], tool, turn)
+
+    @property
+    def base_url(self) -> str:
+        host, port = self._server.server_address[:2]
+        return f"http://{host!s}:{port}/v1"
+
+    def __enter__(self) -> ScriptedPlannerEndpointForTests:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._server.shutdown()
+        self._server.server_close()
+        self._thread.join(timeout=5)

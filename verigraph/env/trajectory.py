@@ -1,0 +1,146 @@
+"""Trajectories as JSONL, one line per step, and their replay.
+
+A rollout writes a `reset` line (the task record, the seed, the first observation and
+the state hash) and one `step` line per step: the observation the action answered, the
+action text, the actions parsed from it, the reward, the verdict and violation, the
+state hash after the step, and whether the episode ended. That is enough to train on
+(observation, action, reward) triples and to replay: `replay` starts each episode again
+from its task record and feeds the recorded actions, and reports every step whose
+observation, reward, verdict or state hash differs. A replay that matches shows the
+rewards were produced by the verifier, not written by hand.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable, Iterator
+from pathlib import Path
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+
+from verigraph.env.core import VeriGraphEnv
+from verigraph.env.dataset import TaskRecord
+from verigraph.errors import VeriGraphError
+
+
+class TrajectoryLine(BaseModel):
+    """One line of a trajectory file: an episode's start, or one step of it."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    kind: Literal["reset", "step"]
+    episode: str = Field(description="the rollout's id, shared by its lines")
+    step: int = Field(ge=0, description="0 for the reset line")
+    observation: str = Field(description="reset: the first observation; step: the one "
+                                         "the action answered")
+    state_hash: str = Field(description="the scene graph's digest after this line")
+    task: TaskRecord | None = Field(default=None, description="reset only")
+    seed: int | None = None
+    action: str | None = None
+    parsed: list[str] = Field(default_factory=list)
+    reward: float = 0.0
+    verdict: str | None = None
+    violation: dict[str, Any] | None = None
+    terminated: bool = False
+    truncated: bool = False
+    next_observation: str | None = Field(default=None, description="step: the observation "
+                                                                   "after it")
+
+
+def reset_line(episode: str, task: TaskRecord, seed: int | None, observation: str,
+               info: dict[str, Any]) -> TrajectoryLine:
+    return TrajectoryLine(kind="reset", episode=episode, step=0, observation=observation,
+                          state_hash=info["state_hash"], task=task, seed=seed)
+
+
+def step_line(episode: str, observation: str, action: str, reward: float, terminated: bool,
+              truncated: bool, info: dict[str, Any], next_observation: str
+              ) -> TrajectoryLine:
+    return TrajectoryLine(kind="step", episode=episode, step=info["step"],
+                          observation=observation, action=action, parsed=info["parsed"],
+                          reward=reward, verdict=info["verdict"], violation=info["violation"],
+                          state_hash=info["state_hash"], terminated=terminated,
+                          truncated=truncated, next_observation=next_observation)
+
+
+def write_lines(lines: Iterable[TrajectoryLine], path: str | Path) -> int:
+    """Append lines to a JSONL file; returns how many."""
+    count = 0
+    with Path(path).open("a", encoding="utf-8") as out:
+        for line in lines:
+            out.write(line.model_dump_json(exclude_none=True) + "\n")
+            count += 1
+    return count
+
+
+def read_lines(path: str | Path) -> list[TrajectoryLine]:
+    """Every line of a trajectory file (a bad line is an error naming it)."""
+    lines = []
+    for number, text in enumerate(Path(path).read_text("utf-8").splitlines(), 1):
+        if not text.strip():
+            continue
+        try:
+            lines.append(TrajectoryLine.model_validate_json(text))
+        except ValidationError as exc:
+            err = exc.errors()[0]
+            raise VeriGraphError(f"{path}:{number}: {'.'.join(map(str, err['loc']))}: "
+                                 f"{err['msg']}", field=f"line {number}",
+                                 fix="use a file written by write_lines") from None
+    return lines
+
+
+def episodes(lines: Iterable[TrajectoryLine]) -> Iterator[list[TrajectoryLine]]:
+    """Lines grouped per episode, in file order (each group starts with its reset)."""
+    groups: dict[str, list[TrajectoryLine]] = {}
+    for line in lines:
+        groups.setdefault(line.episode, []).append(line)
+    yield from groups.values()
+
+
+class ReplayReport(BaseModel):
+    """What a replay found: episodes and steps replayed, and every mismatch."""
+
+    episodes: int = 0
+    steps: int = 0
+    mismatches: list[str] = Field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        return not self.mismatches
+
+
+def replay(lines: Iterable[TrajectoryLine], env: VeriGraphEnv) -> ReplayReport:
+    """Re-run every recorded episode on `env` and compare step by step."""
+    report = ReplayReport()
+    for group in episodes(lines):
+        start = group[0]
+        if start.kind != "reset" or start.task is None:
+            report.mismatches.append(f"{start.episode}: does not start with a reset line")
+            continue
+        report.episodes += 1
+        obs, info = env.reset(seed=start.seed, options={"task": start.task})
+        where = f"{start.episode} step 0"
+        if obs != start.observation or info["state_hash"] != start.state_hash:
+            report.mismatches.append(f"{where}: the first observation or state differs")
+        for line in group[1:]:
+            report.steps += 1
+            where = f"{line.episode} step {line.step}"
+            if env.over:
+                report.mismatches.append(f"{where}: recorded after the episode ended")
+                break
+            obs, reward, terminated, truncated, info = env.step(line.action or "")
+            got = (reward, info["verdict"], info["state_hash"], terminated, truncated, obs)
+            want = (line.reward, line.verdict, line.state_hash, line.terminated,
+                    line.truncated, line.next_observation)
+            for name, a, b in zip(("reward", "verdict", "state_hash", "terminated",
+                                   "truncated", "observation"), got, want, strict=True):
+                if a != b and not (name == "observation" and b is None):
+                    report.mismatches.append(f"{where}: {name} {_short(a)} != recorded "
+                                             f"{_short(b)}")
+    return report
+
+
+def _short(value: Any) -> str:
+    text = json.dumps(value) if not isinstance(value, str) else repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."

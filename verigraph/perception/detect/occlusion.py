@@ -1,0 +1,363 @@
+"""Something in front of the scene, and what the detector could not account for: bands
+and blobs in front (`find_occluders`, both views), objects split by them, furniture cut
+in two, and areas no detected object explains.
+
+A band is found before any object is read, by its geometry alone: a flat area that
+meets the frame with both ends (an arm reaching in) and is at least twice as long as
+wide. Its pixels are then read as no object, and parts of one colour facing each other
+across it are one object (`join_across`).
+
+A bar, an arm or an unknown object in front of a table splits its fill into two
+regions. Two fills of one furniture colour whose tops lie on one line, with no wall
+between them, are one piece of furniture seen around an occluder: they are joined and
+the occlusion is reported. Whatever is left unexplained (not wall, not floor, not a
+detected object or its outline) is an area the graph says nothing about, so the graph
+may miss what is there or behind it; such areas make the result a proposal.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import cv2
+import numpy as np
+
+from verigraph.perception.detect.colors import BACKGROUND, FLOOR, UNKNOWN
+from verigraph.perception.detect.regions import Region
+
+TOP_TOLERANCE = 3  # px between the tops of two parts of one piece of furniture
+MAX_GAP_SHARE = 0.5  # of the narrower part's width
+WALL_IN_GAP = 0.2  # share of wall pixels in the gap that says "two pieces, not one"
+FLOOR_TILT = 0.06  # rise of the floor's edge across the image (about 3.5 degrees)
+OUTLINE_REACH = 3  # px around a detection that its outline and blur may cover
+
+
+def join_occluded(parts: list[Region], classes: np.ndarray) -> tuple[list[Region], list[str]]:
+    """Furniture parts of one colour split by an occluder, joined; with a note each."""
+    notes: list[str] = []
+    parts = sorted(parts, key=lambda r: r.x0)
+    out: list[Region] = []
+    for part in parts:
+        if out and _same_piece(out[-1], part, classes):
+            left = out[-1]
+            notes.append(f"something in front hides columns {left.x1}-{part.x0} of a piece "
+                         "of furniture; its two visible parts were joined")
+            out[-1] = left.merged(part)
+        else:
+            out.append(part)
+    # Pieces of furniture stand side by side; a part inside another's box of the same
+    # colour is that piece seen around something in front of it (a hand on a counter).
+    for small_index in sorted(range(len(out)), key=lambda i: out[i].area):
+        small = out[small_index]
+        if small.area == 0:
+            continue
+        host = next((i for i, r in enumerate(out) if i != small_index
+                     and r.area > small.area and _within(small, r)), None)
+        if host is not None:
+            big = out[host]
+            notes.append(f"something in front splits a piece of furniture (box {big.x0}, "
+                         f"{big.y0}, {big.x1}, {big.y1}); its visible parts were joined")
+            out[host] = big.merged(small)
+            out[small_index] = Region(small.cls, small.x0, small.y0,
+                                      np.zeros((0, 0), bool))
+    out = [r for r in out if r.mask.size]
+    return out, notes
+
+
+def _within(inner: Region, outer: Region, slack: int = 2) -> bool:
+    return (outer.x0 - slack <= inner.x0 and outer.y0 - slack <= inner.y0
+            and inner.x1 <= outer.x1 + slack and inner.y1 <= outer.y1 + slack)
+
+
+def _same_piece(left: Region, right: Region, classes: np.ndarray) -> bool:
+    gap = right.x0 - left.x1
+    if gap <= 0 or abs(left.y0 - right.y0) > TOP_TOLERANCE:
+        return False
+    if gap > MAX_GAP_SHARE * min(left.width, right.width):
+        return False
+    top = max(left.y0, right.y0)
+    band = classes[top:top + max(3, min(left.height, right.height) // 4), left.x1:right.x0]
+    return band.size > 0 and float(np.mean(band == BACKGROUND)) < WALL_IN_GAP
+
+
+def unexplained_areas(classes: np.ndarray, regions: Sequence[Region], floor_row: int | None,
+                      min_area: int, hidden: np.ndarray | None = None
+                      ) -> tuple[list[Region], float]:
+    """Areas (their pixels, as regions of class UNKNOWN) that are neither wall, floor
+    nor a detected object (with its outline), each at least `min_area` pixels after a
+    1-px erosion; and the share of the scene (what is not wall or floor) that is
+    explained. What a band in front covers (`hidden`) is neither: it is not counted."""
+    explained = _open_wall(classes, regions, floor_row)
+    if hidden is not None:
+        explained[hidden] = 1
+    if floor_row is not None:
+        explained[floor_row:, :] = 1
+        # A slightly rolled camera tilts the floor's edge above the floor row.
+        near = max(0, floor_row - int(FLOOR_TILT * classes.shape[1]))
+        explained[near:floor_row][classes[near:floor_row] == FLOOR] = 1
+    objects = np.zeros_like(explained)
+    for r in regions:
+        objects[r.y0:r.y1, r.x0:r.x1] |= r.mask.view(np.uint8)
+    reach = 2 * OUTLINE_REACH + 1
+    objects = cv2.dilate(objects, np.ones((reach, reach), np.uint8))
+    rest = ((explained | objects) == 0).view(np.uint8)
+    rest = cv2.erode(rest, np.ones((3, 3), np.uint8))
+    scene = max(1, int(np.count_nonzero(explained == 0)))
+    left = int(np.count_nonzero(rest))
+    share = 1.0 - min(1.0, left / scene)
+    if left < min_area:  # no area can be large enough: skip the labelling
+        return [], share
+    x, y, w, h = cv2.boundingRect(rest)  # label only the box the leftovers lie in
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(rest[y:y + h, x:x + w],
+                                                           connectivity=4)
+    return [Region(UNKNOWN, int(x + bx), int(y + by), labels[by:by + bh, bx:bx + bw] == i)
+            for i, (bx, by, bw, bh, area) in enumerate(stats[1:n].tolist(), start=1)
+            if area >= min_area], share
+
+
+def area_occluders(areas: Sequence[Region], image: np.ndarray) -> list[Occluder]:
+    """Unexplained areas that look like something in front: flat (one colour, as an
+    occluder is; a failure of colour correction leaves wall-sized areas instead) and
+    at most `AREA_SHARE` of the image."""
+    h, w = image.shape[:2]
+    step = _step(image)
+    out = []
+    for r in areas:
+        if r.area > AREA_SHARE * h * w:
+            continue
+        flat = step[r.y0:r.y1, r.x0:r.x1][r.mask] <= FLAT_STEP
+        if flat.size and float(np.mean(flat)) >= AREA_FLAT:
+            out.append(Occluder("area", (r.x0, r.y0, r.x1, r.y1), r.mask.copy()))
+    return out
+
+
+def _open_wall(classes: np.ndarray, regions: Sequence[Region], floor_row: int | None
+               ) -> np.ndarray:
+    """Wall-coloured pixels that are the wall: connected to the image border or the
+    floor, or inside a detected object's convex hull (a cup's cavity, the wall between
+    a table's legs). A wall-coloured pocket elsewhere is something white or silver
+    that no detection accounts for (a plate a colour cast turned the wall's colour)."""
+    wall = (classes == BACKGROUND).view(np.uint8)
+    n, labels = cv2.connectedComponents(wall, connectivity=4)
+    if n <= 1:
+        return wall.copy()
+    edge = [labels[0], labels[-1], labels[:, 0], labels[:, -1]]
+    if floor_row is not None and floor_row > 0:
+        edge.append(labels[floor_row - 1])
+    is_open = np.zeros(n, dtype=np.uint8)  # a lookup per label is far cheaper than isin
+    is_open[np.concatenate(edge)] = 1
+    is_open[0] = 0
+    out = np.take(is_open, labels)
+    hulls = np.zeros_like(out)
+    for r in regions:
+        if r.area >= 3:
+            cv2.fillConvexPoly(hulls, r.hull(), 1)
+    return np.asarray(out | (hulls & wall))
+
+
+FLAT_STEP = 14  # grey levels: largest colour step between neighbours inside a flat area
+BAND_REACH = 0.6  # a band spans at least this share of the frame along its length
+BAND_THIN = 0.5  # ... and is at most this share of its length wide
+BAND_FILL = 0.75  # share of its bounding rectangle a band's flat area fills
+BLOB_SHARE = 0.004  # smallest blob, as a share of the image
+BLOB_SOLIDITY = 0.85  # area over convex-hull area of a blob (an irregular ellipse)
+BLOB_FOREIGN = 45.0  # BGR distance from every palette colour that marks a foreign blob
+AREA_SHARE = 0.25  # largest unexplained area taken for something in front
+AREA_FLAT = 0.7  # share of its pixels an occluding area shows flat
+TOUCH = 6  # px between an occluder and an object it hides part of
+BORDER = 2  # px from the frame that count as reaching it
+
+
+@dataclass(frozen=True, slots=True)
+class Occluder:
+    """Something in front of the scene: a straight band crossing the frame (an arm, a
+    pole), a blob of a colour no object has (a hand), or an area no detected object
+    explains (it may hide part of what it borders), with its pixels."""
+
+    kind: str  # "band", "blob" or "area"
+    box: tuple[int, int, int, int]  # x0, y0, x1, y1 (exclusive)
+    mask: np.ndarray  # bool, the box's size
+
+    def describe(self) -> str:
+        x0, y0, x1, y1 = self.box
+        what = {"band": "a band across the picture", "blob": "a blob",
+                "area": "an area no detected object explains"}[self.kind]
+        return f"{what} (box {x0}, {y0}, {x1}, {y1})"
+
+    def full_mask(self, shape: tuple[int, int], grow: int = 0) -> np.ndarray:
+        """The occluder's pixels in an image of `shape`, grown by `grow` px."""
+        out: np.ndarray = np.zeros(shape, np.uint8)
+        x0, y0, x1, y1 = self.box
+        out[y0:y1, x0:x1] = self.mask.view(np.uint8)
+        if grow:
+            out = cv2.dilate(out, np.ones((2 * grow + 1, 2 * grow + 1), np.uint8))
+        return out.astype(bool)
+
+
+def find_occluders(image: np.ndarray, scenery: Sequence[tuple[int, int, int]],
+                   object_colours: Sequence[tuple[int, int, int]]) -> list[Occluder]:
+    """Flat areas in front of the scene: straight bands that run from one side of the
+    frame to the other (no object of a scene does: objects stand inside the frame, and
+    the floor band meets three sides), and compact blobs whose colour is far from the
+    scenery (`scenery`: wall, floor, table) and from every colour the dictionary's
+    objects are drawn in (`object_colours`). Colour does not matter for a band: an arm
+    may be any colour, and its reach across the frame gives it away. A blob of an object
+    colour is not found here; the detector's unexplained areas catch it."""
+    h, w = image.shape[:2]
+    step = _step(image)
+    flat = (step <= FLAT_STEP).view(np.uint8)
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(flat, connectivity=4)
+    foreign = np.array(list(scenery) + list(object_colours), dtype=np.float32).reshape(-1, 3)
+    out: list[Occluder] = []
+    for i in range(1, n):
+        x, y, bw, bh, area = (int(v) for v in stats[i])
+        if area < BLOB_SHARE * h * w / 4:
+            continue
+        touches = sum((x <= BORDER, y <= BORDER, x + bw >= w - BORDER, y + bh >= h - BORDER))
+        if touches not in (0, 2) or (touches == 2 and bw < BAND_REACH * w
+                                     and bh < BAND_REACH * h):
+            continue  # the wall, the floor, the table; or a thing standing at the border
+        comp = labels[y:y + bh, x:x + bw] == i
+        kind = _band_or_blob(comp, x, y, (h, w), image, foreign)
+        if kind is not None:
+            # The flat interior, grown by 2 px over the occluder's own edges and outline.
+            gx0, gy0 = max(0, x - 2), max(0, y - 2)
+            gx1, gy1 = min(w, x + bw + 2), min(h, y + bh + 2)
+            full: np.ndarray = np.zeros((y + bh + 2 - gy0, x + bw + 2 - gx0), np.uint8)
+            full[y - gy0:y - gy0 + bh, x - gx0:x - gx0 + bw] = comp.view(np.uint8)
+            full = cv2.dilate(full, np.ones((5, 5), np.uint8))[:gy1 - gy0, :gx1 - gx0]
+            out.append(Occluder(kind, (gx0, gy0, gx1, gy1), full.astype(bool)))
+    return out
+
+
+def _step(image: np.ndarray) -> np.ndarray:
+    """Largest colour step to a 3x3 neighbour, per pixel (the channels' morphological
+    gradients, their maximum taken by OpenCV: numpy's max over the last axis costs more
+    than the rest of the search)."""
+    grad = cv2.morphologyEx(image, cv2.MORPH_GRADIENT, np.ones((3, 3), np.uint8))
+    if grad.ndim == 2:
+        return np.asarray(grad)
+    b, g, r = cv2.split(grad)
+    return np.asarray(cv2.max(cv2.max(b, g), r))
+
+
+def _band_or_blob(comp: np.ndarray, x: int, y: int, shape: tuple[int, int],
+                  image: np.ndarray, foreign: np.ndarray) -> str | None:
+    h, w = shape
+    bh, bw = comp.shape
+    touches = (x <= BORDER, y <= BORDER, x + bw >= w - BORDER, y + bh >= h - BORDER)
+    area = float(np.count_nonzero(comp))
+    points = np.column_stack(np.nonzero(comp)[::-1]).astype(np.float32)
+    if sum(touches) == 2 and (bw >= BAND_REACH * w or bh >= BAND_REACH * h):
+        (_, _), (rw, rh), _ = cv2.minAreaRect(points)
+        length, width = max(rw, rh), min(rw, rh)
+        # Its two ends meet the frame, not a long side (a floor cut in two by a bar
+        # meets the frame along its bottom).
+        on_frame = _frame_pixels(comp, touches)
+        if length > 0 and width <= BAND_THIN * length and \
+                area >= BAND_FILL * length * width and on_frame <= 3 * width + 4:
+            return "band"
+    if not any(touches) and area >= BLOB_SHARE * h * w and len(foreign):
+        colour = image[y:y + bh, x:x + bw][comp].astype(np.float32).mean(axis=0)
+        if float(np.min(np.linalg.norm(foreign - colour, axis=1))) >= BLOB_FOREIGN:
+            hull = cv2.convexHull(points)
+            if area >= BLOB_SOLIDITY * max(float(cv2.contourArea(hull)), 1.0):
+                return "blob"
+    return None
+
+
+def _frame_pixels(comp: np.ndarray, touches: tuple[bool, bool, bool, bool]) -> int:
+    """Pixels of a component (its box at the frame where `touches`) along the frame."""
+    left, top, right, bottom = touches
+    return int(sum(np.count_nonzero(edge) for edge, on in (
+        (comp[:, 0], left), (comp[0], top), (comp[:, -1], right), (comp[-1], bottom)) if on))
+
+
+def occluded_by(occluders: Sequence[Occluder], regions: Sequence[Region],
+                shape: tuple[int, int]) -> list[list[int]]:
+    """For each occluder, the indices of the regions it touches (hides part of)."""
+    out: list[list[int]] = []
+    for occ in occluders:
+        near = occ.full_mask(shape, TOUCH)
+        out.append([i for i, r in enumerate(regions) if _touches(r, near)])
+    return out
+
+
+def split_by(region: Region, occ: Occluder) -> bool:
+    """Whether a band crosses the region: its visible pixels lie on both sides of the
+    band, so its extent behind the band is bounded."""
+    if occ.kind != "band" or not np.any(occ.mask):
+        return False
+    side, _ = _sides(region, _line(occ))
+    return bool(np.any(side > 0) and np.any(side < 0))
+
+
+def hidden_mask(occluders: Sequence[Occluder], shape: tuple[int, int]) -> np.ndarray | None:
+    """Every band's pixels (bool), or None when there is none. Only bands hide: their
+    reach across the frame proves them to be in front; a blob is known by its colour
+    alone, which a strong colour cast can give an object too, so it is reported but
+    nothing is read around it."""
+    bands = [occ for occ in occluders if occ.kind == "band"]
+    if not bands:
+        return None
+    out = np.zeros(shape, bool)
+    for occ in bands:
+        out |= occ.full_mask(shape)
+    return out
+
+
+def _line(occ: Occluder) -> tuple[float, float, float, float]:
+    """(cx, cy, vx, vy): the band's centre line."""
+    ys, xs = np.nonzero(occ.mask)
+    pts = np.column_stack([xs + occ.box[0], ys + occ.box[1]]).astype(np.float32)
+    vx, vy, cx, cy = (float(v) for v in cv2.fitLine(pts, cv2.DIST_L2, 0, 0.01, 0.01).ravel())
+    return cx, cy, vx, vy
+
+
+def _sides(region: Region, line: tuple[float, float, float, float]
+           ) -> tuple[np.ndarray, np.ndarray]:
+    """Signed distance across the line, and position along it, of a region's pixels."""
+    cx, cy, vx, vy = line
+    ys, xs = np.nonzero(region.mask)
+    dx, dy = xs + region.x0 - cx, ys + region.y0 - cy
+    return dx * vy - dy * vx, dx * vx + dy * vy
+
+
+def join_across(parts: list[Region], occluders: Sequence[Occluder], shape: tuple[int, int]
+                ) -> tuple[list[Region], list[str]]:
+    """Parts of one colour on the two sides of a band that hides what joins them (they
+    face each other across it), joined into one region; with a note each."""
+    notes: list[str] = []
+    bands = [o for o in occluders if o.kind == "band"]
+    if not bands or len(parts) < 2:
+        return parts, notes
+    out = list(parts)
+    for occ in bands:
+        near = occ.full_mask(shape, TOUCH)
+        line = _line(occ)
+        i = 0
+        while i < len(out):
+            merged = False
+            for j in range(i + 1, len(out)):
+                a, b = out[i], out[j]
+                if not (_touches(a, near) and _touches(b, near)):
+                    continue
+                sa, pa = _sides(a, line)
+                sb, pb = _sides(b, line)
+                opposite = (np.median(sa) > 0) != (np.median(sb) > 0)
+                overlap = min(pa.max(), pb.max()) - max(pa.min(), pb.min())
+                if opposite and overlap > 0:
+                    out[i] = a.merged(b)
+                    del out[j]
+                    notes.append(f"{occ.describe()} hides the middle of an object; its "
+                                 "parts on both sides were joined")
+                    merged = True
+                    break
+            if not merged:
+                i += 1
+    return out, notes
+
+
+def _touches(region: Region, near: np.ndarray) -> bool:
+    return bool(np.any(near[region.y0:region.y1, region.x0:region.x1] & region.mask))
