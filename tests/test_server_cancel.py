@@ -17,7 +17,7 @@ from mcp import Client
 from mcp_helpers import JSON_HEADERS, free_port, rpc, text
 
 from verigraph.actions import records
-from verigraph.budget import CallBudget, BudgetExceeded, checkpoint
+from verigraph.budget import BudgetExceeded, CallBudget, checkpoint
 from verigraph.server import build_server
 from verigraph.server.heavy import HeavyLimits
 from verigraph.server.http import HttpOptions, uvicorn_config

@@ -9,7 +9,7 @@ import pytest
 
 from verigraph.graph.builtin_scenes import cup_on_book
 from verigraph.graph.state import WorldState
-from verigraph.tools import LiveEpisode, EpisodeLimitError, EpisodeStore, UnknownEpisodeError
+from verigraph.tools import EpisodeLimitError, EpisodeStore, LiveEpisode, UnknownEpisodeError
 from verigraph.tools.store import WouldBlock, non_blocking
 
 
