@@ -95,13 +95,14 @@ def wrong_type(kind: str) -> st.SearchStrategy[Any]:
 
 
 FIELD_KINDS = {
-    "episode_id": "str", "scene_id": "str", "image": "str", "dictionary": "str", "task": "str",
+    "episode_id": "str", "scene_id": "str", "image": "str", "task": "str",
+    "dictionary": "object",  # a built-in name or an inline dictionary: never a number or list
     "instruction": "str", "action": "object", "actions": "list", "plan": "object",
     "graph": "object", "goal": "object", "generator": "object", "predicate": "str",
     "view": "str", "k": "int", "t": "int", "seed": "int", "width": "int", "height": "int",
     "max_expansions": "int", "partial": "bool", "simulate": "bool", "all_errors": "bool",
     "executor": "str", "reason": "str", "request_id": "str", "expected_calls": "int",
-    "edges": "str",
+    "edges": "str", "pddl": "object",
     "time_limit": "int", "memory_limit_mb": "int", "anytime": "bool",
 }
 
