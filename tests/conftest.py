@@ -20,3 +20,18 @@ def _private_data_home(tmp_path_factory: pytest.TempPathFactory,
                        monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
     monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path_factory.mktemp("data-home")))
     yield
+
+
+@pytest.fixture(params=["memory", "sqlite", "redis"])
+def store_url(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[str]:
+    """Each store kind in turn; Redis is emptied first (a module using this imports
+    store_helpers.redis_url, which starts it)."""
+    if request.param == "memory":
+        yield "memory://"
+    elif request.param == "sqlite":
+        yield f"sqlite:///{tmp_path / 'episodes.db'}"
+    else:
+        url = request.getfixturevalue("redis_url")
+        import redis
+        redis.Redis.from_url(url).flushdb()
+        yield url

@@ -4,8 +4,6 @@ matched to the episode's ids and how sure that is; goal edges may be written as 
 from __future__ import annotations
 
 import base64
-import json
-from pathlib import Path
 from typing import Any
 
 import pytest
@@ -17,18 +15,15 @@ from mcp_helpers import (  # noqa: F401 - in_process_client: the client fixture
     text,
 )
 
+from llm_trials import TRIALS, start
+
 pytestmark = pytest.mark.anyio
-TRIALS = Path(__file__).parent / "data" / "llm_trials"
 
 
 @pytest.fixture()
 def anyio_backend() -> str:
     return "asyncio"
 
-
-def start(task: str) -> dict[str, Any]:
-    data: dict[str, Any] = json.loads((TRIALS / task / "start.json").read_text())
-    return data
 
 
 def photo(task: str) -> str:

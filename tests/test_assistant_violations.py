@@ -8,10 +8,7 @@ failure, then a count.
 
 from __future__ import annotations
 
-import json
 import re
-from pathlib import Path
-from typing import Any
 
 import pytest
 from mcp import Client
@@ -21,6 +18,7 @@ from mcp_helpers import (  # noqa: F401 - in_process_client: the client fixture
     text,
 )
 
+from llm_trials import start
 from verigraph.actions.parser import parse_plan
 from verigraph.actions.report import validate_plan
 from verigraph.actions.validator import all_violations
@@ -28,17 +26,12 @@ from verigraph.graph.io import scene_from_data
 from verigraph.graph.state import WorldState
 
 pytestmark = pytest.mark.anyio
-TRIALS = Path(__file__).parent / "data" / "llm_trials"
 
 
 @pytest.fixture()
 def anyio_backend() -> str:
     return "asyncio"
 
-
-def start(task: str) -> dict[str, Any]:
-    data: dict[str, Any] = json.loads((TRIALS / task / "start.json").read_text())
-    return data
 
 
 async def test_validate_action_text_names_every_failed_constraint(client: Client) -> None:

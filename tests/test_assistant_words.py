@@ -6,10 +6,6 @@ what it did not is named, clause by clause. Nothing is stored until then.
 
 from __future__ import annotations
 
-import json
-from pathlib import Path
-from typing import Any
-
 import pytest
 from mcp import Client
 from mcp_helpers import (  # noqa: F401 - in_process_client: the client fixture
@@ -18,8 +14,9 @@ from mcp_helpers import (  # noqa: F401 - in_process_client: the client fixture
     text,
 )
 
+from llm_trials import start
+
 pytestmark = pytest.mark.anyio
-TRIALS = Path(__file__).parent / "data" / "llm_trials"
 
 
 @pytest.fixture()
@@ -28,8 +25,7 @@ def anyio_backend() -> str:
 
 
 async def load(client: Client, task: str) -> str:
-    graph: dict[str, Any] = json.loads((TRIALS / task / "start.json").read_text())
-    return str(structured(await client.call_tool("load_scene", {"graph": graph}))[
+    return str(structured(await client.call_tool("load_scene", {"graph": start(task)}))[
         "episode_id"])
 
 

@@ -14,7 +14,6 @@ from __future__ import annotations
 import base64
 import json
 import re
-from pathlib import Path
 from typing import Any
 
 import pytest
@@ -22,11 +21,11 @@ from mcp import Client
 from mcp.types import CallToolResult
 from mcp_helpers import text
 
+from llm_trials import TRIALS
 from verigraph.server import build_server
 from verigraph.tools import Toolbox
 
 pytestmark = pytest.mark.anyio
-TRIALS = Path(__file__).parent / "data" / "llm_trials"
 TASKS = sorted(p.name for p in TRIALS.iterdir() if (p / "transcript.jsonl").exists())
 REPORTS_STATE = ("load_scene", "execute_actions", "get_state", "end_episode",
                  "validate_action")

@@ -10,7 +10,6 @@ import re
 import stat
 import threading
 import time
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -21,21 +20,6 @@ from verigraph.tools import EpisodeLimitError, Toolbox, ToolConfig, UnknownEpiso
 from verigraph.tools.errors import StaleEpisodeError, StoreError
 from verigraph.tools.store_durable import DurableStore
 from verigraph.tools.stores import open_store
-
-STORES = ["memory", "sqlite", "redis"]
-
-
-@pytest.fixture(params=STORES)
-def store_url(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[str]:
-    if request.param == "memory":
-        yield "memory://"
-    elif request.param == "sqlite":
-        yield f"sqlite:///{tmp_path / 'episodes.db'}"
-    else:
-        url = request.getfixturevalue("redis_url")
-        import redis
-        redis.Redis.from_url(url).flushdb()
-        yield url
 
 
 def box_for(url: str, **limits: float) -> Toolbox:

@@ -4,8 +4,7 @@ episode with the same dictionary and constraints."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
-from pathlib import Path
+from collections.abc import Callable
 from typing import Any
 
 import pytest
@@ -13,19 +12,6 @@ from store_helpers import redis_url  # noqa: F401 - the session fixture
 from user_worlds import inline_scene, open_label_scene
 
 from verigraph.tools import Toolbox, ToolConfig
-
-
-@pytest.fixture(params=["memory", "sqlite", "redis"])
-def store_url(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[str]:
-    if request.param == "memory":
-        yield "memory://"
-    elif request.param == "sqlite":
-        yield f"sqlite:///{tmp_path / 'episodes.db'}"
-    else:
-        url = request.getfixturevalue("redis_url")
-        import redis
-        redis.Redis.from_url(url).flushdb()
-        yield url
 
 
 def call(box: Toolbox, name: str, **arguments: Any) -> Any:
