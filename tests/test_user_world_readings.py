@@ -102,3 +102,22 @@ def test_the_cli_takes_the_scene_s_dictionary_as_a_name_or_a_file(tmp_path: Path
                           "--dictionary", bad)
         assert refused.returncode == 2 and "--dictionary" in refused.stderr, refused.stderr
         assert reason in refused.stderr and "Traceback" not in refused.stderr
+
+
+def test_the_cli_reports_every_label_it_read_as_another_name(tmp_path: Path) -> None:
+    scene = tmp_path / "scene.json"
+    scene.write_text(json.dumps(GRAPH))
+    plan = tmp_path / "plan.txt"
+    plan.write_text("move(a, on, b)\n")
+    shown = run_cli("validate", "--scene", str(scene), "--plan", str(plan))
+    assert shown.returncode == 0, shown.stderr
+    assert shown.stdout.rstrip().endswith(f"labels read: {CUBE}")
+    as_json = run_cli("validate", "--scene", str(scene), "--plan", str(plan), "--json")
+    assert json.loads(as_json.stdout)["label_readings"] == [CUBE]
+    plain = tmp_path / "plain.json"
+    plain.write_text(json.dumps(GRAPH).replace('"cube"', '"block"'))
+    batch = tmp_path / "batch.jsonl"
+    batch.write_text(json.dumps({"scene": str(scene), "plan": str(plan)}) + "\n"
+                     + json.dumps({"scene": str(plain), "plan": str(plan)}) + "\n")
+    lines = run_cli("validate", "--batch", str(batch)).stdout.splitlines()
+    assert [json.loads(line).get("label_readings") for line in lines] == [[CUBE], []]

@@ -24,6 +24,7 @@ from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.io import goal_from_data, scene_from_data
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.graph.wellformed import label_readings, readings_line
 
 
 class StepReport(BaseModel):
@@ -49,6 +50,9 @@ class ValidationReport(BaseModel):
     done: bool = Field(default=False, description="the plan ended with the end token")
     goal_diff: GraphDiff | None = None
     final_graph: SceneGraph
+    # How the labels of the graphs the caller wrote were read (`box read as block`):
+    # a normalisation is never silent, here as in load_scene's result.
+    label_readings: list[str] = Field(default_factory=list)
 
     def text(self) -> str:
         """One readable line per step; the failing step explained in full."""
@@ -75,6 +79,8 @@ class ValidationReport(BaseModel):
             reason.append("goal not reached")
         lines.append(f"{verdict}: {len(self.steps)} step(s) checked"
                      + (f", {', '.join(reason)}" if reason else ""))
+        if self.label_readings:
+            lines.append(readings_line(self.label_readings))
         return "\n".join(lines)
 
 
@@ -93,12 +99,15 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
     >>> r.valid, r.violations[0].constraint
     (False, 'object_not_clear')
     """
+    written: SceneGraph | None = None
     if isinstance(scene, WorldState):
         state = scene.copy()
     else:
-        graph = scene if isinstance(scene, SceneGraph) else scene_from_data(scene)
-        state = WorldState.from_graph(graph)
+        written = scene if isinstance(scene, SceneGraph) else scene_from_data(scene)
+        state = WorldState.from_graph(written)
     goal_model = None if goal is None else goal_from_data(goal)
+    readings = label_readings(written, state.dictionary,
+                              goal_model.graph if goal_model is not None else None)
     size = len(plan) if isinstance(plan, list) else plan.count("\n") + 1 \
         if isinstance(plan, str) else 0
     with collector_paused(size):  # a long plan creates many acyclic objects
@@ -113,7 +122,8 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
     return ValidationReport.model_construct(
         valid=plan_valid and goal_reached is not False, plan_valid=plan_valid,
         goal_reached=goal_reached, steps=steps, violations=violations,
-        not_checked=not_checked, done=done, goal_diff=goal_diff, final_graph=final_graph)
+        not_checked=not_checked, done=done, goal_diff=goal_diff, final_graph=final_graph,
+        label_readings=readings)
 
 
 def _is_parsed(plan: object) -> bool:

@@ -30,7 +30,7 @@ DECLARE_EXAMPLE = ('or declare your own: {"id": "laptop", "label": "laptop", "at
                    '{"movable": true, "surface": true, "capacity": 1}}')
 __all__ = ["DECLARE_EXAMPLE", "GraphProblem", "check_and_resolve", "check_well_formed",
            "find_single_support_cycle", "find_support_cycle", "label_readings", "open_labels",
-           "resolve_properties"]
+           "readings_line", "resolve_properties"]
 
 
 class GraphProblem(BaseModel):
@@ -112,18 +112,27 @@ def open_labels(dictionary: Dictionary, resolved: dict[str, tuple[str, ObjectPro
 MAX_READINGS = 40
 
 
-def label_readings(graph: SceneGraph, dictionary: Dictionary) -> list[str]:
-    """Every label not written as its canonical name, once per spelling: `box read as
-    block (synonym, blocks dictionary)`. `dictionary` includes the graph's own labels
-    (WorldState.dictionary), so those read as `your label`."""
+def label_readings(graph: SceneGraph | None, dictionary: Dictionary,
+                   *more: SceneGraph | None) -> list[str]:
+    """Every label not written as its canonical name, once per spelling, over the graphs
+    given (a scene and its goal; None skipped): `box read as block (synonym, blocks
+    dictionary)`. `dictionary` includes the graph's own labels (WorldState.dictionary),
+    so those read as `your label`."""
     readings: dict[str, str | None] = {}
-    for node in graph.nodes:
-        if node.label not in readings:
-            readings[node.label] = dictionary.reading(node.label)
+    for written in (graph, *more):
+        for node in written.nodes if written is not None else ():
+            if node.label not in readings:
+                readings[node.label] = dictionary.reading(node.label)
     found = [text for text in readings.values() if text]
     if len(found) > MAX_READINGS:
         found = [*found[:MAX_READINGS], f"... and {len(found) - MAX_READINGS} more"]
     return found
+
+
+def readings_line(readings: list[str]) -> str:
+    """`labels read: box read as block (synonym, blocks dictionary)`: every label the
+    client wrote that was taken as another name (never silent); empty when none."""
+    return "labels read: " + "; ".join(readings) if readings else ""
 
 
 def check_well_formed(graph: SceneGraph, dictionary: Dictionary, *,

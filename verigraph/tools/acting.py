@@ -25,7 +25,7 @@ from verigraph.errors import PlanParseError, VeriGraphError
 from verigraph.graph.goal import Goal, GraphDiff
 from verigraph.graph.goal import check_goal as core_check_goal
 from verigraph.graph.model import SceneGraph
-from verigraph.graph.wellformed import label_readings
+from verigraph.graph.wellformed import label_readings, readings_line
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import EpisodeStateError, ToolArgumentError
 from verigraph.tools.executors import arm_mode_of
@@ -42,7 +42,7 @@ from verigraph.tools.fields import (
 from verigraph.tools.goals import check_goal_against
 from verigraph.tools.loading import stateless_source
 from verigraph.tools.store import TraceEntry
-from verigraph.tools.texts import edges_line, readings_line, runs_on
+from verigraph.tools.texts import edges_line, runs_on
 
 MAX_ACTIONS_PER_CALL = 50
 MAX_PLAN_ACTIONS = 1000
@@ -337,34 +337,20 @@ def _plan_actions(plan: str | list[ActionInput]) -> list[AnyAction]:
     return actions
 
 
-class PlanReport(ValidationReport):
-    """validate_plan's report: the validator's, plus how the labels of the graphs the
-    client wrote were read, as load_scene reports them (never a silent normalisation)."""
-
-    label_readings: list[str] = Field(default_factory=list)
-
-
-def validate_plan(ctx: ToolContext, params: ValidatePlanInput) -> PlanReport:
-    """Per-step report for a plan; nothing is stored or modified."""
+def validate_plan(ctx: ToolContext, params: ValidatePlanInput) -> ValidationReport:
+    """Per-step report for a plan; nothing is stored or modified. Its `label_readings`
+    say how the graphs the client wrote were read, as load_scene reports them."""
     if params.pddl is not None:
-        return _plan_report(_validate_pddl(params.pddl, str(params.plan)), [])
+        return _validate_pddl(params.pddl, str(params.plan))
     actions = _plan_actions(params.plan)
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
                                    graph=params.graph, goal=params.goal)
     if params.goal is not None:
         check_goal_against(params.goal, state, field="goal")
-    written = [g for g in (params.graph, params.goal.graph if params.goal else None)
-               if g is not None]
-    readings = list(dict.fromkeys(r for g in written
-                                  for r in label_readings(g, state.dictionary)))
-    return _plan_report(core_validate_plan(state, actions, goal, all_errors=params.all_errors),
-                        readings)
-
-
-def _plan_report(report: ValidationReport, readings: list[str]) -> PlanReport:
-    """The report as PlanReport without validating its (possibly 5,000) steps again."""
-    fields = {name: getattr(report, name) for name in ValidationReport.model_fields}
-    return PlanReport.model_construct(**fields, label_readings=readings)
+    report = core_validate_plan(state, actions, goal, all_errors=params.all_errors)
+    report.label_readings = label_readings(params.graph, state.dictionary,
+                                           params.goal.graph if params.goal else None)
+    return report
 
 
 # The text of a plan report shows the first steps and every failure (up to a bound)
@@ -426,6 +412,6 @@ def report_summary(report: ValidationReport) -> str:
     if report.not_checked:
         lines.append(f"... {report.not_checked} later action(s) not checked: it stopped at "
                      "the first violation (all_errors=true checks them)")
-    if isinstance(report, PlanReport) and report.label_readings:
+    if report.label_readings:
         lines.append(readings_line(report.label_readings))
     return "\n".join(lines)

@@ -19,7 +19,7 @@ from verigraph.graph.goal import PREDICATES, Goal, GraphDiff, check_goal
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.translator import read_instruction
-from verigraph.graph.wellformed import check_well_formed, label_readings
+from verigraph.graph.wellformed import check_well_formed, label_readings, readings_line
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.fields import (
@@ -31,7 +31,7 @@ from verigraph.tools.fields import (
 )
 from verigraph.tools.images import decode_image
 from verigraph.tools.perceived import Perceived, perceive
-from verigraph.tools.texts import goal_edges_text, goal_line, readings_line
+from verigraph.tools.texts import goal_edges_text, goal_line
 
 Instruction = Field(default=None, max_length=4000,
                     description="the task in words (shown, not checked)")

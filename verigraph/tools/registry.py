@@ -20,6 +20,7 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ValidationError
 
+from verigraph.actions.report import ValidationReport
 from verigraph.graph.bulk import collector_paused, graph_items
 from verigraph.tools import acting, arm, episodes, goals, loading, scenes, solving, summaries
 from verigraph.tools.context import ToolConfig, ToolContext
@@ -99,7 +100,7 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
     ToolSpec("validate_plan", "Validate a whole plan",
              "Stateless: check a whole plan from a scene_id, graph or episode, optionally "
              "against a goal. Per-step report.",
-             acting.ValidatePlanInput, acting.PlanReport, acting.validate_plan,
+             acting.ValidatePlanInput, ValidationReport, acting.validate_plan,
              read_only=True, idempotent=True, summary=acting.report_summary, viewer=True),
     ToolSpec("check_goal", "Check the goal",
              "Missing and extra edges and objects between the episode's graph and its goal (or"

@@ -17,6 +17,7 @@ from verigraph.graph.dictionary import (
 )
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Node, SceneGraph
+from verigraph.graph.wellformed import readings_line
 from verigraph.tools.fields import dictionary_for
 
 
@@ -111,11 +112,6 @@ def dictionary_line(name: str, user_labels: list[str], readings: list[str]) -> s
         text += "\n" + readings_line(readings)
     return text
 
-
-def readings_line(readings: list[str]) -> str:
-    """`labels read: box read as block (synonym, blocks dictionary)`: every label the
-    client wrote that was taken as another name (never silent); empty when none."""
-    return "labels read: " + "; ".join(readings) if readings else ""
 
 
 def goal_edges_text(goal: Goal) -> str:

@@ -101,9 +101,12 @@ class ViewInput(BaseModel):
     plan: PlanText | Annotated[list[str | dict[str, object]], Field(
         max_length=MAX_PLAN_ACTIONS)] | None = Field(
         default=None, description="plan text (one action per line) or a list of actions")
-    scene_id: SceneId | None = None
-    graph: BoundedGraph | None = None
-    goal: BoundedGoal | None = None
+    scene_id: SceneId | None = Field(default=None, description="with plan: a built-in "
+                                     "scene to check it on (see list_scenes)")
+    graph: BoundedGraph | None = Field(default=None, description="with plan: your scene "
+                                       "graph to check it on, as load_scene takes it")
+    goal: BoundedGoal | None = Field(default=None, description="with plan: check the final "
+                                     "graph against this goal")
 
     @model_validator(mode="after")
     def _something_to_show(self) -> ViewInput:
