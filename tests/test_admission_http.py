@@ -22,11 +22,6 @@ SAFETY_S = 60  # only so that a broken server fails the test; never a measure
 PARTIAL = b"POST /mcp HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 @pytest.fixture(scope="module")
 def server() -> Iterator[tuple[str, int]]:
     # 512 slots, so at most 128 may wait for headers; streams idle out after 2 s.

@@ -39,11 +39,6 @@ pytestmark = pytest.mark.anyio
 STACK = ["move(green_block, on, red_block)"]
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def audit(path: Path) -> list[dict[str, Any]]:
     return [json.loads(line) for line in path.read_text().splitlines()] if path.exists() else []
 

@@ -22,11 +22,6 @@ pytestmark = pytest.mark.anyio
 CLEARING = ("clean_error", "clean_warn", "motion_enable", "set_state")
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def load(client: Client) -> str:
     return str(structured(await client.call_tool("load_scene", {"graph": loose_blocks()}))[
         "episode_id"])

@@ -31,11 +31,6 @@ require("xarm")
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def episode(client: Client) -> str:
     state = structured(await client.call_tool("load_scene", {"graph": loose_blocks()}))
     assert state["executor"] == "arm:xarm" and state["arm_mode"] == "real"

@@ -32,11 +32,6 @@ pytestmark = pytest.mark.anyio
 TOKEN = "elicit-over-http"
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def serving(box: Toolbox) -> AbstractContextManager[str]:
     return http_in_thread(box, HttpOptions(port=free_port(), token=TOKEN))
 

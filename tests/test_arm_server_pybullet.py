@@ -40,11 +40,6 @@ pytestmark = pytest.mark.anyio
 BLOCK_M = 0.06  # the blocks dictionary's 6 cm
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def panda_toolbox(**config: Any) -> Toolbox:
     arm = ArmSetup(parse_arm_config({"driver": "pybullet", "mode": "sim", **config}))
     return Toolbox(config=ToolConfig(executor="arm:pybullet", arm=arm))

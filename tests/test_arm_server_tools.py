@@ -33,11 +33,6 @@ require("xarm")
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 class Harness:
     """An in-process server on an xArm stand-in, a client whose user approves all."""
 

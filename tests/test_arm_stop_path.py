@@ -26,11 +26,6 @@ require("xarm")
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 class HangingStatusStandIn(BlockCellStandIn):
     """The SDK stand-in whose position query hangs while `hang` is set."""
 

@@ -41,11 +41,6 @@ OVERHEAD = {"name": "lamp", "min": [0.1, -0.1, 0.7], "max": [0.3, 0.1, 0.9]}
 SIDE = {"name": "side_post", "min": [0.45, -0.15, 0.15], "max": [0.55, -0.06, 0.4]}
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 @pytest.mark.parametrize(("zone", "part"), [(OVERHEAD, r"panda_link\d"),
                                             (SIDE, r"panda_(hand|leftfinger|rightfinger)")],
                          ids=["elbow-overhead", "hand-side"])

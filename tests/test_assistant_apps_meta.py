@@ -15,11 +15,6 @@ from verigraph.server.apps import EPISODE_UI, FLAT_UI_KEY, UI_TOOLS
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def test_hosts_find_the_viewer_under_both_keys() -> None:
     ui = advertise("io.modelcontextprotocol/ui", {"mimeTypes": ["text/html;profile=mcp-app"]})
     async with Client(build_server(), extensions=[ui]) as c:

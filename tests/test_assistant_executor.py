@@ -26,11 +26,6 @@ pytestmark = pytest.mark.anyio
 GRAPH_ONLY = "executor: graph (verified only, nothing physical moved)"
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def test_graph_episode_results_say_nothing_physical_moved(client: Client) -> None:
     loaded = await client.call_tool("load_scene", {"scene_id": "cup_on_book"})
     assert GRAPH_ONLY in text(loaded)

@@ -20,12 +20,6 @@ from llm_trials import TRIALS, start
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
-
 def photo(task: str) -> str:
     return base64.b64encode((TRIALS / task / "goal.png").read_bytes()).decode()
 

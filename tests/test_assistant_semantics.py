@@ -14,11 +14,6 @@ from mcp_helpers import (  # noqa: F401 - in_process_client: the client fixture
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def load(client: Client, **args: object) -> str:
     return str(structured(await client.call_tool("load_scene", {"scene_id": "cup_on_book",
                                                                 **args}))["episode_id"])

@@ -28,12 +28,6 @@ from verigraph.graph.state import WorldState
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
-
 async def test_validate_action_text_names_every_failed_constraint(client: Client) -> None:
     loaded = structured(await client.call_tool("load_scene", {"graph": start("image_kitchen_1")}))
     check = await client.call_tool("validate_action", {"episode_id": loaded["episode_id"],

@@ -19,11 +19,6 @@ from llm_trials import start
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def load(client: Client, task: str) -> str:
     return str(structured(await client.call_tool("load_scene", {"graph": start(task)}))[
         "episode_id"])

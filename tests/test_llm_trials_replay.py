@@ -31,11 +31,6 @@ REPORTS_STATE = ("load_scene", "execute_actions", "get_state", "end_episode",
                  "validate_action")
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def attached(task: str, value: Any) -> Any:
     """The transcript's argument with `@json:./f` and `@png:./f` replaced by the file."""
     if isinstance(value, dict):

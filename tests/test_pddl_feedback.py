@@ -199,11 +199,6 @@ def test_cli_strips_text_json_and_planbench(tmp_path):
     assert pb.stdout.startswith("The above plan is invalid. The following action at step 2")
 
 
-@pytest.fixture
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 @pytest.mark.anyio
 async def test_mcp_validate_plan_takes_pddl_text(client: Client) -> None:
     pddl = {"domain": MYSTERY, "problem": MYSTERY_PROBLEM}

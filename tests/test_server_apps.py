@@ -14,11 +14,6 @@ from verigraph.server.apps import EPISODE_UI, UI_TOOLS
 APP_MIME = "text/html;profile=mcp-app"
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def apps_client() -> Client:
     ui = advertise("io.modelcontextprotocol/ui", {"mimeTypes": [APP_MIME]})
     return Client(build_server(), extensions=[ui])

@@ -27,11 +27,6 @@ pytestmark = pytest.mark.anyio
 SAFETY_S = 60  # only so that a broken server fails instead of hanging
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 class HeldStep:
     """Wraps the plan checker's per-move check: the first move waits until cancelled."""
 

@@ -20,11 +20,6 @@ NOTHING_CHANGES = {"prompts": {"listChanged": False},
                    "tools": {"listChanged": False}}
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 @pytest.mark.anyio
 @pytest.mark.parametrize(("mode", "version"), [("auto", "2026-07-28"),
                                                ("legacy", "2025-11-25")])

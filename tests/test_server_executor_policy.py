@@ -18,11 +18,6 @@ from verigraph.tools.executors import ArmSetup
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 @pytest.mark.parametrize("executor", ["arm:pybullet", "arm:xarm", "arm:rosbridge"])
 async def test_a_server_without_an_arm_refuses_every_arm_executor(executor: str) -> None:
     box = Toolbox()

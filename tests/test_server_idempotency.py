@@ -9,11 +9,6 @@ from mcp_helpers import in_process_client, structured, text  # noqa: F401 - the 
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def test_a_retry_returns_the_original_result_and_applies_nothing(client: Client) -> None:
     eid = structured(await client.call_tool("load_scene", {"scene_id": "cup_on_book"}))[
         "episode_id"]

@@ -19,11 +19,6 @@ MAX_TOTAL_BYTES = 40_000
 MAX_CORE_BYTES = 15_000  # names + descriptions + input schemas
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def compact(data: Any) -> int:
     return len(json.dumps(data, separators=(",", ":")))
 

@@ -20,11 +20,6 @@ SNAPSHOT = Path(__file__).parent / "snapshots" / "tools_list.json"
 UPDATE_ENV = "VERIGRAPH_UPDATE_SNAPSHOTS"
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def wire_tools_list() -> str:
     async with Client(build_server()) as client:
         tools = (await client.list_tools()).tools

@@ -16,11 +16,6 @@ from verigraph.tools import TOOL_SPECS
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def params(*extra: str) -> StdioServerParameters:
     cmd = verigraph_command()
     return StdioServerParameters(command=cmd[0], args=[*cmd[1:], "serve", *extra])

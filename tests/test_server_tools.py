@@ -26,11 +26,6 @@ STATEFUL = [s.name for s in TOOL_SPECS if "episode_id" in s.input_model.model_fi
             and s.input_model.model_fields["episode_id"].is_required()]
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def load(client: Client, **args: Any) -> str:
     return str(structured(await client.call_tool("load_scene", args or {
         "scene_id": "cup_on_book"}))["episode_id"])

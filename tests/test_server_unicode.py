@@ -13,11 +13,6 @@ from verigraph.tools import Toolbox
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def submission(*ids: str) -> dict:
     nodes = [{"id": "table", "label": "table"}] + [{"id": i, "label": "cup"} for i in ids]
     edges = [{"source": i, "relation": "on", "target": "table"} for i in ids]

@@ -71,11 +71,6 @@ def test_cli_help_states_the_units():
     assert "MiB" in r.stdout and "seconds" in r.stdout
 
 
-@pytest.fixture
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 @pytest.mark.anyio
 async def test_the_solve_tool_has_the_same_budget_and_answers_when_it_runs_out():
     from mcp import Client

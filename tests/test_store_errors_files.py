@@ -24,11 +24,6 @@ from verigraph.tools.store_durable import DurableStore
 from verigraph.tools.stores import open_store
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def tower(n: int) -> dict[str, object]:
     nodes = [{"id": "table", "label": "table"}] + [{"id": f"b{i}", "label": "block"}
                                                    for i in range(n - 1)]

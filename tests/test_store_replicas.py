@@ -20,11 +20,6 @@ pytestmark = pytest.mark.anyio
 BLOCKS = ["red_block", "blue_block", "green_block"]
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def test_replicas_share_episodes_and_serialise_moves(redis_url: str) -> None:  # noqa: F811
     store = ["--store", redis_url, "--log-level", "INFO"]
     with http_server(extra=store) as a, http_server(extra=store) as b:

@@ -16,11 +16,6 @@ from store_helpers import call, connect
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def render(client: Client, episode_id: str) -> str:
     result = await client.call_tool("render_scene", {"episode_id": episode_id, "width": 320,
                                                      "height": 240})

@@ -9,11 +9,6 @@ from mcp_helpers import text
 from verigraph.server import build_server
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def nine_object_kitchen() -> dict[str, object]:
     nodes = [("table", "table"), ("shelf", "shelf"), ("tray", "tray"), ("plate_1", "plate"),
              ("plate_2", "plate"), ("cup_1", "cup"), ("cup_2", "mug"), ("bowl", "bowl"),

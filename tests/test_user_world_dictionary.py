@@ -34,11 +34,6 @@ from verigraph.tools import Toolbox
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 HOSTILE: dict[str, tuple[dict[str, Any], str, str]] = {
     # name: (dictionary, field named in the error, words of the message)
     "100,000 labels": ({"objects": {f"thing_{i}": {} for i in range(100_000)}},

@@ -21,11 +21,6 @@ from user_worlds import GOAL, inline_scene, open_label_scene
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def refused(c: Client, episode_id: str, action: str) -> str:
     out = await call(c, "validate_action", episode_id=episode_id, action=action)
     assert out["violation"] is not None, out

@@ -23,11 +23,6 @@ GRAPH = {"nodes": [{"id": "t", "label": "table"}, {"id": "a", "label": "cube"},
                    {"source": "b", "relation": "on", "target": "t"}]}
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def test_validate_plan_reports_the_readings_in_text_and_structure() -> None:
     async with Client(build_server(Toolbox())) as c:
         out = await c.call_tool("validate_plan", {"graph": GRAPH, "plan": "move(a, on, b)"})

@@ -19,11 +19,6 @@ from verigraph.tools import Toolbox
 pytestmark = pytest.mark.anyio
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 async def test_validate_plan_on_an_inline_dictionary() -> None:
     async with Client(build_server(Toolbox())) as c:
         report = structured(await c.call_tool("validate_plan", {

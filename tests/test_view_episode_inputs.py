@@ -13,11 +13,6 @@ from verigraph.server import build_server
 APP_MIME = "text/html;profile=mcp-app"
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def apps_client() -> Client:
     ui = advertise("io.modelcontextprotocol/ui", {"mimeTypes": [APP_MIME]})
     return Client(build_server(), extensions=[ui])

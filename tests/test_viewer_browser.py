@@ -30,11 +30,6 @@ APP_MIME = "text/html;profile=mcp-app"
 HOST_PAGE = REPO / "tests" / "viewer_host" / "host.html"
 
 
-@pytest.fixture()
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 @pytest.fixture(autouse=True)
 def _browser() -> None:
     require_browser()
