@@ -13,20 +13,22 @@ import sys
 import tempfile
 import threading
 import time
-from collections.abc import AsyncIterator, Iterator
+from collections.abc import AsyncIterator, Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO, Any
 
+import anyio.to_thread
 import cv2
 import numpy as np
 import pytest
 import uvicorn
 from mcp import Client
+from mcp.client.extension import advertise
 from mcp.types import CallToolResult
 
-from verigraph.server import build_server
+from verigraph.server import argument_process, build_server
 from verigraph.server.http import HttpOptions, http_app
 from verigraph.tools import Toolbox
 
@@ -45,6 +47,19 @@ async def in_process_client() -> AsyncIterator[Client]:
     A test module that imports this name gets the fixture."""
     async with Client(build_server(Toolbox())) as c:
         yield c
+
+
+APP_MIME = "text/html;profile=mcp-app"  # the MCP Apps resource type
+
+
+def apps_extension() -> Any:
+    """The MCP Apps extension as a client advertises it."""
+    return advertise("io.modelcontextprotocol/ui", {"mimeTypes": [APP_MIME]})
+
+
+def apps_client() -> Client:
+    """The SDK client, advertising MCP Apps, on a fresh server in memory."""
+    return Client(build_server(), extensions=[apps_extension()])
 
 
 def structured(result: CallToolResult) -> dict[str, Any]:
@@ -217,3 +232,92 @@ class RawStdio:
     def close(self) -> int:
         self.stdin.close()
         return self.proc.wait(timeout=30)
+
+
+def tower_graph(n: int) -> dict[str, Any]:
+    """A tower of n - 1 blocks on a table, as a scene graph (blocks dictionary)."""
+    nodes = [{"id": "table", "label": "table"}] + [
+        {"id": f"b{i}", "label": "block"} for i in range(n - 1)]
+    edges = [{"source": f"b{i}", "relation": "on", "target": f"b{i - 1}" if i else "table"}
+             for i in range(n - 1)]
+    return {"nodes": nodes, "edges": edges, "dictionary": "blocks"}
+
+
+def checking_processes(server_pid: int) -> list[int]:
+    """The children of `server_pid` that check large bodies (not multiprocessing's
+    resource tracker)."""
+    children = Path(f"/proc/{server_pid}/task/{server_pid}/children").read_text().split()
+    return [int(pid) for pid in children
+            if b"spawn_main" in Path(f"/proc/{pid}/cmdline").read_bytes()]
+
+
+def process_gone(pid: int) -> bool:
+    """True once `pid` has exited (or is a zombie)."""
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except FileNotFoundError:
+        return True
+    return state == "Z"
+
+
+def wait_until(condition: Callable[[], bool], what: str, timeout: float = 30.0) -> None:
+    """Poll `condition` until it holds; fail with `what` after `timeout` seconds (only so
+    that a broken server fails the test)."""
+    deadline = time.monotonic() + timeout
+    while not condition():
+        assert time.monotonic() < deadline, what
+        time.sleep(0.02)
+
+
+@dataclass
+class CheckerSpy:
+    """The large-body checker of a server in this process, watched (`checker_spy`).
+
+    `order` holds the JSON-RPC id of each body in the order its check starts; a body
+    whose id is in `hold` waits in its check, its turn held, until `release` is set
+    (`entered` is set once one has started waiting). `abandoned` is set once a caller
+    left while the child was checking its body."""
+
+    order: list[Any] = field(default_factory=list)
+    hold: set[Any] = field(default_factory=set)
+    entered: threading.Event = field(default_factory=threading.Event)
+    release: threading.Event = field(default_factory=threading.Event)
+    abandoned: threading.Event = field(default_factory=threading.Event)
+    lanes: list[Any] = field(default_factory=list)
+
+    def waiting(self) -> int:
+        """Bodies waiting for their turn in the lanes seen so far."""
+        return sum(lane.turns.waiting() for lane in list(self.lanes))
+
+
+@pytest.fixture()
+def checker_spy(monkeypatch: pytest.MonkeyPatch) -> Iterator[CheckerSpy]:
+    """Watch (and hold, on request) the checks of servers run in this process."""
+    spy = CheckerSpy()
+    lane_type = argument_process._Lane
+    check, finish = lane_type.check, lane_type._finish_abandoned
+
+    async def watched_check(lane: Any, body: bytes, threshold: int) -> Any:
+        request_id = json.loads(body).get("id")
+        spy.order.append(request_id)
+        if request_id in spy.hold:
+            spy.entered.set()
+            await anyio.to_thread.run_sync(spy.release.wait)
+        return await check(lane, body, threshold)
+
+    async def watched_finish(lane: Any, *args: Any) -> None:
+        spy.abandoned.set()
+        await finish(lane, *args)
+
+    def watched_init(lane: Any, *args: Any, **kwargs: Any) -> None:
+        init(lane, *args, **kwargs)
+        spy.lanes.append(lane)
+
+    init = lane_type.__init__
+    monkeypatch.setattr(lane_type, "check", watched_check)
+    monkeypatch.setattr(lane_type, "_finish_abandoned", watched_finish)
+    monkeypatch.setattr(lane_type, "__init__", watched_init)
+    try:
+        yield spy
+    finally:
+        spy.release.set()

@@ -5,18 +5,10 @@ from __future__ import annotations
 
 import pytest
 from mcp import Client
-from mcp.client.extension import advertise
-from mcp_helpers import structured
+from mcp_helpers import APP_MIME, apps_client, structured
 
 from verigraph.server import build_server
 from verigraph.server.apps import EPISODE_UI, UI_TOOLS
-
-APP_MIME = "text/html;profile=mcp-app"
-
-
-def apps_client() -> Client:
-    ui = advertise("io.modelcontextprotocol/ui", {"mimeTypes": [APP_MIME]})
-    return Client(build_server(), extensions=[ui])
 
 
 @pytest.mark.anyio

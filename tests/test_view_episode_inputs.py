@@ -5,17 +5,7 @@ from __future__ import annotations
 
 import pytest
 from mcp import Client
-from mcp.client.extension import advertise
-from mcp_helpers import structured, text
-
-from verigraph.server import build_server
-
-APP_MIME = "text/html;profile=mcp-app"
-
-
-def apps_client() -> Client:
-    ui = advertise("io.modelcontextprotocol/ui", {"mimeTypes": [APP_MIME]})
-    return Client(build_server(), extensions=[ui])
+from mcp_helpers import apps_client, structured, text
 
 
 async def episode(c: Client) -> str:

@@ -18,15 +18,21 @@ import numpy as np
 import pytest
 from browser_helpers import RequestLog, browser_page, require_browser, screenshot_path
 from mcp import Client
-from mcp.client.extension import advertise
 from mcp.client.streamable_http import streamable_http_client
-from mcp_helpers import REPO, free_port, http_server, structured, verigraph_command
+from mcp_helpers import (
+    APP_MIME,
+    REPO,
+    apps_extension,
+    free_port,
+    http_server,
+    structured,
+    verigraph_command,
+)
 
 from verigraph.server.apps import EPISODE_UI
 from verigraph.tools.drawing import OUTLINE_COLOR
 
 TOKEN = "viewer-test-token"
-APP_MIME = "text/html;profile=mcp-app"
 HOST_PAGE = REPO / "tests" / "viewer_host" / "host.html"
 
 
@@ -43,7 +49,7 @@ def wire(result: Any) -> dict[str, Any]:
 @asynccontextmanager
 async def app_client() -> AsyncIterator[Client]:
     """A client that advertises MCP Apps, on a running `verigraph serve --transport http`."""
-    ui = advertise("io.modelcontextprotocol/ui", {"mimeTypes": [APP_MIME]})
+    ui = apps_extension()
     with http_server(token=TOKEN) as server:
         async with httpx2.AsyncClient(headers={"Authorization": f"Bearer {TOKEN}"},
                                       timeout=60) as http, \
