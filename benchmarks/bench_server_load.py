@@ -7,7 +7,9 @@ Reports, into benchmarks/results/server_load.md:
 * the light client beside the heavy and the hostile client on `--workers 2`, with and
   without the child process that checks large bodies (`--only workers`);
 * a 280 KB load_scene's latency while another client posts 15 MB bodies from 4
-  connections back to back (`--only fair` measures just this row);
+  connections back to back, and while another client keeps 8 bodies of 3.9 MB in flight
+  (beside the call alone and the call from that client's own address; `--only fair`
+  measures just these rows);
 * server RSS per open episode of each kind (built-in scene, sim2d, image, arm) and
   after 10 rounds of open/end on an arm server;
 * loading the 100,000-block tower (library) and a 5,000-block tower (load_scene);
@@ -30,6 +32,7 @@ import signal
 import statistics
 import sys
 import tempfile
+import threading
 import time
 from pathlib import Path
 from typing import Any
@@ -239,8 +242,6 @@ def flood_connection(url: str, stop: Any, done: Any) -> None:
 def flooding_client(url: str, stop: Any, done: Any) -> None:
     """One client posting 15 MB bodies from FLOOD_CONNECTIONS connections at once, each
     back to back until `stop` is set (its own process, threads for the connections)."""
-    import threading
-
     threads = [threading.Thread(target=flood_connection, args=(url, stop, done))
                for _ in range(FLOOD_CONNECTIONS)]
     for thread in threads:
@@ -289,6 +290,108 @@ async def fair_row(quick: bool) -> list[str]:
     return [FAIR_ROW, "-", ms(times, 0.5), ms(times, 0.99),
             f"max {max(times) * 1000:.0f} ms of {calls} calls ({size // 1024} KB each); "
             f"{floods} floods of 15 MB answered meanwhile; target < 1,500 ms"]
+
+
+BURST_NODES = 110_000  # about 3.9 MB: the same checking child as a 280 KB call (<= 4 MiB)
+BURST_BODIES = 8
+FLOODER, OTHER = "127.0.0.1", "127.0.0.2"  # two clients: the server tells them by address
+
+
+def burst_connection(url: str, stop: Any, done: Any) -> None:
+    """One of the flooding client's connections (from FLOODER), posting back to back."""
+    graph = {"nodes": [{"id": f"n{i}", "label": "block"} for i in range(BURST_NODES)],
+             "edges": []}
+    headers, body = wire_call("validate_plan", {"graph": graph, "plan": "done"}, 1)
+    transport = httpx2.HTTPTransport(local_address=FLOODER)
+    with httpx2.Client(transport=transport, headers=headers, timeout=120) as http:
+        while not stop.is_set():
+            reply = http.post(url, content=body)
+            assert reply.status_code in (200, 413, 503), reply.text[:300]
+            with done.get_lock():
+                done.value += 1
+
+
+def bursting_client(url: str, stop: Any, done: Any) -> None:
+    """One client with BURST_BODIES large bodies in flight at all times: a connection
+    each, every one posting again as soon as it is answered (its own process)."""
+    threads = [threading.Thread(target=burst_connection, args=(url, stop, done))
+               for _ in range(BURST_BODIES)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+
+
+async def timed_calls(url: str, address: str, calls: int) -> tuple[list[float], int]:
+    """Seconds until each of `calls` 280 KB load_scene calls from `address` is answered
+    (a 503 for a full queue is retried at once and counted; the time includes it)."""
+    headers, body = wire_call("load_scene", {"graph": tower(FAIR_BLOCKS)}, 3)
+    transport = httpx2.AsyncHTTPTransport(local_address=address)
+    times, refused = [], 0
+    async with httpx2.AsyncClient(transport=transport, headers=headers, timeout=120) as http:
+        for _ in range(calls):
+            start = time.perf_counter()
+            while (response := await http.post(url, content=body)).status_code == 503:
+                refused += 1
+            times.append(time.perf_counter() - start)
+            assert not response.json()["result"].get("isError"), response.text[:300]
+    return times, refused
+
+
+async def beside_burst(url: str, address: str, calls: int) -> tuple[list[float], int, int]:
+    """`timed_calls` from `address` while the bursting client keeps 8 bodies in flight;
+    also how many of its bodies were answered meanwhile."""
+    spawn = multiprocessing.get_context("spawn")
+    stop, done = spawn.Event(), spawn.Value("i", 0)
+    process = spawn.Process(target=bursting_client, args=(url, stop, done))
+    process.start()
+    try:
+        while done.value < BURST_BODIES:  # the burst is under way on every connection
+            await asyncio.sleep(0.05)
+        before = done.value
+        times, refused = await timed_calls(url, address, calls)
+        answered = done.value - before
+    finally:
+        stop.set()
+        process.join(timeout=120)
+    return times, refused, answered
+
+
+BURST_ROWS = ("280 KB load_scene alone", "280 KB load_scene beside one client's 8 large bodies",
+              "280 KB load_scene from that client's own address")
+
+
+async def burst_rows(quick: bool) -> list[list[str]]:
+    """Another client's 280 KB call while one client keeps 8 bodies of 3.9 MB in flight
+    (all for the child that checks bodies up to 4 MiB, as the 280 KB one is), beside two
+    peers measured on the same server in the same run: the call alone, and the call
+    from the bursting client's own address (one client to the server, so its bodies
+    come first in arrival order)."""
+    calls = 5 if quick else 20
+    proc, url = start_http()
+    try:
+        await timed_calls(url, OTHER, 1)  # warm-up: starts the checking child
+        alone, _ = await timed_calls(url, OTHER, calls)
+        other, other_refused, other_burst = await beside_burst(url, OTHER, calls)
+        same, same_refused, same_burst = await beside_burst(url, FLOODER, calls)
+    finally:
+        proc.terminate()
+        proc.wait(timeout=10)
+    def versus_alone(times: list[float]) -> str:
+        return f"{percentile(times, 0.5) / percentile(alone, 0.5):.1f}x"
+
+    return [
+        [BURST_ROWS[0], "-", ms(alone, 0.5), ms(alone, 0.99),
+         f"max {max(alone) * 1000:.0f} ms of {calls} calls; the peer of the next two rows"],
+        [f"{BURST_ROWS[1]} (another address)", "-", ms(other, 0.5), ms(other, 0.99),
+         f"max {max(other) * 1000:.0f} ms of {calls} calls, p50 {versus_alone(other)} alone; "
+         f"{other_burst} bodies of 3.9 MB answered meanwhile; {other_refused} refused; "
+         "target < 1,500 ms"],
+        [f"{BURST_ROWS[2]} (one client: arrival order)", "-", ms(same, 0.5), ms(same, 0.99),
+         f"max {max(same) * 1000:.0f} ms of {calls} calls, p50 {versus_alone(same)} alone; "
+         f"{same_burst} bodies answered meanwhile; {same_refused} times refused with 503 "
+         "(8 bodies per client may wait) and sent again"],
+    ]
 
 
 def jpeg_b64(width: int = 1600, height: int = 1200) -> str:
@@ -390,7 +493,7 @@ def tower_row() -> list[str]:
 
 async def some_rows(parts: list[str], quick: bool) -> list[list[str]]:
     rows = await arm_rows(quick) if "arm" in parts else []
-    rows += [await fair_row(quick)] if "fair" in parts else []
+    rows += [await fair_row(quick), *await burst_rows(quick)] if "fair" in parts else []
     rows += await worker_rows(quick) if "workers" in parts else []
     rows += await admission_rows(quick) if "admission" in parts else []
     return rows + ([tower_row()] if "tower" in parts else [])
@@ -459,6 +562,7 @@ async def run(quick: bool) -> list[list[str]]:
         proc.terminate()
         proc.wait(timeout=10)
     rows.append(await fair_row(quick))
+    rows += await burst_rows(quick)
     rows += await worker_rows(quick)
     rows += await admission_rows(quick)
     rows += await arm_rows(quick)
@@ -494,7 +598,8 @@ def main() -> int:
              "graphs or plans, images, simulator, search, arms) on at most 2 worker threads, "
              "1 per client connection, each within its wall-clock and memory budget; bodies "
              "over 64 KiB are parsed and checked in a child process (one for bodies up "
-             "to 4 MiB, one for larger ones, each answering within 10 s), and large "
+             "to 4 MiB, one for larger ones, each taking bodies round-robin over "
+             "clients and answering within 10 s), and large "
              "results serialised on worker threads (verigraph.server.offload). The worker "
              "rows run `verigraph serve --workers 2` on one SQLite store. 1-minute load "
              "average at start: "

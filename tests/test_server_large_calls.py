@@ -6,9 +6,7 @@ from __future__ import annotations
 import json
 import os
 import signal
-import time
-from collections.abc import Callable, Iterator
-from pathlib import Path
+from collections.abc import Iterator
 from typing import Any
 
 import anyio
@@ -20,11 +18,15 @@ from mcp.types import CallToolResult
 from mcp_helpers import (
     JSON_HEADERS,
     RunningServer,
+    checking_processes,
     free_port,
     http_in_thread,
     http_server,
+    process_gone,
     rpc,
     structured,
+    tower_graph,
+    wait_until,
 )
 
 from verigraph.server import tools as server_tools
@@ -54,14 +56,6 @@ def url(server: RunningServer) -> str:
     return server.url
 
 
-def tower(n: int) -> dict[str, Any]:
-    nodes = [{"id": "table", "label": "table"}] + [
-        {"id": f"b{i}", "label": "block"} for i in range(n - 1)]
-    edges = [{"source": f"b{i}", "relation": "on", "target": f"b{i - 1}" if i else "table"}
-             for i in range(n - 1)]
-    return {"nodes": nodes, "edges": edges, "dictionary": "blocks"}
-
-
 def unstack(n: int, moves: int) -> list[str]:
     return [f"move(b{i}, on, table)" for i in range(n - 2, n - 2 - moves, -1)]
 
@@ -72,7 +66,7 @@ def library_answer(tool: str, arguments: dict[str, Any]) -> dict[str, Any]:
     return json.loads(result.model_dump_json())
 
 
-LARGE_PLAN = {"graph": tower(2000), "plan": unstack(2000, 600)}
+LARGE_PLAN = {"graph": tower_graph(2000), "plan": unstack(2000, 600)}
 
 
 def test_the_request_is_large_and_so_is_the_answer() -> None:
@@ -162,7 +156,8 @@ def test_a_confirmed_tool_gets_its_large_arguments_back() -> None:
     (at most 50 short actions), so this server offloads every body above 1 KiB."""
     options = HttpOptions(port=free_port(), token=TOKEN, large_call_bytes=1024)
     with http_in_thread(Toolbox(), options) as small_threshold_url:
-        loaded = legacy_call(small_threshold_url, "load_scene", {"graph": tower(100), "k": 50})
+        loaded = legacy_call(small_threshold_url, "load_scene",
+                             {"graph": tower_graph(100), "k": 50})
         episode = loaded.json()["result"]["structuredContent"]["episode_id"]
         arguments = {"episode_id": episode, "actions": unstack(100, 50)}
         assert len(json.dumps(arguments)) > 1024
@@ -179,7 +174,7 @@ def test_execute_actions_without_an_arm_answers_large_results_too(offloaded: lis
     """execute_actions on an episode with no arm asks nothing, so the server answers it
     itself and its large answer (the whole new graph) is spliced in like any other."""
     with http_in_thread(Toolbox(), HttpOptions(port=free_port(), token=TOKEN)) as here:
-        loaded = legacy_call(here, "load_scene", {"graph": tower(2000)}).json()
+        loaded = legacy_call(here, "load_scene", {"graph": tower_graph(2000)}).json()
         episode = loaded["result"]["structuredContent"]["episode_id"]
         offloaded.clear()
         response = legacy_call(here, "execute_actions", {"episode_id": episode,
@@ -194,7 +189,7 @@ def test_execute_actions_without_an_arm_answers_large_results_too(offloaded: lis
 def test_the_viewer_s_tool_gets_its_large_arguments_too() -> None:
     """view_episode (the MCP Apps viewer's tool, outside the tool registry) goes through
     the SDK's path as well; this server offloads every body above 1 KiB."""
-    arguments = {"graph": tower(30), "plan": unstack(30, 20)}
+    arguments = {"graph": tower_graph(30), "plan": unstack(30, 20)}
     assert len(json.dumps(arguments)) > 1024
     options = HttpOptions(port=free_port(), token=TOKEN, large_call_bytes=1024)
     with http_in_thread(Toolbox(), options) as small_threshold_url:
@@ -208,7 +203,7 @@ def test_the_viewer_s_tool_gets_the_checking_process_s_argument_error() -> None:
     options = HttpOptions(port=free_port(), token=TOKEN, large_call_bytes=1024)
     with http_in_thread(Toolbox(), options) as small_threshold_url:
         result = legacy_call(small_threshold_url, "view_episode",
-                             {"graph": tower(30), "plan": unstack(30, 20),
+                             {"graph": tower_graph(30), "plan": unstack(30, 20),
                               "colour": "x" * 2000}).json()["result"]
     assert result["isError"] is True
     assert result["content"][0]["text"].startswith("Error executing tool view_episode: ")
@@ -250,28 +245,6 @@ def test_an_oversized_graph_is_refused_by_the_checking_process(url: str) -> None
     assert "at most 5000 nodes" in result["content"][0]["text"]
 
 
-def checking_processes(server_pid: int) -> list[int]:
-    """The server's children that check large bodies (not multiprocessing's tracker)."""
-    children = Path(f"/proc/{server_pid}/task/{server_pid}/children").read_text().split()
-    return [int(pid) for pid in children
-            if b"spawn_main" in Path(f"/proc/{pid}/cmdline").read_bytes()]
-
-
-def gone(pid: int) -> bool:
-    try:
-        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
-    except FileNotFoundError:
-        return True
-    return state == "Z"
-
-
-def wait_until(condition: Callable[[], bool], what: str) -> None:
-    deadline = time.monotonic() + 30  # only so that a broken server fails the test
-    while not condition():
-        assert time.monotonic() < deadline, what
-        time.sleep(0.05)
-
-
 def test_a_body_beyond_the_memory_budget_is_refused_and_the_child_dies_with_the_server(
         ) -> None:
     with http_server(token=TOKEN, extra=["--tool-mib", "64"]) as running:
@@ -284,14 +257,14 @@ def test_a_body_beyond_the_memory_budget_is_refused_and_the_child_dies_with_the_
         assert len(children) == 1
         running.proc.kill()  # no chance to clean up: the kernel takes the child along
         running.proc.wait()
-        wait_until(lambda: gone(children[0]), "the checking process outlived the server")
+        wait_until(lambda: process_gone(children[0]), "the checking process outlived the server")
 
 
 def test_a_checking_process_that_dies_is_replaced(server: RunningServer) -> None:
     assert legacy_call(server.url, "validate_plan", LARGE_PLAN).status_code == 200
     [child] = checking_processes(server.proc.pid)
     os.kill(child, signal.SIGKILL)
-    wait_until(lambda: gone(child), "the checking process did not die")
+    wait_until(lambda: process_gone(child), "the checking process did not die")
     reply = legacy_call(server.url, "validate_plan", LARGE_PLAN).json()
     assert reply["result"]["structuredContent"] == library_answer("validate_plan", LARGE_PLAN)
     assert checking_processes(server.proc.pid) not in ([], [child])
