@@ -33,7 +33,7 @@ TOKEN = "elicit-over-http"
 
 
 def serving(box: Toolbox) -> AbstractContextManager[str]:
-    return http_in_thread(box, HttpOptions(port=free_port(), token=TOKEN))
+    return http_in_thread(box, HttpOptions(port=free_port(), tokens=(TOKEN,)))
 
 
 def http() -> httpx2.AsyncClient:

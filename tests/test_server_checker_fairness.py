@@ -67,10 +67,12 @@ def post(url: str, arguments: dict[str, Any], request_id: int = 1) -> httpx2.Res
     return httpx2.post(url, content=body(arguments, request_id), headers=HEADERS, timeout=40)
 
 
-def post_from(address: str, url: str, request_id: int) -> httpx2.Response:
+def post_from(address: str, url: str, request_id: int, token: str = TOKEN
+              ) -> httpx2.Response:
     """SMALL posted on a connection of its own from loopback `address`."""
     transport = httpx2.HTTPTransport(local_address=address)
-    with httpx2.Client(transport=transport, headers=HEADERS, timeout=60) as http:
+    headers = {**HEADERS, "Authorization": f"Bearer {token}"}
+    with httpx2.Client(transport=transport, headers=headers, timeout=60) as http:
         return http.post(url, content=body(SMALL, request_id))
 
 
@@ -81,7 +83,8 @@ def library_answer(arguments: dict[str, Any]) -> dict[str, Any]:
 
 def in_process_options(**changes: Any) -> HttpOptions:
     """A server whose checker takes every body above 1 KiB (SMALL is about 3 KiB)."""
-    return HttpOptions(port=free_port(), token=TOKEN, large_call_bytes=1024, **changes)
+    return HttpOptions(**{"port": free_port(), "tokens": (TOKEN,), "large_call_bytes": 1024,
+                          **changes})
 
 
 def test_a_stopped_checker_is_killed_and_replaced_after_its_deadline() -> None:
@@ -169,6 +172,21 @@ def test_bodies_from_one_address_are_one_client_s_and_keep_their_order(
         checker_spy.release.set()
         answered([*flood, same])
     assert checker_spy.order[0] == 10 and checker_spy.order[-1] == 20
+
+
+def test_clients_on_one_address_with_tokens_of_their_own_take_turns(
+        checker_spy: CheckerSpy) -> None:
+    """With a token per client (`serve --token A --token B`), two clients on one host are
+    two clients: the second's body is checked next, as if it came from elsewhere."""
+    own = "other-client-token"
+    options = in_process_options(tokens=(TOKEN, own))
+    with http_in_thread(Toolbox(), options) as url, ThreadPoolExecutor(8) as pool:
+        flood = queue_behind_a_held_body(checker_spy, pool, url, 5)
+        other = pool.submit(post_from, FLOODER, url, 20, own)
+        wait_until(lambda: checker_spy.waiting() == 6, "the other client's body did not queue")
+        checker_spy.release.set()
+        answered([*flood, other])
+    assert checker_spy.order[:2] == [10, 20]
 
 
 def test_a_client_beyond_its_queue_cap_is_refused_with_the_limit(

@@ -165,3 +165,34 @@ def test_non_loopback_bind_needs_a_token() -> None:
     assert done.returncode == 2
     assert "refusing to serve on 0.0.0.0 without a token" in done.stderr
     assert done.stdout == ""
+
+
+def test_each_client_s_own_token_is_accepted_and_counted_apart() -> None:
+    """`--token` repeated: every listed token is accepted, any other refused, and each
+    token is a client of its own for the per-client limits: with 2 event streams per
+    client, the first token's third stream is refused while the second token, on the
+    same address, still opens one."""
+    second = "second-client-token"
+    with http_server(token=TOKEN, extra=["--token", second, "--streams-per-client", "2"]
+                     ) as running, httpx2.Client(timeout=30) as http:
+        for token, status in ((TOKEN, 200), (second, 200), ("third", 403)):
+            answer = http.post(running.url, content=rpc("tools/list"), headers={
+                **JSON_HEADERS, "Authorization": f"Bearer {token}"})
+            assert answer.status_code == status, (token, answer.text[:200])
+
+        def stream(token: str) -> Any:
+            return http.stream("GET", running.url, headers={
+                "Accept": "text/event-stream", "Authorization": f"Bearer {token}",
+                "MCP-Protocol-Version": "2025-11-25"})
+
+        with stream(TOKEN) as a1, stream(TOKEN) as a2, stream(TOKEN) as a3, \
+                stream(second) as b1:
+            assert [a1.status_code, a2.status_code, b1.status_code] == [200, 200, 200]
+            assert a3.status_code == 429 and b"already has 2 open" in a3.read()
+
+
+def test_a_blank_token_is_refused_at_start() -> None:
+    done = subprocess.run([*verigraph_command(), "serve", "--transport", "http", "--port",
+                           "1", "--token", " "], capture_output=True, text=True, timeout=60,
+                          env={"PATH": "/usr/bin:/bin"})
+    assert done.returncode == 2 and "--token" in done.stderr and "Traceback" not in done.stderr

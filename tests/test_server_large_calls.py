@@ -119,7 +119,7 @@ def offloaded(monkeypatch: pytest.MonkeyPatch) -> list[int]:
 
 @pytest.mark.parametrize("era", ["2026-07-28", LEGACY])
 def test_the_answer_was_spliced_in_on_both_eras(era: str, offloaded: list[int]) -> None:
-    with http_in_thread(Toolbox(), HttpOptions(port=free_port(), token=TOKEN)) as here:
+    with http_in_thread(Toolbox(), HttpOptions(port=free_port(), tokens=(TOKEN,))) as here:
         body = rpc("tools/call", {"name": "validate_plan", "arguments": LARGE_PLAN}, 3)
         headers = {**JSON_HEADERS, **AUTH, "MCP-Protocol-Version": era}
         if era != LEGACY:
@@ -154,7 +154,7 @@ def test_a_confirmed_tool_gets_its_large_arguments_back() -> None:
     """execute_actions goes through the SDK's own path (it may ask the user first): the
     arguments taken out of the body are put back for it. Its arguments are never 64 KiB
     (at most 50 short actions), so this server offloads every body above 1 KiB."""
-    options = HttpOptions(port=free_port(), token=TOKEN, large_call_bytes=1024)
+    options = HttpOptions(port=free_port(), tokens=(TOKEN,), large_call_bytes=1024)
     with http_in_thread(Toolbox(), options) as small_threshold_url:
         loaded = legacy_call(small_threshold_url, "load_scene",
                              {"graph": tower_graph(100), "k": 50})
@@ -173,7 +173,7 @@ def test_execute_actions_without_an_arm_answers_large_results_too(offloaded: lis
                                                                   ) -> None:
     """execute_actions on an episode with no arm asks nothing, so the server answers it
     itself and its large answer (the whole new graph) is spliced in like any other."""
-    with http_in_thread(Toolbox(), HttpOptions(port=free_port(), token=TOKEN)) as here:
+    with http_in_thread(Toolbox(), HttpOptions(port=free_port(), tokens=(TOKEN,))) as here:
         loaded = legacy_call(here, "load_scene", {"graph": tower_graph(2000)}).json()
         episode = loaded["result"]["structuredContent"]["episode_id"]
         offloaded.clear()
@@ -191,7 +191,7 @@ def test_the_viewer_s_tool_gets_its_large_arguments_too() -> None:
     the SDK's path as well; this server offloads every body above 1 KiB."""
     arguments = {"graph": tower_graph(30), "plan": unstack(30, 20)}
     assert len(json.dumps(arguments)) > 1024
-    options = HttpOptions(port=free_port(), token=TOKEN, large_call_bytes=1024)
+    options = HttpOptions(port=free_port(), tokens=(TOKEN,), large_call_bytes=1024)
     with http_in_thread(Toolbox(), options) as small_threshold_url:
         result = legacy_call(small_threshold_url, "view_episode", arguments).json()["result"]
     assert result.get("isError") is not True, str(result)[:300]
@@ -200,7 +200,7 @@ def test_the_viewer_s_tool_gets_its_large_arguments_too() -> None:
 
 
 def test_the_viewer_s_tool_gets_the_checking_process_s_argument_error() -> None:
-    options = HttpOptions(port=free_port(), token=TOKEN, large_call_bytes=1024)
+    options = HttpOptions(port=free_port(), tokens=(TOKEN,), large_call_bytes=1024)
     with http_in_thread(Toolbox(), options) as small_threshold_url:
         result = legacy_call(small_threshold_url, "view_episode",
                              {"graph": tower_graph(30), "plan": unstack(30, 20),

@@ -42,7 +42,7 @@ assert len(json.dumps(LARGE_GRAPH)) > DEFAULT_THRESHOLD_BYTES
 
 @pytest.fixture(scope="module")
 def url() -> Iterator[str]:
-    with http_in_thread(Toolbox(), HttpOptions(port=free_port(), token=TOKEN)) as here:
+    with http_in_thread(Toolbox(), HttpOptions(port=free_port(), tokens=(TOKEN,))) as here:
         yield here
 
 

@@ -26,8 +26,10 @@ def register(sub: Any) -> None:
     p.add_argument("--host", default="127.0.0.1",
                    help="HTTP bind address (default loopback; other addresses need --token)")
     p.add_argument("--port", type=int, default=8000, help="HTTP port (default 8000)")
-    p.add_argument("--token", default=None,
-                   help=f"require 'Authorization: Bearer TOKEN' on HTTP (default: ${TOKEN_ENV})")
+    p.add_argument("--token", action="append", default=None, metavar="TOKEN",
+                   help="require 'Authorization: Bearer TOKEN' on HTTP (default: "
+                        f"${TOKEN_ENV}); repeat it to give each client its own token, so "
+                        "the per-client limits tell clients on one host apart")
     p.add_argument("--allow-host", action="append", default=[], metavar="NAME",
                    help="extra Host/Origin name accepted over HTTP (repeatable)")
     p.add_argument("--max-body-mib", type=float, default=16.0,
@@ -45,8 +47,8 @@ def register(sub: Any) -> None:
                    help="HTTP: seconds an event stream (GET /mcp) stays open with no event "
                         "(default 30)")
     p.add_argument("--streams-per-client", type=int, default=8, metavar="N",
-                   help="HTTP: event streams one client (token or address) may hold open "
-                        "(default 8)")
+                   help="HTTP: event streams one client (its own token, else its address) "
+                        "may hold open (default 8)")
     p.add_argument("--tool-seconds", type=float, default=30.0, metavar="S",
                    help="wall-clock budget of one heavy tool call (default 30)")
     p.add_argument("--tool-mib", type=float, default=512.0, metavar="MIB",
@@ -84,6 +86,9 @@ def register(sub: Any) -> None:
     p.add_argument("--check-above-kib", type=float, default=64.0, metavar="KIB",
                    help="HTTP: bodies above this are parsed and checked in a child process, "
                         "off the server's event loop (default 64; 0 turns that off)")
+    p.add_argument("--queued-per-client", type=int, default=8, metavar="N",
+                   help="HTTP: large bodies one client may have waiting for the checking "
+                        "process, per lane; one more gets 503 (default 8)")
     p.add_argument("--check-seconds", type=float, default=10.0, metavar="S",
                    help="HTTP: seconds the process that checks a large body has to answer; "
                         "later, it is killed and replaced and the caller told (default 10)")
@@ -105,9 +110,15 @@ def run_serve(args: argparse.Namespace) -> int:
     from verigraph.tools.executors import server_executor
     from verigraph.tools.stores import default_store_url, redacted
 
-    token = args.token or os.environ.get(TOKEN_ENV) or None
+    env_token = os.environ.get(TOKEN_ENV)
+    tokens = tuple(dict.fromkeys(args.token or ([env_token] if env_token else [])))
+    if any(not token.strip() or token != token.strip() for token in tokens):
+        raise VeriGraphError("a token is empty or has spaces around it", field="--token",
+                             value=None, fix="give each --token as one word, e.g. from "
+                                             "`python -c 'import secrets; print(secrets."
+                                             "token_urlsafe())'`")
     if args.transport == "http" and args.host not in ("127.0.0.1", "localhost", "::1") \
-            and not token:
+            and not tokens:
         raise VeriGraphError(f"refusing to serve on {args.host} without a token",
                              field="--host", value=args.host,
                              fix=f"pass --token (or set {TOKEN_ENV}), or bind to 127.0.0.1")
@@ -140,11 +151,14 @@ def run_serve(args: argparse.Namespace) -> int:
                                    "--streams-per-client/"
                                    "--tool-seconds/--tool-mib/--heavy-workers/--per-client",
                              value=None, fix="give each a positive number")
-    if args.workers < 1 or args.check_seconds <= 0 or args.check_above_kib < 0:
-        raise VeriGraphError("--workers, --check-seconds or --check-above-kib out of range",
-                             field="--workers/--check-seconds/--check-above-kib", value=None,
-                             fix="use --workers >= 1, --check-seconds > 0 and "
-                                 "--check-above-kib >= 0")
+    if args.workers < 1 or args.check_seconds <= 0 or args.check_above_kib < 0 \
+            or args.queued_per_client < 1:
+        raise VeriGraphError("--workers, --check-seconds, --check-above-kib or "
+                             "--queued-per-client out of range",
+                             field="--workers/--check-seconds/--check-above-kib/"
+                                   "--queued-per-client", value=None,
+                             fix="use --workers >= 1, --check-seconds > 0, "
+                                 "--check-above-kib >= 0 and --queued-per-client >= 1")
     if args.workers > 1:
         check_workers(args.transport, store, arm)
     heavy = HeavyLimits(workers=args.heavy_workers, per_client=args.per_client,
@@ -155,12 +169,13 @@ def run_serve(args: argparse.Namespace) -> int:
         keep_loop_responsive()
         anyio.run(run_stdio, server, max_bytes)
         return 0
-    options = HttpOptions(host=args.host, port=args.port, token=token,
+    options = HttpOptions(host=args.host, port=args.port, tokens=tokens,
                           max_body_bytes=max_bytes,
                           allowed_hosts=tuple(args.allow_host),
                           header_timeout_s=args.header_timeout, body_timeout_s=args.body_timeout,
                           keep_alive_s=args.keep_alive, large_call_mib=args.tool_mib,
                           large_call_deadline_s=args.check_seconds,
+                          large_calls_queued=args.queued_per_client,
                           large_call_bytes=int(args.check_above_kib * 1024),
                           stream_idle_s=args.stream_idle,
                           streams_per_client=args.streams_per_client,

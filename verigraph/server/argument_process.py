@@ -22,8 +22,8 @@ children, so one client posting 15 MB bodies delays only others that post bodies
 large. And within each child's lane, bodies wait per client and the lane takes them
 round-robin over clients (FairTurns): a client with eight bodies waiting gets one turn,
 then another client's single body gets the next, so however many bodies (from however
-many connections) one client posts, another's waits for at most one of them. A client
-is the address it connects from (offload.caller_of). A client
+many connections) one client posts, another's waits for at most one of them. Who a
+client is: verigraph.server.callers (its own token, else its address). A client
 may have at most `queued_per_client` bodies waiting in a lane; one more gets a 503
 naming that limit, so no client can make the queue (bodies of up to 16 MiB each) grow
 without bound. Measured in benchmarks/results/server_load.md.

@@ -32,7 +32,12 @@ from starlette.responses import Response
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from verigraph import __version__
-from verigraph.server.argument_process import DEFAULT_DEADLINE_S, ArgumentChecker
+from verigraph.server.argument_process import (
+    DEFAULT_DEADLINE_S,
+    DEFAULT_QUEUED_PER_CLIENT,
+    ArgumentChecker,
+)
+from verigraph.server.callers import CALLER_KEY
 from verigraph.server.connections import guarded_protocol, quiet_accept_errors
 from verigraph.server.hostcheck import HostCheck, HostPolicy
 from verigraph.server.offload import DEFAULT_THRESHOLD_BYTES, LargeCalls
@@ -50,7 +55,8 @@ class HttpOptions:
     host: str = "127.0.0.1"
     port: int = 8000
     path: str = "/mcp"
-    token: str | None = None
+    # Bearer tokens accepted; with several, each is one client's own (see callers).
+    tokens: tuple[str, ...] = ()
     max_body_bytes: int = DEFAULT_MAX_BODY_BYTES
     allowed_hosts: tuple[str, ...] = field(default_factory=tuple)
     header_timeout_s: float = 10.0
@@ -61,6 +67,7 @@ class HttpOptions:
     large_call_bytes: int = DEFAULT_THRESHOLD_BYTES  # bodies checked in a child (offload)
     large_call_mib: float = 512.0  # the child's memory budget for one body
     large_call_deadline_s: float = DEFAULT_DEADLINE_S  # the child's time for one body
+    large_calls_queued: int = DEFAULT_QUEUED_PER_CLIENT  # bodies one client may have waiting
     streams_per_client: int = DEFAULT_STREAMS_PER_CLIENT  # open GET event streams per client
     stream_idle_s: float = DEFAULT_STREAM_IDLE_S  # a stream with no event this long is ended
 
@@ -74,7 +81,11 @@ class HttpOptions:
 
 
 class BearerTokenAuth:
-    """403 unless the request carries `Authorization: Bearer <token>` (constant-time check).
+    """403 unless the request carries `Authorization: Bearer <token>` with one of the
+    server's tokens (constant-time checks, every token compared).
+
+    With several tokens, the one matched tells the client apart (its number goes into
+    the scope for the per-client budgets, see callers); with one, every holder is alike.
 
     The token is a pre-shared secret, not OAuth. MCP clients that know OAuth (the MCP
     Inspector, the TypeScript SDK with an auth provider) start OAuth discovery on every
@@ -83,16 +94,19 @@ class BearerTokenAuth:
     JSON-RPC error says which (`data.reason`: missing_token or wrong_token) and what to do.
     """
 
-    def __init__(self, app: ASGIApp, token: str) -> None:
+    def __init__(self, app: ASGIApp, tokens: tuple[str, ...]) -> None:
         self.app = app
-        self.expected = f"Bearer {token}".encode()
+        self.expected = [f"Bearer {token}".encode() for token in tokens]
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] == "http":
             given = Headers(scope=scope).get("authorization", "").encode()
-            if not hmac.compare_digest(given, self.expected):
+            matches = [hmac.compare_digest(given, expected) for expected in self.expected]
+            if not any(matches):
                 await _refusal(given)(scope, receive, send)
                 return
+            if len(self.expected) > 1:
+                scope[CALLER_KEY] = f"token {matches.index(True) + 1}"
         await self.app(scope, receive, send)
 
 
@@ -227,13 +241,14 @@ def http_app(server: MCPServer[Any], options: HttpOptions) -> ASGIApp:
         host=options.host)
     if options.large_call_bytes > 0:  # 0: every body is parsed by this process (measured)
         app = LargeCalls(app, options.large_call_bytes, ArgumentChecker(
-            options.large_call_mib, options.large_call_deadline_s))
+            options.large_call_mib, options.large_call_deadline_s,
+            queued_per_client=options.large_calls_queued))
     app = BodyLimit(app, options.max_body_bytes, options.body_timeout_s)
     app = EventStreams(app, options.path, options.streams_per_client, options.max_streams(),
                        options.stream_idle_s)
     app = HostCheck(app, HostPolicy(options.host, options.port, options.allowed_hosts))
-    if options.token:
-        app = BearerTokenAuth(app, options.token)
+    if options.tokens:
+        app = BearerTokenAuth(app, options.tokens)
     return HealthCheck(app)
 
 
@@ -282,7 +297,7 @@ def serve_http(server: MCPServer[Any], options: HttpOptions, log_level: str = "w
     """
     config = uvicorn_config(server, options, log_level)
     log.warning("VeriGraph MCP server on %s (auth %s)", options.url(),
-                "on" if options.token else "off")
+                f"on, {len(options.tokens)} token(s)" if options.tokens else "off")
 
     async def main() -> None:
         quiet_accept_errors(asyncio.get_running_loop())

@@ -7,14 +7,14 @@ machine, and no other client is answered meanwhile. Each of those steps is one C
 that holds the GIL from start to end, so moving them to a thread helps only so much.
 LargeCalls moves them away:
 
-* A request body above `threshold` bytes goes to a child process (argument_process:
-  one for bodies up to 4 MiB and one for larger ones, each answering within a deadline,
-  each taking bodies round-robin over clients; a client is the address it connects
-  from, see `caller_of`), which parses it, takes a `tools/call`'s arguments out and
-  validates them. The SDK gets the envelope with empty arguments (it still checks the
-  protocol version, id, method, name and `_meta`) and ArgumentGate takes the validated
-  input, or the argument error, from the request's CallSlot. Any other method has no
-  business carrying that much and gets a JSON-RPC error saying so.
+* A request body above `threshold` bytes goes to a child process (argument_process: one
+  for bodies up to 4 MiB and one for larger ones, each answering within a deadline, each
+  taking bodies round-robin over clients, as told apart by callers), which parses it,
+  takes a `tools/call`'s arguments out and validates them. The SDK gets the envelope
+  with empty arguments (it still checks the protocol version, id, method, name and
+  `_meta`) and ArgumentGate takes the validated input, or the argument error, from the
+  request's CallSlot. Any other method has no business carrying that much and gets a
+  JSON-RPC error saying so.
 * A heavy call's structured result is serialised on its worker thread (`offload`); the
   SDK answers with a small placeholder, which `send` replaces with those bytes.
 
@@ -29,10 +29,11 @@ from typing import Any
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from verigraph.server.argument_process import ArgumentChecker
+from verigraph.server.callers import caller_of
 from verigraph.server.rpc_errors import rpc_error
 from verigraph.server.scope import PLACEHOLDER_KEY, CallSlot, current_scope
 
-__all__ = ["DEFAULT_THRESHOLD_BYTES", "PLACEHOLDER_KEY", "CallSlot", "LargeCalls", "caller_of",
+__all__ = ["DEFAULT_THRESHOLD_BYTES", "PLACEHOLDER_KEY", "CallSlot", "LargeCalls",
            "offload", "slot_of"]
 SCOPE_KEY = "verigraph.call_slot"
 DEFAULT_THRESHOLD_BYTES = 64 * 1024
@@ -45,18 +46,6 @@ def slot_of(request: Any) -> CallSlot | None:
     scope = getattr(request, "scope", None)
     slot = scope.get(SCOPE_KEY) if isinstance(scope, dict) else None
     return slot if isinstance(slot, CallSlot) else None
-
-
-def caller_of(scope: Scope) -> str:
-    """Whose turn a large body takes in the checker's fair queue: the address its
-    connection comes from. Not the connection: one client may open many, and a body
-    per connection would then buy it a turn per connection. Not the token: every
-    request that gets this far presents the server's one token (and on a server
-    without one, any header is the client's to vary). Clients on one host share an
-    address, and so one queue, unless they connect from different loopback addresses:
-    the server cannot tell them apart."""
-    peer = scope.get("client")
-    return str(peer[0]) if peer else "unknown"
 
 
 def offload(structured: Any) -> dict[str, Any] | None:

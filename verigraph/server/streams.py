@@ -2,40 +2,29 @@
 
 A streamable-HTTP client may open a standing server-to-client event stream with
 `GET /mcp`. Each one holds a connection for as long as the client likes, so without a
-budget one token holder could open enough of them to take every connection slot and
-lock everyone else out. `EventStreams` gives streams their own budget, apart from the
-request slots (verigraph.server.connections): at most `per_client` open streams per
-client (a client is the token it presents, or its address when the server has no
-token) and `total` in all; more get 429 (per client) or 503 (in all), with the
-connection closed. A stream on which nothing but keep-alive comments was sent for
-`idle_s` seconds is ended cleanly; the client may open another (the server is
-stateless, so nothing is lost).
+budget one token holder could open enough of them to take every connection slot and lock
+everyone else out. `EventStreams` gives streams their own budget, apart from the request
+slots (verigraph.server.connections): at most `per_client` open streams per client (who
+a client is: verigraph.server.callers) and `total` in all; more get 429 (per client) or
+503 (in all), with the connection closed. A stream on which nothing but keep-alive
+comments was sent for `idle_s` seconds is ended cleanly; the client may open another
+(the server is stateless, so nothing is lost).
 """
 
 from __future__ import annotations
 
-import hashlib
 import logging
 from collections import Counter
 
 import anyio
-from starlette.datastructures import Headers
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from verigraph.server.callers import caller_of
 from verigraph.server.rpc_errors import rpc_error
 
 DEFAULT_STREAMS_PER_CLIENT = 8
 DEFAULT_STREAM_IDLE_S = 30.0
 log = logging.getLogger("verigraph.server")
-
-
-def client_key(scope: Scope) -> str:
-    """Who a stream belongs to: the token presented (hashed), else the peer address."""
-    given = Headers(scope=scope).get("authorization")
-    if given:
-        return "token:" + hashlib.sha256(given.encode()).hexdigest()[:16]
-    client = scope.get("client")
-    return f"peer:{client[0] if client else '?'}"
 
 
 def _carries_events(body: bytes) -> bool:
@@ -60,7 +49,7 @@ class EventStreams:
                 or scope["path"].rstrip("/") != self.path.rstrip("/")):
             await self.app(scope, receive, send)
             return
-        key = client_key(scope)
+        key = caller_of(scope)
         close = {"Connection": "close"}
         if self.open[key] >= self.per_client:
             await rpc_error(429, f"Too many event streams: this client already has "
