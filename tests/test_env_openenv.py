@@ -82,7 +82,7 @@ def test_collect_runner_evaluates_on_the_scripted_endpoint(tmp_path: Path,
         sent = endpoint.requests
     assert result.num_failed == 0 and result.num_collected == len(ids)
     assert result.success_rate == 1.0
-    assert all(("tools" in body) is tool_calling for body in sent)
+    assert all(("tools" in r.body) is tool_calling for r in sent)
     records = [json.loads(line) for line in (out / "results.jsonl").read_text().splitlines()]
     assert [r["task"] for r in records] == ids
     assert [r["reward"] for r in records] == [returns[i] for i in ids] == [1.0] * len(ids)

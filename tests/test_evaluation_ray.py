@@ -4,6 +4,8 @@ cluster-wide limiter keeps a backend under its request rate (measured at the ser
 from __future__ import annotations
 
 import json
+import os
+import sys
 import time
 from collections import deque
 from collections.abc import Iterator
@@ -12,11 +14,19 @@ from typing import Any
 import pytest
 
 from verigraph.agent.evaluation import Setting, build_groups
-from verigraph.agent.evaluation.engine import RunOptions, run_jobs
+from verigraph.agent.evaluation.engine import RunOptions, run_jobs, run_on_workers
 from verigraph.agent.evaluation.guard import RetryPolicy
 from verigraph.agent.evaluation.limiter import BackendLimits
-from verigraph.agent.evaluation.spec import jobs_for, task_index
-from verigraph.agent.evaluation.worker import EngineConfig
+from verigraph.agent.evaluation.ray_runner import QUEUE_PER_SLOT
+from verigraph.agent.evaluation.results import BenchRecord
+from verigraph.agent.evaluation.spec import EpisodeJob, jobs_for, task_index
+from verigraph.agent.evaluation.tasks import Task
+from verigraph.agent.evaluation.worker import (
+    EngineConfig,
+    EpisodeWorker,
+    WorkerFactory,
+    lost_record,
+)
 from verigraph.agent.factory import PlannerOptions
 from verigraph.agent.testing import RecordedResponse as R
 from verigraph.agent.testing import RecordedResponseServerForTests, chat_completion
@@ -110,3 +120,41 @@ def test_a_killed_worker_is_restarted_and_no_episode_is_lost(local_ray: None) ->
     assert all(r.error is None for r in records)
     assert {r.key: r.outcome() for r in records} == serial
     assert len({r.worker for r in records}) >= 3  # the restarted actor is a new process
+
+
+class DyingEpisodeWorkerForTests(EpisodeWorker):
+    """A worker whose process exits on one task: a stand-in for a machine that crashes
+    on an episode every time it is retried (so its restarts run out)."""
+
+    def __init__(self, tasks: dict[str, Task], config: EngineConfig, doomed: str) -> None:
+        super().__init__(tasks, config)
+        self.doomed = doomed
+
+    def run(self, job: EpisodeJob) -> BenchRecord:
+        if job.task_id == self.doomed:
+            os._exit(1)
+        return super().run(job)
+
+
+def test_an_episode_whose_worker_dies_for_good_is_a_failed_record(local_ray: None) -> None:
+    groups = build_groups(("stacking",), 8, 0, ground_truth=True)
+    jobs = jobs_for(Setting(planner="noisy", noise=0.5), groups, "suite")
+    tasks = task_index(groups)
+    serial = {r.key: r.outcome() for r in run_jobs(jobs, tasks, RunOptions(progress=False))}
+    # the worker class travels by value: Ray's workers need not import this test module
+    ray.cloudpickle.register_pickle_by_value(sys.modules[__name__])
+    factory = WorkerFactory(DyingEpisodeWorkerForTests,
+                            (tasks, EngineConfig(), jobs[0].task_id), lost=lost_record)
+    records = list(run_on_workers(factory, jobs, ray="local", concurrency=2))
+    assert sorted(r.key for r in records) == sorted(serial)  # one record per job, no raise
+    doomed = next(r for r in records if r.key == jobs[0].key())
+    assert not doomed.success and doomed.error_kind == "worker"
+    assert doomed.stop_reason == "worker_error"
+    assert (doomed.error or "").startswith("ActorDiedError")
+    lost = [r for r in records if r.error_kind == "worker" and r is not doomed]
+    # the dead worker took at most its other queued episode with it; the rest ran on
+    # the surviving worker, exactly as serially
+    assert len(lost) <= QUEUE_PER_SLOT - 1
+    ran = [r for r in records if r.error_kind != "worker"]
+    assert len(ran) >= len(jobs) - QUEUE_PER_SLOT
+    assert all(r.outcome() == serial[r.key] for r in ran)

@@ -54,12 +54,8 @@ class RecordedResponseServerForTests:
                     body: Any = json.loads(raw) if raw else None
                 except json.JSONDecodeError:
                     body = raw
-                with server._lock:
-                    server.requests.append(ReceivedRequest(
-                        self.path, {k.lower(): v for k, v in self.headers.items()}, body))
-                    reply = server.responses.popleft() if server.responses else \
-                        RecordedResponse({"error": {"message": "no recorded response left"}},
-                                         status=500)
+                reply = server.reply(ReceivedRequest(
+                    self.path, {k.lower(): v for k, v in self.headers.items()}, body))
                 if reply.delay_s:
                     threading.Event().wait(reply.delay_s)
                 payload = reply.body if isinstance(reply.body, str) else json.dumps(reply.body)
@@ -78,6 +74,16 @@ class RecordedResponseServerForTests:
         self._server = ThreadingHTTPServer(("127.0.0.1", 0), Handler)
         self._thread = threading.Thread(target=self._server.serve_forever,
                                         kwargs={"poll_interval": 0.05}, daemon=True)
+
+    def reply(self, request: ReceivedRequest) -> RecordedResponse:
+        """Keep `request` and answer it: the next queued response (a subclass may pick
+        its answer from the request instead, keeping this server's HTTP side)."""
+        with self._lock:
+            self.requests.append(request)
+            if self.responses:
+                return self.responses.popleft()
+        return RecordedResponse({"error": {"message": "no recorded response left"}},
+                                status=500)
 
     @property
     def url(self) -> str:

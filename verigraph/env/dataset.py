@@ -28,6 +28,7 @@ from typing import Any, Literal, get_args
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from verigraph.agent.evaluation.tasks import SUITE_VERSION, GroupName, Task, build_groups
+from verigraph.env.jsonl import read_models, write_models
 from verigraph.errors import VeriGraphError
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
@@ -207,38 +208,14 @@ def select(records: Iterable[TaskRecord], *, family: str | None = None,
 
 def write_jsonl(records: Iterable[TaskRecord], path: str | Path) -> int:
     """One JSON task per line; returns the number written."""
-    count = 0
-    with Path(path).open("w", encoding="utf-8") as out:
-        for record in records:
-            out.write(record.model_dump_json(exclude_none=False) + "\n")
-            count += 1
-    return count
+    return write_models(records, path, append=False, exclude_none=False)
 
 
 def read_jsonl(path: str | Path) -> list[TaskRecord]:
     """Tasks from a JSONL file; a bad line or a hash that does not match is an error."""
-    records = []
-    source = Path(path)
-    try:
-        lines = source.read_text("utf-8").splitlines()
-    except OSError as exc:
-        raise VeriGraphError(f"cannot read the task file {source}: {exc.strerror}",
-                             field="path", value=str(source),
-                             fix="pass a JSONL file written by write_jsonl") from None
-    for number, line in enumerate(lines, 1):
-        if not line.strip():
-            continue
-        try:
-            record = TaskRecord.model_validate_json(line)
-        except ValidationError as exc:
-            err = exc.errors()[0]
-            where = ".".join(str(p) for p in err["loc"]) or "line"
-            raise VeriGraphError(f"{source}:{number}: {where}: {err['msg']}",
-                                 field=f"line {number}", value=where,
-                                 fix="each line must be a task written by write_jsonl"
-                                 ) from None
-        records.append(_checked(record, f"{source}:{number}", f"line {number}"))
-    return records
+    rows = read_models(path, TaskRecord, what="task file",
+                       fix="pass a JSONL file of tasks written by write_jsonl")
+    return [_checked(record, f"{path}:{number}", f"line {number}") for number, record in rows]
 
 
 def _checked(record: TaskRecord, where: str, field: str) -> TaskRecord:

@@ -6,34 +6,39 @@ asking it what the loop would ask (`VeriGraphEnv.planner_request`) and writing i
 reply as text; `RefusedActionPolicy` answers an action the verifier always refuses.
 A policy is named in a `RolloutJob` so that a Ray worker can build it itself.
 
-`run_rollouts(jobs, env_kwargs, ray=...)` runs the jobs in this process or on Ray
-(`ray="local"` starts a private Ray with this machine's cores through the evaluation
-engine's `connect`; an initialised Ray is used as it is). Each Ray actor holds one
-environment built from `env_kwargs`, so the kwargs must be picklable (pass `tasks`, not
-a `tools` connection). Results come back in job order and carry the episode's
-trajectory lines (verigraph.env.trajectory), identical serially and on Ray.
+`run_rollouts(jobs, env_kwargs, ray=...)` runs the jobs through the evaluation engine's
+one dispatch (`verigraph.agent.evaluation.engine.run_on_workers`, the same serial and Ray
+paths as `bench plan`): `RolloutWorker` is the engine's worker, as `EpisodeWorker` is for
+episodes. `ray="local"` starts a private Ray with this machine's cores; an initialised
+Ray is used as it is. Each Ray actor builds its environments from `env_kwargs`, so the
+kwargs must be picklable (pass `tasks`, not a `tools` connection). A worker process that
+dies is restarted and its rollouts retried (they are seeded, so idempotent); a rollout
+whose worker is lost for good comes back as a failed result (`error_kind` "worker"),
+not an exception. Results come back in job order and carry the episode's trajectory
+lines (verigraph.env.trajectory), identical serially and on Ray.
 """
 
 from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable, Iterator, Sequence
+import threading
+from collections.abc import Callable, Sequence
+from pathlib import Path
 from typing import Any, Literal, Protocol
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.agent.evaluation.ray_runner import connect
+from verigraph.agent.evaluation.engine import plan_resume, run_on_workers
+from verigraph.agent.evaluation.worker import WorkerFactory, worker_name
 from verigraph.agent.factory import PlannerOptions, make_planner
 from verigraph.agent.planner import Planner
 from verigraph.env.core import VeriGraphEnv
-from verigraph.env.trajectory import TrajectoryLine, reset_line, step_line
+from verigraph.env.trajectory import TrajectoryFile, TrajectoryLine, reset_line, step_line
 from verigraph.errors import VeriGraphError
-from verigraph.extras import require
 
 PolicyName = Literal["oracle", "noisy", "greedy", "refuse"]
 REFUSED_ACTION = "move(no_such_object, on, table)"
-QUEUE_PER_WORKER = 2
 
 
 class Policy(Protocol):
@@ -83,11 +88,13 @@ class RolloutJob(BaseModel):
     noise: float = Field(default=0.3, ge=0.0, le=1.0)
 
     def episode(self) -> str:
-        return f"{self.task_id}#{self.policy}:{self.policy_seed}@{self.seed}"
+        """The rollout's id (its trajectory lines' `episode`, its key when resuming)."""
+        policy = f"{self.policy}~{self.noise:g}" if self.policy == "noisy" else self.policy
+        return f"{self.task_id}#{policy}:{self.policy_seed}@{self.seed}"
 
 
 class RolloutResult(BaseModel):
-    """An episode's outcome and its trajectory lines."""
+    """An episode's outcome and its trajectory lines (none when its worker was lost)."""
 
     job: RolloutJob
     episode_return: float
@@ -96,7 +103,25 @@ class RolloutResult(BaseModel):
     success: bool
     stop_reason: str | None
     lines: list[TrajectoryLine]
-    worker: int = Field(description="process id that ran it")
+    worker: int | None = Field(description="process id that ran it (None: lost, or read "
+                                           "back from a trajectory file)")
+    error: str | None = Field(default=None, description="why the episode did not run")
+    error_kind: str | None = Field(default=None, description="worker: its process died")
+
+
+def lost_rollout(job: RolloutJob, error: str) -> RolloutResult:
+    """The result of a rollout whose worker process was lost for good."""
+    return RolloutResult(job=job, episode_return=0.0, steps=0, moves=0, success=False,
+                         stop_reason="worker_error", lines=[], worker=None,
+                         error=error[:500], error_kind="worker")
+
+
+def recorded_result(job: RolloutJob, lines: list[TrajectoryLine]) -> RolloutResult:
+    """The result of `job` read back from its complete trajectory lines (worker unknown)."""
+    end = lines[-1]
+    return RolloutResult(job=job, episode_return=sum(line.reward for line in lines),
+                         steps=end.step, moves=end.moves or 0, success=bool(end.success),
+                         stop_reason=end.stop_reason, lines=lines, worker=None)
 
 
 def run_rollout(env: VeriGraphEnv, policy: Policy, job: RolloutJob) -> RolloutResult:
@@ -120,77 +145,84 @@ def run_rollout(env: VeriGraphEnv, policy: Policy, job: RolloutJob) -> RolloutRe
 
 
 class RolloutWorker:
-    """One environment and the policies jobs name; the serial path and a Ray actor alike."""
+    """Environments built from `env_kwargs` (one per thread) and the policies jobs name.
+
+    The engine's `Worker`: called directly on the serial path, wrapped as a Ray actor
+    (possibly running a few rollouts at once on threads) on the Ray path.
+    """
 
     def __init__(self, env_kwargs: dict[str, Any]) -> None:
-        self.env = VeriGraphEnv(**env_kwargs)
+        self.env_kwargs = dict(env_kwargs)
+        self._local = threading.local()
+        self._envs: list[VeriGraphEnv] = []
+        self._lock = threading.Lock()
+        self._env()  # built now, so a bad kwarg fails here and `ready` times start-up
 
-    def ready(self) -> bool:
-        return True
+    def _env(self) -> VeriGraphEnv:
+        if not hasattr(self._local, "env"):
+            self._local.env = VeriGraphEnv(**self.env_kwargs)
+            with self._lock:
+                self._envs.append(self._local.env)
+        env: VeriGraphEnv = self._local.env
+        return env
+
+    def ready(self) -> str:
+        """host:pid; a Ray actor answers once its first environment is built."""
+        return worker_name()
+
+    def policy(self, job: RolloutJob) -> Policy:
+        """The policy `job` names (a subclass may build its own)."""
+        return make_policy(job.policy, job.policy_seed, job.noise)
 
     def run(self, job: RolloutJob) -> RolloutResult:
-        policy = make_policy(job.policy, job.policy_seed, job.noise)
-        return run_rollout(self.env, policy, job)
+        return run_rollout(self._env(), self.policy(job), job)
 
     def close(self) -> None:
-        self.env.close()
+        with self._lock:
+            for env in self._envs:
+                env.close()
+            self._envs.clear()
 
 
-def _ray_results(ray: Any, workers: list[Any], jobs: Sequence[RolloutJob]
-                 ) -> Iterator[tuple[int, RolloutResult]]:
-    queue = iter(enumerate(jobs))
-    in_flight: dict[Any, int] = {}
-    turn = 0
-    while True:
-        while len(in_flight) < len(workers) * QUEUE_PER_WORKER \
-                and (item := next(queue, None)) is not None:
-            in_flight[workers[turn % len(workers)].run.remote(item[1])] = item[0]
-            turn += 1
-        if not in_flight:
-            return
-        ready, _ = ray.wait(list(in_flight), num_returns=1)
-        for ref in ready:
-            yield in_flight.pop(ref), ray.get(ref)
+def rollout_factory(env_kwargs: dict[str, Any], worker: type[RolloutWorker] = RolloutWorker
+                    ) -> WorkerFactory[RolloutJob, RolloutResult]:
+    """`RolloutWorker`s (or a subclass) over `env_kwargs`, for the evaluation engine."""
+    return WorkerFactory(worker, (dict(env_kwargs),), lost=lost_rollout)
 
 
 def run_rollouts(jobs: Sequence[RolloutJob], env_kwargs: dict[str, Any], *,
                  ray: str | None = None, workers: int | None = None,
-                 on_ready: Callable[[], None] | None = None) -> list[RolloutResult]:
-    """Every job's result, in job order; serial without `ray`, else on Ray actors.
+                 on_ready: Callable[[], None] | None = None,
+                 worker: type[RolloutWorker] = RolloutWorker,
+                 trajectories: str | Path | None = None) -> list[RolloutResult]:
+    """Every job's result, in job order, through the evaluation engine's dispatch.
 
-    `on_ready` is called once the workers are up (environments built), before the first
-    episode, so a benchmark can time throughput apart from start-up.
+    Serial without `ray`, else on Ray actors (`workers`: rollouts at once, default one
+    per core). A job listed twice is run once. `on_ready` is called once the workers
+    are up (environments built), before the first episode, so a benchmark can time
+    throughput apart from start-up. `worker` may be a subclass of `RolloutWorker`
+    (one that builds its own policies, say); on Ray it must be picklable.
+
+    `trajectories` is the run's results file (`TrajectoryFile`): each finished
+    episode's lines are appended the moment it ends, and a rerun reads the episodes
+    already complete there (their `worker` is None) and runs only the others, as
+    `bench plan` does with its results file. A rollout whose worker was lost writes
+    nothing, so a rerun tries it again.
     """
-    if ray is None:
-        worker = RolloutWorker(env_kwargs)
-        try:
-            if on_ready is not None:
-                on_ready()
-            return [worker.run(job) for job in jobs]
-        finally:
-            worker.close()
-    require("scale", "ray")
-    import ray as ray_module
-
-    started = connect(ray)
-    actors: list[Any] = []
-    try:
-        cpus = max(1, int(ray_module.cluster_resources().get("CPU", 1)))
-        count = max(1, min(workers or cpus, len(jobs) or 1))
-        remote = ray_module.remote(RolloutWorker).options(num_cpus=min(1.0, cpus / count))
-        actors = [remote.remote(env_kwargs) for _ in range(count)]
-        ray_module.get([a.ready.remote() for a in actors])
-        if on_ready is not None:
-            on_ready()
-        results: list[RolloutResult | None] = [None] * len(jobs)
-        for index, result in _ray_results(ray_module, actors, jobs):
-            results[index] = result
-        return [r for r in results if r is not None]
-    finally:
-        for actor in actors:
-            ray_module.kill(actor)
-        if started:
-            ray_module.shutdown()
+    sink = TrajectoryFile(trajectories) if trajectories is not None else None
+    known = sink.complete(repair=True) if sink is not None else {}
+    unique, found, pending = plan_resume(jobs, RolloutJob.episode, known)
+    by_episode = {job.episode(): job for job in unique}
+    done = {episode: recorded_result(by_episode[episode], lines)
+            for episode, lines in found.items()}
+    factory = rollout_factory(env_kwargs, worker)
+    for result in run_on_workers(factory, pending, ray=ray, concurrency=workers,
+                                 on_ready=on_ready):
+        if sink is not None:
+            sink.append(result.lines)
+        done[result.job.episode()] = result
+    return [done[job.episode()] if done[job.episode()].job == job
+            else done[job.episode()].model_copy(update={"job": job}) for job in jobs]
 
 
 def pass_rates(results: Sequence[RolloutResult]) -> dict[str, float]:

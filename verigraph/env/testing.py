@@ -13,11 +13,14 @@ drifts fails loudly instead of hanging.
 from __future__ import annotations
 
 import json
-import threading
 from collections.abc import Iterable
-from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any
 
+from verigraph.agent.testing import (
+    ReceivedRequest,
+    RecordedResponse,
+    RecordedResponseServerForTests,
+)
 from verigraph.env.core import VeriGraphEnv
 from verigraph.env.rollout import Policy, RolloutJob, run_rollout
 
@@ -46,60 +49,36 @@ def _completion(answer: str, tool: str | None, turn: int) -> dict[str, Any]:
             "usage": {"prompt_tokens": 0, "completion_tokens": 0, "total_tokens": 0}}
 
 
-class ScriptedPlannerEndpointForTests:
-    """Serves `script` (observation -> answer) as /v1/chat/completions on 127.0.0.1."""
+class ScriptedPlannerEndpointForTests(RecordedResponseServerForTests):
+    """Serves `script` (observation -> answer) as /v1/chat/completions on 127.0.0.1.
+
+    The HTTP side is `RecordedResponseServerForTests` (verigraph.agent.testing); only
+    the choice of answer differs: looked up in the script, not taken from a queue.
+    `requests` keeps every request received (its `body` is the chat request).
+    """
 
     def __init__(self, script: dict[str, str]) -> None:
+        super().__init__()
         self.script = dict(script)
-        self.requests: list[dict[str, Any]] = []
-        self._lock = threading.Lock()
-        server = self
 
-        class Handler(BaseHTTPRequestHandler):
-            def do_POST(self) -> None:  # noqa: N802 (http.server's naming)
-                length = int(self.headers.get("content-length") or 0)
-                body = json.loads(self.rfile.read(length) or b"{}")
-                status, payload = server.answer(body)
-                data = json.dumps(payload).encode("utf-8")
-                self.send_response(status)
-                self.send_header("content-type", "application/json")
-                self.send_header("content-length", str(len(data)))
-                self.end_headers()
-                self.wfile.write(data)
-
-            def log_message(self, format: str, *args: Any) -> None:
-                return None
-
-        self._server = ThreadingHTTPServer(("127.0.0.1", 0), Handler)
-        self._thread = threading.Thread(target=self._server.serve_forever,
-                                        kwargs={"poll_interval": 0.05}, daemon=True)
-
-    def answer(self, body: dict[str, Any]) -> tuple[int, dict[str, Any]]:
+    def reply(self, request: ReceivedRequest) -> RecordedResponse:
         with self._lock:
-            self.requests.append(body)
+            self.requests.append(request)
             turn = len(self.requests)
+        body: dict[str, Any] = request.body if isinstance(request.body, dict) else {}
         messages = body.get("messages") or []
         latest: dict[str, Any] = next(
             (m for m in reversed(messages) if m.get("role") in ("user", "tool")), {})
         content = latest.get("content")
         text = content if isinstance(content, str) else ""
         if text not in self.script:
-            return 500, {"error": {"message": "no scripted answer for this observation "
-                                              f"(starts {text[:80]!r})"}}
+            return RecordedResponse({"error": {"message": "no scripted answer for this "
+                                               f"observation (starts {text[:80]!r})"}},
+                                    status=500)
         tools = body.get("tools") or []
         tool = tools[0]["function"]["name"] if tools else None
-        return 200, _completion(self.script[text], tool, turn)
+        return RecordedResponse(_completion(self.script[text], tool, turn))
 
     @property
     def base_url(self) -> str:
-        host, port = self._server.server_address[:2]
-        return f"http://{host!s}:{port}/v1"
-
-    def __enter__(self) -> ScriptedPlannerEndpointForTests:
-        self._thread.start()
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self._server.shutdown()
-        self._server.server_close()
-        self._thread.join(timeout=5)
+        return f"{self.url}/v1"

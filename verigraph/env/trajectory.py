@@ -3,11 +3,15 @@
 A rollout writes a `reset` line (the task record, the seed, the first observation and
 the state hash) and one `step` line per step: the observation the action answered, the
 action text, the actions parsed from it, the reward, the verdict and violation, the
-state hash after the step, and whether the episode ended. That is enough to train on
+state hash after the step, and whether the episode ended (the line that ends it also
+carries the outcome: success, stop reason, actions executed). That is enough to train on
 (observation, action, reward) triples and to replay: `replay` starts each episode again
 from its task record and feeds the recorded actions, and reports every step whose
 observation, reward, verdict or state hash differs. A replay that matches shows the
 rewards were produced by the verifier, not written by hand.
+
+`TrajectoryFile` is the same format as the results file of `run_rollouts`: episodes
+are appended as they finish and a rerun skips every episode already complete there.
 """
 
 from __future__ import annotations
@@ -17,11 +21,11 @@ from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.env.core import VeriGraphEnv
 from verigraph.env.dataset import TaskRecord
-from verigraph.errors import VeriGraphError
+from verigraph.env.jsonl import parse_models, read_models, write_models
 
 
 class TrajectoryLine(BaseModel):
@@ -46,6 +50,17 @@ class TrajectoryLine(BaseModel):
     truncated: bool = False
     next_observation: str | None = Field(default=None, description="step: the observation "
                                                                    "after it")
+    success: bool | None = Field(default=None, description="the line that ends the "
+                                                           "episode: was the goal reached")
+    stop_reason: str | None = Field(default=None, description="the line that ends the "
+                                                              "episode: why it ended")
+    moves: int | None = Field(default=None, description="the line that ends the episode: "
+                                                        "actions the verifier executed")
+
+    @property
+    def final(self) -> bool:
+        """Whether this line ends its episode."""
+        return self.terminated or self.truncated
 
 
 def reset_line(episode: str, task: TaskRecord, seed: int | None, observation: str,
@@ -57,37 +72,72 @@ def reset_line(episode: str, task: TaskRecord, seed: int | None, observation: st
 def step_line(episode: str, observation: str, action: str, reward: float, terminated: bool,
               truncated: bool, info: dict[str, Any], next_observation: str
               ) -> TrajectoryLine:
+    ended = terminated or truncated
     return TrajectoryLine(kind="step", episode=episode, step=info["step"],
                           observation=observation, action=action, parsed=info["parsed"],
                           reward=reward, verdict=info["verdict"], violation=info["violation"],
                           state_hash=info["state_hash"], terminated=terminated,
-                          truncated=truncated, next_observation=next_observation)
+                          truncated=truncated, next_observation=next_observation,
+                          success=bool(info["success"]) if ended else None,
+                          stop_reason=info["stop_reason"] if ended else None,
+                          moves=info["moves"] if ended else None)
 
 
 def write_lines(lines: Iterable[TrajectoryLine], path: str | Path) -> int:
     """Append lines to a JSONL file; returns how many."""
-    count = 0
-    with Path(path).open("a", encoding="utf-8") as out:
-        for line in lines:
-            out.write(line.model_dump_json(exclude_none=True) + "\n")
-            count += 1
-    return count
+    return write_models(lines, path, append=True, exclude_none=True)
 
 
 def read_lines(path: str | Path) -> list[TrajectoryLine]:
     """Every line of a trajectory file (a bad line is an error naming it)."""
-    lines = []
-    for number, text in enumerate(Path(path).read_text("utf-8").splitlines(), 1):
-        if not text.strip():
-            continue
-        try:
-            lines.append(TrajectoryLine.model_validate_json(text))
-        except ValidationError as exc:
-            err = exc.errors()[0]
-            raise VeriGraphError(f"{path}:{number}: {'.'.join(map(str, err['loc']))}: "
-                                 f"{err['msg']}", field=f"line {number}",
-                                 fix="use a file written by write_lines") from None
-    return lines
+    rows = read_models(path, TrajectoryLine, what="trajectory file",
+                       fix="pass a trajectory file written by write_lines")
+    return [line for _, line in rows]
+
+
+class TrajectoryFile:
+    """A trajectory JSONL that rollouts append to as they finish: their results file.
+
+    Each finished episode's lines go out in one write, flushed, so killing the run loses
+    at most the episodes in flight. `complete(repair=True)` reads the episodes already
+    there and cuts off whatever follows the last line that ended an episode (a line cut
+    short, an episode whose end never came) before anything more is appended, so a
+    resumed run leaves every episode in the file exactly once.
+    """
+
+    FIX = "pass a trajectory file written by run_rollouts or write_lines, or a new file"
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = Path(path)
+
+    def complete(self, repair: bool = False) -> dict[str, list[TrajectoryLine]]:
+        """Lines of every complete episode (a reset ... the line that ended it), by id."""
+        if not self.path.exists():
+            return {}
+        data = self.path.read_bytes()
+        whole = data[:data.rfind(b"\n") + 1].decode("utf-8")
+        rows = parse_models(whole, TrajectoryLine, source=str(self.path), fix=self.FIX)
+        last = max((number for number, line in rows if line.final), default=0)
+        keep = sum(len(text.encode("utf-8")) + 1 for text in whole.split("\n")[:last])
+        if repair and keep < len(data):
+            with self.path.open("r+b") as handle:
+                handle.truncate(keep)
+        groups: dict[str, list[TrajectoryLine]] = {}
+        for number, line in rows:
+            if number <= last:
+                groups.setdefault(line.episode, []).append(line)
+        return {episode: group for episode, group in groups.items()
+                if group[0].kind == "reset" and group[-1].final}
+
+    def append(self, lines: Iterable[TrajectoryLine]) -> None:
+        """One episode's lines (or several), in one write, flushed."""
+        text = "".join(line.model_dump_json(exclude_none=True) + "\n" for line in lines)
+        if not text:
+            return
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        with self.path.open("a", encoding="utf-8") as handle:
+            handle.write(text)
+            handle.flush()
 
 
 def episodes(lines: Iterable[TrajectoryLine]) -> Iterator[list[TrajectoryLine]]:
@@ -138,6 +188,12 @@ def replay(lines: Iterable[TrajectoryLine], env: VeriGraphEnv) -> ReplayReport:
                 if a != b and not (name == "observation" and b is None):
                     report.mismatches.append(f"{where}: {name} {_short(a)} != recorded "
                                              f"{_short(b)}")
+            ending = (bool(info["success"]), info["stop_reason"], info["moves"])
+            if line.final and line.success is not None \
+                    and ending != (line.success, line.stop_reason, line.moves):
+                report.mismatches.append(f"{where}: the episode ended as {_short(ending)}, "
+                                         f"recorded {_short(line.success)}, "
+                                         f"{_short(line.stop_reason)}, {_short(line.moves)}")
     return report
 
 

@@ -1,28 +1,40 @@
-"""Run a list of episode jobs serially or on Ray, resumably, with a progress bar.
+"""Run a list of jobs serially or on Ray, resumably, with a progress bar.
 
-`run_jobs` is the one evaluation engine, behind `verigraph bench plan` and every other
-caller (the public, stable entry point): it reads the results file, skips every job
-already recorded there, runs the rest (serially in this process by default, on Ray
-with `RunOptions.ray`), appends each record as it arrives, and returns the records of
-all the jobs asked for, in the order asked. Ctrl-C closes the bar, prints what is done
-and how to resume, and re-raises. The command-line flags that fill `RunOptions` are
-parsed in `verigraph.cli.bench`.
+`run_on_workers` is the one dispatch, generic over the worker (`WorkerFactory`): one
+serial path and one Ray path, used by `bench plan` episodes (`EpisodeWorker`) and by
+environment rollouts (`verigraph.env.rollout`, `RolloutWorker`) alike.
+
+`run_jobs` is the evaluation engine for episodes, behind `verigraph bench plan` and
+every other caller (the public, stable entry point): it reads the results file, skips
+every job already recorded there (`plan_resume`, which rollouts share), runs the rest
+through `run_on_workers` (serially in this process by default, on Ray with
+`RunOptions.ray`), appends each record as it arrives, and returns the records of all
+the jobs asked for, in the order asked. Ctrl-C closes the bar, prints what is done and
+how to resume, and re-raises. The command-line flags that fill `RunOptions` are parsed
+in `verigraph.cli.bench`.
 """
 
 from __future__ import annotations
 
 import sys
-from collections.abc import Callable, Generator, Sequence
+from collections.abc import Callable, Generator, Mapping, Sequence
 from typing import TextIO
 
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.agent.evaluation.limiter import BackendLimits, RateLimiter
 from verigraph.agent.evaluation.progress_bar import EpisodeProgress
+from verigraph.agent.evaluation.ray_runner import run_on_ray
 from verigraph.agent.evaluation.results import BenchRecord, ResultsFile
 from verigraph.agent.evaluation.spec import EpisodeJob
 from verigraph.agent.evaluation.tasks import Task
-from verigraph.agent.evaluation.worker import EngineConfig, EpisodeWorker
+from verigraph.agent.evaluation.worker import (
+    EngineConfig,
+    JobT,
+    ResultT,
+    WorkerFactory,
+    episode_factory,
+)
 
 
 class RunOptions(BaseModel):
@@ -48,21 +60,23 @@ class RunOptions(BaseModel):
     progress: bool = True
 
 
-def execute(jobs: list[EpisodeJob], tasks: dict[str, Task], options: RunOptions,
-            on_ready: Callable[[], None] | None = None
-            ) -> Generator[BenchRecord, None, None]:
-    """Records of `jobs` as they finish (no resuming, no file: see `run_jobs`).
+def run_on_workers(factory: WorkerFactory[JobT, ResultT], jobs: Sequence[JobT], *,
+                   ray: str | None = None, concurrency: int | None = None,
+                   on_ready: Callable[[], None] | None = None
+                   ) -> Generator[ResultT, None, None]:
+    """Results of `jobs` as they finish, on workers `factory` builds: the one dispatch.
 
-    `on_ready` is called when the workers are up, before the first episode starts.
+    Without `ray`, one worker in this process runs the jobs in order; with it (local,
+    auto, HOST:PORT, ray://...), `verigraph.agent.evaluation.ray_runner` runs them on a
+    pool of actors of the same worker class. `bench plan` episodes and environment
+    rollouts both come through here. `on_ready` is called when the workers are up,
+    before the first job starts.
     """
-    if options.ray is not None:
-        from verigraph.agent.evaluation.ray_runner import run_on_ray
-
-        yield from run_on_ray(jobs, tasks, options.engine, address=options.ray,
-                              concurrency=options.concurrency, limiter=options.limiter(),
+    if ray is not None:
+        yield from run_on_ray(factory, jobs, address=ray, concurrency=concurrency,
                               on_ready=on_ready)
         return
-    worker = EpisodeWorker(tasks, options.engine, options.limiter())
+    worker = factory.build()
     if on_ready is not None:
         on_ready()
     try:
@@ -70,6 +84,33 @@ def execute(jobs: list[EpisodeJob], tasks: dict[str, Task], options: RunOptions,
             yield worker.run(job)
     finally:
         worker.close()
+
+
+def plan_resume(jobs: Sequence[JobT], key: Callable[[JobT], str],
+                known: Mapping[str, ResultT]
+                ) -> tuple[list[JobT], dict[str, ResultT], list[JobT]]:
+    """(the jobs once each, the results already in the results file, the jobs to run).
+
+    `known` maps a job's key to its result as read back from a results file; a job
+    listed twice is one job. `run_jobs` (episodes) and the environment's
+    `run_rollouts` (trajectory files) resume the same way.
+    """
+    unique = list({key(job): job for job in jobs}.values())
+    done = {key(job): known[key(job)] for job in unique if key(job) in known}
+    pending = [job for job in unique if key(job) not in done]
+    return unique, done, pending
+
+
+def execute(jobs: list[EpisodeJob], tasks: dict[str, Task], options: RunOptions,
+            on_ready: Callable[[], None] | None = None
+            ) -> Generator[BenchRecord, None, None]:
+    """Records of `jobs` as they finish (no resuming, no file: see `run_jobs`).
+
+    `on_ready` is called when the workers are up, before the first episode starts.
+    """
+    factory = episode_factory(tasks, options.engine, options.limiter())
+    yield from run_on_workers(factory, jobs, ray=options.ray,
+                              concurrency=options.concurrency, on_ready=on_ready)
 
 
 def run_jobs(jobs: Sequence[EpisodeJob], tasks: dict[str, Task], options: RunOptions, *,
@@ -85,11 +126,9 @@ def run_jobs(jobs: Sequence[EpisodeJob], tasks: dict[str, Task], options: RunOpt
     `success=False` and `error` set, never an exception.
     """
     stream = stream or sys.stderr
-    unique = list({job.key(): job for job in jobs}.values())
     sink = ResultsFile(options.results) if options.results else None
     known = {r.key: r for r in sink.load(repair=True)} if sink else {}
-    done = {job.key(): known[job.key()] for job in unique if job.key() in known}
-    pending = [job for job in unique if job.key() not in done]
+    unique, done, pending = plan_resume(jobs, EpisodeJob.key, known)
     if done:
         print(f"resuming: {len(done)} of {len(unique)} episodes already in {options.results}; "
               f"running {len(pending)}", file=stream)

@@ -1,15 +1,18 @@
-"""Episodes on Ray: a pool of `EpisodeWorker` actors and one shared limiter actor.
+"""Jobs on Ray: a pool of worker actors and one shared limiter actor.
 
-Each actor holds the task table (put in the object store once) and runs jobs with
-the same `EpisodeWorker.run` the serial path calls, so results do not depend on the
-scheduler. An actor may run several episodes at once on threads (`max_concurrency`):
-episodes spend most of their time waiting on a model API, not on a core. Jobs are
-submitted a few at a time per slot and collected with `ray.wait` as they finish, so
-a record reaches the results file the moment its episode is done.
+The actors are built by a `WorkerFactory` (`EpisodeWorker` for `bench plan`,
+`RolloutWorker` for environment rollouts): each holds the factory's arguments (the
+task table, put in the object store once) and runs jobs with the same `run` the serial
+path calls, so results do not depend on the scheduler. An actor may run several jobs at
+once on threads (`max_concurrency`): episodes spend most of their time waiting on a
+model API, not on a core. Jobs are submitted a few at a time per slot and collected
+with `ray.wait` as they finish, so a result reaches the results file the moment its
+job is done.
 
-A worker process that dies is restarted by Ray and its episodes retried (they are
-idempotent: same seed, same record); an episode whose worker is lost for good is
-recorded with `error_kind` "worker" and the run goes on.
+A worker process that dies is restarted by Ray and its jobs retried (they are
+idempotent: same seed, same result); a job whose worker is lost for good gets the
+factory's `lost` result (for an episode, `error_kind` "worker") and the run goes on on
+the remaining workers.
 
 `address`: "local" starts a private Ray instance with this machine's cores (and stops
 it afterwards); "auto", "HOST:PORT" or "ray://HOST:10001" join a running cluster, to
@@ -24,20 +27,19 @@ import logging
 import math
 import os
 import socket
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
 import verigraph
 from verigraph.agent.evaluation.limiter import RateLimiter
-from verigraph.agent.evaluation.results import BenchRecord, blank_record
-from verigraph.agent.evaluation.spec import EpisodeJob
-from verigraph.agent.evaluation.tasks import Task
-from verigraph.agent.evaluation.worker import EngineConfig, EpisodeWorker
+from verigraph.agent.evaluation.worker import JobT, ResultT, WorkerFactory
 from verigraph.errors import VeriGraphError
 from verigraph.extras import require
 
-QUEUE_PER_SLOT = 2  # jobs queued per concurrent slot: workers never idle, Ctrl-C stays quick
+# Jobs queued per concurrent slot: workers never idle, Ctrl-C stays quick, and a worker
+# that dies for good takes at most this many jobs per thread with it.
+QUEUE_PER_SLOT = 2
 WORKER_RESTARTS = 2  # a dead worker actor is restarted and its episodes retried (idempotent)
 
 
@@ -104,44 +106,64 @@ class ActorLimiter:
         self.handle.release.remote(backend)
 
 
-def _lost(job: EpisodeJob, exc: Exception) -> BenchRecord:
-    record = blank_record(job, job.setting.planner)
-    record.error_kind = "worker"
-    record.stop_reason = "worker_error"
-    record.error = f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"[:500]
-    return record
+def _error_text(exc: Exception) -> str:
+    first = str(exc).splitlines()[0] if str(exc) else ""
+    return f"{type(exc).__name__}: {first}"[:500]
 
 
-def _dispatch(ray: Any, workers: list[Any], jobs: list[EpisodeJob],
-              budget: int) -> Iterator[BenchRecord]:
-    """Keep `budget` jobs queued over the workers (round robin); yield as they finish."""
+def _dispatch(ray: Any, workers: list[Any], jobs: Sequence[JobT], per_worker: int,
+              lost: Callable[[JobT, str], ResultT]) -> Iterator[ResultT]:
+    """Keep up to `per_worker` jobs queued on each live worker; yield as they finish.
+
+    A new job goes to the live worker with the fewest jobs in flight (ties in round robin
+    order), so a worker that is being restarted holds no more than its share. A worker
+    whose actor died for good (its restarts used up) leaves the rotation and the jobs
+    after it go to the others; its jobs in flight come back as `lost` results, and when
+    no worker is left every job still waiting does too.
+    """
     queue = iter(jobs)
-    in_flight: dict[Any, EpisodeJob] = {}
+    load = [0] * len(workers)
+    live = list(range(len(workers)))
+    in_flight: dict[Any, tuple[JobT, int]] = {}
     turn = 0
+    exhausted = False
     while True:
-        while len(in_flight) < budget and (job := next(queue, None)) is not None:
-            in_flight[workers[turn % len(workers)].run.remote(job)] = job
-            turn += 1
+        while not exhausted and (free := [i for i in live if load[i] < per_worker]):
+            job = next(queue, None)
+            if job is None:
+                exhausted = True
+                break
+            index = min(free, key=lambda i: (load[i], (i - turn) % len(workers)))
+            in_flight[workers[index].run.remote(job)] = (job, index)
+            load[index] += 1
+            turn = index + 1
         if not in_flight:
-            return
+            break
         ready, _ = ray.wait(list(in_flight), num_returns=1)
         for ref in ready:
-            job = in_flight.pop(ref)
+            job, index = in_flight.pop(ref)
+            load[index] -= 1
             try:
-                yield ray.get(ref)
+                result = ray.get(ref)
             except ray.exceptions.RayError as exc:
-                yield _lost(job, exc)
+                if isinstance(exc, ray.exceptions.ActorDiedError) and index in live:
+                    live.remove(index)
+                result = lost(job, _error_text(exc))
+            yield result
+    for job in queue:
+        yield lost(job, "ActorDiedError: every worker was lost before this job started")
 
 
-def run_on_ray(jobs: list[EpisodeJob], tasks: dict[str, Task], config: EngineConfig, *,
+def run_on_ray(factory: WorkerFactory[JobT, ResultT], jobs: Sequence[JobT], *,
                address: str = "local", concurrency: int | None = None,
-               limiter: RateLimiter | None = None,
-               on_ready: Callable[[], None] | None = None) -> Iterator[BenchRecord]:
-    """Yield one record per job, in the order they finish.
+               on_ready: Callable[[], None] | None = None) -> Iterator[ResultT]:
+    """Yield one result per job, in the order they finish, from actors of `factory`.
 
-    `on_ready` is called once every worker actor is up (its process started and the
-    task table loaded), before the first job is submitted: start-up is then separable
-    from throughput.
+    `concurrency` is how many jobs run at once (default: one per core); there are at
+    most one actor per core (and per job), each running `concurrency / actors` jobs on
+    threads. `on_ready` is called once every worker actor is up (its process started
+    and its arguments loaded), before the first job is submitted: start-up is then
+    separable from throughput.
     """
     ray = _ray()
     started = connect(address)
@@ -149,26 +171,27 @@ def run_on_ray(jobs: list[EpisodeJob], tasks: dict[str, Task], config: EngineCon
     try:
         cpus = max(1, int(ray.cluster_resources().get("CPU", 1)))
         slots = max(1, concurrency or cpus)
-        n_actors = min(cpus, slots)
+        n_actors = max(1, min(cpus, slots, len(jobs)))
         threads = math.ceil(slots / n_actors)
-        shared = None
-        if limiter is not None:  # the same budgets, held by one actor for the cluster
+        extra: dict[str, Any] = {}
+        if factory.limiter is not None:  # the same budgets, held by one actor for the cluster
+            limiter = factory.limiter
             limiter_actor = ray.remote(RateLimiter).options(num_cpus=0).remote(
                 limiter.limits, default=limiter.default)
             actors.append(limiter_actor)
-            shared = ActorLimiter(limiter_actor)
-        remote_worker = ray.remote(EpisodeWorker).options(
+            extra["limiter"] = ActorLimiter(limiter_actor)
+        remote_worker = ray.remote(factory.worker).options(
             num_cpus=1, max_concurrency=threads, max_restarts=WORKER_RESTARTS,
             max_task_retries=WORKER_RESTARTS)
-        # Held until the run ends, so a restarted worker can still read it (Ray warns
+        # Held until the run ends, so a restarted worker can still read them (Ray warns
         # about restartable actors with object-store arguments; this is the remedy).
-        tasks_ref = ray.put(tasks)
-        workers = [remote_worker.remote(tasks_ref, config, shared) for _ in range(n_actors)]
+        refs = [ray.put(arg) for arg in factory.args]
+        workers = [remote_worker.remote(*refs, **extra) for _ in range(n_actors)]
         actors.extend(workers)
         ray.get([worker.ready.remote() for worker in workers])
         if on_ready is not None:
             on_ready()
-        yield from _dispatch(ray, workers, jobs, n_actors * threads * QUEUE_PER_SLOT)
+        yield from _dispatch(ray, workers, jobs, threads * QUEUE_PER_SLOT, factory.lost)
     finally:
         for actor in actors:
             ray.kill(actor)

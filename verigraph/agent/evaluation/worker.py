@@ -1,7 +1,10 @@
 """Run one episode job and return its record: the one code path of every run mode.
 
 The serial engine and each Ray worker both call `EpisodeWorker.run` (or `run_job`
-under it), so a seed gives the same episode whichever way it is scheduled.
+under it), so a seed gives the same episode whichever way it is scheduled. The engine
+itself knows no episodes: it runs any `Worker` (ready, run, close) that a
+`WorkerFactory` builds, so environment rollouts (verigraph.env.rollout) are scheduled,
+queued and recorded by the same code as `bench plan` episodes.
 Any exception an episode raises (a planner that fails after its retries, a tool error,
 a bug) becomes that episode's recorded outcome; the run goes on.
 
@@ -17,13 +20,16 @@ import os
 import socket
 import threading
 import time
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any, Generic, Protocol, TypeVar
 
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.agent.environment import InProcessTools, ToolEnvironment
 from verigraph.agent.evaluation.guard import GuardedPlanner, RetryPolicy, SimulatedLatencyPlanner
-from verigraph.agent.evaluation.limiter import Gate, LimiterLike
+from verigraph.agent.evaluation.limiter import Gate, LimiterLike, RateLimiter
 from verigraph.agent.evaluation.results import BenchRecord, blank_record
 from verigraph.agent.evaluation.spec import EpisodeJob, Setting
 from verigraph.agent.evaluation.tasks import Task
@@ -35,6 +41,49 @@ from verigraph.agent.transcripts import RecordingPlanner, ReplayingPlanner
 from verigraph.errors import VeriGraphError
 
 OFFLINE_PLANNERS = ("oracle", "rule-based", "greedy", "noisy")
+
+JobT = TypeVar("JobT")
+ResultT = TypeVar("ResultT")
+JobT_contra = TypeVar("JobT_contra", contravariant=True)
+ResultT_co = TypeVar("ResultT_co", covariant=True)
+
+
+class Worker(Protocol[JobT_contra, ResultT_co]):
+    """What the engine runs jobs on, in this process or as a Ray actor.
+
+    `run` must be safe to call from several threads at once (a Ray actor may run a few
+    jobs concurrently) and must not raise for a job that merely fails: its outcome is a
+    result. `ready` answers once the worker is built, so start-up can be timed apart.
+    """
+
+    def ready(self) -> str: ...
+
+    def run(self, job: JobT_contra) -> ResultT_co: ...
+
+    def close(self) -> None: ...
+
+
+@dataclass(frozen=True)
+class WorkerFactory(Generic[JobT, ResultT]):
+    """How to build a worker here or on Ray, and what a job whose worker is lost yields.
+
+    `worker` is a class (Ray makes actors of classes) called with `args`, plus
+    `limiter=` when `limiter` is set: the limiter itself in this process, a proxy of one
+    limiter actor shared by the cluster on Ray. On Ray each argument is put in the
+    object store once for all actors. `lost(job, error)` is the failed result of a job
+    whose worker process died for good, so a run never ends in an exception for it.
+    """
+
+    worker: type[Any]
+    args: tuple[Any, ...]
+    lost: Callable[[JobT, str], ResultT]
+    limiter: RateLimiter | None = None
+
+    def build(self) -> Worker[JobT, ResultT]:
+        """The worker in this process (the Ray path builds its actors itself)."""
+        extra = {"limiter": self.limiter} if self.limiter is not None else {}
+        worker: Worker[JobT, ResultT] = self.worker(*self.args, **extra)
+        return worker
 
 
 class EngineConfig(BaseModel):
@@ -98,8 +147,18 @@ class PlannerPool:
         self._owned.clear()
 
 
-def _worker_name() -> str:
+def worker_name() -> str:
+    """host:pid, the place a result records it ran."""
     return f"{socket.gethostname()}:{os.getpid()}"
+
+
+def lost_record(job: EpisodeJob, error: str) -> BenchRecord:
+    """The record of an episode whose worker process was lost for good."""
+    record = blank_record(job, job.setting.planner)
+    record.error_kind = "worker"
+    record.stop_reason = "worker_error"
+    record.error = error[:500]
+    return record
 
 
 def run_job(job: EpisodeJob, task: Task, env: ToolEnvironment, pool: PlannerPool,
@@ -156,7 +215,7 @@ def run_job(job: EpisodeJob, task: Task, env: ToolEnvironment, pool: PlannerPool
         record.total_tokens = planner.usage.total_tokens
         record.cost_usd = planner.usage.cost_usd
     record.wall_s = time.perf_counter() - started
-    record.worker = _worker_name()
+    record.worker = worker_name()
     return record
 
 
@@ -186,7 +245,7 @@ class EpisodeWorker:
 
     def ready(self) -> str:
         """Where this worker runs (a Ray actor answers once it is constructed)."""
-        return _worker_name()
+        return worker_name()
 
     def run(self, job: EpisodeJob) -> BenchRecord:
         task = self.tasks.get(job.task_ref)
@@ -202,3 +261,10 @@ class EpisodeWorker:
             for pool in self._pools:
                 pool.close()
             self._pools.clear()
+
+
+def episode_factory(tasks: dict[str, Task], config: EngineConfig,
+                    limiter: RateLimiter | None = None
+                    ) -> WorkerFactory[EpisodeJob, BenchRecord]:
+    """`EpisodeWorker`s over this task table: the factory behind `bench plan`."""
+    return WorkerFactory(EpisodeWorker, (tasks, config), lost=lost_record, limiter=limiter)
