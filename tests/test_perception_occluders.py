@@ -149,3 +149,23 @@ def test_a_piece_cut_to_a_sliver_is_no_shape_and_no_traceback() -> None:
     sliver = Region(5, 10, 10, np.ones((1, 30), bool))
     assert outline(sliver, 4) is None
     assert outline(Region(5, 10, 10, np.ones((20, 20), bool)), 4) is not None
+
+
+@pytest.mark.parametrize("level", ["3% horizontal", "6% vertical", "3% tilted 30 deg"])
+def test_a_bar_across_a_tangram_names_the_pieces_it_hides(level: str) -> None:
+    """Every piece whose clean outline the bar covers is named in `occluded`, and the
+    graph is not accepted as fact."""
+    named = 0
+    for i in range(4):
+        scene = generate_scene("tangram", SEED + 40 + i)
+        clean = scene.world.render()
+        spoilt = degrade(clean, SHAKE_AND_OCCLUDERS["bar"][level], seed=scene.seed)
+        covered = np.any(spoilt != clean, axis=2)
+        seen = perceive_image(clean, dictionary="tangram")
+        hidden = {o.id for o in seen.objects
+                  if covered[o.box[1]:o.box[3], o.box[0]:o.box[2]].mean() > 0.05}
+        result = perceive_image(spoilt, dictionary="tangram")
+        assert hidden <= set(result.occluded), (scene.seed, hidden, result.occluded)
+        assert not result.confident
+        named += bool(hidden)
+    assert named >= 1  # the bar did hide something

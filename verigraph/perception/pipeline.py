@@ -85,9 +85,10 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
     if view == "tangram":
         result = perceive_tangram(bgr, d, config, labeller)
     elif d.name == UNION:
-        result = _choose_family(bgr, config, labeller, level < SOFT)
+        result = _choose_family(bgr, config, labeller, level < SOFT, restored is not None)
     else:
-        result = _perceive_tabletop(bgr, d, config, labeller, level < SOFT)
+        result = _perceive_tabletop(bgr, d, config, labeller, level < SOFT,
+                                    restored is not None)
     if blurred is not None:
         result.warnings.insert(0, blurred)
     if restored is not None:
@@ -104,8 +105,11 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
 
 
 def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
-                       labeller: Labeller, soft: bool = False) -> PerceptionResult:
-    """A side view; `soft`: the picture is blurred (thin objects are checked by shape)."""
+                       labeller: Labeller, soft: bool = False,
+                       restored: bool = False) -> PerceptionResult:
+    """A side view; `soft`: the picture is blurred (thin objects are checked by shape);
+    `restored`: its motion blur was undone (the detector reads white and silver
+    pockets accordingly)."""
     models = models_by_colour(d)
     table = colors.colour_table(tuple(sorted(models)), tangram=False)
     photo = correct_colours(bgr, [c for i, c in enumerate(table.bgr) if i not in
@@ -126,7 +130,8 @@ def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
     hidden = hidden_mask(occluders, classes.shape)
     if hidden is not None:
         classes[hidden] = colors.UNKNOWN  # no object is read off an occluder's pixels
-    scene = detect_tabletop(corrected, classes, table, models, labeller, config, occluders)
+    scene = detect_tabletop(corrected, classes, table, models, labeller, config, occluders,
+                            restored=restored)
     detections = scene.detections
     warnings = notes + list(scene.warnings)
     if not detections:
@@ -173,7 +178,8 @@ def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
 
 
 def _choose_family(bgr: np.ndarray, config: PerceptionConfig,
-                   labeller: Labeller, soft: bool = False) -> PerceptionResult:
+                   labeller: Labeller, soft: bool = False,
+                   restored: bool = False) -> PerceptionResult:
     """Perceive with each tabletop family's dictionary and keep the one that explains
     the picture best (share of the scene its objects account for, less a penalty per
     ill-formed fact and per uncertain object, and a penalty for outlines that fit their
@@ -181,7 +187,8 @@ def _choose_family(bgr: np.ndarray, config: PerceptionConfig,
     `FAMILY_MARGIN` of each other."""
     tried = []
     for name in FAMILY_ORDER:
-        result = _perceive_tabletop(bgr, builtin_dictionary(name), config, labeller, soft)
+        result = _perceive_tabletop(bgr, builtin_dictionary(name), config, labeller, soft,
+                                    restored)
         problems = sum(w.startswith("perceived graph:") for w in result.warnings)
         problems += sum(" " not in u.item and not u.reason.startswith(HIDDEN_REASON)
                         for u in result.uncertain)  # doubtful objects (not what is hidden)

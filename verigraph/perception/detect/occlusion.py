@@ -215,8 +215,9 @@ def find_occluders(image: np.ndarray, scenery: Sequence[tuple[int, int, int]],
         if area < BLOB_SHARE * h * w / 4:
             continue
         touches = sum((x <= BORDER, y <= BORDER, x + bw >= w - BORDER, y + bh >= h - BORDER))
-        if touches not in (0, 2) or (touches == 2 and bw < BAND_REACH * w
-                                     and bh < BAND_REACH * h):
+        # A band meets two sides of the frame, or three when it runs out at a corner.
+        if touches in (1, 4) or (touches >= 2 and bw < BAND_REACH * w
+                                                 and bh < BAND_REACH * h):
             continue  # the wall, the floor, the table; or a thing standing at the border
         comp = labels[y:y + bh, x:x + bw] == i
         kind = _band_or_blob(comp, x, y, (h, w), image, foreign)
@@ -249,12 +250,15 @@ def _band_or_blob(comp: np.ndarray, x: int, y: int, shape: tuple[int, int],
     touches = (x <= BORDER, y <= BORDER, x + bw >= w - BORDER, y + bh >= h - BORDER)
     area = float(np.count_nonzero(comp))
     points = np.column_stack(np.nonzero(comp)[::-1]).astype(np.float32)
-    if sum(touches) == 2 and (bw >= BAND_REACH * w or bh >= BAND_REACH * h):
-        (_, _), (rw, rh), _ = cv2.minAreaRect(points)
-        length, width = max(rw, rh), min(rw, rh)
+    if sum(touches) in (2, 3) and (bw >= BAND_REACH * w or bh >= BAND_REACH * h):
         # Its two ends meet the frame, not a long side (a floor cut in two by a bar
-        # meets the frame along its bottom).
+        # meets the frame along its bottom; the wall meets it along three sides).
         on_frame = _frame_pixels(comp, touches)
+        # (the test below needs on_frame <= 3 width + 4 <= 1.5 length + 4, so the
+        # rectangle is not fitted to a component that cannot pass: the wall)
+        (_, _), (rw, rh), _ = cv2.minAreaRect(points) if on_frame <= 1.5 * float(
+            np.hypot(bw, bh)) + 4 else ((0.0, 0.0), (0.0, 0.0), 0.0)
+        length, width = max(rw, rh), min(rw, rh)
         if length > 0 and width <= BAND_THIN * length and \
                 area >= BAND_FILL * length * width and on_frame <= 3 * width + 4:
             return "band"

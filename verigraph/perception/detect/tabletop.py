@@ -39,6 +39,7 @@ MERGE_SLACK = 1.2
 MERGE_PIXELS = 4.0
 CLIPPED_MEAN = 248.0
 ACTIVITY_PAD = 4
+RIM = 4  # px: widest ring of blurred edge that is taken for a rim, not an object
 
 
 @dataclass(slots=True)
@@ -147,11 +148,19 @@ def assemble(fragments: list[Region], table: ColourTable,
 
 
 def bright_objects(candidates: list[Region], image: np.ndarray, table: ColourTable,
-                   models: dict[str, list[ObjectModel]], scale: float) -> list[Region]:
+                   models: dict[str, list[ObjectModel]], scale: float, *,
+                   restored: bool = False) -> list[Region]:
     """Enclosed background-coloured areas that are white/silver objects: closer to the
     object's colour than to the background's, and no larger than the object. A pocket
     whose pixels are all clipped says nothing about its colour; it must at least be
-    half as long as the object."""
+    half as long as the object.
+
+    A pocket's colour is the mean of its brightest quarter, because blur darkens a thin
+    white plate towards its outline; in a picture whose motion blur was undone
+    (`restored`) the deconvolution's ringing brightens faint echoes of every edge, so
+    the brightest quarter of a silver pot reads as wall: there a pocket the brightest
+    quarter takes for wall is judged again by its median pixel, which ringing does not
+    move (a restored thin white plate still needs the brightest quarter)."""
     options = [c for c in table.bright if table.names[c] in models]
     if not options:
         return []
@@ -167,12 +176,13 @@ def bright_objects(candidates: list[Region], image: np.ndarray, table: ColourTab
         if all(too_large(region, c) for c in options):
             continue  # larger than any bright object, whatever its colour (the wall)
         pixels = image[region.y0:region.y1, region.x0:region.x1][region.mask].reshape(-1, 3)
-        # The brightest quarter: blur darkens a thin white plate towards its outline.
         bright = pixels.astype(np.float32)
         level = bright.sum(axis=1)
         mean = bright[level >= np.percentile(level, 75)].mean(axis=0)
-        best = min([BACKGROUND, *options],
-                   key=lambda c: float(np.linalg.norm(mean - np.array(table.bgr[c]))))
+        best = _nearest(mean, [BACKGROUND, *options], table)
+        if best == BACKGROUND and restored:
+            mean = np.median(bright, axis=0)
+            best = _nearest(mean, [BACKGROUND, *options], table)
         if best == BACKGROUND:
             continue
         if too_large(region, best):
@@ -184,12 +194,32 @@ def bright_objects(candidates: list[Region], image: np.ndarray, table: ColourTab
     return out
 
 
+def without_rims(regions: list[Region]) -> list[Region]:
+    """The regions less any that is only a rim around another: a region whose box
+    holds another's and reaches at most `RIM` px beyond it on every side, with fewer
+    pixels than half of that other one. A strong blur, or the ringing of its
+    restoration, leaves such a ring of a darker shade around a flat object (a maroon
+    ring around a red block); no object of the dictionaries fits around another that
+    closely with less than half its pixels (a cup holding a spoon is far larger than
+    the spoon)."""
+    def rim_of(r: Region, o: Region) -> bool:
+        return (r is not o and r.area < 0.5 * o.area
+                and r.x0 <= o.x0 and r.y0 <= o.y0 and o.x1 <= r.x1 and o.y1 <= r.y1
+                and o.x0 - r.x0 <= RIM and o.y0 - r.y0 <= RIM
+                and r.x1 - o.x1 <= RIM and r.y1 - o.y1 <= RIM)
+    return [r for r in regions if not any(rim_of(r, o) for o in regions)]
+
+
+def _nearest(colour: np.ndarray, classes: Sequence[int], table: ColourTable) -> int:
+    return min(classes, key=lambda c: float(np.linalg.norm(colour - np.array(table.bgr[c]))))
+
+
 def detect_tabletop(image: np.ndarray, classes: np.ndarray, table: ColourTable,
                     models: dict[str, list[ObjectModel]], labeller: Labeller,
-                    config: PerceptionConfig, occluders: Sequence[Occluder] = ()
-                    ) -> PerceivedTabletop:
+                    config: PerceptionConfig, occluders: Sequence[Occluder] = (),
+                    *, restored: bool = False) -> PerceivedTabletop:
     """Objects in a side-view image whose pixels are already classified (an occluder's
-    pixels as UNKNOWN)."""
+    pixels as UNKNOWN); `restored`: its motion blur was undone (see `bright_objects`)."""
     warnings: list[str] = []
     floor = floor_row(classes)
     # Work inside the box around everything that is neither wall nor floor: a tabletop
@@ -208,8 +238,10 @@ def detect_tabletop(image: np.ndarray, classes: np.ndarray, table: ColourTable,
     if table.bright and any(table.names[c] in models for c in table.bright):
         pockets = [r.shifted(x0, y0) for r in enclosed_bright(
             crop_image, crop_classes, table, min_core=config.min_core_pixels)]
-        fragments += bright_objects(pockets, image, table, models, scale)
+        fragments += bright_objects(pockets, image, table, models, scale,
+                                    restored=restored)
     objects = assemble(fragments, table, models, scale, classes, warnings, occluders)
+    objects = without_rims(objects)
     all_models = [m for ms in models.values() for m in ms]
     objects = [r for r in objects if table.names[r.cls] in models]
     labels = labeller.label(image, objects, [table.names[r.cls] for r in objects],

@@ -206,6 +206,8 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
         if missing:
             warnings.append(f"not seen: {', '.join(missing)}; they may be behind what is in "
                             "front of the table")
+            # A piece wholly behind the occluder touches nothing seen: it is named too.
+            occluded = sorted(set(occluded) | set(missing))
         merge_doubts(confidence, uncertain, doubts)
     return PerceptionResult(graph=graph, view="tangram", family="tangram",
                             labeller=labeller.name, objects=[objects[p] for p in ids],
