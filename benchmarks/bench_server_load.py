@@ -227,11 +227,15 @@ FLOOD_CONNECTIONS = 4
 FAIR_BLOCKS = 3000  # a 3,000-block tower: a 280 KB load_scene
 
 
-def flood_connection(url: str, stop: Any, done: Any) -> None:
-    graph = {"nodes": [{"id": f"n{i}", "label": "block"} for i in range(FLOOD_NODES)],
+def post_back_to_back(url: str, stop: Any, done: Any, nodes: int = FLOOD_NODES,
+                      address: str | None = None) -> None:
+    """One connection posting a graph of `nodes` small nodes (refused as too large, after
+    the checker parsed it) again and again until `stop`, from `address` if given."""
+    graph = {"nodes": [{"id": f"n{i}", "label": "block"} for i in range(nodes)],
              "edges": []}
     headers, body = wire_call("validate_plan", {"graph": graph, "plan": "done"}, 1)
-    with httpx2.Client(headers=headers, timeout=120) as http:
+    transport = httpx2.HTTPTransport(local_address=address) if address else None
+    with httpx2.Client(transport=transport, headers=headers, timeout=120) as http:
         while not stop.is_set():
             reply = http.post(url, content=body)
             assert reply.status_code in (200, 413, 503), reply.text[:300]
@@ -242,7 +246,7 @@ def flood_connection(url: str, stop: Any, done: Any) -> None:
 def flooding_client(url: str, stop: Any, done: Any) -> None:
     """One client posting 15 MB bodies from FLOOD_CONNECTIONS connections at once, each
     back to back until `stop` is set (its own process, threads for the connections)."""
-    threads = [threading.Thread(target=flood_connection, args=(url, stop, done))
+    threads = [threading.Thread(target=post_back_to_back, args=(url, stop, done))
                for _ in range(FLOOD_CONNECTIONS)]
     for thread in threads:
         thread.start()
@@ -297,24 +301,11 @@ BURST_BODIES = 8
 FLOODER, OTHER = "127.0.0.1", "127.0.0.2"  # two clients: the server tells them by address
 
 
-def burst_connection(url: str, stop: Any, done: Any) -> None:
-    """One of the flooding client's connections (from FLOODER), posting back to back."""
-    graph = {"nodes": [{"id": f"n{i}", "label": "block"} for i in range(BURST_NODES)],
-             "edges": []}
-    headers, body = wire_call("validate_plan", {"graph": graph, "plan": "done"}, 1)
-    transport = httpx2.HTTPTransport(local_address=FLOODER)
-    with httpx2.Client(transport=transport, headers=headers, timeout=120) as http:
-        while not stop.is_set():
-            reply = http.post(url, content=body)
-            assert reply.status_code in (200, 413, 503), reply.text[:300]
-            with done.get_lock():
-                done.value += 1
-
-
 def bursting_client(url: str, stop: Any, done: Any) -> None:
     """One client with BURST_BODIES large bodies in flight at all times: a connection
     each, every one posting again as soon as it is answered (its own process)."""
-    threads = [threading.Thread(target=burst_connection, args=(url, stop, done))
+    threads = [threading.Thread(target=post_back_to_back,
+                                args=(url, stop, done, BURST_NODES, FLOODER))
                for _ in range(BURST_BODIES)]
     for thread in threads:
         thread.start()

@@ -16,7 +16,7 @@ from mcp import Client
 from mcp.client.extension import advertise
 from mcp.client.streamable_http import streamable_http_client
 from mcp.types import CallToolResult
-from mcp_helpers import JSON_HEADERS, free_port, http_in_thread, structured, text
+from mcp_helpers import JSON_HEADERS, free_port, http_in_thread, structured, text, tower_graph
 
 from verigraph.server import build_server
 from verigraph.server.http import HttpOptions
@@ -28,15 +28,7 @@ AUTH = {"Authorization": f"Bearer {TOKEN}"}
 APPS = advertise("io.modelcontextprotocol/ui", {"mimeTypes": ["text/html;profile=mcp-app"]})
 
 
-def tower(n: int) -> dict[str, Any]:
-    nodes = [{"id": "table", "label": "table"}] + [
-        {"id": f"b{i}", "label": "block"} for i in range(n - 1)]
-    edges = [{"source": f"b{i}", "relation": "on", "target": f"b{i - 1}" if i else "table"}
-             for i in range(n - 1)]
-    return {"nodes": nodes, "edges": edges, "dictionary": "blocks"}
-
-
-LARGE_GRAPH = tower(1500)
+LARGE_GRAPH = tower_graph(1500)
 assert len(json.dumps(LARGE_GRAPH)) > DEFAULT_THRESHOLD_BYTES
 
 
