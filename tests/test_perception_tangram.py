@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from verigraph.perception import perceive_image
+from verigraph.perception.detect.tangram import hidden_gap
 from verigraph.perception.detect.tangram_sides import (
     PlacedPiece,
     canonical_start,
@@ -20,7 +21,14 @@ from verigraph.perception.detect.tangram_sides import (
 from verigraph.perception.metrics import score_graph
 from verigraph.sim2d import Degradation, degrade
 from verigraph.sim2d.generator import GeneratedScene, generate_scene
-from verigraph.sim2d.tangram_geometry import PIECE_NAMES, TPose, piece_model, placed
+from verigraph.sim2d.tangram import TangramWorld
+from verigraph.sim2d.tangram_geometry import (
+    PIECE_NAMES,
+    TPose,
+    align_pose,
+    piece_model,
+    placed,
+)
 
 SEEDS = range(500, 530)
 LEVELS = {
@@ -118,3 +126,71 @@ def test_fewer_pieces_and_union_dictionary() -> None:
     assert result.view == "tangram" and result.family == "tangram"
     assert score_graph(result.graph, scene.graph, "tangram").exact
     assert all(n.attrs["color"] for n in result.graph.nodes)
+
+
+# Figures whose pieces leave a gap of 3*sqrt(2) - 4 (0.24) units between two facing sides:
+# wider than sim2d's touching tolerance, narrower than perception's, and filled by the
+# two drawn outlines, so no table shows between them.
+HIDDEN_GAP_SEEDS = {31471: ("large_triangle_1", "parallelogram"),
+                    32222: ("large_triangle_2", "parallelogram"),
+                    32340: ("large_triangle_2", "parallelogram")}
+GAP = 3 * math.sqrt(2) - 4
+
+
+def _gap_between(world: TangramWorld, a: str, b: str) -> float | None:
+    """The distance between the facing sides of two pieces that perception's tolerances
+    call touching, or None if none do."""
+    va, vb = world.vertices(a), world.vertices(b)
+    pa = PlacedPiece(a, tuple(va), 0.0)
+    pb = PlacedPiece(b, tuple(vb), 0.0)
+    pairs = contacts(pa, pb, **TOUCH)
+    if not pairs:
+        return None
+    i, j = pairs[0]
+    p0, p1 = np.array(va[i]), np.array(va[(i + 1) % len(va)])
+    d = (p1 - p0) / np.linalg.norm(p1 - p0)
+    q = np.array(vb[j]) - p0
+    return float(abs(d[0] * q[1] - d[1] * q[0]))
+
+
+@pytest.mark.parametrize("seed", list(HIDDEN_GAP_SEEDS))
+def test_a_gap_the_outlines_fill_is_not_a_contact(seed: int) -> None:
+    scene = generate_scene("tangram", seed)
+    a, b = HIDDEN_GAP_SEEDS[seed]
+    assert isinstance(scene.world, TangramWorld)
+    gap = _gap_between(scene.world, a, b)
+    assert gap is not None and gap == pytest.approx(GAP, abs=1e-3)  # the case is there
+    assert not any({e.source, e.target} == {a, b} for e in scene.graph.edges)
+    result = perceive_image(scene.world.render(), dictionary="tangram")
+    assert score_graph(result.graph, scene.graph, "tangram").exact, sorted(
+        (e.source, e.source_side, e.target, e.target_side) for e in result.graph.edges)
+    # Still near the limit of touching: the result says so rather than being sure.
+    assert any(a in u.item and b in u.item for u in result.uncertain)
+
+
+def test_hidden_gap_needs_sharp_pieces_farther_apart_than_touching_ones() -> None:
+    big = PlacedPiece("large_triangle_1", tuple(placed("large_triangle_1", TPose(0, 0, 0))),
+                      0.02)
+    pose = align_pose("parallelogram", 0, list(big.vertices), 0)
+    flush = placed("parallelogram", pose)
+    (x0, y0), (x1, y1) = big.vertices[0], big.vertices[1]
+    length = math.dist((x0, y0), (x1, y1))
+    nx, ny = (y0 - y1) / length, (x1 - x0) / length  # normal of side 0, towards the piece
+
+    def shifted(by: float, fit: float = 0.02) -> PlacedPiece:
+        return PlacedPiece("parallelogram", tuple((x - nx * by, y - ny * by)
+                                                   for x, y in flush), fit)
+
+    for by in (GAP, -GAP):  # whichever side of the line the normal points to
+        apart = shifted(by)
+        if contacts(big, apart, **TOUCH):
+            break
+    else:
+        raise AssertionError("the shifted parallelogram no longer faces the triangle")
+    pair = contacts(big, apart, **TOUCH)[0]
+    assert hidden_gap(big, apart, pair)
+    near = shifted(math.copysign(0.12, by))
+    assert contacts(big, near, **TOUCH) and not hidden_gap(big, near,
+                                                             contacts(big, near, **TOUCH)[0])
+    blurry = shifted(by, fit=0.2)  # a poor fit keeps the wide tolerance
+    assert not hidden_gap(big, blurry, pair)

@@ -51,6 +51,12 @@ REJECT_FIT_ERROR = 1.0  # beyond this the region is not that piece at all (e.g. 
 # areas understate the scale; the upper part of the distribution is the honest one.
 SCALE_PERCENTILE = 80
 GAP_SAMPLES = 7
+# Two sharply fitted pieces (both within SHARP_FIT units of their exact shape) whose
+# facing sides lie more than HIDDEN_GAP apart leave a gap, even where the outlines
+# fill it: on sharp pictures touching sides measure at most ~0.17 units apart (the
+# later piece's outline eats into the earlier one), a quarter-unit gap ~0.22 or more.
+SHARP_FIT = 0.08
+HIDDEN_GAP = 0.195
 
 
 def piece_models(dictionary: Dictionary) -> list[ObjectModel]:
@@ -178,7 +184,8 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
     for i, a in enumerate(ids):
         for b in ids[i + 1:]:
             touching = [pair for pair in contacts(placed[a], placed[b], **tolerances)
-                        if not gap_visible(classes, scale, placed[a], placed[b], pair)]
+                        if not gap_visible(classes, scale, placed[a], placed[b], pair)
+                        and not hidden_gap(placed[a], placed[b], pair)]
             for sa, sb in touching:
                 edges.append(Edge(source=a, relation="touches", target=b, source_side=sa,
                                   target_side=sb))
@@ -268,3 +275,23 @@ def gap_visible(classes: np.ndarray, scale: float, a: PlacedPiece, b: PlacedPiec
             total += 1
             hits += int(classes[y, x] == colors.BACKGROUND)
     return total > 0 and hits > total / 2
+
+
+def hidden_gap(a: PlacedPiece, b: PlacedPiece, sides: tuple[int, int]) -> bool:
+    """Whether a pair of sides the tolerances call touching is a gap hidden under the
+    outlines: both pieces fit their shapes sharply and the sides lie farther apart
+    than touching sides of sharp pieces measure (see HIDDEN_GAP). A gap of a quarter
+    unit is about 3 px at the default scale, which the two pieces' drawn outlines fill
+    completely: the seam between the colours is as wide as a shared outline and no
+    table shows (`gap_visible` cannot see it); only where the fitted pieces sit does.
+    Pieces that fit poorly (blur, noise, perspective) keep the wide tolerance: their
+    touching sides can measure that far apart too. The contact stays `borderline`,
+    so the result still asks for confirmation."""
+    if max(a.fit_error, b.fit_error) > SHARP_FIT:
+        return False
+    i, j = sides
+    p0, p1 = np.array(a.vertices[i]), np.array(a.vertices[(i + 1) % len(a.vertices)])
+    direction = (p1 - p0) / max(float(np.linalg.norm(p1 - p0)), 1e-9)
+    normal = np.array([-direction[1], direction[0]])
+    ends = (np.array(b.vertices[j]), np.array(b.vertices[(j + 1) % len(b.vertices)]))
+    return min(abs(float((q - p0) @ normal)) for q in ends) > HIDDEN_GAP
