@@ -7,8 +7,9 @@ sharp negative peak at the offset (L cos a, L sin a). The deepest point of the c
 between `MIN_LENGTH` and `MAX_LENGTH` pixels from its centre gives length and direction,
 refined to a fraction of a pixel by the centroid of its neighbours. A Wiener filter with
 that straight-line kernel then undoes the blur (the renders are flat colours with dark
-outlines, so the restored picture is close to the drawn one). The restoration is kept
-only when it gives edges back: an estimate that does not sharpen the picture (a blur
+outlines, so the restored picture is close to the drawn one); a vertical shake is a
+column of whole pixels, and its kernel is that column (`axis_kernel`). The restoration
+is kept only when it gives edges back: an estimate that does not sharpen the picture (a blur
 that is not a straight shake, or noise that hides the cepstrum's peak) leaves the image
 as it was, and the blur warning stands.
 """
@@ -35,6 +36,7 @@ PAD = 32  # px of mirrored border, so the periodic transform does not wrap edges
 LENGTH_BIAS = 0.5
 GAIN = 1.3  # restored sharpness over the blurred one below which the estimate is wrong
 MIN_EDGES = 60.0  # sharpness below which there are no edges to estimate a shake from
+AXIS_DEGREES = 1.0  # a shake this close to vertical is restored as a column of pixels
 
 
 @dataclass(frozen=True, slots=True)
@@ -94,9 +96,36 @@ def estimate_motion(image: np.ndarray) -> MotionBlur | None:
                       degrees=float(np.degrees(np.arctan2(-dy, dx)) % 180.0))
 
 
+def axis_kernel(blur: MotionBlur) -> np.ndarray | None:
+    """The column of whole pixels a vertical shake is, or None for any other direction.
+
+    The anti-aliased line of `motion_kernel` spreads its ends over two pixels each: it
+    is the right model between pixels, but along a column it is wider and softer than
+    the camera's smear. Deconvolving a vertical shake with it leaves a ghost of a thin
+    horizontal shape (a plate lying on a book or a desk) above and below it, which
+    splits the plate in two or merges it into its support; with the exact column,
+    tableware shaken 9 px vertically came back exact in 14 of 15 scenes against 12
+    with the line, and in 18 of 20 against 14 on a second set. Along a row the line
+    stays: the box restored the same graphs there but rang at the frame's left edge
+    (an unexplained sliver that flagged 3 of 20 exact graphs). The column has the
+    cepstrum's own length (`LENGTH_BIAS` taken back off), rounded to whole pixels."""
+    if abs(blur.degrees % 180.0 - 90.0) > AXIS_DEGREES:
+        return None
+    n = max(1, int(round(blur.length - LENGTH_BIAS)))
+    size = (n + 2) | 1
+    kernel = np.zeros((size, size), np.float32)
+    start = size // 2 - n // 2
+    kernel[start:start + n, size // 2] = 1.0 / n
+    return kernel
+
+
 def motion_kernel(blur: MotionBlur) -> np.ndarray:
     """A straight line of `blur.length` pixels through the centre, anti-aliased
-    (each sample shared bilinearly among its four pixels), summing to 1."""
+    (each sample shared bilinearly among its four pixels), summing to 1; for a vertical
+    shake, the column of whole pixels (`axis_kernel`)."""
+    box = axis_kernel(blur)
+    if box is not None:
+        return box
     size = (int(np.ceil(blur.length)) | 1) + 2
     kernel = np.zeros((size, size), np.float32)
     centre = (size - 1) / 2.0
