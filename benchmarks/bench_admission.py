@@ -16,7 +16,6 @@ import multiprocessing
 import selectors
 import socket
 import sys
-import time
 from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
@@ -24,7 +23,7 @@ from urllib.parse import urlsplit
 sys.path.insert(0, str(Path(__file__).parent))
 
 import httpx2  # noqa: E402
-from bench_server import TOKEN, percentile, start_http, wire_call  # noqa: E402
+from bench_server import TOKEN, light_latencies, percentile, start_http, wire_call  # noqa: E402
 
 PARTIAL = b"POST /mcp HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
 
@@ -76,16 +75,7 @@ async def light_p99(url: str, calls: int) -> list[float]:
     async with httpx2.AsyncClient(headers=headers, timeout=60) as http:
         reply = (await http.post(url, content=body)).json()
         episode = reply["result"]["structuredContent"]["episode_id"]
-    headers, body = wire_call("validate_action", {"episode_id": episode,
-                                                  "action": "move(cup, on, desk)"}, 2)
-    times = []
-    async with httpx2.AsyncClient(headers=headers, timeout=60) as http:
-        for _ in range(calls):
-            start = time.perf_counter()
-            response = await http.post(url, content=body)
-            times.append(time.perf_counter() - start)
-            assert response.status_code == 200 and b'"isError":false' in response.content
-    return times
+    return await light_latencies(url, episode, calls, timeout=60)
 
 
 async def beside(url: str, kind: str, count: int, calls: int) -> tuple[list[float], int]:

@@ -126,6 +126,22 @@ def wire_call(name: str, arguments: dict[str, Any], request_id: int) -> tuple[di
     return headers, json.dumps(body).encode()
 
 
+async def light_latencies(url: str, episode: str, calls: int, timeout: float = 5.0
+                          ) -> list[float]:
+    """Seconds per validate_action round trip on `episode`, `calls` times back to back
+    on one connection (the light client of the load and admission benchmarks)."""
+    headers, body = wire_call("validate_action", {"episode_id": episode,
+                                                  "action": "move(cup, on, desk)"}, 2)
+    times = []
+    async with httpx2.AsyncClient(headers=headers, timeout=timeout) as http:
+        for _ in range(calls):
+            start = time.perf_counter()
+            response = await http.post(url, content=body)
+            times.append(time.perf_counter() - start)
+            assert response.status_code == 200 and b'"isError":false' in response.content
+    return times
+
+
 def cpu_seconds(pid: int) -> float:
     """User + system CPU time of a process (all threads), from /proc."""
     fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()

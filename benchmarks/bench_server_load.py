@@ -44,7 +44,7 @@ import httpx2  # noqa: E402
 import numpy as np  # noqa: E402
 from bench_admission import admission_rows  # noqa: E402
 from bench_load import tower  # noqa: E402
-from bench_server import percentile, start_http, wire_call  # noqa: E402
+from bench_server import light_latencies, percentile, start_http, wire_call  # noqa: E402
 from common import RESULTS, write_table  # noqa: E402
 
 from verigraph.graph import WorldState  # noqa: E402
@@ -71,19 +71,6 @@ async def call(http: httpx2.AsyncClient, url: str, name: str, arguments: dict[st
     result = reply["result"]
     assert not result.get("isError"), str(result)[:300]
     return result.get("structuredContent") or {}
-
-
-async def light_latencies(url: str, episode: str, calls: int) -> list[float]:
-    headers, body = wire_call("validate_action", {"episode_id": episode,
-                                                  "action": "move(cup, on, desk)"}, 2)
-    times = []
-    async with httpx2.AsyncClient(headers=headers) as http:
-        for _ in range(calls):
-            start = time.perf_counter()
-            response = await http.post(url, content=body)
-            times.append(time.perf_counter() - start)
-            assert response.status_code == 200 and b'"isError":false' in response.content
-    return times
 
 
 async def concurrency(url: str, clients: int, calls_each: int) -> tuple[float, list[float]]:
