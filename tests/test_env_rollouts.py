@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 import os
 import sys
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -112,15 +111,6 @@ def test_noisy_rollouts_differing_only_in_noise_are_different_episodes() -> None
 
 
 ray = pytest.importorskip("ray", reason="the scale extra (ray) is not installed")
-
-
-@pytest.fixture(scope="module")
-def local_ray() -> Iterator[None]:
-    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
-    try:
-        yield
-    finally:
-        ray.shutdown()
 
 
 def test_ray_and_serial_rollouts_are_identical(local_ray: None) -> None:

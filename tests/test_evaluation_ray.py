@@ -8,7 +8,6 @@ import os
 import sys
 import time
 from collections import deque
-from collections.abc import Iterator
 from typing import Any
 
 import pytest
@@ -33,15 +32,6 @@ from verigraph.agent.testing import RecordedResponseServerForTests, chat_complet
 
 ray = pytest.importorskip("ray", reason="the scale extra (ray) is not installed")
 pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")
-
-
-@pytest.fixture(scope="module")
-def local_ray() -> Iterator[None]:
-    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
-    try:
-        yield
-    finally:
-        ray.shutdown()
 
 
 def test_ray_and_serial_give_identical_episodes(local_ray: None) -> None:
