@@ -6,12 +6,14 @@ mount one, else SQLite's own size limit (max_page_count), which fails the same w
 from __future__ import annotations
 
 import logging
+import multiprocessing
 import os
 import stat
 import subprocess
 import time
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 from mcp import Client
@@ -21,6 +23,7 @@ from verigraph.server import build_server
 from verigraph.tools import Toolbox, ToolConfig
 from verigraph.tools.errors import StoreError
 from verigraph.tools.store_durable import DurableStore
+from verigraph.tools.store_sqlite import SqliteBackend, create_private_file
 from verigraph.tools.stores import open_store
 
 
@@ -138,3 +141,34 @@ async def test_a_full_disk_is_one_clear_store_error_and_saves_nothing(
             assert state["executed"] == []
     assert "cannot rollback" not in caplog.text
     assert "Traceback" not in caplog.text
+
+
+
+def _open_after(path: str, start: Any) -> None:
+    start.wait(timeout=30)
+    SqliteBackend(path).close()
+
+
+def test_processes_opening_one_new_store_at_once_all_succeed(tmp_path: Path) -> None:
+    """`serve --workers N` opens a new SQLite store from N processes at the same moment:
+    those that lose the race to create the file use it (not "File exists")."""
+    context = multiprocessing.get_context("fork")
+    for attempt in range(8):
+        path = tmp_path / f"new{attempt}" / "episodes.db"
+        start = context.Barrier(4)
+        procs = [context.Process(target=_open_after, args=(str(path), start))
+                 for _ in range(4)]
+        for proc in procs:
+            proc.start()
+        for proc in procs:
+            proc.join(timeout=60)
+        assert [proc.exitcode for proc in procs] == [0, 0, 0, 0], attempt
+        assert stat.S_IMODE(path.stat().st_mode) == 0o600
+
+
+def test_creating_a_store_file_another_process_just_created_is_not_an_error(
+        tmp_path: Path) -> None:
+    path = tmp_path / "episodes.db"
+    create_private_file(path)
+    create_private_file(path)  # what the second of two processes does
+    assert stat.S_IMODE(path.stat().st_mode) == 0o600

@@ -16,6 +16,7 @@ from __future__ import annotations
 import os
 import sqlite3
 import threading
+import time
 from collections.abc import Iterator
 from contextlib import contextmanager, suppress
 from pathlib import Path
@@ -40,10 +41,15 @@ CREATE INDEX IF NOT EXISTS episodes_last_used ON episodes(last_used);
 
 
 def create_private_file(path: Path) -> None:
-    """Create `path` (and missing parents) so that only its owner can read it."""
-    if not path.parent.exists():
-        path.parent.mkdir(parents=True, mode=0o700)
-    fd = os.open(path, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o600)
+    """Create `path` (and missing parents) so that only its owner can read it.
+
+    Several server processes (`serve --workers`) open a new store at the same moment:
+    the file one of them has just created is theirs too, not an error."""
+    path.parent.mkdir(parents=True, mode=0o700, exist_ok=True)
+    try:
+        fd = os.open(path, os.O_CREAT | os.O_EXCL | os.O_RDWR, 0o600)
+    except FileExistsError:
+        return
     os.close(fd)
 
 
@@ -73,6 +79,24 @@ def store_error(path: Path, exc: sqlite3.Error | OSError, doing: str) -> StoreEr
                           "sqlite:///path/to/episodes.db")
 
 
+def _switch_to_wal(connection: sqlite3.Connection, patience_s: float = 30.0) -> None:
+    """`PRAGMA journal_mode=WAL`, tried again while another process does the same.
+
+    On a new file the switch needs every other connection out of the way; two processes
+    switching at once (`serve --workers`) deadlock, and SQLite answers one of them
+    SQLITE_BUSY at once, without its busy timeout: that one lets go and tries again."""
+    give_up = time.monotonic() + patience_s
+    while True:
+        try:
+            connection.execute("PRAGMA journal_mode=WAL")
+            return
+        except sqlite3.OperationalError as exc:
+            busy = (getattr(exc, "sqlite_errorcode", 0) or 0) & 0xFF == sqlite3.SQLITE_BUSY
+            if not busy or time.monotonic() > give_up:
+                raise
+            time.sleep(0.01)
+
+
 class SqliteBackend:
     """Episode records in one SQLite table."""
 
@@ -84,7 +108,10 @@ class SqliteBackend:
             if not existed:
                 create_private_file(self.path)
             connection = self._connection()
-            connection.executescript(_SCHEMA)
+            # The write lock first: in WAL mode a read that turns into a write after
+            # another process wrote (two workers creating the table) fails at once
+            # instead of waiting for the lock.
+            connection.executescript(f"BEGIN IMMEDIATE;{_SCHEMA}COMMIT;")
             if existed:
                 os.chmod(self.path, 0o600)  # only once it is known to be a store
         except (OSError, sqlite3.Error) as exc:
@@ -107,7 +134,7 @@ class SqliteBackend:
         if connection is None:
             connection = sqlite3.connect(self.path, isolation_level=None, timeout=30.0,
                                          check_same_thread=False)
-            connection.execute("PRAGMA journal_mode=WAL")
+            _switch_to_wal(connection)
             connection.execute("PRAGMA synchronous=NORMAL")
             connection.execute("PRAGMA busy_timeout=30000")
             cache[str(self.path)] = connection
