@@ -97,12 +97,12 @@ def small_disk(tmp_path: Path) -> Iterator[Path | None]:
 
 
 def fill(folder: Path) -> None:
-    """Write until the filesystem is full (ENOSPC)."""
-    with open(folder / "filler", "wb") as out:
+    """Write until the filesystem is full (ENOSPC). Unbuffered, so that closing the file
+    has nothing left to write (a buffered remainder would raise ENOSPC again)."""
+    with open(folder / "filler", "wb", buffering=0) as out:
         try:
             while True:
                 out.write(b"\0" * 65536)
-                out.flush()
                 os.fsync(out.fileno())
         except OSError:
             pass
