@@ -177,3 +177,42 @@ def test_a_rollout_whose_worker_dies_for_good_is_a_failed_result(local_ray: None
     ran = [r for r in results[1:] if r.error_kind is None]
     assert len(ran) >= len(rest) - 1
     assert all(r.lines == serial[r.job].lines for r in ran)
+
+
+class RaisingRolloutWorkerForTests(RolloutWorker):
+    """A rollout worker whose policy raises on one task (a bug in a user's policy)."""
+
+    def __init__(self, env_kwargs: dict[str, Any]) -> None:
+        kwargs = dict(env_kwargs)
+        self.broken = kwargs.pop("broken")
+        super().__init__(kwargs)
+
+    def policy(self, job: RolloutJob) -> Any:
+        if job.task_id != self.broken:
+            return super().policy(job)
+
+        def broken(env: VeriGraphEnv, observation: str, info: dict[str, Any]) -> str:
+            raise ZeroDivisionError("the policy divided by zero")
+
+        return broken
+
+
+def test_a_rollout_that_raises_is_the_same_failed_result_serially_and_on_ray(
+        local_ray: None, tmp_path: Path) -> None:
+    tasks = build_tasks("blocks", 3)
+    jobs = jobs_for([t.task_id for t in tasks])
+    kwargs: dict[str, Any] = {"tasks": tasks, "threshold": 3, "broken": tasks[1].task_id}
+    ray.cloudpickle.register_pickle_by_value(sys.modules[__name__])
+    serial = run_rollouts(jobs, kwargs, worker=RaisingRolloutWorkerForTests,
+                          trajectories=tmp_path / "serial.jsonl")
+    on_ray = run_rollouts(jobs, kwargs, ray="local", worker=RaisingRolloutWorkerForTests)
+    for results in (serial, on_ray):
+        failed = [r for r in results if r.error_kind is not None]
+        assert {r.job.task_id for r in failed} == {tasks[1].task_id}
+        assert len(failed) == 3  # its oracle, noisy and refusing rollouts
+        assert all(r.error_kind == "internal" and r.stop_reason == "internal_error"
+                   and r.error == "ZeroDivisionError: the policy divided by zero"
+                   and not r.success and r.lines == [] for r in failed)
+    assert [r.lines for r in on_ray] == [r.lines for r in serial]
+    written = {line.episode for line in read_lines(tmp_path / "serial.jsonl")}
+    assert written == {r.job.episode() for r in serial if r.error_kind is None}

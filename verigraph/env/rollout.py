@@ -14,8 +14,10 @@ Ray is used as it is. Each Ray actor builds its environments from `env_kwargs`, 
 kwargs must be picklable (pass `tasks`, not a `tools` connection). A worker process that
 dies is restarted and its rollouts retried (they are seeded, so idempotent); a rollout
 whose worker is lost for good comes back as a failed result (`error_kind` "worker"),
-not an exception. Results come back in job order and carry the episode's trajectory
-lines (verigraph.env.trajectory), identical serially and on Ray.
+not an exception, and so does one that raises (`error_kind` "tool" or "internal", as
+`bench plan` records an episode's error), serially and on Ray alike. Results come back
+in job order and carry the episode's trajectory lines (verigraph.env.trajectory),
+identical serially and on Ray.
 """
 
 from __future__ import annotations
@@ -106,7 +108,8 @@ class RolloutResult(BaseModel):
     worker: int | None = Field(description="process id that ran it (None: lost, or read "
                                            "back from a trajectory file)")
     error: str | None = Field(default=None, description="why the episode did not run")
-    error_kind: str | None = Field(default=None, description="worker: its process died")
+    error_kind: str | None = Field(default=None, description="worker: its process died; "
+                                                             "tool or internal: it raised")
 
 
 def lost_rollout(job: RolloutJob, error: str) -> RolloutResult:
@@ -114,6 +117,16 @@ def lost_rollout(job: RolloutJob, error: str) -> RolloutResult:
     return RolloutResult(job=job, episode_return=0.0, steps=0, moves=0, success=False,
                          stop_reason="worker_error", lines=[], worker=None,
                          error=error[:500], error_kind="worker")
+
+
+def failed_rollout(job: RolloutJob, exc: Exception) -> RolloutResult:
+    """The result of a rollout that raised (its policy, its environment or a bug), kinded
+    as `bench plan` kinds an episode's error: "tool" for a VeriGraphError, else
+    "internal". No lines are kept, so a rerun from the trajectory file tries it again."""
+    kind = "tool" if isinstance(exc, VeriGraphError) else "internal"
+    return RolloutResult(job=job, episode_return=0.0, steps=0, moves=0, success=False,
+                         stop_reason=f"{kind}_error", lines=[], worker=os.getpid(),
+                         error=f"{type(exc).__name__}: {exc}"[:500], error_kind=kind)
 
 
 def recorded_result(job: RolloutJob, lines: list[TrajectoryLine]) -> RolloutResult:
@@ -175,7 +188,12 @@ class RolloutWorker:
         return make_policy(job.policy, job.policy_seed, job.noise)
 
     def run(self, job: RolloutJob) -> RolloutResult:
-        return run_rollout(self._env(), self.policy(job), job)
+        """The rollout's result; one that raises is a failed result (`failed_rollout`),
+        the same serially and on Ray, and the run goes on."""
+        try:
+            return run_rollout(self._env(), self.policy(job), job)
+        except Exception as exc:  # noqa: BLE001 (every failure is this rollout's outcome)
+            return failed_rollout(job, exc)
 
     def close(self) -> None:
         with self._lock:
