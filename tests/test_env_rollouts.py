@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import json
 import os
 import sys
@@ -108,6 +109,22 @@ def test_noisy_rollouts_differing_only_in_noise_are_different_episodes() -> None
     results = run_rollouts(jobs, {"tasks": tasks, "threshold": 2})
     assert [r.job for r in results] == jobs
     assert len({r.lines[0].episode for r in results}) == 2
+
+
+def test_the_progress_bar_counts_rollouts_per_suite_and_resumes(tmp_path: Path) -> None:
+    tasks = build_tasks("blocks", 1)
+    jobs = [RolloutJob(task_id=t.task_id, policy=p) for t in tasks for p in ("oracle", "refuse")]
+    path = tmp_path / "run.jsonl"
+    first, second, quiet = io.StringIO(), io.StringIO(), io.StringIO()
+    run_rollouts(jobs[:2], {"tasks": tasks}, trajectories=path, progress=True, stream=first)
+    run_rollouts(jobs, {"tasks": tasks}, trajectories=path, progress=True, stream=second)
+    run_rollouts(jobs, {"tasks": tasks}, stream=quiet)
+    suite = jobs[0].task_id.split("/")[0]
+    assert "2/2 [" in first.getvalue() and f"{suite} 1/2" in first.getvalue()
+    shown = second.getvalue()
+    assert f"2/{len(jobs)} [" in shown  # starts from what the file already holds
+    assert f"{len(jobs)}/{len(jobs)} [" in shown
+    assert quiet.getvalue() == ""  # no bar unless asked
 
 
 ray = pytest.importorskip("ray", reason="the scale extra (ray) is not installed")

@@ -27,11 +27,12 @@ import os
 import threading
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any, Literal, Protocol
+from typing import Any, Literal, Protocol, TextIO
 
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.agent.evaluation.engine import plan_resume, run_on_workers
+from verigraph.agent.evaluation.progress_bar import EpisodeProgress
 from verigraph.agent.evaluation.worker import WorkerFactory, worker_name
 from verigraph.agent.factory import PlannerOptions, make_planner
 from verigraph.agent.planner import Planner
@@ -110,6 +111,11 @@ class RolloutResult(BaseModel):
     error: str | None = Field(default=None, description="why the episode did not run")
     error_kind: str | None = Field(default=None, description="worker: its process died; "
                                                              "tool or internal: it raised")
+
+    @property
+    def group(self) -> str:
+        """The task's suite (its id up to the first "/"): a progress bar's group."""
+        return self.job.task_id.split("/", 1)[0]
 
 
 def lost_rollout(job: RolloutJob, error: str) -> RolloutResult:
@@ -212,7 +218,9 @@ def run_rollouts(jobs: Sequence[RolloutJob], env_kwargs: dict[str, Any], *,
                  ray: str | None = None, workers: int | None = None,
                  on_ready: Callable[[], None] | None = None,
                  worker: type[RolloutWorker] = RolloutWorker,
-                 trajectories: str | Path | None = None) -> list[RolloutResult]:
+                 trajectories: str | Path | None = None,
+                 progress: bool = False, stream: TextIO | None = None
+                 ) -> list[RolloutResult]:
     """Every job's result, in job order, through the evaluation engine's dispatch.
 
     Serial without `ray`, else on Ray actors (`workers`: rollouts at once, default one
@@ -226,6 +234,10 @@ def run_rollouts(jobs: Sequence[RolloutJob], env_kwargs: dict[str, Any], *,
     already complete there (their `worker` is None) and runs only the others, as
     `bench plan` does with its results file. A rollout whose worker was lost writes
     nothing, so a rerun tries it again.
+
+    `progress=True` shows `bench plan`'s bar on `stream` (stderr by default): rollouts
+    done of all (those read back from the trajectory file included), success per
+    suite, rate and ETA.
     """
     sink = TrajectoryFile(trajectories) if trajectories is not None else None
     known = sink.complete(repair=True) if sink is not None else {}
@@ -234,11 +246,16 @@ def run_rollouts(jobs: Sequence[RolloutJob], env_kwargs: dict[str, Any], *,
     done = {episode: recorded_result(by_episode[episode], lines)
             for episode, lines in found.items()}
     factory = rollout_factory(env_kwargs, worker)
-    for result in run_on_workers(factory, pending, ray=ray, concurrency=workers,
-                                 on_ready=on_ready):
-        if sink is not None:
-            sink.append(result.lines)
-        done[result.job.episode()] = result
+    bar = EpisodeProgress(len(unique), done.values(), stream=stream, enabled=progress)
+    try:
+        for result in run_on_workers(factory, pending, ray=ray, concurrency=workers,
+                                     on_ready=on_ready):
+            if sink is not None:
+                sink.append(result.lines)
+            done[result.job.episode()] = result
+            bar.update(result)
+    finally:
+        bar.close()
     return [done[job.episode()] if done[job.episode()].job == job
             else done[job.episode()].model_copy(update={"job": job}) for job in jobs]
 

@@ -2,24 +2,37 @@
 
 Episodes found in the results file count as done from the start, so a resumed run's
 bar starts where the last one stopped; its rate and ETA only count this run's work.
-`summary()` is what is printed at the end, and also when the run is interrupted.
+`summary()` is what is printed at the end, and also when the run is interrupted. Any
+result with a `group`, a `success` and an `error` counts (`bench plan`'s records, the
+environment's rollout results).
 """
 
 from __future__ import annotations
 
 import sys
 from collections.abc import Iterable
-from typing import TextIO
+from typing import Protocol, TextIO
 
 from tqdm import tqdm
 
-from verigraph.agent.evaluation.results import BenchRecord
+
+class Outcome(Protocol):
+    """What the bar counts of a finished job."""
+
+    @property
+    def group(self) -> str: ...
+
+    @property
+    def success(self) -> bool: ...
+
+    @property
+    def error(self) -> str | None: ...
 
 
 class EpisodeProgress:
     """Counts finished episodes per group and shows them on one bar."""
 
-    def __init__(self, total: int, resumed: Iterable[BenchRecord] = (), *,
+    def __init__(self, total: int, resumed: Iterable[Outcome] = (), *,
                  stream: TextIO | None = None, enabled: bool = True) -> None:
         self.total = total
         self.stream = stream or sys.stderr
@@ -36,7 +49,7 @@ class EpisodeProgress:
                         mininterval=0.2 if tty else 10.0, smoothing=0.1)
         self.bar.set_postfix_str(self.groups_text(), refresh=False)
 
-    def _count(self, record: BenchRecord) -> None:
+    def _count(self, record: Outcome) -> None:
         counts = self.by_group.setdefault(record.group, [0, 0])
         counts[0] += record.success
         counts[1] += 1
@@ -45,7 +58,7 @@ class EpisodeProgress:
     def groups_text(self) -> str:
         return " ".join(f"{group} {ok}/{n}" for group, (ok, n) in self.by_group.items())
 
-    def update(self, record: BenchRecord) -> None:
+    def update(self, record: Outcome) -> None:
         self._count(record)
         self.ran += 1
         self.bar.set_postfix_str(self.groups_text(), refresh=False)
