@@ -19,8 +19,8 @@ from verigraph.errors import VeriGraphError
 # so that a core command imports only what it needs.
 SUBCOMMAND_MODULES = ("verigraph.cli.core", "verigraph.cli.serve",
                       "verigraph.cli.episodes", "verigraph.cli.sim",
-                      "verigraph.cli.agent", "verigraph.cli.bench", "verigraph.cli.perceive",
-                      "verigraph.cli.view", "verigraph.cli.arm")
+                      "verigraph.cli.agent", "verigraph.cli.rollouts", "verigraph.cli.bench",
+                      "verigraph.cli.perceive", "verigraph.cli.view", "verigraph.cli.arm")
 
 # The offline verifier's commands need only verigraph.cli.core: running one of them does
 # not import the server, agent or simulator stacks (start-up stays well under a second).
