@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import subprocess
 from pathlib import Path
-from typing import Any
+from typing import Any, get_args
 
 import pytest
 from mcp_helpers import verigraph_command
@@ -15,8 +15,15 @@ from optional import require
 require("gymnasium", "pip install 'verigraph-mcp[env]'")
 
 from verigraph.cli import main  # noqa: E402
+from verigraph.cli.rollouts import FAMILIES, POLICIES  # noqa: E402
+from verigraph.env import dataset  # noqa: E402
 from verigraph.env.dataset import split_tasks, suite_tasks  # noqa: E402
+from verigraph.env.rollout import PolicyName  # noqa: E402
 from verigraph.env.trajectory import episodes, read_lines  # noqa: E402
+
+
+def test_the_command_offers_the_environment_s_policies_and_families() -> None:
+    assert get_args(PolicyName) == POLICIES and FAMILIES == dataset.FAMILIES
 
 
 def summary(capsys: pytest.CaptureFixture[str], *args: str) -> dict[str, Any]:

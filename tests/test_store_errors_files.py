@@ -143,7 +143,6 @@ async def test_a_full_disk_is_one_clear_store_error_and_saves_nothing(
     assert "Traceback" not in caplog.text
 
 
-
 def _open_after(path: str, start: Any) -> None:
     start.wait(timeout=30)
     SqliteBackend(path).close()

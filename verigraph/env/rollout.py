@@ -33,7 +33,7 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.agent.evaluation.engine import plan_resume, run_on_workers
 from verigraph.agent.evaluation.progress_bar import EpisodeProgress
-from verigraph.agent.evaluation.worker import WorkerFactory, worker_name
+from verigraph.agent.evaluation.worker import WorkerFactory, error_kind, worker_name
 from verigraph.agent.factory import PlannerOptions, make_planner
 from verigraph.agent.planner import Planner
 from verigraph.env.core import VeriGraphEnv
@@ -129,7 +129,7 @@ def failed_rollout(job: RolloutJob, exc: Exception) -> RolloutResult:
     """The result of a rollout that raised (its policy, its environment or a bug), kinded
     as `bench plan` kinds an episode's error: "tool" for a VeriGraphError, else
     "internal". No lines are kept, so a rerun from the trajectory file tries it again."""
-    kind = "tool" if isinstance(exc, VeriGraphError) else "internal"
+    kind = error_kind(exc)
     return RolloutResult(job=job, episode_return=0.0, steps=0, moves=0, success=False,
                          stop_reason=f"{kind}_error", lines=[], worker=os.getpid(),
                          error=f"{type(exc).__name__}: {exc}"[:500], error_kind=kind)

@@ -53,11 +53,16 @@ def create_private_file(path: Path) -> None:
     os.close(fd)
 
 
+def primary_code(exc: sqlite3.Error | OSError) -> int:
+    """SQLite's primary result code of `exc` (SQLITE_BUSY, SQLITE_FULL, ...; 0 if none)."""
+    return (getattr(exc, "sqlite_errorcode", 0) or 0) & 0xFF
+
+
 def store_error(path: Path, exc: sqlite3.Error | OSError, doing: str) -> StoreError:
     """What went wrong with the store file, in words, with the fix that fits it (never
     the file's content)."""
     url = f"sqlite:///{path}"
-    code = (getattr(exc, "sqlite_errorcode", 0) or 0) & 0xFF
+    code = primary_code(exc)
     if code in (sqlite3.SQLITE_FULL,):
         return StoreError(f"the episode store {path} is full (no space left on its disk, "
                           f"or its size limit): {doing} was not saved", field="--store",
@@ -91,8 +96,7 @@ def _switch_to_wal(connection: sqlite3.Connection, patience_s: float = 30.0) -> 
             connection.execute("PRAGMA journal_mode=WAL")
             return
         except sqlite3.OperationalError as exc:
-            busy = (getattr(exc, "sqlite_errorcode", 0) or 0) & 0xFF == sqlite3.SQLITE_BUSY
-            if not busy or time.monotonic() > give_up:
+            if primary_code(exc) != sqlite3.SQLITE_BUSY or time.monotonic() > give_up:
                 raise
             time.sleep(0.01)
 

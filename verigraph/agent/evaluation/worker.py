@@ -152,6 +152,12 @@ def worker_name() -> str:
     return f"{socket.gethostname()}:{os.getpid()}"
 
 
+def error_kind(exc: Exception) -> str:
+    """How a job that raised is recorded: "tool" for a VeriGraphError (bad input, a
+    store failure), else "internal" (a bug). Episodes and environment rollouts alike."""
+    return "tool" if isinstance(exc, VeriGraphError) else "internal"
+
+
 def lost_record(job: EpisodeJob, error: str) -> BenchRecord:
     """The record of an episode whose worker process was lost for good."""
     record = blank_record(job, job.setting.planner)
@@ -181,7 +187,7 @@ def run_job(job: EpisodeJob, task: Task, env: ToolEnvironment, pool: PlannerPool
         record = blank_record(job, planner.name if planner else setting.planner)
         # A planner's own failure never lands here: the loop ends the episode with
         # stop_reason planner_error (handled below); what is left is a tool or a bug.
-        kind = "tool" if isinstance(exc, VeriGraphError) else "internal"
+        kind = error_kind(exc)
         record.error_kind = kind
         record.error = f"{type(exc).__name__}: {exc}"[:500]
         record.stop_reason = f"{kind}_error"
