@@ -23,7 +23,7 @@ from typing import Any, get_args
 from verigraph.errors import VeriGraphError
 
 # verigraph.env's PolicyName and FAMILIES, written out so that building the parser does
-# not import the env extra (tests/test_cli_rollouts.py checks they stay equal).
+# not import the env extra (tests/cli/test_cli_rollouts.py checks they stay equal).
 POLICIES = ("oracle", "noisy", "greedy", "refuse")
 FAMILIES = ("blocks", "kitchen", "tangram")
 

@@ -38,7 +38,7 @@ from verigraph.solver import solve
 
 pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 PLAN_ARGS = ["--episodes", "3", "--groups", "stacking,language", "--planners", "noisy",
              "--no-ablations"]
 PLAN_EPISODES = 3 * 2 * 3  # episodes x groups x (iterative, direct, trust done)

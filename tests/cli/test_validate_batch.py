@@ -10,7 +10,7 @@ from pathlib import Path
 
 from blocksworld_corpus import DATA
 
-EXAMPLES = Path(__file__).parent.parent / "examples" / "scenes"
+EXAMPLES = Path(__file__).parents[2] / "examples" / "scenes"
 
 
 def test_batch_mixes_pddl_and_scene_items_and_survives_bad_ones(tmp_path):

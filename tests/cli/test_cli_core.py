@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-EXAMPLES = Path(__file__).parent.parent / "examples" / "scenes"
+EXAMPLES = Path(__file__).parents[2] / "examples" / "scenes"
 VERIGRAPH = str(Path(sys.executable).parent / "verigraph")
 
 

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 VIEWER = REPO / "viewer"
 COMMITTED = {"episode.html": REPO / "verigraph" / "viewer" / "static" / "episode.html",
              "host.html": REPO / "tests" / "viewer_host" / "host.html"}

@@ -14,7 +14,7 @@ from verigraph.extras import EXTRAS, Extra, ExtraMissingError
 
 
 def test_every_extra_installs_from_the_distribution() -> None:
-    project = tomllib.loads((Path(__file__).parents[1] / "pyproject.toml").read_text())
+    project = tomllib.loads((Path(__file__).parents[2] / "pyproject.toml").read_text())
     assert set(EXTRAS) == {"arm", "clip", "env", "llm", "scale"}
     assert set(EXTRAS) <= set(project["project"]["optional-dependencies"])
     for name, extra in EXTRAS.items():

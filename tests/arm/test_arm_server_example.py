@@ -14,7 +14,7 @@ from verigraph.arm.testing.deps import require
 
 require("pybullet")
 
-EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "arm_stack_blocks_mcp.py"
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "arm_stack_blocks_mcp.py"
 
 
 def test_example_stacks_the_blocks_through_the_server(tmp_path: Path,

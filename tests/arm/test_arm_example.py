@@ -12,7 +12,7 @@ from verigraph.arm.testing.deps import require
 
 require("pybullet")
 
-EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "arm_stack_blocks.py"
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "arm_stack_blocks.py"
 
 
 def test_example_stacks_the_blocks_and_writes_frames(tmp_path: Path,

@@ -175,7 +175,7 @@ class DyingRolloutWorkerForTests(RolloutWorker):
 
 
 def test_a_rollout_whose_worker_dies_for_good_is_a_failed_result(local_ray: None) -> None:
-    # the same engine as `bench plan` episodes (tests/test_evaluation_ray.py): a lost
+    # the same engine as `bench plan` episodes (tests/agent/test_evaluation_ray.py): a lost
     # worker is a failed result, the jobs after it run on the worker left
     tasks = build_tasks("kitchen", 5)
     doomed, rest = RolloutJob(task_id=tasks[4].task_id), jobs_for([t.task_id for t in tasks[:4]])

@@ -17,7 +17,7 @@ from verigraph.errors import VeriGraphError
 
 pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 QUICK = ["--episodes", "1", "--groups", "stacking", "--planners", "oracle", "--no-ablations",
          "--no-progress-bar"]
 LARGE = "# Planning benchmark\n\nrows\n\nEpisodes run: 4000; total wall time 77.2 s.\n"

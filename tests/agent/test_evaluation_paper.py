@@ -16,7 +16,7 @@ from verigraph.agent.evaluation.paper import (
 )
 from verigraph.agent.evaluation.tasks import GroupName
 
-TEX = (Path(__file__).parent / "data" / "paper_tables.tex").read_text()
+TEX = (Path(__file__).parents[1] / "data" / "paper_tables.tex").read_text()
 TASKS: dict[str, GroupName] = {
     "Stacking": "stacking", "Language Instruction": "language",
     "Ref. Image Instruction (Blocks)": "ref_image_blocks",

@@ -19,7 +19,7 @@ from verigraph.arm.testing.deps import require
 
 require("pybullet")
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 ROUNDS = 5
 RSS_BOUND_MIB = 60.0
 

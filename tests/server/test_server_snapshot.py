@@ -1,7 +1,7 @@
 """The wire form of tools/list, kept under tests/snapshots so a schema change is a diff.
 
 Regenerate after an intended change with:
-    VERIGRAPH_UPDATE_SNAPSHOTS=1 pytest tests/test_server_snapshot.py
+    VERIGRAPH_UPDATE_SNAPSHOTS=1 pytest tests/server/test_server_snapshot.py
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from mcp import Client
 
 from verigraph.server import build_server
 
-SNAPSHOT = Path(__file__).parent / "snapshots" / "tools_list.json"
+SNAPSHOT = Path(__file__).parents[1] / "snapshots" / "tools_list.json"
 UPDATE_ENV = "VERIGRAPH_UPDATE_SNAPSHOTS"
 
 

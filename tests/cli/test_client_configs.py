@@ -22,7 +22,7 @@ import anyio
 import pytest
 from mcp import Client, StdioServerParameters, stdio_client
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 CONFIGS = sorted((REPO / "examples" / "clients").glob("*.json"))
 PYPROJECT = tomllib.loads((REPO / "pyproject.toml").read_text())
 DISTRIBUTION = PYPROJECT["project"]["name"]

@@ -10,7 +10,7 @@ from verigraph.cli import main
 from verigraph.cli.scenes import scene_argument
 from verigraph.errors import VeriGraphError
 
-EXAMPLES = Path(__file__).parent.parent / "examples" / "scenes"
+EXAMPLES = Path(__file__).parents[2] / "examples" / "scenes"
 
 
 def plan(tmp_path: Path, text: str) -> str:
