@@ -22,7 +22,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 from common import write_table  # noqa: E402
 
-from verigraph.actions.executor import execute_in_world  # noqa: E402
+from verigraph.actions.execution import execute_in_world  # noqa: E402
 from verigraph.actions.validator import validate_action  # noqa: E402
 from verigraph.graph.state import WorldState  # noqa: E402
 from verigraph.sim2d import generate_scene  # noqa: E402

@@ -39,8 +39,8 @@ from common import median_time, write_table  # noqa: E402
 
 from verigraph.actions import MoveAction, parse_plan, validate_plan  # noqa: E402
 from verigraph.actions.blocksworld import validate_blocks_dict  # noqa: E402
+from verigraph.actions.execution import run_actions  # noqa: E402
 from verigraph.actions.pddl import validate_strips_dict  # noqa: E402
-from verigraph.actions.validator import run_until_violation  # noqa: E402
 from verigraph.graph import Edge, Node, SceneGraph, WorldState  # noqa: E402
 
 N_OBJECTS, N_ACTIONS = 1000, 10_000
@@ -221,8 +221,8 @@ def main() -> None:
         assert verdict == "valid", verdict  # a refused plan would time nothing
         val_rate, val_cpu = len(hand) / val_process, len(hand) / val_seconds_cpu
     def core() -> None:
-        executed, _, violation, _ = run_until_violation(state.copy(), plan, record_edits=False)
-        assert violation is None and len(executed) == N_ACTIONS
+        run = run_actions(state.copy(), plan)
+        assert not run.violations and len(run.records) == N_ACTIONS
 
     def report() -> None:
         assert validate_plan(state, plan).valid

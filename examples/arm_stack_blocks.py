@@ -16,7 +16,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from verigraph.actions.executor import execute_in_world
+from verigraph.actions.execution import execute_in_world
 from verigraph.actions.parser import parse_plan
 from verigraph.arm import ArmConfig, open_arm_world
 from verigraph.arm.drivers.pybullet_panda import PyBulletPandaDriver

@@ -12,7 +12,7 @@ from pathlib import Path
 import cv2
 
 from verigraph.actions import AlignAction
-from verigraph.actions.executor import execute_in_world
+from verigraph.actions.execution import execute_in_world
 from verigraph.graph import WorldState, check_goal
 from verigraph.sim2d import generate_scene
 

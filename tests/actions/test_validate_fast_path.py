@@ -7,7 +7,7 @@ import random
 
 from scenes import random_blocks, random_tableware
 from verigraph.actions import MoveAction, validate_plan
-from verigraph.actions.records import move_accepted
+from verigraph.actions.execution import move_accepted
 from verigraph.actions.validator import apply_action, validate_action
 from verigraph.graph import Goal, WorldState
 

@@ -19,7 +19,7 @@ from mcp.client.context import ClientRequestContext
 from mcp.types import ElicitRequestParams, ElicitResult
 from mcp_helpers import structured, text
 
-from verigraph.actions.executor import execute_in_world
+from verigraph.actions.execution import execute_in_world
 from verigraph.actions.model import MoveAction
 from verigraph.arm import ConfirmationRequest, LayoutLocator, open_arm_world, parse_arm_config
 from verigraph.arm.drivers.xarm import XArmDriver

@@ -21,7 +21,7 @@ from verigraph.arm.testing.deps import require
 
 require("xarm")
 
-from verigraph.actions.executor import execute_in_world  # noqa: E402
+from verigraph.actions.execution import execute_in_world  # noqa: E402
 from verigraph.actions.feedback import Violation  # noqa: E402
 from verigraph.actions.model import MoveAction  # noqa: E402
 from verigraph.arm import (  # noqa: E402

@@ -19,7 +19,7 @@ from verigraph.arm.testing.deps import require
 
 pb = require("pybullet")
 
-from verigraph.actions.executor import execute_in_world  # noqa: E402
+from verigraph.actions.execution import execute_in_world  # noqa: E402
 from verigraph.actions.model import MoveAction  # noqa: E402
 from verigraph.arm import ArmWorld, PyBulletOptions, open_arm_world, parse_arm_config  # noqa: E402
 from verigraph.arm.sim.camera import PyBulletCameraLocator, capture  # noqa: E402

@@ -23,7 +23,7 @@ require("roslibpy")
 require("websockets")
 require("pybullet")
 
-from verigraph.actions.executor import execute_in_world  # noqa: E402
+from verigraph.actions.execution import execute_in_world  # noqa: E402
 from verigraph.actions.model import MoveAction  # noqa: E402
 from verigraph.arm import (  # noqa: E402
     ArmConnectionError,

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from user_worlds import inline_scene
 
-from verigraph.actions.executor import execute_in_world
+from verigraph.actions.execution import execute_in_world
 from verigraph.errors import VeriGraphError
 from verigraph.graph import SceneGraph, WorldState
 from verigraph.sim2d import TabletopWorld, generate_scene, world_for_graph

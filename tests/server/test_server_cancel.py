@@ -16,7 +16,7 @@ import uvicorn
 from mcp import Client
 from mcp_helpers import JSON_HEADERS, free_port, rpc, text
 
-from verigraph.actions import records
+from verigraph.actions import execution
 from verigraph.budget import BudgetExceeded, CallBudget, checkpoint
 from verigraph.server import build_server
 from verigraph.server.heavy import HeavyLimits
@@ -34,7 +34,7 @@ class HeldStep:
         self.started = threading.Event()
         self.outcome: list[BaseException | str] = []
         self.finished = threading.Event()
-        self.real = records.move_accepted
+        self.real = execution.move_accepted
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
         if not self.started.is_set():
@@ -53,7 +53,7 @@ class HeldStep:
 
 async def test_a_vanished_clients_call_is_cancelled(monkeypatch: pytest.MonkeyPatch) -> None:
     held = HeldStep()
-    monkeypatch.setattr(records, "move_accepted", held)
+    monkeypatch.setattr(execution, "move_accepted", held)
     options = HttpOptions(port=free_port())
     server = uvicorn.Server(uvicorn_config(build_server(Toolbox()), options))
     plan = "move(cup, on, desk)   \n" * 1000  # long enough to run as a heavy call
@@ -81,7 +81,7 @@ async def test_a_vanished_clients_call_is_cancelled(monkeypatch: pytest.MonkeyPa
 async def test_a_call_over_its_wall_clock_budget_gets_a_tool_error(
         monkeypatch: pytest.MonkeyPatch) -> None:
     held = HeldStep()
-    monkeypatch.setattr(records, "move_accepted", held)
+    monkeypatch.setattr(execution, "move_accepted", held)
     server = build_server(Toolbox(), heavy=HeavyLimits(budget=CallBudget(wall_s=0.2)))
     async with Client(server) as client:
         result = await client.call_tool("validate_plan", {

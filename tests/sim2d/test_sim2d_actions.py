@@ -14,7 +14,7 @@ import random
 import pytest
 
 from verigraph.actions import MoveAction
-from verigraph.actions.executor import execute_in_world
+from verigraph.actions.execution import execute_in_world
 from verigraph.graph.builtin_scenes import cup_on_book, kitchen_pan
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState

@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from verigraph.actions import AlignAction
-from verigraph.actions.executor import execute_in_world
+from verigraph.actions.execution import execute_in_world
 from verigraph.graph.goal import diff
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState

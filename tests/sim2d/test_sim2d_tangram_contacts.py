@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import random
 
-from verigraph.actions.executor import execute_in_world
+from verigraph.actions.execution import execute_in_world
 from verigraph.actions.validator import validate_action
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState

@@ -8,7 +8,7 @@ import math
 import pytest
 
 from verigraph.actions import AlignAction, MoveAction, validate_action
-from verigraph.actions.executor import execute_in_world
+from verigraph.actions.execution import execute_in_world
 from verigraph.graph.builtin_scenes import cup_on_book, three_blocks
 from verigraph.graph.state import WorldState
 from verigraph.sim2d import SimError, TabletopWorld, generate_scene, world_for_graph

@@ -1,13 +1,11 @@
 """Validation and execution semantics (docs/design.md section 6, the paper's Algorithm 1 core).
 
 `validate_action` checks one action against the constraints and changes nothing;
-`apply_action` is the graph edit of a valid action; `execute_until_violation` runs a
-list of actions until the first violation, keeping the valid prefix applied.
+`apply_action` is the graph edit of a valid action. Running a list of actions until
+the first violation is `verigraph.actions.execution`.
 """
 
 from __future__ import annotations
-
-from collections.abc import Iterable, Sequence
 
 from pydantic import BaseModel, Field
 
@@ -18,8 +16,8 @@ from verigraph.actions.constraints import (
     check_capacity,
 )
 from verigraph.actions.feedback import Violation
-from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
-from verigraph.graph.model import Edge, SceneGraph
+from verigraph.actions.model import AlignAction, AnyAction, MoveAction
+from verigraph.graph.model import Edge
 from verigraph.graph.state import WorldState
 
 
@@ -95,62 +93,3 @@ def apply_action(state: WorldState, action: AnyAction) -> GraphEdit:
                                   (action.target, action.target_side))
         return GraphEdit(removed=removed_contacts, added=[added])
     return GraphEdit()
-
-
-def apply_action_fast(state: WorldState, action: AnyAction) -> None:
-    """apply_action without building the edit record: the hot path of plan validation."""
-    if isinstance(action, MoveAction):
-        state.set_support(action.object, action.relation, action.target)
-    elif isinstance(action, AlignAction):
-        state.detach_contacts(action.object)
-        state.add_contact((action.object, action.side), (action.target, action.target_side))
-
-
-class ExecutionResult(BaseModel):
-    """What execute_until_violation returns: the prefix that ran, the graph, the feedback."""
-
-    executed: list[AnyAction]
-    graph: SceneGraph
-    violation: Violation | None = None
-    done: bool = Field(default=False, description="the end token was reached")
-    edits: list[GraphEdit] = Field(default_factory=list)
-
-
-def run_until_violation(state: WorldState, actions: Iterable[AnyAction], *,
-                        first_step: int = 1, record_edits: bool = True
-                        ) -> tuple[list[AnyAction], list[GraphEdit], Violation | None, bool]:
-    """In-place core of execute_until_violation, for callers that keep a WorldState.
-
-    With `record_edits=False` no per-step edit is built (about twice as fast).
-    """
-    executed: list[AnyAction] = []
-    edits: list[GraphEdit] = []
-    for offset, action in enumerate(actions):
-        if isinstance(action, DoneAction):
-            return executed, edits, None, True
-        violation = validate_action(state, action, first_step + offset)
-        if violation is not None:
-            return executed, edits, violation, False
-        if record_edits:
-            edits.append(apply_action(state, action))
-        else:
-            apply_action_fast(state, action)
-        executed.append(action)
-    return executed, edits, None, False
-
-
-def execute_until_violation(actions: Sequence[AnyAction], graph: SceneGraph | WorldState
-                            ) -> ExecutionResult:
-    """Validate and apply each action in order; stop at the first violation or `done`.
-
-    The input is never modified: a SceneGraph is indexed afresh, a WorldState is copied.
-
-    >>> from verigraph.graph.builtin_scenes import cup_on_book
-    >>> r = execute_until_violation([MoveAction(object="book", target="shelf")], cup_on_book())
-    >>> r.violation.constraint, r.violation.blocking
-    ('object_not_clear', ['cup'])
-    """
-    state = graph.copy() if isinstance(graph, WorldState) else WorldState.from_graph(graph)
-    executed, edits, violation, done = run_until_violation(state, actions)
-    return ExecutionResult(executed=executed, graph=state.to_graph(), violation=violation,
-                           done=done, edits=edits)

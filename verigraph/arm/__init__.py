@@ -1,7 +1,7 @@
 """The arm adapter: the only way a graph action reaches a robot arm.
 
 The server builds an `ArmWorld` with `open_arm_world(config, graph, confirm=...)` and
-passes it to `verigraph.actions.executor.execute_in_world`, which validates each action
+passes it to `verigraph.actions.execution.execute_in_world`, which validates each action
 before `ArmWorld.perform`; the world validates again on the graph it observes, and
 the `ArmController` gate checks, confirms, times and logs every command.
 """

@@ -41,7 +41,7 @@ def register(sub: Any) -> None:
     s.add_argument("--max-expansions", type=int, default=DEFAULT_MAX_EXPANSIONS,
                    help=f"search nodes to expand at most (default {DEFAULT_MAX_EXPANSIONS:,})")
     s.add_argument("--time-limit", type=float, default=DEFAULT_TIME_LIMIT_S, metavar="SECONDS",
-                   help=f"wall-clock budget in seconds (default {DEFAULT_TIME_LIMIT_S:g})")
+                   help=f"CPU-time budget in seconds (default {DEFAULT_TIME_LIMIT_S:g})")
     s.add_argument("--memory-limit", type=float, default=DEFAULT_MEMORY_LIMIT_MB, metavar="MB",
                    help="memory budget in MiB that the search may add to the process "
                         f"(default {DEFAULT_MEMORY_LIMIT_MB})")

@@ -17,7 +17,7 @@ from pathlib import Path
 import cv2
 import numpy as np
 
-from verigraph.actions.executor import execute_in_world
+from verigraph.actions.execution import execute_in_world
 from verigraph.actions.model import AnyAction
 from verigraph.actions.parser import parse_plan
 from verigraph.actions.report import validate_plan

@@ -19,7 +19,7 @@ from __future__ import annotations
 import random
 from dataclasses import dataclass
 
-from verigraph.actions.executor import execute_in_world
+from verigraph.actions.execution import execute_in_world
 from verigraph.actions.model import MoveAction
 from verigraph.actions.validator import validate_action
 from verigraph.graph.dictionary import (

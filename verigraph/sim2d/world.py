@@ -1,6 +1,6 @@
 """`SimWorld`: what every simulated world offers on top of the executor's `World` protocol.
 
-`perform` and `observe` are the `World` contract (`verigraph.actions.executor`); a sim
+`perform` and `observe` are the `World` contract (`verigraph.actions.execution`); a sim
 world also renders itself, executes actions without the validator (`perform_unverified`,
 so the consequences of a bad action show), and copies itself for what-if runs.
 """

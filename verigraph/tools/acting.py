@@ -12,7 +12,7 @@ from typing import Annotated
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from verigraph.actions.executor import execute_in_world
+from verigraph.actions.execution import execute_in_world
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.actions.parser import parse_plan

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.actions.executor import World
+from verigraph.actions.execution import World
 from verigraph.actions.model import MoveAction
 from verigraph.actions.validator import apply_action, validate_action
 from verigraph.arm import ArmStatus, ArmWorld, ConfirmationRequest

@@ -40,7 +40,7 @@ class SolveInput(BaseModel):
     max_expansions: int = Field(default=200_000, ge=1, le=2_000_000,
                                 description="max nodes expanded")
     time_limit: float = Field(default=5.0, gt=0, le=600,
-                              description="seconds")
+                              description="CPU seconds of the search")
     memory_limit_mb: float = Field(default=200, gt=0, le=16_384,
                                    description="MiB of growth")
     anytime: bool = Field(default=False, description="fast plan, then refined; "

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 from pydantic import BaseModel, Field
 
-from verigraph.actions.executor import World
+from verigraph.actions.execution import World
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction
 from verigraph.graph.dictionary import InlineDictionary

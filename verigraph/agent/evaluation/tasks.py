@@ -107,7 +107,7 @@ def feasible_in_sim(graph: SceneGraph, goal: Goal, seed: int, world: Any = None)
     The symbolic goal can ask for placements the simulator cannot realise (a wide board
     on a narrow plate); such tasks would measure the simulator, not the planner.
     """
-    from verigraph.actions.executor import execute_in_world
+    from verigraph.actions.execution import execute_in_world
     from verigraph.sim2d import world_for_graph
     from verigraph.solver import solve
 

@@ -1,0 +1,256 @@
+"""Execute until violation: the paper's Algorithm 1 core, one loop for every caller.
+
+`run_actions` validates each action on the current graph and applies the valid ones;
+it stops at the first violation (or goes on past it with `all_errors`) or at the end
+token. With a `World` (the sim2d simulator, an arm adapter) every accepted action is
+also performed there and the world is observed again: a world that ends somewhere else
+than predicted makes its observed graph the truth and reports `execution_failed`. An
+aligned piece that also lands against new neighbours is not a failure: those contacts
+are added to the prediction as observed (`new_contacts`).
+
+Accepted moves on the graph alone take a fused fast path (`move_accepted`: every move
+constraint's pass condition in one function) and keep per step only a compact record
+(step, action, old support); anything else goes through the full constraint list, which
+also produces the feedback. `execute_until_violation` (the library's form, a model),
+`execute_in_world` (episodes and the simulator) and the plan validator
+(`verigraph.actions.report`) are views of the same run.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any, Protocol, runtime_checkable
+
+from pydantic import BaseModel, Field
+
+from verigraph.actions.feedback import Violation
+from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
+from verigraph.actions.validator import GraphEdit, apply_action, validate_action
+from verigraph.budget import checkpoint
+from verigraph.graph.goal import diff
+from verigraph.graph.model import Edge, SceneGraph
+from verigraph.graph.state import WorldState
+
+# (step, action, payload): payload is the old support (tuple or None) of an accepted move
+# on the fast path, a GraphEdit for other accepted actions, or the Violation of a
+# rejected one.
+Record = tuple[int, AnyAction, Any]
+
+
+@runtime_checkable
+class World(Protocol):
+    """Something that can carry out a validated action and report what it observes."""
+
+    def perform(self, action: MoveAction | AlignAction) -> Violation | None:
+        """Carry out an action that already passed the symbolic validator.
+
+        Returns a Violation only when the world itself refuses before anything moves
+        (e.g. tangram `overlap`); in that case nothing may have changed.
+        """
+        ...
+
+    def observe(self) -> SceneGraph:
+        """The scene graph of the current state, read from the world (not bookkeeping)."""
+        ...
+
+
+@dataclass
+class Run:
+    """What one run of `run_actions` did.
+
+    `records` hold every step checked, accepted or not; `state` is the graph it ends
+    in (the prediction, or what the world observed after a mismatch). `world_acted` is
+    True when the last failing action was carried out by the world, which then ended
+    elsewhere (`execution_failed`): that action counts as executed.
+    """
+
+    records: list[Record] = field(default_factory=list)
+    violations: list[Violation] = field(default_factory=list)
+    done: bool = False
+    not_checked: int = 0
+    world_acted: bool = False
+    state: WorldState | None = None
+
+    def executed(self) -> list[AnyAction]:
+        """The actions that ran, in order."""
+        ran = [a for _, a, payload in self.records if not isinstance(payload, Violation)]
+        if self.world_acted:
+            ran.append(self.records[-1][1])
+        return ran
+
+    def edits(self) -> list[GraphEdit]:
+        """The graph edit of every accepted action, in order."""
+        return [edit_of(action, payload) for _, action, payload in self.records
+                if not isinstance(payload, Violation)]
+
+
+def edit_of(action: AnyAction, payload: Any) -> GraphEdit:
+    """The GraphEdit an accepted step made (built here for fast-path moves)."""
+    if isinstance(payload, GraphEdit):
+        return payload
+    assert isinstance(action, MoveAction)
+    removed = [Edge(source=action.object, relation=payload[0], target=payload[1])] \
+        if payload is not None else []
+    return GraphEdit(removed=removed, added=[
+        Edge(source=action.object, relation=action.relation, target=action.target)])
+
+
+def move_accepted(state: WorldState, a: MoveAction) -> bool:
+    """True exactly when every check in MOVE_CHECKS passes (the common case, fused)."""
+    objects = state.objects
+    obj, target, relation = a.object, a.target, a.relation
+    info = objects.get(obj)
+    t = objects.get(target)
+    if info is None or t is None or obj == target or not info.props.movable:
+        return False
+    if relation not in state.move_relations or state.carried[obj]:
+        return False  # a carried object fails check_clear (or check_cycle) anyway
+    if state.support.get(obj) == (relation, target):
+        return False
+    props = t.props
+    if not (props.surface if relation == "on" else props.container):
+        return False
+    return props.capacity is None or len(state.carried[target]) < props.capacity
+
+
+def run_actions(state: WorldState, actions: Sequence[AnyAction], *,
+                world: World | None = None, all_errors: bool = False,
+                first_step: int = 1) -> Run:
+    """Validate and apply `actions` on `state` in place until a violation or `done`.
+
+    With `all_errors` a refused action is skipped and checking goes on (like VAL's -c),
+    to list every problem; a world never runs past a refusal, so the two do not mix.
+    """
+    if world is not None and all_errors:
+        raise ValueError("all_errors checks a plan on the graph; a world stops at a refusal")
+    run = Run(state=state)
+    records, violations = run.records, run.violations
+    support, carried = state.support, state.carried
+    for index, action in enumerate(actions, start=first_step):
+        if not index & 63:
+            checkpoint()  # the server's per-call budget (and cancellation), cheap when unset
+        if world is None and type(action) is MoveAction and move_accepted(state, action):
+            obj = action.object
+            old = support.get(obj)
+            if old is not None:
+                del carried[old[1]][obj]
+            support[obj] = (action.relation, action.target)
+            carried[action.target][obj] = action.relation
+            records.append((index, action, old))
+            continue
+        if isinstance(action, DoneAction):
+            run.done = True
+            return run
+        violation = validate_action(state, action, index)
+        if violation is None and world is not None:
+            violation = _perform(run, world, action, index)
+            assert run.state is not None
+            state = run.state  # the prediction, or the observation after a mismatch
+            if violation is None:
+                continue
+        elif violation is None:
+            records.append((index, action, apply_action(state, action)))
+            continue
+        elif world is not None:
+            record = getattr(world, "record_rejection", None)  # an arm logs every attempt
+            if record is not None:
+                record(action, violation)
+        violations.append(violation)
+        records.append((index, action, violation))
+        if not all_errors:
+            offset = index - first_step + 1
+            run.not_checked = sum(not isinstance(a, DoneAction) for a in actions[offset:])
+            return run
+    return run
+
+
+def _perform(run: Run, world: World, action: AnyAction, step: int) -> Violation | None:
+    """Carry out one accepted action in the world, observe it, compare with the
+    prediction; the run's state becomes the prediction, or the observation after a
+    mismatch (returned as `execution_failed`)."""
+    assert run.state is not None and isinstance(action, MoveAction | AlignAction)
+    current = run.state
+    refused = world.perform(action)
+    if refused is not None:
+        refused.step = step
+        return refused
+    predicted = current.copy()
+    edit = apply_action(predicted, action)
+    seen = world.observe()
+    observed = WorldState.from_graph(seen, current.dictionary, partial=True)
+    if isinstance(action, AlignAction):
+        edit.added += new_contacts(predicted, seen, action.object)
+    mismatch = diff(observed, predicted.to_graph())
+    if not mismatch.satisfied:
+        run.world_acted, run.state = True, observed
+        return Violation(
+            step=step, action=action.model_dump(), constraint="execution_failed",
+            message=f"the world did not end as predicted after {action.text()}: "
+                    f"{mismatch.summary().removeprefix('goal not reached: ')}",
+            blocking=sorted({e.split(' ')[0] for e in mismatch.missing_edges}),
+            suggestion="the observed graph is now the current graph; re-plan from it")
+    run.records.append((step, action, edit))
+    run.state = predicted
+    return None
+
+
+class ExecutionResult(BaseModel):
+    """What execute_until_violation returns: the prefix that ran, the graph, the feedback."""
+
+    executed: list[AnyAction]
+    graph: SceneGraph
+    violation: Violation | None = None
+    done: bool = Field(default=False, description="the end token was reached")
+    edits: list[GraphEdit] = Field(default_factory=list)
+
+
+def execute_until_violation(actions: Sequence[AnyAction], graph: SceneGraph | WorldState
+                            ) -> ExecutionResult:
+    """Validate and apply each action in order; stop at the first violation or `done`.
+
+    The input is never modified: a SceneGraph is indexed afresh, a WorldState is copied.
+
+    >>> from verigraph.graph.builtin_scenes import cup_on_book
+    >>> r = execute_until_violation([MoveAction(object="book", target="shelf")], cup_on_book())
+    >>> r.violation.constraint, r.violation.blocking
+    ('object_not_clear', ['cup'])
+    """
+    state = graph.copy() if isinstance(graph, WorldState) else WorldState.from_graph(graph)
+    run = run_actions(state, actions)
+    return ExecutionResult(executed=run.executed(), graph=state.to_graph(),
+                           violation=run.violations[0] if run.violations else None,
+                           done=run.done, edits=run.edits())
+
+
+def execute_in_world(state: WorldState, actions: Sequence[AnyAction], world: World | None, *,
+                     first_step: int = 1
+                     ) -> tuple[list[AnyAction], list[GraphEdit], Violation | None, bool,
+                                WorldState]:
+    """`run_actions` on a copy of `state`, with or without a world.
+
+    Returns (executed, edits, violation, done, new_state). `state` is not modified; the
+    returned state is the predicted graph, or the observed graph after a mismatch.
+    """
+    run = run_actions(state.copy(), actions, world=world, first_step=first_step)
+    assert run.state is not None
+    return (run.executed(), run.edits(), run.violations[0] if run.violations else None,
+            run.done, run.state)
+
+
+def new_contacts(predicted: WorldState, observed: SceneGraph, moved: str) -> list[Edge]:
+    """Contacts the aligned piece makes beyond the one asked for (its new neighbours),
+    as the world observes them: added to the prediction (in place), not a failure.
+
+    Geometry decides which other sides the moved piece lands against, and the symbolic
+    state has no geometry; so they are taken from the observation, and only for the
+    moved piece (any other change still counts as the world ending elsewhere).
+    """
+    known = {e.key() for e in predicted.edges()}
+    added = []
+    for e in observed.edges:
+        if e.relation != "touches" or moved not in (e.source, e.target) or e.key() in known:
+            continue
+        added.append(predicted.add_contact((e.source, e.source_side or 0),
+                                           (e.target, e.target_side or 0)))
+    return added
