@@ -75,3 +75,46 @@ def test_bad_input_is_one_message_and_exit_two(tmp_path: Path) -> None:
                               text=True, timeout=120, stdin=subprocess.DEVNULL)
         assert done.returncode == 2, done.stderr
         assert field in done.stderr and "Traceback" not in done.stderr
+
+
+def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([*verigraph_command(), "rollouts", "--no-progress", *args],
+                          capture_output=True, text=True, timeout=180,
+                          stdin=subprocess.DEVNULL)
+
+
+def test_a_resume_with_other_settings_is_refused_not_reported(tmp_path: Path) -> None:
+    path = tmp_path / "run.jsonl"
+    base = ["--family", "kitchen", "--policy", "oracle", "--limit", "2", "--json",
+            "--trajectories", str(path)]
+    first = run_cli(*base, "--max-steps", "1")
+    assert first.returncode == 0, first.stderr
+    assert json.loads(first.stdout)["pass@1"] == 0.0
+    written = path.read_bytes()
+    for extra, named in ((["--max-steps", "40"], "max_steps 1 (now 40)"),
+                         (["--max-steps", "1", "--k", "1"], "k 3 (now 1)"),
+                         (["--max-steps", "1", "--threshold", "2"], "threshold 5 (now 2)")):
+        again = run_cli(*base, *extra)
+        assert again.returncode == 2 and again.stdout == ""
+        assert named in again.stderr and "--trajectories" in again.stderr
+        assert "Traceback" not in again.stderr
+        assert path.read_bytes() == written
+    fresh = run_cli(*base[:-1], str(tmp_path / "fresh.jsonl"), "--max-steps", "40")
+    assert json.loads(fresh.stdout)["pass@1"] == 1.0  # what the old run would have hidden
+
+
+def test_a_byte_that_is_not_utf8_is_exit_two_naming_file_and_line(tmp_path: Path) -> None:
+    run = tmp_path / "run.jsonl"
+    args = ["--family", "blocks", "--policy", "refuse", "--limit", "1", "--threshold", "1",
+            "--trajectories", str(run)]
+    assert run_cli(*args).returncode == 0
+    lines = run.read_bytes().count(b"\n")
+    run.write_bytes(run.read_bytes() + b"\xff\n")
+    tasks = tmp_path / "tasks.jsonl"
+    dataset.write_jsonl(split_tasks(suite_tasks("tangram"), "test")[:2], tasks)
+    tasks.write_bytes(tasks.read_bytes().replace(b'"tangram"', b'"tan\xffgram"', 1))
+    for done, where in ((run_cli(*args), f"{run}:{lines + 1}"),
+                        (run_cli("--tasks", str(tasks)), f"{tasks}:1")):
+        assert done.returncode == 2, done.stderr
+        assert where in done.stderr and "UTF-8" in done.stderr
+        assert "Traceback" not in done.stderr

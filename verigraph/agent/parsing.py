@@ -98,7 +98,18 @@ def _parse_answer(text: str) -> list[AnyAction]:
         except json.JSONDecodeError as exc:
             raise ParseFailure(f"the answer is not valid JSON ({exc.msg} at character "
                                f"{exc.pos}: {_shown(body)!r}); write it as {EXPECTED}") from None
-        return [_action(i, item) for i, item in enumerate(_items(data))]
+        except (RecursionError, ValueError) as exc:
+            # Valid JSON that Python will not hold: nesting past the recursion limit, or an
+            # integer past int_max_str_digits (4,300 digits). The answer is still unreadable.
+            why = "nests too deeply" if isinstance(exc, RecursionError) \
+                else "holds a number too long to read"
+            raise ParseFailure(f"the answer {why} ({_shown(body)!r}); write it as "
+                               f"{EXPECTED}") from None
+        try:
+            return [_action(i, item) for i, item in enumerate(_items(data))]
+        except RecursionError:  # a nested item's error message recursed too deeply
+            raise ParseFailure(f"the answer nests too deeply ({_shown(body)!r}); write it as "
+                               f"{EXPECTED}") from None
     try:
         return parse_plan(body)
     except PlanParseError as exc:

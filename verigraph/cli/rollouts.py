@@ -5,7 +5,9 @@ tasks of a bundled suite (`--family`, one split) or of a task file (`--tasks`), 
 run `--samples` times by one of the project's policies, through the evaluation engine
 that runs `bench plan` (serial, or `--ray local|auto|HOST:PORT`). With
 `--trajectories FILE` every finished episode is written there as JSONL (one line per
-step) and a rerun of the same command resumes; the progress bar is `bench plan`'s. It
+step) and a rerun of the same command resumes (a rerun with other --k, --threshold or
+--max-steps, or other tasks under the same ids, is refused: exit 2, the file kept); the
+progress bar is `bench plan`'s. It
 prints pass@1 and pass^k (every sample of a task succeeded) over the tasks run, the
 mean return, and the failed rollouts by kind; `--json` prints the same as one object.
 The exit code is 0 whatever the policy achieved (a run's outcome is not a verdict),

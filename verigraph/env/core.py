@@ -74,6 +74,7 @@ CHARSET = "".join(chr(c) for c in (9, 10, *range(32, 127), *range(0xA0, 0x180),
 _ALLOWED = frozenset(CHARSET)
 MAX_OBSERVATION = 32_768
 MAX_ACTION = 4_096
+RESET_OPTIONS = frozenset({"task"})
 CUT = "\n[... cut to the observation limit]\n"
 
 
@@ -191,13 +192,24 @@ class VeriGraphEnv(gym.Env[str, str]):
         return self.tools.call("end_episode", {"episode_id": episode})
 
     def _pick(self, options: dict[str, Any] | None) -> TaskRecord:
+        # Gymnasium's reset takes `options` as a dict or None; anything else, or a key
+        # this environment does not read (a misspelt "task" would silently pick a
+        # seeded task), is refused before any state changes.
+        if options is not None and not isinstance(options, dict):
+            raise VeriGraphError(f"reset options must be a dict or None, got "
+                                 f"{type(options).__name__}", field="options",
+                                 value=repr(options)[:80],
+                                 fix='pass options={"task": TASK_ID_OR_INDEX} or none')
+        unknown = sorted(map(str, set(options or {}) - RESET_OPTIONS))
+        if unknown:
+            raise VeriGraphError(f"unknown reset option(s): {', '.join(unknown)[:80]}",
+                                 field="options", value=unknown[0][:80],
+                                 fix=f"the options are {', '.join(sorted(RESET_OPTIONS))}")
         choice = (options or {}).get("task")
         if choice is None:
             return self.tasks[int(self.np_random.integers(len(self.tasks)))]
-        if isinstance(choice, TaskRecord):
-            return choice
-        if isinstance(choice, dict):
-            return load_tasks([choice])[0]
+        if isinstance(choice, TaskRecord | dict):
+            return load_tasks([choice])[0]  # hash-checked, as a task file's lines are
         if isinstance(choice, int) and not isinstance(choice, bool):
             if 0 <= choice < len(self.tasks):
                 return self.tasks[choice]
@@ -247,7 +259,9 @@ class VeriGraphEnv(gym.Env[str, str]):
             raise VeriGraphError("the episode is over (or was never started)", field="action",
                                  fix="call reset() to start the next episode")
         tools = self._tools()
-        self.steps += 1
+        # The counter moves once the step has an outcome: a tool error on the way (a lost
+        # MCP connection) leaves the episode at the step it was on.
+        step_number = self.steps + 1
         distance_before = self.distance()
         parsed: list[AnyAction] = []
         dropped: list[AnyAction] = []
@@ -291,6 +305,7 @@ class VeriGraphEnv(gym.Env[str, str]):
                     ended = False
                 else:
                     verdict = "end_token"
+        self.steps = step_number
         self.tau = 0 if verdict in ("clean", "end_token") else self.tau + 1
         self.feedback = feedback
         terminated = ended or bool(self.goal_satisfied)
@@ -333,6 +348,17 @@ class VeriGraphEnv(gym.Env[str, str]):
             self.over = True
 
     # -- helpers ---------------------------------------------------------------------------
+    def settings(self) -> dict[str, Any]:
+        """Every setting besides the task and the actions that changes an episode's
+        outcome (k, threshold, max_steps, feedback, the rubric's weights), as JSON.
+
+        Trajectory files record it on each reset line, so a resumed run can tell that
+        its episodes were played under other settings (verigraph.env.rollout). The
+        tool transport is not among them: in process and over MCP give the same episode.
+        """
+        return {"k": self.k, "threshold": self.threshold, "max_steps": self.max_steps,
+                "feedback": self.feedback_mode, "rubric": self.rubric.model_dump(mode="json")}
+
     def distance(self) -> int | None:
         """Goal distance of the current graph against the ground-truth goal."""
         return self._distance

@@ -4,7 +4,11 @@ A `TaskRecord` is one benchmark task (verigraph.agent.evaluation.tasks) in a for
 training pipeline can store: how to load the scene and set the goal, its family and
 group, and its difficulty (optimal plan length from the reference solver, object count).
 Its `content_hash` covers only what defines the task (scene and goal), never its id or
-seed, so the same task drawn from two seeds has the same hash.
+seed, so the same task drawn from two seeds has the same hash. Its `record_hash` covers
+every other field too (whether the prompt shows the goal graph, the instruction, the
+optimal length the efficiency reward divides by, the family, group, kind, object count
+and suite version), again never the id: a record read back must match both, so no field
+that reaches a prompt, a score or a selection can be edited unnoticed.
 
 Splits are decided by that hash alone (`split_of`): a task lands in the same split in
 every pool, whatever seed or size built the pool, so a train and a test split can never
@@ -63,6 +67,18 @@ def content_hash(load: dict[str, Any], set_goal: dict[str, Any] | None) -> str:
     return hashlib.sha256(blob.encode("utf-8")).hexdigest()
 
 
+RECORD_FIELDS = ("family", "group", "kind", "optimal_length", "objects", "show_goal_graph",
+                 "instruction", "suite_version")
+
+
+def record_hash(content: str, fields: dict[str, Any]) -> str:
+    """sha256 of a record's content hash and its `RECORD_FIELDS` (canonical JSON)."""
+    blob = json.dumps({"content_hash": content,
+                       **{name: fields.get(name) for name in RECORD_FIELDS}},
+                      sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(blob.encode("utf-8")).hexdigest()
+
+
 class TaskRecord(BaseModel):
     """One task of a suite, with its difficulty and the hash that identifies it."""
 
@@ -79,7 +95,9 @@ class TaskRecord(BaseModel):
     show_goal_graph: bool = Field(description="False: the prompt shows only the instruction")
     instruction: str | None = None
     suite_version: str = SUITE_VERSION
-    content_hash: str
+    content_hash: str = Field(description="sha256 of the scene and goal: the task itself")
+    record_hash: str = Field(description="sha256 of content_hash and every other field "
+                                         "but the id (see RECORD_FIELDS)")
 
     @classmethod
     def from_task(cls, task: Task, family: Family, seed: int) -> TaskRecord:
@@ -87,11 +105,20 @@ class TaskRecord(BaseModel):
         graph = SceneGraph.model_validate(load["graph"])
         objects = sum(o.props.movable for o in WorldState.from_graph(graph).objects.values())
         index = task.task_id.rsplit("/", 1)[-1]
-        return cls(task_id=f"{task.group}/{seed}/{index}", family=family, group=task.group,
-                   kind=task.kind, optimal_length=task.optimal_length, objects=objects,
-                   load=load, set_goal=task.spec.set_goal,
-                   show_goal_graph=task.spec.show_goal_graph, instruction=task.instruction,
-                   content_hash=content_hash(load, task.spec.set_goal))
+        fields: dict[str, Any] = {
+            "family": family, "group": task.group, "kind": task.kind,
+            "optimal_length": task.optimal_length, "objects": objects,
+            "show_goal_graph": task.spec.show_goal_graph, "instruction": task.instruction,
+            "suite_version": SUITE_VERSION}
+        digest = content_hash(load, task.spec.set_goal)
+        return cls(task_id=f"{task.group}/{seed}/{index}", load=load,
+                   set_goal=task.spec.set_goal, content_hash=digest,
+                   record_hash=record_hash(digest, fields), **fields)
+
+    def expected_record_hash(self) -> str:
+        """The record hash this record's fields give (equal to `record_hash` unless one
+        was edited)."""
+        return record_hash(self.content_hash, self.model_dump(include=set(RECORD_FIELDS)))
 
     def split(self, test_fraction: float = DEFAULT_TEST_FRACTION) -> Split:
         return split_of(self.content_hash, test_fraction)
@@ -219,13 +246,29 @@ def read_jsonl(path: str | Path) -> list[TaskRecord]:
 
 
 def _checked(record: TaskRecord, where: str, field: str) -> TaskRecord:
-    """The record, if its scene and goal still match its content hash."""
-    if content_hash(record.load, record.set_goal) != record.content_hash:
+    """The record, if its scene and goal still match its content hash and every other
+    field its record hash."""
+    try:
+        digest = content_hash(record.load, record.set_goal)
+    except (ValidationError, ValueError, RecursionError, TypeError) as exc:
+        # a graph that is not one, a number json cannot write, nesting past the limit
+        detail = exc.errors()[0]["msg"] if isinstance(exc, ValidationError) else str(exc)
+        raise VeriGraphError(f"{where}: task {record.task_id}: its scene or goal cannot be "
+                             f"read: {detail[:200]}", field=field, value=record.task_id,
+                             fix="rebuild the task with build_tasks and write_jsonl") from None
+    if digest != record.content_hash:
         raise VeriGraphError(
             f"{where}: task {record.task_id} does not match its content_hash",
             field=field, value=record.task_id,
             fix="a task's scene or goal was edited; rebuild it with build_tasks or "
                 "write_jsonl")
+    if record.expected_record_hash() != record.record_hash:
+        raise VeriGraphError(
+            f"{where}: task {record.task_id} does not match its record_hash",
+            field=field, value=record.task_id,
+            fix="a field that reaches the prompt or the reward (show_goal_graph, "
+                "instruction, optimal_length, ...) was edited; rebuild the task with "
+                "build_tasks and write_jsonl")
     return record
 
 

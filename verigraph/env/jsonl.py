@@ -25,11 +25,26 @@ def read_models(path: str | Path, model: type[ModelT], *, what: str, fix: str
     ("task file"), `fix` says which file to pass instead."""
     source = Path(path)
     try:
-        text = source.read_text("utf-8")
+        data = source.read_bytes()
     except OSError as exc:
         raise VeriGraphError(f"cannot read the {what} {source}: {exc.strerror}",
                              field="path", value=str(source), fix=fix) from None
-    return parse_models(text, model, source=str(source), fix=fix)
+    return parse_models(decode(data, source=str(source), what=what, fix=fix), model,
+                        source=str(source), fix=fix)
+
+
+def decode(data: bytes, *, source: str, what: str, fix: str) -> str:
+    """`data` as UTF-8 text; a byte that is not UTF-8 is an error naming the file, the
+    line and the byte (these files are written as UTF-8 JSON, so it is damage)."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        column = exc.start - (data.rfind(b"\n", 0, exc.start) + 1) + 1
+        bad = data[exc.start:exc.end]
+        raise VeriGraphError(f"{source}:{line}: the {what} is not UTF-8 text (byte "
+                             f"0x{bad[0]:02x} at column {column})", field=f"line {line}",
+                             value=bad.hex(), fix=fix) from None
 
 
 def parse_models(text: str, model: type[ModelT], *, source: str, fix: str

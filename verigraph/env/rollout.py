@@ -37,7 +37,13 @@ from verigraph.agent.evaluation.worker import WorkerFactory, error_kind, worker_
 from verigraph.agent.factory import PlannerOptions, make_planner
 from verigraph.agent.planner import Planner
 from verigraph.env.core import VeriGraphEnv
-from verigraph.env.trajectory import TrajectoryFile, TrajectoryLine, reset_line, step_line
+from verigraph.env.trajectory import (
+    TrajectoryFile,
+    TrajectoryLine,
+    reset_line,
+    settings_diff,
+    step_line,
+)
 from verigraph.errors import VeriGraphError
 
 PolicyName = Literal["oracle", "noisy", "greedy", "refuse"]
@@ -92,7 +98,9 @@ class RolloutJob(BaseModel):
 
     def episode(self) -> str:
         """The rollout's id (its trajectory lines' `episode`, its key when resuming)."""
-        policy = f"{self.policy}~{self.noise:g}" if self.policy == "noisy" else self.policy
+        noise = f"{self.noise:g}"
+        noise = noise if float(noise) == self.noise else repr(self.noise)  # exact, always
+        policy = f"{self.policy}~{noise}" if self.policy == "noisy" else self.policy
         return f"{self.task_id}#{policy}:{self.policy_seed}@{self.seed}"
 
 
@@ -148,7 +156,7 @@ def run_rollout(env: VeriGraphEnv, policy: Policy, job: RolloutJob) -> RolloutRe
     episode = job.episode()
     observation, info = env.reset(seed=job.seed, options={"task": job.task_id})
     assert env.task is not None
-    lines = [reset_line(episode, env.task, job.seed, observation, info)]
+    lines = [reset_line(episode, env.task, job.seed, observation, info, env.settings())]
     total = 0.0
     terminated = truncated = False
     while not (terminated or truncated):
@@ -233,14 +241,19 @@ def run_rollouts(jobs: Sequence[RolloutJob], env_kwargs: dict[str, Any], *,
     episode's lines are appended the moment it ends, and a rerun reads the episodes
     already complete there (their `worker` is None) and runs only the others, as
     `bench plan` does with its results file. A rollout whose worker was lost writes
-    nothing, so a rerun tries it again.
+    nothing, so a rerun tries it again. A file written under other environment settings
+    or for other task records of the same ids is refused (`check_resumable`) before
+    anything runs or is cut.
 
     `progress=True` shows `bench plan`'s bar on `stream` (stderr by default): rollouts
     done of all (those read back from the trajectory file included), success per
     suite, rate and ETA.
     """
     sink = TrajectoryFile(trajectories) if trajectories is not None else None
-    known = sink.complete(repair=True) if sink is not None else {}
+    known = sink.complete() if sink is not None else {}
+    if sink is not None and known:
+        check_resumable(sink.path, known, env_kwargs, worker)
+        known = sink.complete(repair=True)
     unique, found, pending = plan_resume(jobs, RolloutJob.episode, known)
     by_episode = {job.episode(): job for job in unique}
     done = {episode: recorded_result(by_episode[episode], lines)
@@ -258,6 +271,47 @@ def run_rollouts(jobs: Sequence[RolloutJob], env_kwargs: dict[str, Any], *,
         bar.close()
     return [done[job.episode()] if done[job.episode()].job == job
             else done[job.episode()].model_copy(update={"job": job}) for job in jobs]
+
+
+def check_resumable(path: Path, known: dict[str, list[TrajectoryLine]],
+                    env_kwargs: dict[str, Any], worker: type[RolloutWorker] = RolloutWorker
+                    ) -> None:
+    """Refuse to resume from a trajectory file written under other settings.
+
+    An episode's id names its task, policy and seeds; what else decides its outcome is
+    the environment's settings (`VeriGraphEnv.settings`: k, threshold, max_steps,
+    feedback, rubric) and the task's record. Every reset line records both, so a rerun
+    whose settings differ from any episode's in the file, or whose task of the same id
+    is another record (an edited task file), is an error naming the first difference,
+    not a report of the old run. The file is left as it is. The environment
+    compared with is the one the worker builds from `env_kwargs`.
+    """
+    probe = worker(env_kwargs)
+    try:
+        env = probe._env()
+        current, pool = env.settings(), {t.task_id: t for t in env.tasks}
+    finally:
+        probe.close()
+    fix = ("rerun with the settings the file was written with, or give a new trajectory "
+           "file (--trajectories) to start afresh")
+    for episode, lines in known.items():
+        start = lines[0]
+        if start.settings is None:
+            raise VeriGraphError(f"{path}: episode {episode} was written without its "
+                                 "settings, so a resume cannot tell whether they match",
+                                 field="trajectories", value=str(path), fix=fix)
+        if start.settings != current:
+            raise VeriGraphError(f"{path}: episode {episode} was played under other "
+                                 f"settings: {settings_diff(start.settings, current)}",
+                                 field="trajectories", value=str(path), fix=fix)
+        task = start.task
+        now = pool.get(task.task_id) if task is not None else None
+        if task is not None and now is not None and now != task:
+            what = "content hash" if now.content_hash != task.content_hash else \
+                "record hash" if now.record_hash != task.record_hash else "record"
+            raise VeriGraphError(f"{path}: task {task.task_id} of episode {episode} is "
+                                 f"not the task of that id in this run (its {what} "
+                                 "differs)", field="trajectories", value=str(path), fix=fix)
 
 
 def pass_rates(results: Sequence[RolloutResult]) -> dict[str, float]:

@@ -25,7 +25,7 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.env.core import VeriGraphEnv
 from verigraph.env.dataset import TaskRecord
-from verigraph.env.jsonl import parse_models, read_models, write_models
+from verigraph.env.jsonl import decode, parse_models, read_models, write_models
 
 
 class TrajectoryLine(BaseModel):
@@ -40,6 +40,9 @@ class TrajectoryLine(BaseModel):
                                          "the action answered")
     state_hash: str = Field(description="the scene graph's digest after this line")
     task: TaskRecord | None = Field(default=None, description="reset only")
+    settings: dict[str, Any] | None = Field(
+        default=None, description="reset only: the environment settings the episode was "
+                                  "played under (VeriGraphEnv.settings)")
     seed: int | None = None
     action: str | None = None
     parsed: list[str] = Field(default_factory=list)
@@ -64,9 +67,11 @@ class TrajectoryLine(BaseModel):
 
 
 def reset_line(episode: str, task: TaskRecord, seed: int | None, observation: str,
-               info: dict[str, Any]) -> TrajectoryLine:
+               info: dict[str, Any], settings: dict[str, Any] | None = None
+               ) -> TrajectoryLine:
     return TrajectoryLine(kind="reset", episode=episode, step=0, observation=observation,
-                          state_hash=info["state_hash"], task=task, seed=seed)
+                          state_hash=info["state_hash"], task=task, seed=seed,
+                          settings=settings)
 
 
 def step_line(episode: str, observation: str, action: str, reward: float, terminated: bool,
@@ -115,7 +120,8 @@ class TrajectoryFile:
         if not self.path.exists():
             return {}
         data = self.path.read_bytes()
-        whole = data[:data.rfind(b"\n") + 1].decode("utf-8")
+        whole = decode(data[:data.rfind(b"\n") + 1], source=str(self.path),
+                       what="trajectory file", fix=self.FIX)
         rows = parse_models(whole, TrajectoryLine, source=str(self.path), fix=self.FIX)
         last = max((number for number, line in rows if line.final), default=0)
         keep = sum(len(text.encode("utf-8")) + 1 for text in whole.split("\n")[:last])
@@ -169,6 +175,9 @@ def replay(lines: Iterable[TrajectoryLine], env: VeriGraphEnv) -> ReplayReport:
             report.mismatches.append(f"{start.episode}: does not start with a reset line")
             continue
         report.episodes += 1
+        if start.settings is not None and start.settings != env.settings():
+            report.mismatches.append(f"{start.episode}: recorded under the settings "
+                                     f"{settings_diff(start.settings, env.settings())}")
         obs, info = env.reset(seed=start.seed, options={"task": start.task})
         where = f"{start.episode} step 0"
         if obs != start.observation or info["state_hash"] != start.state_hash:
@@ -195,6 +204,14 @@ def replay(lines: Iterable[TrajectoryLine], env: VeriGraphEnv) -> ReplayReport:
                                          f"recorded {_short(line.success)}, "
                                          f"{_short(line.stop_reason)}, {_short(line.moves)}")
     return report
+
+
+def settings_diff(recorded: dict[str, Any], current: dict[str, Any]) -> str:
+    """The settings that differ, e.g. "max_steps 40 (now 10), k 3 (now 1)"."""
+    names = [n for n in dict.fromkeys([*recorded, *current])
+             if recorded.get(n) != current.get(n)]
+    return ", ".join(f"{n} {_short(recorded.get(n))} (now {_short(current.get(n))})"
+                     for n in names)
 
 
 def _short(value: Any) -> str:
