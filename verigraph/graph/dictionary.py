@@ -26,6 +26,7 @@ from pydantic import (
     field_validator,
     model_validator,
 )
+from pydantic_core import PydanticCustomError
 
 from verigraph.errors import DictionaryError, InputFileError
 
@@ -40,6 +41,26 @@ MAX_LABEL_LENGTH = 64
 MAX_SYNONYMS = 16
 MAX_INLINE_BYTES = 32_768
 ROLE_KEYS = ("movable", "surface", "container")
+# Bounds of every size the simulator, the renderer and perception build from, whichever
+# way it comes in (a built-in or inline dictionary, a dictionary file, a node's attrs):
+# widths and heights in the simulator's units (a built-in cup is 6 wide, a desk 60),
+# capacities in objects, tangram sides and rotational symmetry (a goal check tries every
+# rotation of every piece, so symmetry is bounded by the built-in pieces' largest).
+MIN_SIZE = 1.0
+MAX_SIZE = 500.0
+MAX_CAPACITY = 1000
+MAX_SIDES = 16
+MAX_SYMMETRY = 4
+PROPERTY_BOUNDS = {
+    "width": f"a finite number from {MIN_SIZE:g} to {MAX_SIZE:g}",
+    "height": f"a finite number from {MIN_SIZE:g} to {MAX_SIZE:g}",
+    "capacity": f"an integer from 0 to {MAX_CAPACITY}, or null for unlimited",
+    "sides": f"an integer from 3 to {MAX_SIDES}",
+    "symmetry": f"an integer from 1 to {MAX_SYMMETRY} that divides sides",
+    "movable": "true or false", "surface": "true or false", "container": "true or false",
+    "color": "a colour name of at most 32 characters",
+    "shape": "a shape name of at most 32 characters",
+}
 
 _SEPARATORS = re.compile(r"[\s\-]+")
 _NUMBER_SUFFIX = re.compile(r"_\d+$")
@@ -55,18 +76,31 @@ class ObjectProperties(BaseModel):
     surface: bool = False
     container: bool = False
     capacity: int | None = Field(
-        default=None, ge=0,
+        default=None, ge=0, le=MAX_CAPACITY,
         description="how many objects it can carry on or in it at once; null = unlimited")
-    # Descriptive properties used by the simulator, renderer and perception.
-    width: float | None = None
-    height: float | None = None
-    color: str | None = None
-    shape: str | None = None
-    sides: int | None = Field(default=None, ge=3, description="tangram: number of sides")
-    symmetry: int = Field(default=1, ge=1, description="tangram: rotational symmetry order")
+    # Descriptive properties used by the simulator, renderer and perception; bounded
+    # here so that no way in (a dictionary or a node's attrs) reaches them unbounded.
+    width: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
+    height: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
+    color: str | None = Field(default=None, max_length=32)
+    shape: str | None = Field(default=None, max_length=32)
+    sides: int | None = Field(default=None, ge=3, le=MAX_SIDES,
+                              description="tangram: number of sides")
+    symmetry: int = Field(default=1, ge=1, le=MAX_SYMMETRY,
+                          description="tangram: rotational symmetry order")
+
+    @model_validator(mode="after")
+    def _symmetry_divides_sides(self) -> ObjectProperties:
+        if self.sides is not None and self.sides % self.symmetry:
+            raise ValueError(f"symmetry {self.symmetry} does not divide sides {self.sides}")
+        return self
 
     def overridden(self, attrs: dict[str, object]) -> ObjectProperties:
-        """Properties with a node's `attrs` applied on top (only known property names)."""
+        """Properties with a node's `attrs` applied on top (only known property names).
+
+        The overrides get the same bounds as a dictionary's properties (PROPERTY_BOUNDS);
+        a value out of them is a DictionaryError naming `attrs.<property>` and the bound.
+        """
         known = {k: v for k, v in attrs.items() if k in type(self).model_fields and k != "synonyms"}
         if not known:
             return self
@@ -74,15 +108,34 @@ class ObjectProperties(BaseModel):
             return type(self).model_validate({**self.model_dump(), **known})
         except ValidationError as exc:
             err = exc.errors()[0]
-            field = ".".join(str(p) for p in err["loc"])
-            raise DictionaryError(f"bad property override: {err['msg']}", field=f"attrs.{field}",
-                                  value=known.get(field), fix="use the property's type, "
-                                  "e.g. capacity: 2, movable: false") from None
+            field = ".".join(str(p) for p in err["loc"]) or "symmetry"
+            bound = PROPERTY_BOUNDS.get(field)
+            shown = str(known.get(field))[:32]
+            if bound is None:
+                raise DictionaryError(f"bad property override: {err['msg']}",
+                                      field=f"attrs.{field}", value=shown,
+                                      fix="use the property's type, e.g. capacity: 2, "
+                                          "movable: false") from None
+            raise DictionaryError(f"attrs.{field} = {shown} is not accepted: {field} must be "
+                                  f"{bound}", field=f"attrs.{field}", value=shown,
+                                  fix=f"give {field} as {bound}") from None
 
 
 def canonical_token(name: str) -> str:
     """`Cutting Board` -> `cutting_board`: the form names are compared in."""
     return _SEPARATORS.sub("_", name.strip().lower())
+
+
+def kind_token(name: str) -> str:
+    """The kind a label names: its canonical form without a number suffix (`Widget 2` ->
+    `widget`), as `Dictionary.resolve` reads `plate_2` as `plate`."""
+    token = canonical_token(name)
+    return _NUMBER_SUFFIX.sub("", token) or token
+
+
+def properties_text(props: ObjectProperties) -> str:
+    """`fixed surface, capacity 3`, `movable container, capacity 1`, `movable`."""
+    return _props_text(props)
 
 
 def _props_text(props: ObjectProperties) -> str:
@@ -124,9 +177,9 @@ class UserObject(BaseModel):
     movable: bool = Field(default=True, strict=True)
     surface: bool = Field(default=False, strict=True)
     container: bool = Field(default=False, strict=True)
-    capacity: int | None = Field(default=None, ge=0, le=1000, strict=True)
-    width: float | None = Field(default=None, gt=0, le=500)
-    height: float | None = Field(default=None, gt=0, le=500)
+    capacity: int | None = Field(default=None, ge=0, le=MAX_CAPACITY, strict=True)
+    width: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
+    height: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
     color: str | None = Field(default=None, max_length=32)
     shape: str | None = Field(default=None, max_length=32)
 
@@ -196,26 +249,57 @@ class InlineDictionary(BaseModel):
 
     @model_validator(mode="after")
     def _one_name_one_kind(self) -> InlineDictionary:
-        words = _builtin_words()
+        """One word, one kind: two of the client's labels may not share a word, and no
+        word may end in a number suffix (`cup_2`): a node labelled `cup_2` reads as `cup`
+        (the suffix tells objects apart), so such a word could never name a kind of its
+        own. A built-in word is the client's to take (see `replacements`)."""
         mine: dict[str, str] = {}
         for label, obj in self.objects.items():
-            props = ObjectProperties(**obj.model_dump())
             for word in (label, *obj.synonyms):
                 token = canonical_token(word)
+                what = "label" if word == label else f"synonym of {label}"
+                if _NUMBER_SUFFIX.search(token):
+                    stem = _NUMBER_SUFFIX.sub("", token)
+                    raise ValueError(
+                        f"{what} '{word}' ends in a number suffix: a node labelled {token} "
+                        f"reads as {stem}, the suffix telling objects of one kind apart "
+                        f"(fix: name the kind without the suffix, e.g. {stem}, and number "
+                        f"the node ids instead, e.g. {stem}_1, {stem}_2)")
                 if token in mine and mine[token] != label:
                     raise ValueError(f"'{word}' names both {mine[token]} and {label} (fix: "
                                      "give each word to one label only)")
                 mine[token] = label
-                for home, canonical, theirs in words.get(token, ()):
-                    if word == label and _same_kind(props, theirs):
-                        continue
-                    what = "label" if word == label else f"synonym of {label}"
-                    raise ValueError(
-                        f"{what} '{word}' is the built-in {canonical} ({home} dictionary: "
-                        f"{_props_text(theirs)}) with other properties ({_props_text(props)})"
-                        f" (fix: call yours something else, e.g. my_{token}, or use "
-                        f"{canonical} and override properties in a node's attrs)")
         return self
+
+    def replacements(self) -> dict[str, list[str]]:
+        """Label -> what its words take the place of among the built-ins, e.g. `shelf` ->
+        [`replaces the built-in shelf: fixed surface, capacity 3 (tableware dictionary)`].
+
+        What the client declares wins, with or without `extends`: a built-in word the
+        client uses names the client's kind in this dictionary, and the texts say so.
+        A label of the same kind (role and capacity) as the built-in replaces nothing.
+        """
+        words = _builtin_words()
+        out: dict[str, list[str]] = {}
+        for label, obj in self.objects.items():
+            props = ObjectProperties(**obj.model_dump())
+            mine = canonical_token(label)
+            notes: dict[str, list[str]] = {}
+            for word in (label, *obj.synonyms):
+                for home, canonical, theirs in words.get(canonical_token(word), ()):
+                    if canonical == mine and _same_kind(props, theirs):
+                        continue  # the built-in kind itself (a synonym it has, or no change)
+                    if word == label and canonical == mine:
+                        note = f"the built-in {canonical}: {_props_text(theirs)}"
+                    else:
+                        note = (f"'{word}' as the built-in {canonical}: "
+                                f"{_props_text(theirs)}")
+                    notes.setdefault(note, []).append(home)
+            if notes:
+                out[canonical_token(label)] = [
+                    f"replaces {note} ({' and '.join(homes)} dictionary)"
+                    for note, homes in notes.items()]
+        return out
 
     def build(self) -> Dictionary:
         return _built(self.model_dump_json())
@@ -254,7 +338,12 @@ def _built(spec_json: str) -> Dictionary:
     user = []
     for label, obj in spec.objects.items():
         canonical = canonical_token(label)
-        objects[canonical] = ObjectProperties(**obj.model_dump())
+        props = ObjectProperties(**obj.model_dump())
+        replaced = objects.get(canonical)
+        if replaced is not None:  # the base's synonyms of a label it replaces stay its own
+            kept = tuple(w for w in replaced.synonyms if w not in props.synonyms)
+            props = props.model_copy(update={"synonyms": (*props.synonyms, *kept)})
+        objects[canonical] = props
         user.append(canonical)
     name = spec.name or (f"{spec.extends}+yours" if spec.extends else "yours")
     built = Dictionary(name=name, relations=base.relations if base else SUPPORT_RELATIONS,
@@ -266,19 +355,55 @@ def _built(spec_json: str) -> Dictionary:
     return built
 
 
+_KINDS = {dict: "an object", list: "a list", str: "text", bool: "a boolean", int: "a number",
+          float: "a number", type(None): "null"}
+
+
+def _inline_problem(exc: ValidationError) -> tuple[str, str, str]:
+    """(where, reason, fix) of the first problem of an inline dictionary."""
+    err = exc.errors()[0]
+    where = ".".join(str(p) for p in err["loc"])
+    message = str(err["msg"]).removeprefix("Value error, ")
+    fix = "see docs/worlds.md, e.g. {\"extends\": \"tableware\", \"objects\": " \
+          "{\"laptop\": {\"surface\": true, \"capacity\": 1}}}"
+    if " (fix: " in message:
+        message, fix = message.split(" (fix: ", 1)
+        fix = fix.removesuffix(")")
+    elif err["type"] not in ("value_error", "assertion_error"):
+        got = _KINDS.get(type(err.get("input")), type(err.get("input")).__name__)
+        message = f"{message[:1].lower()}{message[1:]} (got {got})"
+        if where == "extends":
+            fix = (f"give extends as the name of a built-in dictionary: "
+                   f"{', '.join(BUILTIN_DICTIONARIES)} or all (or leave it out)")
+        elif where == "objects":
+            fix = ("give objects as an object of label -> properties, e.g. "
+                   "{\"laptop\": {\"surface\": true, \"capacity\": 1}}")
+    return where, message, fix
+
+
+def inline_or_name(value: Any) -> Any:
+    """Pydantic before-validator of a dictionary field: an object is read as an inline
+    dictionary here, so that its first problem is reported with its own field and reason
+    (`extends: input should be a valid string (got an object)`) instead of as a failed
+    match of every member of the name-or-object union."""
+    if not isinstance(value, dict):
+        return value
+    try:
+        return InlineDictionary.model_validate(value)
+    except ValidationError as exc:
+        where, message, fix = _inline_problem(exc)
+        text = f"dictionary.{where}: {message}" if where else message
+        raise PydanticCustomError("inline_dictionary", "{reason}",
+                                  {"reason": f"{text} (fix: {fix})"}) from None
+
+
 def parse_inline(data: object, *, field: str = "dictionary") -> InlineDictionary:
     """An InlineDictionary from JSON data, or a DictionaryError naming the field and fix."""
     try:
         return InlineDictionary.model_validate(data)
     except ValidationError as exc:
-        err = exc.errors()[0]
-        where = ".".join([field, *(str(p) for p in err["loc"])])
-        message = str(err["msg"]).removeprefix("Value error, ")
-        fix = "see docs/worlds.md, e.g. {\"extends\": \"tableware\", \"objects\": " \
-              "{\"laptop\": {\"surface\": true, \"capacity\": 1}}}"
-        if " (fix: " in message:
-            message, fix = message.split(" (fix: ", 1)
-            fix = fix.removesuffix(")")
+        sub, message, fix = _inline_problem(exc)
+        where = f"{field}.{sub}" if sub else field
         raise DictionaryError(message, field=where, value=None, fix=fix) from None
 
 
@@ -305,8 +430,17 @@ class Dictionary(BaseModel):
             lookup[canonical_token(canonical)] = canonical
             for synonym in props.synonyms:
                 lookup.setdefault(canonical_token(synonym), canonical)
+        # The client's words win over the base's (see InlineDictionary.replacements):
+        # its synonyms, then its labels, take the words they name.
+        user = [label for label in self.user_labels if label in self.objects]
+        for canonical in user:
+            for synonym in self.objects[canonical].synonyms:
+                lookup[canonical_token(synonym)] = canonical
+        for canonical in user:
+            lookup[canonical_token(canonical)] = canonical
+        mine = set(user)
         for token in self.ambiguous:
-            if token not in self.objects:
+            if token not in self.objects and lookup.get(token) not in mine:
                 lookup.pop(token, None)
         self._lookup = lookup
 
@@ -371,9 +505,19 @@ class Dictionary(BaseModel):
                           user_labels=(*self.user_labels, *new), ambiguous=self.ambiguous)
 
     def user_lines(self, limit: int = 20) -> list[str]:
-        """`laptop: movable surface, capacity 1` for each of the client's labels."""
-        lines = [f"{label}: {_props_text(self.objects[label])}"
-                 for label in self.user_labels[:limit] if label in self.objects]
+        """`laptop: movable surface, capacity 1` for each of the client's labels, and what
+        a label takes the place of among the built-ins: `shelf: fixed surface, capacity 2
+        (yours; replaces the built-in shelf: fixed surface, capacity 3 (tableware
+        dictionary))`."""
+        replaced = self.inline.replacements() if self.inline is not None else {}
+        lines = []
+        for label in self.user_labels[:limit]:
+            if label not in self.objects:
+                continue
+            line = f"{label}: {_props_text(self.objects[label])}"
+            if label in replaced:
+                line += f" (yours; {'; '.join(replaced[label])})"
+            lines.append(line)
         if len(self.user_labels) > limit:
             lines.append(f"... and {len(self.user_labels) - limit} more of your labels")
         return lines

@@ -13,8 +13,10 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from verigraph.errors import GoalError
+from verigraph.graph.dictionary import ObjectProperties
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.graph.wellformed import KIND_KEYS, GraphProblem, resolve_properties
 
 PREDICATES = ("single_stack",)
 EdgeKey = tuple[str, str, str, int | None, int | None]
@@ -188,3 +190,54 @@ def check_goal(state: WorldState, goal: Goal) -> GraphDiff:
             "detail": pred.detail})
     assert result is not None
     return result
+
+
+
+def _kind_text(props: ObjectProperties) -> str:
+    kinds = [k for k in ("surface", "container") if getattr(props, k)]
+    text = " ".join(["movable" if props.movable else "fixed", *kinds])
+    if kinds:
+        text += f", capacity {'unlimited' if props.capacity is None else props.capacity}"
+    return text
+
+
+def goal_kind_problems(graph: SceneGraph, state: WorldState) -> list[GraphProblem]:
+    """Goal nodes that give a scene object another kind (role or capacity) than it has.
+
+    A goal says where the scene's objects should be, not what they are: every action
+    is checked with the scene's properties, so a goal that needs `cup in plate` because
+    its plate node says `container: true` could never be reached. Compared: the role and
+    capacity keys a goal node's attrs give, and all of them when its label names another
+    kind than the scene's node (a goal node with neither is the scene's object as it is).
+    """
+    problems: list[GraphProblem] = []
+    resolved = resolve_properties(graph, state.dictionary, [])
+    for i, node in enumerate(graph.nodes):
+        scene = state.objects.get(node.id)
+        mine = resolved.get(node.id)
+        if scene is None or mine is None:
+            continue
+        label, wanted = mine
+        relabelled = label != scene.label
+        changed = [k for k in KIND_KEYS if (relabelled or k in node.attrs)
+                   and getattr(wanted, k) != getattr(scene.props, k)]
+        if not changed:
+            continue
+        how = ", ".join(f"{k}: {_json_word(getattr(wanted, k))}" for k in changed)
+        fixes = [f"write label {scene.label}"] if relabelled else []
+        dropped = [f"attrs.{k}" for k in changed if k in node.attrs]
+        if dropped:
+            fixes.append(f"drop {', '.join(dropped)}")
+        problems.append(GraphProblem(
+            rule="goal_changes_kind", node=node.id, field=f"nodes[{i}]",
+            message=f"goal node '{node.id}' makes it {_kind_text(wanted)} ({how}), but in "
+                    f"the scene {node.id} ({scene.label}) is {_kind_text(scene.props)}: a "
+                    "goal says where objects go, not what they are, and actions are checked "
+                    "with the scene's properties, so this goal could never be reached",
+            fix=f"{' and '.join(fixes)} in the goal; to change what {node.id} is, load the "
+                "scene with it (node attrs or your dictionary)"))
+    return problems
+
+
+def _json_word(value: object) -> str:
+    return "null" if value is None else str(value).lower()

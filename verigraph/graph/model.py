@@ -8,9 +8,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Annotated, Any
 
-from pydantic import BaseModel, ConfigDict, Field, WithJsonSchema
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema
 
-from verigraph.graph.dictionary import InlineDictionary
+from verigraph.graph.dictionary import InlineDictionary, inline_or_name
 
 if TYPE_CHECKING:  # networkx loads only where a graph is converted (fast CLI start-up)
     import networkx as nx
@@ -18,7 +18,7 @@ if TYPE_CHECKING:  # networkx loads only where a graph is converted (fast CLI st
 ID_PATTERN = r"^[A-Za-z0-9_][A-Za-z0-9_.\-]*$"
 # A built-in dictionary's name, or the client's own (published as a plain object: the
 # full model is validated all the same, and its schema would repeat in every tool).
-DictionaryRef = Annotated[str | InlineDictionary | None,
+DictionaryRef = Annotated[str | InlineDictionary | None, BeforeValidator(inline_or_name),
                           WithJsonSchema({"type": ["string", "object", "null"]})]
 
 

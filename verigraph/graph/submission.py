@@ -15,7 +15,12 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.errors import DictionaryError
-from verigraph.graph.dictionary import Dictionary, canonical_token, open_label_properties
+from verigraph.graph.dictionary import (
+    Dictionary,
+    canonical_token,
+    kind_token,
+    open_label_properties,
+)
 from verigraph.graph.model import ID_PATTERN, DictionaryRef, Edge, Node, SceneGraph
 from verigraph.graph.wellformed import GraphProblem, check_well_formed
 
@@ -138,7 +143,7 @@ def _own_label(node: SubmittedNode) -> str:
         declared = open_label_properties(node.attrs)
     except DictionaryError:
         declared = None
-    return canonical_token(node.label) if declared is not None else node.label
+    return kind_token(node.label) if declared is not None else node.label
 
 
 def _endpoint(name: str, id_map: dict[str, str], by_label: dict[str, list[str]],

@@ -8,29 +8,39 @@ cycle. A partial graph (a goal listing only some edges) skips the completeness r
 
 from __future__ import annotations
 
+import difflib
+import json
+import unicodedata
 from collections import Counter
 
 from pydantic import BaseModel
 
 from verigraph.budget import checkpoint
+from verigraph.errors import DictionaryError
 from verigraph.graph.cycles import find_single_support_cycle, find_support_cycle
 from verigraph.graph.dictionary import (
+    SUPPORT_RELATIONS,
     Dictionary,
     ObjectProperties,
     canonical_token,
+    kind_token,
     open_label_properties,
+    properties_text,
+    union_dictionary,
 )
-from verigraph.graph.model import Edge, SceneGraph
+from verigraph.graph.model import Edge, Node, SceneGraph
 
 # Spelling suggestions cost a fuzzy match each; past this many unknown labels the fix
 # names a few known labels instead, so a large bad graph is refused in linear time.
 MAX_SPELLING_SUGGESTIONS = 20
-# How a client declares a label of its own, shown wherever an unknown label is refused.
-DECLARE_EXAMPLE = ('or declare your own: {"id": "laptop", "label": "laptop", "attrs": '
-                   '{"movable": true, "surface": true, "capacity": 1}}')
-__all__ = ["DECLARE_EXAMPLE", "GraphProblem", "check_and_resolve", "check_well_formed",
-           "find_single_support_cycle", "find_support_cycle", "label_readings", "open_labels",
-           "readings_line", "resolve_properties"]
+# A known label this close in spelling (difflib ratio) is offered as a likely typo; less
+# close ones are not offered (`apple` is not a misspelt `table`): the known labels of
+# the node's role are.
+SPELLING_CUTOFF = 0.75
+__all__ = ["GraphProblem", "check_and_resolve", "check_well_formed",
+           "applied_line", "applied_properties", "find_single_support_cycle",
+           "find_support_cycle", "label_readings", "open_labels", "readings_line",
+           "resolve_properties"]
 
 
 class GraphProblem(BaseModel):
@@ -48,7 +58,7 @@ def resolve_properties(graph: SceneGraph, dictionary: Dictionary,
     """Map node id -> (canonical label, properties), recording unknown labels as problems."""
     resolved: dict[str, tuple[str, ObjectProperties]] = {}
     unknown = 0
-    known: list[str] = []
+    roles: _GraphRoles | None = None
     labels: dict[str, str | None] = {}  # raw label -> canonical: scenes repeat labels
     for i, node in enumerate(graph.nodes):
         if node.label in labels:
@@ -66,35 +76,150 @@ def resolve_properties(graph: SceneGraph, dictionary: Dictionary,
                 continue
             try:
                 declared = open_label_properties(node.attrs)
-            except Exception as exc:  # DictionaryError: a role of the wrong type
-                problems.append(GraphProblem(rule="bad_attribute", node=node.id,
-                                             field=f"nodes[{i}].attrs", message=str(exc),
-                                             fix="give roles as booleans, e.g. surface: true"))
+            except DictionaryError as exc:  # a role of the wrong type, a size out of bounds
+                problems.append(_attribute_problem(node.id, i, exc))
                 continue
-            if declared is not None:  # the client's own kind of object
-                resolved.setdefault(node.id, (canonical_token(node.label), declared))
+            if declared is not None:  # the client's own kind (`widget_2` is a widget)
+                resolved.setdefault(node.id, (kind_token(node.label), declared))
                 continue
             unknown += 1
-            near = dictionary.nearest(node.label) if unknown <= MAX_SPELLING_SUGGESTIONS else []
-            known = known or dictionary.names[:5]
+            roles = roles or _GraphRoles(graph, dictionary)
             problems.append(GraphProblem(
                 rule="unknown_label", node=node.id, field=f"nodes[{i}].label",
                 message=f"node '{node.id}' has label '{node.label}', which is not in the "
                         f"{dictionary.name} dictionary",
-                fix=f"use a known label such as {', '.join(near or known)}, "
-                    + DECLARE_EXAMPLE))
+                fix=roles.fix(node, ranked=unknown <= MAX_SPELLING_SUGGESTIONS)))
             continue
         try:
             props = dictionary.objects[label]
             if node.attrs:
                 props = props.overridden(node.attrs)
-        except Exception as exc:  # DictionaryError from a bad override
-            problems.append(GraphProblem(rule="bad_attribute", node=node.id,
-                                         field=f"nodes[{i}].attrs", message=str(exc),
-                                         fix="give property overrides their documented type"))
+        except DictionaryError as exc:  # a bad override
+            problems.append(_attribute_problem(node.id, i, exc))
             continue
         resolved.setdefault(node.id, (label, props))
     return resolved
+
+
+class _GraphRoles:
+    """What the graph says an unknown label's node does (what rests on or in it, whether
+    it rests on something), for a refusal that helps by meaning: the node's own
+    declaration with that role, and known labels of the same role (not of similar
+    spelling only: `apple` is not a misspelt `table`). Built once per graph, on the
+    first unknown label."""
+
+    def __init__(self, graph: SceneGraph, dictionary: Dictionary) -> None:
+        self.dictionary = dictionary
+        self.held: dict[str, dict[str, list[str]]] = {}
+        self.supported: dict[str, str] = {}
+        for edge in graph.edges:
+            if edge.relation in SUPPORT_RELATIONS:
+                self.held.setdefault(edge.target, {}).setdefault(edge.relation, []).append(
+                    edge.source)
+                self.supported.setdefault(edge.source, edge.target)
+        self.groups: dict[str, list[str]] = {}
+        for label, props in dictionary.objects.items():
+            if props.sides is not None:
+                continue
+            self.groups.setdefault(_role_name(props), []).append(label)
+
+    def fix(self, node: Node, *, ranked: bool) -> str:
+        """`declare it: {"id": ..., "attrs": {...}} (why), or use a built-in container
+        such as bowl, pot, cup`; a close misspelling first when there is one."""
+        held = self.held.get(node.id, {})
+        movable = node.id in self.supported or not held
+        attrs: dict[str, object] = {"movable": movable}
+        if "on" in held:
+            attrs["surface"] = True
+        if "in" in held:
+            attrs["container"] = True
+        count = sum(len(v) for v in held.values())
+        if held and movable:
+            attrs["capacity"] = count
+        if held:
+            parts = []
+            for relation, names in held.items():
+                what = ", ".join(names[:3]) + (f" and {len(names) - 3} more"
+                                               if len(names) > 3 else "")
+                parts.append(f"{what} {'is' if len(names) == 1 else 'are'} {relation} it")
+            why = " and ".join(parts) + " here"
+        elif node.id in self.supported:
+            why = f"it rests on {self.supported[node.id]} and holds nothing here"
+        else:
+            why = "nothing rests on it here"
+        declare = json.dumps({"id": node.id, "label": node.label, "attrs": attrs})
+        role = _role_name(ObjectProperties(movable=movable, surface="on" in held,
+                                           container="in" in held))
+        group = self.groups.get(role) or self.dictionary.names
+        if ranked:
+            token = canonical_token(node.label)
+            group = sorted(group, key=lambda g: -difflib.SequenceMatcher(
+                None, token, g).ratio())
+        text = (f"declare it: {declare} ({why}; surface: true if things rest on it, "
+                "container: true if they go in it, capacity: how many at once)")
+        if group:
+            text += f", or use a built-in {role} such as {', '.join(group[:3])}"
+        near = [n for n in self.dictionary.nearest(node.label)
+                if difflib.SequenceMatcher(None, canonical_token(node.label), n).ratio()
+                >= SPELLING_CUTOFF] if ranked else []
+        looks = confusable_of(node.label, self.dictionary)
+        if looks:
+            text = f"write {looks[0]} (your label {looks[1]}), or " + text
+        elif near:
+            text = f"use a known label such as {', '.join(near)} (close in spelling), or " \
+                   + text
+        return text
+
+
+def _role_name(props: ObjectProperties) -> str:
+    mobility = "movable" if props.movable else "fixed"
+    if props.container:
+        return f"{mobility} container"
+    if props.surface:
+        return f"{mobility} surface"
+    return f"{mobility} object"
+
+
+# Letters of other scripts that look like Latin ones (after lower-casing): enough to
+# catch a label typed or pasted with a Cyrillic or Greek look-alike (`cuр` for `cup`).
+_LOOKALIKES = str.maketrans({
+    "а": "a", "в": "b", "е": "e", "ё": "e", "з": "3", "і": "i", "ї": "i", "ј": "j",
+    "к": "k", "м": "m", "н": "h", "о": "o", "р": "p", "с": "c", "т": "t", "у": "y",
+    "х": "x", "ѕ": "s", "ԁ": "d", "ԛ": "q", "ԝ": "w", "һ": "h", "ь": "b", "ɡ": "g",
+    "α": "a", "β": "b", "γ": "y", "ε": "e", "η": "n", "ι": "i", "κ": "k", "μ": "u",
+    "ν": "v", "ο": "o", "ρ": "p", "τ": "t", "υ": "u", "χ": "x", "ω": "w", "ς": "c",
+    "ı": "i", "ℓ": "l",
+})
+
+
+def confusable_of(label: str, dictionary: Dictionary) -> tuple[str, str] | None:
+    """(known label it looks like, the characters that differ) for a label written with
+    look-alike letters of another script or with accents (`cuр`: Cyrillic `р`), when
+    it is not read as that label; None otherwise. Uses NFKC, accent folding and a
+    small table of Cyrillic and Greek look-alikes (`_LOOKALIKES`)."""
+    token = canonical_token(label)
+    if token.isascii():
+        return None
+    folded = unicodedata.normalize("NFKC", token).lower().translate(_LOOKALIKES)
+    folded = "".join(c for c in unicodedata.normalize("NFKD", folded)
+                     if not unicodedata.combining(c))
+    if not folded.isascii() or folded == token:
+        return None
+    target = dictionary.resolve(folded) or union_dictionary().resolve(folded)
+    if target is None or target == dictionary.resolve(label):
+        return None
+    odd = list(dict.fromkeys(c for c in label if not c.isascii()))[:3]
+    names = ", ".join(f"'{c}' is {unicodedata.name(c, 'a non-Latin letter')} "
+                      f"(U+{ord(c):04X})" for c in odd)
+    return target, names
+
+
+def _attribute_problem(node_id: str, index: int, exc: DictionaryError) -> GraphProblem:
+    """A node's attrs that give a property the wrong type or a value out of its bounds."""
+    where = exc.field if exc.field and exc.field.startswith("attrs") else "attrs"
+    return GraphProblem(rule="bad_attribute", node=node_id, field=f"nodes[{index}].{where}",
+                        message=f"node '{node_id}': {exc.message}",
+                        fix=exc.fix or "give property overrides their documented type")
 
 
 def open_labels(dictionary: Dictionary, resolved: dict[str, tuple[str, ObjectProperties]]
@@ -122,11 +247,75 @@ def label_readings(graph: SceneGraph | None, dictionary: Dictionary,
     for written in (graph, *more):
         for node in written.nodes if written is not None else ():
             if node.label not in readings:
-                readings[node.label] = dictionary.reading(node.label)
+                readings[node.label] = dictionary.reading(node.label) or _looks_like(
+                    node.label, dictionary)
     found = [text for text in readings.values() if text]
     if len(found) > MAX_READINGS:
         found = [*found[:MAX_READINGS], f"... and {len(found) - MAX_READINGS} more"]
     return found
+
+
+def _looks_like(label: str, dictionary: Dictionary) -> str | None:
+    """`cuр looks like cup but is another label ('р' is CYRILLIC SMALL LETTER ER
+    (U+0440))`: a warning, since the look-alike is read as a label of its own."""
+    found = confusable_of(label, dictionary)
+    if found is None:
+        return None
+    target, names = found
+    own = dictionary.resolve(label) or canonical_token(label)
+    return (f"{label} looks like {target} but is another label, read as {own} "
+            f"({names}; write {target} to mean {target})")
+
+
+MAX_APPLIED = 12
+# The properties that make a kind (what constraints read), as opposed to how it looks.
+KIND_KEYS = ("movable", "surface", "container", "capacity")
+
+
+def applied_properties(graph: SceneGraph | None, dictionary: Dictionary,
+                       *more: SceneGraph | None, limit: int = MAX_APPLIED) -> list[str]:
+    """The built-in properties a check applies to the graphs' nodes, once per kind:
+    `shelf: fixed surface, capacity 3 (tableware dictionary)`; a node whose attrs
+    change a role or capacity gets its own entry (`cup: movable container, capacity 2
+    (tableware dictionary; capacity from cup_2's attrs)`). The client's own labels are
+    left out (the client declared them). At most `limit` entries, then a count."""
+    entries: dict[str, None] = {}
+    for written in (graph, *more):
+        for node in written.nodes if written is not None else ():
+            label = dictionary.resolve(node.label)
+            if label is None or label in dictionary.user_labels:
+                continue
+            props = dictionary.objects[label]
+            changed: list[str] = []
+            if any(k in node.attrs for k in KIND_KEYS):
+                try:
+                    mine = props.overridden(node.attrs)
+                except DictionaryError:
+                    mine = props
+                changed = [k for k in KIND_KEYS if getattr(mine, k) != getattr(props, k)]
+                props = mine
+            where = dictionary.home(label)
+            if changed:
+                where += f"; {', '.join(changed)} from {node.id}'s attrs"
+            entries.setdefault(f"{label}: {properties_text(props)} ({where})")
+    found = list(entries)
+    if len(found) > limit:
+        found = [*found[:limit], f"... and {len(found) - limit} more"]
+    return found
+
+
+def applied_line(graph: SceneGraph | None, dictionary: Dictionary,
+                 *more: SceneGraph | None) -> str:
+    """`built-in properties applied (dictionary: all built-ins, none named): shelf: fixed
+    surface, capacity 3 (tableware dictionary); ...`, or empty when none apply. A check
+    without a stored episode shows what it assumed about each built-in kind."""
+    entries = applied_properties(graph, dictionary, *more)
+    if not entries:
+        return ""
+    written = next((g for g in (graph, *more) if g is not None), None)
+    named = ("all built-ins, none named" if written is None or written.dictionary is None
+             else dictionary.name)
+    return f"built-in properties applied (dictionary: {named}): " + "; ".join(entries)
 
 
 def readings_line(readings: list[str]) -> str:

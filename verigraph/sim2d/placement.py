@@ -30,6 +30,7 @@ DROP_GAP = 0.02
 FIXED_GAP = 1.5
 GRID = 0.5
 MAX_TRIES = 160
+MAX_GRID_POINTS = 4096
 SIDE_NORMAL = 0.5
 FOOTING_PROBE = 0.25
 MIN_FOOTING = 2.0
@@ -165,10 +166,14 @@ def _target_range(obj: Thing, target: Thing, relation: str,
 
 
 def _grid(lo: float, hi: float) -> list[float]:
+    """Positions from lo to hi every GRID units; over a very wide target (furniture
+    widened for thousands of objects) at most MAX_GRID_POINTS, evenly spaced, so the
+    candidates cost memory by the count of objects, never by a width."""
     if hi < lo:
         return []
-    n = int((hi - lo) / GRID)
-    xs = [lo + i * GRID for i in range(n + 1)]
+    step = max(GRID, (hi - lo) / MAX_GRID_POINTS)
+    n = min(int((hi - lo) / step), MAX_GRID_POINTS)
+    xs = [lo + i * step for i in range(n + 1)]
     if hi - xs[-1] > 1e-6:
         xs.append(hi)
     return xs

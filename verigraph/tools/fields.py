@@ -22,6 +22,7 @@ from verigraph.graph.dictionary import (
     BUILTIN_DICTIONARIES,
     Dictionary,
     InlineDictionary,
+    inline_or_name,
     load_dictionary,
     wrong_dictionary_advice,
 )
@@ -46,7 +47,7 @@ SceneId = Annotated[str, Field(min_length=1, max_length=64,
                                description=f"{', '.join(BUILTIN_SCENES)}")]
 DictionaryName = Annotated[
     Annotated[str, Field(min_length=1, max_length=32)] | InlineDictionary,
-    WithJsonSchema({"type": ["string", "object"]}),
+    BeforeValidator(inline_or_name), WithJsonSchema({"type": ["string", "object"]}),
     Field(description=f"{', '.join(BUILTIN_DICTIONARIES)}, all, or your own "
                       "{extends, objects: {label: {surface, container, capacity}}}")]
 ImageData = Annotated[str, Field(

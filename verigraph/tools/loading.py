@@ -70,9 +70,9 @@ class LoadSceneInput(BaseModel):
     generator: GeneratorSpec | None = Field(default=None,
                                             description="generate a scene with sim2d")
     dictionary: DictionaryName | None = Field(
-        default=None, description="D for an image or graph; "
-                                  f"{', '.join(BUILTIN_DICTIONARIES)}, all or your own "
-                                  "{extends, objects: {label: {surface, container, capacity}}}")
+        default=None, description=f"for image/graph: {', '.join(BUILTIN_DICTIONARIES)}, "
+                                  "all or yours {extends, objects: {label: {surface, "
+                                  "container, capacity}}}")
     goal: BoundedGoal | None = Field(default=None, description="else the built-in one, or set_goal "
                                                         "later")
     instruction: str | None = Instruction

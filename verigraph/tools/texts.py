@@ -17,7 +17,7 @@ from verigraph.graph.dictionary import (
 )
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Node, SceneGraph
-from verigraph.graph.wellformed import readings_line
+from verigraph.graph.wellformed import applied_line, readings_line
 from verigraph.tools.fields import dictionary_for
 
 
@@ -112,6 +112,13 @@ def dictionary_line(name: str, user_labels: list[str], readings: list[str]) -> s
         text += "\n" + readings_line(readings)
     return text
 
+
+def properties_line(graph: SceneGraph, *more: SceneGraph | None) -> str:
+    """What a stateless check assumed about each built-in kind in the graph (and goal),
+    with the dictionary in use: `built-in properties applied (dictionary: all
+    built-ins, none named): shelf: fixed surface, capacity 3 (tableware dictionary)`;
+    empty when the graph uses only the client's own labels. Bounded (MAX_APPLIED)."""
+    return applied_line(graph, _dictionary(graph.dictionary), *more)
 
 
 def goal_edges_text(goal: Goal) -> str:
