@@ -83,3 +83,34 @@ async def test_the_servers_executors_are_in_its_instructions_and_refusals() -> N
         no_arm = await plain.call_tool("load_scene", {"scene_id": "cup_on_book",
                                                       "executor": "arm:xarm"})
     assert no_arm.is_error and "this server runs graph (verified only) and sim2d" in text(no_arm)
+
+
+async def test_arm_status_on_a_graph_episode_names_the_executor_that_reaches_the_arm() -> None:
+    setup = ArmSetup(parse_arm_config({"driver": "pybullet", "mode": "sim"}))
+    async with Client(build_server(Toolbox(config=ToolConfig(arm=setup)))) as c:
+        eid = structured(await c.call_tool("load_scene", {"scene_id": "cup_on_book"}))[
+            "episode_id"]
+        status = await c.call_tool("arm_status", {"episode_id": eid})
+    said = text(status)
+    assert status.is_error and "runs on graph, not on an arm" in said
+    assert "this server's arm is reached with executor arm:pybullet" in said
+    assert "here executor=arm:pybullet" in said and "arm:pybullet (simulated arm)" in said
+
+
+async def test_arm_status_on_a_server_without_an_arm_says_none_is_configured(
+        client: Client) -> None:
+    eid = structured(await client.call_tool("load_scene", {"scene_id": "cup_on_book"}))[
+        "episode_id"]
+    said = text(await client.call_tool("arm_status", {"episode_id": eid}))
+    assert "this server has no arm configured: no executor here reaches a robot" in said
+    assert "this server runs graph (verified only, default), sim2d (simulated)" in said
+    assert "arm:pybullet" not in said.split("this server runs")[1]
+
+
+async def test_the_tool_descriptions_say_which_executors_move_something(
+        client: Client) -> None:
+    """A client that shows no server instructions still tells the model where actions run."""
+    tools = {t.name: t.description or "" for t in (await client.list_tools()).tools}
+    assert "graph, sim2d: nothing physical moves" in tools["execute_actions"]
+    assert "an arm only if the server has one, see arm_status" in tools["execute_actions"]
+    assert "No arm: says which executor reaches one, if any." in tools["arm_status"]

@@ -69,6 +69,14 @@ async def test_look_alike_objects_make_an_image_goal_a_proposal(client: Client) 
     edges = said.split('edges="')[1].split('"')[0]
     confirmed = await client.call_tool("set_goal", {"episode_id": eid, "edges": edges})
     assert structured(confirmed)["accepted"] and f"goal (partial): {edges}" in text(confirmed)
+    # the photo is a whole goal: the accepting call says partial=false, and taken as
+    # written it stores the whole goal the proposal showed
+    assert f'episode_id="{eid}", edges="{edges}", partial=false' in said
+    whole = await client.call_tool("set_goal", {"episode_id": eid, "edges": edges,
+                                                "partial": False})
+    assert structured(whole)["goal"]["partial"] is False and f"\ngoal: {edges}" in text(whole)
+    assert structured(whole)["goal"]["graph"]["edges"] == structured(out)["proposal"]["graph"][
+        "edges"]
 
 
 async def test_goal_edges_as_text_take_their_nodes_from_the_episode(client: Client) -> None:

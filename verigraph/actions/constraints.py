@@ -37,9 +37,109 @@ def _nearest_ids(state: WorldState, name: str) -> list[str]:
     return list(dict.fromkeys(by_label + close))[:3]
 
 
+# Where no fixed surface has room, a place for an object is looked for among at most this
+# many other objects (in scene order), so a failure in a huge scene costs bounded work.
+MAX_PLACE_CANDIDATES = 2000
+
+
+def _room(state: WorldState, place: str, planned: dict[str, int]) -> float:
+    cap = state.objects[place].props.capacity
+    used = len(state.carried[place]) + planned.get(place, 0)
+    return float("inf") if cap is None else cap - used
+
+
+def _load(state: WorldState, place: str, planned: dict[str, int]) -> str:
+    """`2 of 3` (what the place carries of its capacity), or `2, no limit`."""
+    cap = state.objects[place].props.capacity
+    used = len(state.carried[place]) + planned.get(place, 0)
+    return f"{used} of {cap}" if cap is not None else f"{used}, no limit"
+
+
+def _takes(state: WorldState, obj: str, place: str, exclude: set[str],
+           planned: dict[str, int]) -> str | None:
+    """The relation by which `obj` can go to `place` now (`on` first), or None: the move
+    must pass every check (not itself, not where it is, no cycle, room, kind, R)."""
+    if place == obj or place in exclude or _room(state, place, planned) <= 0:
+        return None
+    props = state.objects[place].props
+    if not (props.surface or props.container):
+        return None
+    if state.carried[obj] and obj in state.supports_chain(place):
+        return None  # place rests on obj
+    for relation, kind in (("on", props.surface), ("in", props.container)):
+        if kind and relation in state.move_relations and \
+                state.support.get(obj) != (relation, place):
+            return relation
+    return None
+
+
+def _free_place(state: WorldState, obj: str, exclude: set[str],
+                planned: dict[str, int] | None = None) -> tuple[str, str, str] | None:
+    """(relation, place, why) for a move of `obj` the verifier accepts now, or None.
+
+    A fixed surface with room comes first (it never moves and takes anything; `why` is
+    then empty); else a fixed container, else a movable surface or container, the one
+    with the most room first, and `why` says what it carries and that no fixed surface
+    has room. `planned` counts objects earlier hints already put on a place.
+    """
+    planned = planned or {}
+    for surface in state.fixed_surfaces:
+        if _takes(state, obj, surface, exclude, planned) == "on":
+            return "on", surface, ""
+    best: tuple[int, float, int, str, str] | None = None
+    for order, (other, info) in enumerate(state.objects.items()):
+        if order >= MAX_PLACE_CANDIDATES:
+            break
+        relation = _takes(state, obj, other, exclude, planned)
+        if relation is None:
+            continue
+        rank = (int(info.props.movable), -_room(state, other, planned), order, relation, other)
+        if best is None or rank < best:
+            best = rank
+    if best is None:
+        return None
+    relation, place = best[3], best[4]
+    info = state.objects[place]
+    kind = "surface" if relation == "on" else "container"
+    what = f"chosen because {place}, a {'movable' if info.props.movable else 'fixed'} " \
+           f"{kind}, carries {_load(state, place, planned)}"
+    return relation, place, f"{what} and {_no_fixed_room(state, obj, exclude, planned)}"
+
+
+def _no_fixed_room(state: WorldState, obj: str, exclude: set[str],
+                   planned: dict[str, int]) -> str:
+    """Why no fixed surface was chosen: `shelf is full at 3 of 3`, or there is none."""
+    surfaces = state.fixed_surfaces
+    if not surfaces:
+        return "the scene has no fixed surface"
+    reasons = []
+    for s in surfaces[:3]:
+        if _room(state, s, planned) <= 0:
+            reasons.append(f"{s} is full at {_load(state, s, planned)}")
+        elif state.support.get(obj) == ("on", s):
+            reasons.append(f"{obj} is on {s} already")
+        else:
+            reasons.append(f"{s} is {'the target' if s in exclude else 'ruled out'}")
+    more = f" and {len(surfaces) - 3} more fixed surface(s) too" if len(surfaces) > 3 else ""
+    return ", ".join(reasons) + more
+
+
+def _no_place(state: WorldState, obj: str, exclude: set[str]) -> str:
+    """`no place in the scene takes jam_jar now (shelf is full at 3 of 3)`: said instead of
+    a placeholder when no surface or container has room for the object."""
+    return f"no place in the scene takes {obj} now " \
+           f"({_no_fixed_room(state, obj, exclude, {})}); free one first"
+
+
+def _move_text(obj: str, found: tuple[str, str, str]) -> str:
+    relation, place, why = found
+    return f"move({obj}, {relation}, {place})" + (f" ({why})" if why else "")
+
+
 def _place_hint(state: WorldState, obj: str, exclude: set[str]) -> str:
-    place = state.free_place_for(obj, exclude)
-    return f"move({obj}, on, {place})" if place else f"move({obj}, on, <a free surface>)"
+    """`move(cup, on, desk)`, or a place with the reason it was chosen."""
+    found = _free_place(state, obj, exclude)
+    return _move_text(obj, found) if found else _no_place(state, obj, exclude)
 
 
 # A suggestion names at most this many blockers one by one, then how many more there are.
@@ -51,30 +151,54 @@ def _names(items: list[str]) -> str:
     return items[0] if len(items) == 1 else f"{', '.join(items[:-1])} and {items[-1]}"
 
 
+def _unstack_order(state: WorldState, blockers: list[str]) -> list[str]:
+    """The blockers and everything resting on them, each after what rests on it (the top
+    of a stack first), so every object is clear when its turn comes. Iterative, and
+    bounded by MAX_PLACE_CANDIDATES objects."""
+    order: list[str] = []
+    for blocker in blockers:
+        todo: list[tuple[str, bool]] = [(blocker, False)]
+        while todo and len(order) < MAX_PLACE_CANDIDATES:
+            obj, ready = todo.pop()
+            if ready:
+                order.append(obj)
+                continue
+            todo.append((obj, True))
+            todo.extend((above, False) for above in reversed(list(state.carried[obj])))
+    return order
+
+
 def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str]) -> str:
     """`move knife, spoon and lid somewhere else first, e.g. move(knife, on, counter), ...`
 
-    Every blocker gets its own move, and the places account for each other: a surface
-    that the earlier hints fill up is not offered again, so the suggested moves are valid
-    in sequence. Only runs on failure, O(blockers x fixed surfaces).
+    Every blocker gets its own move, after the moves of what rests on it, and the places
+    account for each other: a place that the earlier hints fill up is not offered again,
+    and nothing goes onto an object that is being cleared away, so the suggested moves are
+    valid in sequence. Only runs on failure, O(moves x MAX_PLACE_CANDIDATES) at most.
     """
-    named = blockers[:MAX_NAMED_BLOCKERS]
-    full = set(exclude)
+    order = _unstack_order(state, blockers)
+    moving = exclude | set(order)
+    shown = order[:MAX_NAMED_BLOCKERS]
     planned: dict[str, int] = {}
     hints = []
-    for obj in named:
-        place = state.free_place_for(obj, full | set(blockers))
-        if place is None:
-            hints.append(f"move({obj}, on, <a free surface>)")
+    for obj in shown:
+        found = _free_place(state, obj, moving, planned)
+        if found is None:
+            hints.append(_no_place(state, obj, moving))
             continue
-        planned[place] = planned.get(place, 0) + 1
-        cap = state.objects[place].props.capacity
-        if cap is not None and len(state.carried[place]) + planned[place] >= cap:
-            full.add(place)
-        hints.append(f"move({obj}, on, {place})")
+        hints.append(_move_text(obj, found))
+        planned[found[1]] = planned.get(found[1], 0) + 1
+    named = blockers[:MAX_NAMED_BLOCKERS]
     more = len(blockers) - len(named)
     who = _names(named) if not more else f"{', '.join(named)} and {more} more"
-    return f"move {who} somewhere else first, e.g. {', '.join(hints)}"
+    direct = set(blockers)
+    above = [o for o in order if o not in direct]
+    tail = " and more" if len(above) > MAX_NAMED_BLOCKERS else ""
+    first = (f" (what rests on {'it' if len(blockers) == 1 else 'them'} before: "
+             f"{_names(above[:MAX_NAMED_BLOCKERS])}{tail})" if above else "")
+    rest = len(order) - len(shown)
+    later = f", then {rest} more move(s)" if rest else ""
+    return f"move {who} somewhere else first{first}, e.g. {', '.join(hints)}{later}"
 
 
 # -- move ------------------------------------------------------------------------------------
@@ -147,18 +271,29 @@ def check_clear(state: WorldState, a: MoveAction) -> Violation | None:
     return None
 
 
+def _kind_fix(state: WorldState, a: MoveAction, other: str, takes_other: bool) -> str:
+    """The fix for a target of the wrong kind: the other relation when the target takes
+    it now, else a place that does (never a move the verifier would refuse)."""
+    wanted = "a surface or a container" if a.relation == "on" else "a container or a surface"
+    if takes_other and other in state.move_relations:
+        if state.support.get(a.object) == (other, a.target):
+            return f"{a.object} is already {other} {a.target}; drop this action"
+        cycle = bool(state.carried[a.object]) and a.object in state.supports_chain(a.target)
+        if state.has_room(a.target) and not cycle:
+            return f"use move({a.object}, {other}, {a.target})"
+    return f"choose {wanted}, e.g. {_place_hint(state, a.object, {a.target})}"
+
+
 def check_target_kind(state: WorldState, a: MoveAction) -> Violation | None:
     t = state.objects[a.target]
     if a.relation == "on" and not t.props.surface:
-        fix = (f"use move({a.object}, in, {a.target})" if t.props.container else
-               f"choose a surface, e.g. {_place_hint(state, a.object, {a.target})}")
         return _violation(a, "target_not_surface",
-                          f"{a.target} ({t.label}) is not a surface, nothing can go on it", fix)
+                          f"{a.target} ({t.label}) is not a surface, nothing can go on it",
+                          _kind_fix(state, a, "in", t.props.container))
     if a.relation == "in" and not t.props.container:
-        fix = (f"use move({a.object}, on, {a.target})" if t.props.surface else
-               f"choose a container or a surface, e.g. {_place_hint(state, a.object, {a.target})}")
         return _violation(a, "target_not_container",
-                          f"{a.target} ({t.label}) is not a container, nothing can go in it", fix)
+                          f"{a.target} ({t.label}) is not a container, nothing can go in it",
+                          _kind_fix(state, a, "on", t.props.surface))
     return None
 
 
@@ -167,14 +302,18 @@ def check_capacity(state: WorldState, a: MoveAction) -> Violation | None:
         return None
     carried = list(state.carried[a.target])
     cap = state.objects[a.target].props.capacity
-    first = carried[0]
+    exclude = {a.target, a.object}
+    # The example moves a carried object that is clear and has somewhere to go.
+    hint = next((_move_text(o, found) for o in carried[:MAX_PLACE_CANDIDATES]
+                 if state.is_clear(o) and (found := _free_place(state, o, exclude))),
+                None) or _no_place(state, carried[0], exclude)
     return _violation(
         a, "target_full",
         f"{a.target} already carries {len(carried)} object(s) ({', '.join(carried)}), "
         f"its capacity is {cap}",
         f"make room on {a.target} first (any one of {_names(carried[:MAX_NAMED_BLOCKERS])}"
         f"{' or more' if len(carried) > MAX_NAMED_BLOCKERS else ''} elsewhere), e.g. "
-        f"{_place_hint(state, first, {a.target, a.object})}, or choose another target",
+        f"{hint}, or choose another target",
         carried)
 
 

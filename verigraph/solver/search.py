@@ -6,7 +6,9 @@ mode is A* with the misplaced-objects bound (see `encoding`). Anytime mode first
 the polynomial strategy's plan (`strategy`), then refines it with weighted A* (w = 2,
 then 1.5) and finally A* (w = 1), each pruned by the best length so far; the result
 carries the lower bound it proved: the heuristic at the start, raised to the smallest
-f-value A* left open when it stopped. Tangram goals are solved by breadth-first search.
+f-value A* left open when it stopped. A search the budget stops before any plan is found
+still returns that bound (`lower_bound`: every plan needs at least that many moves).
+Tangram goals are solved by breadth-first search.
 """
 
 from __future__ import annotations
@@ -98,7 +100,13 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
         return _decoded_goal_check(problem, state, codes, goal_model)
 
     if not anytime:
-        found, plan = _astar(problem, h, is_goal, budget, weight=1.0, bound=math.inf)
+        proof = {"floor": h(problem.start)}
+        try:
+            found, plan = _astar(problem, h, is_goal, budget, weight=1.0, bound=math.inf,
+                                 proof=proof)
+        except SearchBudgetSpent as exc:  # no plan, but the bound A* proved holds
+            return SolveResult(reachable=None, status="budget_exhausted", reason=str(exc),
+                               expanded=budget.expansions, lower_bound=proof["floor"])
         if found:
             return SolveResult(reachable=True, plan=plan, expanded=budget.expansions,
                                optimal=True, lower_bound=len(plan))
@@ -118,7 +126,7 @@ def _anytime(problem: SearchProblem, wanted: dict[int, int], h: Callable[[Codes]
     if moves is not None and is_goal(_replay(problem, moves)):
         best = [problem.action(m) for m in moves]
     first_plan_s = round(budget.elapsed(), 3) if best is not None else None
-    proof = {"floor": 0}  # the f-floor of the w = 1 run, kept if the budget stops it
+    proof = {"floor": lower}  # the f-floor of the w = 1 run, kept if the budget stops it
     try:
         for weight in (2.0, 1.5, 1.0):
             if best is not None and len(best) <= lower:
@@ -136,9 +144,10 @@ def _anytime(problem: SearchProblem, wanted: dict[int, int], h: Callable[[Codes]
                                        reason="no sequence of valid moves reaches the goal")
                 lower = len(best)  # A* finished: nothing shorter exists
     except SearchBudgetSpent as exc:
-        if best is None:
-            raise
         lower = max(lower, proof["floor"])
+        if best is None:
+            return SolveResult(reachable=None, status="budget_exhausted", reason=str(exc),
+                               expanded=budget.expansions, lower_bound=lower)
         return SolveResult(reachable=True, plan=best, expanded=budget.expansions,
                            optimal=len(best) <= lower, lower_bound=lower,
                            first_plan_s=first_plan_s, reason=f"refinement stopped: {exc}")
@@ -228,9 +237,10 @@ def _solve_tangram(state: WorldState, goal: Goal, budget: SearchBudget,
                         budget.check()
                         trial = current.copy()
                         apply_action(trial, action)
-                        if check_goal(trial, goal).satisfied:
+                        if check_goal(trial, goal).satisfied:  # breadth first: shortest
                             return SolveResult(reachable=True, plan=[*plan, action],
-                                               expanded=budget.expansions, optimal=True)
+                                               expanded=budget.expansions, optimal=True,
+                                               lower_bound=len(plan) + 1)
                         next_layer.append((trial, [*plan, action]))
         layer = next_layer
     return SolveResult(reachable=None, status="budget_exhausted", expanded=budget.expansions,

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Annotated
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, WithJsonSchema, model_validator
 
 from verigraph.actions.execution import execute_in_world
 from verigraph.actions.feedback import Violation
@@ -31,7 +31,6 @@ from verigraph.tools.errors import EpisodeStateError, ToolArgumentError
 from verigraph.tools.executors import arm_mode_of
 from verigraph.tools.fields import (
     ActionInput,
-    BoundedGoal,
     BoundedGraph,
     EpisodeId,
     RequestId,
@@ -39,10 +38,10 @@ from verigraph.tools.fields import (
     count_moves,
     parse_actions,
 )
-from verigraph.tools.goals import check_goal_against
+from verigraph.tools.goals import GOAL_ARGUMENT_HELP, GoalArgument, resolve_goal
 from verigraph.tools.loading import stateless_source
 from verigraph.tools.store import TraceEntry
-from verigraph.tools.texts import edges_line, runs_on
+from verigraph.tools.texts import edges_line, properties_line, runs_on
 
 MAX_ACTIONS_PER_CALL = 50
 MAX_PLAN_ACTIONS = 1000
@@ -247,8 +246,13 @@ class CheckGoalInput(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     episode_id: EpisodeId
-    goal: BoundedGoal | None = Field(default=None,
-                              description="instead of the episode's")
+    goal: GoalArgument | None = Field(default=None, description="instead of the episode's; "
+                                                                "edges text too")
+
+
+# The goal a result echoes is published as a plain object: its shape is the goal input's
+# (tools/list sends it there), and repeating it would cost every chat turn its bytes.
+EchoedGoal = Annotated[Goal, WithJsonSchema({"type": "object"})]
 
 
 class GoalCheck(BaseModel):
@@ -256,7 +260,7 @@ class GoalCheck(BaseModel):
 
     episode_id: str
     satisfied: bool
-    goal: Goal
+    goal: EchoedGoal
     diff: GraphDiff
 
     def summary(self) -> str:
@@ -266,13 +270,11 @@ class GoalCheck(BaseModel):
 def check_goal(ctx: ToolContext, params: CheckGoalInput) -> GoalCheck:
     with ctx.store.use(params.episode_id) as episode:
         state = episode.require_state()
-        goal = params.goal or episode.goal
+        goal = resolve_goal(params.goal, state) if params.goal is not None else episode.goal
         if goal is None:
             raise ToolArgumentError("this episode has no goal and none was given",
                                     field="goal", value=None,
                                     fix="call set_goal first, or pass goal here")
-        if params.goal is not None:
-            check_goal_against(params.goal, state, field="goal")
         diff = core_check_goal(state, goal)
         return GoalCheck(episode_id=episode.id, satisfied=diff.satisfied, goal=goal, diff=diff)
 
@@ -293,7 +295,8 @@ class ValidatePlanInput(BaseModel):
     graph: BoundedGraph | None = Field(default=None, description="initial graph")
     episode_id: EpisodeId | None = Field(
         default=None, description="this episode's graph and goal")
-    goal: BoundedGoal | None = Field(default=None, description="check the final graph")
+    goal: GoalArgument | None = Field(default=None, description="check the final graph; "
+                                      + GOAL_ARGUMENT_HELP)
     all_errors: bool = Field(default=False, description="go on after a failing action")
     pddl: dict[str, str] | None = Field(default=None,
                                         description="{domain, problem} PDDL text, not a scene")
@@ -344,12 +347,12 @@ def validate_plan(ctx: ToolContext, params: ValidatePlanInput) -> ValidationRepo
         return _validate_pddl(params.pddl, str(params.plan))
     actions = _plan_actions(params.plan)
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
-                                   graph=params.graph, goal=params.goal)
+                                   graph=params.graph, goal=None)
     if params.goal is not None:
-        check_goal_against(params.goal, state, field="goal")
+        goal = resolve_goal(params.goal, state)
     report = core_validate_plan(state, actions, goal, all_errors=params.all_errors)
-    report.label_readings = label_readings(params.graph, state.dictionary,
-                                           params.goal.graph if params.goal else None)
+    written = params.goal.graph if isinstance(params.goal, Goal) else None
+    report.label_readings = label_readings(params.graph, state.dictionary, written)
     return report
 
 
@@ -414,4 +417,6 @@ def report_summary(report: ValidationReport) -> str:
                      "the first violation (all_errors=true checks them)")
     if report.label_readings:
         lines.append(readings_line(report.label_readings))
-    return "\n".join(lines)
+    if report.final_graph.nodes:  # what the check assumed about each built-in kind
+        lines.append(properties_line(report.final_graph))
+    return "\n".join(line for line in lines if line)

@@ -23,8 +23,10 @@ from verigraph.arm.models import AuditOutcome
 from verigraph.errors import VeriGraphError
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import EpisodeStateError
+from verigraph.tools.executors import enabled_executors
 from verigraph.tools.fields import EpisodeId, count_moves, parse_actions
 from verigraph.tools.store import LiveEpisode
+from verigraph.tools.texts import runs_on
 
 
 class ArmRef(BaseModel):
@@ -42,7 +44,7 @@ class ArmStopInput(BaseModel):
 
     episode_id: EpisodeId
     reason: str = Field(default="stop requested through arm_stop", min_length=1,
-                        max_length=200, description="why, for the audit log and arm_status")
+                        max_length=200, description="why (audit log, arm_status)")
 
 
 class ArmStatusOutput(ArmStatus):
@@ -56,8 +58,9 @@ class ArmStatusOutput(ArmStatus):
         return (f"{self.note}; " if self.note else "") + super().summary()
 
 
-def _arm(episode: LiveEpisode) -> ArmWorld:
-    """The episode's arm, or an error saying how to get one."""
+def _arm(ctx: ToolContext, episode: LiveEpisode) -> ArmWorld:
+    """The episode's arm, or an error saying how to get one: the executor string that
+    reaches this server's arm, or that it has none (so no episode here moves a robot)."""
     if isinstance(episode.world, ArmWorld):
         return episode.world
     if episode.executor.startswith("arm:"):
@@ -65,10 +68,23 @@ def _arm(episode: LiveEpisode) -> ArmWorld:
             f"episode {episode.id} has no arm yet: it waits for its scene graph",
             field="episode_id", value=episode.id,
             fix="submit the scene graph with submit_scene_graph; the arm attaches then")
+    config = ctx.config
+    executors = enabled_executors(config.executor, config.arm)
+    where = runs_on(episode.executor).removeprefix(f"{episode.executor} (").removesuffix(")")
+    if config.arm is None:
+        raise EpisodeStateError(
+            f"episode {episode.id} runs on {episode.executor}, not on an arm ({where}), and "
+            "this server has no arm configured: no executor here reaches a robot",
+            field="episode_id", value=episode.id,
+            fix="load the scene with executor arm:<driver> on a server started with "
+                f"--executor arm:<driver> or --arm-config; this server runs {executors}")
+    arm = config.arm.executor
     raise EpisodeStateError(
-        f"episode {episode.id} runs on {episode.executor}, not on an arm",
+        f"episode {episode.id} runs on {episode.executor}, not on an arm ({where}); this "
+        f"server's arm is reached with executor {arm}",
         field="episode_id", value=episode.id,
-        fix="load the scene with executor arm:<driver> (the server's arm) to use arm tools")
+        fix=f"load the scene with executor arm:<driver>, here executor={arm}, to use arm "
+            f"tools (this server runs {executors})")
 
 
 def _output(episode: LiveEpisode, status: ArmStatus, note: str | None = None) -> ArmStatusOutput:
@@ -79,14 +95,14 @@ def _output(episode: LiveEpisode, status: ArmStatus, note: str | None = None) ->
 def arm_status(ctx: ToolContext, params: ArmRef) -> ArmStatusOutput:
     """The arm's state; answers at once, even during a motion."""
     episode = ctx.store.peek(params.episode_id)
-    world = _arm(episode)
+    world = _arm(ctx, episode)
     return _output(episode, world.status())
 
 
 def arm_stop(ctx: ToolContext, params: ArmStopInput) -> ArmStatusOutput:
     """Latch the stop and halt any motion now; only arm_reset clears the latch."""
     episode = ctx.store.peek(params.episode_id)
-    world = _arm(episode)
+    world = _arm(ctx, episode)
     already = world.stop_latched  # never the driver's status: it might hang
     status = world.stop(params.reason)
     note = ("the stop was already latched; it stays latched" if already else
@@ -98,7 +114,7 @@ def arm_reset(ctx: ToolContext, params: ArmRef) -> ArmStatusOutput:
     """Clear the arm's latched stop or error once the stopped motion has ended: a real
     arm asks the user; sim and dry-run only if the operator allowed it. Nothing moves."""
     with ctx.store.use(params.episode_id) as episode:
-        world = _arm(episode)
+        world = _arm(ctx, episode)
         was = world.status()
         status = world.reset()
         note = (f"stop cleared (it was latched: {was.stop_reason}); nothing moved"

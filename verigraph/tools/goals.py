@@ -9,13 +9,14 @@ invalid goal changes nothing, and neither does a proposal.
 
 from __future__ import annotations
 
+import difflib
 import re
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-from verigraph.graph.goal import PREDICATES, Goal, GraphDiff, check_goal
+from verigraph.graph.goal import PREDICATES, Goal, GraphDiff, check_goal, goal_kind_problems
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.translator import read_instruction
@@ -23,6 +24,7 @@ from verigraph.graph.wellformed import check_well_formed, label_readings, readin
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.fields import (
+    BoundedGoal,
     BoundedGraph,
     EpisodeId,
     ImageData,
@@ -40,6 +42,8 @@ MAX_GOAL_EDGES_CHARS = 20_000
 NOTED_CONFIDENCE = 0.9
 # set_goal's text lists at most this many photo-object matches (the rest are counted).
 MAX_LISTED_MATCHES = 40
+# An unknown id in a goal edge is compared with at most this many scene ids.
+MAX_NEAR_CANDIDATES = 400
 
 
 def check_goal_against(goal: Goal, state: WorldState | None, *, field: str) -> None:
@@ -62,6 +66,12 @@ def check_goal_against(goal: Goal, state: WorldState | None, *, field: str) -> N
             f"the goal names objects that are not in the scene: {', '.join(unknown)}",
             field=f"{field}.graph.nodes", value=unknown[0],
             fix=f"use ids from the scene: {', '.join(sorted(state.objects))}")
+    changed = goal_kind_problems(goal.graph, state)
+    if changed:
+        raise ToolArgumentError(
+            f"the goal gives {len(changed)} object(s) another kind than the scene's:\n"
+            + problems_text(changed, f"{field}.graph"), field=f"{field}.graph.nodes",
+            value=changed[0].node, fix=changed[0].fix)
     absent = sorted(set(state.objects) - goal_ids)
     if absent and not goal.partial:
         raise ToolArgumentError(
@@ -80,11 +90,12 @@ class SetGoalInput(BaseModel):
     graph: BoundedGraph | None = Field(default=None, description="goal scene graph")
     edges: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
                               description="goal edges as text")
-    partial: bool = Field(default=False, description="only the listed edges must hold")
+    partial: bool | None = Field(default=None, description="only the listed edges must "
+                                 "hold (default: true for edges)")
     predicate: Literal["single_stack"] | None = Field(
         default=None, description="single_stack: every movable object in one tower")
-    image: ImageData | None = Field(default=None, description="picture of the goal "
-                                                              "(built-in perception)")
+    image: ImageData | None = Field(default=None, description="goal picture (built-in "
+                                                              "perception)")
     instruction: str | None = Field(default=None, max_length=4000,
                                     description="the task in words")
 
@@ -141,11 +152,19 @@ class GoalOutput(BaseModel):
             return ["goal PROPOSAL: nothing to propose (accepted: false, nothing set); "
                     f"{kept}; it is not checkable: give goal edges (edges='cup on table; "
                     "spoon in pot') or a predicate (" + ", ".join(PREDICATES) + ")"]
-        edges = goal_edges_text(self.proposal)
         return [f"goal PROPOSAL (accepted: false, nothing set; {kept}):",
                 f"proposed {goal_line(self.proposal)}",
-                f"to accept it, call set_goal with edges=\"{edges}\" (corrected where "
+                "to accept it, call set_goal with "
+                f"{accepting_arguments(self.episode_id, self.proposal)} (corrected where "
                 "needed)"]
+
+
+def accepting_arguments(episode_id: str, proposal: Goal) -> str:
+    """`episode_id="ep_1", edges="cup on table", partial=true`: the set_goal arguments
+    that store exactly `proposal` (partial spelled out: edges default to partial, and a
+    full proposal needs partial=false)."""
+    return (f"episode_id=\"{episode_id}\", edges=\"{goal_edges_text(proposal)}\", "
+            f"partial={'true' if proposal.partial else 'false'}")
 
 
 @dataclass
@@ -161,15 +180,17 @@ _EDGE_TEXT = re.compile(r"\s*(?:move\s*\()?\s*([\w.-]+)\s*,?\s+([a-z_]+)\s*,?\s+
                         r"\s*\)?\s*")
 
 
-def goal_from_edges(text: str, state: WorldState | None) -> Goal:
-    """`cup on table; spoon in pot` (or one per line, or move(...) forms) as a partial goal.
+def goal_from_edges(text: str, state: WorldState | None, *, field: str = "edges",
+                    partial: bool = True) -> Goal:
+    """`cup on table; spoon in pot` (or one per line, or move(...) forms) as a goal.
 
-    The nodes come from the episode, so a goal names only what must hold. Every bad
-    item is reported at once, each with the fix.
+    The nodes come from the scene, so a goal names only what must hold. Partial (only
+    these edges must hold) unless `partial` is False: then the listed edges are the
+    whole goal graph. Every bad item is reported at once, each with the fix.
     """
     if state is None:
         raise ToolArgumentError("the episode has no scene graph yet, so goal edges cannot "
-                                "name its objects", field="edges", value=text[:80],
+                                "name its objects", field=field, value=text[:80],
                                 fix="submit the scene graph first (submit_scene_graph)")
     items = [i for i in re.split(r"[;\n]", text) if i.strip()]
     if len(items) == 1 and "," in items[0] and "(" not in items[0]:
@@ -194,13 +215,68 @@ def goal_from_edges(text: str, state: WorldState | None) -> Goal:
             edges.append(Edge(source=source, relation=relation, target=target))
     if problems or not edges:
         raise ToolArgumentError(
-            "goal edges: " + ("; ".join(problems[:10]) or "no edge given"), field="edges",
+            "goal edges: " + ("; ".join(problems[:10]) or "no edge given"), field=field,
             value=text[:80], fix="write one 'source relation target' per item, separated by "
                                  f"';', with ids from the scene: "
                                  f"{', '.join(sorted(state.objects)[:20])}")
     graph = state.to_graph()
     return Goal(graph=SceneGraph(nodes=graph.nodes, edges=edges, dictionary=graph.dictionary),
-                partial=True)
+                partial=partial)
+
+
+GoalText = Annotated[str, Field(min_length=1, max_length=MAX_GOAL_EDGES_CHARS)]
+# A stateless tool's goal: a goal object, or its edges as text (partial, nodes from the
+# scene) or a predicate's name.
+GoalArgument = BoundedGoal | GoalText
+GOAL_ARGUMENT_HELP = "edges text 'cup on table; spoon in pot' (partial) or {graph, partial}, " \
+                     "nodes from the scene"
+
+
+def resolve_goal(goal: Goal | str, state: WorldState, *, field: str = "goal") -> Goal:
+    """A stateless tool's goal, checked against the scene it is checked on.
+
+    Text is goal edges (as set_goal's `edges`) or a predicate's name. A goal graph may
+    leave out its nodes: every id its edges name is taken from the scene, so the node
+    list is never repeated. Edges naming ids the scene lacks are all reported at once,
+    sources and targets alike, with the closest ids.
+    """
+    if isinstance(goal, str):
+        name = goal.strip()
+        if name in PREDICATES:
+            return Goal(predicate=name)  # type: ignore[arg-type]
+        return goal_from_edges(goal, state, field=field)
+    if goal.graph is not None:
+        goal = goal.model_copy(update={"graph": _with_scene_nodes(goal.graph, state, field)})
+    check_goal_against(goal, state, field=field)
+    return goal
+
+
+def _with_scene_nodes(graph: SceneGraph, state: WorldState, field: str) -> SceneGraph:
+    """The goal graph plus, for each id its edges name but its nodes do not, the scene's
+    node (label and attributes as the scene has them)."""
+    listed = set(graph.node_ids())
+    problems: list[str] = []
+    wanted: set[str] = set()
+    for i, edge in enumerate(graph.edges):
+        unknown = [n for n in dict.fromkeys((edge.source, edge.target))
+                   if n not in listed and n not in state.objects]
+        if unknown:
+            near = [m for n in unknown for m in difflib.get_close_matches(
+                n, list(state.objects)[:MAX_NEAR_CANDIDATES], n=1, cutoff=0.6)]
+            problems.append(f"{field}.graph.edges[{i}] '{edge.sentence()}': no object "
+                            f"{' or '.join(unknown)} in the scene"
+                            + (f" (did you mean {', '.join(near)}?)" if near else ""))
+        wanted.update(n for n in (edge.source, edge.target)
+                      if n not in listed and n in state.objects)
+    if problems:
+        raise ToolArgumentError(
+            f"the goal's edges name {len(problems)} object(s) the scene does not have:\n- "
+            + "\n- ".join(problems[:10]), field=f"{field}.graph.edges", value=None,
+            fix="use ids from the scene: " + ", ".join(sorted(state.objects)[:20]))
+    if not wanted:
+        return graph
+    added = [n for n in state.to_graph().nodes if n.id in wanted]
+    return graph.model_copy(update={"nodes": [*graph.nodes, *added]})
 
 
 def _match_perceived(seen: Perceived, state: WorldState | None) -> _Reading:
@@ -315,10 +391,11 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
             assert reading.goal is not None
             graph = reading.goal.graph
         goal: Goal | None = None
-        partial = params.partial
+        partial = bool(params.partial)
         if params.edges is not None:
-            edges_goal = goal_from_edges(params.edges, episode.state)
-            graph, partial = edges_goal.graph, True
+            edges_goal = goal_from_edges(params.edges, episode.state,
+                                         partial=params.partial is not False)
+            graph, partial = edges_goal.graph, edges_goal.partial
         readings: list[str] = []
         if graph is not None or params.predicate is not None:
             goal = Goal(graph=graph, partial=partial, predicate=params.predicate,

@@ -16,14 +16,13 @@ from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import FeatureUnavailableError, ToolArgumentError
 from verigraph.tools.executors import arm_mode_of
 from verigraph.tools.fields import (
-    BoundedGoal,
     BoundedGraph,
     EpisodeId,
     SceneId,
 )
-from verigraph.tools.goals import check_goal_against
+from verigraph.tools.goals import GoalArgument, resolve_goal
 from verigraph.tools.loading import stateless_source
-from verigraph.tools.texts import runs_on
+from verigraph.tools.texts import properties_line, runs_on
 
 
 class SolveInput(BaseModel):
@@ -35,16 +34,15 @@ class SolveInput(BaseModel):
                                                                    "current graph")
     scene_id: SceneId | None = Field(default=None, description="a built-in scene")
     graph: BoundedGraph | None = Field(default=None, description="plan from this graph")
-    goal: BoundedGoal | None = Field(default=None, description="default: the episode's or "
-                                                        "scene's goal")
+    goal: GoalArgument | None = Field(default=None, description="default: the episode's "
+                                      "or scene's; edges text too")
     max_expansions: int = Field(default=200_000, ge=1, le=2_000_000,
                                 description="max nodes expanded")
     time_limit: float = Field(default=5.0, gt=0, le=600,
                               description="CPU seconds of the search")
     memory_limit_mb: float = Field(default=200, gt=0, le=16_384,
                                    description="MiB of growth")
-    anytime: bool = Field(default=False, description="fast plan, then refined; "
-                                                     "with a lower bound")
+    anytime: bool = Field(default=False, description="fast plan, then refined")
 
     @model_validator(mode="after")
     def _one_scene(self) -> SolveInput:
@@ -68,19 +66,35 @@ class SolveOutput(BaseModel):
     expanded: int = Field(default=0, description="search nodes expanded")
     lower_bound: int | None = Field(default=None, description="no plan is shorter than this")
     runs_on: str | None = Field(default=None, description="the episode's executor")
+    assumed: str | None = Field(default=None, description="built-in properties applied")
+
+    def optimality(self) -> str:
+        """`optimal (no plan has fewer moves)`, or the proven bound when it is not shown."""
+        if self.optimal:
+            return "optimal (no plan has fewer moves)"
+        if self.lower_bound is not None:
+            return (f"not proven optimal: every plan needs at least {self.lower_bound} "
+                    "move(s) (lower bound)")
+        return "not proven optimal, no lower bound proven"
 
     def summary(self) -> str:
         if self.reachable is None:
             head = f"no plan found: {self.reason or 'search budget exhausted'}"
+            if self.lower_bound:
+                head += f"; every plan needs at least {self.lower_bound} move(s) (lower bound)"
         elif not self.reachable:
             head = f"no plan: {self.reason or 'goal unreachable'}"
         else:
             check = "verified" if self.verified else "NOT verified by the validator"
-            head = (f"plan of {self.length} action(s), {check}: "
+            head = (f"plan of {self.length} action(s), {check}, {self.optimality()}: "
                     f"{'; '.join(self.plan) or '(empty)'}")
+            if not self.optimal and self.reason:
+                head += f"\n{self.reason}"
         # Like validate_action: a plan is not a motion, and the executor says where
         # execute_actions would run it.
         planned = "planned only, nothing was executed"
+        if self.assumed:
+            head += f"\n{self.assumed}"
         if self.runs_on is not None:
             planned += f"; episode executor: {self.runs_on}"
         return f"{head}\n{planned}"
@@ -92,12 +106,12 @@ def solve(ctx: ToolContext, params: SolveInput) -> SolveOutput:
                                       value=None, fix="plan with validate_action and "
                                                       "execute_actions feedback instead")
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
-                                   graph=params.graph, goal=params.goal)
+                                   graph=params.graph, goal=None)
+    if params.goal is not None:
+        goal = resolve_goal(params.goal, state)
     if goal is None:
         raise ToolArgumentError("there is no goal to solve for", field="goal", value=None,
                                 fix="pass goal, or call set_goal on the episode first")
-    if params.goal is not None:
-        check_goal_against(params.goal, state, field="goal")
     result = search_plan(state, goal, max_expansions=params.max_expansions,
                          time_limit=params.time_limit, memory_limit_mb=params.memory_limit_mb,
                          anytime=params.anytime)
@@ -107,10 +121,10 @@ def solve(ctx: ToolContext, params: SolveInput) -> SolveOutput:
         verified = validate_plan(state, plan or "done", goal).valid
     return SolveOutput(reachable=result.reachable, plan=[a.text() for a in plan],
                        actions=plan, length=len(plan), reason=result.reason,
-                       verified=verified, optimal=bool(getattr(result, "optimal", False)),
-                       expanded=int(getattr(result, "expanded", 0)),
-                       lower_bound=getattr(result, "lower_bound", None),
-                       runs_on=_episode_executor(ctx, params.episode_id))
+                       verified=verified, optimal=result.optimal, expanded=result.expanded,
+                       lower_bound=result.lower_bound,
+                       runs_on=_episode_executor(ctx, params.episode_id),
+                       assumed=properties_line(state.to_graph()) or None)
 
 
 def _episode_executor(ctx: ToolContext, episode_id: str | None) -> str | None:

@@ -132,7 +132,7 @@ def plan_view(ctx: ToolContext, params: ValidatePlanInput, title: str = "plan ch
     """Check the plan with the validate_plan tool function and lay it out per step."""
     report = validate_plan(ctx, params)
     state, _ = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
-                                graph=params.graph, goal=params.goal)
+                                graph=params.graph, goal=None)
     return _assemble(title, "plan", state, report)
 
 
