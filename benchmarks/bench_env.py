@@ -31,17 +31,12 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 from common import write_table  # noqa: E402
 
-from verigraph.agent import (  # noqa: E402
-    EpisodeSpec,
-    InProcessTools,
-    LoopConfig,
-    McpTools,
-    make_planner,
-    run_episode,
-)
+from verigraph.agent import LoopConfig, McpTools, run_episode  # noqa: E402
 from verigraph.env import VeriGraphEnv, build_tasks  # noqa: E402
 from verigraph.env.dataset import TaskRecord  # noqa: E402
 from verigraph.env.rollout import RolloutJob, make_policy, run_rollout, run_rollouts  # noqa: E402
+from verigraph.planning import InProcessTools, make_planner  # noqa: E402
+from verigraph.tasks import EpisodeSpec  # noqa: E402
 
 
 def pool() -> list[TaskRecord]:

@@ -25,14 +25,15 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 from common import write_table  # noqa: E402
 
-from verigraph.agent.evaluation import Setting, build_groups  # noqa: E402
+from verigraph.agent.evaluation import Setting  # noqa: E402
 from verigraph.agent.evaluation.engine import RunOptions, execute  # noqa: E402
-from verigraph.agent.evaluation.limiter import BackendLimits  # noqa: E402
-from verigraph.agent.evaluation.ray_runner import connect  # noqa: E402
 from verigraph.agent.evaluation.results import BenchRecord  # noqa: E402
 from verigraph.agent.evaluation.spec import EpisodeJob, jobs_for, task_index  # noqa: E402
-from verigraph.agent.evaluation.tasks import GROUPS, Task  # noqa: E402
 from verigraph.agent.evaluation.worker import EngineConfig  # noqa: E402
+from verigraph.jobs.limiter import BackendLimits  # noqa: E402
+from verigraph.jobs.ray_runner import connect  # noqa: E402
+from verigraph.tasks import build_groups  # noqa: E402
+from verigraph.tasks.groups import GROUPS, Task  # noqa: E402
 
 SETTINGS = [*(Setting(planner="noisy", threshold=t) for t in (2, 3, 5, 10)),
             *(Setting(planner="noisy", k=k) for k in (2, 3, 5, 10))]

@@ -10,15 +10,10 @@ from __future__ import annotations
 import argparse
 import sys
 
-from verigraph.agent import (
-    EpisodeSpec,
-    LoopConfig,
-    McpTools,
-    PlannerOptions,
-    make_planner,
-    run_episode,
-)
+from verigraph.agent import LoopConfig, McpTools, run_episode
 from verigraph.agent.console import print_iteration, verdict_line
+from verigraph.planning import PlannerOptions, make_planner
+from verigraph.tasks import EpisodeSpec
 
 
 def main() -> int:

@@ -17,9 +17,10 @@ from pathlib import Path
 import httpx2
 import pytest
 
-from verigraph.agent import EpisodeSpec, LoopConfig, McpTools, run_episode
-from verigraph.agent.noisy import NoisyPlanner
+from verigraph.agent import LoopConfig, McpTools, run_episode
 from verigraph.cli import main
+from verigraph.planning.noisy import NoisyPlanner
+from verigraph.tasks import EpisodeSpec
 
 AGENT = [sys.executable, "-m", "verigraph", "agent"]
 
@@ -136,8 +137,8 @@ def test_cli_http_without_url_is_bad_input() -> None:
 
 def test_agent_prompt_is_the_servers_mcp_prompt() -> None:
     """The agent renders the same text the server's `iterative_planner` prompt serves."""
-    from verigraph.agent.prompting import planner_prompt
     from verigraph.graph import Goal, SceneGraph, WorldState
+    from verigraph.planning.prompting import planner_prompt
 
     env = McpTools.stdio()
     try:

@@ -7,13 +7,14 @@ from collections.abc import Sequence
 
 import pytest
 
-from verigraph.agent.evaluation import GroupTasks, Setting, build_groups
+from verigraph.agent.evaluation import Setting
 from verigraph.agent.evaluation.engine import RunOptions, run_jobs
-from verigraph.agent.evaluation.progress_bar import EpisodeProgress
 from verigraph.agent.evaluation.spec import jobs_for, task_index
 from verigraph.agent.evaluation.tables import GroupStats, stats_by_group
-from verigraph.agent.evaluation.tasks import GroupName
 from verigraph.cli.bench import plan_report as run
+from verigraph.jobs.progress_bar import EpisodeProgress
+from verigraph.tasks import GroupTasks, build_groups
+from verigraph.tasks.groups import GroupName
 
 generator = pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")
 
@@ -104,7 +105,7 @@ def test_progress_bar_reports_on_a_pipe() -> None:
 
 def test_a_failing_llm_planner_is_counted_and_the_bench_goes_on(
         monkeypatch: pytest.MonkeyPatch) -> None:
-    from verigraph.agent.testing import RecordedResponse, RecordedResponseServerForTests
+    from verigraph.planning.testing import RecordedResponse, RecordedResponseServerForTests
 
     groups = build_groups(("stacking",), 3, 0, ground_truth=True)
     refusal = RecordedResponse({"error": {"message": "invalid key"}}, status=401)

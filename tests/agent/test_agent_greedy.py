@@ -5,13 +5,14 @@ from __future__ import annotations
 import pytest
 
 from verigraph.actions import DoneAction, MoveAction, validate_action
-from verigraph.agent import InProcessTools, LoopConfig, PlannerRequest, run_episode
-from verigraph.agent.evaluation.suite_blocks import block_graph
-from verigraph.agent.greedy import GreedyPlanner, goal_moves
-from verigraph.agent.loop import EpisodeSpec
-from verigraph.agent.models import Feedback
-from verigraph.agent.rule_based import RuleBasedPlanner
+from verigraph.agent import LoopConfig, run_episode
 from verigraph.graph import Goal, WorldState
+from verigraph.planning import InProcessTools, PlannerRequest
+from verigraph.planning.greedy import GreedyPlanner, goal_moves
+from verigraph.planning.models import Feedback
+from verigraph.planning.rule_based import RuleBasedPlanner
+from verigraph.tasks.groups import EpisodeSpec
+from verigraph.tasks.suite_blocks import block_graph
 
 TOWER = [["red_block", "green_block", "blue_block"]]  # red at the bottom
 REVERSED = Goal(graph=block_graph([["blue_block", "green_block", "red_block"]]))
@@ -58,7 +59,7 @@ def test_constraint_only_repair_finds_the_refused_action_in_its_own_proposal() -
 
 
 def test_full_feedback_beats_no_feedback_on_stacking_tasks() -> None:
-    from verigraph.agent.evaluation.tasks import build_groups
+    from verigraph.tasks.groups import build_groups
 
     pytest.importorskip("verigraph.sim2d.generator")
     tasks = build_groups(("stacking",), 9, 0, ground_truth=True)[0].tasks

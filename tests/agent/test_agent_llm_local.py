@@ -16,9 +16,11 @@ import pytest
 
 from optional import require
 from verigraph.actions import MoveAction
-from verigraph.agent import EpisodeSpec, InProcessTools, LoopConfig, PlannerRequest, run_episode
-from verigraph.agent.local import LocalLLMPlanner, LocalModelServer
+from verigraph.agent import LoopConfig, run_episode
 from verigraph.graph.builtin_scenes import cup_on_book, cup_on_book_goal
+from verigraph.planning import InProcessTools, PlannerRequest
+from verigraph.planning.local import LocalLLMPlanner, LocalModelServer
+from verigraph.tasks import EpisodeSpec
 
 pytestmark = [pytest.mark.slow, pytest.mark.timeout(600)]
 
@@ -32,8 +34,8 @@ def server() -> Iterator[LocalModelServer]:
 
 
 def request(k: int = 2) -> PlannerRequest:
-    from verigraph.agent.prompting import planner_prompt
     from verigraph.graph import WorldState
+    from verigraph.planning.prompting import planner_prompt
 
     graph, goal = cup_on_book(), cup_on_book_goal()
     prompt = planner_prompt("iterative", WorldState.from_graph(graph), goal, k=k,

@@ -11,13 +11,15 @@ import json
 import pytest
 
 from verigraph.actions import DoneAction, MoveAction
-from verigraph.agent import EpisodeSpec, InProcessTools, LoopConfig, PlannerReply, run_episode
+from verigraph.agent import LoopConfig, run_episode
 from verigraph.agent.console import verdict_line
-from verigraph.agent.loop import split_proposal
-from verigraph.agent.models import EpisodeTrace
-from verigraph.agent.noisy import NoisyPlanner
-from verigraph.agent.oracle import OraclePlanner
-from verigraph.agent.testing import ScriptedPlannerForTests as Scripted
+from verigraph.planning import InProcessTools, PlannerReply
+from verigraph.planning.models import EpisodeTrace
+from verigraph.planning.noisy import NoisyPlanner
+from verigraph.planning.oracle import OraclePlanner
+from verigraph.planning.parsing import split_proposal
+from verigraph.planning.testing import ScriptedPlannerForTests as Scripted
+from verigraph.tasks import EpisodeSpec
 
 CUP = EpisodeSpec(load={"scene_id": "cup_on_book"})  # book on desk, cup on book
 STACK = EpisodeSpec(load={"scene_id": "three_blocks"})  # goal: single_stack

@@ -5,9 +5,9 @@ from __future__ import annotations
 import pytest
 
 from verigraph.actions import DoneAction, MoveAction
-from verigraph.agent.parsing import ParseFailure, parse_answer, parse_tool_input
-from verigraph.agent.schema import action_schema, format_instruction
 from verigraph.graph.builtin_scenes import cup_on_book
+from verigraph.planning.parsing import ParseFailure, parse_answer, parse_tool_input
+from verigraph.planning.schema import action_schema, format_instruction
 
 CUP = MoveAction(object="cup", relation="on", target="desk")
 

@@ -8,13 +8,13 @@ import pytest
 
 from verigraph.actions import DoneAction, MoveAction, validate_action
 from verigraph.actions.model import AlignAction
-from verigraph.agent import PlannerRequest, make_planner
-from verigraph.agent.factory import PlannerOptions
-from verigraph.agent.models import Feedback
-from verigraph.agent.noisy import MISTAKE_KINDS, NoiseProfile, NoisyPlanner, make_mistake
-from verigraph.agent.oracle import OraclePlanner
 from verigraph.graph import Edge, Goal, Node, SceneGraph, WorldState
 from verigraph.graph.builtin_scenes import cup_on_book, cup_on_book_goal, three_blocks
+from verigraph.planning import PlannerRequest, make_planner
+from verigraph.planning.factory import PlannerOptions
+from verigraph.planning.models import Feedback
+from verigraph.planning.noisy import MISTAKE_KINDS, NoiseProfile, NoisyPlanner, make_mistake
+from verigraph.planning.oracle import OraclePlanner
 
 
 def request(graph: SceneGraph, goal: Goal | None, k: int | None = 3) -> PlannerRequest:

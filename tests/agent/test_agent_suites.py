@@ -6,14 +6,14 @@ import random
 
 import pytest
 
-from verigraph.agent.evaluation import language
-from verigraph.agent.evaluation.suite_blocks import block_graph, stacking_task
-from verigraph.agent.evaluation.suite_tangram import tangram_task
-from verigraph.agent.evaluation.tasks import GROUPS, SUITE_VERSION, build_groups, suite_stats
-from verigraph.agent.tangram_plan import tangram_plan
 from verigraph.graph import Goal, SceneGraph, WorldState, check_goal
 from verigraph.graph.translator import TranslationError, same_goal, translate
+from verigraph.planning.tangram_plan import tangram_plan
 from verigraph.solver import solve
+from verigraph.tasks import language
+from verigraph.tasks.groups import GROUPS, SUITE_VERSION, build_groups, suite_stats
+from verigraph.tasks.suite_blocks import block_graph, stacking_task
+from verigraph.tasks.suite_tangram import tangram_task
 
 generator = pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")
 

@@ -9,9 +9,11 @@ from pathlib import Path
 
 import pytest
 
-from verigraph.agent import EpisodeSpec, InProcessTools, LoopConfig, run_episode
-from verigraph.agent.noisy import NoisyPlanner
+from verigraph.agent import LoopConfig, run_episode
 from verigraph.agent.transcripts import RecordingPlanner, ReplayingPlanner
+from verigraph.planning import InProcessTools
+from verigraph.planning.noisy import NoisyPlanner
+from verigraph.tasks import EpisodeSpec
 
 STACK = EpisodeSpec(load={"scene_id": "three_blocks"})
 CUP = EpisodeSpec(load={"scene_id": "cup_on_book"})

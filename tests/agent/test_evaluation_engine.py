@@ -15,26 +15,27 @@ from typing import Any
 
 import pytest
 
-from verigraph.agent.environment import InProcessTools
-from verigraph.agent.evaluation import Setting, build_groups
+from verigraph.agent.evaluation import Setting
 from verigraph.agent.evaluation.engine import RunOptions, run_jobs
 from verigraph.agent.evaluation.guard import RetryPolicy
-from verigraph.agent.evaluation.limiter import BackendLimits, Gate, RateLimiter
 from verigraph.agent.evaluation.results import ResultsFile
 from verigraph.agent.evaluation.spec import job_for, jobs_for, task_index
 from verigraph.agent.evaluation.tables import outcome_part, render_report
 from verigraph.agent.evaluation.worker import EngineConfig, PlannerPool, run_job
-from verigraph.agent.factory import PlannerOptions
-from verigraph.agent.testing import RecordedResponse as R
-from verigraph.agent.testing import (
+from verigraph.graph.goal import Goal
+from verigraph.graph.model import SceneGraph
+from verigraph.graph.state import WorldState
+from verigraph.jobs.limiter import BackendLimits, Gate, RateLimiter
+from verigraph.planning.factory import PlannerOptions
+from verigraph.planning.testing import RecordedResponse as R
+from verigraph.planning.testing import (
     RecordedResponseServerForTests,
     ScriptedPlannerForTests,
     chat_completion,
 )
-from verigraph.graph.goal import Goal
-from verigraph.graph.model import SceneGraph
-from verigraph.graph.state import WorldState
+from verigraph.planning.tool_calls import InProcessTools
 from verigraph.solver import solve
+from verigraph.tasks import build_groups
 
 pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")
 
@@ -261,7 +262,7 @@ def test_bad_engine_flags_are_rejected_by_name(flags: list[str]) -> None:
 def test_progress_counts_success_per_group_and_traces_are_written(tmp_path: Path) -> None:
     import io
 
-    from verigraph.agent.evaluation.progress_bar import EpisodeProgress
+    from verigraph.jobs.progress_bar import EpisodeProgress
 
     groups = build_groups(("stacking", "language"), 2, 0, ground_truth=True)
     jobs = jobs_for(Setting(planner="noisy", noise=1.0, mode="direct"), groups, "suite")

@@ -14,7 +14,7 @@ from verigraph.agent.evaluation.paper import (
     paper_table,
     sgg_paper_table,
 )
-from verigraph.agent.evaluation.tasks import GroupName
+from verigraph.tasks.groups import GroupName
 
 TEX = (Path(__file__).parents[1] / "data" / "paper_tables.tex").read_text()
 TASKS: dict[str, GroupName] = {

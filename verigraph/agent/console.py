@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TextIO
 
-from verigraph.agent.models import EpisodeTrace, IterationRecord
+from verigraph.planning.models import EpisodeTrace, IterationRecord
 
 VERDICT_WORDS = {
     "clean": "all executed",

@@ -1,11 +1,11 @@
-"""Where the agent's tool calls go: a real MCP server, or the tool layer in-process.
+"""The agent's tool calls over a real MCP transport.
 
-The loop only needs `call(name, arguments) -> structured result`. `McpTools` is what
-`verigraph agent` uses: a real MCP client (the official SDK) that spawns
-`verigraph serve` over stdio or connects to a streamable-HTTP URL, exactly as a chat
-assistant would. `InProcessTools` calls the same tool functions the server wraps
-(`verigraph.tools.registry.Toolbox`) without a transport; the benchmark uses it so a
-thousand episodes do not pay for a thousand server processes.
+The loop only needs a `ToolEnvironment` (verigraph.planning.tool_calls: `call(name,
+arguments) -> structured result`). `McpTools` is what `verigraph agent` uses: a real MCP
+client (the official SDK) that spawns `verigraph serve` over stdio or connects to a
+streamable-HTTP URL, exactly as a chat assistant would. The in-process alternative,
+`InProcessTools`, sits in verigraph.planning.tool_calls beside the protocol, because the
+environment (verigraph.env) uses it too.
 """
 
 from __future__ import annotations
@@ -14,55 +14,10 @@ import contextlib
 import os
 import sys
 from collections.abc import Mapping, Sequence
-from typing import Any, Protocol, TextIO
-
-from pydantic import BaseModel
+from typing import Any, TextIO
 
 from verigraph.errors import VeriGraphError
-
-
-class ToolCallError(VeriGraphError):
-    """A tool answered with an error (bad arguments, unknown episode, ...)."""
-
-    def __init__(self, tool: str, message: str) -> None:
-        super().__init__(message, field=f"tool {tool}", fix="see the tool's message above")
-        self.tool = tool
-
-
-class ToolEnvironment(Protocol):
-    """Anything that runs VeriGraph tools by name and returns their structured output."""
-
-    transport: str
-
-    def call(self, name: str, arguments: Mapping[str, Any]) -> dict[str, Any]:
-        """Run one tool; raises ToolCallError when the tool reports an error."""
-        ...
-
-    def close(self) -> None:
-        ...
-
-
-class InProcessTools:
-    """The tool layer without a transport (same functions the MCP server wraps)."""
-
-    transport = "in-process"
-
-    def __init__(self, toolbox: Any | None = None) -> None:
-        from verigraph.tools.registry import Toolbox
-
-        self.toolbox = toolbox or Toolbox()
-
-    def call(self, name: str, arguments: Mapping[str, Any]) -> dict[str, Any]:
-        try:
-            result = self.toolbox.call(name, dict(arguments))
-        except VeriGraphError as exc:
-            raise ToolCallError(name, f"Error executing tool {name}: {exc}") from None
-        if isinstance(result, BaseModel):
-            return result.model_dump(mode="json")
-        raise ToolCallError(name, f"tool {name} returned no structured result")
-
-    def close(self) -> None:
-        return None
+from verigraph.planning.tool_calls import ToolCallError
 
 
 def serve_command(extra_args: Sequence[str] = ()) -> tuple[str, list[str]]:

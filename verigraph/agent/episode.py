@@ -1,9 +1,9 @@
 """One episode's bookkeeping for the loop: its settings, how it starts, and the tool calls.
 
-`LoopConfig` and `EpisodeSpec` are the loop's inputs; `EpisodeRun` keeps the mutable state
-of one run (graph, goal, history, the trace) and wraps the tools (`load_scene`,
-`set_goal`, `execute_actions`, `end_episode`) and the planner call, so `loop.py` holds
-only Algorithm 1's control flow.
+`LoopConfig` and the task's `EpisodeSpec` (verigraph.tasks.groups) are the loop's
+inputs; `EpisodeRun` keeps the mutable state of one run (graph, goal, history, the
+trace) and wraps the tools (`load_scene`, `set_goal`, `execute_actions`, `end_episode`)
+and the planner call, so `loop.py` holds only Algorithm 1's control flow.
 """
 
 from __future__ import annotations
@@ -14,10 +14,12 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction
-from verigraph.agent.environment import ToolEnvironment
-from verigraph.agent.models import (
+from verigraph.errors import VeriGraphError
+from verigraph.graph.goal import Goal, GraphDiff
+from verigraph.graph.model import SceneGraph
+from verigraph.graph.state import WorldState
+from verigraph.planning.models import (
     DonePolicy,
     EpisodeTrace,
     Feedback,
@@ -27,13 +29,11 @@ from verigraph.agent.models import (
     PlannerReply,
     PlannerRequest,
 )
-from verigraph.agent.planner import Planner, is_privileged
-from verigraph.agent.progress import goal_distance, shape_feedback
-from verigraph.agent.prompting import planner_prompt
-from verigraph.errors import VeriGraphError
-from verigraph.graph.goal import Goal, GraphDiff
-from verigraph.graph.model import SceneGraph
-from verigraph.graph.state import WorldState
+from verigraph.planning.planner import Planner, is_privileged
+from verigraph.planning.progress import goal_distance, shape_feedback
+from verigraph.planning.prompting import planner_prompt
+from verigraph.planning.tool_calls import ToolEnvironment
+from verigraph.tasks.groups import EpisodeSpec
 
 MAX_ACTIONS_PER_CALL = 50  # execute_actions' limit; direct plans are sent in such chunks
 
@@ -61,22 +61,6 @@ class LoopConfig(BaseModel):
     max_iterations: int = Field(default=60, ge=1, le=10_000,
                                 description="safety stop for planners that never finish")
     record_prompts: bool = Field(default=False, description="keep each prompt in the trace")
-
-
-class EpisodeSpec(BaseModel):
-    """How to start one episode: raw `load_scene` and optional `set_goal` arguments.
-
-    `show_goal_graph=False` hides the goal graph from LLM prompts (instruction tasks:
-    the planner reads the words, the verifier checks the ground-truth graph).
-    """
-
-    model_config = ConfigDict(extra="forbid")
-
-    task_id: str | None = None
-    load: dict[str, Any] = Field(description="load_scene arguments (without k and t)")
-    set_goal: dict[str, Any] | None = Field(default=None,
-                                            description="set_goal arguments (no episode_id)")
-    show_goal_graph: bool = True
 
 
 IterationHook = Callable[[IterationRecord], None]
@@ -206,19 +190,3 @@ class EpisodeRun:
         self.trace.iterations.append(record)
         if self.hook is not None:
             self.hook(record)
-
-
-def malformed_feedback(reply: PlannerReply) -> Feedback:
-    reason = reply.error or "it contained no action (not even done)"
-    return Feedback(kind="malformed",
-                    text=f"[malformed_action] your previous answer could not be used: {reason}")
-
-
-def violation_feedback(out: Mapping[str, Any]) -> Feedback:
-    violation = Violation.model_validate(out["violation"])
-    executed = ", ".join(out.get("executed") or []) or "none"
-    skipped = ", ".join(out.get("not_executed") or []) or "none"
-    return Feedback(kind="violation", violation=violation,
-                    text=f"{violation.text()} (executed from your answer: {executed}; not "
-                         f"executed: {skipped})")
-

@@ -36,41 +36,22 @@ from __future__ import annotations
 import contextlib
 import time
 
-from verigraph.actions.model import AnyAction, DoneAction
-from verigraph.agent.environment import ToolEnvironment
+from verigraph.actions.model import DoneAction
 from verigraph.agent.episode import (
     MAX_ACTIONS_PER_CALL,
     EpisodeRun,
-    EpisodeSpec,
     IterationHook,
     LoopConfig,
     StartHook,
-    malformed_feedback,
-    violation_feedback,
 )
-from verigraph.agent.models import EpisodeTrace, Feedback, IterationRecord
-from verigraph.agent.planner import Planner
-from verigraph.agent.progress import ProgressMeter
+from verigraph.planning.models import EpisodeTrace, Feedback, IterationRecord
+from verigraph.planning.parsing import split_proposal
+from verigraph.planning.planner import Planner
+from verigraph.planning.progress import ProgressMeter, malformed_feedback, violation_feedback
+from verigraph.planning.tool_calls import ToolEnvironment
+from verigraph.tasks.groups import EpisodeSpec
 
-__all__ = ["MAX_ACTIONS_PER_CALL", "EpisodeSpec", "LoopConfig", "run_episode",
-           "split_proposal"]
-
-
-def split_proposal(actions: list[AnyAction], k: int | None
-                   ) -> tuple[list[AnyAction], bool, list[AnyAction]]:
-    """(moves to send, end token reached, dropped): obey k; nothing after `done` counts."""
-    moves: list[AnyAction] = []
-    done = False
-    rest: list[AnyAction] = []
-    for index, action in enumerate(actions):
-        if isinstance(action, DoneAction):
-            done = True
-            rest = actions[index + 1:]
-            break
-        moves.append(action)
-    if k is not None and len(moves) > k:
-        return moves[:k], False, [*moves[k:], *([DoneAction()] if done else []), *rest]
-    return moves, done, rest
+__all__ = ["MAX_ACTIONS_PER_CALL", "LoopConfig", "run_episode"]
 
 
 def _iterate(ep: EpisodeRun) -> None:

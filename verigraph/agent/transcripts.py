@@ -17,8 +17,8 @@ import re
 from pathlib import Path
 from typing import Any
 
-from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.agent.planner import Planner, is_privileged
+from verigraph.planning.models import PlannerReply, PlannerRequest
+from verigraph.planning.planner import Planner, is_privileged
 
 VERSION = 1
 

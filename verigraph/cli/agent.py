@@ -20,9 +20,9 @@ from verigraph.errors import VeriGraphError
 
 
 def register(sub: Any) -> None:
-    from verigraph.agent.factory import PLANNER_NAMES
-    from verigraph.agent.noisy import MISTAKE_KINDS
     from verigraph.llm.formats import RESPONSE_FORMATS
+    from verigraph.planning.factory import PLANNER_NAMES
+    from verigraph.planning.noisy import MISTAKE_KINDS
 
     p = sub.add_parser(
         "agent", help="plan with an LLM (or the solver) through the MCP tools, Algorithm 1",
@@ -142,7 +142,7 @@ def _goal_spec(args: argparse.Namespace) -> dict[str, Any] | None:
 
 
 def _planner_options(args: argparse.Namespace) -> Any:
-    from verigraph.agent.factory import PlannerOptions
+    from verigraph.planning.factory import PlannerOptions
 
     kinds = tuple(k.strip() for k in args.mistakes.split(",") if k.strip())
     try:
@@ -157,8 +157,8 @@ def _planner_options(args: argparse.Namespace) -> Any:
 
 
 def _planner(args: argparse.Namespace) -> Any:
-    from verigraph.agent.factory import make_planner
     from verigraph.agent.transcripts import RecordingPlanner, ReplayingPlanner
+    from verigraph.planning.factory import make_planner
 
     if args.record and args.replay:
         raise VeriGraphError("--record and --replay exclude each other", field="--replay",
@@ -187,7 +187,8 @@ def run_agent(args: argparse.Namespace) -> int:
     from pydantic import ValidationError
 
     from verigraph.agent.console import header_lines, print_iteration, verdict_line
-    from verigraph.agent.loop import EpisodeSpec, LoopConfig, run_episode
+    from verigraph.agent.loop import LoopConfig, run_episode
+    from verigraph.tasks.groups import EpisodeSpec
 
     try:
         config = LoopConfig(mode=args.mode, k=args.k, threshold=args.threshold,

@@ -27,8 +27,8 @@ from verigraph.extras import require
 
 if TYPE_CHECKING:  # the evaluation loads only when a benchmark runs (fast `--help`)
     from verigraph.agent.evaluation.engine import RunOptions
-    from verigraph.agent.evaluation.limiter import BackendLimits
     from verigraph.agent.evaluation.plan_bench import PlanConfig
+    from verigraph.jobs.limiter import BackendLimits
 
 BUILTIN = ("plan", "report")
 
@@ -92,8 +92,8 @@ def add_engine_arguments(p: argparse.ArgumentParser) -> None:
 
 def plan_parser() -> argparse.ArgumentParser:
     from verigraph.agent.evaluation import plan_bench
-    from verigraph.agent.evaluation.tasks import GROUPS
-    from verigraph.agent.factory import PLANNER_NAMES
+    from verigraph.planning.factory import PLANNER_NAMES
+    from verigraph.tasks.groups import GROUPS
 
     p = argparse.ArgumentParser(prog="verigraph bench plan", description=plan_bench.__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -154,7 +154,7 @@ def _check_flags(args: argparse.Namespace) -> None:
 
 def parse_limit(text: str) -> tuple[str, BackendLimits]:
     """`NAME=RPM` or `NAME=RPM/IN_FLIGHT` (RPM may be empty: `NAME=/4`)."""
-    from verigraph.agent.evaluation.limiter import BackendLimits
+    from verigraph.jobs.limiter import BackendLimits
 
     name, sep, budget = text.rpartition("=")
     rpm, _, in_flight = budget.partition("/")
@@ -173,9 +173,9 @@ def options_from_args(args: argparse.Namespace) -> RunOptions:
     """The engine's `RunOptions` of parsed `add_engine_arguments` flags."""
     from verigraph.agent.evaluation.engine import RunOptions
     from verigraph.agent.evaluation.guard import RetryPolicy
-    from verigraph.agent.evaluation.limiter import BackendLimits
     from verigraph.agent.evaluation.worker import EngineConfig
-    from verigraph.agent.factory import PlannerOptions
+    from verigraph.jobs.limiter import BackendLimits
+    from verigraph.planning.factory import PlannerOptions
 
     _check_flags(args)
     return RunOptions(

@@ -1,16 +1,17 @@
 """`VeriGraphEnv`: Algorithm 1 as a Gymnasium environment with text in and text out.
 
 One episode is one benchmark task. The observation is the iterative planner prompt the
-project's planners read (verigraph.agent.prompting: scene, goal, executed actions, the
+project's planners read (verigraph.planning.prompting: scene, goal, executed actions, the
 feedback on the previous answer); an action is the model's text reply holding up to k
-actions or `done`, read by the agent's parser (verigraph.agent.parsing), so JSON, a
+actions or `done`, read by the planners' parser (verigraph.planning.parsing), so JSON, a
 fenced block or `move(cup, on, table)` lines all work and anything else is a
 malformed answer whose parse error is the next feedback.
 
 Every step goes through the VeriGraph tools (`load_scene`, `set_goal`,
 `execute_actions`, `end_episode`) on a `ToolEnvironment`: in process by default
 (`InProcessTools`, the functions the MCP server wraps) or over a real MCP transport
-(`McpTools.stdio()` / `McpTools.http(url)`), with the same results either way.
+(the agent's `McpTools.stdio()` / `McpTools.http(url)`), with the same results either
+way.
 
 - `terminated`: the goal holds after the step, or `done` was accepted.
 - `truncated`: `threshold` consecutive failed steps (refused, malformed, premature
@@ -38,19 +39,6 @@ from gymnasium import spaces
 from pydantic import ValidationError
 
 from verigraph.actions.model import AnyAction, DoneAction
-from verigraph.agent.environment import InProcessTools, ToolEnvironment
-from verigraph.agent.episode import malformed_feedback, violation_feedback
-from verigraph.agent.loop import split_proposal
-from verigraph.agent.models import (
-    Feedback,
-    FeedbackMode,
-    IterationVerdict,
-    PlannerReply,
-    PlannerRequest,
-)
-from verigraph.agent.parsing import ParseFailure, parse_answer
-from verigraph.agent.progress import goal_distance, shape_feedback
-from verigraph.agent.prompting import planner_prompt
 from verigraph.env.dataset import (
     DEFAULT_TEST_FRACTION,
     Split,
@@ -65,6 +53,22 @@ from verigraph.errors import VeriGraphError
 from verigraph.graph.goal import Goal, GraphDiff
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.planning.models import (
+    Feedback,
+    FeedbackMode,
+    IterationVerdict,
+    PlannerReply,
+    PlannerRequest,
+)
+from verigraph.planning.parsing import ParseFailure, parse_answer, split_proposal
+from verigraph.planning.progress import (
+    goal_distance,
+    malformed_feedback,
+    shape_feedback,
+    violation_feedback,
+)
+from verigraph.planning.prompting import planner_prompt
+from verigraph.planning.tool_calls import InProcessTools, ToolEnvironment
 
 # Observations and actions are text over this alphabet: printable ASCII, the whitespace
 # a prompt uses, Latin-1 letters and the common punctuation, arrow and math blocks.
@@ -372,7 +376,7 @@ class VeriGraphEnv(gym.Env[str, str]):
         return fit_text(text)
 
     def planner_request(self) -> PlannerRequest:
-        """What a project planner (verigraph.agent) would be asked at this point.
+        """What a project planner (verigraph.planning) would be asked at this point.
 
         The reference policies in verigraph.env.rollout turn any `Planner` into a policy
         with it; `privileged_goal` is filled in, which only the oracle reads.

@@ -1,6 +1,6 @@
 """The benchmark suites as task datasets: records, content hashes, splits, JSONL.
 
-A `TaskRecord` is one benchmark task (verigraph.agent.evaluation.tasks) in a form a
+A `TaskRecord` is one benchmark task (verigraph.tasks.groups) in a form a
 training pipeline can store: how to load the scene and set the goal, its family and
 group, and its difficulty (optimal plan length from the reference solver, object count).
 Its `content_hash` covers only what defines the task (scene and goal), never its id or
@@ -31,11 +31,11 @@ from typing import Any, Literal, get_args
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
-from verigraph.agent.evaluation.tasks import SUITE_VERSION, GroupName, Task, build_groups
 from verigraph.env.jsonl import read_models, write_models
 from verigraph.errors import VeriGraphError
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.tasks.groups import SUITE_VERSION, GroupName, Task, build_groups
 
 Family = Literal["blocks", "kitchen", "tangram"]
 FAMILIES: tuple[Family, ...] = get_args(Family)

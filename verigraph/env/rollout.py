@@ -1,13 +1,13 @@
 """Rollouts of the environment: policies, one episode, and many serially or on Ray.
 
 A policy maps `(env, observation, info)` to the action text. `PlannerPolicy` puts any
-project planner (verigraph.agent: oracle, noisy, greedy, ...) in the policy's seat by
+project planner (verigraph.planning: oracle, noisy, greedy, ...) in the policy's seat by
 asking it what the loop would ask (`VeriGraphEnv.planner_request`) and writing its
 reply as text; `RefusedActionPolicy` answers an action the verifier always refuses.
 A policy is named in a `RolloutJob` so that a Ray worker can build it itself.
 
-`run_rollouts(jobs, env_kwargs, ray=...)` runs the jobs through the evaluation engine's
-one dispatch (`verigraph.agent.evaluation.engine.run_on_workers`, the same serial and Ray
+`run_rollouts(jobs, env_kwargs, ray=...)` runs the jobs through the job engine's
+one dispatch (`verigraph.jobs.dispatch.run_on_workers`, the same serial and Ray
 paths as `bench plan`): `RolloutWorker` is the engine's worker, as `EpisodeWorker` is for
 episodes. `ray="local"` starts a private Ray with this machine's cores; an initialised
 Ray is used as it is. Each Ray actor builds its environments from `env_kwargs`, so the
@@ -31,11 +31,6 @@ from typing import Any, Literal, Protocol, TextIO
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.agent.evaluation.engine import plan_resume, run_on_workers
-from verigraph.agent.evaluation.progress_bar import EpisodeProgress
-from verigraph.agent.evaluation.worker import WorkerFactory, error_kind, worker_name
-from verigraph.agent.factory import PlannerOptions, make_planner
-from verigraph.agent.planner import Planner
 from verigraph.env.core import VeriGraphEnv
 from verigraph.env.trajectory import (
     TrajectoryFile,
@@ -45,6 +40,11 @@ from verigraph.env.trajectory import (
     step_line,
 )
 from verigraph.errors import VeriGraphError
+from verigraph.jobs.dispatch import plan_resume, run_on_workers
+from verigraph.jobs.progress_bar import EpisodeProgress
+from verigraph.jobs.workers import WorkerFactory, error_kind, worker_name
+from verigraph.planning.factory import PlannerOptions, make_planner
+from verigraph.planning.planner import Planner
 
 PolicyName = Literal["oracle", "noisy", "greedy", "refuse"]
 REFUSED_ACTION = "move(no_such_object, on, table)"
@@ -218,7 +218,7 @@ class RolloutWorker:
 
 def rollout_factory(env_kwargs: dict[str, Any], worker: type[RolloutWorker] = RolloutWorker
                     ) -> WorkerFactory[RolloutJob, RolloutResult]:
-    """`RolloutWorker`s (or a subclass) over `env_kwargs`, for the evaluation engine."""
+    """`RolloutWorker`s (or a subclass) over `env_kwargs`, for the job engine."""
     return WorkerFactory(worker, (dict(env_kwargs),), lost=lost_rollout)
 
 
@@ -229,7 +229,7 @@ def run_rollouts(jobs: Sequence[RolloutJob], env_kwargs: dict[str, Any], *,
                  trajectories: str | Path | None = None,
                  progress: bool = False, stream: TextIO | None = None
                  ) -> list[RolloutResult]:
-    """Every job's result, in job order, through the evaluation engine's dispatch.
+    """Every job's result, in job order, through the job engine's dispatch.
 
     Serial without `ray`, else on Ray actors (`workers`: rollouts at once, default one
     per core). A job listed twice is run once. `on_ready` is called once the workers

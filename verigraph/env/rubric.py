@@ -10,7 +10,7 @@ Terms, per step:
 - `success`: `success` weight once, on the step that ends the episode with the goal
   holding (the goal reached, or `done` accepted while it holds). Never paid twice.
 - `progress`: `progress * (d_before - d_after) / d_start`, where d is the goal distance
-  (verigraph.agent.progress.goal_distance: goal edges missing plus extra edges). Over an
+  (verigraph.planning.progress.goal_distance: goal edges missing plus extra edges). Over an
   episode these telescope to `progress * (d_start - d_end) / d_start`, at most the
   weight, so undoing and redoing a move earns nothing.
 - `refusal`: `-refusal` on a failed step: an action refused by the verifier, an answer
@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.agent.models import IterationVerdict
+from verigraph.planning.models import IterationVerdict
 
 FAILED_VERDICTS = frozenset({"violation", "malformed", "premature_done"})
 

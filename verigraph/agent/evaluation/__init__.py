@@ -1,10 +1,9 @@
 """The planning evaluation behind `verigraph bench plan` (the paper's Table 2).
 
 The public entry point is `engine.run_jobs(jobs, tasks, options)`; jobs come from
-`spec.jobs_for`, tasks from `tasks.build_groups`, tables from `tables`.
+`spec.jobs_for`, tasks from `verigraph.tasks.build_groups`, tables from `tables`.
 """
 
 from verigraph.agent.evaluation.spec import EpisodeJob, Setting
-from verigraph.agent.evaluation.tasks import GROUPS, GroupTasks, Task, build_groups
 
-__all__ = ["GROUPS", "EpisodeJob", "GroupTasks", "Setting", "Task", "build_groups"]
+__all__ = ["EpisodeJob", "Setting"]

@@ -1,8 +1,8 @@
-"""Run a list of jobs serially or on Ray, resumably, with a progress bar.
+"""Run a list of episode jobs serially or on Ray, resumably, with a progress bar.
 
-`run_on_workers` is the one dispatch, generic over the worker (`WorkerFactory`): one
-serial path and one Ray path, used by `bench plan` episodes (`EpisodeWorker`) and by
-environment rollouts (`verigraph.env.rollout`, `RolloutWorker`) alike.
+The dispatch itself is the job engine's (`verigraph.jobs.dispatch.run_on_workers`,
+generic over the worker: one serial path and one Ray path), shared with environment
+rollouts (`verigraph.env.rollout`, `RolloutWorker`).
 
 `run_jobs` is the evaluation engine for episodes, behind `verigraph bench plan` and
 every other caller (the public, stable entry point): it reads the results file, skips
@@ -17,24 +17,18 @@ in `verigraph.cli.bench`.
 from __future__ import annotations
 
 import sys
-from collections.abc import Callable, Generator, Mapping, Sequence
+from collections.abc import Callable, Generator, Sequence
 from typing import TextIO
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.agent.evaluation.limiter import BackendLimits, RateLimiter
-from verigraph.agent.evaluation.progress_bar import EpisodeProgress
-from verigraph.agent.evaluation.ray_runner import run_on_ray
 from verigraph.agent.evaluation.results import BenchRecord, ResultsFile
 from verigraph.agent.evaluation.spec import EpisodeJob
-from verigraph.agent.evaluation.tasks import Task
-from verigraph.agent.evaluation.worker import (
-    EngineConfig,
-    JobT,
-    ResultT,
-    WorkerFactory,
-    episode_factory,
-)
+from verigraph.agent.evaluation.worker import EngineConfig, episode_factory
+from verigraph.jobs.dispatch import plan_resume, run_on_workers
+from verigraph.jobs.limiter import BackendLimits, RateLimiter
+from verigraph.jobs.progress_bar import EpisodeProgress
+from verigraph.tasks.groups import Task
 
 
 class RunOptions(BaseModel):
@@ -58,47 +52,6 @@ class RunOptions(BaseModel):
         return RateLimiter(self.backend_limits, default=self.limits)
     engine: EngineConfig = Field(default_factory=EngineConfig)
     progress: bool = True
-
-
-def run_on_workers(factory: WorkerFactory[JobT, ResultT], jobs: Sequence[JobT], *,
-                   ray: str | None = None, concurrency: int | None = None,
-                   on_ready: Callable[[], None] | None = None
-                   ) -> Generator[ResultT, None, None]:
-    """Results of `jobs` as they finish, on workers `factory` builds: the one dispatch.
-
-    Without `ray`, one worker in this process runs the jobs in order; with it (local,
-    auto, HOST:PORT, ray://...), `verigraph.agent.evaluation.ray_runner` runs them on a
-    pool of actors of the same worker class. `bench plan` episodes and environment
-    rollouts both come through here. `on_ready` is called when the workers are up,
-    before the first job starts.
-    """
-    if ray is not None:
-        yield from run_on_ray(factory, jobs, address=ray, concurrency=concurrency,
-                              on_ready=on_ready)
-        return
-    worker = factory.build()
-    if on_ready is not None:
-        on_ready()
-    try:
-        for job in jobs:
-            yield worker.run(job)
-    finally:
-        worker.close()
-
-
-def plan_resume(jobs: Sequence[JobT], key: Callable[[JobT], str],
-                known: Mapping[str, ResultT]
-                ) -> tuple[list[JobT], dict[str, ResultT], list[JobT]]:
-    """(the jobs once each, the results already in the results file, the jobs to run).
-
-    `known` maps a job's key to its result as read back from a results file; a job
-    listed twice is one job. `run_jobs` (episodes) and the environment's
-    `run_rollouts` (trajectory files) resume the same way.
-    """
-    unique = list({key(job): job for job in jobs}.values())
-    done = {key(job): known[key(job)] for job in unique if key(job) in known}
-    pending = [job for job in unique if key(job) not in done]
-    return unique, done, pending
 
 
 def execute(jobs: list[EpisodeJob], tasks: dict[str, Task], options: RunOptions,

@@ -20,10 +20,10 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.agent.evaluation.limiter import Gate
-from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.agent.planner import Planner, is_privileged
+from verigraph.jobs.limiter import Gate
 from verigraph.llm.http import RETRY_STATUS, LLMEndpointError
+from verigraph.planning.models import PlannerReply, PlannerRequest
+from verigraph.planning.planner import Planner, is_privileged
 
 _STATUS = re.compile(r"HTTP (\d{3})")
 

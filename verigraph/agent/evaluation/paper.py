@@ -15,7 +15,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 from verigraph.agent.evaluation.markdown import table
-from verigraph.agent.evaluation.tasks import GroupName
+from verigraph.tasks.groups import GroupName
 
 GROUP_TITLES: dict[GroupName, str] = {
     "stacking": "Stacking",

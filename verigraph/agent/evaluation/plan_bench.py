@@ -34,15 +34,15 @@ from verigraph.agent.evaluation.tables import (
     stats_by_group,
     success_table,
 )
-from verigraph.agent.evaluation.tasks import (
+from verigraph.errors import VeriGraphError
+from verigraph.planning.factory import PLANNER_NAMES
+from verigraph.tasks.groups import (
     GROUPS,
     SUITE_VERSION,
     GroupName,
     GroupTasks,
     build_groups,
 )
-from verigraph.agent.factory import PLANNER_NAMES
-from verigraph.errors import VeriGraphError
 
 T_VALUES = (2, 3, 5, 10)
 K_VALUES = (2, 3, 5, 10)

@@ -28,7 +28,7 @@ from verigraph.agent.evaluation.paper import GROUP_TITLES  # noqa: E402
 from verigraph.agent.evaluation.results import BenchRecord  # noqa: E402
 from verigraph.agent.evaluation.spec import Setting  # noqa: E402
 from verigraph.agent.evaluation.tables import by_setting, families, stats_by_group  # noqa: E402
-from verigraph.agent.evaluation.tasks import GROUPS  # noqa: E402
+from verigraph.tasks.groups import GROUPS  # noqa: E402
 
 DPI = 110
 

@@ -18,8 +18,8 @@ from typing import Any
 from pydantic import BaseModel, Field, ValidationError
 
 from verigraph.agent.evaluation.spec import EpisodeJob
-from verigraph.agent.evaluation.tasks import GroupName
 from verigraph.errors import VeriGraphError
+from verigraph.tasks.groups import GroupName
 
 
 class BenchRecord(BaseModel):

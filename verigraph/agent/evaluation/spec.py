@@ -17,8 +17,8 @@ from collections.abc import Iterable
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph import __version__
-from verigraph.agent.evaluation.tasks import SUITE_VERSION, GroupName, GroupTasks, Task
-from verigraph.agent.models import DonePolicy, FeedbackMode, Mode
+from verigraph.planning.models import DonePolicy, FeedbackMode, Mode
+from verigraph.tasks.groups import SUITE_VERSION, GroupName, GroupTasks, Task
 
 
 class Setting(BaseModel):

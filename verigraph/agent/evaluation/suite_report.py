@@ -9,9 +9,9 @@ from collections.abc import Mapping, Sequence
 from verigraph.agent.evaluation.markdown import table
 from verigraph.agent.evaluation.paper import GROUP_TITLES
 from verigraph.agent.evaluation.tables import GroupStats
-from verigraph.agent.evaluation.tasks import GroupName, GroupTasks, suite_stats
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.translator import TranslationError, same_goal, translate
+from verigraph.tasks.groups import GroupName, GroupTasks, suite_stats
 
 
 def difficulty_table(groups: Sequence[GroupTasks]) -> list[str]:

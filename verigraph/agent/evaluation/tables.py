@@ -28,7 +28,7 @@ from verigraph.agent.evaluation.markdown import row, section_row, table
 from verigraph.agent.evaluation.paper import GROUP_TITLES, paper_table
 from verigraph.agent.evaluation.results import BenchRecord
 from verigraph.agent.evaluation.spec import Setting
-from verigraph.agent.evaluation.tasks import GROUPS, GroupName, GroupTasks
+from verigraph.tasks.groups import GROUPS, GroupName, GroupTasks
 
 TIMING_HEADING = "## Timing"
 

@@ -1,10 +1,9 @@
 """Run one episode job and return its record: the one code path of every run mode.
 
 The serial engine and each Ray worker both call `EpisodeWorker.run` (or `run_job`
-under it), so a seed gives the same episode whichever way it is scheduled. The engine
-itself knows no episodes: it runs any `Worker` (ready, run, close) that a
-`WorkerFactory` builds, so environment rollouts (verigraph.env.rollout) are scheduled,
-queued and recorded by the same code as `bench plan` episodes.
+under it), so a seed gives the same episode whichever way it is scheduled.
+`EpisodeWorker` is one `Worker` of the job engine (verigraph.jobs.workers), as the
+environment's `RolloutWorker` (verigraph.env.rollout) is another.
 Any exception an episode raises (a planner that fails after its retries, a tool error,
 a bug) becomes that episode's recorded outcome; the run goes on.
 
@@ -16,74 +15,27 @@ threaded Ray actor can run several episodes at once.
 
 from __future__ import annotations
 
-import os
-import socket
 import threading
 import time
-from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Generic, Protocol, TypeVar
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.agent.environment import InProcessTools, ToolEnvironment
 from verigraph.agent.evaluation.guard import GuardedPlanner, RetryPolicy, SimulatedLatencyPlanner
-from verigraph.agent.evaluation.limiter import Gate, LimiterLike, RateLimiter
 from verigraph.agent.evaluation.results import BenchRecord, blank_record
 from verigraph.agent.evaluation.spec import EpisodeJob, Setting
-from verigraph.agent.evaluation.tasks import Task
-from verigraph.agent.factory import PlannerOptions, make_planner
 from verigraph.agent.loop import LoopConfig, run_episode
-from verigraph.agent.models import IterationRecord
-from verigraph.agent.planner import Planner
 from verigraph.agent.transcripts import RecordingPlanner, ReplayingPlanner
 from verigraph.errors import VeriGraphError
+from verigraph.jobs.limiter import Gate, LimiterLike, RateLimiter
+from verigraph.jobs.workers import WorkerFactory, error_kind, worker_name
+from verigraph.planning.factory import PlannerOptions, make_planner
+from verigraph.planning.models import IterationRecord
+from verigraph.planning.planner import Planner
+from verigraph.planning.tool_calls import InProcessTools, ToolEnvironment
+from verigraph.tasks.groups import Task
 
 OFFLINE_PLANNERS = ("oracle", "rule-based", "greedy", "noisy")
-
-JobT = TypeVar("JobT")
-ResultT = TypeVar("ResultT")
-JobT_contra = TypeVar("JobT_contra", contravariant=True)
-ResultT_co = TypeVar("ResultT_co", covariant=True)
-
-
-class Worker(Protocol[JobT_contra, ResultT_co]):
-    """What the engine runs jobs on, in this process or as a Ray actor.
-
-    `run` must be safe to call from several threads at once (a Ray actor may run a few
-    jobs concurrently) and must not raise for a job that merely fails: its outcome is a
-    result. `ready` answers once the worker is built, so start-up can be timed apart.
-    """
-
-    def ready(self) -> str: ...
-
-    def run(self, job: JobT_contra) -> ResultT_co: ...
-
-    def close(self) -> None: ...
-
-
-@dataclass(frozen=True)
-class WorkerFactory(Generic[JobT, ResultT]):
-    """How to build a worker here or on Ray, and what a job whose worker is lost yields.
-
-    `worker` is a class (Ray makes actors of classes) called with `args`, plus
-    `limiter=` when `limiter` is set: the limiter itself in this process, a proxy of one
-    limiter actor shared by the cluster on Ray. On Ray each argument is put in the
-    object store once for all actors. `lost(job, error)` is the failed result of a job
-    whose worker process died for good, so a run never ends in an exception for it.
-    """
-
-    worker: type[Any]
-    args: tuple[Any, ...]
-    lost: Callable[[JobT, str], ResultT]
-    limiter: RateLimiter | None = None
-
-    def build(self) -> Worker[JobT, ResultT]:
-        """The worker in this process (the Ray path builds its actors itself)."""
-        extra = {"limiter": self.limiter} if self.limiter is not None else {}
-        worker: Worker[JobT, ResultT] = self.worker(*self.args, **extra)
-        return worker
 
 
 class EngineConfig(BaseModel):
@@ -145,17 +97,6 @@ class PlannerPool:
         for name in self._owned:
             self.shared.pop(name).close()
         self._owned.clear()
-
-
-def worker_name() -> str:
-    """host:pid, the place a result records it ran."""
-    return f"{socket.gethostname()}:{os.getpid()}"
-
-
-def error_kind(exc: Exception) -> str:
-    """How a job that raised is recorded: "tool" for a VeriGraphError (bad input, a
-    store failure), else "internal" (a bug). Episodes and environment rollouts alike."""
-    return "tool" if isinstance(exc, VeriGraphError) else "internal"
 
 
 def lost_record(job: EpisodeJob, error: str) -> BenchRecord:

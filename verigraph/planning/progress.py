@@ -1,6 +1,7 @@
 """How far the scene is from the goal, and what the planner is told of a failure.
 
-Two small pieces of Algorithm 1 bookkeeping that the loop keeps outside its own module:
+Small pieces of Algorithm 1 bookkeeping that the agent's loop and the environment
+(verigraph.env) share, so both tell a planner the same words:
 
 - `goal_distance`: the number of goal edges that do not hold plus the extra edges a full
   goal graph does not allow (single_stack: the objects outside the tallest tower). The
@@ -10,14 +11,20 @@ Two small pieces of Algorithm 1 bookkeeping that the loop keeps outside its own 
   whole report (constraint, message, blocking objects, suggestion); `constraint` keeps
   only the constraint id; `none` tells the planner nothing (it is asked
   again as if for the first time; tau still counts the failure).
+- `malformed_feedback` and `violation_feedback`: the feedback of an answer that could not
+  be used and of a refused action, in the words the next prompt shows.
 """
 
 from __future__ import annotations
 
-from verigraph.agent.models import Feedback, FeedbackMode
+from collections.abc import Mapping
+from typing import Any
+
+from verigraph.actions.feedback import Violation
 from verigraph.graph.goal import Goal, check_goal, towers
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.planning.models import Feedback, FeedbackMode, PlannerReply
 
 
 def goal_distance(graph: SceneGraph, goal: Goal | None) -> int | None:
@@ -67,3 +74,18 @@ def shape_feedback(feedback: Feedback | None, mode: FeedbackMode) -> Feedback | 
         return Feedback(kind=feedback.kind,
                         text=f"[{feedback.violation.constraint}] an action was refused")
     return Feedback(kind=feedback.kind, text=f"[{feedback.kind}]")
+
+
+def malformed_feedback(reply: PlannerReply) -> Feedback:
+    reason = reply.error or "it contained no action (not even done)"
+    return Feedback(kind="malformed",
+                    text=f"[malformed_action] your previous answer could not be used: {reason}")
+
+
+def violation_feedback(out: Mapping[str, Any]) -> Feedback:
+    violation = Violation.model_validate(out["violation"])
+    executed = ", ".join(out.get("executed") or []) or "none"
+    skipped = ", ".join(out.get("not_executed") or []) or "none"
+    return Feedback(kind="violation", violation=violation,
+                    text=f"{violation.text()} (executed from your answer: {executed}; not "
+                         f"executed: {skipped})")

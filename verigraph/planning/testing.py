@@ -142,7 +142,7 @@ class ScriptedPlannerForTests:
 
     def propose(self, request: Any) -> Any:
         from verigraph.actions.model import ActionAdapter
-        from verigraph.agent.models import PlannerReply
+        from verigraph.planning.models import PlannerReply
 
         self.requests.append(request)
         item = self.script[min(len(self.requests), len(self.script)) - 1]

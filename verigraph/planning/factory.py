@@ -6,12 +6,12 @@ from typing import Literal, get_args
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.agent.greedy import GreedyPlanner
-from verigraph.agent.noisy import MISTAKE_KINDS, MistakeKind, NoisyPlanner
-from verigraph.agent.oracle import OraclePlanner
-from verigraph.agent.planner import Planner
-from verigraph.agent.rule_based import RuleBasedPlanner
 from verigraph.llm.formats import ResponseFormat
+from verigraph.planning.greedy import GreedyPlanner
+from verigraph.planning.noisy import MISTAKE_KINDS, MistakeKind, NoisyPlanner
+from verigraph.planning.oracle import OraclePlanner
+from verigraph.planning.planner import Planner
+from verigraph.planning.rule_based import RuleBasedPlanner
 
 PlannerName = Literal["oracle", "rule-based", "greedy", "noisy", "openai", "anthropic",
                       "llm-local"]
@@ -52,19 +52,19 @@ def make_planner(name: str, options: PlannerOptions | None = None) -> Planner:
               "timeout_s": options.timeout_s, "retries": options.retries,
               "constrain_ids": options.constrain_ids}
     if name == "openai":
-        from verigraph.agent.openai_backend import OpenAIConfig, OpenAIPlanner
+        from verigraph.planning.openai_backend import OpenAIConfig, OpenAIPlanner
 
         return OpenAIPlanner(OpenAIConfig.from_env(
             base_url=options.base_url, model=options.model, api_key=options.api_key,
             response_format=options.response_format, **common))
     if name == "anthropic":
-        from verigraph.agent.anthropic_backend import AnthropicConfig, AnthropicPlanner
+        from verigraph.planning.anthropic_backend import AnthropicConfig, AnthropicPlanner
 
         return AnthropicPlanner(AnthropicConfig.from_env(
             base_url=options.base_url, model=options.model, api_key=options.api_key,
             **common))
     if name == "llm-local":
-        from verigraph.agent.local import LocalLLMPlanner
+        from verigraph.planning.local import LocalLLMPlanner
 
         return LocalLLMPlanner(max_tokens=options.max_tokens or 256,
                                temperature=options.temperature or 0.0,

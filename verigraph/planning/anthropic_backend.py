@@ -12,12 +12,12 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.agent.parsing import ParseFailure, parse_answer, parse_tool_input
-from verigraph.agent.schema import action_schema
 from verigraph.errors import VeriGraphError
 from verigraph.llm.clients import anthropic_client
 from verigraph.llm.http import JsonHttpClient
+from verigraph.planning.models import PlannerReply, PlannerRequest
+from verigraph.planning.parsing import ParseFailure, parse_answer, parse_tool_input
+from verigraph.planning.schema import action_schema
 
 TOOL_NAME = "propose_actions"
 

@@ -27,11 +27,11 @@ import random
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from verigraph.agent.evaluation.suite_blocks import block_graph, random_towers
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.solver import solve
+from verigraph.tasks.suite_blocks import block_graph, random_towers
 
 PALETTE = ("red", "blue", "green", "yellow", "purple")
 SOLVER_BUDGET = 60_000

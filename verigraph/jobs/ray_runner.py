@@ -32,10 +32,10 @@ from pathlib import Path
 from typing import Any
 
 import verigraph
-from verigraph.agent.evaluation.limiter import RateLimiter
-from verigraph.agent.evaluation.worker import JobT, ResultT, WorkerFactory
 from verigraph.errors import VeriGraphError
 from verigraph.extras import require
+from verigraph.jobs.limiter import RateLimiter
+from verigraph.jobs.workers import JobT, ResultT, WorkerFactory
 
 # Jobs queued per concurrent slot: workers never idle, Ctrl-C stays quick, and a worker
 # that dies for good takes at most this many jobs per thread with it.

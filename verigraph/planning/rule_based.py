@@ -9,9 +9,9 @@ separately.
 
 from __future__ import annotations
 
-from verigraph.agent.goal_reader import GoalReader
-from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.agent.oracle import chunk, reference_plan
+from verigraph.planning.goal_reader import GoalReader
+from verigraph.planning.models import PlannerReply, PlannerRequest
+from verigraph.planning.oracle import chunk, reference_plan
 
 
 class RuleBasedPlanner:

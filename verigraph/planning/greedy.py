@@ -25,12 +25,12 @@ import random
 import re
 
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
-from verigraph.agent.goal_reader import GoalReader
-from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.agent.oracle import chunk
-from verigraph.agent.parsing import refused_action
 from verigraph.graph.goal import Goal, check_goal, towers
 from verigraph.graph.state import WorldState
+from verigraph.planning.goal_reader import GoalReader
+from verigraph.planning.models import PlannerReply, PlannerRequest
+from verigraph.planning.oracle import chunk
+from verigraph.planning.parsing import refused_action
 
 SUGGESTED = re.compile(r"move\((?P<o>[\w-]+), (?P<r>on|in), (?P<t>[\w-]+)\)")
 CONSTRAINT_ONLY = re.compile(r"^\[(?P<c>[a-z_]+)\] an action was refused")

@@ -7,9 +7,9 @@ set_goal tool uses it too.
 
 from __future__ import annotations
 
-from verigraph.agent.models import PlannerRequest
 from verigraph.graph.goal import Goal
 from verigraph.graph.translator import TranslationError, translate
+from verigraph.planning.models import PlannerRequest
 
 __all__ = ["GoalReader"]
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from typing import Protocol, runtime_checkable
 
-from verigraph.agent.models import PlannerReply, PlannerRequest
+from verigraph.planning.models import PlannerReply, PlannerRequest
 
 
 @runtime_checkable

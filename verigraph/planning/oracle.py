@@ -11,10 +11,10 @@ noisy planner left behind.
 from __future__ import annotations
 
 from verigraph.actions.model import AnyAction, DoneAction
-from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.agent.tangram_plan import tangram_plan
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.state import WorldState
+from verigraph.planning.models import PlannerReply, PlannerRequest
+from verigraph.planning.tangram_plan import tangram_plan
 from verigraph.solver import solve
 
 

@@ -4,7 +4,7 @@ The figure is the sim2d generator's target for the draw (its contacts form a tre
 start takes 2 or 3 pieces out by peeling leaves one after the other (so a piece taken
 out may be the one an earlier piece was attached to), which leaves the rest of the
 figure connected. Putting them back needs one align per piece in the reverse order; the
-goal-directed search in `verigraph.agent.tangram_plan` confirms the optimal length.
+goal-directed search in `verigraph.planning.tangram_plan` confirms the optimal length.
 
 These episodes are symbolic: the simulator lays out the generator's own perturbation
 only, so with `--simulate` the tangram group still runs on graphs (the report says so).
@@ -14,11 +14,11 @@ from __future__ import annotations
 
 import random
 
-from verigraph.agent.evaluation.suite_blocks import Drawn
-from verigraph.agent.tangram_plan import tangram_plan
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.planning.tangram_plan import tangram_plan
+from verigraph.tasks.suite_blocks import Drawn
 
 
 def _peel(figure: SceneGraph, rng: random.Random, count: int) -> list[str]:

@@ -11,11 +11,11 @@ from __future__ import annotations
 import random
 
 from verigraph.actions.validator import apply_action
-from verigraph.agent.evaluation.suite_blocks import Drawn
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.solver import solve
+from verigraph.tasks.suite_blocks import Drawn
 
 SOLVER_BUDGET = 40_000
 MAX_WALK = 14

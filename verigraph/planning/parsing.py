@@ -4,7 +4,8 @@ Accepted: `{"actions": [...]}`, a bare JSON list, a single action object, JSON i
 Markdown code fence, or the text plan form (`move(cup, on, table)` per line). Anything
 else becomes a `ParseFailure` whose message names the offending item and field and
 shows the expected form, so the next iteration can fix it; it is never an exception
-that ends the run.
+that ends the run. `split_proposal` then reads the parsed actions as the loop and the
+environment both do: at most k moves, and nothing after the end token `done` counts.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from verigraph.actions.model import ActionAdapter, AlignAction, AnyAction, MoveAction
+from verigraph.actions.model import ActionAdapter, AlignAction, AnyAction, DoneAction, MoveAction
 from verigraph.actions.parser import parse_plan
 from verigraph.errors import PlanParseError
 
@@ -131,3 +132,20 @@ def refused_action(data: dict[str, Any]) -> AnyAction | None:
         return MoveAction.model_validate(data)
     except ValueError:
         return None
+
+
+def split_proposal(actions: list[AnyAction], k: int | None
+                   ) -> tuple[list[AnyAction], bool, list[AnyAction]]:
+    """(moves to send, end token reached, dropped): obey k; nothing after `done` counts."""
+    moves: list[AnyAction] = []
+    done = False
+    rest: list[AnyAction] = []
+    for index, action in enumerate(actions):
+        if isinstance(action, DoneAction):
+            done = True
+            rest = actions[index + 1:]
+            break
+        moves.append(action)
+    if k is not None and len(moves) > k:
+        return moves[:k], False, [*moves[k:], *([DoneAction()] if done else []), *rest]
+    return moves, done, rest

@@ -17,13 +17,13 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.agent.parsing import ParseFailure, parse_answer
-from verigraph.agent.schema import SCHEMA_NAME, action_schema, format_instruction
 from verigraph.errors import VeriGraphError
 from verigraph.llm.clients import openai_client
 from verigraph.llm.formats import ResponseFormat, response_format_field
 from verigraph.llm.http import JsonHttpClient
+from verigraph.planning.models import PlannerReply, PlannerRequest
+from verigraph.planning.parsing import ParseFailure, parse_answer
+from verigraph.planning.schema import SCHEMA_NAME, action_schema, format_instruction
 
 
 class OpenAIConfig(BaseModel):

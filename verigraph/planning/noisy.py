@@ -31,11 +31,11 @@ from typing import Literal, get_args
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
-from verigraph.agent.goal_reader import GoalReader
-from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.agent.oracle import chunk, reference_plan
-from verigraph.agent.parsing import refused_action
 from verigraph.graph.state import WorldState
+from verigraph.planning.goal_reader import GoalReader
+from verigraph.planning.models import PlannerReply, PlannerRequest
+from verigraph.planning.oracle import chunk, reference_plan
+from verigraph.planning.parsing import refused_action
 
 MistakeKind = Literal["random_move", "non_clear", "hallucinated", "wrong_relation",
                       "skip_step"]

@@ -12,9 +12,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from verigraph import prompts
-from verigraph.agent.models import Feedback, Mode
 from verigraph.graph.goal import Goal
 from verigraph.graph.state import WorldState
+from verigraph.planning.models import Feedback, Mode
 from verigraph.prompts import filling as pieces
 
 TEMPLATE = {"iterative": "iterative_planner", "direct": "direct_planner"}

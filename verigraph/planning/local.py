@@ -20,10 +20,10 @@ from pathlib import Path
 
 import httpx2
 
-from verigraph.agent.models import PlannerReply, PlannerRequest
-from verigraph.agent.openai_backend import OpenAIConfig, OpenAIPlanner
 from verigraph.errors import VeriGraphError
 from verigraph.extras import EXTRAS
+from verigraph.planning.models import PlannerReply, PlannerRequest
+from verigraph.planning.openai_backend import OpenAIConfig, OpenAIPlanner
 
 MODEL_ALIAS = "gemma-3-270m"
 EXTRA_HINT = (f"install the extra: {EXTRAS['llm'].install} (llama-cpp-python must be "

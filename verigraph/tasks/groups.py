@@ -26,15 +26,14 @@ from collections import Counter
 from collections.abc import Callable
 from typing import Any, Literal
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
-from verigraph.agent.evaluation import language, suite_blocks, suite_kitchen, suite_tangram
-from verigraph.agent.evaluation.suite_blocks import Drawn
-from verigraph.agent.loop import EpisodeSpec
 from verigraph.errors import VeriGraphError
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.tasks import language, suite_blocks, suite_kitchen, suite_tangram
+from verigraph.tasks.suite_blocks import Drawn
 
 SUITE_VERSION = "2"
 GroupName = Literal["stacking", "language", "ref_image_kitchen", "ref_image_blocks", "tangram"]
@@ -43,6 +42,22 @@ GROUPS: tuple[GroupName, ...] = ("stacking", "language", "ref_image_kitchen",
 MAX_DRAWS = 20  # draws tried per episode before the group gives up on an index
 KITCHEN_TARGETS = (4, 5, 6, 5)  # optimal lengths aimed at, in turn
 REF_INSTRUCTION = "Rearrange the scene so that it looks like the reference image."
+
+
+class EpisodeSpec(BaseModel):
+    """How to start one episode: raw `load_scene` and optional `set_goal` arguments.
+
+    `show_goal_graph=False` hides the goal graph from LLM prompts (instruction tasks:
+    the planner reads the words, the verifier checks the ground-truth graph).
+    """
+
+    model_config = ConfigDict(extra="forbid")
+
+    task_id: str | None = None
+    load: dict[str, Any] = Field(description="load_scene arguments (without k and t)")
+    set_goal: dict[str, Any] | None = Field(default=None,
+                                            description="set_goal arguments (no episode_id)")
+    show_goal_graph: bool = True
 
 
 class Task(BaseModel):
