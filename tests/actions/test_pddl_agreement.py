@@ -3,7 +3,7 @@
 Logistics (PlanBench's untyped domain and a typed one with equality, a negative
 precondition and a constant), depots, and blocks worlds under random renamings: for
 every plan the same verdict and the same first failing step; a plan the oracle cannot
-even build (wrong arity, unknown object) is bad input or a failing step here.
+even build (wrong arity, unknown object) fails at that step here.
 """
 
 from __future__ import annotations
@@ -69,8 +69,8 @@ def agree(expected, got) -> bool:
         if got[0] == "bad input":  # wrong arity: the line of that step
             return True
         report, (valid, step) = got
-        return not valid and step == expected[1] and \
-            report["violations"][0]["constraint"] in ("unknown_object", "wrong_type")
+        return not valid and step == expected[1] and report["violations"][0]["constraint"] in (
+            "unknown_object", "wrong_type", "malformed_action")
     return got[0] != "bad input" and got[1] == expected
 
 

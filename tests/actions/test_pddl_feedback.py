@@ -66,7 +66,9 @@ def test_strips_names_the_precondition_the_step_that_broke_it_and_an_achiever():
 
 def test_never_true_and_negative_and_equality_preconditions_are_explained():
     r = validate_pddl_dict(LOGISTICS, LOG_PROBLEM, "(load-airplane p0 a0 ap)")
-    assert r["violations"][0]["unsatisfied"][0]["explanation"] == "never true"
+    u = r["violations"][0]["unsatisfied"][0]
+    assert u["explanation"] == "never true; instead (at p0 l0) holds (true since the start)"
+    assert u["instead"] == [{"literal": "(at p0 l0)", "since": "true since the start"}]
     r = validate_pddl_dict(LOGISTICS, LOG_PROBLEM, "(drive-truck t0 l0 l0 c0)")
     (u,) = r["violations"][0]["unsatisfied"]
     assert u["literal"] == "(not (= l0 l0))" and "same object" in u["explanation"]
@@ -81,7 +83,7 @@ def test_unmet_goal_lists_the_actions_that_achieve_it():
     r = validate_pddl_dict(LOGISTICS, LOG_PROBLEM, plan)
     assert r["plan_valid"] and not r["goal_reached"]
     (g,) = r["unmet_goals"]
-    assert g["literal"] == "(at p0 ap)" and g["explanation"] == "never true"
+    assert g["literal"] == "(at p0 ap)" and g["explanation"].startswith("never true")
     assert g["achievers"][0]["applicable_now"] == "(unload-truck p0 t0 ap)"
     assert "(unload-airplane p0 ?airplane ap)" in [a["action"] for a in g["achievers"]]
     text = report_text(r)
@@ -107,12 +109,12 @@ def test_type_errors_and_unknown_objects_fail_their_step():
 
 
 @pytest.mark.parametrize("edit,error,fragment", [
-    (lambda d: d.replace(":negative-preconditions", ":conditional-effects"),
-     UnsupportedRequirementError, ":conditional-effects"),
+    (lambda d: d.replace(":negative-preconditions", ":durative-actions"),
+     UnsupportedRequirementError, ":durative-actions"),
     (lambda d: d.replace("(not (broken ?truck)))\n    :effect (and (not (at ?pkg ?loc))",
-                         "(or (broken ?truck) (at ?pkg ?loc)))\n    :effect (and (not "
+                         "(> (fuel ?truck) 1))\n    :effect (and (not "
                          "(at ?pkg ?loc))", 1), UnsupportedRequirementError,
-     ":disjunctive-preconditions"),
+     ":numeric-fluents"),
     (lambda d: d.replace("(in ?pkg ?truck)))", "(in ?pkg ?truck) (wet ?pkg)))", 1),
      PddlInputError, "wet"),
     (lambda d: d.replace("(:constants hub - airport)", "(:constants hub - seaport)"),
@@ -131,10 +133,14 @@ def test_bad_problems_and_plans_are_refused_naming_what():
         validate_pddl_dict(LOGISTICS, LOG_PROBLEM.replace("(at t0 l0)", "(at ap l0)"), "")
     with pytest.raises(PddlInputError, match="'zz'"):
         validate_pddl_dict(LOGISTICS, LOG_PROBLEM.replace("(at t0 l0)", "(at t0 zz)"), "")
-    with pytest.raises(PlanParseError, match="line 2"):
-        validate_pddl_dict(LOGISTICS, LOG_PROBLEM, "(load-truck p0 t0 l0)\n(fly a0)")
-    with pytest.raises(PlanParseError, match="line 1"):
-        validate_pddl_dict(LOGISTICS, LOG_PROBLEM, "(load-truck p0 t0)")
+    r = validate_pddl_dict(LOGISTICS, LOG_PROBLEM, "(load-truck p0 t0 l0)\n(fly a0)")
+    v = r["violations"][0]  # a plan line that is no action is a failing step
+    assert (r["valid"], v["step"], v["constraint"]) == (False, 2, "malformed_action")
+    assert "line 2" in v["message"] and "fly" in v["message"] and "fly-airplane" in v["suggestion"]
+    r = validate_pddl_dict(LOGISTICS, LOG_PROBLEM, "(load-truck p0 t0)")
+    v = r["violations"][0]
+    assert (v["step"], v["constraint"]) == (1, "malformed_action")
+    assert v["suggestion"] == "write (load-truck ?pkg ?truck ?loc)"
 
 
 def test_deep_nesting_and_non_ascii_names_are_refused_with_the_line():

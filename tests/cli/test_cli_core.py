@@ -118,3 +118,17 @@ def test_unreachable_goal_exits_1(tmp_path):
 def test_bench_lists_benchmarks_for_an_unknown_name():
     r = run("bench", "no_such_benchmark")
     assert r.returncode == 2 and "validate" in r.stderr
+
+
+def test_all_errors_on_a_pddl_plan_lists_every_failing_step(tmp_path):
+    data = Path(__file__).parents[1] / "data" / "blocksworld"
+    (tmp_path / "plan.txt").write_text("(pick-up a)\n(unstack d c)\n(stack d a)\n(pick-up zz)\n")
+    args = ("validate", "--domain", str(data / "planbench_domain.pddl"), "--problem",
+            str(data / "planbench_instance.pddl"), "--plan", "plan.txt", "--json")
+    first = json.loads(run(*args, cwd=tmp_path).stdout)
+    assert [v["step"] for v in first["violations"]] == [1] and first["not_checked"] == 3
+    r = run(*args, "--all-errors", cwd=tmp_path)
+    assert r.returncode == 1, r.stderr
+    report = json.loads(r.stdout)
+    assert [v["step"] for v in report["violations"]] == [1, 4]
+    assert [s["ok"] for s in report["steps"]] == [False, True, True, False]

@@ -2,45 +2,132 @@
 
 Exit codes: 0 success, 1 a negative verdict (plan invalid, goal missed), 2 bad input;
 for `agent --transport http`: 3 no server at --url, 4 the server needs a token and none
-was given, 5 the server refused the token.
+was given, 5 the server refused the token. `verigraph val` (and `verigraph-val`) answer
+with VAL's statuses instead (`verigraph val -h`).
+
+Start-up: a command imports the one module that defines it (`COMMANDS`), and that module
+imports its heavy dependencies where they are used, so `verigraph validate --domain ...`
+loads the PDDL engine and nothing of the server, agent, simulator or scene-graph stacks.
+Only `verigraph --help` (or an unknown command) imports every subcommand module.
+
+A closed pipe (`verigraph validate ... | head -1`, also with `2>&1`): standard output
+and standard error are wrapped for the run (`PipeSafeStream`); when the reader has gone,
+later output to that stream goes to the null device and the command finishes as it
+would have, quietly, with its own exit status (the verdict's), never a `BrokenPipeError`
+traceback.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Iterable, Sequence
+from typing import Any, TextIO, cast
 
 from verigraph.errors import VeriGraphError
 
-# Each module defines `register(subparsers)`, in the order of the help text. They are
-# imported by name when the parser is built (an import error is an error, never skipped)
-# so that a core command imports only what it needs.
-SUBCOMMAND_MODULES = ("verigraph.cli.core", "verigraph.cli.serve",
-                      "verigraph.cli.episodes", "verigraph.cli.sim",
-                      "verigraph.cli.agent", "verigraph.cli.rollouts", "verigraph.cli.bench",
-                      "verigraph.cli.perceive", "verigraph.cli.view", "verigraph.cli.arm")
-
-# The offline verifier's commands need only verigraph.cli.core: running one of them does
-# not import the server, agent or simulator stacks (start-up stays well under a second).
-CORE_COMMANDS = ("validate", "solve", "export-pddl")
+# Each command -> the module whose `register(subparsers)` defines it, in the order of the
+# help text. Modules are imported by name when the parser is built (an import error is an
+# error, never skipped). tests/cli/test_cli_startup.py checks this table against what the
+# modules register.
+COMMANDS: dict[str, str] = {
+    "validate": "verigraph.cli.validating", "val": "verigraph.cli.val",
+    "solve": "verigraph.cli.core", "export-pddl": "verigraph.cli.core",
+    "serve": "verigraph.cli.serve", "episodes": "verigraph.cli.episodes",
+    "render": "verigraph.cli.sim", "demo": "verigraph.cli.sim", "agent": "verigraph.cli.agent",
+    "rollouts": "verigraph.cli.rollouts", "bench": "verigraph.cli.bench",
+    "perceive": "verigraph.cli.perceive", "view": "verigraph.cli.view",
+    "arm": "verigraph.cli.arm",
+}
+SUBCOMMAND_MODULES = tuple(dict.fromkeys(COMMANDS.values()))
 
 EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
 
 
+class PipeSafeStream:
+    """`sys.stdout` (or `sys.stderr`) for one command run: a closed pipe ends the output,
+    not the command.
+
+    When a write or flush fails with BrokenPipeError (the reader quit, as `head -1` does),
+    the stream's file descriptor is pointed at the null device and every later write is
+    dropped, so the command completes and returns its own exit status. Anything else is
+    the wrapped stream's (`encoding`, `isatty`, `buffer`, ...).
+    """
+
+    def __init__(self, stream: TextIO) -> None:
+        self._stream = stream
+        self.pipe_closed = False
+
+    def write(self, text: str) -> int:
+        if not self.pipe_closed:
+            try:
+                return self._stream.write(text)
+            except BrokenPipeError:
+                self._divert()
+        return len(text)
+
+    def writelines(self, lines: Iterable[str]) -> None:
+        for line in lines:
+            self.write(line)
+
+    def flush(self) -> None:
+        if not self.pipe_closed:
+            try:
+                self._stream.flush()
+            except BrokenPipeError:
+                self._divert()
+
+    def _divert(self) -> None:
+        """Drop all later output; the descriptor goes to the null device so that what is
+        still buffered (and the interpreter's flush at exit) lands there, not on the pipe."""
+        self.pipe_closed = True
+        try:
+            fd = self._stream.fileno()
+        except (AttributeError, OSError, ValueError):
+            return
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        try:
+            os.dup2(devnull, fd)
+        finally:
+            os.close(devnull)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._stream, name)
+
+
+def run_guarded(command: Callable[[], int]) -> int:
+    """`command()` with standard output and error wrapped in PipeSafeStream (flushed
+    before the wrappers are removed, so a pipe closed at the very end is caught here)."""
+    out, err = sys.stdout, sys.stderr
+    guards = [PipeSafeStream(s) for s in (out, err) if s is not None]  # None: no console
+    if out is not None:
+        sys.stdout = cast(TextIO, guards[0])
+    if err is not None:
+        sys.stderr = cast(TextIO, guards[-1])
+    try:
+        return command()
+    finally:
+        for guard in guards:
+            guard.flush()
+        sys.stdout, sys.stderr = out, err
+
+
 def build_parser(modules: Sequence[str] = SUBCOMMAND_MODULES) -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="verigraph", description=__doc__)
+    # The help text is the first two paragraphs above: what the command is, exit codes.
+    parser = argparse.ArgumentParser(prog="verigraph",
+                                     description="\n\n".join(__doc__.split("\n\n")[:2]),
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name in modules:
         importlib.import_module(name).register(sub)
     return parser
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    argv = list(sys.argv[1:] if argv is None else argv)
-    core_only = bool(argv) and argv[0] in CORE_COMMANDS
-    parser = build_parser(("verigraph.cli.core",) if core_only else SUBCOMMAND_MODULES)
+def _dispatch(argv: list[str]) -> int:
+    module = COMMANDS.get(argv[0]) if argv else None
+    parser = build_parser((module,) if module else SUBCOMMAND_MODULES)
     args = parser.parse_args(argv)
     try:
         code: int = args.handler(args)
@@ -50,6 +137,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         return 130
     return code
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = list(sys.argv[1:] if argv is None else argv)
+    return run_guarded(lambda: _dispatch(args))
 
 
 if __name__ == "__main__":

@@ -4,8 +4,12 @@ Each input line is `{"id": ..., "domain": D, "problem": P, "plan": F}` or
 `{"id": ..., "scene": S, "plan": F, "goal": G}` (goal optional; relative paths are read
 from the batch file's folder). Each output line is `{"id": ..., <the --json report>}`,
 or `{"id": ..., "ok": false, "error": ..., "message": ..., "field": ..., "fix": ...}`
-for an item that cannot be validated; the batch always goes on. Exit 0 when every item
-is valid, 1 when any is invalid or failed, 2 when the batch file itself cannot be read.
+for an item that cannot be validated; the batch always goes on. A plan with a line that
+is no action of the domain (wrong arity, `(no plan possible)`, `(1) (op a)`) can be
+validated: its report is an invalid plan failing at that step, as VAL and PlanBench count
+it; only files that cannot be read, or a domain or problem that cannot be used, are error
+lines. Exit 0 when every item is valid, 1 when any is invalid or failed, 2 when the batch
+file itself cannot be read.
 
 Every output line is strict JSON whatever the input line held: a line nested too deep,
 an integer too long to read, `NaN`/`Infinity` or an id that is not a short string or a

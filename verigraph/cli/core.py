@@ -1,4 +1,8 @@
-"""`verigraph validate`, `verigraph solve` and `verigraph export-pddl`: the offline verifier."""
+"""`verigraph solve` and `verigraph export-pddl`: the offline solver and the PDDL export.
+
+(`verigraph validate` is verigraph/cli/validating.py, registered on its own so that
+validating a plan does not import the solver.)
+"""
 
 from __future__ import annotations
 
@@ -7,13 +11,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from verigraph.cli.validating import (
-    EXIT_NEGATIVE,
-    EXIT_OK,
-    emit_error,
-    load_goal_arg,
-    register_validate,
-)
+from verigraph.cli.validating import EXIT_NEGATIVE, EXIT_OK, emit_error, load_goal_arg
 from verigraph.errors import VeriGraphError
 from verigraph.solver.budget import (
     DEFAULT_MAX_EXPANSIONS,
@@ -25,8 +23,6 @@ EXIT_BUDGET = 3
 
 
 def register(sub: Any) -> None:
-    register_validate(sub)
-
     s = sub.add_parser("solve", help="a reference plan by A* search, under a time/memory budget",
                        description="Exit 0 with a plan, 1 when the goal is unreachable, "
                                    "2 bad input, 3 when the budget ran out before any plan "

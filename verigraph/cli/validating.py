@@ -4,8 +4,8 @@ Three inputs, one report shape (the `--json` report of ValidationReport):
 
 * `--scene S --plan P [--goal G]`: a scene graph and a move/align plan;
 * `--domain D --problem P --plan PLAN`: PDDL: the native blocks world for any domain that
-  is one (under any names), STRIPS with typing, negative preconditions and equality
-  otherwise; `--planbench` adds PlanBench task 3's verdict and explanation;
+  is one (under any names), the general engine for the rest of classical PDDL;
+  `--planbench` adds PlanBench task 3's verdict and explanation;
 * `--batch FILE.jsonl`: one item per line, one JSON line out per item, errors per item.
 
 Heavy modules are imported where used, so validating a small plan starts quickly.
@@ -25,12 +25,14 @@ EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
 MAX_PLAN_BYTES = 64 * 1024 * 1024
 
 
-def register_validate(sub: Any) -> None:
+def register(sub: Any) -> None:
+    """Add `verigraph validate` to the subparsers `sub`."""
     p = sub.add_parser(
-        "validate", help="check a plan against a scene (and a goal), PDDL blocks world, or a batch",
+        "validate", help="check a plan against a scene (and a goal), a PDDL problem, or a batch",
         description="Per-step report; exit 0 valid (and goal reached), 1 invalid or goal "
                     "missed, 2 bad input. Give --scene/--plan[/--goal], or --domain/--problem/"
-                    "--plan (PDDL blocks world), or --batch FILE.jsonl.")
+                    "--plan (PDDL), or --batch FILE.jsonl. For VAL's interface see "
+                    "`verigraph val`.")
     p.add_argument("--scene", help="scene graph file (.json or .yaml) or a built-in scene id "
                                    "(its goal applies unless --goal is given)")
     p.add_argument("--plan", help="plan file: text (one action per line) or JSON; with "
@@ -39,8 +41,8 @@ def register_validate(sub: Any) -> None:
     p.add_argument("--dictionary", metavar="NAME|FILE.json",
                    help="the scene's dictionary D: a built-in name, all, or a JSON file of "
                         "your own labels {extends, objects} (see docs/worlds.md)")
-    p.add_argument("--domain", help="PDDL domain file: any blocks world (native), or STRIPS "
-                                    "with :typing :negative-preconditions :equality")
+    p.add_argument("--domain", help="PDDL domain file: any blocks world (native), or other "
+                                    "classical PDDL (see docs/validator.md)")
     p.add_argument("--problem", help="PDDL problem file for --domain")
     p.add_argument("--batch", help="JSON Lines file: one {id, domain, problem, plan} or "
                                    "{id, scene, plan, goal} per line (paths relative to the "
@@ -53,8 +55,7 @@ def register_validate(sub: Any) -> None:
                    help="PDDL engine (default auto: native blocks world when the domain is "
                         "one, else STRIPS)")
     p.add_argument("--all-errors", action="store_true",
-                   help="continue past violations (skipping failed actions) to list all "
-                        "(scene plans only)")
+                   help="continue past violations (skipping failed actions) to list all")
     p.add_argument("--no-progress", action="store_true", help="batch: no progress bar")
     p.add_argument("--html", metavar="FILE", help="also write a self-contained HTML report "
                    "with a drawing per step (scene plans; see docs/viewer.md)")
@@ -96,7 +97,7 @@ def emit_error(exc: VeriGraphError, as_json: bool) -> int:
 
 def pddl_report(domain: str | Path, problem: str | Path, plan: str | Path,
                 cache: dict[str, str] | None = None, *, engine: str = "auto",
-                planbench: bool = False) -> dict[str, Any]:
+                planbench: bool = False, all_errors: bool = False) -> dict[str, Any]:
     """The JSON-ready report for a PDDL item (domain texts cached per path in a batch)."""
     from verigraph.actions.pddl.text import planbench_verdict
     from verigraph.actions.pddl.validate import validate_pddl_dict
@@ -109,7 +110,8 @@ def pddl_report(domain: str | Path, problem: str | Path, plan: str | Path,
         if cache is not None:
             cache[key] = domain_text
     data = validate_pddl_dict(domain_text, read_text_file(problem, "problem"),
-                              read_text_file(plan, "plan"), engine=engine)
+                              read_text_file(plan, "plan"), engine=engine,
+                              all_errors=all_errors)
     if planbench:
         data["planbench"] = planbench_verdict(data)
     return data
@@ -162,12 +164,11 @@ def run_validate(args: argparse.Namespace) -> int:
                 raise _usage_error("PDDL input needs --domain, --problem and --plan (no --scene "
                                    "or --goal: the goal is in the problem)",
                                    "verigraph validate --domain D.pddl --problem P.pddl --plan F")
-            if args.all_errors or args.html or args.dictionary:
-                raise _usage_error("--all-errors, --html and --dictionary apply to scene "
-                                   "plans only",
-                                   "drop --all-errors; PDDL plans stop at the first failure")
+            if args.html or args.dictionary:
+                raise _usage_error("--html and --dictionary apply to scene plans only",
+                                   "drop --html and --dictionary for a PDDL plan")
             data = pddl_report(args.domain, args.problem, args.plan, engine=args.engine,
-                               planbench=args.planbench)
+                               planbench=args.planbench, all_errors=args.all_errors)
             if args.json:
                 print(json.dumps(data))
             else:

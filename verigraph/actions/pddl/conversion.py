@@ -4,13 +4,16 @@ Both engines' dicts convert: the blocks world keeps its scene (blocks, table, ha
 `final_graph`; a STRIPS report has no scene, so `final_graph` is empty and the final
 atoms stay in the dict form. The explanations the model has no field for are folded into
 text it has: each unsatisfied precondition with the step that last made it false goes
-into the violation's message, and the achievers of each unmet goal into `goal_diff.detail`.
+into the violation's message (with every achiever, as `text.achiever_text` writes them
+for the CLI), and the achievers of each unmet goal, the plan's total cost and, with
+all_errors, from which state later steps were checked, into `goal_diff.detail`.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
+from verigraph.actions.pddl.text import AFTER_FAILURE, achiever_text
 from verigraph.actions.report import ValidationReport
 from verigraph.errors import VeriGraphError
 
@@ -21,11 +24,9 @@ def _explained(items: list[dict[str, Any]]) -> str:
     parts = []
     for u in items[:MAX_DETAIL_GOALS]:
         text = f"{u['literal']}: {u['explanation']}"
-        achievers = u.get("achievers") or []
+        achievers = achiever_text(u)
         if achievers:
-            now = achievers[0]["applicable_now"]
-            text += f", achieved by {achievers[0]['action']}" + (f" ({now} applies now)"
-                                                                  if now else "")
+            text += f", {achievers}"
         parts.append(text)
     return "; ".join(parts)
 
@@ -39,17 +40,32 @@ def as_validation_report(data: dict[str, Any]) -> ValidationReport:
             step["edit"] = s["edit"]
         steps.append(step)
     violations = []
+    by_step = {}
     for v in data["violations"]:
+        unsatisfied = v.get("unsatisfied") or []
         v = {k: x for k, x in v.items() if k != "unsatisfied"}
-        if data.get("engine") != "strips" and data["violations"][0].get("unsatisfied"):
-            v["message"] += " (needs " + _explained(data["violations"][0]["unsatisfied"]) + ")"
+        if data.get("engine") != "strips" and unsatisfied:
+            v["message"] += " (needs " + _explained(unsatisfied) + ")"
+        elif unsatisfied:
+            achievers = "; ".join(f"{u['literal']} {achiever_text(u)}"
+                                  for u in unsatisfied[:MAX_DETAIL_GOALS] if u.get("achievers"))
+            if achievers:
+                v["message"] += f" ({achievers})"
         violations.append(v)
+        by_step[v["step"]] = v
     for s in steps:
         if not s["ok"]:
-            s["violation"] = violations[0]
+            s["violation"] = by_step[s["step"]]
     diff = dict(data["goal_diff"])
+    notes = []
     if data.get("unmet_goals"):
-        diff["detail"] = _explained(data["unmet_goals"])
+        notes.append(_explained(data["unmet_goals"]))
+    if data.get("after_failure") and data["violations"]:
+        notes.append(f"all errors: {AFTER_FAILURE}")
+    if "total_cost" in data:
+        notes.append(f"total cost {data['total_cost']}")
+    if notes:
+        diff["detail"] = "; ".join(notes)
     body = {"valid": data["valid"], "plan_valid": data["plan_valid"],
             "goal_reached": data["goal_reached"], "steps": steps, "violations": violations,
             "not_checked": data["not_checked"], "done": False, "goal_diff": diff,

@@ -4,24 +4,47 @@ Plain dataclasses and tuples, not pydantic: a plan of 100,000 steps grounds 100,
 actions, and every atom is a tuple `(predicate, arg, ...)` hashed into a set. A schema's
 literal arguments are `int` (the index of a parameter) or `str` (a constant), so
 grounding an action is one tuple comprehension per literal.
+
+Types form a tree under `object`. `Domain.is_a` is O(1) whatever the depth of the tree:
+`index_types` numbers the tree once in depth-first order, and a type is a subtype of
+another exactly when its number lies in the other's interval (2,000 types in a chain
+with 10,000 objects read in about 0.1 s, where walking up the chain took 6 s).
+`(either a b)` is a type of its own name, `either a b`, whose members are listed in
+`Domain.either`: an object fits it when it fits a member.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 Term = int | str  # parameter index, or constant / object name
 Literal = tuple[str, tuple[Term, ...]]  # (predicate, terms); "=" for equality
 GroundAtom = tuple[str, ...]  # (predicate, object, ...)
+# A cost term: a number, or a function and its terms (parameters or constants)
+CostTerm = float | tuple[str, tuple[Term, ...]]
 
 SUPPORTED_REQUIREMENTS = (":strips", ":typing", ":negative-preconditions", ":equality",
-                          ":action-costs")
+                          ":action-costs", ":disjunctive-preconditions",
+                          ":existential-preconditions", ":universal-preconditions",
+                          ":quantified-preconditions", ":conditional-effects", ":adl")
 ROOT_TYPE = "object"
 
 
 @dataclass(slots=True)
+class CondEffect:
+    """`(forall (vars) (when condition (and adds (not deletes))))`, flattened: for each
+    binding of `variables` whose `condition` holds before the step (None: always)."""
+
+    variables: list[tuple[int, str, str]]
+    condition: tuple[Any, ...] | None
+    add: list[Literal]
+    delete: list[Literal]
+
+
+@dataclass(slots=True)
 class Schema:
-    """One action: typed parameters, precondition literals and effects (lifted)."""
+    """One action: typed parameters, precondition literals, effects and cost (lifted)."""
 
     name: str
     params: list[str]
@@ -30,6 +53,12 @@ class Schema:
     pre_neg: list[Literal]
     add: list[Literal]
     delete: list[Literal]
+    cost: list[CostTerm] = field(default_factory=list)  # summed `(increase (total-cost) x)`
+    # ADL (see formulas): precondition conjuncts that are not literals, conditional and
+    # universal effects, and the name of every variable slot (parameters first)
+    pre_complex: list[tuple[Any, ...]] = field(default_factory=list)
+    cond_effects: list[CondEffect] = field(default_factory=list)
+    slot_names: list[str] = field(default_factory=list)
 
     def ground(self, literal: Literal, binding: tuple[str, ...]) -> GroundAtom:
         pred, terms = literal
@@ -46,17 +75,50 @@ class Domain:
     constants: dict[str, str]
     predicates: dict[str, list[str]]
     schemas: dict[str, Schema]
+    functions: dict[str, list[str]] = field(default_factory=dict)  # static cost functions
+    either: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    span: dict[str, tuple[int, int]] = field(default_factory=dict)  # see index_types
+    static: frozenset[str] = frozenset()  # predicates no action changes
+    compiled: dict[str, Any] = field(default_factory=dict)  # the simulator's, per schema
+
+    def index_types(self) -> list[str]:
+        """Number the type tree depth-first; returns the types no path leads to from
+        `object` (members of a cycle), which the reader refuses."""
+        children: dict[str, list[str]] = {}
+        for child, parent in self.parents.items():
+            children.setdefault(parent, []).append(child)
+        span: dict[str, tuple[int, int]] = {}
+        counter = 0
+        stack: list[tuple[str, bool]] = [(ROOT_TYPE, False)]
+        start: dict[str, int] = {}
+        while stack:
+            kind, done = stack.pop()
+            if done:
+                span[kind] = (start[kind], counter)
+                continue
+            if kind in start:
+                continue
+            start[kind] = counter
+            counter += 1
+            stack.append((kind, True))
+            stack.extend((c, False) for c in children.get(kind, ()))
+        self.span = span
+        return [t for t in self.parents if t not in span]
 
     def is_a(self, kind: str, wanted: str) -> bool:
         """`kind` is `wanted` or one of its subtypes (every type is an `object`)."""
-        seen = 0
-        while True:
-            if kind == wanted or wanted == ROOT_TYPE:
-                return True
-            parent = self.parents.get(kind)
-            if parent is None or seen > len(self.parents):
-                return False
-            kind, seen = parent, seen + 1
+        if kind == wanted or wanted == ROOT_TYPE:
+            return True
+        either = self.either
+        if either:
+            if kind in either:
+                return any(self.is_a(k, wanted) for k in either[kind])
+            if wanted in either:
+                return any(self.is_a(kind, w) for w in either[wanted])
+        inner, outer = self.span.get(kind), self.span.get(wanted)
+        if inner is None or outer is None:
+            return False
+        return outer[0] <= inner[0] and inner[1] <= outer[1]
 
 
 @dataclass(slots=True)
@@ -69,6 +131,9 @@ class Problem:
     goal_pos: list[GroundAtom]
     goal_neg: list[GroundAtom]
     by_type: dict[str, list[str]] = field(default_factory=dict)
+    values: dict[GroundAtom, float] = field(default_factory=dict)  # `(= (f a b) 5)` of :init
+    goal_complex: list[tuple[Any, ...]] = field(default_factory=list)  # ADL goal conjuncts
+    goal_slots: list[str] = field(default_factory=list)  # their variables' names
 
     def of_type(self, domain: Domain, kind: str) -> list[str]:
         """Objects of `kind` or a subtype, cached per type."""

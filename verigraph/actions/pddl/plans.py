@@ -2,13 +2,20 @@
 
 Accepted per line: `(drive-truck t1 l1 l2 c1)`, `0: (drive-truck ...) [1]`, `1. (...)`,
 `;` comments, blank lines and `[PLAN]` markers; and a sentence that starts with an action
-name, filler words dropped (`load-truck p1 into t1 at l1`). An unknown action or a wrong
-number of arguments is bad input (PlanParseError naming the line), never a verdict; an
-undeclared object is a verdict at its step (VAL's semantics), decided by the simulator.
+name, filler words dropped (`load-truck p1 into t1 at l1`). Every other non-blank line is
+a step that fails with `malformed_action` (VAL's and PlanBench's graders count such a
+plan invalid at that step), its message naming the line and what is wrong: an unknown
+action (the fix names the closest actions), the wrong number of arguments (the fix shows
+the action's parameters), or a line that is no action at all (`(no plan possible)` is an
+unknown action `no`; `(1) (feast d b)` is no action, and the fix is the action it holds).
+An undeclared object is a verdict at its step too, decided by the simulator. Only a plan
+that cannot be read at all is bad input (PlanParseError): a non-ASCII name, more than
+`MAX_STEPS` actions.
 """
 
 from __future__ import annotations
 
+import difflib
 import re
 from typing import NamedTuple
 
@@ -20,17 +27,58 @@ FILLER = frozenset({"object", "the", "from", "on", "top", "of", "onto", "to", "i
                     "in", "with", "and", "a", "an"})
 MAX_STEPS = 1_000_000
 _PLAIN_LINE = re.compile(r"^\(([^\s()]+)((?: [^\s()]+)*)\)$", re.MULTILINE)
+_INNER_ACTION = re.compile(r"\(([^()]+)\)\s*$")
 
 
 class Step(NamedTuple):
-    """One plan action: the schema name, its arguments as written, its source line."""
+    """One plan action: the schema name, its arguments as written, its source line; for a
+    line that is no action of the domain, the line as `name` and the failure as
+    `problem` (constraint, message, fix)."""
 
     name: str
     args: tuple[str, ...]
     line: int
+    problem: tuple[str, str, str] | None = None
 
     def text(self) -> str:
+        if self.problem is not None:
+            return self.name
         return "(" + " ".join((self.name, *self.args)) + ")"
+
+
+def _malformed(raw: str, number: int, constraint: str, message: str, fix: str) -> Step:
+    shown = raw.strip()[:80]
+    return Step(shown, (), number, (constraint, f"line {number}: {message}", fix))
+
+
+def _read_line(raw: str, body: str, number: int, domain: Domain) -> Step:
+    schemas = domain.schemas
+    if body[0] == "(":
+        if not body.endswith(")") or "(" in body[1:]:
+            inner = _INNER_ACTION.search(body)
+            fix = (f"write the action alone, ({inner.group(1).strip()})" if inner and
+                   inner.start() > 0 else "write one (action arg ...) per line")
+            return _malformed(raw, number, "malformed_action", f"{raw.strip()[:60]} is not an "
+                              "action", fix)
+        words = body[1:-1].split()
+    else:
+        words = body.split()
+        words = words[:1] + [w for w in words[1:] if w not in FILLER]
+    if not words:
+        return _malformed(raw, number, "malformed_action", f"{raw.strip()[:60]} is not an "
+                          "action", "write (action arg ...)")
+    schema = schemas.get(words[0])
+    if schema is None:
+        near = difflib.get_close_matches(words[0], list(schemas), n=3, cutoff=0.6)
+        names = ", ".join(near or list(schemas)[:12])
+        return _malformed(raw, number, "malformed_action", f"the domain has no action "
+                          f"'{words[0][:40]}'", f"use {'' if near else 'one of '}{names}")
+    args = tuple(words[1:])
+    if len(args) != len(schema.params):
+        return _malformed(raw, number, "malformed_action", f"{schema.name} takes "
+                          f"{len(schema.params)} argument(s), got {len(args)}",
+                          "write (" + " ".join((schema.name, *schema.params)) + ")")
+    return Step(schema.name, args, number)
 
 
 def parse_strips_plan(text: str, domain: Domain) -> list[Step]:
@@ -56,28 +104,7 @@ def parse_strips_plan(text: str, domain: Domain) -> list[Step]:
             body = _DURATION.sub("", _STEP_PREFIX.sub("", body)).rstrip(".").strip()
             if not body:
                 continue
-        if body[0] == "(":
-            if not body.endswith(")") or "(" in body[1:]:
-                raise PlanParseError("not an action", line=number, column=1, text=raw[:80],
-                                     expected="(action arg ...)")
-            words = body[1:-1].split()
-        else:
-            words = body.split()
-            words = words[:1] + [w for w in words[1:] if w not in FILLER]
-        if not words:
-            raise PlanParseError("not an action", line=number, column=1, text=raw[:80],
-                                 expected="(action arg ...)")
-        schema = schemas.get(words[0])
-        if schema is None:
-            names = ", ".join(list(schemas)[:12])
-            raise PlanParseError(f"unknown action '{words[0][:40]}'", line=number, column=2,
-                                 text=raw[:80], expected=f"one of {names}")
-        args = tuple(words[1:])
-        if len(args) != len(schema.params):
-            raise PlanParseError(f"{schema.name} takes {len(schema.params)} argument(s), got "
-                                 f"{len(args)}", line=number, column=2, text=raw[:80],
-                                 expected="(" + " ".join((schema.name, *schema.params)) + ")")
-        steps.append(Step(schema.name, args, number))
+        steps.append(_read_line(raw, body, number, domain))
         if len(steps) > MAX_STEPS:
             raise PlanParseError(f"the plan has more than {MAX_STEPS:,} actions", line=number,
                                  column=1, text="", expected=f"at most {MAX_STEPS:,} actions")

@@ -1,21 +1,36 @@
 """Read a STRIPS domain and problem (PDDL text) into the model, refusing what it cannot judge.
 
-Supported: `:strips`, `:typing`, `:negative-preconditions`, `:equality`, `:action-costs`
-(`(increase (total-cost) N)` effects are read and ignored: costs do not change validity).
-Anything else (`:conditional-effects`, `:disjunctive-preconditions`, `:fluents`, ...)
-is refused with the requirement named, and so is a construct that needs one (`or`,
-`forall`, `when`), so a plan is never judged under rules this model does not implement.
-Static errors (an undeclared predicate, type, object or parameter; a wrong arity; an
-initial atom whose objects have the wrong type) are refused with the name at fault.
-The S-expression reader bounds nesting depth and refuses non-ASCII names with the line.
+Supported: `:strips`, `:typing` (with `(either ...)` types in parameter, predicate,
+constant and object lists), `:negative-preconditions`, `:equality` and `:action-costs`
+(`(increase (total-cost) N)` and `(increase (total-cost) (f ?x ?y))` over functions
+whose values the problem's `:init` gives; the report sums the plan's cost, as VAL
+does). Conjunctions may nest (`(and (and ...))`) in preconditions, effects and goals.
+Anything else (`:conditional-effects`, `:disjunctive-preconditions`, numeric fluents
+beyond action costs, durative actions, ...) is refused with the requirement named, and so
+is a construct that needs one (`or`, `forall`, `when`), so a plan is never judged under
+rules this model does not implement.
+
+Nothing is skipped silently: every section of a domain or problem and every part of an
+action is read or refused by name. A misspelt keyword (`:precondtion`, `:efect`,
+`:predicate`) is an error naming it with the closest correct keyword; a keyword with no
+value, a requirement that is not a `:keyword`, and a section that is not a list are
+errors naming what was found. Static errors (an undeclared predicate, type, object,
+function or parameter; a wrong arity; an initial atom whose objects have the wrong type;
+a type that is its own ancestor) are refused with the name at fault. The S-expression
+reader bounds nesting depth and refuses non-ASCII names with the line.
 """
 
 from __future__ import annotations
 
-from verigraph.actions.blocksworld.sexpr import SExpr, define_body, typed_names
+import difflib
+
+from verigraph.actions.blocksworld.sexpr import SExpr, define_body
+from verigraph.actions.pddl.formulas import Formula
 from verigraph.actions.pddl.model import (
     ROOT_TYPE,
     SUPPORTED_REQUIREMENTS,
+    CondEffect,
+    CostTerm,
     Domain,
     GroundAtom,
     Literal,
@@ -28,15 +43,37 @@ from verigraph.errors import VeriGraphError
 MAX_OBJECTS = 100_000
 MAX_INIT_ATOMS = 2_000_000
 # constructs outside STRIPS -> the requirement a domain would need for them
-NEEDS = {"or": ":disjunctive-preconditions", "imply": ":disjunctive-preconditions",
-         "exists": ":existential-preconditions", "forall": ":universal-preconditions",
-         "when": ":conditional-effects", "either": ":typing with (either ...) types",
-         "assign": ":numeric-fluents", "increase": ":numeric-fluents",
+NEEDS = {"assign": ":numeric-fluents", "increase": ":numeric-fluents",
          "decrease": ":numeric-fluents", "scale-up": ":numeric-fluents",
          "scale-down": ":numeric-fluents", "at": ":durative-actions", "over": ":durative-actions",
          "<": ":numeric-fluents", ">": ":numeric-fluents", "<=": ":numeric-fluents",
-         ">=": ":numeric-fluents"}
+         ">=": ":numeric-fluents", "preference": ":preferences"}
+ADL_HEADS = ("and", "or", "not", "imply", "exists", "forall", "when")
 SUPPORTED_TEXT = " ".join(SUPPORTED_REQUIREMENTS)
+# every requirement PDDL 1.2-3.1 defines: one outside this list is a misspelling
+KNOWN_REQUIREMENTS = SUPPORTED_REQUIREMENTS + (
+    ":disjunctive-preconditions", ":existential-preconditions", ":universal-preconditions",
+    ":quantified-preconditions", ":conditional-effects", ":fluents", ":numeric-fluents",
+    ":object-fluents", ":adl", ":durative-actions", ":duration-inequalities",
+    ":continuous-effects", ":derived-predicates", ":timed-initial-literals", ":preferences",
+    ":constraints", ":domain-axioms", ":expression-evaluation", ":open-world", ":true-negation",
+    ":ucpop", ":safety-constraints", ":action-expansions", ":foreach-expansions",
+    ":dag-expansions", ":subgoals-through-axioms", ":time", ":timed-initial-fluents")
+DOMAIN_SECTIONS = (":requirements", ":types", ":constants", ":predicates", ":functions",
+                   ":action")
+UNSUPPORTED_DOMAIN_SECTIONS = {":derived": ":derived-predicates",
+                               ":durative-action": ":durative-actions", ":process": ":time",
+                               ":event": ":time", ":constraints": ":constraints",
+                               ":axiom": ":domain-axioms", ":timeless": ":strips (PDDL 1.2)",
+                               ":extends": ":strips (PDDL 1.2 domain extension)"}
+PROBLEM_SECTIONS = (":domain", ":requirements", ":objects", ":init", ":goal", ":metric")
+UNSUPPORTED_PROBLEM_SECTIONS = {":constraints": ":constraints", ":length": ":strips (PDDL 1.2)",
+                                ":situation": ":strips (PDDL 1.2)"}
+ACTION_KEYS = (":parameters", ":precondition", ":effect")
+UNSUPPORTED_ACTION_KEYS = {":vars": ":strips (PDDL 1.2 :vars)",
+                           ":expansion": ":action-expansions", ":duration": ":durative-actions",
+                           ":condition": ":durative-actions"}
+ACTION_FORM = "(:action NAME :parameters (?x - type ...) :precondition (and ...) :effect (and ...))"
 
 
 class PddlInputError(VeriGraphError):
@@ -59,18 +96,84 @@ def _show(expr: SExpr) -> str:
     return "(" + " ".join(_show(e) for e in expr) + ")"
 
 
-def _types(domain: Domain, items: list[SExpr], where: str) -> list[tuple[str, str]]:
-    for item in items:
-        if isinstance(item, list):
-            head = item[0] if item and isinstance(item[0], str) else "?"
-            raise UnsupportedRequirementError(NEEDS.get(head, ":typing"), where, _show(item)[:60])
+def _closest(word: str, choices: tuple[str, ...] | list[str]) -> str:
+    near = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
+    return f"did you mean {near[0]}?" if near else f"use one of {', '.join(choices)}"
+
+
+def _unknown_keyword(word: SExpr, choices: tuple[str, ...], where: str, context: str
+                     ) -> PddlInputError:
+    shown = _show(word)[:40]
+    return PddlInputError(f"unknown {context} {shown}", field=where, value=shown,
+                          fix=_closest(shown, choices) if isinstance(word, str) else
+                          f"write one of {', '.join(choices)}")
+
+
+def _requirements(items: list[SExpr], where: str) -> list[str]:
+    """The `:keyword` items of a `(:requirements ...)`; anything else is refused by name."""
     out = []
-    for name, kind in typed_names(items, what=where):
-        kind = kind or ROOT_TYPE
-        if kind != ROOT_TYPE and kind not in domain.parents:
-            raise PddlInputError(f"type '{kind}' (of {name}) is not declared in (:types ...)",
-                                 field=where, value=kind, fix=f"declare {kind} in :types")
-        out.append((name, kind))
+    for req in items:
+        if not isinstance(req, str) or not req.startswith(":"):
+            shown = _show(req)[:40]
+            fixed = ":" + (req if isinstance(req, str) else _show(req).strip("()").split(" ")[0])
+            raise PddlInputError(f"requirement {shown} is not a :keyword", field=where,
+                                 value=shown, fix=f"write requirements as keywords, e.g. {fixed}")
+        if req not in KNOWN_REQUIREMENTS:
+            raise _unknown_keyword(req, SUPPORTED_REQUIREMENTS, where, "requirement")
+        if req not in SUPPORTED_REQUIREMENTS:
+            raise UnsupportedRequirementError(req, where, "declared")
+        out.append(req)
+    return out
+
+
+def _type_name(domain: Domain, item: SExpr, where: str, name: str) -> str:
+    """A declared type, or `(either a b ...)` as a type of its own (see model)."""
+    if isinstance(item, list):
+        if len(item) < 2 or item[0] != "either" or not all(isinstance(t, str) for t in item[1:]):
+            raise PddlInputError(f"the type of {name} is {_show(item)[:60]}, which is neither "
+                                 "a type name nor (either type ...)", field=where,
+                                 value=_show(item)[:60], fix="write `name - type` or "
+                                                             "`name - (either t1 t2)`")
+        members = tuple(str(t) for t in item[1:])
+        for kind in members:
+            _type_name(domain, kind, where, name)
+        key = "either " + " ".join(members)
+        domain.either[key] = members
+        return key
+    if item != ROOT_TYPE and item not in domain.parents:
+        raise PddlInputError(f"type '{item}' (of {name}) is not declared in (:types ...)",
+                             field=where, value=item, fix=f"declare {item} in :types")
+    return item
+
+
+def _typed(items: list[SExpr]) -> list[tuple[SExpr, SExpr | None]]:
+    """`a b - t c - (either u v) d` -> [(a, t), (b, t), (c, [either, u, v]), (d, None)]."""
+    out: list[tuple[SExpr, SExpr | None]] = []
+    pending: list[SExpr] = []
+    i = 0
+    while i < len(items):
+        if items[i] == "-" and i + 1 < len(items):
+            out.extend((n, items[i + 1]) for n in pending)
+            pending = []
+            i += 2
+            continue
+        pending.append(items[i])
+        i += 1
+    out.extend((n, None) for n in pending)
+    return out
+
+
+def _types(domain: Domain, items: list[SExpr], where: str) -> list[tuple[str, str]]:
+    if items and items[-1] == "-":
+        raise PddlInputError(f"'-' ends the list {_show(items)[:60]} with no type after it",
+                             field=where, value=None, fix="write names as `a b - type`")
+    out = []
+    for name, kind in _typed(items):
+        if not isinstance(name, str) or name == "-":
+            raise PddlInputError(f"expected a name in a typed list, got {_show(name)[:60]}",
+                                 field=where, value=_show(name)[:60],
+                                 fix="write names as `a b - type`")
+        out.append((name, ROOT_TYPE if kind is None else _type_name(domain, kind, where, name)))
     return out
 
 
@@ -79,99 +182,293 @@ class _ActionReader:
 
     def __init__(self, domain: Domain, body: list[SExpr]) -> None:
         self.domain = domain
-        self.name = body[1] if len(body) > 1 and isinstance(body[1], str) else "?"
+        if len(body) < 2 or not isinstance(body[1], str) or body[1].startswith(":"):
+            raise PddlInputError(f"an action has no name: {_show(body)[:60]}", field="domain",
+                                 value=None, fix=f"write {ACTION_FORM}")
+        self.name = body[1]
+        self.where = f"action {self.name}"
         self.keys: dict[str, SExpr] = {}
-        for i in range(2, len(body) - 1, 2):
+        i = 2
+        while i < len(body):
             key = body[i]
             if not isinstance(key, str) or not key.startswith(":"):
-                raise PddlInputError(f"action {self.name}: expected a :keyword, got "
+                raise PddlInputError(f"{self.where}: expected a :keyword, got "
                                      f"{_show(key)[:40]}", field="domain", value=self.name,
-                                     fix="write :parameters (...) :precondition (...) "
-                                         ":effect (...)")
-            self.keys[key] = body[i + 1]
+                                     fix=f"write {ACTION_FORM}")
+            if key in UNSUPPORTED_ACTION_KEYS:
+                raise UnsupportedRequirementError(UNSUPPORTED_ACTION_KEYS[key], "domain",
+                                                  f"{key} in {self.where}")
+            if key not in ACTION_KEYS:
+                raise PddlInputError(f"{self.where}: unknown keyword {key}",
+                                     field="domain", value=key,
+                                     fix=_closest(key, ACTION_KEYS))
+            value = body[i + 1] if i + 1 < len(body) else None
+            if value is None or (isinstance(value, str) and value.startswith(":")):
+                raise PddlInputError(f"{self.where}: keyword {key} has no value",
+                                     field="domain", value=key,
+                                     fix=f"write {key} (...) or leave the keyword out")
+            if key in self.keys:
+                raise PddlInputError(f"{self.where} gives {key} twice", field="domain",
+                                     value=key, fix=f"merge the two {key} into one (and ...)")
+            self.keys[key] = value
+            i += 2
         params = self.keys.get(":parameters", [])
         if not isinstance(params, list):
-            raise PddlInputError(f"action {self.name} has malformed :parameters",
+            raise PddlInputError(f"{self.where} has malformed :parameters",
                                  field="domain", value=self.name, fix="write :parameters (?x - t)")
         typed = _types(domain, params, "domain")
+        for p, _ in typed:
+            if not p.startswith("?"):
+                raise PddlInputError(f"{self.where}: parameter {p} does not start with ?",
+                                     field="domain", value=p, fix=f"write ?{p}")
         self.params = [p for p, _ in typed]
         self.types = [t for _, t in typed]
         self.index = {p: i for i, p in enumerate(self.params)}
         if len(self.index) != len(self.params):
-            raise PddlInputError(f"action {self.name} declares a parameter twice",
+            raise PddlInputError(f"{self.where} declares a parameter twice",
                                  field="domain", value=self.name, fix="rename the parameter")
+        self.cost: list[CostTerm] = []
 
-    def term(self, arg: SExpr, literal: SExpr) -> Term:
+    def term(self, arg: SExpr, literal: SExpr, scope: dict[str, int] | None = None) -> Term:
+        scope = self.index if scope is None else scope
         if not isinstance(arg, str):
-            raise PddlInputError(f"action {self.name}: {_show(literal)[:60]} has a nested "
+            raise PddlInputError(f"{self.where}: {_show(literal)[:60]} has a nested "
                                  "term; STRIPS terms are parameters and constants",
                                  field="domain", value=self.name, fix="use ?params or constants")
         if arg.startswith("?"):
-            if arg not in self.index:
-                raise PddlInputError(f"action {self.name} uses {arg} in {_show(literal)[:60]} "
+            if arg not in scope:
+                raise PddlInputError(f"{self.where} uses {arg} in {_show(literal)[:60]} "
                                      "but does not declare it", field="domain", value=arg,
                                      fix=f"add {arg} to the action's :parameters")
-            return self.index[arg]
+            return scope[arg]
         if arg not in self.domain.constants:
-            raise PddlInputError(f"action {self.name} names '{arg}', which is neither a "
+            raise PddlInputError(f"{self.where} names '{arg}', which is neither a "
                                  "parameter nor a declared constant", field="domain",
                                  value=arg,
                                  fix=f"declare {arg} in (:constants ...) or write ?{arg}")
         return arg
 
-    def atom(self, expr: SExpr) -> Literal:
+    def atom(self, expr: SExpr, scope: dict[str, int] | None = None) -> Literal:
         if not (isinstance(expr, list) and expr and isinstance(expr[0], str)):
-            raise PddlInputError(f"action {self.name}: {_show(expr)[:60]} is not an atom",
+            raise PddlInputError(f"{self.where}: {_show(expr)[:60]} is not an atom",
                                  field="domain", value=self.name, fix="write (predicate ?x ...)")
         head = expr[0]
         if head in NEEDS and head not in self.domain.predicates:
             raise UnsupportedRequirementError(NEEDS[head], "domain",
-                                              f"({head} ...) in action {self.name}")
-        terms = tuple(self.term(a, expr) for a in expr[1:])
+                                              f"({head} ...) in {self.where}")
+        if head in ADL_HEADS and head not in self.domain.predicates:
+            raise PddlInputError(f"{self.where}: {_show(expr)[:60]} is not an atom here",
+                                 field="domain", value=head,
+                                 fix="(not ...) takes one formula; effects are atoms, "
+                                     "(not atom), when, forall and (increase (total-cost) x)")
+        terms = tuple(self.term(a, expr, scope) for a in expr[1:])
         if head == "=":
             if len(terms) != 2:
-                raise PddlInputError(f"action {self.name}: (= ...) takes two terms",
+                raise PddlInputError(f"{self.where}: (= ...) takes two terms",
                                      field="domain", value=self.name, fix="write (= ?x ?y)")
             return head, terms
         signature = self.domain.predicates.get(head)
         if signature is None:
-            raise PddlInputError(f"action {self.name} uses predicate '{head}', which "
+            raise PddlInputError(f"{self.where} uses predicate '{head}', which "
                                  "(:predicates ...) does not declare", field="domain",
                                  value=head, fix=f"declare ({head} ...) in :predicates")
         if len(signature) != len(terms):
-            raise PddlInputError(f"action {self.name}: {_show(expr)[:60]} has {len(terms)} "
+            raise PddlInputError(f"{self.where}: {_show(expr)[:60]} has {len(terms)} "
                                  f"argument(s); {head} takes {len(signature)}", field="domain",
                                  value=head, fix=f"give {head} {len(signature)} argument(s)")
         return head, terms
 
-    def literals(self, expr: SExpr, where: str) -> tuple[list[Literal], list[Literal]]:
-        """(positive, negative) literals of a conjunction."""
-        items = expr[1:] if isinstance(expr, list) and expr and expr[0] == "and" else \
-            ([] if expr == [] else [expr])
+    def cost_term(self, expr: SExpr, whole: SExpr) -> CostTerm:
+        """The amount of `(increase (total-cost) X)`: a number or a static function."""
+        if isinstance(expr, str):
+            try:
+                value = float(expr)
+            except ValueError:
+                value = float("nan")
+            if value != value or value < 0 or value in (float("inf"),):
+                raise PddlInputError(f"{self.where}: {_show(whole)[:60]} adds "
+                                     f"'{expr}', not a non-negative number", field="domain",
+                                     value=expr, fix="increase (total-cost) by a number >= 0 "
+                                                     "or by a function such as (distance ?a ?b)")
+            return value
+        if expr and isinstance(expr[0], str) and expr[0] in self.domain.functions:
+            signature = self.domain.functions[expr[0]]
+            if len(signature) != len(expr) - 1:
+                raise PddlInputError(f"{self.where}: {_show(expr)[:60]} has "
+                                     f"{len(expr) - 1} argument(s); {expr[0]} takes "
+                                     f"{len(signature)}", field="domain", value=expr[0],
+                                     fix=f"give {expr[0]} {len(signature)} argument(s)")
+            return expr[0], tuple(self.term(a, expr) for a in expr[1:])
+        raise UnsupportedRequirementError(":numeric-fluents", "domain",
+                                          f"{_show(whole)[:60]} in {self.where}")
+
+    def variables(self, expr: SExpr, scope: dict[str, int]
+                  ) -> tuple[list[tuple[int, str, str]], dict[str, int]]:
+        """The typed variables of a quantifier, each with a slot of its own."""
+        if not isinstance(expr, list):
+            raise PddlInputError(f"{self.where}: a quantifier's variables are "
+                                 f"{_show(expr)[:40]}", field="domain", value=self.name,
+                                 fix="write (forall (?x - type) ...)")
+        out = []
+        inner = dict(scope)
+        for name, kind in _types(self.domain, expr, "domain"):
+            if not name.startswith("?"):
+                raise PddlInputError(f"{self.where}: quantified {name} does not start "
+                                     "with ?", field="domain", value=name, fix=f"write ?{name}")
+            slot = len(self.slot_names)
+            self.slot_names.append(name)
+            out.append((slot, name, kind))
+            inner[name] = slot
+        return out, inner
+
+    def condition(self, expr: SExpr, scope: dict[str, int]) -> Formula:
+        """A precondition formula (see formulas): literals, and, or, not, imply, quantifiers."""
+        if expr == [] or expr == ["and"]:
+            return ("and", [])
+        head = expr[0] if isinstance(expr, list) and expr else None
+        if head in self.domain.predicates or head not in ADL_HEADS:
+            return ("atom", self.atom(expr, scope))
+        assert isinstance(expr, list)
+        if head in ("and", "or"):
+            return (head, [self.condition(e, scope) for e in expr[1:]])
+        if head == "not" and len(expr) == 2:
+            return ("not", self.condition(expr[1], scope))
+        if head == "imply" and len(expr) == 3:
+            return ("imply", self.condition(expr[1], scope), self.condition(expr[2], scope))
+        if head in ("exists", "forall") and len(expr) == 3:
+            variables, inner = self.variables(expr[1], scope)
+            return (head, variables, self.condition(expr[2], inner))
+        raise PddlInputError(f"{self.where}: malformed {_show(expr)[:60]}",
+                             field="domain", value=str(head),
+                             fix="(not f), (imply f g), (exists (?x - t) f), (forall (?x - t) f)")
+
+    def precondition(self, expr: SExpr) -> tuple[list[Literal], list[Literal], list[Formula]]:
+        """Top-level literals (the fast path) and the other conjuncts (ADL)."""
         pos: list[Literal] = []
         neg: list[Literal] = []
-        for item in items:
-            if isinstance(item, list) and item and item[0] == "and":
-                p, n = self.literals(item, where)
-                pos += p
-                neg += n
-            elif isinstance(item, list) and len(item) == 2 and item[0] == "not":
-                neg.append(self.atom(item[1]))
-            elif where == "effect" and isinstance(item, list) and item \
-                    and item[0] == "increase" and len(item) == 3 \
-                    and item[1] == ["total-cost"]:
-                continue  # action costs: read, not judged
+        complex_: list[Formula] = []
+        stack = [self.condition(expr, self.index)]
+        while stack:
+            f = stack.pop()
+            if f[0] == "and":
+                stack.extend(reversed(f[1]))
+            elif f[0] == "atom":
+                pos.append(f[1])
+            elif f[0] == "not" and f[1][0] == "atom":
+                neg.append(f[1][1])
             else:
-                pos.append(self.atom(item))
-        return pos, neg
+                complex_.append(f)
+        return pos, neg, complex_
+
+    def effect(self, expr: SExpr, scope: dict[str, int], effect: CondEffect) -> None:
+        """Add the effect's literals to `effect` (a when or forall opens a new one)."""
+        stack = [expr]
+        while stack:
+            item = stack.pop()
+            if item == [] or item == ["and"]:
+                continue
+            head = item[0] if isinstance(item, list) and item else None
+            if not isinstance(item, list) or head in self.domain.predicates \
+                    or head not in ADL_HEADS + ("increase",):
+                effect.add.append(self.atom(item, scope))
+            elif head == "and":
+                stack.extend(reversed(item[1:]))
+            elif head == "not":
+                if len(item) != 2:
+                    raise PddlInputError(f"{self.where}: {_show(item)[:60]} - not takes "
+                                         "one atom", field="domain", value=self.name,
+                                         fix="write (not (predicate ?x ...))")
+                effect.delete.append(self.atom(item[1], scope))
+            elif head == "increase" and len(item) == 3 and item[1] == ["total-cost"]:
+                if effect.variables or effect.condition is not None:
+                    raise UnsupportedRequirementError(":numeric-fluents", "domain",
+                                                      f"a conditional cost in {self.name}")
+                self.cost.append(self.cost_term(item[2], item))
+            elif head == "when" and len(item) == 3:
+                condition = self.condition(item[1], scope)
+                if effect.condition is not None:
+                    condition = ("and", [effect.condition, condition])
+                inner = CondEffect(list(effect.variables), condition, [], [])
+                self.effects.append(inner)
+                self.effect(item[2], scope, inner)
+            elif head == "forall" and len(item) == 3:
+                variables, inner_scope = self.variables(item[1], scope)
+                inner = CondEffect(effect.variables + variables, effect.condition, [], [])
+                self.effects.append(inner)
+                self.effect(item[2], inner_scope, inner)
+            elif head == "increase":
+                raise UnsupportedRequirementError(":numeric-fluents", "domain",
+                                                  f"{_show(item)[:60]} in {self.where}")
+            else:
+                raise PddlInputError(f"{self.where}: {_show(item)[:60]} is not an effect",
+                                     field="domain", value=str(head),
+                                     fix="effects are atoms, (not atom), (when c e), "
+                                         "(forall (?x - t) e), (increase (total-cost) x)")
 
     def schema(self) -> Schema:
-        pre_pos, pre_neg = self.literals(self.keys.get(":precondition", []), "precondition")
-        add, delete = self.literals(self.keys.get(":effect", []), "effect")
-        if any(p == "=" for p, _ in add + delete):
-            raise PddlInputError(f"action {self.name} has an equality effect", field="domain",
-                                 value=self.name, fix="effects are atoms and (not atom)")
-        return Schema(self.name, self.params, self.types, pre_pos, pre_neg, add, delete)
+        self.slot_names = list(self.params)
+        pre_pos, pre_neg, pre_complex = self.precondition(self.keys.get(":precondition", []))
+        plain = CondEffect([], None, [], [])
+        self.effects: list[CondEffect] = []
+        self.effect(self.keys.get(":effect", []), self.index, plain)
+        for lit in plain.add + plain.delete + [x for e in self.effects for x in e.add + e.delete]:
+            if lit[0] == "=":
+                raise PddlInputError(f"{self.where} has an equality effect",
+                                     field="domain", value=self.name,
+                                     fix="effects are atoms and (not atom)")
+        return Schema(self.name, self.params, self.types, pre_pos, pre_neg, plain.add,
+                      plain.delete, self.cost, pre_complex,
+                      [e for e in self.effects if e.add or e.delete], self.slot_names)
+
+
+class _GoalReader(_ActionReader):
+    """A goal's formulas: names are the problem's objects, variables are quantified."""
+
+    def __init__(self, domain: Domain, objects: dict[str, str]) -> None:
+        self.domain, self.objects = domain, objects
+        self.name, self.where, self.index = "goal", "the goal", {}
+        self.slot_names: list[str] = []
+        self.cost = []
+
+    def term(self, arg: SExpr, literal: SExpr, scope: dict[str, int] | None = None) -> Term:
+        if isinstance(arg, str) and not arg.startswith("?"):
+            if arg not in self.objects:
+                raise PddlInputError(f"{_show(literal)[:60]} in the goal names '{arg}', which "
+                                     "(:objects ...) does not declare", field="problem",
+                                     value=arg, fix=f"declare {arg} in :objects")
+            return arg
+        return super().term(arg, literal, scope)
+
+
+def _functions(domain: Domain, items: list[SExpr]) -> None:
+    """`(:functions (total-cost) - number (road-length ?a ?b - place) - number)`."""
+    i = 0
+    while i < len(items):
+        item = items[i]
+        if item == "-":
+            kind = items[i + 1] if i + 1 < len(items) else None
+            if kind != "number":
+                raise UnsupportedRequirementError(":object-fluents", "domain",
+                                                  f"function type {_show(kind or '')[:30]}")
+            i += 2
+            continue
+        if not (isinstance(item, list) and item and isinstance(item[0], str)):
+            raise PddlInputError(f"malformed function {_show(item)[:60]}", field="domain",
+                                 value=_show(item)[:60], fix="write (:functions (name ?x - t) "
+                                                             "- number)")
+        if item[0] != "total-cost":
+            domain.functions[item[0]] = [t for _, t in _types(domain, item[1:], "domain")]
+        i += 1
+
+
+def _check_types(domain: Domain) -> None:
+    for parent in set(domain.parents.values()) - set(domain.parents) - {ROOT_TYPE}:
+        domain.parents[parent] = ROOT_TYPE  # a parent used but not listed is an object
+    cycle = domain.index_types()
+    if cycle:
+        shown = ", ".join(f"{t} - {domain.parents[t]}" for t in cycle[:4])
+        raise PddlInputError(f"type {cycle[0]} is its own ancestor ({shown})", field="domain",
+                             value=cycle[0], fix="give each type a parent that leads to object")
 
 
 def read_domain(text: str) -> Domain:
@@ -179,23 +476,33 @@ def read_domain(text: str) -> Domain:
     name, sections = define_body(text, what="domain", kind="domain")
     domain = Domain(name, [], {}, {}, {}, {})
     actions: list[list[SExpr]] = []
-    for section in sections:
+    checked: list[list[SExpr]] = []
+    for section in sections:  # types first, wherever they are written: the rest uses them
         if not isinstance(section, list) or not section or not isinstance(section[0], str):
             raise PddlInputError(f"unexpected {_show(section)[:60]} in the domain",
-                                 field="domain", value=None, fix="sections start with :keyword")
+                                 field="domain", value=_show(section)[:60],
+                                 fix="sections are lists that start with a :keyword, e.g. "
+                                     "(:predicates ...)")
+        checked.append(section)
+        if section[0] == ":types":
+            for child, parent in _typed(section[1:]):
+                if not isinstance(child, str) or child == "-":
+                    raise PddlInputError(f"expected a type name, got {_show(child)[:60]}",
+                                         field="domain", value=_show(child)[:60],
+                                         fix="write (:types a b - parent)")
+                if isinstance(parent, list):
+                    raise UnsupportedRequirementError(":typing with (either ...) as a "
+                                                      "supertype", "domain", _show(parent))
+                # `t - t` (seen in the wild) declares t, under object
+                domain.parents[child] = ROOT_TYPE if parent in (None, child) else parent
+            domain.parents.pop(ROOT_TYPE, None)
+    _check_types(domain)
+    for section in checked:
         head, rest = section[0], section[1:]
         if head == ":requirements":
-            for req in rest:
-                if req not in SUPPORTED_REQUIREMENTS:
-                    raise UnsupportedRequirementError(_show(req), "domain", "declared")
-                domain.requirements.append(str(req))
+            domain.requirements.extend(_requirements(rest, "domain"))
         elif head == ":types":
-            for item in rest:
-                if isinstance(item, list):
-                    raise UnsupportedRequirementError(NEEDS["either"], "domain", _show(item))
-            for child, parent in typed_names(rest, what="domain"):
-                domain.parents[child] = parent or ROOT_TYPE
-            domain.parents.pop(ROOT_TYPE, None)
+            continue
         elif head == ":constants":
             domain.constants.update(_types(domain, rest, "domain"))
         elif head == ":predicates":
@@ -206,23 +513,22 @@ def read_domain(text: str) -> Domain:
                                          fix="write (name ?x - type ...)")
                 domain.predicates[pred[0]] = [t for _, t in _types(domain, pred[1:], "domain")]
         elif head == ":functions":
-            if rest != [["total-cost"]] and rest != [["total-cost"], "-", "number"]:
-                raise UnsupportedRequirementError(":numeric-fluents", "domain", "(:functions)")
+            _functions(domain, rest)
         elif head == ":action":
             actions.append(section)
+        elif head in UNSUPPORTED_DOMAIN_SECTIONS:
+            raise UnsupportedRequirementError(UNSUPPORTED_DOMAIN_SECTIONS[head], "domain",
+                                              f"section {head}")
         else:
-            need = {":derived": ":derived-predicates", ":durative-action": ":durative-actions",
-                    ":process": ":time", ":event": ":time",
-                    ":constraints": ":constraints"}.get(head, head)
-            raise UnsupportedRequirementError(need, "domain", f"section {head}")
-    for parent in set(domain.parents.values()) - set(domain.parents) - {ROOT_TYPE}:
-        domain.parents[parent] = ROOT_TYPE  # a parent used but not listed is an object
+            raise _unknown_keyword(head, DOMAIN_SECTIONS, "domain", "domain section")
     for body in actions:
         schema = _ActionReader(domain, body).schema()
         if schema.name in domain.schemas:
             raise PddlInputError(f"action {schema.name} is defined twice", field="domain",
                                  value=schema.name, fix="rename one of them")
         domain.schemas[schema.name] = schema
+    changed = {lit[0] for s in domain.schemas.values() for lit in s.add + s.delete}
+    domain.static = frozenset(domain.predicates) - changed
     return domain
 
 
@@ -263,19 +569,72 @@ def _ground(domain: Domain, objects: dict[str, str], expr: SExpr, where: str) ->
     return (head, *args)
 
 
+def _value(domain: Domain, objects: dict[str, str], item: list[SExpr],
+           values: dict[GroundAtom, float]) -> None:
+    """`(= (f a b) 5)` in :init: the value of a cost function (or total-cost's start)."""
+    fn = item[1] if len(item) == 3 else None
+    number = item[2] if len(item) == 3 else None
+    if not (isinstance(fn, list) and fn and all(isinstance(a, str) for a in fn)
+            and isinstance(number, str)):
+        raise PddlInputError(f"the initial state holds {_show(item)[:60]}, which is neither an "
+                             "atom nor (= (function obj ...) number)", field="problem",
+                             value=_show(item)[:60], fix="write (= (road-length a b) 10)")
+    try:
+        value = float(number)
+    except ValueError:
+        raise PddlInputError(f"{_show(item)[:60]} in the initial state: '{number}' is not a "
+                             "number", field="problem", value=number,
+                             fix="give the function a number") from None
+    name = str(fn[0])
+    if name == "total-cost":
+        return
+    signature = domain.functions.get(name)
+    if signature is None:
+        raise PddlInputError(f"{_show(item)[:60]} in the initial state: the domain declares no "
+                             f"function '{name}'", field="problem", value=name,
+                             fix=f"declare ({name} ...) in the domain's :functions")
+    args = [str(a) for a in fn[1:]]
+    if len(args) != len(signature) or any(a not in objects for a in args):
+        raise PddlInputError(f"{_show(item)[:60]} in the initial state: {name} takes "
+                             f"{len(signature)} declared object(s)", field="problem", value=name,
+                             fix="name declared objects, one per argument")
+    values[(name, *args)] = value
+
+
+def _goal_literals(expr: SExpr) -> list[tuple[SExpr, bool]]:
+    """The literals of a goal conjunction (`and`s may nest), each with its sign."""
+    out: list[tuple[SExpr, bool]] = []
+    stack = [expr]
+    while stack:
+        item = stack.pop()
+        if item == [] or item == ["and"]:
+            continue
+        if isinstance(item, list) and item[0] == "and":
+            stack.extend(reversed(item[1:]))
+        elif isinstance(item, list) and item[0] == "not" and len(item) == 2:
+            out.append((item[1], False))
+        else:
+            out.append((item, True))
+    return out
+
+
 def read_problem(text: str, domain: Domain) -> Problem:
     """The problem in `text` against `domain`; objects include the domain's constants."""
     name, sections = define_body(text, what="problem", kind="problem")
     objects = dict(domain.constants)
     init: set[GroundAtom] = set()
+    values: dict[GroundAtom, float] = {}
     goal_pos: list[GroundAtom] = []
     goal_neg: list[GroundAtom] = []
     goal_seen = False
     raw_init: list[SExpr] = []
     raw_goal: SExpr = []
     for section in sections:
-        if not isinstance(section, list) or not section:
-            continue
+        if not isinstance(section, list) or not section or not isinstance(section[0], str):
+            raise PddlInputError(f"unexpected {_show(section)[:60]} in the problem",
+                                 field="problem", value=_show(section)[:60],
+                                 fix="sections are lists that start with a :keyword, e.g. "
+                                     "(:init ...)")
         head = section[0]
         if head == ":objects":
             if len(section) - 1 > MAX_OBJECTS:
@@ -290,24 +649,44 @@ def read_problem(text: str, domain: Domain) -> Problem:
                                      fix=f"keep it under {MAX_INIT_ATOMS:,} atoms")
             raw_init = section[1:]
         elif head == ":goal":
+            if len(section) != 2:
+                raise PddlInputError(f"(:goal ...) holds {len(section) - 1} formulas",
+                                     field="problem", value=len(section) - 1,
+                                     fix="write one goal formula: (:goal (and ...))")
             goal_seen = True
-            raw_goal = section[1] if len(section) > 1 else []
-        elif head in (":domain", ":requirements", ":metric"):
-            continue
+            raw_goal = section[1]
+        elif head == ":domain":
+            if len(section) != 2 or not isinstance(section[1], str):
+                raise PddlInputError(f"malformed {_show(section)[:60]}", field="problem",
+                                     value=None, fix="write (:domain NAME)")
+        elif head == ":requirements":
+            _requirements(section[1:], "problem")
+        elif head == ":metric":
+            if section[1:] not in (["minimize", ["total-cost"]], ["minimize", "total-cost"]):
+                raise UnsupportedRequirementError(":numeric-fluents", "problem",
+                                                  f"metric {_show(section[1:])[:60]}")
+        elif head in UNSUPPORTED_PROBLEM_SECTIONS:
+            raise UnsupportedRequirementError(UNSUPPORTED_PROBLEM_SECTIONS[head], "problem",
+                                              f"section {head}")
         else:
-            raise UnsupportedRequirementError(str(head), "problem", f"section {head}")
+            raise _unknown_keyword(head, PROBLEM_SECTIONS, "problem", "problem section")
     if not goal_seen:
         raise PddlInputError("the problem has no (:goal ...)", field="problem", value=name,
                              fix="add (:goal (and ...))")
     for item in raw_init:
-        if isinstance(item, list) and item and item[0] == "=":
-            continue  # (= (total-cost) 0)
+        if isinstance(item, list) and item and item[0] == "=" and (
+                len(item) != 3 or isinstance(item[1], list)):
+            _value(domain, objects, item, values)
+            continue
         init.add(_ground(domain, objects, item, "initial state"))
-    goal_items = raw_goal[1:] if isinstance(raw_goal, list) and raw_goal \
-        and raw_goal[0] == "and" else ([] if raw_goal == [] else [raw_goal])
-    for item in goal_items:
-        if isinstance(item, list) and len(item) == 2 and item[0] == "not":
-            goal_neg.append(_ground(domain, objects, item[1], "goal"))
+    goal_complex: list[Formula] = []
+    reader = _GoalReader(domain, objects)
+    for item, positive in _goal_literals(raw_goal):
+        first = item[0] if isinstance(item, list) and item else None
+        if first in ADL_HEADS and first not in domain.predicates:
+            formula = reader.condition(item, {})
+            goal_complex.append(formula if positive else ("not", formula))
         else:
-            goal_pos.append(_ground(domain, objects, item, "goal"))
-    return Problem(name, objects, init, goal_pos, goal_neg)
+            (goal_pos if positive else goal_neg).append(_ground(domain, objects, item, "goal"))
+    return Problem(name, objects, init, goal_pos, goal_neg, values=values,
+                   goal_complex=goal_complex, goal_slots=reader.slot_names)

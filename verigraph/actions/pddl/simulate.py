@@ -4,11 +4,23 @@ Grounding is lazy: only the actions the plan names are instantiated, one step at
 so a problem with millions of possible ground actions costs what its plan costs. The
 state is a set of atom tuples; a step's deletes apply before its adds (PDDL's and VAL's
 order). Every atom a step changes is recorded with that step, which is what the
-explanations need: for an unsatisfied precondition, the step and action that last made
-it false (or "never true"); for an unmet goal, the same, and the actions that would
-achieve it, with one grounding that is applicable in the final state when a bounded
-search finds one. The report is a JSON-ready dict with the keys of the blocks-world
-report (valid, plan_valid, goal_reached, steps, violations, not_checked, goal_diff).
+explanations need (see explain): for an unsatisfied precondition, the step and action
+that last made it false (or "never true", with what holds instead); for an unmet goal,
+the same, and the actions that would achieve it, each with its closest grounding.
+
+A plan line that is no action of the domain (an unknown action, the wrong number of
+arguments, `(no plan possible)`, `(1) (feast d b)`) is a failing step of an invalid plan,
+as VAL and PlanBench's graders count it (`malformed_action`, with the reason and the fix).
+A step whose cost function has no value in the initial state is not applicable (PDDL's
+rule for an undefined numeric value).
+
+By default the simulation stops at the first failing step. With `all_errors=True` it
+goes on as VAL does when asked to continue: the failing step is skipped (the state stays
+as it was before it) and every later step is checked from there; the report says so
+(`after_failure`). With action costs, the report's `total_cost` is the sum of the
+applied steps' `(increase (total-cost) ...)`, VAL's "Final value". The report is a
+JSON-ready dict with the keys of the blocks-world report (valid, plan_valid,
+goal_reached, steps, violations, not_checked, goal_diff).
 """
 
 from __future__ import annotations
@@ -21,15 +33,28 @@ from operator import itemgetter
 from typing import Any
 
 from verigraph.actions.blocksworld.validate import promote_young_objects
+from verigraph.actions.pddl.explain import (
+    MAX_ACHIEVERS,
+    Changed,
+    Explainer,
+    StateIndex,
+    complete_binding,
+    history,
+    holds,
+    literal_text,
+)
+from verigraph.actions.pddl.formulas import Evaluator, _atom
+from verigraph.actions.pddl.formulas import text as formula_text
 from verigraph.actions.pddl.model import Domain, GroundAtom, Literal, Problem, Schema, show
 from verigraph.actions.pddl.plans import Step, parse_strips_plan
 from verigraph.actions.pddl.reader import read_domain, read_problem
+from verigraph.budget import checkpoint
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused
 
-Changed = dict[GroundAtom, tuple[int, str]]  # atom -> (step, action) that last changed it
-SEARCH_BUDGET = 20_000  # bindings tried per achiever when looking for an applicable one
-MAX_ACHIEVERS = 4
+__all__ = ["MAX_ACHIEVERS", "complete_binding", "simulate", "validate_strips_dict"]
 MAX_EXPLAINED_GOALS = 20
+MAX_EXPLAINED_FAILURES = 20  # with all_errors: failing steps that get achievers
+SKIPPED = "skipped"  # all_errors: a failing step changes nothing, later steps go on
 
 
 @lru_cache(maxsize=64)
@@ -38,112 +63,15 @@ def cached_strips_domain(text: str) -> Domain:
     return read_domain(text)
 
 
-def _holds(atom: GroundAtom, state: set[GroundAtom]) -> bool:
-    if atom[0] == "=":
-        return atom[1] == atom[2]
-    return atom in state
-
-
-def _history(atom: GroundAtom, expected: bool, changed: Changed) -> dict[str, Any]:
-    """Why `atom` does not have the value `expected`: the step that last changed it."""
-    if atom[0] == "=":
-        same = "the same object" if atom[1] == atom[2] else "different objects"
-        return {"last_changed": None, "explanation": f"{atom[1]} and {atom[2]} are {same}"}
-    last = changed.get(atom)
-    if last is not None:
-        made = "false" if expected else "true"
-        return {"last_changed": {"step": last[0], "action": last[1]},
-                "explanation": f"made {made} at step {last[0]} by {last[1]}"}
-    return {"last_changed": None,
-            "explanation": "never true" if expected else "true in the initial state, "
-                                                         "never made false"}
-
-
-def _literal_text(atom: GroundAtom, expected: bool) -> str:
-    return show(atom) if expected else f"(not {show(atom)})"
-
-
-def complete_binding(domain: Domain, problem: Problem, schema: Schema, binding: list[str | None],
-                     state: set[GroundAtom]) -> tuple[str, ...] | None:
-    """A full binding extending `binding` whose preconditions hold in `state`, or None.
-
-    Depth-first over the unbound parameters (objects of each parameter's type), checking
-    each precondition as soon as its parameters are bound; at most SEARCH_BUDGET nodes.
-    """
-    free = [i for i, b in enumerate(binding) if b is None]
-    literals: list[tuple[Literal, bool]] = [(lit, True) for lit in schema.pre_pos] + \
-        [(lit, False) for lit in schema.pre_neg]
-    bound_at: dict[int, list[tuple[Literal, bool]]] = {}
-    position = {p: k for k, p in enumerate(free)}
-    for lit, expected in literals:
-        params = [t for t in lit[1] if isinstance(t, int) and t in position]
-        when = max((position[t] for t in params), default=-1)
-        bound_at.setdefault(when, []).append((lit, expected))
-    values = list(binding)
-    budget = [SEARCH_BUDGET]
-
-    def fits(level: int) -> bool:
-        for lit, expected in bound_at.get(level, []):
-            atom = schema.ground(lit, tuple(values))  # type: ignore[arg-type]
-            if _holds(atom, state) != expected:
-                return False
-        return True
-
-    def search(k: int) -> bool:
-        if k == len(free):
-            return True
-        for obj in problem.of_type(domain, schema.types[free[k]]):
-            budget[0] -= 1
-            if budget[0] < 0:
-                return False
-            values[free[k]] = obj
-            if fits(k) and search(k + 1):
-                return True
-        values[free[k]] = None
-        return False
-
-    if not fits(-1) or not search(0):
-        return None
-    return tuple(str(v) for v in values)
-
-
-def achievers(domain: Domain, problem: Problem, state: set[GroundAtom], atom: GroundAtom,
-              make_true: bool) -> list[dict[str, Any]]:
-    """Actions whose effects would give `atom` the value `make_true`, lifted (`?x` for what
-    the atom does not fix) and, where found, grounded so that it is applicable now."""
-    if atom[0] == "=":
-        return []
-    found: list[dict[str, Any]] = []
-    for schema in domain.schemas.values():
-        for pred, terms in (schema.add if make_true else schema.delete):
-            if pred != atom[0]:
-                continue
-            binding: list[str | None] = [None] * len(schema.params)
-            ok = True
-            for term, value in zip(terms, atom[1:], strict=True):
-                if isinstance(term, int):
-                    ok = ok and binding[term] in (None, value) and domain.is_a(
-                        problem.objects[value], schema.types[term])
-                    binding[term] = value
-                else:
-                    ok = ok and term == value
-            if not ok:
-                continue
-            lifted = "(" + " ".join((schema.name, *(b or schema.params[i]
-                                                    for i, b in enumerate(binding)))) + ")"
-            ground = complete_binding(domain, problem, schema, binding, state)
-            found.append({"action": lifted, "applicable_now":
-                          None if ground is None else "(" + " ".join((schema.name, *ground)) + ")"})
-    found.sort(key=lambda a: a["applicable_now"] is None)
-    return found[:MAX_ACHIEVERS]
-
-
 def _suggest(items: list[dict[str, Any]], fallback: str) -> str:
     for item in items:
         for a in item.get("achievers", []):
             verb = "true" if item["expected"] else "false"
             if a["applicable_now"]:
                 return f"make {item['literal']} {verb} first, e.g. {a['applicable_now']}"
+            if a.get("closest"):
+                return (f"make {item['literal']} {verb} first with {a['closest']}, which "
+                        f"still needs {' and '.join(a['needs'][:3])}")
             return f"make {item['literal']} {verb} first with {a['action']}"
     return fallback
 
@@ -186,56 +114,115 @@ def _grounder(schema: Schema, literal: Literal) -> Grounder:
 
 
 class _Compiled:
-    """A schema's literals as grounders, and the objects each parameter admits."""
+    """A schema's literals as grounders (built once per domain), the objects each
+    parameter admits (per problem), its cost."""
 
-    __slots__ = ("pre_pos", "pre_neg", "add", "delete", "admits")
+    __slots__ = ("pre_pos", "pre_neg", "add", "delete", "admits", "fixed_cost", "fn_costs",
+                 "adl")
+    pre_pos: list[tuple[Grounder, bool]]
+    pre_neg: list[tuple[Grounder, bool]]
+    add: list[Grounder]
+    delete: list[Grounder]
+    fixed_cost: float
+    fn_costs: list[Grounder]
+    adl: Schema | None  # the schema, when it has ADL conditions or effects
 
     def __init__(self, domain: Domain, problem: Problem, schema: Schema) -> None:
-        self.pre_pos = [(_grounder(schema, lit), lit[0] == "=") for lit in schema.pre_pos]
-        self.pre_neg = [(_grounder(schema, lit), lit[0] == "=") for lit in schema.pre_neg]
-        self.add = [_grounder(schema, lit) for lit in schema.add]
-        self.delete = [_grounder(schema, lit) for lit in schema.delete]
+        shared = domain.compiled.get(schema.name)
+        if shared is None:
+            shared = domain.compiled[schema.name] = (
+                [(_grounder(schema, lit), lit[0] == "=") for lit in schema.pre_pos],
+                [(_grounder(schema, lit), lit[0] == "=") for lit in schema.pre_neg],
+                [_grounder(schema, lit) for lit in schema.add],
+                [_grounder(schema, lit) for lit in schema.delete],
+                sum(c for c in schema.cost if isinstance(c, float)),
+                [_grounder(schema, c) for c in schema.cost if not isinstance(c, float)])
+        self.pre_pos, self.pre_neg, self.add, self.delete, self.fixed_cost, self.fn_costs = \
+            shared
         self.admits = [frozenset(problem.of_type(domain, t)) for t in schema.types]
+        self.adl = schema if schema.pre_complex or schema.cond_effects else None
 
 
-def simulate(domain: Domain, problem: Problem, steps: list[Step]) -> dict[str, Any]:
-    """Run the plan; stop at the first failing step; explain it and any unmet goal."""
+def _cost(fast: _Compiled, binding: tuple[str, ...], values: dict[GroundAtom, float]
+          ) -> float | GroundAtom:
+    """The step's cost, or the function term that has no value."""
+    total = fast.fixed_cost
+    for g in fast.fn_costs:
+        term = g(binding)
+        value = values.get(term)
+        if value is None:
+            return term
+        total += value
+    return total
+
+
+def simulate(domain: Domain, problem: Problem, steps: list[Step], *,
+             all_errors: bool = False) -> dict[str, Any]:
+    """Run the plan; stop at the first failing step (or, with `all_errors`, skip it and
+    go on); explain the failures and any unmet goal."""
     state = set(problem.init)
     changed: Changed = {}
     out_steps: list[dict[str, Any]] = []
     violations: list[dict[str, Any]] = []
     schemas = domain.schemas
     compiled: dict[str, _Compiled] = {}
+    explainer = Explainer(domain, problem)
+    costs = bool(domain.functions) or any(s.cost for s in schemas.values())
+    total_cost = 0.0
+    values = problem.values
+    fast: _Compiled
     for index, step in enumerate(steps, start=1):
-        schema = schemas[step.name]
-        fast = compiled.get(step.name)
-        if fast is None:
-            fast = compiled[step.name] = _Compiled(domain, problem, schema)
-        binding = step.args
-        text = step.text()
-        action = {"action": step.name, "args": list(binding)}
-        failure = None
-        for arg, admits in zip(binding, fast.admits, strict=True):
-            if arg not in admits:
-                failure = _check_objects(domain, problem, schema, step)
-                break
-        unsatisfied: list[dict[str, Any]] = []
+        name, binding, _, failure = step
+        if not index & 4095:
+            checkpoint()  # the server's per-call budget and cancellation
+        if failure is not None:
+            text = name
+            action = {"action": name, "args": list(binding)}
+            unsatisfied: list[dict[str, Any]] = []
+        else:
+            got = compiled.get(name)
+            if got is None:
+                got = compiled[name] = _Compiled(domain, problem, schemas[name])
+            fast = got
+            text = "(" + " ".join((name, *binding)) + ")"
+            action = {"action": name, "args": list(binding)}
+            for arg, admits in zip(binding, fast.admits, strict=True):
+                if arg not in admits:
+                    failure = _check_objects(domain, problem, schemas[name], step)
+                    break
+            unsatisfied = []
         if failure is None:
-            holds = True
+            holds_all = True
             for g, eq in fast.pre_pos:
                 atom = g(binding)
                 if not (atom[1] == atom[2] if eq else atom in state):
-                    holds = False
+                    holds_all = False
                     break
-            if holds:
+            if holds_all:
                 for g, eq in fast.pre_neg:
                     atom = g(binding)
                     if atom[1] == atom[2] if eq else atom in state:
-                        holds = False
+                        holds_all = False
                         break
-            if holds:
+            if holds_all and fast.adl is not None:
+                adl = _adl_step(domain, problem, fast.adl, binding, state)
+                if adl is None:
+                    holds_all = False
+            if holds_all and costs:
+                cost = _cost(fast, binding, values)
+                if not isinstance(cost, float):
+                    failure = ("precondition_unsatisfied", f"{text} needs a value for "
+                               f"{show(cost)}, its cost, which the initial state does not give",
+                               f"add (= {show(cost)} N) to the problem's :init")
+                    holds_all = False
+                else:
+                    total_cost += cost
+            if holds_all:
                 dels = [g(binding) for g in fast.delete]
                 adds = [g(binding) for g in fast.add]
+                if fast.adl is not None and adl is not None:
+                    dels += adl[1]
+                    adds += adl[0]
                 if len(dels) < 2 and len(adds) < 2:
                     add_set: set[GroundAtom] | tuple[GroundAtom, ...] = tuple(adds)
                 else:
@@ -252,48 +239,60 @@ def simulate(domain: Domain, problem: Problem, steps: list[Step]) -> dict[str, A
                                   "edit": {"removed": [show(a) for a in removed],
                                            "added": [show(a) for a in added]}})
                 continue
-            for lit in schema.pre_pos:
-                atom = schema.ground(lit, binding)
-                if not _holds(atom, state):
-                    unsatisfied.append({"literal": _literal_text(atom, True), "expected": True,
-                                        **_history(atom, True, changed), "atom": atom})
-            for lit in schema.pre_neg:
-                atom = schema.ground(lit, binding)
-                if _holds(atom, state):
-                    unsatisfied.append({"literal": _literal_text(atom, False),
-                                        "expected": False, **_history(atom, False, changed),
-                                        "atom": atom})
+            if failure is None:
+                unsatisfied = _unsatisfied(schemas[name], binding, state, changed, domain,
+                                           problem)
         if failure is not None:
             constraint, message, suggestion = failure
         else:
-            for item in unsatisfied[:3]:
+            state_index = StateIndex(state)
+            for k, item in enumerate(unsatisfied):
+                if "atom" not in item:
+                    continue  # an ADL condition: explained by why_false already
                 atom = item.pop("atom")
-                item["achievers"] = achievers(domain, problem, state, atom, item["expected"])
-            for item in unsatisfied[3:]:
-                item.pop("atom")
+                item.update(history(atom, item["expected"], changed, state, state_index,
+                                    domain.static))
+                if k < 3 and len(violations) < MAX_EXPLAINED_FAILURES:
+                    item["achievers"] = explainer.achievers(state_index, atom,
+                                                            item["expected"])
             constraint = "precondition_unsatisfied"
             message = f"{text} needs " + "; ".join(
                 f"{u['literal']} ({u['explanation']})" for u in unsatisfied)
-            suggestion = _suggest(unsatisfied, "choose an action whose preconditions hold")
+            fixed = [u["literal"] for u in unsatisfied if u.get("fixed")]
+            suggestion = (f"choose other arguments: {', '.join(fixed)} is fixed by the problem"
+                          if fixed else _suggest(unsatisfied, "choose an action whose "
+                                                 "preconditions hold"))
         violation = {"ok": False, "step": index, "action": action, "constraint": constraint,
                      "message": message, "blocking": [], "suggestion": suggestion,
                      "unsatisfied": unsatisfied}
         violations.append(violation)
         out_steps.append({"step": index, "ok": False, "action": action, "text": text,
                           "violation": violation})
-        break
+        if not all_errors:
+            break
     unmet: list[dict[str, Any]] = []
+    final_index = StateIndex(state)
     for goals, expected in ((problem.goal_pos, True), (problem.goal_neg, False)):
         for atom in goals:
-            if _holds(atom, state) != expected:
-                goal: dict[str, Any] = {"literal": _literal_text(atom, expected),
-                                        "expected": expected, **_history(atom, expected, changed)}
+            if holds(atom, state) != expected:
+                goal: dict[str, Any] = {"literal": literal_text(atom, expected),
+                                        "expected": expected,
+                                        **history(atom, expected, changed, state, final_index,
+                                                domain.static)}
                 if len(unmet) < MAX_EXPLAINED_GOALS:
-                    goal["achievers"] = achievers(domain, problem, state, atom, expected)
+                    goal["achievers"] = explainer.achievers(final_index, atom, expected)
                 unmet.append(goal)
+    if problem.goal_complex:
+        ev = Evaluator(domain, problem, state)
+        for f in problem.goal_complex:
+            slots: list[str | None] = [None] * len(problem.goal_slots)
+            if not ev.holds(f, slots):
+                unmet.append({"literal": formula_text(f, slots, problem.goal_slots),
+                              "expected": True, "last_changed": None,
+                              "explanation": ev.why_false(f, slots, problem.goal_slots)})
     plan_valid = not violations
     missing = [u["literal"] for u in unmet]
-    return {
+    report: dict[str, Any] = {
         "engine": "strips", "valid": plan_valid and not unmet, "plan_valid": plan_valid,
         "goal_reached": not unmet, "steps": out_steps, "violations": violations,
         "not_checked": len(steps) - len(out_steps), "done": False,
@@ -302,17 +301,72 @@ def simulate(domain: Domain, problem: Problem, steps: list[Step]) -> dict[str, A
         "unmet_goals": unmet,
         "final_state": sorted(show(a) for a in state),
     }
+    if all_errors:
+        report["after_failure"] = SKIPPED
+    if costs:
+        report["total_cost"] = int(total_cost) if total_cost == int(total_cost) else total_cost
+    return report
 
 
-def validate_strips_dict(domain_text: str, problem_text: str, plan_text: str
-                         ) -> dict[str, Any]:
-    """Domain + problem + plan text -> the JSON-ready report (bad input raises a
-    VeriGraphError naming the requirement, name or plan line at fault)."""
+def _slots(schema: Schema, binding: tuple[str, ...]) -> list[str | None]:
+    return [*binding, *([None] * (len(schema.slot_names) - len(binding)))]
+
+
+def _adl_step(domain: Domain, problem: Problem, schema: Schema, binding: tuple[str, ...],
+              state: set[GroundAtom]) -> tuple[list[GroundAtom], list[GroundAtom]] | None:
+    """None when an ADL precondition is false; else the conditional effects' (adds,
+    deletes), every condition evaluated in the state before the step (PDDL's rule)."""
+    ev = Evaluator(domain, problem, state)
+    slots = _slots(schema, binding)
+    if not all(ev.holds(f, slots) for f in schema.pre_complex):
+        return None
+    adds: list[GroundAtom] = []
+    dels: list[GroundAtom] = []
+    for effect in schema.cond_effects:
+        combos = ev.bindings(effect.variables) if effect.variables else [()]
+        for objs in combos:
+            for (slot, _, _), obj in zip(effect.variables, objs, strict=True):
+                slots[slot] = obj
+            if effect.condition is None or ev.holds(effect.condition, slots):
+                adds += [_atom(lit, slots) for lit in effect.add]
+                dels += [_atom(lit, slots) for lit in effect.delete]
+    return adds, dels
+
+
+def _unsatisfied(schema: Schema, binding: tuple[str, ...], state: set[GroundAtom],
+                 changed: Changed, domain: Domain, problem: Problem) -> list[dict[str, Any]]:
+    out: list[dict[str, Any]] = []
+    if schema.pre_complex:
+        ev = Evaluator(domain, problem, state)
+        slots = _slots(schema, binding)
+        for f in schema.pre_complex:
+            if not ev.holds(f, slots):
+                out.append({"literal": formula_text(f, slots, schema.slot_names),
+                            "expected": True,
+                            "last_changed": None,
+                            "explanation": ev.why_false(f, slots, schema.slot_names)})
+    for lit in schema.pre_pos:
+        atom = schema.ground(lit, binding)
+        if not holds(atom, state):
+            out.append({"literal": literal_text(atom, True), "expected": True, "atom": atom})
+    for lit in schema.pre_neg:
+        atom = schema.ground(lit, binding)
+        if holds(atom, state):
+            out.append({"literal": literal_text(atom, False), "expected": False, "atom": atom})
+    return out
+
+
+def validate_strips_dict(domain_text: str, problem_text: str, plan_text: str, *,
+                         all_errors: bool = False) -> dict[str, Any]:
+    """Domain + problem + plan text -> the JSON-ready report (a domain or problem that
+    cannot be read raises a VeriGraphError naming the requirement or name at fault; a plan
+    line that is no action of the domain is a failing step)."""
     lines = plan_text.count("\n") + 1
     with collector_paused(lines):
         domain = cached_strips_domain(domain_text)
         problem = read_problem(problem_text, domain)
-        report = simulate(domain, problem, parse_strips_plan(plan_text, domain))
+        report = simulate(domain, problem, parse_strips_plan(plan_text, domain),
+                          all_errors=all_errors)
         if lines >= LARGE_GRAPH_ITEMS and gc.get_freeze_count() == 0:
             promote_young_objects()  # see there: the report is acyclic
     return report

@@ -26,14 +26,29 @@ def _edit_text(edit: dict[str, Any]) -> str:
                      + [f"+{one(e)}" for e in edit.get("added", [])])
 
 
-def _achiever_text(item: dict[str, Any]) -> str:
+def achiever_text(item: dict[str, Any]) -> str:
+    """The achievers of an unsatisfied literal or unmet goal, as every surface shows them
+    (CLI text, `--batch` readers, the MCP tool): each with its grounding applicable now,
+    or its closest grounding and what that still needs, in the engine's order."""
     achievers = item.get("achievers") or []
-    if not achievers:
-        return ""
-    first = achievers[0]
-    if first["applicable_now"]:
-        return f"; achieved by {first['action']}, applicable now as {first['applicable_now']}"
-    return f"; achieved by {', '.join(a['action'] for a in achievers)}"
+    parts = []
+    for a in achievers:
+        if a.get("applicable_now"):
+            parts.append(f"{a['applicable_now']} (applicable now)")
+        elif a.get("closest"):
+            parts.append(f"{a['closest']} (needs {' and '.join(a['needs'][:3])})")
+        else:
+            parts.append(a["action"])
+    return "achieved by " + ", ".join(parts) if parts else ""
+
+
+def _achiever_text(item: dict[str, Any]) -> str:
+    text = achiever_text(item)
+    return f"; {text}" if text else ""
+
+
+AFTER_FAILURE = ("later steps are checked from the state before each failing step (the "
+                 "failing step is skipped)")
 
 
 def report_text(data: dict[str, Any]) -> str:
@@ -51,7 +66,10 @@ def report_text(data: dict[str, Any]) -> str:
             lines.append(f"{'':>10}unsatisfied {u['literal']}: {u['explanation']}"
                          + _achiever_text(u))
     if data["not_checked"]:
-        lines.append(f"      ... {data['not_checked']} later action(s) not checked")
+        lines.append(f"      ... {data['not_checked']} later action(s) not checked: it "
+                     "stopped at the first failing step")
+    elif data.get("after_failure") and data["violations"]:
+        lines.append(f"      (all errors: {AFTER_FAILURE})")
     diff = data.get("goal_diff")
     if diff is not None:
         if diff["satisfied"]:
@@ -65,6 +83,8 @@ def report_text(data: dict[str, Any]) -> str:
         reason.append(f"{len(data['violations'])} violation(s)")
     if data.get("goal_reached") is False:
         reason.append("goal not reached")
+    if "total_cost" in data:
+        reason.append(f"total cost {data['total_cost']} (the applied steps' action costs)")
     lines.append(f"{'VALID' if data['valid'] else 'INVALID'}: {len(data['steps'])} step(s) "
                  "checked" + (f", {', '.join(reason)}" if reason else ""))
     return "\n".join(lines)

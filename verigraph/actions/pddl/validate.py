@@ -1,47 +1,107 @@
 """One entry point for PDDL plans: the native blocks world when the domain is one, else STRIPS.
 
-`validate_pddl_dict` tries the blocks-world recogniser first (any names: recognition is
-by structure) because its hand model is several times faster; a domain or problem it
-refuses (another domain, or a blocks-world problem whose initial state no scene can
-hold) goes to the general STRIPS simulator, which judges it by PDDL's own semantics.
-An invalid blocks-world plan is then also explained by the STRIPS simulator, so both
-engines report the same fields: the unsatisfied preconditions with the step that last
-made each false, and the actions that would achieve an unmet goal. The report says
-which engine judged it (`engine`).
+Every domain is first read by the STRIPS reader (cached per text), which refuses by name
+anything it cannot read or judge (a misspelt keyword, an unsupported requirement, an
+undeclared name), whichever engine then judges the plan, so no engine can skip a part of
+a domain silently. `validate_pddl_dict` then tries the blocks-world recogniser (any
+names: recognition is by structure) because its hand model is several times faster; a
+domain or problem it refuses (another domain, or a blocks-world problem whose initial
+state no scene can hold) goes to the general STRIPS simulator, which judges it by PDDL's
+own semantics. An invalid blocks-world plan is then also explained by the STRIPS
+simulator, so both engines report the same fields: the unsatisfied preconditions with the
+step that last made each false, and the actions that would achieve an unmet goal. A
+blocks-world plan with a line that is no action of the domain, and any invalid plan
+checked with `all_errors=True`, is judged by the STRIPS simulator (each line of PlanBench
+text read as the blocks world reads it), which makes such lines failing steps and goes on
+after a failure. The report says which engine judged it (`engine`).
 """
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from verigraph.actions.blocksworld.domain import UnsupportedDomainError
 from verigraph.actions.blocksworld.plans import parse_blocks_plan
 from verigraph.actions.blocksworld.problem import read_problem
+from verigraph.actions.blocksworld.sexpr import _COMMENT
 from verigraph.actions.blocksworld.validate import cached_domain, validate_blocks_dict
-from verigraph.actions.pddl.simulate import validate_strips_dict
-from verigraph.errors import VeriGraphError
+from verigraph.actions.pddl.reader import PROBLEM_SECTIONS, SUPPORTED_REQUIREMENTS
+from verigraph.actions.pddl.reader import read_problem as read_strips_problem
+from verigraph.actions.pddl.simulate import cached_strips_domain, validate_strips_dict
+from verigraph.errors import PlanParseError, VeriGraphError
 
 ENGINES = ("auto", "blocksworld", "strips")
+_SECTION = re.compile(r"\(\s*(:[^\s()]+)")
+_REQUIREMENTS = re.compile(r"\(\s*:requirements\b([^()]*)\)")
+_STRAY = re.compile(r"\)\s*[^\s()]+\s*\(")  # a bare word between two lists
+
+
+def _check_problem(problem_text: str, domain_text: str) -> None:
+    """What the blocks-world reader would pass over (an unknown section, a requirement
+    that is no supported keyword, a stray word between sections) is refused by the STRIPS
+    reader, by name. A few regex scans; the full read runs only when one finds something."""
+    text = _COMMENT.sub("", problem_text) if ";" in problem_text else problem_text
+    text = text.lower()
+    suspicious = any(k not in PROBLEM_SECTIONS for k in _SECTION.findall(text)) \
+        or _STRAY.search(text) is not None
+    if not suspicious and ":requirements" in text:
+        found = _REQUIREMENTS.findall(text)
+        suspicious = not found or any(r not in SUPPORTED_REQUIREMENTS
+                                      for items in found for r in items.split())
+    if suspicious:
+        read_strips_problem(problem_text, cached_strips_domain(domain_text))
 
 
 def validate_pddl_dict(domain_text: str, problem_text: str, plan_text: str, *,
-                       engine: str = "auto") -> dict[str, Any]:
+                       engine: str = "auto", all_errors: bool = False) -> dict[str, Any]:
     """The JSON-ready report for any supported PDDL domain (see the module docstring)."""
     if engine not in ENGINES:
         raise VeriGraphError(f"unknown engine '{engine}'", field="engine", value=engine,
                              fix=f"use one of {', '.join(ENGINES)}")
+    cached_strips_domain(domain_text)  # refuses what no engine may skip (module docstring)
     if engine != "strips":
+        _check_problem(problem_text, domain_text)
         try:
             data = validate_blocks_dict(domain_text, problem_text, plan_text)
         except UnsupportedDomainError:
             if engine == "blocksworld":
                 raise
+        except PlanParseError as exc:
+            if "ASCII" in exc.message:
+                raise
+            return validate_strips_dict(domain_text, problem_text,
+                                        _canonical(domain_text, problem_text, plan_text),
+                                        all_errors=all_errors)
+        except VeriGraphError:  # PDDL the recogniser does not take (either types, ...)
+            if engine == "blocksworld":
+                raise
         else:
             data = {"engine": "blocksworld", **data}
             if not data["valid"]:
+                if all_errors and data["violations"]:
+                    return validate_strips_dict(
+                        domain_text, problem_text,
+                        _canonical(domain_text, problem_text, plan_text), all_errors=True)
                 _explain(data, domain_text, problem_text, plan_text)
             return data
-    return validate_strips_dict(domain_text, problem_text, plan_text)
+    return validate_strips_dict(domain_text, problem_text, plan_text, all_errors=all_errors)
+
+
+def _canonical(domain_text: str, problem_text: str, plan_text: str) -> str:
+    """The plan with each line the blocks world can read as `(op args)`, the others as
+    written (the STRIPS reader makes them failing steps); one output line per input line."""
+    domain = cached_domain(domain_text)
+    declared = set(read_problem(problem_text, domain).blocks)
+    out = []
+    for line in plan_text.splitlines():
+        try:
+            steps = parse_blocks_plan(line, domain, declared)
+        except PlanParseError:
+            out.append(line)
+            continue
+        out.append(steps[0].text if steps else line)
+    return "\n".join(out)
 
 
 def _explain(data: dict[str, Any], domain_text: str, problem_text: str, plan_text: str) -> None:

@@ -1,0 +1,408 @@
+"""Why a literal does not hold, and which actions would make it hold: bounded searches.
+
+`history` says which step last changed an atom (or that it never held) and, for an atom
+that is false, what holds instead (`(at a0 l0-0)`, true since the start, for a wanted
+`(at a0 l1-0)`): the atoms of the same predicate that share its first argument (or, failing
+that, another argument).
+
+`Explainer.achievers` lists the actions whose effects would give an atom the wanted value.
+Each is lifted from the atom (`(unload-truck p0 ?truck ap)`) and then grounded by a
+search for its *closest* binding: the one with the fewest unsatisfied preconditions, zero
+meaning applicable now. The search joins the action's preconditions with the atoms that
+hold (an index by predicate, argument position and object), so it is bounded by the state
+the plan reached and the atom being explained, not by the number of groundings:
+
+- preconditions on static predicates (no action changes them), equalities and types are
+  hard: an achiever none of whose bindings satisfies them can never apply and is not
+  listed (a truck that is a package, a road that does not exist);
+- the others cost one each when unsatisfied, so the grounding shown says what is still
+  needed (`needs (at ?truck ap)`) and the list is ordered by that count: applicable now
+  first, then the ones the plan is closest to reaching;
+- an ADL precondition (or, forall, ...) is checked once a binding is complete and counts
+  one when false; achievers come from unconditional effects only (an effect under `when`
+  or `forall` is not searched);
+- every search is bounded: `ACHIEVER_NODES` candidate bindings per achiever and
+  `REPORT_NODES` per report (an achiever whose search ran out is listed as unsearched,
+  after the others), and it checks the call's budget (`verigraph.budget`) as it goes, so
+  a server can stop it. Explaining 20 unmet goals of a domain of 10 six-parameter actions
+  over 40 objects takes a few milliseconds, and no search takes more than about 50 ms.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from verigraph.actions.pddl.formulas import Evaluator
+from verigraph.actions.pddl.formulas import text as formula_text
+from verigraph.actions.pddl.model import Domain, GroundAtom, Literal, Problem, Schema, show
+from verigraph.budget import checkpoint
+
+Changed = dict[GroundAtom, tuple[int, str]]  # atom -> (step, action) that last changed it
+ACHIEVER_NODES = 1_000
+REPORT_NODES = 8_000
+MAX_ACHIEVERS = 4
+MAX_INSTEAD = 2
+
+
+def literal_text(atom: GroundAtom, expected: bool) -> str:
+    return show(atom) if expected else f"(not {show(atom)})"
+
+
+def holds(atom: GroundAtom, state: set[GroundAtom]) -> bool:
+    if atom[0] == "=":
+        return atom[1] == atom[2]
+    return atom in state
+
+
+def _since(atom: GroundAtom, changed: Changed) -> str:
+    last = changed.get(atom)
+    return "true since the start" if last is None else \
+        f"made true at step {last[0]} by {last[1]}"
+
+
+def instead(atom: GroundAtom, state: set[GroundAtom], index: StateIndex | None = None
+            ) -> list[GroundAtom]:
+    """Atoms that hold in place of a false `atom`: same predicate, sharing its first
+    argument (else any other argument at the same position)."""
+    if atom[0] == "=" or len(atom) < 2:
+        return []
+    index = index or StateIndex(state)
+    for position in range(1, len(atom)):
+        found = [a for a in index.matching(atom[0], position, atom[position]) if a != atom]
+        if found:
+            return sorted(found)[:MAX_INSTEAD]
+    return []
+
+
+def history(atom: GroundAtom, expected: bool, changed: Changed, state: set[GroundAtom],
+            index: StateIndex | None = None, static: frozenset[str] = frozenset()
+            ) -> dict[str, Any]:
+    """Why `atom` does not have the value `expected`: the step that last changed it, and
+    for a false atom what holds instead; a fact of a predicate no action changes is said
+    to be fixed (no step can change it)."""
+    if atom[0] == "=":
+        same = "the same object" if atom[1] == atom[2] else "different objects"
+        return {"last_changed": None, "explanation": f"{atom[1]} and {atom[2]} are {same}"}
+    last = changed.get(atom)
+    if last is not None:
+        made = "false" if expected else "true"
+        text = f"made {made} at step {last[0]} by {last[1]}"
+        out: dict[str, Any] = {"last_changed": {"step": last[0], "action": last[1]}}
+    elif atom[0] in static:
+        fixed = "false" if expected else "true"
+        return {"last_changed": None, "fixed": True,
+                "explanation": f"{fixed} in the initial state and no action changes "
+                               f"{atom[0]}"}
+    elif expected:
+        text, out = "never true", {"last_changed": None}
+    else:
+        return {"last_changed": None, "explanation": "true in the initial state, never made "
+                                                     "false"}
+    if expected:
+        others = instead(atom, state, index)
+        if others:
+            out["instead"] = [{"literal": show(a), "since": _since(a, changed)} for a in others]
+            text += "; instead " + ", ".join(f"{show(a)} holds ({_since(a, changed)})"
+                                             for a in others)
+    out["explanation"] = text
+    return out
+
+
+class StateIndex:
+    """The atoms of one state by predicate, and by (predicate, position, object)."""
+
+    __slots__ = ("state", "by_pred", "by_arg", "sorted")
+
+    def __init__(self, state: set[GroundAtom]) -> None:
+        self.state = state
+        self.by_pred: dict[str, list[GroundAtom]] | None = None
+        self.by_arg: dict[tuple[str, int, str], list[GroundAtom]] = {}
+
+    def of(self, pred: str) -> list[GroundAtom]:
+        """The atoms of `pred`, sorted (the same explanation in every process)."""
+        if self.by_pred is None:
+            by_pred: dict[str, list[GroundAtom]] = {}
+            for atom in self.state:
+                by_pred.setdefault(atom[0], []).append(atom)
+            self.by_pred = by_pred
+            self.sorted: set[str] = set()
+        found = self.by_pred.get(pred, [])
+        if pred not in self.sorted:
+            found.sort()
+            self.sorted.add(pred)
+        return found
+
+    def matching(self, pred: str, position: int, obj: str) -> list[GroundAtom]:
+        key = (pred, position, obj)
+        found = self.by_arg.get(key)
+        if found is None:
+            found = [a for a in self.of(pred) if len(a) > position and a[position] == obj]
+            self.by_arg[key] = found
+        return found
+
+
+class _Search:
+    """The closest binding of one schema extending a partial binding (module docstring)."""
+
+    def __init__(self, explainer: Explainer, schema: Schema, binding: list[str | None],
+                 index: StateIndex, exact: bool) -> None:
+        self.e = explainer
+        self.schema = schema
+        self.values = list(binding)
+        self.index = index
+        self.exact = exact  # cost 0 only (applicable now), no skipped literal
+        static = explainer.domain.static
+        lits = [(lit, True) for lit in schema.pre_pos] + [(lit, False) for lit in schema.pre_neg]
+        self.literals = [(lit, expected, lit[0] == "=" or lit[0] in static)
+                         for lit, expected in lits]
+        # positive literals drive the join: static ones (hard) first
+        self.joins = sorted([k for k, (_, expected, _) in enumerate(self.literals) if expected
+                             and self.literals[k][0][0] != "="],
+                            key=lambda k: not self.literals[k][2])
+        self.best: tuple[int, tuple[str, ...], list[int]] | None = None
+        self.nodes = ACHIEVER_NODES
+        self.exhausted = False
+
+    def _ground(self, lit: Literal) -> GroundAtom | None:
+        pred, terms = lit
+        out = [pred]
+        for t in terms:
+            if isinstance(t, int):
+                v = self.values[t]
+                if v is None:
+                    return None
+                out.append(v)
+            else:
+                out.append(t)
+        return tuple(out)
+
+    def _score(self, decided: list[bool]) -> tuple[int, list[int]] | None:
+        """Cost of the literals decidable now (None: a hard literal fails)."""
+        cost, failed = 0, []
+        for k, (lit, expected, hard) in enumerate(self.literals):
+            if decided[k]:
+                continue
+            atom = self._ground(lit)
+            if atom is None:
+                continue
+            if holds(atom, self.index.state) != expected:
+                if hard or self.exact:
+                    return None
+                cost += 1
+                failed.append(k)
+            decided[k] = True
+        return cost, failed
+
+    def _tick(self) -> bool:
+        self.nodes -= 1
+        self.e.nodes -= 1
+        if self.nodes & 63 == 0:
+            checkpoint()
+        if self.nodes < 0 or self.e.nodes < 0:
+            self.exhausted = True
+            return False
+        return True
+
+    def run(self) -> None:
+        decided = [False] * len(self.literals)
+        scored = self._score(decided)
+        if scored is None:
+            return
+        cost, failed = scored
+        for k, (lit, expected, hard) in enumerate(self.literals):
+            if decided[k] or not expected or lit[0] == "=" or self._matches(lit):
+                continue
+            if hard or self.exact:  # no atom that holds can match it: no grounding can
+                return
+            decided[k] = True  # unsatisfied whatever the binding: counted once, not searched
+            cost += 1
+            failed = [*failed, k]
+        self._step(0, decided, cost, failed)
+
+    def _matches(self, lit: Literal) -> bool:
+        """Some atom that holds fits the literal's bound terms."""
+        pred, terms = lit
+        bound = [(pos, self.values[t] if isinstance(t, int) else t)
+                 for pos, t in enumerate(terms, start=1)
+                 if not isinstance(t, int) or self.values[t] is not None]
+        candidates = self.index.matching(pred, bound[0][0], str(bound[0][1])) if bound \
+            else self.index.of(pred)
+        return any(all(atom[pos] == value for pos, value in bound) for atom in candidates)
+
+    def _done(self) -> bool:
+        return self.exhausted or (self.best is not None and self.best[0] == 0)
+
+    def _step(self, j: int, decided: list[bool], cost: int, failed: list[int]) -> None:
+        if self._done() or (self.best is not None and cost >= self.best[0]):
+            return
+        while j < len(self.joins) and decided[self.joins[j]]:
+            j += 1
+        if j < len(self.joins):
+            k = self.joins[j]
+            lit, _, hard = self.literals[k]
+            self._join(j, k, lit, decided, cost, failed)
+            if not hard and not self.exact and not self._done():  # or leave it unsatisfied
+                skipped = list(decided)
+                skipped[k] = True
+                self._step(j + 1, skipped, cost + 1, [*failed, k])
+            return
+        free = [i for i, v in enumerate(self.values) if v is None]
+        if free:
+            self._enumerate(free[0], decided, cost, failed, j)
+            return
+        if self.schema.pre_complex:  # ADL conjuncts, once the binding is complete
+            ev = Evaluator(self.e.domain, self.e.problem, self.index.state)
+            slots = [*self.values, *([None] * (len(self.schema.slot_names) - len(self.values)))]
+            extra = [len(self.literals) + k for k, f in enumerate(self.schema.pre_complex)
+                     if not ev.holds(f, slots)]
+            if extra and self.exact:
+                return
+            cost, failed = cost + len(extra), failed + extra
+            if self.best is not None and cost >= self.best[0]:
+                return
+        self.best = (cost, tuple(str(v) for v in self.values), failed)
+
+    def _join(self, j: int, k: int, lit: Literal, decided: list[bool], cost: int,
+              failed: list[int]) -> None:
+        pred, terms = lit
+        bound = [(pos, self.values[t] if isinstance(t, int) else t)
+                 for pos, t in enumerate(terms, start=1)
+                 if not isinstance(t, int) or self.values[t] is not None]
+        candidates = self.index.matching(pred, bound[0][0], str(bound[0][1])) if bound \
+            else self.index.of(pred)
+        admits = self.e.admits(self.schema)
+        for atom in candidates:
+            if not self._tick():
+                return
+            if any(atom[pos] != value for pos, value in bound):
+                continue
+            saved = list(self.values)
+            ok = True
+            for pos, t in enumerate(terms, start=1):
+                if isinstance(t, int):
+                    v = self.values[t]
+                    if v is None:
+                        if atom[pos] not in admits[t]:
+                            ok = False
+                            break
+                        self.values[t] = atom[pos]
+                    elif v != atom[pos]:
+                        ok = False
+                        break
+            if ok:
+                now = list(decided)
+                scored = self._score(now)
+                if scored is not None:
+                    self._step(j + 1, now, cost + scored[0], failed + scored[1])
+            self.values = saved
+            if self._done():
+                return
+
+    def _enumerate(self, i: int, decided: list[bool], cost: int, failed: list[int],
+                   j: int) -> None:
+        for obj in self.e.problem.of_type(self.e.domain, self.schema.types[i]):
+            if not self._tick():
+                return
+            self.values[i] = obj
+            now = list(decided)
+            scored = self._score(now)
+            if scored is not None:
+                self._step(j, now, cost + scored[0], failed + scored[1])
+            if self._done():
+                break
+        self.values[i] = None
+
+
+class Explainer:
+    """Achiever searches for one report: shared node budget, results cached."""
+
+    def __init__(self, domain: Domain, problem: Problem) -> None:
+        self.domain = domain
+        self.problem = problem
+        self.nodes = REPORT_NODES
+        self._admits: dict[str, list[frozenset[str]]] = {}
+        self._cache: dict[tuple[Any, ...], dict[str, Any] | None] = {}
+
+    def admits(self, schema: Schema) -> list[frozenset[str]]:
+        found = self._admits.get(schema.name)
+        if found is None:
+            found = [frozenset(self.problem.of_type(self.domain, t)) for t in schema.types]
+            self._admits[schema.name] = found
+        return found
+
+    def closest(self, schema: Schema, binding: list[str | None], index: StateIndex,
+                exact: bool = False) -> tuple[int, tuple[str, ...], list[int]] | None | str:
+        """(cost, grounding, unsatisfied literal positions), None when no grounding can
+        satisfy the hard preconditions, "unsearched" when the budget ran out first."""
+        search = _Search(self, schema, binding, index, exact)
+        search.run()
+        if search.best is not None:
+            return search.best
+        return "unsearched" if search.exhausted else None
+
+    def achievers(self, index: StateIndex, atom: GroundAtom, make_true: bool
+                  ) -> list[dict[str, Any]]:
+        """Actions whose effects would give `atom` the value `make_true` (docstring)."""
+        if atom[0] == "=":
+            return []
+        domain, objects = self.domain, self.problem.objects
+        found: list[tuple[tuple[int, int], dict[str, Any]]] = []
+        for order, schema in enumerate(domain.schemas.values()):
+            for pred, terms in (schema.add if make_true else schema.delete):
+                if pred != atom[0]:
+                    continue
+                binding: list[str | None] = [None] * len(schema.params)
+                ok = True
+                for term, value in zip(terms, atom[1:], strict=True):
+                    if isinstance(term, int):
+                        ok = ok and binding[term] in (None, value) and domain.is_a(
+                            objects[value], schema.types[term])
+                        binding[term] = value
+                    else:
+                        ok = ok and term == value
+                if not ok:
+                    continue
+                key = (schema.name, tuple(binding), index)  # holds the index: no id reuse
+                if key in self._cache:
+                    item = self._cache[key]
+                else:
+                    item = self._achiever(schema, binding, index)
+                    self._cache[key] = item
+                if item is not None and all(i["action"] != item["action"] for _, i in found):
+                    rank = len(item["needs"]) if item["searched"] else 1_000
+                    found.append(((rank, order), item))
+        found.sort(key=lambda pair: pair[0])
+        return [item for _, item in found[:MAX_ACHIEVERS]]
+
+    def _achiever(self, schema: Schema, binding: list[str | None], index: StateIndex
+                  ) -> dict[str, Any] | None:
+        lifted = "(" + " ".join((schema.name, *(b or schema.params[i]
+                                                for i, b in enumerate(binding)))) + ")"
+        result = self.closest(schema, binding, index)
+        if result is None:
+            return None  # can never apply: a static precondition, an equality or a type
+        item: dict[str, Any] = {"action": lifted, "applicable_now": None, "closest": None,
+                                "needs": [], "searched": result != "unsearched"}
+        if isinstance(result, tuple):
+            cost, ground, failed = result
+            text = "(" + " ".join((schema.name, *ground)) + ")"
+            if cost == 0:
+                item["applicable_now"] = text
+            else:
+                literals = [(lit, True) for lit in schema.pre_pos] + \
+                    [(lit, False) for lit in schema.pre_neg]
+                item["closest"] = text
+                slots = [*ground, *([None] * (len(schema.slot_names) - len(ground)))]
+                item["needs"] = [literal_text(schema.ground(literals[k][0], ground),
+                                              literals[k][1]) if k < len(literals) else
+                                 formula_text(schema.pre_complex[k - len(literals)], slots,
+                                              schema.slot_names) for k in sorted(failed)]
+        return item
+
+
+def complete_binding(domain: Domain, problem: Problem, schema: Schema, binding: list[str | None],
+                     state: set[GroundAtom]) -> tuple[str, ...] | None:
+    """A full binding extending `binding` whose preconditions hold in `state`, or None
+    (bounded as above)."""
+    result = Explainer(domain, problem).closest(schema, binding, StateIndex(state), exact=True)
+    return result[1] if isinstance(result, tuple) else None

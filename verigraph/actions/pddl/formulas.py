@@ -1,0 +1,140 @@
+"""ADL conditions as plain tuples: evaluation, the reason one is false, and its text.
+
+A formula is one of
+    ("atom", (pred, terms))          terms: int (a variable slot) or str (an object)
+    ("not", f)   ("and", [f, ...])   ("or", [f, ...])   ("imply", f, g)
+    ("exists", vars, f)   ("forall", vars, f)      vars: [(slot, name, type), ...]
+evaluated over a binding list whose slots are an action's parameters followed by every
+variable its quantifiers introduce (each quantifier has slots of its own). Quantifiers
+range over the problem's objects of the variable's type (constants included), as in
+PDDL; one evaluation may try at most `MAX_QUANTIFIED` bindings (a VeriGraphError beyond:
+a quantifier over a product of large types is refused, never judged half-way).
+"""
+
+from __future__ import annotations
+
+from itertools import product
+from typing import Any
+
+from verigraph.actions.pddl.model import Domain, GroundAtom, Problem
+from verigraph.budget import checkpoint
+from verigraph.errors import VeriGraphError
+
+Formula = tuple[Any, ...]
+MAX_QUANTIFIED = 1_000_000
+
+
+class QuantifierLimitError(VeriGraphError):
+    """A quantifier ranges over more bindings than one check may try."""
+
+
+def _atom(lit: tuple[str, tuple[Any, ...]], binding: list[str | None]) -> GroundAtom:
+    pred, terms = lit
+    return (pred, *(str(binding[t]) if isinstance(t, int) else t for t in terms))
+
+
+def _holds(atom: GroundAtom, state: set[GroundAtom]) -> bool:
+    return atom[1] == atom[2] if atom[0] == "=" else atom in state
+
+
+class Evaluator:
+    """Evaluates formulas in one state for one problem, counting quantified bindings."""
+
+    def __init__(self, domain: Domain, problem: Problem, state: set[GroundAtom]) -> None:
+        self.domain = domain
+        self.problem = problem
+        self.state = state
+        self.tried = 0
+
+    def bindings(self, variables: list[tuple[int, str, str]]) -> Any:
+        lists = [self.problem.of_type(self.domain, kind) for _, _, kind in variables]
+        total = 1
+        for objs in lists:
+            total *= len(objs)
+        self.tried += total
+        if self.tried > MAX_QUANTIFIED:
+            names = " ".join(name for _, name, _ in variables)
+            raise QuantifierLimitError(
+                f"a quantifier over {names} ranges over more than {MAX_QUANTIFIED:,} "
+                "bindings in one check", field="domain", value=names,
+                fix="quantify over smaller types, or compile the quantifier away")
+        return product(*lists)
+
+    def holds(self, f: Formula, binding: list[str | None]) -> bool:
+        kind = f[0]
+        if kind == "atom":
+            return _holds(_atom(f[1], binding), self.state)
+        if kind == "not":
+            return not self.holds(f[1], binding)
+        if kind == "and":
+            return all(self.holds(g, binding) for g in f[1])
+        if kind == "or":
+            return any(self.holds(g, binding) for g in f[1])
+        if kind == "imply":
+            return not self.holds(f[1], binding) or self.holds(f[2], binding)
+        want = kind == "forall"
+        for n, objs in enumerate(self.bindings(f[1])):
+            if not n & 1023:
+                checkpoint()
+            for (slot, _, _), obj in zip(f[1], objs, strict=True):
+                binding[slot] = obj
+            if self.holds(f[2], binding) != want:
+                return not want
+        return want
+
+    def why_false(self, f: Formula, binding: list[str | None], names: list[str],
+                  depth: int = 0) -> str:
+        """A short reason `f` is false under `binding` (the first counterexample)."""
+        kind = f[0]
+        if kind == "atom":
+            return f"{text(f, binding, names)} is false"
+        if kind == "not":
+            return f"{text(f[1], binding, names)} holds"
+        if kind == "and":
+            for g in f[1]:
+                if not self.holds(g, binding):
+                    return self.why_false(g, binding, names, depth + 1)
+        if kind == "or":
+            return "none of " + ", ".join(text(g, binding, names) for g in f[1][:4]) + " holds"
+        if kind == "imply":
+            return (f"{text(f[1], binding, names)} holds but "
+                    + self.why_false(f[2], binding, names, depth + 1))
+        if kind == "exists":
+            return "no " + ", ".join(f"{n} - {t}" for _, n, t in f[1]) + " makes " \
+                + text(f[2], binding, names) + " true"
+        if kind == "forall":
+            for objs in self.bindings(f[1]):
+                for (slot, _, _), obj in zip(f[1], objs, strict=True):
+                    binding[slot] = obj
+                if not self.holds(f[2], binding):
+                    where = ", ".join(f"{n} = {o}" for (_, n, _), o in zip(f[1], objs,
+                                                                              strict=True))
+                    reason = self.why_false(f[2], binding, names, depth + 1) if depth < 3 \
+                        else "false"
+                    for slot, _, _ in f[1]:
+                        binding[slot] = None
+                    return f"for {where}: {reason}"
+        return "false"
+
+
+def text(f: Formula, binding: list[str | None], names: list[str]) -> str:
+    """The formula in PDDL, bound slots written as their objects."""
+    kind = f[0]
+    if kind == "atom":
+        pred, terms = f[1]
+        shown = [(binding[t] or names[t]) if isinstance(t, int) else t for t in terms]
+        return "(" + " ".join((pred, *shown)) + ")"
+    if kind == "not":
+        return f"(not {text(f[1], binding, names)})"
+    if kind in ("and", "or"):
+        return "(" + " ".join((kind, *(text(g, binding, names) for g in f[1]))) + ")"
+    if kind == "imply":
+        return f"(imply {text(f[1], binding, names)} {text(f[2], binding, names)})"
+    saved = [binding[slot] for slot, _, _ in f[1]]
+    for slot, _, _ in f[1]:
+        binding[slot] = None
+    head = " ".join(f"{n} - {t}" for _, n, t in f[1])
+    out = f"({kind} ({head}) {text(f[2], binding, names)})"
+    for (slot, _, _), value in zip(f[1], saved, strict=True):
+        binding[slot] = value
+    return out
