@@ -52,7 +52,7 @@ from verigraph.graph.io import scene_from_json  # noqa: E402
 
 
 def children_checking(pid: int) -> list[int]:
-    """The server's children that check large bodies (verigraph.server.argument_process)."""
+    """The server's children that check large bodies (verigraph.server.http.argument_process)."""
     children = Path(f"/proc/{pid}/task/{pid}/children").read_text().split()
     return [int(c) for c in children if b"spawn_main" in Path(f"/proc/{c}/cmdline").read_bytes()]
 
@@ -578,7 +578,7 @@ def main() -> int:
              "over 64 KiB are parsed and checked in a child process (one for bodies up "
              "to 4 MiB, one for larger ones, each taking bodies round-robin over "
              "clients and answering within 10 s), and large "
-             "results serialised on worker threads (verigraph.server.offload). The worker "
+             "results serialised on worker threads (verigraph.server.http.offload). The worker "
              "rows run `verigraph serve --workers 2` on one SQLite store. 1-minute load "
              "average at start: "
              f"{load:.2f} (other jobs share the 2 cores; absolute times are inflated by it).")

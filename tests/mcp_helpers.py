@@ -28,8 +28,8 @@ from mcp import Client
 from mcp.client.extension import advertise
 from mcp.types import CallToolResult
 
-from verigraph.server import argument_process, build_server
-from verigraph.server.http import HttpOptions, http_app
+from verigraph.server import build_server
+from verigraph.server.http import HttpOptions, argument_process, http_app
 from verigraph.tools import Toolbox
 
 REPO = Path(__file__).resolve().parents[1]

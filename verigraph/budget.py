@@ -1,4 +1,4 @@
-"""Cooperative budgets for long computations: wall clock, memory growth, cancellation.
+"""Budgets for long computations: wall clock, memory growth, cancellation.
 
 Long loops anywhere in VeriGraph (plan validation, search, simulation) call
 `checkpoint()` now and then. Outside a budget it does nothing. Inside `within(budget)`
@@ -7,21 +7,37 @@ BudgetExceeded once the call has run longer than its wall-clock budget, once the
 process has grown by more than its memory budget since the call started, or once
 the caller has been cancelled (the client went away, or the server is stopping).
 The checks are rate-limited, so a checkpoint in a hot loop costs a clock read.
+
+Code that never reaches a checkpoint is stopped all the same: a watchdog thread looks
+at every running budget every WATCH_EVERY_S and interrupts a call that is over its
+wall clock by more than WATCH_GRACE_S, or over its memory budget, with an exception
+raised in the call's own thread at its next Python bytecode (a C call that runs for
+long, such as one large allocation, finishes first). `within` turns that into the
+same BudgetExceeded. Cancellation stays with the checkpoints: only the call's own
+thread can ask whether its caller has gone.
 """
 
 from __future__ import annotations
 
+import ctypes
 import os
+import threading
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
+from typing import TypeVar
 
 from verigraph.errors import VeriGraphError
 
+T = TypeVar("T")
 _PAGE = os.sysconf("SC_PAGE_SIZE") if hasattr(os, "sysconf") else 4096
 CHECK_EVERY_S = 0.02
+WATCH_EVERY_S = 0.05
+WATCH_GRACE_S = 0.25  # a checkpoint gets this long to stop an overrun call itself
+DEFAULT_WALL_S = 30.0  # `verigraph serve --tool-seconds`
+DEFAULT_MEMORY_MIB = 512.0  # `verigraph serve --tool-mib`
 
 
 class BudgetExceeded(VeriGraphError):
@@ -32,8 +48,8 @@ class BudgetExceeded(VeriGraphError):
 class CallBudget:
     """Limits of one call: seconds of wall clock and MiB of process growth."""
 
-    wall_s: float = 30.0
-    memory_mib: float = 512.0
+    wall_s: float = DEFAULT_WALL_S
+    memory_mib: float = DEFAULT_MEMORY_MIB
 
 
 def rss_bytes() -> int:
@@ -45,6 +61,11 @@ def rss_bytes() -> int:
         return 0
 
 
+class _Interrupted(BaseException):  # noqa: N818 - raised by the watchdog, never seen
+    """What the watchdog raises in an overrun call's thread; `within` turns it into
+    BudgetExceeded. A BaseException, so a tool's `except Exception` does not keep it."""
+
+
 class _Meter:
     def __init__(self, budget: CallBudget, name: str, cancelled: Callable[[], None] | None) -> None:
         self.budget = budget
@@ -53,6 +74,9 @@ class _Meter:
         self.start = time.monotonic()
         self.rss0 = rss_bytes()
         self.next_check = self.start + CHECK_EVERY_S
+        self.thread = threading.get_ident()
+        self.done = False  # set when the call leaves `within`; the watchdog then lets go
+        self.overrun: BudgetExceeded | None = None  # set when the watchdog interrupts it
 
     def check(self) -> None:
         now = time.monotonic()
@@ -66,21 +90,74 @@ class _Meter:
                 raise BudgetExceeded(f"{self.name} was cancelled (the client went away or "
                                      "the server is stopping)", field=self.name, value=None,
                                      fix="send the request again if you still need it") from None
-        if now - self.start > self.budget.wall_s:
-            raise BudgetExceeded(
+        problem = self.over(now)
+        if problem is not None:
+            raise problem
+
+    def over(self, now: float, grace_s: float = 0.0) -> BudgetExceeded | None:
+        """The error for a call over its budget (wall clock with `grace_s` more), else
+        None."""
+        if now - self.start > self.budget.wall_s + grace_s:
+            return BudgetExceeded(
                 f"{self.name} ran longer than its {self.budget.wall_s:g} s budget",
                 field=self.name, value=round(now - self.start, 2),
                 fix="make the request smaller (fewer objects or actions), or ask the operator "
                     "for a larger budget (verigraph serve --tool-seconds)")
         grown = (rss_bytes() - self.rss0) / (1024 * 1024)
         if grown > self.budget.memory_mib:
-            raise BudgetExceeded(
+            return BudgetExceeded(
                 f"{self.name} grew the server by {grown:.0f} MiB, more than its "
                 f"{self.budget.memory_mib:g} MiB budget", field=self.name, value=round(grown),
                 fix="make the request smaller, or ask the operator for a larger budget "
                     "(verigraph serve --tool-mib)")
+        return None
 
 
+def _raise_in(thread: int, exc: type[BaseException] | None) -> None:
+    """Raise `exc` in the thread `thread` at its next bytecode (None: clear a pending one)."""
+    ctypes.pythonapi.PyThreadState_SetAsyncExc(
+        ctypes.c_ulong(thread), ctypes.py_object(exc) if exc is not None else None)
+
+
+class _Watchdog:
+    """One daemon thread per process that interrupts overrun calls (module docstring)."""
+
+    def __init__(self) -> None:
+        self.lock = threading.Lock()
+        self.meters: set[_Meter] = set()
+        self.pid: int | None = None  # the process its thread runs in (none after a fork)
+        self.wake = threading.Event()
+
+    def add(self, meter: _Meter) -> None:
+        with self.lock:
+            self.meters.add(meter)
+            if self.pid != os.getpid():
+                self.pid = os.getpid()
+                threading.Thread(target=self._watch, name="verigraph-budget-watchdog",
+                                 daemon=True).start()
+
+    def remove(self, meter: _Meter) -> bool:
+        """Let go of `meter`; True if the watchdog has interrupted its call."""
+        with self.lock:
+            meter.done = True
+            self.meters.discard(meter)
+            return meter.overrun is not None
+
+    def _watch(self) -> None:
+        while True:
+            self.wake.wait(WATCH_EVERY_S)
+            now = time.monotonic()
+            with self.lock:
+                for meter in list(self.meters):
+                    if meter.done or meter.overrun is not None:
+                        continue
+                    problem = meter.over(now, WATCH_GRACE_S)
+                    if problem is not None:
+                        meter.overrun = problem
+                        _raise_in(meter.thread, _Interrupted)
+
+
+_WATCHDOG = _Watchdog()
 _METER: ContextVar[_Meter | None] = ContextVar("verigraph_budget", default=None)
 
 
@@ -91,12 +168,54 @@ def checkpoint() -> None:
         meter.check()
 
 
+def run_within(budget: CallBudget, name: str, fn: Callable[[], T],
+               cancelled: Callable[[], None] | None = None) -> T:
+    """`fn()` under `budget`, in this thread; `cancelled` raises when the caller has gone.
+    A call that overruns without reaching a checkpoint is interrupted all the same, and
+    no interrupt outlives this function (one that lands as `fn` returns still counts:
+    the call was over its budget)."""
+    meter = _Meter(budget, name, cancelled)
+    token = _METER.set(meter)
+    try:
+        _WATCHDOG.add(meter)
+        try:
+            return fn()
+        finally:
+            _release(meter)
+    except _Interrupted:
+        assert meter.overrun is not None
+        raise meter.overrun from None
+    finally:
+        _METER.reset(token)
+
+
 @contextmanager
 def within(budget: CallBudget, name: str, cancelled: Callable[[], None] | None = None
            ) -> Iterator[None]:
-    """Run the block under `budget`; `cancelled` raises when the caller has gone."""
-    token = _METER.set(_Meter(budget, name, cancelled))
+    """The block under `budget` (see run_within, which a worker thread should prefer: an
+    interrupt that lands in the context manager's own exit is not caught here)."""
+    meter = _Meter(budget, name, cancelled)
+    token = _METER.set(meter)
     try:
-        yield
+        _WATCHDOG.add(meter)
+        try:
+            yield
+        finally:
+            _release(meter)
+    except _Interrupted:
+        assert meter.overrun is not None
+        raise meter.overrun from None
     finally:
         _METER.reset(token)
+
+
+def _release(meter: _Meter) -> None:
+    """Take `meter` off the watchdog; an interrupt it had sent that has not landed yet is
+    cleared (one that lands while this runs is taken here), so none is left pending."""
+    while True:
+        try:
+            if _WATCHDOG.remove(meter):
+                _raise_in(meter.thread, None)
+            return
+        except _Interrupted:
+            continue

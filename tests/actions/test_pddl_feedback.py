@@ -241,3 +241,18 @@ def test_the_plain_plan_fast_path_gives_the_line_by_line_report():
     assert json.dumps([s["edit"] for s in fast["steps"]]) == json.dumps(
         [s["edit"] for s in slow["steps"]])
     assert fast["valid"] and slow["valid"]
+
+
+@pytest.mark.anyio
+async def test_mcp_all_errors_checks_every_pddl_step(client: Client) -> None:
+    """all_errors reaches the PDDL engine over MCP as on the CLI: both failing steps are
+    reported (the first skipped, as VAL continues), and the text says so."""
+    pddl = {"domain": MYSTERY, "problem": MYSTERY_PROBLEM}
+    plan = "(attack b)\n(attack b)\n(feast b c)"
+    first = structured(await client.call_tool("validate_plan", {"plan": plan, "pddl": pddl}))
+    assert len(first["violations"]) == 1 and first["not_checked"] == 2
+    out = await client.call_tool("validate_plan", {"plan": plan, "pddl": pddl,
+                                                   "all_errors": True})
+    every = structured(out)
+    assert [v["step"] for v in every["violations"]] == [1, 2]
+    assert every["not_checked"] == 0 and "not checked" not in text(out)

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import contextlib
 import json
+import sys
+import threading
 import time
 from collections.abc import AsyncIterator
 from pathlib import Path
@@ -264,6 +266,30 @@ async def test_episodes_without_an_arm_get_a_clear_error(real: tuple[Harness, Cl
         assert result.is_error
         assert f"episode {plain['episode_id']} runs on graph, not on an arm" in text(result)
         assert "fix: load the scene with executor arm:<driver>" in text(result)
+
+
+async def test_a_graph_episode_on_an_arm_server_never_enters_the_arm(
+        real: tuple[Harness, Client]) -> None:
+    h, client = real
+    plain = await call(client, "load_scene", scene_id="cup_on_book", executor="graph")
+    entered: set[str] = set()
+
+    def profile(frame: Any, event: str, arg: Any) -> None:
+        module = frame.f_globals.get("__name__") or ""
+        if event == "call" and module.startswith("verigraph.arm"):
+            entered.add(module)
+
+    sys.setprofile(profile)
+    threading.setprofile(profile)
+    try:
+        await call(client, "validate_action", episode_id=plain["episode_id"],
+                   action="move(cup, on, desk)")
+        await call(client, "execute_actions", episode_id=plain["episode_id"],
+                   actions=["move(cup, on, desk)"])
+    finally:
+        sys.setprofile(None)
+        threading.setprofile(None)  # type: ignore[arg-type]
+    assert entered == set() and h.asked == [] and h.sent() == []
 
 
 @pytest.mark.parametrize(("args", "needles"), [

@@ -35,13 +35,13 @@ from mcp_helpers import (
     wait_until,
 )
 
-from verigraph.server.argument_process import (
+from verigraph.server.http import HttpOptions
+from verigraph.server.http.argument_process import (
     DEFAULT_QUEUED_PER_CLIENT,
     QUEUE_FULL_REASON,
     FairTurns,
     QueueFull,
 )
-from verigraph.server.http import HttpOptions
 from verigraph.tools.registry import TOOLS, Toolbox, parse_arguments
 
 __all__ = ["checker_spy"]  # the fixture, imported for the tests below

@@ -6,7 +6,7 @@ import pytest
 from mcp import Client
 from mcp_helpers import in_process_client, structured, text  # noqa: F401 - the client fixture
 
-pytestmark = pytest.mark.anyio
+pytestmark = [pytest.mark.fast, pytest.mark.anyio]
 
 
 async def test_a_retry_returns_the_original_result_and_applies_nothing(client: Client) -> None:

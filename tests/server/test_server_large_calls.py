@@ -29,15 +29,12 @@ from mcp_helpers import (
     wait_until,
 )
 
-from verigraph.server import tools as server_tools
 from verigraph.server.http import HttpOptions
-from verigraph.server.offload import (
+from verigraph.server.http.offload import (
     DEFAULT_THRESHOLD_BYTES,
     PLACEHOLDER_KEY,
     CallSlot,
-    offload,
 )
-from verigraph.server.scope import current_scope
 from verigraph.tools.registry import TOOLS, Toolbox, parse_arguments
 
 TOKEN = "large-calls-token"
@@ -106,14 +103,15 @@ def offloaded(monkeypatch: pytest.MonkeyPatch) -> list[int]:
     """The sizes of the results a server in this process spliced in as bytes."""
     sizes: list[int] = []
 
-    def spying(structured: Any) -> dict[str, Any] | None:
-        placeholder = offload(structured)
+    keep = CallSlot.keep
+
+    def spying(slot: CallSlot, result: Any) -> dict[str, Any] | None:
+        placeholder = keep(slot, result)
         if placeholder is not None:
-            slot = current_scope().slot
-            sizes.append(len(slot.structured or b"") if slot else 0)
+            sizes.append(len(slot.structured or b""))
         return placeholder
 
-    monkeypatch.setattr(server_tools, "offload", spying)
+    monkeypatch.setattr(CallSlot, "keep", spying)
     return sizes
 
 

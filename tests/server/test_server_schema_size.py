@@ -15,6 +15,8 @@ from mcp import Client
 
 from verigraph.server import build_server
 
+pytestmark = pytest.mark.fast
+
 MAX_TOTAL_BYTES = 40_000
 MAX_CORE_BYTES = 15_000  # names + descriptions + input schemas
 

@@ -16,6 +16,8 @@ from mcp import Client
 
 from verigraph.server import build_server
 
+pytestmark = pytest.mark.fast
+
 SNAPSHOT = Path(__file__).parents[1] / "snapshots" / "tools_list.json"
 UPDATE_ENV = "VERIGRAPH_UPDATE_SNAPSHOTS"
 

@@ -21,7 +21,7 @@ from mcp_helpers import (  # noqa: F401 - in_process_client: the client fixture
 from verigraph.server import INSTRUCTIONS, build_server
 from verigraph.tools import TOOL_SPECS, TOOLS, Toolbox
 
-pytestmark = pytest.mark.anyio
+pytestmark = [pytest.mark.fast, pytest.mark.anyio]
 STATEFUL = [s.name for s in TOOL_SPECS if "episode_id" in s.input_model.model_fields
             and s.input_model.model_fields["episode_id"].is_required()]
 

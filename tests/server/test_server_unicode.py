@@ -10,7 +10,7 @@ from mcp_helpers import structured
 from verigraph.server import build_server
 from verigraph.tools import Toolbox
 
-pytestmark = pytest.mark.anyio
+pytestmark = [pytest.mark.fast, pytest.mark.anyio]
 
 
 def submission(*ids: str) -> dict:

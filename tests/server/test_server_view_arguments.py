@@ -1,4 +1,4 @@
-"""view_episode takes the same argument path as every tool (ArgumentGate): unknown or
+"""view_episode takes the same argument path as every tool (ToolCalls): unknown or
 over-long arguments are refused with the field and the fix at any body size, over a
 real SDK client; and a large body that is not usable JSON gets the parse error with
 where it went wrong."""
@@ -20,7 +20,7 @@ from mcp_helpers import JSON_HEADERS, free_port, http_in_thread, structured, tex
 
 from verigraph.server import build_server
 from verigraph.server.http import HttpOptions
-from verigraph.server.offload import DEFAULT_THRESHOLD_BYTES
+from verigraph.server.http.offload import DEFAULT_THRESHOLD_BYTES
 from verigraph.tools import Toolbox
 
 TOKEN = "view-arguments-token"

@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import signal
 import subprocess
+import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -12,7 +13,17 @@ from typing import Any
 
 import httpx2
 import pytest
-from mcp_helpers import JSON_HEADERS, RunningServer, http_server, rpc, verigraph_command
+from mcp_helpers import (
+    JSON_HEADERS,
+    RunningServer,
+    checking_processes,
+    http_server,
+    process_gone,
+    rpc,
+    tower_graph,
+    verigraph_command,
+    wait_until,
+)
 
 TOKEN = "workers-token"
 HEADERS = {**JSON_HEADERS, "Authorization": f"Bearer {TOKEN}",
@@ -87,3 +98,61 @@ def test_workers_without_a_shared_store_are_refused(extra: list[str], named: str
                           capture_output=True, text=True, timeout=60, stdin=subprocess.DEVNULL)
     assert done.returncode == 2, done.stderr
     assert named in done.stderr and "Traceback" not in done.stderr
+
+
+
+def large_plan() -> dict[str, Any]:
+    """A validate_plan body above 64 KiB, so the process's body checker takes it first."""
+    return {"graph": tower_graph(1000), "plan": ["move(b1, on, table)"]}
+
+
+def open_fds(pid: int) -> int:
+    return len(os.listdir(f"/proc/{pid}/fd"))
+
+
+def test_a_killed_process_is_replaced_and_its_call_answered(workers: RunningServer) -> None:
+    first, second = serving_processes(workers)
+    parent = workers.proc.pid
+    os.kill(first, signal.SIGSTOP)  # only `second` takes the calls
+    reply: dict[str, Any] = {}
+    try:
+        body = rpc("tools/call", {"name": "validate_plan", "arguments": large_plan()}, 40)
+        with httpx2.Client(headers=HEADERS, timeout=60) as http:  # starts its body checkers
+            assert http.post(workers.url, content=body).status_code == 200
+        checkers = checking_processes(second)
+        assert checkers
+        for pid in checkers:  # the next large call waits in `second` for its check
+            os.kill(pid, signal.SIGSTOP)
+        baseline = open_fds(parent)
+        body = rpc("tools/call", {"name": "validate_plan", "arguments": large_plan()}, 41)
+
+        def post() -> None:
+            with httpx2.Client(headers=HEADERS, timeout=60) as http:
+                response = http.post(workers.url, content=body)
+            reply["status"] = response.status_code
+            reply["body"] = response.json()
+
+        thread = threading.Thread(target=post)
+        thread.start()
+        # The parent holds a copy of the connection once `second` has the request.
+        wait_until(lambda: open_fds(parent) > baseline, "the call reached the server")
+        os.kill(second, signal.SIGKILL)
+        thread.join(60)
+    finally:
+        os.kill(first, signal.SIGCONT)
+    assert reply["status"] == 500, reply
+    error = reply["body"]["error"]
+    assert error["code"] == -32603 and "may or may not have taken effect" in error["message"]
+
+    def replaced() -> bool:
+        children = Path(f"/proc/{parent}/task/{parent}/children").read_text().split()
+        return len(children) >= 2 and str(second) not in children
+
+    wait_until(replaced, "a new process in place of the killed one", timeout=30)
+    assert process_gone(second) and not Path(f"/proc/{second}").exists()  # reaped
+    episode = call(workers.url, "load_scene", {"scene_id": "cup_on_book"})["episode_id"]
+    assert call(workers.url, "get_state", {"episode_id": episode})["executed"] == []
+    log = os.pread(workers.stderr.fileno(), 1 << 20, 0).decode()
+    assert f"server process {second} died (signal 9) with 1 call(s) in progress" in log, \
+        log[-2000:]
+    assert "in place of the one that died" in log

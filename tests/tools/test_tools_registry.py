@@ -12,7 +12,10 @@ from verigraph.errors import VeriGraphError
 from verigraph.graph.builtin_scenes import cup_on_book, cup_on_book_goal
 from verigraph.graph.state import WorldState
 from verigraph.prompts.filling import planner_prompt, scene_graph_prompt
-from verigraph.tools import TOOL_SPECS, Toolbox, ToolConfig, ToolSpec
+from verigraph.tools import TOOL_SPECS, TOOLS, Toolbox, ToolConfig, ToolSpec
+from verigraph.tools.registry import parse_arguments
+
+pytestmark = pytest.mark.fast
 
 DESIGN_TOOLS = ["load_scene", "set_goal", "get_state", "validate_action", "execute_actions",
                 "validate_plan", "check_goal", "generate_scene_graph", "render_scene", "solve",
@@ -130,3 +133,20 @@ def test_scene_graph_prompt_lists_d_and_r() -> None:
     text = scene_graph_prompt(WorldState.from_graph(cup_on_book()).dictionary, "tidy the desk")
     assert "on, in" in text and "- shelf: fixed, surface" in text and "tidy the desk" in text
     assert '{"nodes": [' in text
+
+
+def test_which_inputs_make_a_call_heavy_is_each_tool_s_own_field() -> None:
+    plan = TOOLS["validate_plan"]
+    pddl = {"pddl": {"domain": "(define (domain d))", "problem": "(define (problem p))"},
+            "plan": ""}
+    small = {"scene_id": "cup_on_book", "plan": ["move(cup, on, desk)"]}
+    big = {"scene_id": "cup_on_book", "plan": "\n".join(["move(cup, on, desk)"] * 120)}
+    assert plan.heavy_when(pddl) and not plan.heavy_when.large(pddl)  # heavy, cheap to check
+    assert not plan.heavy_when(small) and plan.heavy_when(big) and plan.heavy_when.large(big)
+    # the raw JSON arguments and the validated input give the same answer
+    for arguments in (pddl, small, big):
+        assert plan.heavy_when(parse_arguments(plan, arguments)) == plan.heavy_when(arguments)
+    load = TOOLS["load_scene"]
+    assert not load.heavy_when({"scene_id": "cup_on_book"})
+    assert load.heavy_when({"scene_id": "cup_on_book", "simulate": True})
+    assert not TOOLS["validate_action"].heavy_when({"episode_id": "e", "action": "done"})

@@ -103,9 +103,6 @@ def run_serve(args: argparse.Namespace) -> int:
     from verigraph.budget import CallBudget
     from verigraph.server.app import build_server
     from verigraph.server.heavy import HeavyLimits, keep_loop_responsive
-    from verigraph.server.http import HttpOptions, serve_http
-    from verigraph.server.stdio import run_stdio
-    from verigraph.server.workers import listening_socket, run_workers
     from verigraph.tools.context import ToolConfig
     from verigraph.tools.executors import server_executor
     from verigraph.tools.stores import default_store_url, redacted
@@ -165,10 +162,15 @@ def run_serve(args: argparse.Namespace) -> int:
                         budget=CallBudget(wall_s=args.tool_seconds, memory_mib=args.tool_mib))
     max_bytes = int(args.max_body_mib * 1024 * 1024)
     if args.transport == "stdio":
+        from verigraph.server.stdio import run_stdio
+
         server = build_server(config=config, log_level=args.log_level, heavy=heavy)
         keep_loop_responsive()
         anyio.run(run_stdio, server, max_bytes)
         return 0
+    from verigraph.server.http import HttpOptions, serve_http
+    from verigraph.server.http.workers import listening_socket, run_workers
+
     options = HttpOptions(host=args.host, port=args.port, tokens=tokens,
                           max_body_bytes=max_bytes,
                           allowed_hosts=tuple(args.allow_host),
@@ -181,10 +183,10 @@ def run_serve(args: argparse.Namespace) -> int:
                           streams_per_client=args.streams_per_client,
                           max_connections=args.max_connections or default_max_connections())
 
-    def serve(sock: Any = None) -> None:
+    def serve(sock: Any = None, in_flight: Any = None) -> None:
         server = build_server(config=config, log_level=args.log_level, heavy=heavy)
         keep_loop_responsive()
-        serve_http(server, options, log_level=args.log_level, sock=sock)
+        serve_http(server, options, log_level=args.log_level, sock=sock, in_flight=in_flight)
 
     if args.workers > 1:  # each process builds its own server after the fork
         return run_workers(args.workers, listening_socket(options.host, options.port), serve)

@@ -16,21 +16,16 @@ tool result stay exactly as without the extension.
 
 from __future__ import annotations
 
-import inspect
-from typing import Annotated, Any
+from collections.abc import Callable
+from typing import Any
 
 from mcp.server.apps import Apps, ResourceCsp, client_supports_apps
 from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
-from mcp.server.mcpserver.exceptions import ToolError
-from mcp.types import CallToolResult, ToolAnnotations
-from pydantic import BaseModel, ValidationError
+from pydantic import BaseModel
 
-from verigraph.errors import VeriGraphError
-from verigraph.server.heavy import HeavyCalls
-from verigraph.server.scope import current_scope
-from verigraph.server.tools import Executor, _parameters, to_result
-from verigraph.tools.registry import TOOL_SPECS, Toolbox, argument_error
-from verigraph.viewer import VIEW_SPEC, EpisodeView, ViewInput, app_html, view
+from verigraph.server.tools import tool_annotations
+from verigraph.tools.registry import TOOL_SPECS, ToolSpec
+from verigraph.viewer import app_html
 
 EPISODE_UI = "ui://verigraph/episode"
 UI_TOOLS = tuple(spec.name for spec in TOOL_SPECS if spec.viewer)  # ToolSpec.viewer
@@ -42,46 +37,9 @@ UI_META: dict[str, dict[str, Any]] = {
     name: {"ui": {"resourceUri": EPISODE_UI}, FLAT_UI_KEY: EPISODE_UI} for name in UI_TOOLS}
 
 
-def view_executor(toolbox: Toolbox, heavy: HeavyCalls) -> Executor:
-    """view_episode on validated input: drawn as a heavy call (worker thread, budget,
-    per-client limit). ArgumentGate checks its arguments and runs it like every tool."""
-
-    def run(params: ViewInput) -> CallToolResult:
-        try:
-            return to_result(VIEW_SPEC, view(toolbox.context, params))
-        except VeriGraphError as exc:
-            raise ToolError(str(exc)) from None
-
-    async def execute(params: BaseModel, answers: dict[str, Any] | None = None, *,
-                      by_gate: bool = False) -> CallToolResult:
-        assert isinstance(params, ViewInput)
-        return await heavy.run(lambda: run(params), VIEW_SPEC.name)
-
-    return execute
-
-
-def _view_function(execute: Executor) -> Any:
-    """The SDK's registration of view_episode (its schema, and a direct call when the
-    server runs without ArgumentGate): the same executor on the same checked input."""
-
-    async def view_episode(**arguments: Any) -> CallToolResult:
-        params = current_scope().params_for(VIEW_SPEC.name)  # validated by ArgumentGate
-        if params is None:
-            try:
-                params = ViewInput.model_validate(arguments)
-            except ValidationError as exc:
-                raise ToolError(str(argument_error(VIEW_SPEC, exc))) from None
-        return await execute(params)
-
-    view_episode.__signature__ = inspect.Signature(  # type: ignore[attr-defined]
-        _parameters(ViewInput), return_annotation=Annotated[CallToolResult, EpisodeView])
-    view_episode.__doc__ = VIEW_SPEC.description
-    return view_episode
-
-
-def episode_apps(execute: Executor) -> Apps:
-    """The extension: the viewer resource and the app-only view tool (run by `execute`,
-    see view_executor)."""
+def episode_apps(app_only: list[tuple[ToolSpec, Callable[..., Any]]]) -> Apps:
+    """The extension: the viewer resource, and the table's app-only rows (view_episode)
+    with their registered functions (verigraph.server.tools.build_tools)."""
     apps = Apps()
     apps.add_html_resource(
         EPISODE_UI, app_html(), name="episode-viewer", title="VeriGraph episode viewer",
@@ -89,11 +47,12 @@ def episode_apps(execute: Executor) -> Apps:
         csp=ResourceCsp(connect_domains=[], resource_domains=[], frame_domains=[],
                         base_uri_domains=[]),
         prefers_border=True)
-    apps.tool(resource_uri=EPISODE_UI, visibility=["app"], name=VIEW_SPEC.name,
-              title=VIEW_SPEC.title, description=VIEW_SPEC.description,
-              annotations=ToolAnnotations(title=VIEW_SPEC.title, read_only_hint=True,
-                                          idempotent_hint=True, open_world_hint=False)
-              )(_view_function(execute))
+    for spec, function in app_only:
+        # The extension's registration carries the title in the annotations too.
+        annotations = tool_annotations(spec).model_copy(update={"title": spec.title})
+        apps.tool(resource_uri=EPISODE_UI, visibility=list(spec.visibility), name=spec.name,
+                  title=spec.title, description=spec.description,
+                  annotations=annotations)(function)
     return apps
 
 

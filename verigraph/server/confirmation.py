@@ -16,7 +16,8 @@ retry must answer the question as first rendered (the SDK checks its digest), so
 time it was first asked is kept per question text until the deadline has passed. The
 answer is only as trustworthy as the client that shows the question.
 
-`arm_call` wraps every tool call: it tags the arm's audit records with the episode and
+`arm_call` wraps every tool call that may touch an arm (verigraph.server.tools imports
+this module only for those): it tags the arm's audit records with the episode and
 the client, counts the call as the deadman's heartbeat, and, while execute_actions
 runs, stops and latches the arm as soon as the call is cancelled (the client
 disconnected or cancelled it), so nothing more is sent.
@@ -48,7 +49,8 @@ from pydantic import BaseModel, Field
 
 from verigraph.arm import ArmWorld, PreApproved, confirm_scope
 from verigraph.arm.audit import audit_scope
-from verigraph.server.scope import current_scope
+from verigraph.errors import VeriGraphError
+from verigraph.server.tools import request_arguments
 from verigraph.tools.arm import ArmQuestion
 from verigraph.tools.registry import Confirmation, Toolbox, ToolSpec
 
@@ -96,15 +98,16 @@ def _confirmation(spec: ToolSpec) -> Confirmation:
 def resolver_parameters(spec: ToolSpec, toolbox: Toolbox) -> list[inspect.Parameter]:
     """Two keyword parameters the SDK fills by running resolvers before the tool runs.
 
-    The preview reads the input the argument gate validated for this call from the
-    call's scope (none: then nothing is previewed, so nothing real may move).
+    The preview reads the call's input as the server checked it (verigraph.server.tools
+    step 1) from the request; input that does not check previews nothing, so nothing
+    real may move.
     """
     previewer = _confirmation(spec).preview
-    name = spec.name
 
     async def arm_preview(ctx: Context) -> Preview:
-        params = current_scope().params_for(name)
-        if params is None:
+        try:
+            params = request_arguments(spec, ctx)
+        except VeriGraphError:
             return Preview(None)
         question = await anyio.to_thread.run_sync(previewer, toolbox.context, params)
         return Preview(question)
@@ -197,15 +200,6 @@ class AskedQuestions:
 _ASKED = AskedQuestions()
 
 
-def client_label(session: Any) -> str:
-    """A label for the client behind `session`: its declared name and version, and the
-    connection (client-supplied names are not identities; the id tells sessions apart)."""
-    params = getattr(session, "client_params", None)
-    info = getattr(params, "client_info", None)
-    name = f"{info.name} {info.version}" if info is not None else "unnamed client"
-    return f"{name} (connection {id(session):x})"
-
-
 def _arm_of(toolbox: Toolbox, params: BaseModel) -> tuple[str | None, ArmWorld | None]:
     episode_id = getattr(params, "episode_id", None)
     if not isinstance(episode_id, str):
@@ -217,23 +211,6 @@ def _arm_of(toolbox: Toolbox, params: BaseModel) -> tuple[str | None, ArmWorld |
     return episode_id, world if isinstance(world, ArmWorld) else None
 
 
-def asks_nothing(spec: ToolSpec, toolbox: Toolbox, params: BaseModel) -> bool:
-    """Whether a confirmed tool's call certainly has nothing to ask: execute_actions on
-    an existing episode that has no arm (graph or sim2d executor). Such a call may run
-    without the SDK's resolvers, with the same empty approval they would give it; any
-    doubt (another tool, no such episode, an arm executor) leaves it to them."""
-    if not spec.moves_arm:
-        return False
-    episode_id = getattr(params, "episode_id", None)
-    if not isinstance(episode_id, str):
-        return False
-    try:
-        episode = toolbox.context.store.peek(episode_id)
-    except Exception:
-        return False
-    return not episode.executor.startswith("arm") and not isinstance(episode.world, ArmWorld)
-
-
 def take_answers(arguments: dict[str, Any]) -> dict[str, Any]:
     """Take the resolved preview and answer out of a confirmed tool's arguments."""
     return {key: arguments.pop(key, None) for key in (PREVIEW_PARAM, ANSWER_PARAM)}
@@ -241,14 +218,14 @@ def take_answers(arguments: dict[str, Any]) -> dict[str, Any]:
 
 @asynccontextmanager
 async def arm_call(spec: ToolSpec, toolbox: Toolbox, params: BaseModel,
-                   answers: dict[str, Any] | None) -> AsyncIterator[None]:
-    """The scope of one tool call for the arm: audit identity, the confirmation hook
-    from `answers` (see `take_answers`; None for tools that ask nothing), heartbeat
-    and, for a motion, the deadman on the call itself."""
+                   answers: dict[str, Any] | None, client_name: str) -> AsyncIterator[None]:
+    """The scope of one tool call for the arm: audit identity (the episode, and the MCP
+    client name), the confirmation hook from `answers` (see `take_answers`; None for
+    tools that ask nothing), heartbeat and, for a motion, the deadman on the call."""
     episode_id, world = _arm_of(toolbox, params)
     if world is not None:
         world.touch()
-    with audit_scope(episode_id=episode_id, client=current_scope().client):
+    with audit_scope(episode_id=episode_id, client=client_name):
         hook = approval_hook(spec, answers) if answers is not None else None
         with confirm_scope(hook):
             async with _deadman(spec, world):

@@ -2,12 +2,13 @@
 
 A heavy call (a large graph or plan, an image, the simulator, search, an arm) runs on
 a worker thread so the event loop keeps answering light calls. At most `workers`
-heavy calls run at once in the server and at most `per_client` for one client (an
-HTTP connection, or the stdio peer); the rest wait their turn. Each runs inside
-`verigraph.budget.within`: its loops' checkpoints stop it once it exceeds its wall
-clock or memory budget, or once its caller is cancelled (the client disconnected,
+heavy calls run at once in the server and at most `per_client` for one connection (an
+HTTP connection, or the stdio pipe pair); the rest wait their turn. Each runs inside
+`verigraph.budget.run_within`: its loops' checkpoints stop it once it exceeds its wall
+clock or memory budget, or once the call is cancelled (the client disconnected,
 or the server got SIGTERM). The budget wraps any callable, so the search and the
-simulator inherit it by calling `checkpoint()`.
+simulator inherit it by calling `checkpoint()`, and code that never checks is
+interrupted by the budget's watchdog (verigraph.budget).
 """
 
 from __future__ import annotations
@@ -23,8 +24,7 @@ import anyio
 import anyio.from_thread
 import anyio.to_thread
 
-from verigraph.budget import CallBudget, within
-from verigraph.server.scope import current_scope
+from verigraph.budget import CallBudget, run_within
 
 T = TypeVar("T")
 # A short GIL switch interval lets the event loop thread answer light calls between a
@@ -52,39 +52,38 @@ class HeavyCalls:
     def __init__(self, limits: HeavyLimits | None = None) -> None:
         self.limits = limits or HeavyLimits()
         self._workers = anyio.CapacityLimiter(self.limits.workers)
-        self._clients: dict[str, tuple[anyio.CapacityLimiter, int]] = {}
+        self._connections: dict[str, tuple[anyio.CapacityLimiter, int]] = {}
 
-    def _client_limiter(self, client: str) -> anyio.CapacityLimiter:
-        limiter, users = self._clients.get(client, (None, 0))
+    def _connection_limiter(self, connection: str) -> anyio.CapacityLimiter:
+        limiter, users = self._connections.get(connection, (None, 0))
         if limiter is None:
             limiter = anyio.CapacityLimiter(self.limits.per_client)
-        self._clients[client] = (limiter, users + 1)
+        self._connections[connection] = (limiter, users + 1)
         return limiter
 
-    def _release_client(self, client: str) -> None:
-        limiter, users = self._clients[client]
+    def _release_connection(self, connection: str) -> None:
+        limiter, users = self._connections[connection]
         if users <= 1:
-            del self._clients[client]
+            del self._connections[connection]
         else:
-            self._clients[client] = (limiter, users - 1)
+            self._connections[connection] = (limiter, users - 1)
 
-    async def run(self, fn: Callable[[], T], name: str) -> T:
-        """`fn()` on a worker thread under the budget; cancelling the caller stops it at
-        its next checkpoint (BudgetExceeded inside, the caller's cancellation outside)."""
-        client = current_scope().connection
-        limiter = self._client_limiter(client)
+    async def run(self, fn: Callable[[], T], name: str, connection: str = "stdio") -> T:
+        """`fn()` on a worker thread under the budget, in the share of `connection`
+        ("host:port", or "stdio"); cancelling the call stops it at its next checkpoint
+        (BudgetExceeded inside, the call's cancellation outside)."""
+        limiter = self._connection_limiter(connection)
         budget = self.limits.budget
 
         def guarded() -> T:
-            log.debug("heavy call %s started for %s", name, client)
-            with within(budget, name, cancelled=anyio.from_thread.check_cancelled):
-                return fn()
+            log.debug("heavy call %s started for %s", name, connection)
+            return run_within(budget, name, fn, cancelled=anyio.from_thread.check_cancelled)
 
         try:
             async with limiter:
                 return await anyio.to_thread.run_sync(guarded, limiter=self._workers)
         finally:
-            self._release_client(client)
+            self._release_connection(connection)
 
 
 def keep_loop_responsive() -> None:

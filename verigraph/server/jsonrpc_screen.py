@@ -13,18 +13,18 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from mcp_types import ErrorData, JSONRPCError
+from mcp_types import JSONRPCError
 from pydantic import ValidationError
 
-PARSE_ERROR = -32700
-INVALID_REQUEST = -32600
-INVALID_PARAMS = -32602
+from verigraph.server.rpc_errors import (
+    INVALID_PARAMS,
+    INVALID_REQUEST,
+    PARSE_ERROR,
+    error_message,
+    valid_id,
+)
+
 _SCALAR = json.JSONDecoder()
-
-
-def valid_id(value: Any) -> bool:
-    """MCP request ids are strings or integers (not booleans, floats or null)."""
-    return isinstance(value, str) or (isinstance(value, int) and not isinstance(value, bool))
 
 
 def top_level_id(text: str) -> Any:
@@ -66,8 +66,8 @@ def top_level_id(text: str) -> Any:
 
 
 def error_reply(request_id: Any, code: int, message: str) -> JSONRPCError:
-    return JSONRPCError(jsonrpc="2.0", id=request_id if valid_id(request_id) else None,
-                        error=ErrorData(code=code, message=message))
+    return JSONRPCError.model_validate(error_message(message, code=code,
+                                                     request_id=request_id))
 
 
 def _first_problem(exc: Exception) -> str:

@@ -2,7 +2,7 @@
 
 Every chat turn sends tools/list to the model, so its size is a cost per turn. The
 pydantic models stay the single source of truth and still validate every call (the
-argument gate) and every result (the SDK); these functions only rewrite what is
+call path, verigraph.server.tools) and every result (the SDK); these only rewrite what is
 *published*:
 
 - inputs: no per-property `title` (it repeats the name), no `examples`, no string

@@ -1,61 +1,244 @@
-"""MCP tools as thin wrappers over verigraph.tools: one registration per ToolSpec.
+"""Every tools/call, in one file: `ToolCalls.__call__` reads top to bottom.
 
-Each wrapper's signature is generated from the tool's pydantic input model, so the
-wire inputSchema and the library's model cannot drift apart. The body validates into
-that model, runs the tool, and returns structured content plus a one-line summary
-(image tools: image content only).
+1. The tool and its arguments, checked with the tool's own input model (never the SDK's
+   looser one: it ignores unknown names and decodes JSON-looking strings), or taken
+   from the slot of a large HTTP body that a child process has checked already.
+2. Confirmation, where the row's `confirmation` says and the call may make an arm act:
+   the call is handed to the SDK, whose resolvers ask the user (verigraph.server.
+   confirmation) and whose registered function (`tool_function`) then goes on at 3.
+3. Placement, from the row's fields: `placement`, and for an inline tool `heavy_when`
+   (its inputs that make a call heavy), the episode's size and the store; an inline
+   call runs on the event loop, a heavy one on a worker thread within its budget and
+   its connection's share (verigraph.server.heavy).
+4. The run: `Toolbox.run`, inside the arm's scope when an arm is involved (only then
+   is anything of verigraph.arm entered).
+5. The result: structured content and a one-line summary (image tools: image content).
 
-A tools/call's path, all in this file: ArgumentGate opens the call's CallScope (scope),
-validates the arguments (or takes them from a large body's slot, offload), then runs
-the tool's executor itself, or, when the call may ask the user first (the ToolSpec's
-`confirmation`), hands it to the SDK, whose resolvers ask and whose wrapper
-(`tool_function`) then runs the same executor. The executor places the call by the
-ToolSpec's `placement`: on the event loop, as a heavy call, or on a thread of its own.
+Each registration's signature is generated from the tool's input model, so the wire
+inputSchema and the library's model cannot drift apart. Nothing here is HTTP's: a large
+body's slot is read from the request by its key (verigraph.server.http.offload fills it).
 """
 
 from __future__ import annotations
 
 import inspect
 import logging
-from collections.abc import Awaitable, Callable
-from dataclasses import replace
-from typing import Annotated, Any
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import Annotated, Any, Protocol
 
 import anyio.to_thread
 from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
+from mcp.server.mcpserver import Context
 from mcp.server.mcpserver.exceptions import ToolError
 from mcp.server.mcpserver.tools import Tool
 from mcp.types import CallToolResult, ImageContent, TextContent, ToolAnnotations
-from pydantic import BaseModel, Field, ValidationError
+from pydantic import BaseModel, Field
 
 from verigraph.errors import VeriGraphError
-from verigraph.server.confirmation import (
-    arm_call,
-    asks_nothing,
-    client_label,
-    resolver_parameters,
-    take_answers,
-)
 from verigraph.server.heavy import HeavyCalls
-from verigraph.server.offload import offload, slot_of
 from verigraph.server.schemas import compact_input_schema, compact_output_schema
-from verigraph.server.scope import CallScope, CallSlot, call_scope, current_scope
+from verigraph.server.table import SERVER_TOOL_SPECS, SERVER_TOOLS
 from verigraph.tools.images import png_base64
-from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec, argument_error
-from verigraph.tools.registry import parse_arguments as parse_tool_arguments
+from verigraph.tools.registry import BIG_GRAPH_ITEMS, Toolbox, ToolSpec, parse_arguments
 from verigraph.tools.scenes import ImageResult
 from verigraph.tools.store import WouldBlock, non_blocking
 
 log = logging.getLogger("verigraph.server")
+SLOT_KEY = "verigraph.call_slot"  # the ASGI scope key of a large HTTP body's slot
+CONTEXT_PARAM = "mcp_context"  # the SDK's Context, for the registered functions
 
 
-def to_result(spec: ToolSpec, result: BaseModel | ImageResult, splice: bool = False
-              ) -> CallToolResult:
-    """Structured content + summary text, or image content for the image-only tools.
+class LargeBodySlot(Protocol):
+    """What an HTTP request's large body left for its call (verigraph.server.http.offload):
+    the arguments, checked in a child process, and room for a large result as bytes."""
 
-    With `splice` (on a heavy call's worker thread, for a tool the SDK does not check) a
-    large structured result of an HTTP call is serialised here and spliced into the
-    answer (see offload)."""
+    params: BaseModel | None  # the tool's validated input, if the arguments are valid
+    error: str | None  # else what is wrong with them
+
+    def keep(self, result: BaseModel) -> dict[str, Any] | None:
+        """Keep a large result as JSON bytes; the placeholder to answer with (None: the
+        result is small, answer it as is)."""
+
+
+@dataclass(frozen=True)
+class Origin:
+    """Where a call comes from, as its path needs it (words as in docs/architecture.md)."""
+
+    connection: str  # "host:port" of the HTTP connection, or "stdio": its heavy-call share
+    client_name: str  # the MCP client's name and session, for the arm's audit log
+    slot: LargeBodySlot | None = None  # a large HTTP body's slot (None over stdio)
+
+    @classmethod
+    def of(cls, ctx: ServerRequestContext[Any, Any], with_slot: bool = True) -> Origin:
+        request = ctx.request
+        peer = getattr(request, "client", None)
+        scope = getattr(request, "scope", None)
+        slot = scope.get(SLOT_KEY) if with_slot and isinstance(scope, dict) else None
+        return cls(f"{peer.host}:{peer.port}" if peer else "stdio", client_name(ctx.session),
+                   slot)
+
+
+def client_name(session: Any) -> str:
+    """The client name behind `session` for the audit log: its declared name and version,
+    and the session (a client name is not an identity; the id tells sessions apart)."""
+    params = getattr(session, "client_params", None)
+    info = getattr(params, "client_info", None)
+    name = f"{info.name} {info.version}" if info is not None else "unnamed client"
+    return f"{name} (connection {id(session):x})"
+
+
+class ToolCalls:
+    """Server middleware that runs every tools/call of a tool in the table (see the
+    module docstring); other requests, and calls of unknown tools, go to the SDK."""
+
+    def __init__(self, toolbox: Toolbox, heavy: HeavyCalls,
+                 specs: dict[str, ToolSpec] = SERVER_TOOLS) -> None:
+        self.toolbox = toolbox
+        self.heavy = heavy
+        self.specs = specs
+        config = toolbox.context.config
+        self.has_arm = config.arm is not None or config.executor.startswith("arm")
+        # A durable store reads and writes on every call: trying the loop first would only
+        # run the tool's checks twice before it hops to a worker thread anyway.
+        self.store_blocks = toolbox.context.store.blocking_io
+        self.default_opens_world = config.executor != "graph"
+
+    async def __call__(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
+                       ) -> HandlerResult:
+        if ctx.method != "tools/call" or ctx.params is None:
+            return await call_next(ctx)
+        origin = Origin.of(ctx)
+        name = ctx.params.get("name")
+        # 1. The tool and its arguments.
+        if origin.slot is not None and origin.slot.error is not None:
+            return error_result(str(name), origin.slot.error)  # found by the child process
+        spec = self.specs.get(name) if isinstance(name, str) else None
+        if spec is None:
+            return await call_next(with_arguments(ctx, origin.slot))  # the SDK's "unknown"
+        try:
+            params = await self.arguments(spec, ctx.params.get("arguments"), origin)
+        except VeriGraphError as exc:
+            return error_result(spec.name, exc)
+        # 2. Confirmation: the SDK's resolvers ask, then `tool_function` goes on at 3.
+        answers: dict[str, Any] | None = None
+        if spec.confirmation is not None:
+            if self.may_ask(spec, params):
+                return await call_next(with_arguments(ctx, origin.slot))
+            answers = {}  # the empty approval the resolvers would give: nothing to ask
+        # 3.-5. Placed, run, turned into a result.
+        try:
+            return await self.execute(spec, params, origin, answers)
+        except ToolError as exc:
+            log.info("Tool %r failed: %r", spec.name, str(exc))
+            return error_result(spec.name, exc)
+        except Exception:  # a bug: logged in full, the client learns only that
+            log.exception("Tool %r raised an unexpected exception", spec.name)
+            return CallToolResult(content=[TextContent(
+                type="text", text=f"Error executing tool {spec.name}")], is_error=True)
+
+    async def arguments(self, spec: ToolSpec, arguments: Any, origin: Origin) -> BaseModel:
+        """The tool's input: checked already (a large HTTP body), or parsed here, on a
+        worker thread if its size would hold the event loop."""
+        if origin.slot is not None and origin.slot.params is not None:
+            return origin.slot.params
+        if spec.heavy_when.large(arguments):
+            return await self.heavy.run(lambda: parse_arguments(spec, arguments),
+                                        f"{spec.name} arguments", origin.connection)
+        return parse_arguments(spec, arguments)
+
+    async def execute(self, spec: ToolSpec, params: BaseModel, origin: Origin,
+                      answers: dict[str, Any] | None) -> CallToolResult:
+        """Steps 3 to 5 on validated input; `answers`: the resolved confirmation (None for
+        a tool that asks nothing). A tool's VeriGraphError comes out as a ToolError."""
+        if self.arm_involved(params):
+            from verigraph.server.confirmation import arm_call  # only where an arm is
+
+            async with arm_call(spec, self.toolbox, params, answers, origin.client_name):
+                return await self.placed(spec, params, origin)
+        return await self.placed(spec, params, origin)
+
+    async def placed(self, spec: ToolSpec, params: BaseModel, origin: Origin
+                     ) -> CallToolResult:
+        placement = self.placement(spec, params)
+        if placement == "inline":  # a thread hop costs more than the verification itself
+            try:
+                with non_blocking():
+                    return self.result(spec, params)
+            except WouldBlock:  # the episode is busy: wait for it on a worker thread
+                placement = "heavy"
+        if placement == "heavy":
+            try:
+                return await self.heavy.run(lambda: self.result(spec, params, origin.slot),
+                                            spec.name, origin.connection)
+            except VeriGraphError as exc:  # its budget, stopped outside the tool's code
+                raise ToolError(str(exc)) from None
+        # The arm's controls answer while a motion runs: a worker thread outside the heavy
+        # queue, and for arm_stop one of its own, waiting on nothing.
+        own = anyio.CapacityLimiter(1) if placement == "own_thread" else None
+        return await anyio.to_thread.run_sync(self.result, spec, params, limiter=own)
+
+    def placement(self, spec: ToolSpec, params: BaseModel) -> str:
+        """The row's `placement`; an inline tool's call is heavy when its input says so
+        (`heavy_when`), when it works on a large episode, when the store blocks, or when
+        it may open a world (the server's default executor is not the graph)."""
+        if spec.placement != "inline":
+            return spec.placement
+        if self.store_blocks or (spec.opens_world and self.default_opens_world) \
+                or spec.heavy_when(params) or self.big_episode(spec, params):
+            return "heavy"
+        return "inline"
+
+    def result(self, spec: ToolSpec, params: BaseModel, slot: LargeBodySlot | None = None
+               ) -> CallToolResult:
+        """Run the tool and turn its result into the answer; with `slot` (a heavy call of
+        a large HTTP body, on its worker thread) a large structured result is kept as
+        bytes and answered by a placeholder (verigraph.server.http.offload)."""
+        try:
+            result = self.toolbox.run(spec, params)
+        except VeriGraphError as exc:
+            raise ToolError(str(exc)) from None
+        return to_result(spec, result, slot)
+
+    def big_episode(self, spec: ToolSpec, params: BaseModel) -> bool:
+        """Whether the call works on (and mostly returns) a large episode graph; a tool
+        whose work does not grow with the episode (validate_action answers in O(degree))
+        stays on the loop."""
+        episode_id = getattr(params, "episode_id", None)
+        if not spec.episode_sized or not isinstance(episode_id, str):
+            return False
+        try:
+            state = self.toolbox.context.store.peek(episode_id).state
+        except VeriGraphError:
+            return False  # the tool reports it
+        return state is not None and len(state.objects) > BIG_GRAPH_ITEMS
+
+    def arm_involved(self, params: BaseModel) -> bool:
+        """Whether this call may touch an arm: never on a server without one; on one with
+        an arm, unless the call is on an existing episode that runs on the graph or the
+        simulator."""
+        if not self.has_arm:
+            return False
+        episode_id = getattr(params, "episode_id", None)
+        if not isinstance(episode_id, str):
+            return True  # a new episode, or the server's arm itself
+        try:
+            executor = self.toolbox.context.store.peek(episode_id).executor
+        except Exception:
+            return True  # the tool reports it, in the arm's scope as before
+        return executor.startswith("arm")
+
+    def may_ask(self, spec: ToolSpec, params: BaseModel) -> bool:
+        """Whether a confirmed tool's call may have something to ask: any doubt (a tool
+        that does not move the arm, such as arm_reset; no such episode; an arm) leaves it
+        to the SDK's resolvers. execute_actions on an episode without an arm asks
+        nothing."""
+        return not spec.moves_arm or self.arm_involved(params)
+
+
+def to_result(spec: ToolSpec, result: BaseModel | ImageResult,
+              slot: LargeBodySlot | None = None) -> CallToolResult:
+    """Structured content + summary text, or image content for the image-only tools."""
     if isinstance(result, ImageResult):
         content: list[ImageContent | TextContent] = [ImageContent(
             type="image", data=png_base64(result.png),
@@ -64,9 +247,31 @@ def to_result(spec: ToolSpec, result: BaseModel | ImageResult, splice: bool = Fa
             content.append(TextContent(type="text", text=result.text))
         return CallToolResult(content=list(content))
     summary = [TextContent(type="text", text=spec.summary(result))]
-    placeholder = offload(result) if splice else None
+    placeholder = slot.keep(result) if slot is not None else None
     return CallToolResult(content=list(summary), structured_content=(
         placeholder if placeholder is not None else result.model_dump(mode="json")))
+
+
+def error_result(name: str, error: object) -> CallToolResult:
+    return CallToolResult(content=[TextContent(
+        type="text", text=f"Error executing tool {name}: {error}")], is_error=True)
+
+
+def with_arguments(ctx: ServerRequestContext[Any, Any], slot: LargeBodySlot | None
+                   ) -> ServerRequestContext[Any, Any]:
+    """`ctx` as the SDK needs it when it runs the tool itself: with the arguments a large
+    body had taken out (as the validated input's JSON) put back."""
+    if slot is None or slot.params is None or ctx.params is None:
+        return ctx
+    arguments = slot.params.model_dump(mode="json", exclude_unset=True)
+    return replace(ctx, params={**ctx.params, "arguments": arguments})
+
+
+def request_arguments(spec: ToolSpec, ctx: Context) -> BaseModel:
+    """The call's input as step 1 checked it, from the request the SDK handles (for the
+    confirmation branch: resolvers and the registered function)."""
+    params = ctx.request_context.params or {}
+    return parse_arguments(spec, params.get("arguments"))
 
 
 def _parameters(model: type[BaseModel]) -> list[inspect.Parameter]:
@@ -81,134 +286,42 @@ def _parameters(model: type[BaseModel]) -> list[inspect.Parameter]:
     return params
 
 
-# Arguments that make any tool's call slow (an image to decode, a scene to generate, the
-# simulator, an executor that opens a world): such a call runs as a heavy call.
-SLOW_ARGUMENTS = ("image", "generator", "simulate", "executor")
-
-
-BIG_GRAPH_ITEMS = 300  # nodes or edges
-BIG_PLAN_ITEMS = 100
-BIG_PLAN_CHARS = 2000
-BIG_IMAGE_CHARS = 100_000
-
-
-def _field(obj: Any, name: str) -> Any:
-    return obj.get(name) if isinstance(obj, dict) else getattr(obj, name, None)
-
-
-def large_input(arguments: Any) -> bool:
-    """Whether a call's input, raw JSON arguments or the validated model alike, is large
-    enough that checking or running it would hold the event loop: a graph (or goal graph)
-    of more than 300 nodes or edges, a plan of more than 100 items or 2,000 characters, an
-    image of more than 100,000 characters."""
-    goal = _field(arguments, "goal")
-    for graph in (_field(arguments, "graph"), _field(goal, "graph")):
-        if any(isinstance(items := _field(graph, key), list) and len(items) > BIG_GRAPH_ITEMS
-               for key in ("nodes", "edges")):
-            return True
-    image, plan = _field(arguments, "image"), _field(arguments, "plan")
-    return (isinstance(image, str) and len(image) > BIG_IMAGE_CHARS) or (
-        isinstance(plan, str) and len(plan) > BIG_PLAN_CHARS) or (
-        isinstance(plan, list) and len(plan) > BIG_PLAN_ITEMS)
-
-
-def may_block(spec: ToolSpec, params: BaseModel) -> bool:
-    """Whether a call could hold the event loop for long (decode, render, simulate, search,
-    or a large graph or plan)."""
-    return spec.placement == "heavy" or any(getattr(params, a, None) for a in SLOW_ARGUMENTS) \
-        or large_input(params)
-
-
-def big_episode(toolbox: Toolbox, spec: ToolSpec, params: BaseModel) -> bool:
-    """Whether the call works on (and mostly returns) a large episode graph: then its
-    result alone takes long to build, so it runs as a heavy call. A tool whose work does
-    not grow with the episode (validate_action answers in O(degree)) stays on the loop."""
-    episode_id = getattr(params, "episode_id", None)
-    if not spec.episode_sized or not isinstance(episode_id, str):
-        return False
-    try:
-        state = toolbox.context.store.peek(episode_id).state
-    except VeriGraphError:
-        return False  # the tool reports it
-    return state is not None and len(state.objects) > BIG_GRAPH_ITEMS
-
-
-Executor = Callable[..., Awaitable[CallToolResult]]
-
-
-def tool_executor(spec: ToolSpec, toolbox: Toolbox, heavy: HeavyCalls) -> Executor:
-    """Run the tool on validated input where its ToolSpec's `placement` says.
-
-    Fast calls run directly on the event loop: a thread hop costs more than the
-    verification itself. A call that could block (slow tool, busy episode, simulator,
-    large input) runs on a worker thread within its budget (see heavy). The arm's
-    controls answer while a motion runs: a worker thread outside the heavy queue, and
-    for arm_stop a thread of its own, so the stop path waits on nothing (not even
-    calls that hold the shared worker threads).
-    """
-    slow_default = spec.opens_world and toolbox.context.config.executor != "graph"
-    # A durable store reads and writes on every call: trying the loop first would only
-    # run the tool's checks twice before it hops to a worker thread anyway.
-    off_loop = slow_default or toolbox.context.store.blocking_io
-
-    def run(params: BaseModel, splice: bool = False) -> CallToolResult:
-        try:
-            return to_result(spec, toolbox.run(spec, params), splice)
-        except VeriGraphError as exc:
-            raise ToolError(str(exc)) from None
-
-    async def placed(params: BaseModel, splice: bool) -> CallToolResult:
-        if spec.placement in ("thread", "own_thread"):  # never behind what they interrupt
-            own = anyio.CapacityLimiter(1) if spec.placement == "own_thread" else None
-            return await anyio.to_thread.run_sync(run, params, limiter=own)
-        if not (off_loop or may_block(spec, params) or big_episode(toolbox, spec, params)):
-            try:
-                with non_blocking():
-                    return run(params)
-            except WouldBlock:
-                pass
-        return await heavy.run(lambda: run(params, splice), spec.name)
-
-    async def execute(params: BaseModel, answers: dict[str, Any] | None = None, *,
-                      by_gate: bool = False) -> CallToolResult:
-        """`by_gate`: ArgumentGate answers the client itself, so a large result may be
-        spliced in as bytes; the SDK checks what it answers, which a placeholder fails."""
-        # The arm's scope of the call: audit identity, confirmation, heartbeat, deadman.
-        async with arm_call(spec, toolbox, params, answers):
-            return await placed(params, splice=by_gate)
-
-    return execute
-
-
-def tool_function(spec: ToolSpec, toolbox: Toolbox, execute: Executor) -> Callable[..., Any]:
-    """An async function whose signature mirrors `spec.input_model` and runs the tool.
-
-    It gives the SDK the tool's schema; ArgumentGate runs most calls itself (see
-    there). A tool that can make a real arm act also takes the user's answer, which
-    the SDK elicits before the body runs (see confirmation).
-    """
+def tool_function(spec: ToolSpec, calls: ToolCalls) -> Callable[..., Any]:
+    """An async function whose signature mirrors `spec.input_model`: it gives the SDK the
+    tool's schema, and it is the SDK's end of step 2. For a tool that can make a real
+    arm act, the SDK fills two more parameters by running the confirmation resolvers
+    (the user's answer) before it calls this; the function then takes the input step 1
+    checked and goes on at step 3 (ToolCalls.execute)."""
     confirmed = spec.confirmation is not None
 
     async def call(**arguments: Any) -> CallToolResult:
-        answers = take_answers(arguments) if confirmed else None
-        params = current_scope().params_for(spec.name)  # validated by ArgumentGate
-        if params is None:
-            try:
-                params = spec.input_model.model_validate(arguments)
-            except ValidationError as exc:
-                raise ToolError(str(argument_error(spec, exc))) from None
-        return await execute(params, answers)
+        ctx: Context = arguments.pop(CONTEXT_PARAM)
+        answers = None
+        if confirmed:
+            from verigraph.server.confirmation import take_answers
+
+            answers = take_answers(arguments)
+        try:
+            params = request_arguments(spec, ctx)
+        except VeriGraphError as exc:
+            raise ToolError(str(exc)) from None
+        # No large-body slot: the SDK checks the result it answers, a placeholder fails.
+        origin = Origin.of(ctx.request_context, with_slot=False)
+        return await calls.execute(spec, params, origin, answers)
 
     returns: Any = (Annotated[CallToolResult, spec.output_model] if spec.output_model
                     else CallToolResult)
-    parameters = _parameters(spec.input_model)
+    extra = [inspect.Parameter(CONTEXT_PARAM, inspect.Parameter.KEYWORD_ONLY,
+                               annotation=Context)]
     if confirmed:
-        extra = resolver_parameters(spec, toolbox)
-        parameters += extra
-        # The SDK finds resolvers with typing.get_type_hints, which reads __annotations__.
-        call.__annotations__ = {p.name: p.annotation for p in extra}
+        from verigraph.server.confirmation import resolver_parameters
+
+        extra += resolver_parameters(spec, calls.toolbox)
+    # The SDK finds the context and the resolvers with typing.get_type_hints, which reads
+    # __annotations__.
+    call.__annotations__ = {p.name: p.annotation for p in extra}
     call.__signature__ = inspect.Signature(  # type: ignore[attr-defined]
-        parameters, return_annotation=returns)
+        _parameters(spec.input_model) + extra, return_annotation=returns)
     call.__name__ = spec.name
     call.__qualname__ = spec.name
     call.__doc__ = spec.description
@@ -231,118 +344,25 @@ def tool_annotations(spec: ToolSpec) -> ToolAnnotations:
         {k: v for k, v in hints.items() if v != _HINT_DEFAULTS[k]})
 
 
-def build_tools(toolbox: Toolbox, heavy: HeavyCalls,
-                meta: dict[str, dict[str, Any]] | None = None
-                ) -> tuple[list[Tool], dict[str, Executor]]:
-    """Every tool in TOOL_SPECS order (the order tools/list reports), with the compact
-    published schemas of verigraph.server.schemas; `meta` gives some tools a `_meta`
-    (the MCP Apps viewer link). Also returns each tool's executor, which ArgumentGate
-    runs directly unless the call may ask for a confirmation."""
+def build_tools(calls: ToolCalls, meta: dict[str, dict[str, Any]] | None = None
+                ) -> tuple[list[Tool], list[tuple[ToolSpec, Callable[..., Any]]]]:
+    """Every row of the table in order (the order tools/list reports): the tools every
+    client sees, with the compact published schemas of verigraph.server.schemas and
+    `meta` (the MCP Apps viewer link), and the app-only rows with their functions, which
+    the Apps extension registers (verigraph.server.apps)."""
     tools = []
-    executors: dict[str, Executor] = {}
+    app_only = []
     documented: set[str] = set()
-    for spec in TOOL_SPECS:
-        execute = executors[spec.name] = tool_executor(spec, toolbox, heavy)
+    for spec in SERVER_TOOL_SPECS:
+        function = tool_function(spec, calls)
+        if "model" not in spec.visibility:
+            app_only.append((spec, function))
+            continue
         tool = Tool.from_function(
-            tool_function(spec, toolbox, execute), name=spec.name, title=spec.title,
-            description=spec.description, annotations=tool_annotations(spec),
-            meta=(meta or {}).get(spec.name))
+            function, name=spec.name, title=spec.title, description=spec.description,
+            annotations=tool_annotations(spec), meta=(meta or {}).get(spec.name))
         tool.parameters = compact_input_schema(tool.parameters, documented)
         if tool.fn_metadata.output_schema is not None:
             tool.fn_metadata.output_schema = compact_output_schema(tool.fn_metadata.output_schema)
         tools.append(tool)
-    return tools, executors
-
-
-def _error_result(name: str, error: object) -> CallToolResult:
-    return CallToolResult(content=[TextContent(
-        type="text", text=f"Error executing tool {name}: {error}")], is_error=True)
-
-
-def _with_arguments(ctx: ServerRequestContext[Any, Any], slot: CallSlot | None
-                    ) -> ServerRequestContext[Any, Any]:
-    """`ctx` as the SDK needs it when it runs the tool itself: with the arguments a large
-    body had taken out (as the validated input's JSON; offload) put back."""
-    if slot is None or slot.params is None or ctx.params is None:
-        return ctx
-    arguments = slot.params.model_dump(mode="json", exclude_unset=True)
-    return replace(ctx, params={**ctx.params, "arguments": arguments})
-
-
-class ArgumentGate:
-    """Server middleware: validate tools/call arguments with our models, from the raw JSON.
-
-    The SDK ignores unknown argument names, words type errors for Python readers, and
-    decodes JSON-looking strings (so an episode_id "null" would become None). The gate
-    rejects misspelt arguments, answers in terms of fields and fixes, and hands the tool
-    exactly the input it validated. It opens the call's CallScope, which the rest of
-    the path reads. `specs` holds the registry's tools and the extensions' tools that
-    build_server adds (view_episode), so no tool is left to the SDK's looser checks.
-    """
-
-    def __init__(self, heavy: HeavyCalls, toolbox: Toolbox) -> None:
-        self.heavy = heavy
-        self.toolbox = toolbox
-        self.executors: dict[str, Executor] = {}  # filled by build_server
-        # The tools whose calls it checks: the registry's, and the extensions' tools
-        # added by build_server (view_episode), so every tool has one argument path.
-        self.specs: dict[str, ToolSpec] = dict(TOOLS)
-
-    async def __call__(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
-                       ) -> HandlerResult:
-        if ctx.method != "tools/call" or ctx.params is None:
-            return await call_next(ctx)
-        peer = getattr(ctx.request, "client", None)
-        scope = CallScope(connection=f"{peer.host}:{peer.port}" if peer else "stdio",
-                          client=client_label(ctx.session), slot=slot_of(ctx.request))
-        with call_scope(scope):
-            return await self._gate(ctx, call_next, scope)
-
-    async def _gate(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext,
-                    scope: CallScope) -> HandlerResult:
-        request = ctx.params or {}
-        name = request.get("name")
-        slot = scope.slot
-        if slot is not None and slot.error is not None:  # found by the checking process
-            return _error_result(str(name), slot.error)
-        spec = self.specs.get(name) if isinstance(name, str) else None
-        if spec is None:
-            return await call_next(_with_arguments(ctx, slot))
-        try:
-            params = await self._params(spec, request.get("arguments"), slot)
-        except VeriGraphError as exc:
-            return _error_result(spec.name, exc)
-        scope.tool, scope.params = spec.name, params
-        return await self._run(spec, params, ctx, call_next, slot)
-
-    async def _params(self, spec: ToolSpec, arguments: Any, slot: CallSlot | None
-                      ) -> BaseModel:
-        """The tool's input: checked already (a large HTTP body, see offload), or parsed
-        here (on a worker thread if large)."""
-        if slot is not None and slot.params is not None:
-            return slot.params
-        if large_input(arguments):
-            return await self.heavy.run(lambda: parse_tool_arguments(spec, arguments),
-                                        f"{spec.name} arguments")
-        return parse_tool_arguments(spec, arguments)
-
-    async def _run(self, spec: ToolSpec, params: BaseModel,
-                   ctx: ServerRequestContext[Any, Any], call_next: CallNext,
-                   slot: CallSlot | None) -> HandlerResult:
-        confirmed = spec.confirmation is not None
-        if not confirmed or asks_nothing(spec, self.toolbox, params):
-            # Run it here: the SDK would validate the arguments and the structured
-            # result once more on the event loop (both already hold by construction),
-            # which for a large graph stalls every other client. A confirmed tool with
-            # nothing to ask gets the empty approval the SDK's resolvers would give.
-            answers: dict[str, Any] | None = {} if confirmed else None
-            try:
-                return await self.executors[spec.name](params, answers, by_gate=True)
-            except ToolError as exc:
-                log.info("Tool %r failed: %r", spec.name, str(exc))
-                return _error_result(spec.name, exc)
-            except Exception:  # a bug: logged in full, the client learns only that
-                log.exception("Tool %r raised an unexpected exception", spec.name)
-                return CallToolResult(content=[TextContent(
-                    type="text", text=f"Error executing tool {spec.name}")], is_error=True)
-        return await call_next(_with_arguments(ctx, slot))
+    return tools, app_only

@@ -344,7 +344,7 @@ def validate_plan(ctx: ToolContext, params: ValidatePlanInput) -> ValidationRepo
     """Per-step report for a plan; nothing is stored or modified. Its `label_readings`
     say how the graphs the client wrote were read, as load_scene reports them."""
     if params.pddl is not None:
-        return _validate_pddl(params.pddl, str(params.plan))
+        return _validate_pddl(params.pddl, str(params.plan), all_errors=params.all_errors)
     actions = _plan_actions(params.plan)
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
                                    graph=params.graph, goal=None)
@@ -362,9 +362,10 @@ SHOWN_FIRST_STEPS = 20
 SHOWN_MAX_FAILURES = 50
 
 
-def _validate_pddl(pddl: dict[str, str], plan: str) -> ValidationReport:
+def _validate_pddl(pddl: dict[str, str], plan: str, *, all_errors: bool = False
+                   ) -> ValidationReport:
     try:
-        data = validate_pddl_dict(pddl["domain"], pddl["problem"], plan)
+        data = validate_pddl_dict(pddl["domain"], pddl["problem"], plan, all_errors=all_errors)
         if len(data["steps"]) + data["not_checked"] > MAX_PLAN_ACTIONS:
             raise ToolArgumentError(f"the plan has more than {MAX_PLAN_ACTIONS} actions",
                                     field="plan", value=None,

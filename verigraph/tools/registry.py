@@ -28,11 +28,62 @@ from verigraph.tools.errors import InvalidArgumentsError, StaleEpisodeError, Too
 from verigraph.tools.scenes import ImageResult
 
 # Where a server runs a tool's call (see verigraph.server.tools):
-#   inline:     on the event loop, unless its input, arguments or episode are large;
+#   inline:     on the event loop, unless its input (`heavy_when`) or episode are large;
 #   heavy:      always a heavy call (worker thread, budget, the client's share);
 #   thread:     a worker thread outside the heavy queue (the arm's controls answer mid-motion);
 #   own_thread: a thread of its own for each call, waiting on nothing (arm_stop).
 Placement = Literal["inline", "heavy", "thread", "own_thread"]
+# Where an MCP host shows a tool (the MCP Apps `visibility`): to the model, to apps.
+Visibility = Literal["model", "app"]
+
+BIG_GRAPH_ITEMS = 300  # nodes or edges of a graph (or a goal's graph)
+BIG_PLAN_ITEMS = 100
+BIG_PLAN_CHARS = 2000
+BIG_IMAGE_CHARS = 100_000
+
+
+def _field(obj: Any, name: str) -> Any:
+    return obj.get(name) if isinstance(obj, dict) else getattr(obj, name, None)
+
+
+def _big_graph(value: Any) -> bool:
+    """A graph, or a goal holding one, of more than BIG_GRAPH_ITEMS nodes or edges."""
+    for graph in (value, _field(value, "graph")):
+        if any(isinstance(items := _field(graph, key), list) and len(items) > BIG_GRAPH_ITEMS
+               for key in ("nodes", "edges")):
+            return True
+    return False
+
+
+def _big_plan(value: Any) -> bool:
+    return (isinstance(value, str) and len(value) > BIG_PLAN_CHARS) or (
+        isinstance(value, list) and len(value) > BIG_PLAN_ITEMS)
+
+
+@dataclass(frozen=True)
+class HeavyWhen:
+    """Which of a tool's own inputs make one of its calls heavy (a worker thread within
+    the call's budget, never the event loop): any value at all in `given` (an image to
+    decode, a scene to generate, the simulator, a PDDL text to explain), or a large
+    value in `graphs` (more than 300 nodes or edges), `plans` (more than 100 actions or
+    2,000 characters) or `images` (more than 100,000 characters). Reads raw JSON
+    arguments and validated input alike."""
+
+    given: tuple[str, ...] = ()
+    graphs: tuple[str, ...] = ()
+    plans: tuple[str, ...] = ()
+    images: tuple[str, ...] = ()
+
+    def large(self, arguments: Any) -> bool:
+        """Whether checking the arguments alone would hold an event loop (their size)."""
+        return any(_big_graph(_field(arguments, name)) for name in self.graphs) or any(
+            _big_plan(_field(arguments, name)) for name in self.plans) or any(
+            isinstance(image := _field(arguments, name), str) and len(image) > BIG_IMAGE_CHARS
+            for name in self.images)
+
+    def __call__(self, arguments: Any) -> bool:
+        """Whether running the call could hold an event loop for long."""
+        return any(_field(arguments, name) for name in self.given) or self.large(arguments)
 
 
 @dataclass(frozen=True)
@@ -66,33 +117,40 @@ class ToolSpec:
     confirmation: Confirmation | None = None  # asks the user before a real arm acts
     moves_arm: bool = False  # the arm stops when the call is cancelled (deadman)
     viewer: bool = False  # links the MCP Apps episode viewer (`_meta.ui`)
+    heavy_when: HeavyWhen = HeavyWhen()  # inputs that make an inline tool's call heavy
+    visibility: tuple[Visibility, ...] = ("model", "app")  # ("app",): only apps may call it
 
 
 TOOL_SPECS: tuple[ToolSpec, ...] = (
     ToolSpec("load_scene", "Start an episode",
-             "Start an episode from a built-in scene_id, a graph, an image or the sim2d "
-             "generator. Returns the episode_id the other tools take, graph, goal, executor.",
+             "Start an episode (scene_id, graph, image or sim2d generator); returns the "
+             "episode_id. Your own label: its role in the node's attrs, e.g. "
+             '{"id":"tin","label":"tin","attrs":{"container":true,"capacity":3}}.',
              loading.LoadSceneInput, summaries.EpisodeState, loading.load_scene,
-             read_only=False, open_world=True, opens_world=True),
+             read_only=False, open_world=True, opens_world=True,
+             heavy_when=HeavyWhen(given=("image", "generator", "simulate", "executor"),
+                                  graphs=("graph", "goal"), images=("image",))),
     ToolSpec("set_goal", "Set the goal",
              "Set the goal: edges ('cup on table; spoon in pot'), a graph, a predicate or an "
-             "image. Words alone: a proposal to confirm. An invalid goal changes nothing.",
+             "image. Words alone: a proposal to confirm.",
              goals.SetGoalInput, goals.GoalOutput, goals.set_goal,
-             read_only=False, idempotent=True),
+             read_only=False, idempotent=True,
+             heavy_when=HeavyWhen(given=("image",), graphs=("graph",), images=("image",))),
     ToolSpec("get_state", "Episode state",
              "Current graph, goal and its difference, executed actions, tau (consecutive "
              "failed calls), k and t.",
              episodes.EpisodeRef, summaries.EpisodeState, episodes.get_state,
              read_only=True, idempotent=True, viewer=True),
     ToolSpec("validate_action", "Check one action",
-             "Check one action (JSON or text, e.g. move(cup, on, table)) without executing it:"
-             " every violated constraint with a fix, or the edges it would change.",
+             "Check one action without executing it: every violated constraint with a fix, or "
+             "the edges it would change.",
              acting.ValidateActionInput, acting.ActionCheck, acting.validate_action,
              read_only=True, idempotent=True, episode_sized=False),
     ToolSpec("execute_actions", "Execute actions",
              "Execute up to k actions (done not counted) until the first violation; the valid "
-             "prefix stays. Returns graph, feedback with a fix, tau, goal check, executor. End "
-             "with done. A real arm asks the user first.",
+             "prefix stays. Returns graph, feedback with a fix, tau, goal check, executor "
+             "(graph, sim2d: nothing physical moves; an arm only if the server has one, see "
+             "arm_status; a real arm asks the user first). End with done.",
              acting.ExecuteActionsInput, acting.ExecutionOutput, acting.execute_actions,
              read_only=False, destructive=True, open_world=True, viewer=True, moves_arm=True,
              confirmation=Confirmation(arm.preview_execute,
@@ -101,27 +159,30 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              "Stateless: check a whole plan from a scene_id, graph or episode, optionally "
              "against a goal. Per-step report.",
              acting.ValidatePlanInput, ValidationReport, acting.validate_plan,
-             read_only=True, idempotent=True, summary=acting.report_summary, viewer=True),
+             read_only=True, idempotent=True, summary=acting.report_summary, viewer=True,
+             heavy_when=HeavyWhen(given=("pddl",), graphs=("graph", "goal"), plans=("plan",))),
     ToolSpec("check_goal", "Check the goal",
              "Missing and extra edges and objects between the episode's graph and its goal (or"
              " one given here).",
              acting.CheckGoalInput, acting.GoalCheck, acting.check_goal,
-             read_only=True, idempotent=True),
+             read_only=True, idempotent=True, heavy_when=HeavyWhen(graphs=("goal",))),
     ToolSpec("generate_scene_graph", "Perceive a scene graph",
              "Built-in perception: image (given or the episode's) -> scene graph. Else: "
              "get_scene_image, then submit_scene_graph.",
              scenes.GenerateSceneGraphInput, scenes.SceneGraphSubmission,
              scenes.generate_scene_graph, read_only=True, idempotent=True,
-             placement="heavy"),
+             placement="heavy", heavy_when=HeavyWhen(images=("image",))),
     ToolSpec("render_scene", "Render the scene",
              "PNG: the simulator's render, else a diagram of the graph (pictures need "
              "simulate=true); view=goal: the goal.",
              scenes.RenderSceneInput, None, scenes.render_scene,
              read_only=True, idempotent=True, placement="heavy", viewer=True),
     ToolSpec("solve", "Reference plan",
-             "A reference plan by search to the goal, re-checked by the validator.",
+             "A reference plan by search, re-checked by the validator: optimal, else its "
+             "proven lower bound.",
              solving.SolveInput, solving.SolveOutput, solving.solve,
-             read_only=True, idempotent=True, placement="heavy"),
+             read_only=True, idempotent=True, placement="heavy",
+             heavy_when=HeavyWhen(graphs=("graph", "goal"))),
     ToolSpec("get_scene_image", "Scene image and prompt",
              "The episode's image and the scene-graph prompt (relations R, dictionary D) for "
              "your vision model; answer with submit_scene_graph.",
@@ -131,14 +192,15 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              "Check a scene graph you wrote against D and R (synonyms normalised, every "
              "problem at once).",
              scenes.SubmitSceneGraphInput, scenes.SceneGraphSubmission,
-             scenes.submit_scene_graph, read_only=False, idempotent=True, open_world=True),
+             scenes.submit_scene_graph, read_only=False, idempotent=True, open_world=True,
+             heavy_when=HeavyWhen(graphs=("graph",))),
     ToolSpec("end_episode", "End the episode",
              "The end token: verdict, final graph and trace. The episode_id stops working.",
              episodes.EpisodeRef, episodes.EpisodeVerdict, episodes.end_episode,
              read_only=False, destructive=True),
     ToolSpec("arm_status", "Arm status",
              "The arm: driver, mode, connection, latched stop and why, busy, pose, last "
-             "outcome. Answers mid-motion.",
+             "outcome. Answers mid-motion. No arm: says which executor reaches one, if any.",
              arm.ArmRef, arm.ArmStatusOutput, arm.arm_status,
              read_only=True, idempotent=True, open_world=True, placement="thread"),
     ToolSpec("arm_stop", "Stop the arm",
@@ -249,6 +311,11 @@ def argument_error(spec: ToolSpec, exc: ValidationError) -> InvalidArgumentsErro
         first_field = first_field or top or None
         if line not in lines:
             lines.append(line)
+    if not lines:  # every problem was on a union member: never an error with no reason
+        for err in exc.errors()[:8]:
+            path = _clean_path(err["loc"])[0] or "arguments"
+            first_field = first_field or path.split(".")[0].split("[")[0]
+            lines.append(f"{path}: {err['msg']}, got {_shown(err.get('input'))}")
     shown = lines[:8] + ([f"... and {len(lines) - 8} more"] if len(lines) > 8 else [])
     return InvalidArgumentsError(f"invalid arguments for {spec.name}:\n" + "\n".join(shown),
                                  field=first_field, value=None)

@@ -23,10 +23,10 @@ large. And within each child's lane, bodies wait per client and the lane takes t
 round-robin over clients (FairTurns): a client with eight bodies waiting gets one turn,
 then another client's single body gets the next, so however many bodies (from however
 many connections) one client posts, another's waits for at most one of them. Who a
-client is: verigraph.server.callers (its own token, else its address). A client
-may have at most `queued_per_client` bodies waiting in a lane; one more gets a 503
-naming that limit, so no client can make the queue (bodies of up to 16 MiB each) grow
-without bound. Measured in benchmarks/results/server_load.md.
+client is: access.caller_of (its own token, else its address). A client may have at
+most `queued_per_client` bodies waiting in a lane; one more gets a 503 naming that
+limit, so no client can make the queue (bodies of up to 16 MiB each) grow without
+bound. Measured in benchmarks/results/server_load.md.
 
 Every answer has a deadline: a child that has not answered a body within it (stopped
 with SIGSTOP, stuck) is killed and replaced, and the caller gets a 503 saying to send
@@ -57,19 +57,21 @@ import anyio.to_thread
 import pydantic_core
 from pydantic import BaseModel
 
+from verigraph.budget import DEFAULT_MEMORY_MIB
 from verigraph.errors import VeriGraphError
-from verigraph.server.jsonrpc_screen import INVALID_REQUEST, PARSE_ERROR, top_level_id
-from verigraph.tools.registry import TOOLS, ToolSpec, parse_arguments
-from verigraph.viewer import VIEW_SPEC
+from verigraph.server.http.workers import PR_SET_PDEATHSIG
+from verigraph.server.jsonrpc_screen import top_level_id
+from verigraph.server.rpc_errors import INVALID_REQUEST, PARSE_ERROR
+from verigraph.server.table import SERVER_TOOLS
+from verigraph.tools.registry import parse_arguments
 
 log = logging.getLogger("verigraph.server")
-INPUT_SPECS: dict[str, ToolSpec] = {**TOOLS, VIEW_SPEC.name: VIEW_SPEC}
 ID_SCAN_BYTES = 4096
 
 
 @dataclass(frozen=True)
 class Prepared:
-    """A large body, checked: what the SDK gets and what the argument gate uses."""
+    """A large body, checked: what the SDK gets and what the call uses."""
 
     envelope: bytes = b"{"  # the request without its arguments; "{" makes the SDK answer
     # its own parse error without parsing megabytes on the event loop
@@ -129,7 +131,7 @@ def _prepare(body: bytes, threshold: int) -> Prepared:
     envelope = json.dumps({**message, "params": {**params, "arguments": {}}}).encode()
     if len(envelope) > threshold:
         return _refusal(message, len(body))
-    spec = INPUT_SPECS.get(params.get("name"))  # type: ignore[arg-type]
+    spec = SERVER_TOOLS.get(params.get("name"))  # type: ignore[arg-type]
     if spec is None:
         return Prepared(envelope)  # the SDK answers that there is no such tool
     try:
@@ -150,7 +152,6 @@ def _vm_bytes() -> int:
     return 0
 
 
-PR_SET_PDEATHSIG = 1  # linux/prctl.h
 
 
 def _start_child(memory_mib: float, parent: int) -> None:
@@ -407,7 +408,8 @@ class ArgumentChecker:
     `deadline_s`: a child that has not answered by then (stopped, stuck) is killed and
     replaced, and its caller told so (503)."""
 
-    def __init__(self, memory_mib: float = 512.0, deadline_s: float = DEFAULT_DEADLINE_S,
+    def __init__(self, memory_mib: float = DEFAULT_MEMORY_MIB,
+                 deadline_s: float = DEFAULT_DEADLINE_S,
                  lane_split_bytes: int = LANE_SPLIT_BYTES,
                  queued_per_client: int = DEFAULT_QUEUED_PER_CLIENT) -> None:
         self.lane_split_bytes = lane_split_bytes

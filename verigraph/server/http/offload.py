@@ -9,14 +9,15 @@ LargeCalls moves them away:
 
 * A request body above `threshold` bytes goes to a child process (argument_process: one
   for bodies up to 4 MiB and one for larger ones, each answering within a deadline, each
-  taking bodies round-robin over clients, as told apart by callers), which parses it,
-  takes a `tools/call`'s arguments out and validates them. The SDK gets the envelope
-  with empty arguments (it still checks the protocol version, id, method, name and
-  `_meta`) and ArgumentGate takes the validated input, or the argument error, from the
-  request's CallSlot. Any other method has no business carrying that much and gets a
-  JSON-RPC error saying so.
-* A heavy call's structured result is serialised on its worker thread (`offload`); the
-  SDK answers with a small placeholder, which `send` replaces with those bytes.
+  taking bodies round-robin over callers, as told apart by access.caller_of), which
+  parses it, takes a `tools/call`'s arguments out and validates them. The SDK gets the
+  envelope with empty arguments (it still checks the protocol version, id, method, name
+  and `_meta`) and the call (verigraph.server.tools, step 1) takes the validated input,
+  or the argument error, from the request's CallSlot. Any other method has no business
+  carrying that much and gets a JSON-RPC error saying so.
+* A heavy call's structured result is serialised on its worker thread
+  (`CallSlot.keep`); the SDK answers with a small placeholder, which `send` replaces
+  with those bytes.
 
 Only HTTP has other clients to be fair to; stdio serves one peer and keeps the SDK's
 own path.
@@ -24,42 +25,61 @@ own path.
 
 from __future__ import annotations
 
+import re
+import secrets
+from dataclasses import dataclass
 from typing import Any
 
+from pydantic import BaseModel
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
-from verigraph.server.argument_process import ArgumentChecker
-from verigraph.server.callers import caller_of
-from verigraph.server.rpc_errors import rpc_error
-from verigraph.server.scope import PLACEHOLDER_KEY, CallSlot, current_scope
+from verigraph.server.http.access import caller_of, rpc_response
+from verigraph.server.http.argument_process import ArgumentChecker
+from verigraph.server.tools import SLOT_KEY
 
-__all__ = ["DEFAULT_THRESHOLD_BYTES", "PLACEHOLDER_KEY", "CallSlot", "LargeCalls",
-           "offload", "slot_of"]
-SCOPE_KEY = "verigraph.call_slot"
+__all__ = ["DEFAULT_THRESHOLD_BYTES", "PLACEHOLDER_KEY", "CallSlot", "LargeCalls"]
 DEFAULT_THRESHOLD_BYTES = 64 * 1024
 # Results smaller than this are cheaper to hand to the SDK than to splice.
 SPLICE_MIN_BYTES = 16 * 1024
+PLACEHOLDER_KEY = "verigraph_offloaded"
 
 
-def slot_of(request: Any) -> CallSlot | None:
-    """The CallSlot LargeCalls gave this HTTP request (None over stdio)."""
-    scope = getattr(request, "scope", None)
-    slot = scope.get(SCOPE_KEY) if isinstance(scope, dict) else None
-    return slot if isinstance(slot, CallSlot) else None
+@dataclass
+class CallSlot:
+    """What LargeCalls and the call hand each other for one HTTP request (under SLOT_KEY
+    in the ASGI scope; verigraph.server.tools.LargeBodySlot)."""
 
+    # A large body's arguments, taken out and checked (argument_process):
+    params: BaseModel | None = None  # the tool's validated input, if they are valid
+    error: str | None = None  # else what is wrong with them
+    structured: bytes | None = None  # the result's structuredContent, serialised
+    marker: str | None = None  # unguessable, so no client text can pass for the placeholder
 
-def offload(structured: Any) -> dict[str, Any] | None:
-    """On a heavy call's worker thread: keep a large pydantic result as JSON bytes in the
-    current call's slot and return the placeholder the SDK sends instead (None: send it
-    as is)."""
-    slot = current_scope().slot
-    if slot is None:
-        return None
-    data: bytes = structured.model_dump_json().encode()
-    if len(data) < SPLICE_MIN_BYTES:
-        return None
-    slot.structured = data
-    return slot.placeholder()
+    def keep(self, result: BaseModel) -> dict[str, Any] | None:
+        """On a heavy call's worker thread: keep a large result as JSON bytes and return
+        the placeholder the SDK sends instead (None: send it as is)."""
+        data: bytes = result.model_dump_json().encode()
+        if len(data) < SPLICE_MIN_BYTES:
+            return None
+        self.structured = data
+        return self.placeholder()
+
+    def placeholder(self) -> dict[str, str]:
+        if self.marker is None:
+            self.marker = secrets.token_hex(16)
+        return {PLACEHOLDER_KEY: self.marker}
+
+    def splice(self, body: bytes) -> bytes | None:
+        """`body` with the placeholder replaced by the serialised result, or None if the
+        SDK's answer does not hold the placeholder (it answered an error instead)."""
+        if self.structured is None or self.marker is None:
+            return None
+        pattern = (rb'\{\s*"' + PLACEHOLDER_KEY.encode() + rb'"\s*:\s*"'
+                   + self.marker.encode() + rb'"\s*\}')
+        found = re.search(pattern, body)
+        if found is None:
+            return None
+        return body[:found.start()] + self.structured + body[found.end():]
 
 
 class LargeCalls:
@@ -94,12 +114,12 @@ class LargeCalls:
             if prepared.refusal is not None:
                 retry = {"Retry-After": "1"} if prepared.status == 503 else None
                 reason = {"reason": prepared.reason} if prepared.reason else None
-                await rpc_error(prepared.status, prepared.refusal, code=prepared.code,
+                await rpc_response(prepared.status, prepared.refusal, code=prepared.code,
                                 request_id=prepared.request_id, data=reason,
                                 headers=retry)(scope, receive, send)
                 return
             body, slot.params, slot.error = prepared.envelope, prepared.params, prepared.error
-        scope = {**scope, SCOPE_KEY: slot}
+        scope = {**scope, SLOT_KEY: slot}
         await self.app(scope, _replaying(body, receive), _splicing(slot, send))
 
     def _closing_on_shutdown(self, receive: Receive) -> Receive:

@@ -1,0 +1,68 @@
+"""One small tool call's path: the modules it runs in, and what a stdio server imports.
+
+A call on a graph-only episode never enters verigraph/arm/, the call itself runs in
+one server module (verigraph.server.tools), and a stdio server loads nothing of the HTTP
+wing (verigraph.server.http)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import threading
+from types import FrameType
+from typing import Any
+
+import pytest
+from mcp import Client
+from mcp_helpers import structured
+
+from verigraph.server import build_server
+from verigraph.tools import Toolbox
+
+pytestmark = pytest.mark.fast
+
+
+async def modules_entered(client: Client, name: str, arguments: dict[str, Any]) -> set[str]:
+    """The verigraph modules whose functions run during one call (all threads)."""
+    seen: set[str] = set()
+
+    def profile(frame: FrameType, event: str, arg: Any) -> None:
+        if event == "call":
+            module = frame.f_globals.get("__name__") or ""
+            if module.startswith("verigraph"):
+                seen.add(module)
+
+    sys.setprofile(profile)
+    threading.setprofile(profile)  # type: ignore[arg-type]
+    try:
+        structured(await client.call_tool(name, arguments))
+    finally:
+        sys.setprofile(None)
+        threading.setprofile(None)  # type: ignore[arg-type]
+    return seen
+
+
+@pytest.mark.anyio
+async def test_a_small_call_on_a_graph_episode_runs_in_one_server_module_and_no_arm() -> None:
+    async with Client(build_server(Toolbox())) as client:
+        episode = structured(await client.call_tool("load_scene", {"scene_id": "cup_on_book"}))
+        arguments = {"episode_id": episode["episode_id"], "action": "move(cup, on, desk)"}
+        await client.call_tool("validate_action", arguments)  # warm-up
+        seen = await modules_entered(client, "validate_action", arguments)
+        executed = await modules_entered(client, "execute_actions", {
+            "episode_id": episode["episode_id"], "actions": ["move(book, on, shelf)"]})
+    assert not {m for m in seen | executed if m.startswith("verigraph.arm")}, seen | executed
+    assert {m for m in seen if m.startswith("verigraph.server")} == {"verigraph.server.tools"}
+    assert len(seen) <= 16, sorted(seen)
+
+
+def test_a_stdio_server_imports_nothing_of_the_http_wing() -> None:
+    code = ("import sys\n"
+            "from verigraph.server import build_server\n"
+            "from verigraph.server.stdio import run_stdio\n"
+            "build_server()\n"
+            "print(sorted(m for m in sys.modules if m.startswith('verigraph.server.http')))\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip() == "[]", done.stdout
