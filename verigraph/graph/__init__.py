@@ -1,22 +1,9 @@
-"""Scene graphs, the dictionary D, relations R, goals and graph diffs."""
+"""Scene graphs, the dictionary D, relations R, goals and graph diffs.
 
-from verigraph.graph.dictionary import (
-    BUILTIN_DICTIONARIES,
-    Dictionary,
-    ObjectProperties,
-    builtin_dictionary,
-    load_dictionary,
-    union_dictionary,
-)
-from verigraph.graph.goal import Goal, GraphDiff, check_goal, diff
-from verigraph.graph.io import load_goal, load_scene, save_graph
-from verigraph.graph.model import Edge, Node, SceneGraph
-from verigraph.graph.state import WorldState
-from verigraph.graph.wellformed import GraphProblem, check_well_formed
+The names are loaded on first use (`lazy_loader.attach_stub`; the list is `__init__.pyi`,
+which type checkers read), so importing one module of the package runs only what it needs.
+"""
 
-__all__ = [
-    "BUILTIN_DICTIONARIES", "Dictionary", "Edge", "Goal", "GraphDiff", "GraphProblem", "Node",
-    "ObjectProperties", "SceneGraph", "WorldState", "builtin_dictionary", "check_goal",
-    "check_well_formed", "diff", "load_dictionary", "load_goal", "load_scene", "save_graph",
-    "union_dictionary",
-]
+import lazy_loader
+
+__getattr__, __dir__, __all__ = lazy_loader.attach_stub(__name__, __file__)

@@ -4,20 +4,11 @@ Layer: part of `actions` (it needs only `graph` and `actions`): a recognised dom
 problem become a native scene (blocks, a table, and a hand that holds one block), and
 the plan is checked by the hand model in `hand.py`. The solver layer may use it; it
 uses nothing above `actions`.
+
+The names are loaded on first use (`lazy_loader.attach_stub`; the list is `__init__.pyi`,
+which type checkers read), so importing one module of the package runs only what it needs.
 """
 
-from verigraph.actions.blocksworld.domain import (
-    BlocksDomain,
-    UnsupportedDomainError,
-    recognise_domain,
-)
-from verigraph.actions.blocksworld.plans import PlanStep, parse_blocks_plan
-from verigraph.actions.blocksworld.problem import BlocksProblem, native_state, read_problem
-from verigraph.actions.blocksworld.sexpr import PddlSyntaxError
-from verigraph.actions.blocksworld.validate import validate_blocks_dict, validate_pddl_plan
+import lazy_loader
 
-__all__ = [
-    "BlocksDomain", "BlocksProblem", "PddlSyntaxError", "PlanStep", "UnsupportedDomainError",
-    "native_state", "parse_blocks_plan", "read_problem", "recognise_domain",
-    "validate_blocks_dict", "validate_pddl_plan",
-]
+__getattr__, __dir__, __all__ = lazy_loader.attach_stub(__name__, __file__)

@@ -13,6 +13,7 @@ verdict is "a block is not moved onto itself" in the 3-operator family, recorded
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 from itertools import permutations
 
 from verigraph.actions.blocksworld.sexpr import SExpr, define_body, typed_names
@@ -291,3 +292,9 @@ def recognise_domain(text: str) -> BlocksDomain:
             + ", ".join(str(r[0]) for r in raw))
     raise UnsupportedDomainError(f"the actions ({', '.join(str(r[0]) for r in raw) or 'none'}) "
                                  "are not the four hand operators or the three move operators")
+
+
+@lru_cache(maxsize=64)
+def cached_domain(text: str) -> BlocksDomain:
+    """Domains repeat across a batch: recognise each text once."""
+    return recognise_domain(text)

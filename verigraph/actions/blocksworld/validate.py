@@ -11,21 +11,14 @@ cheaper to build, and the same JSON.
 from __future__ import annotations
 
 import gc
-from functools import lru_cache
 from typing import Any
 
-from verigraph.actions.blocksworld.domain import BlocksDomain, recognise_domain
+from verigraph.actions.blocksworld.domain import BlocksDomain, cached_domain
 from verigraph.actions.blocksworld.hand import HandModel
 from verigraph.actions.blocksworld.plans import parse_blocks_plan, plain_actions
 from verigraph.actions.blocksworld.problem import BlocksProblem, native_state, read_problem
 from verigraph.actions.report import ValidationReport
-from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused
-
-
-@lru_cache(maxsize=64)
-def cached_domain(text: str) -> BlocksDomain:
-    """Domains repeat across a batch: recognise each text once."""
-    return recognise_domain(text)
+from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
 
 
 def _edge(e: tuple[str, str, str]) -> dict[str, str]:
@@ -47,19 +40,6 @@ def validate_blocks_dict(domain_text: str, problem_text: str, plan_text: str
     return report
 
 
-def promote_young_objects() -> None:
-    """Move every young object into the oldest generation without scanning it.
-
-    The report of a long plan is a hundred thousand acyclic dicts and lists; when the
-    collector resumes they would all be scanned by the next young collection and again on
-    each promotion (about a fifth of the whole call in a process with a large heap).
-    `freeze` + `unfreeze` splices the young generations into the oldest one in O(1);
-    reference counting still frees every object as usual. It is process-wide, so other
-    threads' young objects are promoted too (cyclic garbage among them waits for the next
-    full collection), and it is skipped when something else has frozen objects on purpose.
-    """
-    gc.freeze()
-    gc.unfreeze()
 
 
 Run = tuple[HandModel, list[dict[str, Any]], list[dict[str, Any]], int]

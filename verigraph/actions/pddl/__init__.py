@@ -4,24 +4,11 @@ Layer: part of `actions` (uses `graph` and the blocks-world package beside it, w
 S-expression reader and plan-line forms it shares). `validate_pddl_dict` picks the
 engine: the native blocks world for any domain that is one up to renaming, the STRIPS
 simulator for the rest. See docs/validator.md.
+
+The names are loaded on first use (`lazy_loader.attach_stub`; the list is `__init__.pyi`,
+which type checkers read), so importing one module of the package runs only what it needs.
 """
 
-from verigraph.actions.pddl.conversion import as_validation_report
-from verigraph.actions.pddl.model import SUPPORTED_REQUIREMENTS, Domain, Problem, Schema
-from verigraph.actions.pddl.plans import Step, parse_strips_plan
-from verigraph.actions.pddl.reader import (
-    PddlInputError,
-    UnsupportedRequirementError,
-    read_domain,
-    read_problem,
-)
-from verigraph.actions.pddl.simulate import simulate, validate_strips_dict
-from verigraph.actions.pddl.text import planbench_verdict, report_text
-from verigraph.actions.pddl.validate import ENGINES, validate_pddl_dict
+import lazy_loader
 
-__all__ = [
-    "ENGINES", "SUPPORTED_REQUIREMENTS", "Domain", "PddlInputError", "Problem", "Schema", "Step",
-    "UnsupportedRequirementError", "as_validation_report", "parse_strips_plan",
-    "planbench_verdict", "read_domain", "read_problem", "report_text", "simulate",
-    "validate_pddl_dict", "validate_strips_dict",
-]
+__getattr__, __dir__, __all__ = lazy_loader.attach_stub(__name__, __file__)

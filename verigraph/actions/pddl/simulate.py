@@ -32,7 +32,6 @@ from functools import lru_cache
 from operator import itemgetter
 from typing import Any
 
-from verigraph.actions.blocksworld.validate import promote_young_objects
 from verigraph.actions.pddl.explain import (
     MAX_ACHIEVERS,
     Changed,
@@ -49,7 +48,7 @@ from verigraph.actions.pddl.model import Domain, GroundAtom, Literal, Problem, S
 from verigraph.actions.pddl.plans import Step, parse_strips_plan
 from verigraph.actions.pddl.reader import read_domain, read_problem
 from verigraph.budget import checkpoint
-from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused
+from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
 
 __all__ = ["MAX_ACHIEVERS", "complete_binding", "simulate", "validate_strips_dict"]
 MAX_EXPLAINED_GOALS = 20

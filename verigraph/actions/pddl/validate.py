@@ -21,11 +21,8 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from verigraph.actions.blocksworld.domain import UnsupportedDomainError
-from verigraph.actions.blocksworld.plans import parse_blocks_plan
-from verigraph.actions.blocksworld.problem import read_problem
+from verigraph.actions.blocksworld.domain import UnsupportedDomainError, cached_domain
 from verigraph.actions.blocksworld.sexpr import _COMMENT
-from verigraph.actions.blocksworld.validate import cached_domain, validate_blocks_dict
 from verigraph.actions.pddl.reader import PROBLEM_SECTIONS, SUPPORTED_REQUIREMENTS
 from verigraph.actions.pddl.reader import read_problem as read_strips_problem
 from verigraph.actions.pddl.simulate import cached_strips_domain, validate_strips_dict
@@ -60,7 +57,11 @@ def validate_pddl_dict(domain_text: str, problem_text: str, plan_text: str, *,
         raise VeriGraphError(f"unknown engine '{engine}'", field="engine", value=engine,
                              fix=f"use one of {', '.join(ENGINES)}")
     cached_strips_domain(domain_text)  # refuses what no engine may skip (module docstring)
+    if engine == "auto" and not _blocks_world(domain_text):
+        engine = "strips"  # the blocks engine (and the scene-graph stack) is not loaded
     if engine != "strips":
+        from verigraph.actions.blocksworld.validate import validate_blocks_dict
+
         _check_problem(problem_text, domain_text)
         try:
             data = validate_blocks_dict(domain_text, problem_text, plan_text)
@@ -88,9 +89,21 @@ def validate_pddl_dict(domain_text: str, problem_text: str, plan_text: str, *,
     return validate_strips_dict(domain_text, problem_text, plan_text, all_errors=all_errors)
 
 
+def _blocks_world(domain_text: str) -> bool:
+    """Whether the domain is a blocks world up to renaming (recognised once per text)."""
+    try:
+        cached_domain(domain_text)
+    except VeriGraphError:  # another domain, or PDDL the recogniser does not take
+        return False
+    return True
+
+
 def _canonical(domain_text: str, problem_text: str, plan_text: str) -> str:
     """The plan with each line the blocks world can read as `(op args)`, the others as
     written (the STRIPS reader makes them failing steps); one output line per input line."""
+    from verigraph.actions.blocksworld.plans import parse_blocks_plan
+    from verigraph.actions.blocksworld.problem import read_problem
+
     domain = cached_domain(domain_text)
     declared = set(read_problem(problem_text, domain).blocks)
     out = []
@@ -106,6 +119,9 @@ def _canonical(domain_text: str, problem_text: str, plan_text: str) -> str:
 
 def _explain(data: dict[str, Any], domain_text: str, problem_text: str, plan_text: str) -> None:
     """Add the STRIPS explanation (unsatisfied literals, achievers) to a blocks report."""
+    from verigraph.actions.blocksworld.plans import parse_blocks_plan
+    from verigraph.actions.blocksworld.problem import read_problem
+
     try:
         domain = cached_domain(domain_text)
         declared = set(read_problem(problem_text, domain).blocks)

@@ -1,0 +1,33 @@
+"""PDDL blocks world in: the 4-operator hand domain and the 3-operator move domain.
+
+Layer: part of `actions` (it needs only `graph` and `actions`): a recognised domain and
+problem become a native scene (blocks, a table, and a hand that holds one block), and
+the plan is checked by the hand model in `hand.py`. The solver layer may use it; it
+uses nothing above `actions`.
+"""
+
+from .domain import BlocksDomain as BlocksDomain
+from .domain import UnsupportedDomainError as UnsupportedDomainError
+from .domain import recognise_domain as recognise_domain
+from .plans import PlanStep as PlanStep
+from .plans import parse_blocks_plan as parse_blocks_plan
+from .problem import BlocksProblem as BlocksProblem
+from .problem import native_state as native_state
+from .problem import read_problem as read_problem
+from .sexpr import PddlSyntaxError as PddlSyntaxError
+from .validate import validate_blocks_dict as validate_blocks_dict
+from .validate import validate_pddl_plan as validate_pddl_plan
+
+__all__ = [
+    "BlocksDomain",
+    "BlocksProblem",
+    "PddlSyntaxError",
+    "PlanStep",
+    "UnsupportedDomainError",
+    "native_state",
+    "parse_blocks_plan",
+    "read_problem",
+    "recognise_domain",
+    "validate_blocks_dict",
+    "validate_pddl_plan",
+]
