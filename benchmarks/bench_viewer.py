@@ -20,9 +20,9 @@ sys.path.insert(0, str(Path(__file__).parent))
 from common import median_time, write_table  # noqa: E402
 
 from verigraph.sim2d.generator import valid_moves  # noqa: E402
+from verigraph.sim2d.render import encode_png  # noqa: E402
 from verigraph.sim2d.room import room_violation  # noqa: E402
 from verigraph.tools import Toolbox  # noqa: E402
-from verigraph.tools.images import encode_png  # noqa: E402
 from verigraph.viewer import ViewInput, view  # noqa: E402
 from verigraph.viewer.frames import FRAME_WIDTH  # noqa: E402
 

@@ -1,8 +1,8 @@
 """Budgets for long computations: wall clock, memory growth, cancellation.
 
 Long loops anywhere in VeriGraph (plan validation, search, simulation) call
-`checkpoint()` now and then. Outside a budget it does nothing. Inside `within(budget)`
-(the MCP server wraps every heavy tool call in one, on its worker thread) it raises
+`checkpoint()` now and then. Outside a budget it does nothing. Inside `run_within(budget, ...)`
+(the MCP server runs every heavy tool call in one, on its worker thread) it raises
 BudgetExceeded once the call has run longer than its wall-clock budget, once the
 process has grown by more than its memory budget since the call started, or once
 the caller has been cancelled (the client went away, or the server is stopping).
@@ -12,9 +12,10 @@ Code that never reaches a checkpoint is stopped all the same: a watchdog thread 
 at every running budget every WATCH_EVERY_S and interrupts a call that is over its
 wall clock by more than WATCH_GRACE_S, or over its memory budget, with an exception
 raised in the call's own thread at its next Python bytecode (a C call that runs for
-long, such as one large allocation, finishes first). `within` turns that into the
-same BudgetExceeded. Cancellation stays with the checkpoints: only the call's own
-thread can ask whether its caller has gone.
+long, such as one large allocation, finishes first). `run_within` turns that into the
+same BudgetExceeded; it is a function, not a context manager, because an interrupt could
+land in a context manager's own exit, where nothing catches it. Cancellation stays with
+the checkpoints: only the call's own thread can ask whether its caller has gone.
 """
 
 from __future__ import annotations
@@ -23,8 +24,7 @@ import ctypes
 import os
 import threading
 import time
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import TypeVar
@@ -180,26 +180,6 @@ def run_within(budget: CallBudget, name: str, fn: Callable[[], T],
         _WATCHDOG.add(meter)
         try:
             return fn()
-        finally:
-            _release(meter)
-    except _Interrupted:
-        assert meter.overrun is not None
-        raise meter.overrun from None
-    finally:
-        _METER.reset(token)
-
-
-@contextmanager
-def within(budget: CallBudget, name: str, cancelled: Callable[[], None] | None = None
-           ) -> Iterator[None]:
-    """The block under `budget` (see run_within, which a worker thread should prefer: an
-    interrupt that lands in the context manager's own exit is not caught here)."""
-    meter = _Meter(budget, name, cancelled)
-    token = _METER.set(meter)
-    try:
-        _WATCHDOG.add(meter)
-        try:
-            yield
         finally:
             _release(meter)
     except _Interrupted:

@@ -19,7 +19,7 @@ from verigraph.actions.pddl import (
     report_text,
     validate_pddl_dict,
 )
-from verigraph.budget import BudgetExceeded, CallBudget, within
+from verigraph.budget import BudgetExceeded, CallBudget, run_within
 from verigraph.errors import VeriGraphError
 
 pytestmark = pytest.mark.fast
@@ -217,8 +217,9 @@ def test_explaining_an_empty_plan_is_bounded_by_the_goal_not_the_groundings():
 
 def test_a_long_simulation_stops_at_the_call_budget():
     plan = "\n".join(["(drive-truck t0 l0 ap c0)", "(drive-truck t0 ap l0 c0)"] * 100_000)
-    with pytest.raises(BudgetExceeded), within(CallBudget(wall_s=0.0), "validate_plan"):
-        validate_pddl_dict(LOGISTICS, LOG_PROBLEM, plan)
+    with pytest.raises(BudgetExceeded):
+        run_within(CallBudget(wall_s=0.0), "validate_plan",
+                   lambda: validate_pddl_dict(LOGISTICS, LOG_PROBLEM, plan))
 
 
 # -- 6. plan lines that are no action are failing steps -------------------------------------

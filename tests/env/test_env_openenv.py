@@ -31,7 +31,7 @@ from verigraph.env import VeriGraphEnv, build_tasks, split_tasks  # noqa: E402
 from verigraph.env.openenv_adapter import (  # noqa: E402
     TOOL_NAME,
     VeriGraphSessionFactory,
-    openai_client,
+    openenv_client,
     run_collect,
 )
 from verigraph.env.openenv_server import RemoteSessionFactory, create_openenv_app  # noqa: E402
@@ -177,7 +177,7 @@ def test_the_server_side_is_reset_step_state(served: tuple[str, list[Any]]) -> N
 
 def test_a_bad_endpoint_url_is_a_clear_error() -> None:
     with pytest.raises(VeriGraphError) as err:
-        openai_client("127.0.0.1:8080", "m")
+        openenv_client("127.0.0.1:8080", "m")
     assert err.value.field == "base_url" and "http://" in (err.value.fix or "")
 
 

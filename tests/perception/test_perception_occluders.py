@@ -22,7 +22,7 @@ from verigraph.sim2d import degrade_ops as ops
 from verigraph.sim2d import palette
 from verigraph.sim2d.degrade import Degradation, degrade
 from verigraph.sim2d.generator import generate_scene
-from verigraph.tools.perceived import perceive as tools_perceive
+from verigraph.tools.perceived import perceive_photo as tools_perceive
 
 SEED = 37_000
 FAMILIES = ("blocks", "kitchen", "tableware", "tangram")

@@ -171,8 +171,9 @@ def test_perceive_is_what_the_tools_layer_calls() -> None:
     from verigraph.tools import goals, loading, perceived
     from verigraph.tools import scenes as scene_tools
 
-    assert loading.perceive is goals.perceive is scene_tools.perceive is perceived.perceive
-    seen = perceived.perceive(render("kitchen", 1), load_dictionary("kitchen"))
+    assert (loading.perceive_photo is goals.perceive_photo is scene_tools.perceive_photo
+            is perceived.perceive_photo)
+    seen = perceived.perceive_photo(render("kitchen", 1), load_dictionary("kitchen"))
     assert isinstance(seen.graph, SceneGraph) and seen.confident
     assert score_graph(seen.graph, scenes("kitchen")[1].graph, "kitchen").exact
     assert seen.graph == perceive(render("kitchen", 1), dictionary=load_dictionary("kitchen"))

@@ -9,7 +9,7 @@ import time
 
 import pytest
 
-from verigraph.budget import BudgetExceeded, CallBudget, rss_bytes, run_within, within
+from verigraph.budget import BudgetExceeded, CallBudget, rss_bytes, run_within
 
 pytestmark = pytest.mark.fast
 
@@ -47,11 +47,6 @@ def test_memory_growth_without_checkpoints_is_stopped() -> None:
         run_within(CallBudget(wall_s=30, memory_mib=40), "grow", grow)
     assert "MiB budget" in err.value.message and len(held) < 400
     held.clear()
-
-
-def test_the_context_manager_form_stops_it_too() -> None:
-    with pytest.raises(BudgetExceeded), within(CallBudget(wall_s=0.1), "spin"):
-        spin(10)
 
 
 def test_a_call_within_budget_is_untouched_and_leaves_no_interrupt_behind() -> None:

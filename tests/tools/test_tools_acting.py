@@ -9,6 +9,8 @@ import pytest
 from verigraph.errors import VeriGraphError
 from verigraph.tools import EpisodeStateError, ToolArgumentError, Toolbox
 
+pytestmark = pytest.mark.fast
+
 
 @pytest.fixture()
 def box() -> Toolbox:

@@ -10,6 +10,8 @@ from verigraph.errors import VeriGraphError
 from verigraph.graph.dictionary import wrong_dictionary_advice
 from verigraph.tools import Toolbox
 
+pytestmark = pytest.mark.fast
+
 
 def kitchen_table(*extra: dict[str, str]) -> dict[str, Any]:
     nodes = [{"id": "table", "label": "table"}, {"id": "tray", "label": "tray"},

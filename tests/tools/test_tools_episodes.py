@@ -8,8 +8,11 @@ import pytest
 from mcp_helpers import png_b64
 
 from verigraph.errors import VeriGraphError
+from verigraph.sim2d.render import encode_png
 from verigraph.tools import Toolbox, ToolConfig, UnknownEpisodeError
 from verigraph.tools.errors import EpisodeLimitError
+
+pytestmark = pytest.mark.fast
 
 CUP_PLAN = ["move(cup, on, desk)", "move(book, on, shelf)"]
 
@@ -139,7 +142,6 @@ def test_goal_image_is_perceived_into_the_goal_graph() -> None:
     import base64
 
     from verigraph.sim2d import generate_scene
-    from verigraph.tools.images import encode_png
 
     scene = generate_scene("blocks", 11)
     assert scene.goal is not None and scene.goal_world is not None

@@ -12,6 +12,8 @@ from verigraph.errors import VeriGraphError
 from verigraph.tools import Toolbox
 from verigraph.tools.images import MAX_PHOTO_SIDE, KeptImage
 
+pytestmark = pytest.mark.fast
+
 
 def jpeg_b64(width: int, height: int) -> str:
     image = np.full((height, width, 3), 200, dtype=np.uint8)  # a bare wall: nothing to see

@@ -11,7 +11,7 @@ from verigraph import prompts
 from verigraph.errors import VeriGraphError
 from verigraph.graph.builtin_scenes import cup_on_book, cup_on_book_goal
 from verigraph.graph.state import WorldState
-from verigraph.prompts.filling import planner_prompt, scene_graph_prompt
+from verigraph.prompts.filling import fill_planner_prompt, scene_graph_prompt
 from verigraph.tools import TOOL_SPECS, TOOLS, Toolbox, ToolConfig, ToolSpec
 from verigraph.tools.registry import parse_arguments
 
@@ -119,13 +119,13 @@ def test_prompt_render_api() -> None:
 
 def test_planner_prompts_carry_the_method() -> None:
     state = WorldState.from_graph(cup_on_book())
-    text = planner_prompt("iterative_planner", state, cup_on_book_goal(), k=2)
+    text = fill_planner_prompt("iterative_planner", state, cup_on_book_goal(), k=2)
     for needle in ("at most 2 actions", "`done`", "- book on desk", "- cup on book",
                    "- book on shelf", "object_not_clear", "move(object, relation, target)",
                    "cup (cup): movable, container"):
         assert needle in text
     assert "$" not in text
-    direct = planner_prompt("direct_planner", state, cup_on_book_goal())
+    direct = fill_planner_prompt("direct_planner", state, cup_on_book_goal())
     assert "whole plan" in direct and "Propose at most" not in direct
 
 

@@ -10,9 +10,12 @@ import pytest
 from mcp_helpers import png_b64
 
 from verigraph.graph.builtin_scenes import cup_on_book, three_blocks
+from verigraph.sim2d.render import encode_png
 from verigraph.tools import ToolArgumentError, Toolbox
 from verigraph.tools.drawing import draw_graph, layout
-from verigraph.tools.images import decode_image, encode_png
+from verigraph.tools.images import decode_base64_image
+
+pytestmark = pytest.mark.fast
 
 
 def decode(png: bytes) -> np.ndarray:
@@ -200,7 +203,7 @@ def test_unsure_perception_is_a_proposal_to_confirm_not_a_fact() -> None:
 ])
 def test_bad_images_name_the_field(payload: str, message: str) -> None:
     with pytest.raises(ToolArgumentError) as err:
-        decode_image(payload, field="image")
+        decode_base64_image(payload, field="image")
     assert err.value.field == "image" and message in str(err.value)
 
 
@@ -208,14 +211,14 @@ def test_image_decompression_bombs_are_refused() -> None:
     png = bytearray(encode_png(np.zeros((4, 4, 3), np.uint8)))
     png[16:24] = (100_000).to_bytes(4, "big") + (100_000).to_bytes(4, "big")
     with pytest.raises(ToolArgumentError) as err:
-        decode_image(base64.b64encode(bytes(png)).decode())
+        decode_base64_image(base64.b64encode(bytes(png)).decode())
     assert "100000x100000 pixels, too large" in str(err.value)
     ok, buf = cv2.imencode(".jpg", np.zeros((4, 6, 3), np.uint8))
     jpeg = bytearray(buf.tobytes())
     sof = next(i for i in range(2, len(jpeg) - 1) if jpeg[i] == 0xFF and jpeg[i + 1] == 0xC0)
     jpeg[sof + 5:sof + 9] = (60_000).to_bytes(2, "big") + (60_000).to_bytes(2, "big")
     with pytest.raises(ToolArgumentError) as err:
-        decode_image(base64.b64encode(bytes(jpeg)).decode())
+        decode_base64_image(base64.b64encode(bytes(jpeg)).decode())
     assert "60000x60000 pixels, too large" in str(err.value)
 
 
@@ -223,10 +226,10 @@ def test_jpeg_images_decode() -> None:
     image = np.zeros((30, 40, 3), np.uint8)
     image[:, :20] = (255, 255, 255)
     ok, buf = cv2.imencode(".jpg", image)
-    decoded = decode_image(base64.b64encode(buf.tobytes()).decode())
+    decoded = decode_base64_image(base64.b64encode(buf.tobytes()).decode())
     assert decoded.shape == (30, 40, 3) and decoded[:, :10].mean() > 200
 
 
 def test_data_url_prefix_is_accepted() -> None:
-    image = decode_image("data:image/png;base64," + png_b64(8, 6))
+    image = decode_base64_image("data:image/png;base64," + png_b64(8, 6))
     assert image.shape == (6, 8, 3)

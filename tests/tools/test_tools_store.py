@@ -12,6 +12,8 @@ from verigraph.graph.state import WorldState
 from verigraph.tools import EpisodeLimitError, EpisodeStore, LiveEpisode, UnknownEpisodeError
 from verigraph.tools.store import WouldBlock, non_blocking
 
+pytestmark = pytest.mark.fast
+
 
 def make(episode_id: str) -> LiveEpisode:
     return LiveEpisode(id=episode_id, state=WorldState.from_graph(cup_on_book()), source="test")

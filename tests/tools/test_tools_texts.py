@@ -8,6 +8,8 @@ from mcp_helpers import text
 
 from verigraph.server import build_server
 
+pytestmark = pytest.mark.fast
+
 
 def nine_object_kitchen() -> dict[str, object]:
     nodes = [("table", "table"), ("shelf", "shelf"), ("tray", "tray"), ("plate_1", "plate"),

@@ -55,9 +55,9 @@ def register(sub: Any) -> None:
                    help="memory growth budget of one heavy tool call (default 512)")
     p.add_argument("--heavy-workers", type=int, default=2,
                    help="heavy tool calls running at once (default 2)")
-    p.add_argument("--per-client", type=int, default=1,
-                   help="heavy tool calls running at once for one client connection "
-                        "(default 1; the rest wait)")
+    p.add_argument("--per-connection", "--per-client", dest="per_connection", type=int,
+                   default=1, help="heavy tool calls running at once for one connection "
+                                   "(default 1; the rest wait; --per-client is its old name)")
     p.add_argument("--max-episodes", type=int, default=256,
                    help="open episodes kept at once (default 256)")
     p.add_argument("--max-arm-episodes", type=int, default=8,
@@ -140,13 +140,13 @@ def run_serve(args: argparse.Namespace) -> int:
                         executor=executor, arm=arm, max_arm_worlds=args.max_arm_episodes,
                         store=store, idle_timeout_s=args.idle_timeout)
     numbers = (args.header_timeout, args.body_timeout, args.keep_alive, args.tool_seconds,
-               args.tool_mib, args.heavy_workers, args.per_client, args.stream_idle,
+               args.tool_mib, args.heavy_workers, args.per_connection, args.stream_idle,
                args.streams_per_client)
     if min(numbers) <= 0:
         raise VeriGraphError("timeouts, budgets and worker counts must be positive",
                              field="--header-timeout/--body-timeout/--keep-alive/--stream-idle/"
                                    "--streams-per-client/"
-                                   "--tool-seconds/--tool-mib/--heavy-workers/--per-client",
+                                   "--tool-seconds/--tool-mib/--heavy-workers/--per-connection",
                              value=None, fix="give each a positive number")
     if args.workers < 1 or args.check_seconds <= 0 or args.check_above_kib < 0 \
             or args.queued_per_client < 1:
@@ -158,7 +158,7 @@ def run_serve(args: argparse.Namespace) -> int:
                                  "--check-above-kib >= 0 and --queued-per-client >= 1")
     if args.workers > 1:
         check_workers(args.transport, store, arm)
-    heavy = HeavyLimits(workers=args.heavy_workers, per_client=args.per_client,
+    heavy = HeavyLimits(workers=args.heavy_workers, per_connection=args.per_connection,
                         budget=CallBudget(wall_s=args.tool_seconds, memory_mib=args.tool_mib))
     max_bytes = int(args.max_body_mib * 1024 * 1024)
     if args.transport == "stdio":

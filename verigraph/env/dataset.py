@@ -71,7 +71,7 @@ RECORD_FIELDS = ("family", "group", "kind", "optimal_length", "objects", "show_g
                  "instruction", "suite_version")
 
 
-def record_hash(content: str, fields: dict[str, Any]) -> str:
+def hash_record(content: str, fields: dict[str, Any]) -> str:
     """sha256 of a record's content hash and its `RECORD_FIELDS` (canonical JSON)."""
     blob = json.dumps({"content_hash": content,
                        **{name: fields.get(name) for name in RECORD_FIELDS}},
@@ -113,12 +113,12 @@ class TaskRecord(BaseModel):
         digest = content_hash(load, task.spec.set_goal)
         return cls(task_id=f"{task.group}/{seed}/{index}", load=load,
                    set_goal=task.spec.set_goal, content_hash=digest,
-                   record_hash=record_hash(digest, fields), **fields)
+                   record_hash=hash_record(digest, fields), **fields)
 
     def expected_record_hash(self) -> str:
         """The record hash this record's fields give (equal to `record_hash` unless one
         was edited)."""
-        return record_hash(self.content_hash, self.model_dump(include=set(RECORD_FIELDS)))
+        return hash_record(self.content_hash, self.model_dump(include=set(RECORD_FIELDS)))
 
     def split(self, test_fraction: float = DEFAULT_TEST_FRACTION) -> Split:
         return split_of(self.content_hash, test_fraction)

@@ -165,7 +165,7 @@ class TextReplyModelStep:
         return ModelStepResult(response=LLMResponse(content=text, tool_calls=[call]))
 
 
-def openai_client(base_url: str, model: str, *, api_key: str | None = None,
+def openenv_client(base_url: str, model: str, *, api_key: str | None = None,
                   max_tokens: int = 256) -> OpenAIClient:
     """OpenEnv's client for an endpoint given as `http://HOST:PORT/v1` (or without /v1)."""
     parts = urlsplit(base_url)
@@ -217,7 +217,7 @@ def run_collect(tasks: Sequence[str | TaskRecord], out_dir: str | Path, *, base_
     if records and "tasks" not in env_kwargs:
         env_kwargs["tasks"] = records
     ids = [t.task_id if isinstance(t, TaskRecord) else t for t in tasks]
-    client = openai_client(base_url, model, api_key=api_key, max_tokens=max_tokens)
+    client = openenv_client(base_url, model, api_key=api_key, max_tokens=max_tokens)
     model_step = build_model_step(client, system_prompt=SYSTEM_PROMPT) if tool_calling \
         else TextReplyModelStep(client)
     serializer = RolloutSerializer(out_dir)

@@ -111,7 +111,7 @@ def tool_hint(episode_id: str | None) -> str:
             "it returns, repeat, and call end_episode when you answer done.)")
 
 
-def planner_prompt(name: str, state: WorldState, goal: Goal | None, *, k: int = 3,
+def fill_planner_prompt(name: str, state: WorldState, goal: Goal | None, *, k: int = 3,
                    executed: Sequence[AnyAction] = (), violation: Violation | None = None,
                    calls: int = 0, instruction: str | None = None,
                    episode_id: str | None = None) -> str:

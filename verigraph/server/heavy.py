@@ -2,7 +2,7 @@
 
 A heavy call (a large graph or plan, an image, the simulator, search, an arm) runs on
 a worker thread so the event loop keeps answering light calls. At most `workers`
-heavy calls run at once in the server and at most `per_client` for one connection (an
+heavy calls run at once in the server and at most `per_connection` for one connection (an
 HTTP connection, or the stdio pipe pair); the rest wait their turn. Each runs inside
 `verigraph.budget.run_within`: its loops' checkpoints stop it once it exceeds its wall
 clock or memory budget, or once the call is cancelled (the client disconnected,
@@ -42,7 +42,7 @@ class HeavyLimits:
     """Concurrency and per-call budget for heavy tool calls (`verigraph serve` flags)."""
 
     workers: int = 2
-    per_client: int = 1
+    per_connection: int = 1
     budget: CallBudget = field(default_factory=CallBudget)
 
 
@@ -57,7 +57,7 @@ class HeavyCalls:
     def _connection_limiter(self, connection: str) -> anyio.CapacityLimiter:
         limiter, users = self._connections.get(connection, (None, 0))
         if limiter is None:
-            limiter = anyio.CapacityLimiter(self.limits.per_client)
+            limiter = anyio.CapacityLimiter(self.limits.per_connection)
         self._connections[connection] = (limiter, users + 1)
         return limiter
 

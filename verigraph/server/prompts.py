@@ -21,7 +21,7 @@ from pydantic import Field
 from verigraph.errors import VeriGraphError
 from verigraph.graph.builtin_scenes import BUILTIN_SCENES
 from verigraph.graph.state import WorldState
-from verigraph.prompts.filling import planner_prompt, scene_graph_prompt
+from verigraph.prompts.filling import fill_planner_prompt, scene_graph_prompt
 from verigraph.tools.fields import builtin_scene, dictionary_for
 from verigraph.tools.registry import Toolbox
 from verigraph.tools.scenes import episode_dictionary
@@ -49,12 +49,12 @@ def _planner(toolbox: Toolbox, name: str, episode_id: str, scene_id: str) -> str
     if episode_id:
         with toolbox.context.store.use(episode_id) as episode:
             state = episode.require_state().copy()
-            return planner_prompt(name, state, episode.goal, k=episode.k,
+            return fill_planner_prompt(name, state, episode.goal, k=episode.k,
                                   executed=list(episode.executed),
                                   violation=episode.last_violation, calls=episode.calls,
                                   instruction=episode.instruction, episode_id=episode.id)
     graph, goal = builtin_scene(scene_id or "cup_on_book")
-    text = planner_prompt(name, WorldState.from_graph(graph), goal)
+    text = fill_planner_prompt(name, WorldState.from_graph(graph), goal)
     return (text + f"\n(To verify with the VeriGraph tools, first call load_scene(scene_id="
             f"\"{scene_id or 'cup_on_book'}\") and use the episode_id it returns.)\n")
 

@@ -20,7 +20,7 @@ from verigraph.graph.builtin_scenes import BUILTIN_GOALS, BUILTIN_SCENES
 from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, load_dictionary
 from verigraph.server.schemas import without_openapi_keywords
 from verigraph.tools.registry import Toolbox
-from verigraph.tools.summaries import describe
+from verigraph.tools.summaries import describe_episode
 
 JSON = "application/json"
 RELATION_MEANINGS = {
@@ -98,7 +98,7 @@ def _constant(text: str) -> Callable[[], str]:
 def _episode_field(toolbox: Toolbox, episode_id: str, field: str) -> str:
     try:
         with toolbox.context.store.use(episode_id) as episode:
-            state = describe(episode)
+            state = describe_episode(episode)
     except VeriGraphError as exc:
         raise ResourceNotFoundError(str(exc)) from None
     return _dump(state.model_dump(mode="json", exclude_none=True).get(field))

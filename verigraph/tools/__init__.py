@@ -1,6 +1,12 @@
 """Transport-free tool functions: the one implementation behind the MCP server, the CLI
 and the library.
 
+A tool function takes the context and the tool's validated input model and returns its
+output model; the tool table (`registry.TOOL_SPECS`) names each one. Where the library
+has a function of the tool's name, the tool function carries the suffix `_tool`
+(`validate_plan_tool` calls `verigraph.actions.validate_plan`), so one name never means
+two things.
+
 >>> box = Toolbox()
 >>> state = box.call("load_scene", {"scene_id": "cup_on_book"})
 >>> box.call("validate_action", {"episode_id": state.episode_id,

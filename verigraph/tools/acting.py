@@ -18,12 +18,10 @@ from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.actions.parser import parse_plan
 from verigraph.actions.pddl.conversion import as_validation_report
 from verigraph.actions.pddl.validate import validate_pddl_dict
-from verigraph.actions.report import ValidationReport
-from verigraph.actions.report import validate_plan as core_validate_plan
+from verigraph.actions.report import ValidationReport, validate_plan
 from verigraph.actions.validator import GraphEdit, all_violations, apply_action
 from verigraph.errors import PlanParseError, VeriGraphError
-from verigraph.graph.goal import Goal, GraphDiff
-from verigraph.graph.goal import check_goal as core_check_goal
+from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.wellformed import label_readings, readings_line
 from verigraph.tools.context import ToolContext
@@ -95,7 +93,7 @@ class ActionCheck(BaseModel):
 
 
 
-def validate_action(ctx: ToolContext, params: ValidateActionInput) -> ActionCheck:
+def validate_action_tool(ctx: ToolContext, params: ValidateActionInput) -> ActionCheck:
     """Check one action; the episode is never modified."""
     actions = parse_actions([params.action], field="action", indexed=False)
     if len(actions) != 1:
@@ -114,7 +112,7 @@ def validate_action(ctx: ToolContext, params: ValidateActionInput) -> ActionChec
                                violations=found, runs_on=where)
         after = state.copy()
         edit = apply_action(after, action)
-        reached = core_check_goal(after, episode.goal).satisfied if episode.goal else None
+        reached = check_goal(after, episode.goal).satisfied if episode.goal else None
         return ActionCheck(ok=True, action=action.text(), would_change=edit,
                            goal_satisfied_after=reached, runs_on=where)
 
@@ -214,7 +212,7 @@ def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionO
         executed, edits, violation, done, new_state = execute_in_world(
             state, actions, episode.world, first_step=len(episode.executed) + 1)
         tau = episode.tau + 1 if violation is not None else 0
-        diff = core_check_goal(new_state, episode.goal) if episode.goal else None
+        diff = check_goal(new_state, episode.goal) if episode.goal else None
         episode.calls += 1
         episode.trace.append(TraceEntry(
             call=episode.calls, proposed=[a.text() for a in actions],
@@ -267,7 +265,7 @@ class GoalCheck(BaseModel):
         return self.diff.summary()
 
 
-def check_goal(ctx: ToolContext, params: CheckGoalInput) -> GoalCheck:
+def check_goal_tool(ctx: ToolContext, params: CheckGoalInput) -> GoalCheck:
     with ctx.store.use(params.episode_id) as episode:
         state = episode.require_state()
         goal = resolve_goal(params.goal, state) if params.goal is not None else episode.goal
@@ -275,7 +273,7 @@ def check_goal(ctx: ToolContext, params: CheckGoalInput) -> GoalCheck:
             raise ToolArgumentError("this episode has no goal and none was given",
                                     field="goal", value=None,
                                     fix="call set_goal first, or pass goal here")
-        diff = core_check_goal(state, goal)
+        diff = check_goal(state, goal)
         return GoalCheck(episode_id=episode.id, satisfied=diff.satisfied, goal=goal, diff=diff)
 
 
@@ -340,7 +338,7 @@ def _plan_actions(plan: str | list[ActionInput]) -> list[AnyAction]:
     return actions
 
 
-def validate_plan(ctx: ToolContext, params: ValidatePlanInput) -> ValidationReport:
+def validate_plan_tool(ctx: ToolContext, params: ValidatePlanInput) -> ValidationReport:
     """Per-step report for a plan; nothing is stored or modified. Its `label_readings`
     say how the graphs the client wrote were read, as load_scene reports them."""
     if params.pddl is not None:
@@ -350,7 +348,7 @@ def validate_plan(ctx: ToolContext, params: ValidatePlanInput) -> ValidationRepo
                                    graph=params.graph, goal=None)
     if params.goal is not None:
         goal = resolve_goal(params.goal, state)
-    report = core_validate_plan(state, actions, goal, all_errors=params.all_errors)
+    report = validate_plan(state, actions, goal, all_errors=params.all_errors)
     written = params.goal.graph if isinstance(params.goal, Goal) else None
     report.label_readings = label_readings(params.graph, state.dictionary, written)
     return report

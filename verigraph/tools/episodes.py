@@ -18,7 +18,7 @@ from verigraph.tools.context import ToolContext
 from verigraph.tools.executors import arm_mode_of
 from verigraph.tools.fields import EpisodeId
 from verigraph.tools.store import TraceEntry
-from verigraph.tools.summaries import EpisodeState, describe
+from verigraph.tools.summaries import EpisodeState, describe_episode
 from verigraph.tools.texts import edges_line, runs_on
 
 
@@ -33,7 +33,7 @@ class EpisodeRef(BaseModel):
 
 def get_state(ctx: ToolContext, params: EpisodeRef) -> EpisodeState:
     with ctx.store.use(params.episode_id) as episode:
-        return describe(episode)
+        return describe_episode(episode)
 
 
 # -- end_episode ----------------------------------------------------------------------------

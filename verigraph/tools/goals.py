@@ -31,8 +31,8 @@ from verigraph.tools.fields import (
     dictionary_for,
     problems_text,
 )
-from verigraph.tools.images import decode_image
-from verigraph.tools.perceived import Perceived, perceive
+from verigraph.tools.images import decode_base64_image
+from verigraph.tools.perceived import Perceived, perceive_photo
 from verigraph.tools.texts import goal_edges_text, goal_line
 
 Instruction = Field(default=None, max_length=4000,
@@ -373,13 +373,13 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
     goal unseen.
     """
     graph = params.graph
-    image = decode_image(params.image) if params.image is not None else None
+    image = decode_base64_image(params.image) if params.image is not None else None
     with ctx.store.use(params.episode_id) as episode:
         reading = _Reading(None)
         if image is not None:
             dictionary = (episode.state.dictionary if episode.state
                           else dictionary_for(episode.dictionary_name))
-            seen = perceive(image, dictionary)
+            seen = perceive_photo(image, dictionary)
             if not seen.confident:
                 raise ToolArgumentError(
                     "built-in perception is unsure of the goal image: "

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
+from verigraph.sim2d.render import encode_png
 from verigraph.tools.errors import ToolArgumentError
 
 MAX_IMAGE_BYTES = 12 * 1024 * 1024
@@ -25,7 +26,7 @@ _DATA_URL = re.compile(r"^data:image/[A-Za-z0-9.+-]+;base64,", re.IGNORECASE)
 _FIX = "send a PNG or JPEG file encoded as base64 text (a data:image/...;base64, prefix is fine)"
 
 
-def decode_image(text: str, *, field: str = "image") -> np.ndarray:
+def decode_base64_image(text: str, *, field: str = "image") -> np.ndarray:
     """A BGR uint8 image from base64 PNG/JPEG text; ToolArgumentError names what is wrong."""
     payload = _DATA_URL.sub("", text.strip(), count=1)
     if len(payload) > MAX_IMAGE_BYTES * 4 // 3 + 8:
@@ -86,13 +87,6 @@ def _probe_size(raw: bytes) -> tuple[int, int] | None:
         pos += 2 + length
     return None
 
-
-def encode_png(image: np.ndarray) -> bytes:
-    """PNG bytes of a BGR (or grey) uint8 image."""
-    ok, buffer = cv2.imencode(".png", image)
-    if not ok:  # pragma: no cover - only for impossible shapes
-        raise ValueError("OpenCV could not encode the image as PNG")
-    return bytes(buffer.tobytes())
 
 
 MAX_PHOTO_SIDE = 1600  # photos are sent back at most this large (vision models downscale anyway)

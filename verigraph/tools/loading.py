@@ -39,10 +39,10 @@ from verigraph.tools.fields import (
     state_from_graph,
 )
 from verigraph.tools.goals import Instruction, check_goal_against
-from verigraph.tools.images import decode_image
-from verigraph.tools.perceived import perceive
+from verigraph.tools.images import decode_base64_image
+from verigraph.tools.perceived import perceive_photo
 from verigraph.tools.store import DEFAULT_K, DEFAULT_T, LiveEpisode
-from verigraph.tools.summaries import EpisodeState, describe
+from verigraph.tools.summaries import EpisodeState, describe_episode
 
 
 class GeneratorSpec(BaseModel):
@@ -135,8 +135,8 @@ def _read_source(params: LoadSceneInput, executor: str) -> _Source:
                        getattr(generated, "goal", None), generated.world if keep else None,
                        getattr(generated, "goal_world", None) if keep else None)
     assert params.image is not None
-    image = decode_image(params.image)
-    seen = perceive(image, dictionary_for(params.dictionary))
+    image = decode_base64_image(params.image)
+    seen = perceive_photo(image, dictionary_for(params.dictionary))
     # Built-in perception found nothing it knows, or is unsure: the agent's own vision
     # model may do better, so the episode waits for submit_scene_graph instead of
     # starting from an empty or doubtful scene.
@@ -144,7 +144,7 @@ def _read_source(params: LoadSceneInput, executor: str) -> _Source:
     return _Source("image", seen.graph if confident else None, image=image)
 
 
-def load_scene(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
+def load_scene_tool(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
     """Create an episode; nothing is stored unless the whole input is valid.
 
     An arm episode opens (and, unless dry-run, connects) its arm last, after every other
@@ -184,7 +184,7 @@ def load_scene(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
                        else None)
 
     try:
-        out = describe(ctx.store.add(make))
+        out = describe_episode(ctx.store.add(make))
     except BaseException:
         ctx.arms.close(world)  # e.g. the episode limit: do not keep the arm connected
         raise

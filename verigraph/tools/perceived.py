@@ -38,7 +38,7 @@ class Perceived:
 USER_LABELS = "user_labels_not_perceived"
 
 
-def perceive(image: np.ndarray, dictionary: Dictionary) -> Perceived:
+def perceive_photo(image: np.ndarray, dictionary: Dictionary) -> Perceived:
     """Run built-in perception; its warnings and uncertain items become doubts.
 
     Built-in perception knows the built-in families only: with a dictionary of the

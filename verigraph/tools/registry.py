@@ -126,7 +126,7 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              "Start an episode (scene_id, graph, image or sim2d generator); returns the "
              "episode_id. Your own label: its role in the node's attrs, e.g. "
              '{"id":"tin","label":"tin","attrs":{"container":true,"capacity":3}}.',
-             loading.LoadSceneInput, summaries.EpisodeState, loading.load_scene,
+             loading.LoadSceneInput, summaries.EpisodeState, loading.load_scene_tool,
              read_only=False, open_world=True, opens_world=True,
              heavy_when=HeavyWhen(given=("image", "generator", "simulate", "executor"),
                                   graphs=("graph", "goal"), images=("image",))),
@@ -144,7 +144,7 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
     ToolSpec("validate_action", "Check one action",
              "Check one action without executing it: every violated constraint with a fix, or "
              "the edges it would change.",
-             acting.ValidateActionInput, acting.ActionCheck, acting.validate_action,
+             acting.ValidateActionInput, acting.ActionCheck, acting.validate_action_tool,
              read_only=True, idempotent=True, episode_sized=False),
     ToolSpec("execute_actions", "Execute actions",
              "Execute up to k actions (done not counted) until the first violation; the valid "
@@ -158,13 +158,13 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
     ToolSpec("validate_plan", "Validate a whole plan",
              "Stateless: check a whole plan from a scene_id, graph or episode, optionally "
              "against a goal. Per-step report.",
-             acting.ValidatePlanInput, ValidationReport, acting.validate_plan,
+             acting.ValidatePlanInput, ValidationReport, acting.validate_plan_tool,
              read_only=True, idempotent=True, summary=acting.report_summary, viewer=True,
              heavy_when=HeavyWhen(given=("pddl",), graphs=("graph", "goal"), plans=("plan",))),
     ToolSpec("check_goal", "Check the goal",
              "Missing and extra edges and objects between the episode's graph and its goal (or"
              " one given here).",
-             acting.CheckGoalInput, acting.GoalCheck, acting.check_goal,
+             acting.CheckGoalInput, acting.GoalCheck, acting.check_goal_tool,
              read_only=True, idempotent=True, heavy_when=HeavyWhen(graphs=("goal",))),
     ToolSpec("generate_scene_graph", "Perceive a scene graph",
              "Built-in perception: image (given or the episode's) -> scene graph. Else: "
@@ -180,7 +180,7 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
     ToolSpec("solve", "Reference plan",
              "A reference plan by search, re-checked by the validator: optimal, else its "
              "proven lower bound.",
-             solving.SolveInput, solving.SolveOutput, solving.solve,
+             solving.SolveInput, solving.SolveOutput, solving.solve_tool,
              read_only=True, idempotent=True, placement="heavy",
              heavy_when=HeavyWhen(graphs=("graph", "goal"))),
     ToolSpec("get_scene_image", "Scene image and prompt",

@@ -24,6 +24,7 @@ from verigraph.graph.submission import Rename, SubmittedGraph, check_submission
 from verigraph.graph.wellformed import GraphProblem
 from verigraph.prompts.filling import scene_graph_prompt
 from verigraph.sim2d import TabletopWorld
+from verigraph.sim2d.render import encode_png
 from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph, render_caption
 from verigraph.tools.errors import ToolArgumentError
@@ -36,8 +37,8 @@ from verigraph.tools.fields import (
     dictionary_for,
     with_dictionary_advice,
 )
-from verigraph.tools.images import KeptImage, decode_image, encode_png
-from verigraph.tools.perceived import USER_LABELS, perceive
+from verigraph.tools.images import KeptImage, decode_base64_image
+from verigraph.tools.perceived import USER_LABELS, perceive_photo
 from verigraph.tools.store import LiveEpisode
 from verigraph.tools.texts import graph_lines
 
@@ -293,7 +294,7 @@ def generate_scene_graph(ctx: ToolContext, params: GenerateSceneGraphInput
     size (for a simulated tabletop, the size that keeps thin parts visible)."""
     dictionary = dictionary_for(params.dictionary)
     if params.image is not None:
-        image = decode_image(params.image)
+        image = decode_base64_image(params.image)
     else:
         assert params.episode_id is not None
         with ctx.store.use(params.episode_id) as episode:
@@ -308,7 +309,7 @@ def generate_scene_graph(ctx: ToolContext, params: GenerateSceneGraphInput
                     value=episode.id, fix="pass image (a base64 photo of the scene), or "
                     "read the graph the episode already has with get_state")
             image = _picture(episode)
-    perceived = perceive(image, dictionary)
+    perceived = perceive_photo(image, dictionary)
     submitted = SubmittedGraph.model_validate(perceived.graph.model_dump())
     out = _checked(submitted, dictionary)
     if not perceived.confident:  # a proposal for the agent to confirm, not a fact

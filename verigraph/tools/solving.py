@@ -100,7 +100,7 @@ class SolveOutput(BaseModel):
         return f"{head}\n{planned}"
 
 
-def solve(ctx: ToolContext, params: SolveInput) -> SolveOutput:
+def solve_tool(ctx: ToolContext, params: SolveInput) -> SolveOutput:
     if not ctx.config.enable_solve:
         raise FeatureUnavailableError("solve is disabled on this server", field="solve",
                                       value=None, fix="plan with validate_action and "

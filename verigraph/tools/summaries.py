@@ -73,7 +73,7 @@ class EpisodeState(BaseModel):
         return "\n".join(line for line in lines if line)
 
 
-def describe(episode: LiveEpisode) -> EpisodeState:
+def describe_episode(episode: LiveEpisode) -> EpisodeState:
     state = episode.state
     diff = check_goal(state, episode.goal) if state is not None and episode.goal else None
     dictionary = state.dictionary if state is not None else None

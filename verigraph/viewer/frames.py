@@ -25,12 +25,11 @@ import numpy as np
 from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.errors import VeriGraphError
 from verigraph.sim2d.persist import world_from_state
-from verigraph.sim2d.render import tabletop_boxes, tangram_boxes
+from verigraph.sim2d.render import encode_png, tabletop_boxes, tangram_boxes
 from verigraph.sim2d.tabletop import TabletopWorld
 from verigraph.sim2d.tangram import TangramWorld
 from verigraph.sim2d.world import SimWorld
 from verigraph.tools.drawing import OUTLINE_COLOR
-from verigraph.tools.images import encode_png
 
 MAX_SIMULATED_STEPS = 100
 FRAME_WIDTH = 640  # the height follows the scene's shape, as in render_scene

@@ -24,11 +24,11 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.report import StepReport, ValidationReport
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.tools.acting import MAX_PLAN_ACTIONS, PlanText, ValidatePlanInput, validate_plan
+from verigraph.sim2d.render import encode_png
+from verigraph.tools.acting import MAX_PLAN_ACTIONS, PlanText, ValidatePlanInput, validate_plan_tool
 from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph
 from verigraph.tools.fields import BoundedGoal, BoundedGraph, EpisodeId, SceneId
-from verigraph.tools.images import encode_png
 from verigraph.tools.loading import stateless_source
 from verigraph.tools.registry import ToolSpec, argument_error
 from verigraph.tools.scenes import RenderSceneInput, render_scene
@@ -130,7 +130,7 @@ def view(ctx: ToolContext, params: ViewInput) -> EpisodeView:
 def plan_view(ctx: ToolContext, params: ValidatePlanInput, title: str = "plan check"
               ) -> EpisodeView:
     """Check the plan with the validate_plan tool function and lay it out per step."""
-    report = validate_plan(ctx, params)
+    report = validate_plan_tool(ctx, params)
     state, _ = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
                                 graph=params.graph, goal=None)
     return _assemble(title, "plan", state, report)
@@ -159,7 +159,7 @@ def episode_view(ctx: ToolContext, episode_id: str) -> EpisodeView:
     start = WorldState.from_graph(initial, state.dictionary)
     # Only the executed prefix is checked again (it was applied, so it parses and passes);
     # the refused action is shown from what the episode recorded, whatever it named.
-    report = validate_plan(ctx, ValidatePlanInput(plan="\n".join(executed) or "done",
+    report = validate_plan_tool(ctx, ValidatePlanInput(plan="\n".join(executed) or "done",
                                                   graph=initial, goal=goal))
     if refused is not None:
         stored = recorded or (last.violation if last is not None else None)

@@ -13,7 +13,7 @@ from .plans import PlanStep as PlanStep
 from .plans import parse_blocks_plan as parse_blocks_plan
 from .problem import BlocksProblem as BlocksProblem
 from .problem import native_state as native_state
-from .problem import read_problem as read_problem
+from .problem import read_blocks_problem as read_blocks_problem
 from .sexpr import PddlSyntaxError as PddlSyntaxError
 from .validate import validate_blocks_dict as validate_blocks_dict
 from .validate import validate_pddl_plan as validate_pddl_plan
@@ -26,7 +26,7 @@ __all__ = [
     "UnsupportedDomainError",
     "native_state",
     "parse_blocks_plan",
-    "read_problem",
+    "read_blocks_problem",
     "recognise_domain",
     "validate_blocks_dict",
     "validate_pddl_plan",

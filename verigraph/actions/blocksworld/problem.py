@@ -81,7 +81,7 @@ def _init_atoms(items: list[SExpr], domain: BlocksDomain) -> list[GoalAtom]:
     return out
 
 
-def read_problem(text: str, domain: BlocksDomain) -> BlocksProblem:
+def read_blocks_problem(text: str, domain: BlocksDomain) -> BlocksProblem:
     """Parse and check a problem file's text against a recognised domain."""
     name, sections = define_body(text, what="problem", kind="problem")
     objects: list[tuple[str, str | None]] = []

@@ -16,7 +16,7 @@ from typing import Any
 from verigraph.actions.blocksworld.domain import BlocksDomain, cached_domain
 from verigraph.actions.blocksworld.hand import HandModel
 from verigraph.actions.blocksworld.plans import parse_blocks_plan, plain_actions
-from verigraph.actions.blocksworld.problem import BlocksProblem, native_state, read_problem
+from verigraph.actions.blocksworld.problem import BlocksProblem, native_state, read_blocks_problem
 from verigraph.actions.report import ValidationReport
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
 
@@ -47,7 +47,7 @@ Run = tuple[HandModel, list[dict[str, Any]], list[dict[str, Any]], int]
 
 def _report(domain_text: str, problem_text: str, plan_text: str) -> dict[str, Any]:
     domain = cached_domain(domain_text)
-    problem = read_problem(problem_text, domain)
+    problem = read_blocks_problem(problem_text, domain)
     model, out_steps, violations, n_steps = (_plain_run(domain, problem, plan_text)
                                              or _stepwise_run(domain, problem, plan_text))
     state = model.state

@@ -23,8 +23,7 @@ from typing import Any
 
 from verigraph.actions.blocksworld.domain import UnsupportedDomainError, cached_domain
 from verigraph.actions.blocksworld.sexpr import _COMMENT
-from verigraph.actions.pddl.reader import PROBLEM_SECTIONS, SUPPORTED_REQUIREMENTS
-from verigraph.actions.pddl.reader import read_problem as read_strips_problem
+from verigraph.actions.pddl.reader import PROBLEM_SECTIONS, SUPPORTED_REQUIREMENTS, read_problem
 from verigraph.actions.pddl.simulate import cached_strips_domain, validate_strips_dict
 from verigraph.errors import PlanParseError, VeriGraphError
 
@@ -47,7 +46,7 @@ def _check_problem(problem_text: str, domain_text: str) -> None:
         suspicious = not found or any(r not in SUPPORTED_REQUIREMENTS
                                       for items in found for r in items.split())
     if suspicious:
-        read_strips_problem(problem_text, cached_strips_domain(domain_text))
+        read_problem(problem_text, cached_strips_domain(domain_text))
 
 
 def validate_pddl_dict(domain_text: str, problem_text: str, plan_text: str, *,
@@ -102,10 +101,10 @@ def _canonical(domain_text: str, problem_text: str, plan_text: str) -> str:
     """The plan with each line the blocks world can read as `(op args)`, the others as
     written (the STRIPS reader makes them failing steps); one output line per input line."""
     from verigraph.actions.blocksworld.plans import parse_blocks_plan
-    from verigraph.actions.blocksworld.problem import read_problem
+    from verigraph.actions.blocksworld.problem import read_blocks_problem
 
     domain = cached_domain(domain_text)
-    declared = set(read_problem(problem_text, domain).blocks)
+    declared = set(read_blocks_problem(problem_text, domain).blocks)
     out = []
     for line in plan_text.splitlines():
         try:
@@ -120,11 +119,11 @@ def _canonical(domain_text: str, problem_text: str, plan_text: str) -> str:
 def _explain(data: dict[str, Any], domain_text: str, problem_text: str, plan_text: str) -> None:
     """Add the STRIPS explanation (unsatisfied literals, achievers) to a blocks report."""
     from verigraph.actions.blocksworld.plans import parse_blocks_plan
-    from verigraph.actions.blocksworld.problem import read_problem
+    from verigraph.actions.blocksworld.problem import read_blocks_problem
 
     try:
         domain = cached_domain(domain_text)
-        declared = set(read_problem(problem_text, domain).blocks)
+        declared = set(read_blocks_problem(problem_text, domain).blocks)
         canonical = "\n".join(s.text for s in parse_blocks_plan(plan_text, domain, declared))
         strips = validate_strips_dict(domain_text, problem_text, canonical)
     except VeriGraphError:
