@@ -2,15 +2,23 @@
 # Set up from scratch and run every check CI runs: lint, types, the test suite.
 #
 #   scripts/test.sh [PYTEST ARGS]          the suite without tests marked slow (CI)
+#   scripts/test.sh --fast [PYTEST ARGS]   the fast tier only: installs the core and `dev`,
+#                                          no service, no server subprocess, no training
+#                                          (under two minutes on two cores)
 #   scripts/test.sh --slow [PYTEST ARGS]   also builds llama.cpp (7-25 min on a new
 #                                          machine, cached after) and runs the slow tests
+# Every run prints the 25 slowest tests (--durations=25).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-SLOW=0
-if [ "${1:-}" = "--slow" ]; then SLOW=1; shift; fi
+MODE=default
+if [ "${1:-}" = "--slow" ] || [ "${1:-}" = "--fast" ]; then MODE="${1#--}"; shift; fi
+if [ "$MODE" = fast ]; then
+  VERIGRAPH_EXTRAS="${VERIGRAPH_EXTRAS:-dev}" bash scripts/setup.sh
+  exec .venv/bin/pytest -m fast --durations=25 "$@"
+fi
 # Redis and Chromium from Debian's packages, started by the tests on loopback.
 bash scripts/install_services.sh
-VERIGRAPH_EXTRAS="${VERIGRAPH_EXTRAS:-dev,pddl,arm,clip,scale,env}" bash scripts/setup.sh
+VERIGRAPH_EXTRAS="${VERIGRAPH_EXTRAS:-test}" bash scripts/setup.sh
 # The official MCP Inspector (a client nobody here wrote) for the interoperability test.
 bash scripts/install_inspector.sh
 export VERIGRAPH_INSPECTOR="$PWD/.tools/bin/mcp-inspector"
@@ -18,10 +26,10 @@ export VERIGRAPH_INSPECTOR="$PWD/.tools/bin/mcp-inspector"
 bash scripts/install_interop.sh
 .venv/bin/ruff check verigraph tests benchmarks examples
 .venv/bin/mypy
-if [ "$SLOW" = 1 ]; then
+if [ "$MODE" = slow ]; then
   # The real local LLM (llama.cpp + Gemma 3 270M) for the llm-local planner tests.
   bash scripts/install_llm.sh
-  .venv/bin/pytest "$@"
+  .venv/bin/pytest --durations=25 "$@"
 else
-  .venv/bin/pytest -m "not slow" "$@"
+  .venv/bin/pytest -m "not slow" --durations=25 "$@"
 fi

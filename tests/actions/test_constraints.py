@@ -6,6 +6,8 @@ from scenes import graph
 from verigraph.actions import AlignAction, MoveAction, validate_action
 from verigraph.graph import Edge, Node, SceneGraph, WorldState
 
+pytestmark = pytest.mark.fast
+
 
 def kitchen_table() -> WorldState:
     """desk, shelf(capacity 3); book on desk, cup on book, bowl on desk with spoon in it;

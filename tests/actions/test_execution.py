@@ -1,10 +1,14 @@
 """execute_until_violation, goal checks and predicates (docs/design.md section 6)."""
 
+import pytest
+
 from scenes import graph
 from verigraph.actions import MoveAction, execute_until_violation, parse_plan, validate_plan
 from verigraph.actions.model import AlignAction, DoneAction
 from verigraph.graph import Edge, Goal, Node, SceneGraph, WorldState, check_goal
 from verigraph.graph.builtin_scenes import cup_on_book, cup_on_book_goal, three_blocks
+
+pytestmark = pytest.mark.fast
 
 
 def test_paper_example_first_move_rejected_then_corrected_plan_passes():

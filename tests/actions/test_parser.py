@@ -9,6 +9,8 @@ from verigraph.actions.model import DoneAction
 from verigraph.actions.parser import parse_text_plan
 from verigraph.errors import PlanParseError
 
+pytestmark = pytest.mark.fast
+
 
 def test_text_plan_with_comments_shorthand_and_done():
     plan = parse_plan("""# clear the book first

@@ -3,6 +3,7 @@ solver plans validate and are optimal against brute force."""
 
 from collections import deque
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -13,6 +14,8 @@ from verigraph.solver import solve
 from verigraph.solver.budget import SearchBudget
 from verigraph.solver.encoding import SearchProblem
 from verigraph.solver.search import _decoded_goal_check
+
+pytestmark = pytest.mark.fast
 
 SETTINGS = settings(max_examples=150, deadline=None,
                     suppress_health_check=[HealthCheck.too_slow])

@@ -5,11 +5,15 @@ from __future__ import annotations
 
 import random
 
+import pytest
+
 from scenes import random_blocks, random_tableware
 from verigraph.actions import MoveAction, validate_plan
 from verigraph.actions.execution import move_accepted
 from verigraph.actions.validator import apply_action, validate_action
 from verigraph.graph import Goal, WorldState
+
+pytestmark = pytest.mark.fast
 
 
 def test_move_accepted_agrees_with_the_constraints_on_random_moves():

@@ -14,6 +14,8 @@ from verigraph.planning.rule_based import RuleBasedPlanner
 from verigraph.tasks.groups import EpisodeSpec
 from verigraph.tasks.suite_blocks import block_graph
 
+pytestmark = pytest.mark.fast
+
 TOWER = [["red_block", "green_block", "blue_block"]]  # red at the bottom
 REVERSED = Goal(graph=block_graph([["blue_block", "green_block", "red_block"]]))
 

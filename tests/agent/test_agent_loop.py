@@ -21,6 +21,8 @@ from verigraph.planning.parsing import split_proposal
 from verigraph.planning.testing import ScriptedPlannerForTests as Scripted
 from verigraph.tasks import EpisodeSpec
 
+pytestmark = pytest.mark.fast
+
 CUP = EpisodeSpec(load={"scene_id": "cup_on_book"})  # book on desk, cup on book
 STACK = EpisodeSpec(load={"scene_id": "three_blocks"})  # goal: single_stack
 SOLVE_CUP = ["move(cup, on, desk)", "move(book, on, shelf)", "done"]

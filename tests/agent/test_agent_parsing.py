@@ -9,6 +9,8 @@ from verigraph.graph.builtin_scenes import cup_on_book
 from verigraph.planning.parsing import ParseFailure, parse_answer, parse_tool_input
 from verigraph.planning.schema import action_schema, format_instruction
 
+pytestmark = pytest.mark.fast
+
 CUP = MoveAction(object="cup", relation="on", target="desk")
 
 

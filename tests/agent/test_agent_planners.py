@@ -16,6 +16,8 @@ from verigraph.planning.models import Feedback
 from verigraph.planning.noisy import MISTAKE_KINDS, NoiseProfile, NoisyPlanner, make_mistake
 from verigraph.planning.oracle import OraclePlanner
 
+pytestmark = pytest.mark.fast
+
 
 def request(graph: SceneGraph, goal: Goal | None, k: int | None = 3) -> PlannerRequest:
     return PlannerRequest(mode="iterative" if k else "direct", iteration=1, graph=graph,

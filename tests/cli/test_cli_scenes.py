@@ -10,6 +10,8 @@ from verigraph.cli import main
 from verigraph.cli.scenes import scene_argument
 from verigraph.errors import VeriGraphError
 
+pytestmark = pytest.mark.fast
+
 EXAMPLES = Path(__file__).parents[2] / "examples" / "scenes"
 
 

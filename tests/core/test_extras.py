@@ -12,6 +12,8 @@ from verigraph import extras
 from verigraph.errors import VeriGraphError
 from verigraph.extras import EXTRAS, Extra, ExtraMissingError
 
+pytestmark = pytest.mark.fast
+
 
 def test_every_extra_installs_from_the_distribution() -> None:
     project = tomllib.loads((Path(__file__).parents[2] / "pyproject.toml").read_text())

@@ -13,6 +13,8 @@ from pathlib import Path
 
 import pytest
 
+pytestmark = pytest.mark.fast
+
 ROOT = Path(__file__).resolve().parents[2]
 PACKAGE = ROOT / "verigraph"
 DOC = ROOT / "docs" / "architecture.md"

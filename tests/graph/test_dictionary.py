@@ -6,6 +6,8 @@ from verigraph.errors import DictionaryError
 from verigraph.graph import BUILTIN_DICTIONARIES, builtin_dictionary, load_dictionary
 from verigraph.graph.dictionary import union_dictionary
 
+pytestmark = pytest.mark.fast
+
 
 @pytest.mark.parametrize("name", BUILTIN_DICTIONARIES)
 def test_builtins_load(name):

@@ -14,6 +14,8 @@ from verigraph.graph import Edge, Node, SceneGraph, WorldState
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, graph_items
 from verigraph.graph.io import scene_from_data, scene_from_json
 
+pytestmark = pytest.mark.fast
+
 
 def test_small_builds_leave_the_collector_alone() -> None:
     assert gc.isenabled()

@@ -10,6 +10,8 @@ from verigraph.graph import Edge, Node, SceneGraph, load_scene, save_graph
 from verigraph.graph.builtin_scenes import cup_on_book
 from verigraph.graph.io import scene_from_data
 
+pytestmark = pytest.mark.fast
+
 
 def test_networkx_round_trip_keeps_nodes_edges_and_sides():
     g = SceneGraph(nodes=[Node(id="square", label="square", attrs={"color": "orange"}),

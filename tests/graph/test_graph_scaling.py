@@ -14,6 +14,8 @@ from verigraph.graph.wellformed import (
     find_support_cycle,
 )
 
+pytestmark = pytest.mark.fast
+
 BLOCKS = builtin_dictionary("blocks")
 
 

@@ -7,6 +7,8 @@ from verigraph.errors import MalformedGraphError
 from verigraph.graph import Edge, Node, SceneGraph, WorldState, builtin_dictionary
 from verigraph.graph.wellformed import check_well_formed
 
+pytestmark = pytest.mark.fast
+
 TW = builtin_dictionary("tableware")
 
 

@@ -12,7 +12,7 @@ from mcp_helpers import text
 from verigraph.server import build_server
 from verigraph.server.apps import EPISODE_UI, FLAT_UI_KEY, UI_TOOLS
 
-pytestmark = pytest.mark.anyio
+pytestmark = [pytest.mark.fast, pytest.mark.anyio]
 
 
 async def test_hosts_find_the_viewer_under_both_keys() -> None:

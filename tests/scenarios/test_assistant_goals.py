@@ -17,7 +17,7 @@ from mcp_helpers import (  # noqa: F401 - in_process_client: the client fixture
 
 from llm_trials import TRIALS, start
 
-pytestmark = pytest.mark.anyio
+pytestmark = [pytest.mark.fast, pytest.mark.anyio]
 
 
 def photo(task: str) -> str:

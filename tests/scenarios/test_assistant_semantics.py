@@ -11,7 +11,7 @@ from mcp_helpers import (  # noqa: F401 - in_process_client: the client fixture
     text,
 )
 
-pytestmark = pytest.mark.anyio
+pytestmark = [pytest.mark.fast, pytest.mark.anyio]
 
 
 async def load(client: Client, **args: object) -> str:

@@ -25,7 +25,7 @@ from verigraph.actions.validator import all_violations
 from verigraph.graph.io import scene_from_data
 from verigraph.graph.state import WorldState
 
-pytestmark = pytest.mark.anyio
+pytestmark = [pytest.mark.fast, pytest.mark.anyio]
 
 
 async def test_validate_action_text_names_every_failed_constraint(client: Client) -> None:

@@ -16,7 +16,7 @@ from mcp_helpers import (  # noqa: F401 - in_process_client: the client fixture
 
 from llm_trials import start
 
-pytestmark = pytest.mark.anyio
+pytestmark = [pytest.mark.fast, pytest.mark.anyio]
 
 
 async def load(client: Client, task: str) -> str:

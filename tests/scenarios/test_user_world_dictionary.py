@@ -31,7 +31,7 @@ from verigraph.graph.wellformed import check_well_formed
 from verigraph.server import build_server
 from verigraph.tools import Toolbox
 
-pytestmark = pytest.mark.anyio
+pytestmark = [pytest.mark.fast, pytest.mark.anyio]
 
 
 HOSTILE: dict[str, tuple[dict[str, Any], str, str]] = {

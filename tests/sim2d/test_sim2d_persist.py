@@ -11,6 +11,8 @@ from verigraph.actions.model import MoveAction
 from verigraph.sim2d import generate_scene
 from verigraph.sim2d.persist import world_from_state, world_state
 
+pytestmark = pytest.mark.fast
+
 
 @pytest.mark.parametrize("family", ["blocks", "kitchen", "tableware", "tangram"])
 def test_world_round_trips_exactly(family: str) -> None:

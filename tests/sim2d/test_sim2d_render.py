@@ -19,6 +19,8 @@ from verigraph.sim2d import (
 )
 from verigraph.sim2d.palette import COLORS, bgr
 
+pytestmark = pytest.mark.fast
+
 
 def centre_pixel(world: TabletopWorld, image: np.ndarray, obj: str, frac_y: float = 0.5
                  ) -> tuple[int, ...]:

@@ -1,10 +1,14 @@
 """Reference solver: unreachable goals explained, scale to 12+ objects, tangram."""
 
+import pytest
+
 from scenes import graph, random_blocks
 from verigraph.actions import validate_plan
 from verigraph.graph import Edge, Goal, Node, SceneGraph
 from verigraph.graph.builtin_scenes import cup_on_book, cup_on_book_goal, three_blocks
 from verigraph.solver import solve
+
+pytestmark = pytest.mark.fast
 
 
 def test_papers_example():

@@ -7,6 +7,8 @@ import pytest
 from mcp import Client
 from mcp_helpers import apps_client, structured, text
 
+pytestmark = pytest.mark.fast
+
 
 async def episode(c: Client) -> str:
     return str(structured(await c.call_tool("load_scene", {"scene_id": "cup_on_book"}))[

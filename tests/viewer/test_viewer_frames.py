@@ -22,6 +22,8 @@ from verigraph.tools.drawing import OUTLINE_COLOR
 from verigraph.tools.records import from_record, to_record
 from verigraph.viewer import ViewInput, frames, view
 
+pytestmark = pytest.mark.fast
+
 MOVES = ["move(cup, on, desk)", "move(book, on, shelf)", "move(cup, on, book)"]
 
 

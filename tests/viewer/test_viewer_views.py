@@ -9,12 +9,15 @@ import re
 
 import cv2
 import numpy as np
+import pytest
 
 from verigraph.graph.builtin_scenes import cup_on_book
 from verigraph.graph.model import Edge
 from verigraph.tools import Toolbox
 from verigraph.tools.drawing import HIGHLIGHT_COLOR, OUTLINE_COLOR, draw_graph
 from verigraph.viewer import ViewInput, report_html, view
+
+pytestmark = pytest.mark.fast
 
 REFUSED_PLAN = "move(cup, on, desk)\nmove(desk, on, shelf)\nmove(book, on, shelf)"
 
