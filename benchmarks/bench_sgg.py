@@ -25,7 +25,8 @@ level. Then what a camera on a moving arm sees (`SHAKE_AND_OCCLUDERS`): motion b
 wide, 4% through the middle, 3% horizontal and tilted 30 degrees; blobs of radius 15%
 and 30%. Targets there: silent-wrong 0 in every cell; exact >= 0.90 per family under
 9 px blur; under an occluder every wrong graph names the occluded objects (column
-unnamed = 0). Written to `benchmarks/results/sgg_robustness.md`.
+unnamed = 0). Written to `benchmarks/results/sgg_robustness.md`. Poles hanging from
+the top edge in every palette colour: `benchmarks/bench_sgg_poles.py`.
 
 Run: verigraph bench sgg [--n 100] [--families blocks,kitchen] [--levels clean,noise]
      [--parts quality,robustness] [--robust-n 25]

@@ -28,6 +28,7 @@ from verigraph.perception.correct.roll import MIN_DEGREES as ROLL_NOTE
 from verigraph.perception.correct.roll import estimate_roll, unroll
 from verigraph.perception.detect import colors
 from verigraph.perception.detect.occlusion import (
+    Occluder,
     area_occluders,
     find_occluders,
     hidden_mask,
@@ -41,7 +42,13 @@ from verigraph.perception.label.catalogue import models_by_colour
 from verigraph.perception.label.labelling import ColourShapeLabeller, Labeller, Shape, shape_error
 from verigraph.perception.relate.confidence import edge_name, graph_confidence, upright_doubts
 from verigraph.perception.relate.graphing import assign_ids, tabletop_graph
-from verigraph.perception.relate.occluded import HIDDEN_REASON, merge_doubts, occlusion_doubts
+from verigraph.perception.relate.occluded import (
+    HIDDEN_REASON,
+    blocked_views,
+    merge_doubts,
+    occlusion_doubts,
+)
+from verigraph.perception.relate.plausible import furniture_on_objects, plausibility_doubts
 from verigraph.perception.relate.support import infer_supports, label_map
 from verigraph.perception.result import DetectedObject, PerceptionResult
 from verigraph.perception.views import FAMILY_ORDER, choose_view, family_of
@@ -139,6 +146,25 @@ def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
     assign_ids(detections)
     labels = label_map(classes.shape, detections, scene.floor_row)
     supports = infer_supports(detections, labels, gap=config.contact_gap, scale=scene.scale)
+    misread = furniture_on_objects(detections, supports)
+    if misread:
+        # Furniture stands on the floor: a "counter" standing on a stove is something in
+        # front of the scene in a furniture colour. It is not emitted; what it touches
+        # is named below as behind an area in front.
+        for i in misread:
+            det = detections[i]
+            r = det.region
+            warnings.append(
+                f"a region in the {det.colour} of a {det.label} (box {r.x0}, {r.y0}, {r.x1}, "
+                f"{r.y1}) stands on {supports[det.id][1]}, but a {det.label} stands on the "
+                "floor: it is something in front of the scene, or a misreading, and is not "
+                "reported as an object")
+            occluders.append(Occluder("area", (r.x0, r.y0, r.x1, r.y1), r.mask.copy()))
+        detections = [det for i, det in enumerate(detections) if i not in misread]
+        assign_ids(detections)
+        labels = label_map(classes.shape, detections, scene.floor_row)
+        supports = infer_supports(detections, labels, gap=config.contact_gap,
+                                  scale=scene.scale)
     family = family_of({det.label for det in detections}, d)
     name = family if family is not None else (d.name if d.name in BUILTIN_DICTIONARIES
                                               else None)
@@ -166,7 +192,8 @@ def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
         graph, ids, regions, occluders + areas, classes.shape,
         edge_name=lambda e: edge_name(e.source, e.relation, e.target))
     warnings += hiding[:len(occluders)]  # the areas' warning is the one above
-    merge_doubts(confidence, uncertain, doubts + upright_doubts(graph, detections))
+    merge_doubts(confidence, uncertain, doubts + upright_doubts(graph, detections)
+                 + plausibility_doubts(graph, detections, d, classes.shape))
     objects = [DetectedObject(id=det.id, label=det.label, colour=det.colour,
                               box=(det.region.x0, det.region.y0, det.region.x1, det.region.y1),
                               score=det.score) for det in detections]
@@ -174,6 +201,8 @@ def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
                             labeller=labeller.name, objects=objects, warnings=warnings,
                             confidence=confidence, uncertain=uncertain, scale=scene.scale,
                             explained=explained, occluded=occluded,
+                            blocked=blocked_views(occluders + areas, ids, regions,
+                                                  classes.shape),
                             shape_error=_shape_error(detections, scene.scale))
 
 

@@ -44,6 +44,18 @@ def add_edge_confidence(graph: SceneGraph, confidence: dict[str, float],
                                        reason=f"one of its {parts} is uncertain"))
 
 
+class Blocked(BaseModel):
+    """Where the view is blocked by something in front of the scene, and what it may
+    hide: the graph is incomplete there, and relations through it are uncertain."""
+
+    kind: str = Field(description="band (across the frame), pole (hanging from the top "
+                                  "edge), blob, or area (no detected object explains it)")
+    box: tuple[int, int, int, int] = Field(description="x0, y0, x1, y1 (x1, y1 exclusive)")
+    touches: list[str] = Field(default_factory=list, description="ids of the objects it "
+                               "hides part of or cuts; any object wholly behind it is not "
+                               "seen")
+
+
 class PerceptionResult(BaseModel):
     """A perceived scene graph with what the detector noticed along the way.
 
@@ -69,6 +81,8 @@ class PerceptionResult(BaseModel):
                                                         "objects (0 = as drawn)")
     occluded: list[str] = Field(default_factory=list, description="ids of objects "
                                 "something in front of the scene hides part of")
+    blocked: list[Blocked] = Field(default_factory=list, description="where something "
+                                   "in front blocks the view, and what it touches")
     restored: str = Field(default="", description="what was undone before detection (a "
                                                   "motion blur), when it could be")
     seconds: float = 0.0

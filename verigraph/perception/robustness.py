@@ -10,6 +10,10 @@ strong ones are well past that (and perception is expected to say so, not to be 
 lengths and directions, bars of several widths, tilts and positions in front of the
 scene (the arm itself), and a blob (a hand). Under an occluder a wrong graph must also
 name the objects the occluder hides (`CellResult.unnamed` counts those that do not).
+
+`pole_sweep` puts a plain bar hanging from the top edge (a pole, a cable, an arm link)
+in front of every scene, in every colour of the palette (so it often looks like a
+known object) and at several widths and lengths, one combination per scene.
 """
 
 from __future__ import annotations
@@ -21,6 +25,7 @@ from verigraph.perception.metrics import score_graph
 from verigraph.perception.pipeline import perceive_image
 from verigraph.sim2d.degrade import Degradation, degrade
 from verigraph.sim2d.generator import generate_scene
+from verigraph.sim2d.palette import COLORS
 
 SUITE: dict[str, dict[str, Degradation]] = {
     "hue": {"mild": Degradation(hue=6.0), "strong": Degradation(hue=25.0)},
@@ -75,6 +80,10 @@ OCCLUDERS = ("occlusion", "bar", "blob")  # degradations that put something in f
 FAMILIES = ("blocks", "kitchen", "tableware", "tangram")
 FIRST_SEED = 20_000
 SHAKE_SEED = 40_000  # SHAKE_AND_OCCLUDERS runs on scenes of its own
+POLE_SEED = 70_000  # the pole sweep (the pole finder was tuned on 60000-60311)
+POLE_COLOURS = tuple(COLORS)  # every colour of the palette
+POLE_WIDTHS = (0.01, 0.02, 0.04)  # shares of the image width
+POLE_LENGTHS = (0.35, 0.6, 0.85, 1.0)  # shares of the image height, from the top edge
 
 
 @dataclass(frozen=True, slots=True)
@@ -125,4 +134,46 @@ def run_suite(families: Iterable[str] = FAMILIES, n: int = 20,
                     unnamed += (not right) and not result.occluded
                 out.append(CellResult(family, name, level, n, exact, flagged, silent,
                                       unnamed))
+    return out
+
+
+def pole_spec(i: int) -> tuple[str, Degradation]:
+    """The i-th pole of the sweep: colours cycle fastest, then widths, then lengths,
+    so any 26 consecutive scenes see every colour of the palette."""
+    colour = POLE_COLOURS[i % len(POLE_COLOURS)]
+    rest = i // len(POLE_COLOURS)
+    width = POLE_WIDTHS[rest % len(POLE_WIDTHS)]
+    length = POLE_LENGTHS[(rest // len(POLE_WIDTHS)) % len(POLE_LENGTHS)]
+    return (f"{colour} {width:.0%} wide, {length:.0%} down",
+            Degradation(pole=width, pole_length=length, pole_colour=COLORS[colour]))
+
+
+@dataclass(frozen=True, slots=True)
+class PoleOutcome:
+    """One scene of the pole sweep: what was put in front, and how perception did."""
+
+    family: str
+    seed: int
+    pole: str
+    exact: bool
+    flagged: bool
+
+    @property
+    def silent_wrong(self) -> bool:
+        return not self.exact and not self.flagged
+
+
+def pole_sweep(families: Iterable[str] = FAMILIES, n: int = 104,
+               first_seed: int = POLE_SEED) -> list[PoleOutcome]:
+    """n scenes per family (seeds from `first_seed`), the i-th with `pole_spec(i)`
+    in front of it; n = 312 covers every colour, width and length once."""
+    out = []
+    for family in families:
+        for i in range(n):
+            scene = generate_scene(family, first_seed + i)
+            name, spec = pole_spec(i)
+            spoilt = degrade(scene.world.render(), spec, seed=scene.seed)
+            result = perceive_image(spoilt, dictionary=family)
+            right = score_graph(result.graph, scene.graph, family).exact
+            out.append(PoleOutcome(family, scene.seed, name, right, not result.confident))
     return out

@@ -38,7 +38,11 @@ class Degradation:
     as a share of the image width; occlusion_angle: the bar's tilt from vertical in
     degrees (90 = a horizontal bar); occlusion_at: where it crosses the content box,
     0-1 (None = drawn from the seed); blob: radius of a grey blob in front of the
-    scene as a share of the content box's height.
+    scene as a share of the content box's height; pole: width of a plain bar hanging
+    from the top edge in front of the scene (no outline), as a share of the image width;
+    pole_length: how far down it reaches, as a share of the image height (1 = to the
+    bottom edge); pole_colour: its BGR (None = the grey 118, 118, 118); pole_at: where it
+    crosses the content box, 0-1 (None = drawn from the seed).
     """
 
     noise: float = 0.0
@@ -59,6 +63,10 @@ class Degradation:
     occlusion_angle: float = 0.0
     occlusion_at: float | None = None
     blob: float = 0.0
+    pole: float = 0.0
+    pole_length: float = 1.0
+    pole_colour: Colour | None = None
+    pole_at: float | None = None
 
     @property
     def active(self) -> bool:
@@ -89,6 +97,9 @@ def degrade(image: np.ndarray, spec: Degradation, seed: int = 0) -> np.ndarray:
                               at=spec.occlusion_at)
     if spec.blob > 0:
         out = ops.occlude_blob(out, spec.blob, keep, rng)
+    if spec.pole > 0:
+        out = ops.occlude_pole(out, spec.pole, spec.pole_length, keep, rng,
+                               colour=spec.pole_colour or (118, 118, 118), at=spec.pole_at)
     if spec.white_balance != (1.0, 1.0, 1.0):
         out = ops.white_balance(out, spec.white_balance)
     if spec.lighting > 0:

@@ -173,3 +173,27 @@ def occlude_blob(image: np.ndarray, radius_fraction: float, keep: tuple[int, int
     cv2.fillConvexPoly(out, hull, colour, cv2.LINE_AA)
     cv2.polylines(out, [hull], True, (25, 25, 25), 1, cv2.LINE_AA)
     return out
+
+
+def occlude_pole(image: np.ndarray, width_fraction: float, length_fraction: float,
+                 keep: tuple[int, int, int, int], rng: np.random.Generator,
+                 colour: tuple[int, int, int] = (118, 118, 118), at: float | None = None
+                 ) -> np.ndarray:
+    """A plain vertical bar hanging from the top edge in front of the scene (a pole, a
+    cable, an arm link): `width_fraction` of the image width wide, reaching
+    `length_fraction` of the image height down (1 = to the bottom edge), with no outline
+    (anti-aliased sides only), somewhere across the content box (`at`: 0-1 along its
+    width; None = at random)."""
+    h, w = image.shape[:2]
+    bar = max(2.0, width_fraction * w)
+    x0, _, x1, _ = keep
+    share = float(rng.uniform(0, 1)) if at is None else float(at)
+    left = x0 + share * max(1.0, x1 - x0 - bar)
+    bottom = max(1.0, min(1.0, length_fraction) * h)
+    out = image.copy()
+    shift = 4  # sub-pixel corners: a pole's sides fall anywhere between pixels
+    corners = np.array([[left, -1.0], [left + bar, -1.0], [left + bar, bottom],
+                        [left, bottom]]) * (1 << shift)
+    cv2.fillConvexPoly(out, np.round(corners).astype(np.int32), colour, cv2.LINE_AA,
+                       shift)
+    return out

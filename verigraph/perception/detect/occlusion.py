@@ -4,8 +4,12 @@ in two, and areas no detected object explains.
 
 A band is found before any object is read, by its geometry alone: a flat area that
 meets the frame with both ends (an arm reaching in) and is at least twice as long as
-wide. Its pixels are then read as no object, and parts of one colour facing each other
-across it are one object (`join_across`).
+wide. A pole is a plain bar hanging from the top edge (a pole, a cable, an arm link),
+found by following from the top row down a run of one colour that the wall does not
+have, with its width unchanged, for at least twice its width (`find_poles`);
+its colour does not matter (it may be any object's), only its geometry. Their pixels
+are then read as no object, and parts of one colour facing each other across them are
+one object (`join_across`).
 
 A bar, an arm or an unknown object in front of a table splits its fill into two
 regions. Two fills of one furniture colour whose tops lie on one line, with no wall
@@ -167,21 +171,33 @@ AREA_SHARE = 0.25  # largest unexplained area taken for something in front
 AREA_FLAT = 0.7  # share of its pixels an occluding area shows flat
 TOUCH = 6  # px between an occluder and an object it hides part of
 BORDER = 2  # px from the frame that count as reaching it
+HIDING = ("band", "pole")  # occluders proven to be in front by their geometry
+POLE_TOP_ROWS = 2  # rows at the top edge a pole is seen in (a crop keeps 2 px of wall)
+POLE_OFF_WALL = 10  # largest channel difference from the wall that is still wall
+POLE_MATCH = 28  # largest channel difference from the pole's colour along it ...
+POLE_MATCH_SHARE = 0.5  # ... and at most this share of its difference from the wall
+POLE_ROW_SHARE = 0.8  # share of a row's inner columns in the pole's colour
+POLE_MIN_LENGTH = 0.06  # shortest pole, as a share of the image height
+POLE_ASPECT = 2.0  # ... and at least this many times as long as wide (as a band)
+POLE_MAX_WIDTH = 0.25  # widest pole, as a share of the image width
+POLE_APART = 0.6  # share of its rows in which a pole's sides differ from it
 
 
 @dataclass(frozen=True, slots=True)
 class Occluder:
     """Something in front of the scene: a straight band crossing the frame (an arm, a
-    pole), a blob of a colour no object has (a hand), or an area no detected object
-    explains (it may hide part of what it borders), with its pixels."""
+    pole), a bar hanging from the top edge, a blob of a colour no object has (a hand),
+    or an area no detected object explains (it may hide part of what it borders), with
+    its pixels."""
 
-    kind: str  # "band", "blob" or "area"
+    kind: str  # "band", "pole", "blob" or "area"
     box: tuple[int, int, int, int]  # x0, y0, x1, y1 (exclusive)
     mask: np.ndarray  # bool, the box's size
 
     def describe(self) -> str:
         x0, y0, x1, y1 = self.box
         what = {"band": "a band across the picture", "blob": "a blob",
+                "pole": "a bar hanging from the top edge",
                 "area": "an area no detected object explains"}[self.kind]
         return f"{what} (box {x0}, {y0}, {x1}, {y1})"
 
@@ -229,6 +245,59 @@ def find_occluders(image: np.ndarray, scenery: Sequence[tuple[int, int, int]],
             full[y - gy0:y - gy0 + bh, x - gx0:x - gx0 + bw] = comp.view(np.uint8)
             full = cv2.dilate(full, np.ones((5, 5), np.uint8))[:gy1 - gy0, :gx1 - gx0]
             out.append(Occluder(kind, (gx0, gy0, gx1, gy1), full.astype(bool)))
+    return out + find_poles(image, [o for o in out if o.kind == "band"])
+
+
+def find_poles(image: np.ndarray, bands: Sequence[Occluder] = ()) -> list[Occluder]:
+    """Plain bars hanging from the top edge in front of the scene (a pole, a cable, an
+    arm link), of any colour and length.
+
+    The top rows of a picture show the wall (or the tangram table) only: objects stand
+    inside the frame. A run of columns that differs from the wall in the top
+    `POLE_TOP_ROWS` rows is followed down as long as its inner columns keep its colour
+    (`POLE_MATCH`, or half its difference from the wall when that is less;
+    `POLE_ROW_SHARE`; one row's gap is bridged). It is a pole when it runs at least
+    `POLE_ASPECT` times its width and `POLE_MIN_LENGTH` of the height down, and its
+    sides differ from it along most of that length (`POLE_APART`; a same-coloured
+    object it crosses joins it there, a thing merely reaching the top edge does not
+    keep its width). Its mask covers the run and 2 px around it (the anti-aliased
+    sides). A run already inside a band crossing the frame is that band."""
+    h, w = image.shape[:2]
+    if h < 4 * POLE_TOP_ROWS or w < 8:
+        return []
+    img = image.astype(np.int16)
+    top = img[:POLE_TOP_ROWS]
+    wall = np.median(top.reshape(-1, 3), axis=0).astype(np.int16)
+    off = (np.abs(top - wall).max(axis=2) > POLE_OFF_WALL).all(axis=0)
+    for band in bands:
+        off[max(0, band.box[0]):band.box[2]] &= band.box[1] > BORDER
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], off.view(np.int8), [0]))))
+    out: list[Occluder] = []
+    for a, b in zip(edges[::2].tolist(), edges[1::2].tolist(), strict=True):
+        width = b - a
+        if width < 2 or width > POLE_MAX_WIDTH * w:
+            continue
+        inner = slice(a + 1, b - 1) if width >= 4 else slice(a, b)
+        colour = np.median(img[:POLE_TOP_ROWS, inner].reshape(-1, 3), axis=0).astype(np.int16)
+        # A pole nearly the wall's colour (white on the wall) is followed more tightly.
+        match = min(POLE_MATCH, POLE_MATCH_SHARE * float(np.abs(colour - wall).max()))
+        strip = np.abs(img[:, inner] - colour).max(axis=2) <= match
+        rows = strip.mean(axis=1) >= POLE_ROW_SHARE
+        rows[:POLE_TOP_ROWS] = True
+        gaps = np.flatnonzero(~rows[:-1] & ~rows[1:])  # two rows in a row off its colour
+        end = int(gaps[0]) if len(gaps) else h
+        while end > 0 and not rows[end - 1]:
+            end -= 1
+        if end < max(POLE_ASPECT * width, POLE_MIN_LENGTH * h):
+            continue
+        sides = [img[:end, c] for c in (a - 2, b + 1) if 0 <= c < w]
+        apart = np.zeros(end, bool)
+        for side in sides:
+            apart |= np.abs(side - colour).max(axis=1) > match
+        if sides and float(np.mean(apart)) < POLE_APART:
+            continue
+        x0, x1, y1 = max(0, a - 2), min(w, b + 2), min(h, end + 2)
+        out.append(Occluder("pole", (x0, 0, x1, y1), np.ones((y1, x1 - x0), bool)))
     return out
 
 
@@ -291,18 +360,18 @@ def occluded_by(occluders: Sequence[Occluder], regions: Sequence[Region],
 def split_by(region: Region, occ: Occluder) -> bool:
     """Whether a band crosses the region: its visible pixels lie on both sides of the
     band, so its extent behind the band is bounded."""
-    if occ.kind != "band" or not np.any(occ.mask):
+    if occ.kind not in HIDING or not np.any(occ.mask):
         return False
     side, _ = _sides(region, _line(occ))
     return bool(np.any(side > 0) and np.any(side < 0))
 
 
 def hidden_mask(occluders: Sequence[Occluder], shape: tuple[int, int]) -> np.ndarray | None:
-    """Every band's pixels (bool), or None when there is none. Only bands hide: their
-    reach across the frame proves them to be in front; a blob is known by its colour
-    alone, which a strong colour cast can give an object too, so it is reported but
-    nothing is read around it."""
-    bands = [occ for occ in occluders if occ.kind == "band"]
+    """Every band's and pole's pixels (bool), or None when there is none. Only they
+    hide: their reach across the frame (or down from its top edge) proves them to be in
+    front; a blob is known by its colour alone, which a strong colour cast can give an
+    object too, so it is reported but nothing is read around it."""
+    bands = [occ for occ in occluders if occ.kind in HIDING]
     if not bands:
         return None
     out = np.zeros(shape, bool)
@@ -333,7 +402,7 @@ def join_across(parts: list[Region], occluders: Sequence[Occluder], shape: tuple
     """Parts of one colour on the two sides of a band that hides what joins them (they
     face each other across it), joined into one region; with a note each."""
     notes: list[str] = []
-    bands = [o for o in occluders if o.kind == "band"]
+    bands = [o for o in occluders if o.kind in HIDING]
     if not bands or len(parts) < 2:
         return parts, notes
     out = list(parts)

@@ -32,7 +32,7 @@ from verigraph.perception.detect.tangram_sides import (
 )
 from verigraph.perception.label.catalogue import ObjectModel
 from verigraph.perception.label.labelling import Labeller
-from verigraph.perception.relate.occluded import merge_doubts, occlusion_doubts
+from verigraph.perception.relate.occluded import blocked_views, merge_doubts, occlusion_doubts
 from verigraph.perception.result import (
     CONFIDENT,
     DetectedObject,
@@ -219,7 +219,9 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
     return PerceptionResult(graph=graph, view="tangram", family="tangram",
                             labeller=labeller.name, objects=[objects[p] for p in ids],
                             warnings=warnings, scale=scale, confidence=confidence,
-                            uncertain=uncertain, occluded=occluded)
+                            uncertain=uncertain, occluded=occluded,
+                            blocked=blocked_views(occluders, list(seen), list(seen.values()),
+                                                  classes.shape))
 
 
 def _contact_name(e: Edge) -> str:

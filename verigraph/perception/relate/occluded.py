@@ -6,20 +6,26 @@ sides of the band (its extent is bounded), or its contact with what it rests on 
 and that supporter is visible on both sides of the band (or is not hidden at all), the
 edge between them is what the picture shows around the band. Such objects are doubted
 less, and the reason says the hidden part can be inferred; the rest say it cannot.
+An object whose bottom meets the occluder (what is right under it is hidden) and that
+does not show on both sides of it is never inferred: its supporter is read through the
+hidden part (a lid seen resting on a counter may stand in a pan behind a pole).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 
+import numpy as np
+
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.perception.detect.occlusion import Occluder, occluded_by, split_by
 from verigraph.perception.detect.regions import Region
-from verigraph.perception.result import Uncertain
+from verigraph.perception.result import Blocked, Uncertain
 
 INFERRED = 0.45  # confidence of an occluded object whose hidden part can be inferred
 HIDDEN = 0.2  # ... and of one whose hidden part cannot
 HIDDEN_REASON = "partly hidden by"  # how every occlusion doubt's reason starts
+UNDER = 9  # px under an object's bottom where what it rests on is looked for
 
 
 def occlusion_doubts(graph: SceneGraph, ids: Sequence[str], regions: Sequence[Region],
@@ -51,9 +57,13 @@ def occlusion_doubts(graph: SceneGraph, ids: Sequence[str], regions: Sequence[Re
                 j = index.get(edge.target)
                 support_seen = j is None or edge.target not in hidden_ids or \
                     split_by(regions[j], occ)
-                inferable = support_seen
+                through = not both_sides and rests_behind(regions[i], occ, shape)
+                inferable = support_seen and not through
                 why = (f"'{edge_name(edge)}' can be inferred: {edge.target} is visible on "
                        "both sides of it" if inferable else
+                       f"'{edge_name(edge)}' is read through the hidden part (what is "
+                       "right under it is behind the occluder) and cannot be inferred"
+                       if through else
                        f"what it rests on behind it cannot be inferred ({edge.target} is "
                        "hidden there too)")
             else:
@@ -81,3 +91,31 @@ def merge_doubts(confidence: dict[str, float], uncertain: list[Uncertain],
     for doubt in extra:
         confidence[doubt.item] = min(confidence.get(doubt.item, 1.0), doubt.confidence)
         uncertain.append(doubt)
+
+
+def blocked_views(occluders: Sequence[Occluder], ids: Sequence[str],
+                  regions: Sequence[Region], shape: tuple[int, int]) -> list[Blocked]:
+    """Each occluder's kind and box with the ids of the objects it touches."""
+    touched = occluded_by(occluders, regions, shape)
+    return [Blocked(kind=occ.kind, box=occ.box, touches=[ids[i] for i in hits])
+            for occ, hits in zip(occluders, touched, strict=True)]
+
+
+def rests_behind(region: Region, occ: Occluder, shape: tuple[int, int]) -> bool:
+    """Whether what lies right under the region's bottom (within `UNDER` px of its
+    lowest pixel, column by column) is covered by the occluder."""
+    mask = occ.full_mask(shape, 1)
+    h = shape[0]
+    has = region.mask.any(axis=0)
+    cols = np.nonzero(has)[0]
+    if len(cols) == 0:
+        return False
+    rows = region.mask.shape[0]
+    lowest = region.y0 + rows - 1 - np.argmax(region.mask[::-1, cols], axis=0)
+    xs = region.x0 + cols
+    for step in range(1, UNDER + 1):
+        ys = lowest + step
+        ok = ys < h
+        if np.any(mask[ys[ok], xs[ok]]):
+            return True
+    return False
