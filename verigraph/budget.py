@@ -27,7 +27,7 @@ import time
 from collections.abc import Callable
 from contextvars import ContextVar
 from dataclasses import dataclass
-from typing import TypeVar
+from typing import TypeVar, cast
 
 from verigraph.errors import VeriGraphError
 
@@ -36,6 +36,7 @@ _PAGE = os.sysconf("SC_PAGE_SIZE") if hasattr(os, "sysconf") else 4096
 CHECK_EVERY_S = 0.02
 WATCH_EVERY_S = 0.05
 WATCH_GRACE_S = 0.25  # a checkpoint gets this long to stop an overrun call itself
+LANDING_S = 1.0  # how long a sent interrupt is given to land before it is withdrawn
 DEFAULT_WALL_S = 30.0  # `verigraph serve --tool-seconds`
 DEFAULT_MEMORY_MIB = 512.0  # `verigraph serve --tool-mib`
 
@@ -77,6 +78,7 @@ class _Meter:
         self.thread = threading.get_ident()
         self.done = False  # set when the call leaves `within`; the watchdog then lets go
         self.overrun: BudgetExceeded | None = None  # set when the watchdog interrupts it
+        self.landed = False  # set when that interrupt has been raised in the call's thread
 
     def check(self) -> None:
         now = time.monotonic()
@@ -178,24 +180,34 @@ def run_within(budget: CallBudget, name: str, fn: Callable[[], T],
     token = _METER.set(meter)
     try:
         _WATCHDOG.add(meter)
+        result: T | None = None
         try:
-            return fn()
+            result = fn()
+        except _Interrupted:
+            meter.landed = True
         finally:
             _release(meter)
-    except _Interrupted:
-        assert meter.overrun is not None
-        raise meter.overrun from None
+        if meter.overrun is not None:
+            raise meter.overrun from None
+        return cast(T, result)
     finally:
         _METER.reset(token)
 
 
 def _release(meter: _Meter) -> None:
-    """Take `meter` off the watchdog; an interrupt it had sent that has not landed yet is
-    cleared (one that lands while this runs is taken here), so none is left pending."""
+    """Take `meter` off the watchdog and make sure no interrupt it sent is left pending.
+
+    A sent interrupt is let land here (a short loop of bytecode, where the interpreter
+    delivers it) rather than withdrawn: CPython withdraws one by leaving its eval-loop
+    flag set with no exception behind it, and a profiler installed later in that thread
+    (`sys.setprofile`) then never gets past its next call."""
     while True:
         try:
-            if _WATCHDOG.remove(meter):
-                _raise_in(meter.thread, None)
+            if _WATCHDOG.remove(meter) and not meter.landed:
+                deadline = time.monotonic() + LANDING_S
+                while time.monotonic() < deadline:
+                    pass  # the pending interrupt lands at one of these backward jumps
+                _raise_in(meter.thread, None)  # not landed in time: withdraw it after all
             return
         except _Interrupted:
-            continue
+            meter.landed = True

@@ -4,6 +4,8 @@ checkpoint: the watchdog interrupts it in its own thread, and no interrupt outli
 from __future__ import annotations
 
 import contextlib
+import subprocess
+import sys
 import threading
 import time
 
@@ -75,3 +77,27 @@ def test_calls_on_other_threads_keep_their_own_budgets() -> None:
         t.join(15)
     assert isinstance(results["slow"], BudgetExceeded)
     assert isinstance(results["fine"], int)
+
+
+def test_a_profiler_installed_after_an_interrupted_call_still_runs() -> None:
+    """An interrupt is let land, never withdrawn behind the interpreter's back: a
+    withdrawn one leaves CPython's eval-loop flag set, and a profiler installed later in
+    that thread then spins at its first call (checked in a fresh interpreter, which would
+    hang, so the subprocess has a timeout)."""
+    code = (
+        "import sys, threading, time\n"
+        "from verigraph.budget import BudgetExceeded, CallBudget, run_within\n"
+        "def spin():\n"
+        "    t = time.monotonic()\n"
+        "    while time.monotonic() - t < 10: pass\n"
+        "try:\n"
+        "    run_within(CallBudget(wall_s=0.1), 'spin', spin)\n"
+        "except BudgetExceeded:\n"
+        "    print('stopped')\n"
+        "sys.setprofile(lambda frame, event, arg: None)\n"
+        "threading.setprofile(lambda frame, event, arg: None)\n"
+        "sys.setprofile(None)\n"
+        "print('profiled')\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=60)
+    assert out.stdout.split() == ["stopped", "profiled"], out.stderr
