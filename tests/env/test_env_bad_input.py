@@ -19,8 +19,6 @@ from verigraph.env.rollout import RolloutJob, run_rollouts  # noqa: E402
 from verigraph.env.trajectory import TrajectoryFile, read_lines, replay  # noqa: E402
 from verigraph.errors import VeriGraphError  # noqa: E402
 
-pytestmark = pytest.mark.fast
-
 DEEP = "[" * 1000 + "]" * 1000
 LONG_NUMBER = '{"actions": [' + "9" * 4301 + "]}"
 
