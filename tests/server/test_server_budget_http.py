@@ -1,7 +1,7 @@
 """The per-call budget (--tool-seconds) holds while a heavy call runs, over a real server
-with its episodes in memory: a PDDL check that never reaches a checkpoint is stopped near
-its budget, and it runs off the event loop, so another client's small call is answered
-while it runs."""
+with its episodes in memory: a PDDL check (a long read, then a long plan) is stopped near
+its budget, by a checkpoint or by the watchdog, whichever comes first, and it runs off
+the event loop, so another client's small call is answered while it runs."""
 
 from __future__ import annotations
 
@@ -15,16 +15,19 @@ from mcp_helpers import JSON_HEADERS, http_server, rpc
 TOKEN = "budget-token"
 HEADERS = {**JSON_HEADERS, "Authorization": f"Bearer {TOKEN}",
            "MCP-Protocol-Version": "2025-11-25"}
-BUDGET_S = 0.3
+BUDGET_S = 0.05
+LONG_PLAN = "(a o1)\n(b o1)\n" * 25_000  # 50,000 steps, within the plan text's cap
 
 
 def typed_pddl(types: int = 30000, objects: int = 33000) -> dict[str, str]:
-    """A deep type hierarchy and many typed objects: valid PDDL whose reading takes
-    seconds of pure Python."""
+    """A deep type hierarchy, many typed objects and an action that undoes the other:
+    valid PDDL whose reading and a long plan over it (LONG_PLAN) take well over the
+    budget in pure Python."""
     hierarchy = " ".join(f"t{i} - t{i // 2}" for i in range(1, types))
     domain = (f"(define (domain d) (:requirements :strips :typing) (:types {hierarchy}) "
               "(:predicates (p ?x - t0)) (:action a :parameters (?x - t0) "
-              ":precondition (p ?x) :effect (not (p ?x))))")
+              ":precondition (p ?x) :effect (not (p ?x))) "
+              "(:action b :parameters (?x - t0) :effect (p ?x)))")
     names = " ".join(f"o{i} - t{i % types}" for i in range(objects))
     problem = (f"(define (problem q) (:domain d) (:objects {names}) (:init (p o1)) "
                "(:goal (and (p o2))))")
@@ -51,7 +54,7 @@ def test_a_heavy_pddl_call_stops_at_its_budget_and_others_are_answered_meanwhile
         def run_heavy() -> None:
             start = time.monotonic()
             heavy["result"] = call(server.url, "validate_plan",
-                                   {"pddl": pddl, "plan": "(a o1)"}, 2)
+                                   {"pddl": pddl, "plan": LONG_PLAN}, 2)
             heavy["took"] = time.monotonic() - start
 
         thread = threading.Thread(target=run_heavy)
