@@ -1,4 +1,5 @@
 import os
+import shutil
 import sys
 import tempfile
 from collections.abc import Iterator
@@ -9,7 +10,8 @@ import pytest
 # Servers started by tests keep their default episode store (SQLite) in a fresh
 # directory, never in the user's data directory: one per session for module-wide
 # servers, and one per test (below) so that no test sees another's episodes.
-os.environ["XDG_DATA_HOME"] = tempfile.mkdtemp(prefix="verigraph-test-data-")
+SESSION_DATA_HOME = tempfile.mkdtemp(prefix="verigraph-test-data-")
+os.environ["XDG_DATA_HOME"] = SESSION_DATA_HOME
 # Never let a test reach for a model hub.
 os.environ.setdefault("HF_HUB_OFFLINE", "1")
 sys.path.insert(0, str(Path(__file__).parent))
@@ -23,6 +25,11 @@ def pytest_ignore_collect(collection_path: Path, config: pytest.Config) -> bool 
             and collection_path.name.startswith("test_")):
         return "pytest.mark.fast" not in collection_path.read_text(encoding="utf-8")
     return None
+
+
+def pytest_unconfigure(config: pytest.Config) -> None:
+    """The session's data directory goes with the session (servers are stopped by then)."""
+    shutil.rmtree(SESSION_DATA_HOME, ignore_errors=True)
 
 
 @pytest.fixture(scope="session")
