@@ -33,17 +33,16 @@ from common import write_table  # noqa: E402
 
 from verigraph.agent import LoopConfig, McpTools, run_episode  # noqa: E402
 from verigraph.env import VeriGraphEnv, build_tasks  # noqa: E402
-from verigraph.env.dataset import TaskRecord  # noqa: E402
+from verigraph.env.dataset import Task  # noqa: E402
 from verigraph.env.rollout import RolloutJob, make_policy, run_rollout, run_rollouts  # noqa: E402
 from verigraph.planning import InProcessTools, make_planner  # noqa: E402
-from verigraph.tasks import EpisodeSpec  # noqa: E402
 
 
-def pool() -> list[TaskRecord]:
+def pool() -> list[Task]:
     return [*build_tasks("blocks", 10), *build_tasks("kitchen", 6), *build_tasks("tangram", 10)]
 
 
-def env_steps(env: VeriGraphEnv, policy_name: str, tasks: list[TaskRecord], rounds: int
+def env_steps(env: VeriGraphEnv, policy_name: str, tasks: list[Task], rounds: int
               ) -> tuple[int, float, float]:
     """(steps, wall seconds, CPU seconds) of whole episodes of every task, `rounds` times."""
     steps = 0
@@ -55,16 +54,14 @@ def env_steps(env: VeriGraphEnv, policy_name: str, tasks: list[TaskRecord], roun
     return steps, time.perf_counter() - wall, time.process_time() - cpu
 
 
-def loop_iterations(tasks: list[TaskRecord], rounds: int) -> tuple[int, float, float]:
+def loop_iterations(tasks: list[Task], rounds: int) -> tuple[int, float, float]:
     tools = InProcessTools()
     planner = make_planner("oracle")
     iterations = 0
     wall, cpu = time.perf_counter(), time.process_time()
     for _ in range(rounds):
         for task in tasks:
-            spec = EpisodeSpec(task_id=task.task_id, load=task.load, set_goal=task.set_goal,
-                               show_goal_graph=task.show_goal_graph)
-            iterations += len(run_episode(tools, planner, spec, LoopConfig()).iterations)
+            iterations += len(run_episode(tools, planner, task.spec, LoopConfig()).iterations)
     return iterations, time.perf_counter() - wall, time.process_time() - cpu
 
 

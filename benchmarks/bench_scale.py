@@ -33,7 +33,7 @@ from verigraph.agent.evaluation.worker import EngineConfig  # noqa: E402
 from verigraph.jobs.limiter import BackendLimits  # noqa: E402
 from verigraph.jobs.ray_runner import connect  # noqa: E402
 from verigraph.tasks import build_groups  # noqa: E402
-from verigraph.tasks.groups import GROUPS, Task  # noqa: E402
+from verigraph.tasks.task import GROUPS, Task  # noqa: E402
 
 SETTINGS = [*(Setting(planner="noisy", threshold=t) for t in (2, 3, 5, 10)),
             *(Setting(planner="noisy", k=k) for k in (2, 3, 5, 10))]

@@ -11,7 +11,7 @@ from verigraph.planning import InProcessTools, PlannerRequest
 from verigraph.planning.greedy import GreedyPlanner, goal_moves
 from verigraph.planning.models import Feedback
 from verigraph.planning.rule_based import RuleBasedPlanner
-from verigraph.tasks.groups import EpisodeSpec
+from verigraph.tasks.task import EpisodeSpec
 from verigraph.tasks.suite_blocks import block_graph
 
 pytestmark = pytest.mark.fast

@@ -38,7 +38,7 @@ def test_optimal_lengths_are_the_solvers_and_no_goal_holds_at_the_start(groups: 
         for task in group.tasks[:4]:
             state = WorldState.from_graph(SceneGraph.model_validate(task.spec.load["graph"]))
             set_goal = task.spec.set_goal or {}
-            goal = task.truth or Goal(graph=SceneGraph.model_validate(set_goal["graph"]),
+            goal = task.goal or Goal(graph=SceneGraph.model_validate(set_goal["graph"]),
                                       partial=bool(set_goal.get("partial")))
             assert not check_goal(state, goal).satisfied, task.task_id
             if group.group == "tangram":
@@ -72,7 +72,7 @@ def test_language_hides_the_goal_and_covers_every_category(groups: list) -> None
     lang = next(g for g in groups if g.group == "language")
     assert all(not t.spec.show_goal_graph for t in lang.tasks)
     assert {t.category for t in lang.tasks} == set(language.CATEGORIES)
-    assert all(t.truth is not None and t.truth.partial for t in lang.tasks)
+    assert all(t.goal is not None and t.goal.partial for t in lang.tasks)
 
 
 def test_translator_reads_its_grammar_and_refuses_colloquial_wording() -> None:

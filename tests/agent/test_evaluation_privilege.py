@@ -82,8 +82,8 @@ def test_llm_planners_receive_no_goal_graph_on_language_tasks(
         anthropic = make_planner("anthropic", PlannerOptions(base_url=server.url,
                                                              model="recorded", api_key="k"))
         spy_a, _ = _run(anthropic, task)
-    truth = task.truth.graph
-    assert truth is not None
+    truth = task.goal
+    assert truth is not None and truth.graph is not None
     for request in [*spy.requests, *spy_a.requests]:
         assert request.privileged_goal is None and request.goal is None
         assert "Goal graph" not in request.prompt

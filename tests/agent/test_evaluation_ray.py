@@ -26,7 +26,7 @@ from verigraph.planning.factory import PlannerOptions
 from verigraph.planning.testing import RecordedResponse as R
 from verigraph.planning.testing import RecordedResponseServerForTests, chat_completion
 from verigraph.tasks import build_groups
-from verigraph.tasks.groups import Task
+from verigraph.tasks.task import Task
 
 ray = pytest.importorskip("ray", reason="the scale extra (ray) is not installed")
 pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")

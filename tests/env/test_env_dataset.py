@@ -13,7 +13,7 @@ from optional import require
 require("gymnasium", "pip install 'verigraph-mcp[env]'")
 
 from verigraph.env import (  # noqa: E402
-    TaskRecord,
+    Task,
     VeriGraphEnv,
     build_tasks,
     check_disjoint,
@@ -25,13 +25,13 @@ from verigraph.env import (  # noqa: E402
 from verigraph.env.dataset import (  # noqa: E402
     FAMILY_GROUPS,
     SUITE_PER_GROUP,
-    content_hash,
+    split_of,
     suite_tasks,
 )
 from verigraph.env.export import prompt_rows, to_hf_dataset  # noqa: E402
 from verigraph.errors import VeriGraphError  # noqa: E402
 from verigraph.graph.model import SceneGraph  # noqa: E402
-from verigraph.tasks.groups import SUITE_VERSION  # noqa: E402
+from verigraph.tasks.task import SUITE_VERSION, content_hash  # noqa: E402
 
 
 @pytest.mark.parametrize("family", ["blocks", "kitchen", "tangram"])
@@ -43,9 +43,10 @@ def test_train_and_test_never_share_a_task(family: str) -> None:
     assert not {t.content_hash for t in train} & {t.content_hash for t in test}
     # a split is a property of the task: a pool from another seed agrees on shared tasks
     other = build_tasks(family, 10, seed=1)
-    where = {t.content_hash: t.split() for t in pool}
-    assert all(where[t.content_hash] == t.split() for t in other if t.content_hash in where)
-    assert all(t.split() == ("test" if int(t.content_hash[:12], 16) < 0.2 * 16 ** 12
+    where = {t.content_hash: split_of(t.content_hash) for t in pool}
+    assert all(where[t.content_hash] == split_of(t.content_hash)
+               for t in other if t.content_hash in where)
+    assert all(split_of(t.content_hash) == ("test" if int(t.content_hash[:12], 16) < 0.2 * 16 ** 12
                              else "train") for t in other)
     # and the environment of each split holds exactly that split
     assert VeriGraphEnv(family, split="test").tasks == test
@@ -142,7 +143,7 @@ def test_rows_and_a_datasets_dataset_carry_the_prompt_and_the_task() -> None:
     assert [r["task_id"] for r in rows] == [t.task_id for t in pool]
     assert all(r["prompt"][0]["content"].startswith("You are planning") for r in rows)
     assert {r["split"] for r in rows} <= {"train", "test"}
-    assert TaskRecord.model_validate_json(rows[0]["info"]) == pool[0]
+    assert Task.model_validate_json(rows[0]["info"]) == pool[0]
     ds = to_hf_dataset(pool)
     assert isinstance(ds, datasets.Dataset) and ds.num_rows == len(pool)
     assert ds[3]["optimal_length"] == pool[3].optimal_length

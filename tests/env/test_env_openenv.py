@@ -9,15 +9,11 @@ boundary too). The slow test runs the same runner against the local llama.cpp se
 from __future__ import annotations
 
 import json
-import threading
-import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
-import uvicorn
-from mcp_helpers import free_port
 
 from optional import require
 
@@ -26,6 +22,7 @@ require("openenv", "pip install 'verigraph-mcp[env]'")
 
 from openenv.core.generic_client import GenericEnvClient  # noqa: E402
 from openenv.core.harness import SessionMCPBridge  # noqa: E402
+from openenv_helpers import serving  # noqa: E402
 
 from verigraph.env import VeriGraphEnv, build_tasks, split_tasks  # noqa: E402
 from verigraph.env.openenv_adapter import (  # noqa: E402
@@ -34,7 +31,7 @@ from verigraph.env.openenv_adapter import (  # noqa: E402
     openenv_client,
     run_collect,
 )
-from verigraph.env.openenv_server import RemoteSessionFactory, create_openenv_app  # noqa: E402
+from verigraph.env.openenv_server import RemoteSessionFactory  # noqa: E402
 from verigraph.env.rollout import REFUSED_ACTION, RolloutJob, make_policy, run_rollout  # noqa: E402
 from verigraph.env.testing import ScriptedPlannerEndpointForTests  # noqa: E402
 from verigraph.errors import VeriGraphError  # noqa: E402
@@ -121,20 +118,8 @@ def test_the_agent_sees_only_act_and_cannot_reset_or_set_the_reward() -> None:
 def served() -> Iterator[tuple[str, list[Any]]]:
     """OpenEnv's app for this environment under uvicorn on a loopback port."""
     tasks = split_tasks(build_tasks("blocks", 6), "test")
-    port = free_port()
-    server = uvicorn.Server(uvicorn.Config(create_openenv_app(tasks=tasks), host="127.0.0.1",
-                                           port=port, log_level="critical"))
-    thread = threading.Thread(target=server.run, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + 30
-    while not server.started:  # uvicorn sets it once the socket listens
-        assert thread.is_alive() and time.monotonic() < deadline, "uvicorn did not start"
-        time.sleep(0.02)
-    try:
-        yield f"http://127.0.0.1:{port}", tasks
-    finally:
-        server.should_exit = True
-        thread.join(timeout=10)
+    with serving(tasks) as url:
+        yield url, tasks
 
 
 def test_the_served_environment_gives_the_same_evaluation(tmp_path: Path,

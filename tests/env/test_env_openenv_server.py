@@ -3,16 +3,10 @@ idle expiry (OpenEnv's own session limits), and 4xx answers on stateless HTTP.""
 
 from __future__ import annotations
 
-import socket
-import threading
 import time
-from collections.abc import Iterator
-from contextlib import contextmanager
-from typing import Any
 
 import httpx
 import pytest
-import uvicorn
 from websockets.exceptions import ConnectionClosed
 
 from optional import require
@@ -20,7 +14,9 @@ from optional import require
 require("gymnasium", "pip install 'verigraph-mcp[env]'")
 require("openenv", "pip install 'verigraph-mcp[env]'")
 
+from mcp_helpers import free_port  # noqa: E402
 from openenv.core.generic_client import GenericEnvClient  # noqa: E402
+from openenv_helpers import serving  # noqa: E402
 
 from verigraph.env import build_tasks, split_tasks  # noqa: E402
 from verigraph.env.openenv_server import (  # noqa: E402
@@ -37,34 +33,8 @@ TASKS = split_tasks(build_tasks("blocks", 6), "test")
 CREATE = {"jsonrpc": "2.0", "id": 1, "method": "openenv/session/create", "params": {}}
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
-@contextmanager
-def serving(**options: Any) -> Iterator[str]:
-    """`create_openenv_app(tasks=TASKS, **options)` under uvicorn on a loopback port."""
-    port = _free_port()
-    server = uvicorn.Server(uvicorn.Config(create_openenv_app(tasks=TASKS, **options),
-                                           host="127.0.0.1", port=port,
-                                           log_level="critical"))
-    thread = threading.Thread(target=server.run, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + 30
-    while not server.started:  # uvicorn sets it once the socket listens
-        assert thread.is_alive() and time.monotonic() < deadline, "uvicorn did not start"
-        time.sleep(0.02)
-    try:
-        yield f"http://127.0.0.1:{port}"
-    finally:
-        server.should_exit = True
-        thread.join(timeout=10)
-
-
 def test_a_token_guards_http_websocket_and_mcp_sessions() -> None:
-    with serving(token="s3cret") as url:
+    with serving(TASKS, token="s3cret") as url:
         for headers, reason in (({}, "missing_token"),
                                 ({"Authorization": "Bearer wrong"}, "wrong_token"),
                                 ({"Authorization": "s3cret"}, "wrong_token")):
@@ -93,7 +63,7 @@ def test_a_token_guards_http_websocket_and_mcp_sessions() -> None:
         ok = httpx.post(f"{url}/reset", json={"task": TASKS[0].task_id},
                         headers={"Authorization": "Bearer s3cret"})
         assert ok.status_code == 200 and "## Goal" in ok.json()["observation"]["prompt"]
-    with serving(token=["one", "two"]) as url:  # any of several tokens admits
+    with serving(TASKS, token=["one", "two"]) as url:  # any of several tokens admits
         for token in ("one", "two"):
             assert httpx.post(f"{url}/reset", json={},
                               headers={"Authorization": f"Bearer {token}"}).status_code == 200
@@ -102,7 +72,7 @@ def test_a_token_guards_http_websocket_and_mcp_sessions() -> None:
 def test_every_client_has_its_own_session_and_an_anonymous_mcp_session_blocks_no_one(
         ) -> None:
     assert DEFAULT_MAX_SESSIONS >= 16
-    with serving() as url:
+    with serving(TASKS) as url:
         held = httpx.post(f"{url}/mcp", json=CREATE).json()
         assert "session_id" in held["result"]  # an MCP session that is never used again
         with GenericEnvClient(base_url=url).sync() as one, \
@@ -119,7 +89,7 @@ def test_every_client_has_its_own_session_and_an_anonymous_mcp_session_blocks_no
 def test_an_idle_session_expires_and_frees_its_slot() -> None:
     # one slot, so the expiry is what lets the next client in; OpenEnv's reaper looks
     # every max(timeout / 4, 5 s)
-    with serving(max_sessions=1, session_timeout=1.0) as url:
+    with serving(TASKS, max_sessions=1, session_timeout=1.0) as url:
         holder = TokenEnvClient(url).sync()
         holder.connect()
         holder.reset(task=TASKS[0].task_id)
@@ -155,7 +125,7 @@ def test_an_idle_session_expires_and_frees_its_slot() -> None:
 
 
 def test_stateless_http_answers_4xx_with_the_reason_never_500() -> None:
-    with serving() as url:
+    with serving(TASKS) as url:
         unknown = httpx.post(f"{url}/reset", json={"task": "no/such/task"})
         assert unknown.status_code == 400
         detail = unknown.json()["detail"]
@@ -193,5 +163,5 @@ def test_bad_server_settings_are_clear_errors() -> None:
             create_openenv_app(tasks=TASKS, **options)
         assert err.value.field == field
     with pytest.raises(VeriGraphError) as err:  # refused before anything listens
-        serve_openenv("0.0.0.0", _free_port(), tasks=TASKS)
+        serve_openenv("0.0.0.0", free_port(), tasks=TASKS)
     assert err.value.field == "host" and "token" in (err.value.fix or "")

@@ -33,7 +33,7 @@ from verigraph.planning.planner import Planner, is_privileged
 from verigraph.planning.progress import goal_distance, shape_feedback
 from verigraph.planning.prompting import planner_prompt
 from verigraph.planning.tool_calls import ToolEnvironment
-from verigraph.tasks.groups import EpisodeSpec
+from verigraph.tasks.task import EpisodeSpec
 
 MAX_ACTIONS_PER_CALL = 50  # execute_actions' limit; direct plans are sent in such chunks
 

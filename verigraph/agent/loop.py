@@ -49,7 +49,7 @@ from verigraph.planning.parsing import split_proposal
 from verigraph.planning.planner import Planner
 from verigraph.planning.progress import ProgressMeter, malformed_feedback, violation_feedback
 from verigraph.planning.tool_calls import ToolEnvironment
-from verigraph.tasks.groups import EpisodeSpec
+from verigraph.tasks.task import EpisodeSpec
 
 __all__ = ["MAX_ACTIONS_PER_CALL", "LoopConfig", "run_episode"]
 

@@ -188,7 +188,7 @@ def run_agent(args: argparse.Namespace) -> int:
 
     from verigraph.agent.console import header_lines, print_iteration, verdict_line
     from verigraph.agent.loop import LoopConfig, run_episode
-    from verigraph.tasks.groups import EpisodeSpec
+    from verigraph.tasks.task import EpisodeSpec
 
     try:
         config = LoopConfig(mode=args.mode, k=args.k, threshold=args.threshold,

@@ -18,8 +18,6 @@ require("env", "gymnasium")
 
 from verigraph.env.core import VeriGraphEnv, state_hash  # noqa: E402
 from verigraph.env.dataset import (  # noqa: E402
-    FAMILIES,
-    TaskRecord,
     build_tasks,
     check_disjoint,
     read_jsonl,
@@ -29,9 +27,10 @@ from verigraph.env.dataset import (  # noqa: E402
 )
 from verigraph.env.registration import ENV_IDS, register_envs  # noqa: E402
 from verigraph.env.rubric import Rubric, StepOutcome, score  # noqa: E402
+from verigraph.tasks.task import FAMILIES, Task  # noqa: E402
 
 register_envs()
 
-__all__ = ["ENV_IDS", "FAMILIES", "Rubric", "StepOutcome", "TaskRecord", "VeriGraphEnv",
+__all__ = ["ENV_IDS", "FAMILIES", "Rubric", "StepOutcome", "Task", "VeriGraphEnv",
            "build_tasks", "check_disjoint", "read_jsonl", "register_envs", "score",
            "select", "split_tasks", "state_hash", "write_jsonl"]

@@ -21,7 +21,7 @@ way.
   distance, state hash, reward terms). The ground-truth goal is not in `info` nor, for
   language tasks, in the prompt; reference policies read `privileged_goal`.
 
-`reset(seed=..., options={"task": ...})` picks the task: a task id, a `TaskRecord` (or
+`reset(seed=..., options={"task": ...})` picks the task: a task id, a `Task` (or
 its dict) or an index into the task list; without one the seeded generator picks, so
 `reset(seed=s)` is reproducible.
 """
@@ -42,7 +42,6 @@ from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.env.dataset import (
     DEFAULT_TEST_FRACTION,
     Split,
-    TaskRecord,
     build_tasks,
     load_tasks,
     split_tasks,
@@ -69,6 +68,7 @@ from verigraph.planning.progress import (
 )
 from verigraph.planning.prompting import planner_prompt
 from verigraph.planning.tool_calls import InProcessTools, ToolEnvironment
+from verigraph.tasks.task import Task
 
 # Observations and actions are text over this alphabet: printable ASCII, the whitespace
 # a prompt uses, Latin-1 letters and the common punctuation, arrow and math blocks.
@@ -111,7 +111,7 @@ class VeriGraphEnv(gym.Env[str, str]):
     metadata = {"render_modes": ["ansi"], "render_fps": 4}
 
     def __init__(self, family: str = "blocks", *, split: Split = "train",
-                 tasks: str | Path | Sequence[TaskRecord | dict[str, Any]] | None = None,
+                 tasks: str | Path | Sequence[Task | dict[str, Any]] | None = None,
                  per_group: int | None = None, suite_seed: int = 0,
                  test_fraction: float = DEFAULT_TEST_FRACTION, k: int = 3,
                  threshold: int = 5, max_steps: int = 40, feedback: FeedbackMode = "full",
@@ -147,7 +147,7 @@ class VeriGraphEnv(gym.Env[str, str]):
         if not pool:
             raise VeriGraphError("the environment has no tasks", field="tasks",
                                  value=family, fix="raise per_group, or pass tasks")
-        self.tasks: list[TaskRecord] = pool
+        self.tasks: list[Task] = pool
         self._by_id = {t.task_id: t for t in pool}
         self.family = family if tasks is None else ",".join(sorted({t.family for t in pool}))
         self.k = k
@@ -159,7 +159,7 @@ class VeriGraphEnv(gym.Env[str, str]):
         self.action_space = spaces.Text(max_length=MAX_ACTION, charset=CHARSET)
         self._owns_tools = tools is None
         self.tools: ToolEnvironment | None = tools or InProcessTools()
-        self.task: TaskRecord | None = None
+        self.task: Task | None = None
         self.episode_id = ""
         self._reset_state()
 
@@ -195,7 +195,7 @@ class VeriGraphEnv(gym.Env[str, str]):
         episode, self.episode_id = self.episode_id, ""
         return self.tools.call("end_episode", {"episode_id": episode})
 
-    def _pick(self, options: dict[str, Any] | None) -> TaskRecord:
+    def _pick(self, options: dict[str, Any] | None) -> Task:
         # Gymnasium's reset takes `options` as a dict or None; anything else, or a key
         # this environment does not read (a misspelt "task" would silently pick a
         # seeded task), is refused before any state changes.
@@ -212,7 +212,7 @@ class VeriGraphEnv(gym.Env[str, str]):
         choice = (options or {}).get("task")
         if choice is None:
             return self.tasks[int(self.np_random.integers(len(self.tasks)))]
-        if isinstance(choice, TaskRecord | dict):
+        if isinstance(choice, Task | dict):
             return load_tasks([choice])[0]  # hash-checked, as a task file's lines are
         if isinstance(choice, int) and not isinstance(choice, bool):
             if 0 <= choice < len(self.tasks):
@@ -225,7 +225,7 @@ class VeriGraphEnv(gym.Env[str, str]):
         raise VeriGraphError(f"no task {choice!r} in this environment", field="options.task",
                              value=str(choice)[:80],
                              fix=f"pass a task id of env.tasks (e.g. {known}), an index, or "
-                                 "a TaskRecord")
+                                 "a Task")
 
     def _absorb(self, state: dict[str, Any]) -> None:
         self.graph = SceneGraph.model_validate(state["graph"])

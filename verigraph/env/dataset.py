@@ -1,14 +1,13 @@
-"""The benchmark suites as task datasets: records, content hashes, splits, JSONL.
+"""The benchmark suites as task datasets: pools, splits, difficulty knobs, JSONL.
 
-A `TaskRecord` is one benchmark task (verigraph.tasks.groups) in a form a
-training pipeline can store: how to load the scene and set the goal, its family and
-group, and its difficulty (optimal plan length from the reference solver, object count).
-Its `content_hash` covers only what defines the task (scene and goal), never its id or
-seed, so the same task drawn from two seeds has the same hash. Its `record_hash` covers
-every other field too (whether the prompt shows the goal graph, the instruction, the
-optimal length the efficiency reward divides by, the family, group, kind, object count
-and suite version), again never the id: a record read back must match both, so no field
-that reaches a prompt, a score or a selection can be edited unnoticed.
+A dataset is a list of `Task`s (verigraph.tasks.task): how to load the scene and set the
+goal, family and group, difficulty (optimal plan length from the reference solver, object
+count) and two hashes. The `content_hash` covers only the scene and goal, never the id or
+seed, so the same task drawn from two seeds has the same hash; the `record_hash` covers
+every other field that reaches a prompt, a score or a selection (whether the prompt shows
+the goal graph, the instruction, the optimal length the efficiency reward divides by, the
+family, group, kind, object count and suite version), again never the id: a task read
+back must match both, so no such field can be edited unnoticed.
 
 Splits are decided by that hash alone (`split_of`): a task lands in the same split in
 every pool, whatever seed or size built the pool, so a train and a test split can never
@@ -21,24 +20,19 @@ with `show_goal_graph=False`: the environment's prompt shows only the instructio
 
 from __future__ import annotations
 
-import hashlib
-import json
 from collections.abc import Iterable, Sequence
 from functools import cache
 from importlib import resources
 from pathlib import Path
 from typing import Any, Literal, get_args
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import ValidationError
 
 from verigraph.env.jsonl import read_models, write_models
 from verigraph.errors import VeriGraphError
-from verigraph.graph.model import SceneGraph
-from verigraph.graph.state import WorldState
-from verigraph.tasks.groups import SUITE_VERSION, GroupName, Task, build_groups
+from verigraph.tasks.groups import build_groups
+from verigraph.tasks.task import FAMILIES, SUITE_VERSION, Family, GroupName, Task, content_hash
 
-Family = Literal["blocks", "kitchen", "tangram"]
-FAMILIES: tuple[Family, ...] = get_args(Family)
 Split = Literal["train", "test"]
 FAMILY_GROUPS: dict[Family, tuple[GroupName, ...]] = {
     "blocks": ("stacking", "language", "ref_image_blocks"),
@@ -50,80 +44,6 @@ HASH_SPACE = 16 ** 12
 SUITE_PER_GROUP = 40  # the bundled suites: this many tasks per group, seed 0
 
 
-def content_hash(load: dict[str, Any], set_goal: dict[str, Any] | None) -> str:
-    """sha256 of the scene and goal alone (canonical JSON, graphs in canonical order)."""
-    def canon(value: Any) -> Any:
-        if isinstance(value, dict):
-            if "nodes" in value and "edges" in value:
-                graph = SceneGraph.model_validate(value).canonical()
-                return graph.model_dump(mode="json", exclude_none=True)
-            return {k: canon(v) for k, v in value.items()}
-        if isinstance(value, list):
-            return [canon(v) for v in value]
-        return value
-
-    blob = json.dumps({"load": canon(load), "set_goal": canon(set_goal)}, sort_keys=True,
-                      separators=(",", ":"))
-    return hashlib.sha256(blob.encode("utf-8")).hexdigest()
-
-
-RECORD_FIELDS = ("family", "group", "kind", "optimal_length", "objects", "show_goal_graph",
-                 "instruction", "suite_version")
-
-
-def hash_record(content: str, fields: dict[str, Any]) -> str:
-    """sha256 of a record's content hash and its `RECORD_FIELDS` (canonical JSON)."""
-    blob = json.dumps({"content_hash": content,
-                       **{name: fields.get(name) for name in RECORD_FIELDS}},
-                      sort_keys=True, separators=(",", ":"))
-    return hashlib.sha256(blob.encode("utf-8")).hexdigest()
-
-
-class TaskRecord(BaseModel):
-    """One task of a suite, with its difficulty and the hash that identifies it."""
-
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-    task_id: str = Field(description="group/seed/index; unique within a pool")
-    family: Family
-    group: GroupName
-    kind: str = Field(description="the task's kind within its group (ordered, reversal, ...)")
-    optimal_length: int = Field(ge=0, description="moves in the reference solver's plan")
-    objects: int = Field(ge=0, description="movable objects in the scene")
-    load: dict[str, Any] = Field(description="load_scene arguments (without k and t)")
-    set_goal: dict[str, Any] | None = Field(description="set_goal arguments")
-    show_goal_graph: bool = Field(description="False: the prompt shows only the instruction")
-    instruction: str | None = None
-    suite_version: str = SUITE_VERSION
-    content_hash: str = Field(description="sha256 of the scene and goal: the task itself")
-    record_hash: str = Field(description="sha256 of content_hash and every other field "
-                                         "but the id (see RECORD_FIELDS)")
-
-    @classmethod
-    def from_task(cls, task: Task, family: Family, seed: int) -> TaskRecord:
-        load = dict(task.spec.load)
-        graph = SceneGraph.model_validate(load["graph"])
-        objects = sum(o.props.movable for o in WorldState.from_graph(graph).objects.values())
-        index = task.task_id.rsplit("/", 1)[-1]
-        fields: dict[str, Any] = {
-            "family": family, "group": task.group, "kind": task.kind,
-            "optimal_length": task.optimal_length, "objects": objects,
-            "show_goal_graph": task.spec.show_goal_graph, "instruction": task.instruction,
-            "suite_version": SUITE_VERSION}
-        digest = content_hash(load, task.spec.set_goal)
-        return cls(task_id=f"{task.group}/{seed}/{index}", load=load,
-                   set_goal=task.spec.set_goal, content_hash=digest,
-                   record_hash=hash_record(digest, fields), **fields)
-
-    def expected_record_hash(self) -> str:
-        """The record hash this record's fields give (equal to `record_hash` unless one
-        was edited)."""
-        return hash_record(self.content_hash, self.model_dump(include=set(RECORD_FIELDS)))
-
-    def split(self, test_fraction: float = DEFAULT_TEST_FRACTION) -> Split:
-        return split_of(self.content_hash, test_fraction)
-
-
 def split_of(digest: str, test_fraction: float = DEFAULT_TEST_FRACTION) -> Split:
     """The split a content hash belongs to: a fixed cut of the hash space."""
     if not 0.0 <= test_fraction <= 1.0:
@@ -133,18 +53,19 @@ def split_of(digest: str, test_fraction: float = DEFAULT_TEST_FRACTION) -> Split
 
 
 @cache
-def _suite(family: Family, per_group: int, seed: int) -> tuple[TaskRecord, ...]:
+def _suite(family: Family, per_group: int, seed: int) -> tuple[Task, ...]:
     groups = build_groups(FAMILY_GROUPS[family], per_group, seed, ground_truth=True)
-    records: dict[str, TaskRecord] = {}
+    records: dict[str, Task] = {}
     for group in groups:
         for task in group.tasks:
-            record = TaskRecord.from_task(task, family, seed)
+            index = task.task_id.rsplit("/", 1)[-1]
+            record = task.model_copy(update={"task_id": f"{task.group}/{seed}/{index}"})
             records.setdefault(record.content_hash, record)  # a repeated draw is one task
     return tuple(records.values())
 
 
 def build_tasks(family: Family | str, per_group: int = 20, seed: int = 0
-                ) -> list[TaskRecord]:
+                ) -> list[Task]:
     """A family's tasks from the benchmark suites: `per_group` of each of its groups.
 
     Built once per process and argument set (the kitchen group runs the solver on each
@@ -165,11 +86,11 @@ def suite_path(family: Family) -> Path:
 
 
 @cache
-def _bundled(family: Family) -> tuple[TaskRecord, ...]:
+def _bundled(family: Family) -> tuple[Task, ...]:
     return tuple(read_jsonl(suite_path(family)))
 
 
-def suite_tasks(family: Family | str) -> list[TaskRecord]:
+def suite_tasks(family: Family | str) -> list[Task]:
     """The bundled suite of a family: a frozen draw of `build_tasks(family,
     SUITE_PER_GROUP, 0)`, read from the package's JSONL (hash-checked) instead of drawn
     again (for the kitchen group that runs the solver on every draw). A frozen draw stays
@@ -195,18 +116,18 @@ def write_suites(directory: str | Path | None = None) -> list[Path]:
     return paths
 
 
-def split_tasks(records: Iterable[TaskRecord], split: Split,
-                test_fraction: float = DEFAULT_TEST_FRACTION) -> list[TaskRecord]:
+def split_tasks(records: Iterable[Task], split: Split,
+                test_fraction: float = DEFAULT_TEST_FRACTION) -> list[Task]:
     """The records of one split (by content hash; see `split_of`)."""
     if split not in get_args(Split):
         raise VeriGraphError(f"unknown split '{split}'", field="split", value=split,
                              fix="use train or test")
-    return [r for r in records if r.split(test_fraction) == split]
+    return [r for r in records if split_of(r.content_hash, test_fraction) == split]
 
 
-def check_disjoint(train: Sequence[TaskRecord], test: Sequence[TaskRecord]) -> None:
+def check_disjoint(train: Sequence[Task], test: Sequence[Task]) -> None:
     """Raise when a task (by content hash, recomputed) is in both lists."""
-    def hashes(records: Sequence[TaskRecord]) -> dict[str, str]:
+    def hashes(records: Sequence[Task]) -> dict[str, str]:
         return {content_hash(r.load, r.set_goal): r.task_id for r in records}
 
     shared = set(hashes(train)) & set(hashes(test))
@@ -217,12 +138,12 @@ def check_disjoint(train: Sequence[TaskRecord], test: Sequence[TaskRecord]) -> N
                              fix="split by content hash (split_tasks) instead of by id")
 
 
-def select(records: Iterable[TaskRecord], *, family: str | None = None,
+def select(records: Iterable[Task], *, family: str | None = None,
            groups: Sequence[str] | None = None, min_optimal: int | None = None,
            max_optimal: int | None = None, min_objects: int | None = None,
-           max_objects: int | None = None) -> list[TaskRecord]:
+           max_objects: int | None = None) -> list[Task]:
     """The difficulty knobs: family, groups, optimal plan length and object count ranges."""
-    def keep(r: TaskRecord) -> bool:
+    def keep(r: Task) -> bool:
         return ((family is None or r.family == family)
                 and (groups is None or r.group in groups)
                 and (min_optimal is None or r.optimal_length >= min_optimal)
@@ -233,19 +154,19 @@ def select(records: Iterable[TaskRecord], *, family: str | None = None,
     return [r for r in records if keep(r)]
 
 
-def write_jsonl(records: Iterable[TaskRecord], path: str | Path) -> int:
+def write_jsonl(records: Iterable[Task], path: str | Path) -> int:
     """One JSON task per line; returns the number written."""
     return write_models(records, path, append=False, exclude_none=False)
 
 
-def read_jsonl(path: str | Path) -> list[TaskRecord]:
+def read_jsonl(path: str | Path) -> list[Task]:
     """Tasks from a JSONL file; a bad line or a hash that does not match is an error."""
-    rows = read_models(path, TaskRecord, what="task file",
+    rows = read_models(path, Task, what="task file",
                        fix="pass a JSONL file of tasks written by write_jsonl")
     return [_checked(record, f"{path}:{number}", f"line {number}") for number, record in rows]
 
 
-def _checked(record: TaskRecord, where: str, field: str) -> TaskRecord:
+def _checked(record: Task, where: str, field: str) -> Task:
     """The record, if its scene and goal still match its content hash and every other
     field its record hash."""
     try:
@@ -272,14 +193,14 @@ def _checked(record: TaskRecord, where: str, field: str) -> TaskRecord:
     return record
 
 
-def load_tasks(tasks: str | Path | Sequence[TaskRecord | dict[str, Any]]) -> list[TaskRecord]:
+def load_tasks(tasks: str | Path | Sequence[Task | dict[str, Any]]) -> list[Task]:
     """Tasks from a JSONL path, or records (or their dicts) given directly."""
     if isinstance(tasks, str | Path):
         return read_jsonl(tasks)
     out = []
     for index, item in enumerate(tasks):
         try:
-            record = item if isinstance(item, TaskRecord) else TaskRecord.model_validate(item)
+            record = item if isinstance(item, Task) else Task.model_validate(item)
         except ValidationError as exc:
             err = exc.errors()[0]
             where = ".".join(str(p) for p in err["loc"]) or "task"

@@ -14,11 +14,12 @@ from collections.abc import Iterable
 from typing import Any
 
 from verigraph.env.core import VeriGraphEnv
-from verigraph.env.dataset import DEFAULT_TEST_FRACTION, TaskRecord
+from verigraph.env.dataset import DEFAULT_TEST_FRACTION, split_of
 from verigraph.errors import VeriGraphError
+from verigraph.tasks.task import Task
 
 
-def prompt_rows(records: Iterable[TaskRecord], *, test_fraction: float = DEFAULT_TEST_FRACTION,
+def prompt_rows(records: Iterable[Task], *, test_fraction: float = DEFAULT_TEST_FRACTION,
                 **env_kwargs: Any) -> list[dict[str, Any]]:
     """One row per task: prompt messages, difficulty, split and the record as JSON."""
     records = list(records)
@@ -32,7 +33,7 @@ def prompt_rows(records: Iterable[TaskRecord], *, test_fraction: float = DEFAULT
             rows.append({
                 "task_id": record.task_id, "family": record.family, "group": record.group,
                 "kind": record.kind, "optimal_length": record.optimal_length,
-                "objects": record.objects, "split": record.split(test_fraction),
+                "objects": record.objects, "split": split_of(record.content_hash, test_fraction),
                 "content_hash": record.content_hash,
                 "prompt": [{"role": "user", "content": observation}],
                 "info": record.model_dump_json()})
@@ -41,7 +42,7 @@ def prompt_rows(records: Iterable[TaskRecord], *, test_fraction: float = DEFAULT
         env.close()
 
 
-def to_hf_dataset(records: Iterable[TaskRecord], **kwargs: Any) -> Any:
+def to_hf_dataset(records: Iterable[Task], **kwargs: Any) -> Any:
     """`datasets.Dataset.from_list(prompt_rows(...))`; needs the `datasets` package."""
     try:
         import datasets

@@ -31,9 +31,9 @@ from typing import Any
 from urllib.parse import urlsplit
 
 from verigraph.env.core import VeriGraphEnv
-from verigraph.env.dataset import TaskRecord
 from verigraph.errors import VeriGraphError
 from verigraph.extras import require
+from verigraph.tasks.task import Task
 
 require("env", "openenv")
 
@@ -80,7 +80,7 @@ ACT_TOOL = Tool(
 class VeriGraphSession(ResourceSession):
     """One rollout: an environment reset to one task, driven through the `act` tool."""
 
-    def __init__(self, env: VeriGraphEnv, task: str | TaskRecord | None,
+    def __init__(self, env: VeriGraphEnv, task: str | Task | None,
                  seed: int | None = None) -> None:
         self.env = env
         options = {"task": task} if task is not None else None
@@ -198,7 +198,7 @@ class FreshConnectionOpenAIClient(OpenAIClient):
             http_client=httpx2.AsyncClient(limits=httpx2.Limits(max_keepalive_connections=0)))
 
 
-def run_collect(tasks: Sequence[str | TaskRecord], out_dir: str | Path, *, base_url: str,
+def run_collect(tasks: Sequence[str | Task], out_dir: str | Path, *, base_url: str,
                 model: str, api_key: str | None = None, tool_calling: bool = True,
                 max_turns: int = 20, max_tokens: int = 256, resume: bool = False,
                 env: dict[str, Any] | None = None,
@@ -213,10 +213,10 @@ def run_collect(tasks: Sequence[str | TaskRecord], out_dir: str | Path, *, base_
     (verigraph.env.openenv_server).
     """
     env_kwargs = dict(env or {})
-    records = [t for t in tasks if isinstance(t, TaskRecord)]
+    records = [t for t in tasks if isinstance(t, Task)]
     if records and "tasks" not in env_kwargs:
         env_kwargs["tasks"] = records
-    ids = [t.task_id if isinstance(t, TaskRecord) else t for t in tasks]
+    ids = [t.task_id if isinstance(t, Task) else t for t in tasks]
     client = openenv_client(base_url, model, api_key=api_key, max_tokens=max_tokens)
     model_step = build_model_step(client, system_prompt=SYSTEM_PROMPT) if tool_calling \
         else TextReplyModelStep(client)

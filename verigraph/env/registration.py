@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import gymnasium as gym
 
-from verigraph.env.dataset import FAMILIES
+from verigraph.tasks.task import FAMILIES
 
 ENTRY_POINT = "verigraph.env.core:VeriGraphEnv"
 ENV_IDS: dict[str, str] = {f"verigraph/{family}-v0": family for family in FAMILIES}

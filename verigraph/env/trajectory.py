@@ -24,8 +24,8 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.env.core import VeriGraphEnv
-from verigraph.env.dataset import TaskRecord
 from verigraph.env.jsonl import decode, parse_models, read_models, write_models
+from verigraph.tasks.task import Task
 
 
 class TrajectoryLine(BaseModel):
@@ -39,7 +39,7 @@ class TrajectoryLine(BaseModel):
     observation: str = Field(description="reset: the first observation; step: the one "
                                          "the action answered")
     state_hash: str = Field(description="the scene graph's digest after this line")
-    task: TaskRecord | None = Field(default=None, description="reset only")
+    task: Task | None = Field(default=None, description="reset only")
     settings: dict[str, Any] | None = Field(
         default=None, description="reset only: the environment settings the episode was "
                                   "played under (VeriGraphEnv.settings)")
@@ -66,7 +66,7 @@ class TrajectoryLine(BaseModel):
         return self.terminated or self.truncated
 
 
-def reset_line(episode: str, task: TaskRecord, seed: int | None, observation: str,
+def reset_line(episode: str, task: Task, seed: int | None, observation: str,
                info: dict[str, Any], settings: dict[str, Any] | None = None
                ) -> TrajectoryLine:
     return TrajectoryLine(kind="reset", episode=episode, step=0, observation=observation,

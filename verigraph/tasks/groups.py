@@ -26,7 +26,7 @@ from collections import Counter
 from collections.abc import Callable
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, Field
 
 from verigraph.errors import VeriGraphError
 from verigraph.graph.goal import Goal, check_goal
@@ -34,45 +34,14 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.tasks import language, suite_blocks, suite_kitchen, suite_tangram
 from verigraph.tasks.suite_blocks import Drawn
+from verigraph.tasks.task import GROUPS, SUITE_VERSION, Family, GroupName, Task
 
-SUITE_VERSION = "2"
-GroupName = Literal["stacking", "language", "ref_image_kitchen", "ref_image_blocks", "tangram"]
-GROUPS: tuple[GroupName, ...] = ("stacking", "language", "ref_image_kitchen",
-                                 "ref_image_blocks", "tangram")
+__all__ = ["GROUPS", "SUITE_VERSION", "GroupName", "GroupTasks", "SuiteStats", "Task",
+           "build_groups", "suite_stats"]
+
 MAX_DRAWS = 20  # draws tried per episode before the group gives up on an index
 KITCHEN_TARGETS = (4, 5, 6, 5)  # optimal lengths aimed at, in turn
 REF_INSTRUCTION = "Rearrange the scene so that it looks like the reference image."
-
-
-class EpisodeSpec(BaseModel):
-    """How to start one episode: raw `load_scene` and optional `set_goal` arguments.
-
-    `show_goal_graph=False` hides the goal graph from LLM prompts (instruction tasks:
-    the planner reads the words, the verifier checks the ground-truth graph).
-    """
-
-    model_config = ConfigDict(extra="forbid")
-
-    task_id: str | None = None
-    load: dict[str, Any] = Field(description="load_scene arguments (without k and t)")
-    set_goal: dict[str, Any] | None = Field(default=None,
-                                            description="set_goal arguments (no episode_id)")
-    show_goal_graph: bool = True
-
-
-class Task(BaseModel):
-    """One benchmark episode: how to load it, what it is and how hard it is."""
-
-    group: GroupName
-    task_id: str
-    spec: EpisodeSpec
-    family: str
-    kind: str = Field(description="the task's kind within its group (ordered, reversal, ...)")
-    optimal_length: int = Field(description="moves in the reference solver's optimal plan")
-    template: str | None = Field(default=None, description="language template id")
-    category: str | None = Field(default=None, description="language: what it exercises")
-    instruction: str | None = None
-    truth: Goal | None = Field(default=None, description="language: the ground-truth goal")
 
 
 class GroupTasks(BaseModel):
@@ -144,11 +113,11 @@ def _rng(group: str, seed: int, index: int, draw: int) -> random.Random:
 
 
 def _task(group: GroupName, index: int, drawn: Drawn, load: dict[str, Any],
-          set_goal: dict[str, Any], family: str, **extra: Any) -> Task:
-    spec = EpisodeSpec(task_id=f"{group}/{index}", load=load, set_goal=set_goal,
-                       show_goal_graph=group != "language")
-    return Task(group=group, task_id=spec.task_id or "", spec=spec, family=family,
-                kind=drawn.kind, optimal_length=drawn.optimal_length, **extra)
+          set_goal: dict[str, Any], family: Family, **labels: Any) -> Task:
+    return Task.create(task_id=f"{group}/{index}", load=load, set_goal=set_goal,
+                       family=family, group=group, kind=drawn.kind,
+                       optimal_length=drawn.optimal_length,
+                       show_goal_graph=group != "language", **labels)
 
 
 def stacking_tasks(n: int, seed: int, *, simulate: bool = False) -> GroupTasks:
@@ -184,7 +153,7 @@ def language_tasks(n: int, seed: int, *, simulate: bool = False) -> GroupTasks:
                 "language", i, drawn, _load(graph, simulate, draw),
                 {"graph": _graph_json(made.goal.graph), "partial": True,
                  "instruction": made.text}, "blocks", template=template,
-                category=made.category, instruction=made.text, truth=made.goal))
+                category=made.category, instruction=made.text))
             break
     return GroupTasks(group="language", tasks=tasks)
 

@@ -28,7 +28,7 @@ from verigraph.agent.evaluation.worker import EngineConfig, episode_factory
 from verigraph.jobs.dispatch import plan_resume, run_on_workers
 from verigraph.jobs.limiter import BackendLimits, RateLimiter
 from verigraph.jobs.progress_bar import EpisodeProgress
-from verigraph.tasks.groups import Task
+from verigraph.tasks.task import Task
 
 
 class RunOptions(BaseModel):

@@ -18,7 +18,8 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph import __version__
 from verigraph.planning.models import DonePolicy, FeedbackMode, Mode
-from verigraph.tasks.groups import SUITE_VERSION, GroupName, GroupTasks, Task
+from verigraph.tasks.groups import GroupTasks
+from verigraph.tasks.task import SUITE_VERSION, GroupName, Task
 
 
 class Setting(BaseModel):
@@ -64,11 +65,6 @@ def episode_seed(task_id: str, setting: Setting, sample: int = 0) -> int:
     return zlib.crc32(f"{task_id}|{setting.label()}{suffix}".encode())
 
 
-def task_hash(task: Task) -> str:
-    """A short hash of what the episode loads and asks (its scene, goal and words)."""
-    return hashlib.sha256(task.spec.model_dump_json().encode()).hexdigest()[:12]
-
-
 def suite_version(seed: int, *, ground_truth: bool, simulate: bool) -> str:
     """The task suite an episode belongs to, in words a reader can match across files."""
     graphs = "ground-truth-goals" if ground_truth else "perceived-goals"
@@ -83,7 +79,7 @@ class EpisodeJob(BaseModel):
 
     suite: str
     task_id: str
-    task_hash: str
+    task_hash: str = Field(description="the first 12 hex digits of the task's record_hash")
     group: GroupName
     setting: Setting
     seed: int
@@ -104,7 +100,7 @@ class EpisodeJob(BaseModel):
 
 
 def job_for(task: Task, setting: Setting, suite: str, sample: int = 0) -> EpisodeJob:
-    return EpisodeJob(suite=suite, task_id=task.task_id, task_hash=task_hash(task),
+    return EpisodeJob(suite=suite, task_id=task.task_id, task_hash=task.record_hash[:12],
                       group=task.group, setting=setting,
                       seed=episode_seed(task.task_id, setting, sample), sample=sample)
 
@@ -119,5 +115,5 @@ def jobs_for(setting: Setting, groups: Iterable[GroupTasks], suite: str,
 
 def task_index(groups: Iterable[GroupTasks]) -> dict[str, Task]:
     """Tasks by `EpisodeJob.task_ref`, what a worker looks jobs up in."""
-    return {f"{task.task_id}@{task_hash(task)}": task for group in groups
+    return {f"{task.task_id}@{task.record_hash[:12]}": task for group in groups
             for task in group.tasks}

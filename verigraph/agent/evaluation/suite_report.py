@@ -34,11 +34,12 @@ def translation_accuracy(group: GroupTasks) -> dict[str, tuple[int, int]]:
     correct: Counter[str] = Counter()
     total: Counter[str] = Counter()
     for task in group.tasks:
-        if task.truth is None or task.instruction is None:
+        truth = task.goal
+        if truth is None or task.instruction is None:
             continue
-        graph = SceneGraph.model_validate(task.spec.load["graph"])
+        graph = SceneGraph.model_validate(task.load["graph"])
         try:
-            ok = same_goal(translate(task.instruction, graph), task.truth)
+            ok = same_goal(translate(task.instruction, graph), truth)
         except TranslationError:
             ok = False
         for key in (task.category or "?", "all"):

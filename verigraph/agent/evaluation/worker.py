@@ -33,7 +33,7 @@ from verigraph.planning.factory import PlannerOptions, make_planner
 from verigraph.planning.models import IterationRecord
 from verigraph.planning.planner import Planner
 from verigraph.planning.tool_calls import InProcessTools, ToolEnvironment
-from verigraph.tasks.groups import Task
+from verigraph.tasks.task import Task
 
 OFFLINE_PLANNERS = ("oracle", "rule-based", "greedy", "noisy")
 
