@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import atexit
 import json
 import os
 import shutil
@@ -22,6 +23,7 @@ import socket
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 from typing import Any
@@ -66,7 +68,7 @@ async def latency_loop(client: Client, n: int) -> list[float]:
 
 async def stdio_latency(n: int) -> list[float]:
     cmd = verigraph_command()
-    params = StdioServerParameters(command=cmd[0], args=[*cmd[1:], "serve"])
+    params = StdioServerParameters(command=cmd[0], args=[*cmd[1:], "serve", *private_store()])
     async with Client(params) as client:
         return await latency_loop(client, n)
 
@@ -77,10 +79,24 @@ def free_port() -> int:
         return int(s.getsockname()[1])
 
 
+def private_store() -> list[str]:
+    """`--store` for a fresh SQLite file (the default kind), removed at exit: a server's
+    default store is the user's data directory, which episodes left open by earlier runs
+    would fill up to --max-episodes."""
+    directory = tempfile.mkdtemp(prefix="verigraph-bench-")
+    atexit.register(shutil.rmtree, directory, ignore_errors=True)
+    return ["--store", f"sqlite:///{directory}/episodes.db"]
+
+
 def start_http(extra: list[str] | None = None) -> tuple[subprocess.Popen[bytes], str]:
+    """`verigraph serve` over HTTP on a free loopback port (a private store unless
+    `extra` names one)."""
     port = free_port()
+    extra = list(extra or [])
+    if "--store" not in extra:
+        extra += private_store()
     proc = subprocess.Popen([*verigraph_command(), "serve", "--transport", "http", "--port",
-                             str(port), "--token", TOKEN, *(extra or [])],
+                             str(port), "--token", TOKEN, *extra],
                             stderr=subprocess.DEVNULL)
     try:
         wait_port(port, proc)
