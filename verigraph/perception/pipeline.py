@@ -48,7 +48,12 @@ from verigraph.perception.relate.occluded import (
     merge_doubts,
     occlusion_doubts,
 )
-from verigraph.perception.relate.plausible import furniture_on_objects, plausibility_doubts
+from verigraph.perception.relate.plausible import (
+    furniture_on_objects,
+    plausibility_doubts,
+    unoutlined_doubts,
+    wall_on_floor,
+)
 from verigraph.perception.relate.support import infer_supports, label_map
 from verigraph.perception.result import DetectedObject, PerceptionResult
 from verigraph.perception.views import FAMILY_ORDER, choose_view, family_of
@@ -192,8 +197,15 @@ def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,
         graph, ids, regions, occluders + areas, classes.shape,
         edge_name=lambda e: edge_name(e.source, e.relation, e.target))
     warnings += hiding[:len(occluders)]  # the areas' warning is the one above
-    merge_doubts(confidence, uncertain, doubts + upright_doubts(graph, detections)
-                 + plausibility_doubts(graph, detections, d, classes.shape))
+    rolled = degrees is not None and abs(degrees) >= ROLL_NOTE  # its corners are filled
+    floor_notes, floor_doubts = wall_on_floor(graph, detections, classes == colors.BACKGROUND,
+                                              None if rolled else scene.floor_row)
+    warnings += floor_notes
+    merge_doubts(confidence, uncertain, doubts + floor_doubts + upright_doubts(graph, detections)
+                 + plausibility_doubts(graph, detections, d, classes.shape)
+                 + ([] if soft or restored else  # blur takes the outlines away
+                    unoutlined_doubts(graph, detections, corrected,
+                                      classes == colors.BACKGROUND)))
     objects = [DetectedObject(id=det.id, label=det.label, colour=det.colour,
                               box=(det.region.x0, det.region.y0, det.region.x1, det.region.y1),
                               score=det.score) for det in detections]

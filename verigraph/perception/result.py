@@ -48,8 +48,9 @@ class Blocked(BaseModel):
     """Where the view is blocked by something in front of the scene, and what it may
     hide: the graph is incomplete there, and relations through it are uncertain."""
 
-    kind: str = Field(description="band (across the frame), pole (hanging from the top "
-                                  "edge), blob, or area (no detected object explains it)")
+    kind: str = Field(description="band (across the frame), pole (a bar reaching in "
+                                  "from the top or a side edge), blob, or area (no "
+                                  "detected object explains it)")
     box: tuple[int, int, int, int] = Field(description="x0, y0, x1, y1 (x1, y1 exclusive)")
     touches: list[str] = Field(default_factory=list, description="ids of the objects it "
                                "hides part of or cuts; any object wholly behind it is not "

@@ -14,16 +14,27 @@ name the objects the occluder hides (`CellResult.unnamed` counts those that do n
 `pole_sweep` puts a plain bar hanging from the top edge (a pole, a cable, an arm link)
 in front of every scene, in every colour of the palette (so it often looks like a
 known object) and at several widths and lengths, one combination per scene.
+
+`bar_sweep` generalises it: a plain bar reaching in from the top, the left or the right
+edge, square to it or tilted, in every palette colour and in the wall's own colour,
+at several widths and lengths (`draw_bar`).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+import cv2
+import numpy as np
+
 from verigraph.perception.metrics import score_graph
 from verigraph.perception.pipeline import perceive_image
+from verigraph.perception.result import DetectedObject
+from verigraph.sim2d import palette
 from verigraph.sim2d.degrade import Degradation, degrade
+from verigraph.sim2d.degrade_ops import content_box
 from verigraph.sim2d.generator import generate_scene
 from verigraph.sim2d.palette import COLORS
 
@@ -157,6 +168,7 @@ class PoleOutcome:
     pole: str
     exact: bool
     flagged: bool
+    posing: bool = False  # the pole was read as an object (see `BarOutcome`)
 
     @property
     def silent_wrong(self) -> bool:
@@ -172,8 +184,135 @@ def pole_sweep(families: Iterable[str] = FAMILIES, n: int = 104,
         for i in range(n):
             scene = generate_scene(family, first_seed + i)
             name, spec = pole_spec(i)
-            spoilt = degrade(scene.world.render(), spec, seed=scene.seed)
+            clean = scene.world.render()
+            spoilt = degrade(clean, spec, seed=scene.seed)
             result = perceive_image(spoilt, dictionary=family)
             right = score_graph(result.graph, scene.graph, family).exact
-            out.append(PoleOutcome(family, scene.seed, name, right, not result.confident))
+            out.append(PoleOutcome(family, scene.seed, name, right, not result.confident,
+                                   _posing(right, result.objects, clean, spoilt)))
     return out
+
+
+BAR_SEED = 80_000  # the bar sweep
+BAR_EDGES = ("top", "left", "right")  # the edge a bar reaches in from
+BAR_TILTS = (0.0, 20.0, -20.0)  # degrees from square to that edge
+WALL = "wall"  # a bar in the picture's background colour (the wall, the tangram table)
+BAR_COLOURS = (*POLE_COLOURS, WALL)
+BAR_WIDTHS = POLE_WIDTHS  # shares of the image's extent along the edge
+BAR_LENGTHS = POLE_LENGTHS  # shares of the image's extent across that edge
+
+
+@dataclass(frozen=True, slots=True)
+class Bar:
+    """A plain bar in front of the scene: the edge it reaches in from, its tilt from
+    square to that edge (degrees), colour name (a palette colour or `WALL`), width (a
+    share of the image's extent along that edge), how far in it reaches (a share of
+    the image's height for the top edge, of its width for a side, measured square to
+    the edge) and where it enters (0-1 along the content box)."""
+
+    edge: str
+    tilt: float
+    colour: str
+    width: float
+    length: float
+    at: float
+
+    def describe(self) -> str:
+        tilt = f" tilted {self.tilt:+.0f} deg" if self.tilt else ""
+        return (f"{self.colour} {self.width:.0%} wide from the {self.edge}{tilt}, "
+                f"{self.length:.0%} in")
+
+
+def bar_spec(i: int, seed: int) -> Bar:
+    """The i-th bar of the sweep: colours cycle fastest, then widths, then lengths (so
+    any 27 consecutive scenes see every colour, and 324 every combination); the edge,
+    tilt and entry point are drawn from the scene's seed."""
+    colour = BAR_COLOURS[i % len(BAR_COLOURS)]
+    rest = i // len(BAR_COLOURS)
+    width = BAR_WIDTHS[rest % len(BAR_WIDTHS)]
+    length = BAR_LENGTHS[(rest // len(BAR_WIDTHS)) % len(BAR_LENGTHS)]
+    rng = np.random.default_rng(seed + 1)
+    return Bar(edge=BAR_EDGES[int(rng.integers(len(BAR_EDGES)))],
+               tilt=BAR_TILTS[int(rng.integers(len(BAR_TILTS)))], colour=colour,
+               width=width, length=length, at=float(rng.uniform(0, 1)))
+
+
+def draw_bar(image: np.ndarray, bar: Bar, *, tangram: bool = False) -> np.ndarray:
+    """A copy of a render with `bar` drawn plain in front of it (no outline,
+    anti-aliased sides, sub-pixel corners), entering across the content box."""
+    h, w = image.shape[:2]
+    wall = palette.TANGRAM_BACKGROUND if tangram else palette.BACKGROUND
+    x0, y0, x1, y1 = content_box(image, [wall, palette.FLOOR])
+    colour = wall if bar.colour == WALL else COLORS[bar.colour]
+    width = max(2.0, bar.width * (w if bar.edge == "top" else h))
+    t = math.radians(bar.tilt)
+    if bar.edge == "top":
+        start = np.array([x0 + width / 2 + bar.at * max(1.0, x1 - x0 - width), -2.0])
+        inward, depth = np.array([math.sin(t), math.cos(t)]), bar.length * h
+    else:
+        y = y0 + bar.at * max(1.0, y1 - y0)
+        sign = 1.0 if bar.edge == "left" else -1.0
+        start = np.array([-2.0 if sign > 0 else w + 1.0, y])
+        inward, depth = np.array([sign * math.cos(t), math.sin(t)]), bar.length * w
+    end = start + inward * (depth + 2.0) / max(math.cos(t), 1e-6)
+    start = start - inward * width  # from beyond the frame: the edge cuts it square
+    across = np.array([inward[1], -inward[0]]) * width / 2
+    corners = np.array([start - across, end - across, end + across, start + across])
+    out = image.copy()
+    shift = 4
+    cv2.fillConvexPoly(out, np.round(corners * (1 << shift)).astype(np.int32), colour,
+                       cv2.LINE_AA, shift)
+    return out
+
+
+@dataclass(frozen=True, slots=True)
+class BarOutcome:
+    """One scene of the bar sweep: the bar, how perception did, and whether a region
+    read as an object lies mostly on the bar (an occluder reported as an object)."""
+
+    family: str
+    seed: int
+    bar: Bar
+    exact: bool
+    flagged: bool
+    posing: bool = False
+
+    @property
+    def silent_wrong(self) -> bool:
+        return not self.exact and not self.flagged
+
+
+POSING_SHARE = 0.6  # share of a detected object's box on the bar that makes it the bar
+
+
+def bar_sweep(families: Iterable[str] = FAMILIES, n: int = 324,
+              first_seed: int = BAR_SEED) -> list[BarOutcome]:
+    """n scenes per family (seeds from `first_seed`), the i-th with `bar_spec(i)` in
+    front of it."""
+    out = []
+    for family in families:
+        for i in range(n):
+            scene = generate_scene(family, first_seed + i)
+            bar = bar_spec(i, scene.seed)
+            clean = scene.world.render()
+            spoilt = draw_bar(clean, bar, tangram=family == "tangram")
+            result = perceive_image(spoilt, dictionary=family)
+            right = score_graph(result.graph, scene.graph, family).exact
+            out.append(BarOutcome(family, scene.seed, bar, right, not result.confident,
+                                  _posing(right, result.objects, clean, spoilt)))
+    return out
+
+
+def _posing(right: bool, objects: Iterable[DetectedObject], clean: np.ndarray,
+            spoilt: np.ndarray) -> bool:
+    """A wrong graph with an object whose box lies mostly (`POSING_SHARE`) on what was
+    drawn in front: that occluder itself was read as the object."""
+    if right:
+        return False
+    on_bar = np.any(spoilt != clean, axis=2)
+    for o in objects:
+        x0, y0, x1, y1 = o.box
+        part = on_bar[y0:y1, x0:x1]
+        if part.size and float(part.mean()) >= POSING_SHARE:
+            return True
+    return False

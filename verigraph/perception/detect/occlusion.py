@@ -4,10 +4,11 @@ in two, and areas no detected object explains.
 
 A band is found before any object is read, by its geometry alone: a flat area that
 meets the frame with both ends (an arm reaching in) and is at least twice as long as
-wide. A pole is a plain bar hanging from the top edge (a pole, a cable, an arm link),
-found by following from the top row down a run of one colour that the wall does not
-have, with its width unchanged, for at least twice its width (`find_poles`);
-its colour does not matter (it may be any object's), only its geometry. Their pixels
+wide. A pole is a plain bar reaching in from the top edge or a side (a pole, a cable,
+an arm link), square to it or tilted, found by following from that edge inwards a run
+of one colour that the scenery there does not have, with its width unchanged, along a
+straight line, for at least twice its width (`find_poles`); its colour does not matter
+(it may be any object's), only its geometry. Their pixels
 are then read as no object, and parts of one colour facing each other across them are
 one object (`join_across`).
 
@@ -181,6 +182,17 @@ POLE_MIN_LENGTH = 0.06  # shortest pole, as a share of the image height
 POLE_ASPECT = 2.0  # ... and at least this many times as long as wide (as a band)
 POLE_MAX_WIDTH = 0.25  # widest pole, as a share of the image width
 POLE_APART = 0.6  # share of its rows in which a pole's sides differ from it
+POLE_EDGES = ("top", "left", "right")  # edges a bar is looked for at
+POLE_SCENERY = 30  # largest channel difference from a scenery colour along the edge
+OUTLINE_DARK = 110  # brightest channel of an outline pixel (drawn 25, 25, 25; warped,
+# blurred or scaled down it mixes with its neighbours) ...
+OUTLINE_STEP = 40  # ... at least this much darker than the run's own colour ...
+OUTLINE_MIN = 40  # ... and a run too dark to leave that room is not judged
+OUTLINED = 0.5  # share of its rows in which a scene object cut by the frame shows them
+POLE_REFERENCE = 0.3  # running-median window along an edge, as a share of its length
+MEDIAN_SAMPLES = 31  # samples per window of the running median along an edge
+POLE_DRIFT = 3  # px a bar's run is looked for beyond where its line puts it
+POLE_TILT = 0.7  # largest drift of a bar's centre per row (35 degrees from square)
 
 
 @dataclass(frozen=True, slots=True)
@@ -193,11 +205,13 @@ class Occluder:
     kind: str  # "band", "pole", "blob" or "area"
     box: tuple[int, int, int, int]  # x0, y0, x1, y1 (exclusive)
     mask: np.ndarray  # bool, the box's size
+    edge: str = "top"  # the edge a pole reaches in from
 
     def describe(self) -> str:
         x0, y0, x1, y1 = self.box
         what = {"band": "a band across the picture", "blob": "a blob",
-                "pole": "a bar hanging from the top edge",
+                "pole": "a bar hanging from the top edge" if self.edge == "top" else
+                f"a bar reaching in from the {self.edge} edge",
                 "area": "an area no detected object explains"}[self.kind]
         return f"{what} (box {x0}, {y0}, {x1}, {y1})"
 
@@ -245,60 +259,260 @@ def find_occluders(image: np.ndarray, scenery: Sequence[tuple[int, int, int]],
             full[y - gy0:y - gy0 + bh, x - gx0:x - gx0 + bw] = comp.view(np.uint8)
             full = cv2.dilate(full, np.ones((5, 5), np.uint8))[:gy1 - gy0, :gx1 - gx0]
             out.append(Occluder(kind, (gx0, gy0, gx1, gy1), full.astype(bool)))
-    return out + find_poles(image, [o for o in out if o.kind == "band"])
+    return out + find_poles(image, [o for o in out if o.kind == "band"], scenery)
 
 
-def find_poles(image: np.ndarray, bands: Sequence[Occluder] = ()) -> list[Occluder]:
-    """Plain bars hanging from the top edge in front of the scene (a pole, a cable, an
-    arm link), of any colour and length.
+def find_poles(image: np.ndarray, bands: Sequence[Occluder] = (),
+               scenery: Sequence[tuple[int, int, int]] = ()) -> list[Occluder]:
+    """Plain bars reaching into the picture from its top, left or right edge in front
+    of the scene (a pole, a cable, an arm link), of any colour and length, square to
+    the edge or tilted (`POLE_TILT`).
 
-    The top rows of a picture show the wall (or the tangram table) only: objects stand
-    inside the frame. A run of columns that differs from the wall in the top
-    `POLE_TOP_ROWS` rows is followed down as long as its inner columns keep its colour
-    (`POLE_MATCH`, or half its difference from the wall when that is less;
-    `POLE_ROW_SHARE`; one row's gap is bridged). It is a pole when it runs at least
-    `POLE_ASPECT` times its width and `POLE_MIN_LENGTH` of the height down, and its
+    The rows and columns at the edges of a picture show the scenery only (the wall, the
+    floor, the tangram table): objects stand inside the frame. Each edge is turned to
+    the top (`_edge_view`) and searched as the top edge is: a run of pixels that
+    differs from the scenery along the edge (its running median, `POLE_REFERENCE`) in
+    the `POLE_TOP_ROWS` outermost rows is followed inwards as long as its inner pixels
+    keep its colour (`POLE_MATCH`, or half its difference from the scenery when that is
+    less; `POLE_ROW_SHARE`; one row's gap is bridged), its centre allowed to drift row
+    by row along a straight line (a tilted bar). It is a bar when it runs at least
+    `POLE_ASPECT` times its width and `POLE_MIN_LENGTH` of the picture in, and its
     sides differ from it along most of that length (`POLE_APART`; a same-coloured
-    object it crosses joins it there, a thing merely reaching the top edge does not
-    keep its width). Its mask covers the run and 2 px around it (the anti-aliased
-    sides). A run already inside a band crossing the frame is that band."""
+    object it crosses joins it there, a thing merely reaching the edge does not keep
+    its width). Its mask covers the run and 2 px around it (the anti-aliased sides).
+    A run already inside a band crossing the frame is that band. Only where the
+    edge shows the scenery (`scenery`, and the colours of the picture's top and
+    bottom rows; `POLE_SCENERY`) around the run is it a bar: a camera rolled or
+    tilted far enough cuts furniture and what stands on it off at a side, and that
+    stretch of the edge (an object, its outline) is the scene, not something in front.
+    A bar of the scenery's own colour does not show at the edge and is not found
+    here."""
     h, w = image.shape[:2]
-    if h < 4 * POLE_TOP_ROWS or w < 8:
+    if min(h, w) < 4 * POLE_TOP_ROWS or min(h, w) < 8:
         return []
-    img = image.astype(np.int16)
-    top = img[:POLE_TOP_ROWS]
-    wall = np.median(top.reshape(-1, 3), axis=0).astype(np.int16)
-    off = (np.abs(top - wall).max(axis=2) > POLE_OFF_WALL).all(axis=0)
-    for band in bands:
-        off[max(0, band.box[0]):band.box[2]] &= band.box[1] > BORDER
-    edges = np.flatnonzero(np.diff(np.concatenate(([0], off.view(np.int8), [0]))))
+    covered = hidden_mask(list(bands), (h, w))
+    rows = np.concatenate([image[:POLE_TOP_ROWS], image[-POLE_TOP_ROWS:]]).reshape(-1, 3)
+    known = np.array([*scenery, np.median(image[:POLE_TOP_ROWS].reshape(-1, 3), axis=0),
+                      np.median(rows[len(rows) // 2:], axis=0)], np.int16).reshape(-1, 3)
     out: list[Occluder] = []
+    for edge in POLE_EDGES:
+        view = _edge_view(image, edge)
+        taken = None if covered is None else _edge_view(covered, edge)
+        # At a side the wall must show around a bar: the floor's edge there is where
+        # a rolled or tilted camera cuts furniture off.
+        near = known if edge == "top" else known[[*([0] if scenery else []), -2]]
+        for mask in _bars_from_top(view, taken, near):
+            full = _edge_back(mask, edge)
+            ys, xs = np.nonzero(full)
+            x0, y0, x1, y1 = int(xs.min()), int(ys.min()), int(xs.max()) + 1, int(ys.max()) + 1
+            out.append(Occluder("pole", (x0, y0, x1, y1), full[y0:y1, x0:x1].copy(), edge))
+    return out
+
+
+def _edge_view(image: np.ndarray, edge: str) -> np.ndarray:
+    """The picture turned so that `edge` is its top row (a view, not a copy)."""
+    if edge == "left":
+        return image.swapaxes(0, 1)
+    if edge == "right":
+        return image[:, ::-1].swapaxes(0, 1)
+    return image
+
+
+def _edge_back(mask: np.ndarray, edge: str) -> np.ndarray:
+    """A mask of `_edge_view(..., edge)` in the picture's own orientation."""
+    if edge == "left":
+        return np.ascontiguousarray(mask.T)
+    if edge == "right":
+        return np.ascontiguousarray(mask.T[:, ::-1])
+    return mask
+
+
+def _bars_from_top(img: np.ndarray, taken: np.ndarray | None, known: np.ndarray
+                   ) -> list[np.ndarray]:
+    """Masks (the view's shape) of the bars hanging from the top row of a view, where
+    the edge around them shows one of the `known` scenery colours."""
+    h, w = img.shape[:2]
+    top = img[:POLE_TOP_ROWS].astype(np.int16)
+    whole: np.ndarray | None = None  # the whole view in int16, made once it is needed
+    line = np.median(top, axis=0)
+    window = max(9, int(POLE_REFERENCE * w))
+    reference = _running_median(line, window)
+    off = (np.abs(top - reference).max(axis=2) > POLE_OFF_WALL).all(axis=0)
+    if off.any():
+        # A bar next to a step of the scenery (the floor's edge) pulls the median off
+        # the step; the median of the line with the bars taken out keeps it.
+        reference = _running_median(_fill_runs(line, off), window)
+        off = (np.abs(top - reference).max(axis=2) > POLE_OFF_WALL).all(axis=0)
+    if taken is not None:
+        off &= ~taken[:POLE_TOP_ROWS].any(axis=0)
+    scenic = (np.abs(reference[:, None, :] - known[None]).max(axis=2) <= POLE_SCENERY
+              ).any(axis=1)
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], off.view(np.int8), [0]))))
+    out: list[np.ndarray] = []
     for a, b in zip(edges[::2].tolist(), edges[1::2].tolist(), strict=True):
         width = b - a
-        if width < 2 or width > POLE_MAX_WIDTH * w:
-            continue
-        inner = slice(a + 1, b - 1) if width >= 4 else slice(a, b)
-        colour = np.median(img[:POLE_TOP_ROWS, inner].reshape(-1, 3), axis=0).astype(np.int16)
-        # A pole nearly the wall's colour (white on the wall) is followed more tightly.
-        match = min(POLE_MATCH, POLE_MATCH_SHARE * float(np.abs(colour - wall).max()))
-        strip = np.abs(img[:, inner] - colour).max(axis=2) <= match
-        rows = strip.mean(axis=1) >= POLE_ROW_SHARE
-        rows[:POLE_TOP_ROWS] = True
-        gaps = np.flatnonzero(~rows[:-1] & ~rows[1:])  # two rows in a row off its colour
-        end = int(gaps[0]) if len(gaps) else h
-        while end > 0 and not rows[end - 1]:
-            end -= 1
+        if width < 2 or width > POLE_MAX_WIDTH * w or a <= 2 * BORDER or b >= w - 2 * BORDER:
+            continue  # a run into a corner is the scenery changing (the floor), no bar
+        if not (scenic[max(0, a - 3):a].all() and scenic[b:b + 3].all()
+                and scenic[a:b].mean() >= 0.5):
+            continue  # the edge cuts an object of the scene there
+        inner = (a + 1, b - 1) if width >= 4 else (a, b)
+        colour = np.median(top[:, inner[0]:inner[1]].reshape(-1, 3),
+                           axis=0).astype(np.int16)
+        wall = reference[a:b].reshape(-1, 3)
+        # A bar nearly the scenery's colour (white on the wall) is followed more tightly.
+        match = min(POLE_MATCH,
+                    POLE_MATCH_SHARE * float(np.abs(wall - colour).max(axis=1).min()))
+        # Its solid core: the pixels of its colour across it at the edge, less one (a
+        # tilted bar drifts by a fraction of a pixel a row before its line is known).
+        solid = int((np.abs(top[:, a:b] - colour).max(axis=2) <= match).sum(axis=1).min())
+        if solid < 2:
+            continue  # a speck of noise along the edge, no bar
+        if whole is None:
+            whole = img.astype(np.int16)
+        centres = _follow(whole, colour, match, (a + b - 1) / 2, max(2, solid - 1), width)
+        end = len(centres)
         if end < max(POLE_ASPECT * width, POLE_MIN_LENGTH * h):
             continue
-        sides = [img[:end, c] for c in (a - 2, b + 1) if 0 <= c < w]
+        rows = np.arange(end)
+        lefts = np.round(centres - width / 2 - 1.5).astype(int)
+        rights = np.round(centres + width / 2 + 0.5).astype(int)
         apart = np.zeros(end, bool)
-        for side in sides:
-            apart |= np.abs(side - colour).max(axis=1) > match
-        if sides and float(np.mean(apart)) < POLE_APART:
+        seen = np.zeros(end, bool)
+        for cols in (lefts, rights):
+            ok = (cols >= 0) & (cols < w)
+            seen |= ok
+            apart[ok] |= np.abs(whole[rows[ok], cols[ok]] - colour).max(axis=1) > match
+        if seen.any() and float(np.mean(apart[seen])) < POLE_APART:
             continue
-        x0, x1, y1 = max(0, a - 2), min(w, b + 2), min(h, end + 2)
-        out.append(Occluder("pole", (x0, 0, x1, y1), np.ones((y1, x1 - x0), bool)))
+        if _outlined(whole, centres, width, colour):
+            continue  # an object of the scene cut by the frame: it is drawn outlined
+        mask = np.zeros((h, w), bool)
+        for r in range(min(h, end + 2)):
+            c = centres[min(r, end - 1)]
+            mask[r, max(0, int(np.floor(c - width / 2 - 2))):
+                 min(w, int(np.ceil(c + width / 2 + 2)))] = True
+        out.append(mask)
     return out
+
+
+def _follow(img: np.ndarray, colour: np.ndarray, match: float, centre: float,
+            inner: int, width: int) -> np.ndarray:
+    """Centres (one per row, from the top) of a run of `colour` (`width` px wide, its
+    `inner` px solid) that starts at `centre` in the top row and goes on along a
+    straight line; it ends at two rows in a row off its colour (the last rows off it
+    are dropped)."""
+    h, w = img.shape[:2]
+    half = inner / 2
+    reach = int(np.ceil(width / 2)) + POLE_DRIFT
+    centres: list[float] = []
+    fit: list[tuple[int, float]] = []  # rows whose run kept the bar's width
+    misses = 0
+    slope, base = 0.0, centre
+    sums = (0.0, 0.0, 0.0, 0.0, 0.0)  # n, sum r, sum x, sum r^2, sum r x
+    for r in range(h):
+        guess = base + slope * r
+        if guess - half < 0 or guess + half > w:
+            break
+        # Re-centre on the run nearest the line when it still has the bar's width (not
+        # where it crosses an object of its colour), then refit the line through them.
+        s0, s1 = max(0, int(guess) - reach), min(w, int(guess) + reach + 1)
+        hits = np.abs(img[r, s0:s1] - colour).max(axis=1) <= match
+        at = int(guess) - s0
+        near = [i for i in (at, at + 1, at - 1, at + 2, at - 2) if 0 <= i < len(hits)
+                and hits[i]]
+        if near:
+            left = right = near[0]
+            while left > 0 and hits[left - 1]:
+                left -= 1
+            while right < len(hits) - 1 and hits[right + 1]:
+                right += 1
+            run = right - left + 1
+            if left > 0 and right < len(hits) - 1 and inner - 1 <= run <= width + 2:
+                guess = s0 + (left + right) / 2
+                fit.append((r, guess))
+                sums = (sums[0] + 1, sums[1] + r, sums[2] + guess, sums[3] + r * r,
+                        sums[4] + r * guess)
+        lo = int(np.floor(guess - half + 0.5))
+        row = np.abs(img[r, max(0, lo):lo + inner] - colour).max(axis=1) <= match
+        good = r < POLE_TOP_ROWS or (row.size > 0 and float(row.mean()) >= POLE_ROW_SHARE)
+        centres.append(guess)
+        if not good:
+            misses += 1
+            if misses >= 2:
+                break
+            continue
+        misses = 0
+        if len(fit) >= 4:  # least squares through the centres so far
+            n, sy, sx, syy, sxy = sums
+            slope = (n * sxy - sy * sx) / max(n * syy - sy * sy, 1e-9)
+            slope = min(POLE_TILT, max(-POLE_TILT, slope))
+            base = (sx - slope * sy) / n
+        elif fit:  # too few rows for a line yet: follow the last centre
+            base = fit[-1][1]
+    while misses and centres:
+        centres.pop()
+        misses -= 1
+    return np.array(centres, float)
+
+
+def _outlined(img: np.ndarray, centres: np.ndarray, width: int, colour: np.ndarray) -> bool:
+    """Whether a run shows a thin dark seam (`OUTLINE_DARK`, with no dark beyond it)
+    just inside or outside both its sides along most of its length (`OUTLINED`): the
+    outline every object of the scene is drawn with, which a thing in front of the
+    camera does not have."""
+    limit = min(OUTLINE_DARK, int(colour.max()) - OUTLINE_STEP)
+    if limit < OUTLINE_MIN:
+        return False  # a dark bar: its own sides look like an outline
+    h, w = img.shape[:2]
+    n = len(centres)
+    if n == 0:
+        return False
+    rows = np.arange(n)[:, None]
+    lo = np.round(centres - width / 2).astype(int)[:, None]
+    hi = np.round(centres + width / 2).astype(int)[:, None]
+
+    def dark(cols: np.ndarray) -> np.ndarray:
+        inside = (cols >= 0) & (cols < w)
+        pixels = img[np.broadcast_to(rows, cols.shape), np.clip(cols, 0, w - 1)]
+        return (pixels.max(axis=2) <= limit) & inside
+
+    left = dark(lo + np.arange(-2, 4)).any(axis=1)
+    right = dark(hi + np.arange(-4, 2)).any(axis=1)
+    # A seam, not a dark thing the run lies on (a black stove it crosses).
+    beyond = dark(np.hstack([lo - 5, hi + 4])).any(axis=1)
+    both = int(np.count_nonzero(left & right & ~beyond))
+    return both >= OUTLINED * max(1, len(centres))
+
+
+def _fill_runs(line: np.ndarray, off: np.ndarray) -> np.ndarray:
+    """The line with each run of `off` pixels given the colour just before it (just
+    after it for a run at the start)."""
+    out = line.copy()
+    idx = np.where(~off, np.arange(len(off)), -1)
+    before = np.maximum.accumulate(idx)
+    after = np.where(~off, np.arange(len(off)), len(off))[::-1]
+    after = np.minimum.accumulate(after)[::-1]
+    if (~off).any():
+        source = np.where(before >= 0, before, after)
+        out[off] = line[source[off]]
+    return out
+
+
+def _running_median(line: np.ndarray, window: int) -> np.ndarray:
+    """Running median along a row of colours (per channel), `window` wide: the scenery
+    along an edge, whose steps (wall to floor) it keeps and whose narrow runs (a bar)
+    it drops. Each window is sampled at about `MEDIAN_SAMPLES` points, and the median
+    is taken every sampling interval (a step of the scenery is placed within one
+    interval, 1/31 of the window; the cost stays linear in the edge's length)."""
+    window |= 1
+    pad = window // 2
+    step = max(1, window // MEDIAN_SAMPLES)
+    padded = np.pad(line, ((pad, pad), (0, 0)), mode="edge")
+    windows = np.lib.stride_tricks.sliding_window_view(padded, window, axis=0)
+    at = windows[::step, :, ::step]
+    medians = np.median(at, axis=2)
+    return np.asarray(np.repeat(medians, step, axis=0)[:len(line)], dtype=np.int16)
 
 
 def _step(image: np.ndarray) -> np.ndarray:

@@ -26,6 +26,7 @@ from verigraph.perception.detect.tangram_sides import (
     borderline,
     canonical_start,
     clockwise,
+    contact_share,
     contacts,
     fit_model,
     to_world,
@@ -57,6 +58,12 @@ GAP_SAMPLES = 7
 # later piece's outline eats into the earlier one), a quarter-unit gap ~0.22 or more.
 SHARP_FIT = 0.08
 HIDDEN_GAP = 0.195
+# A contact made by aligning two sides (the align action puts their midpoints together)
+# covers the shorter side wholly: measured, at least 0.94 of it on 3,300 clean figures.
+# Sides that merely run side by side across a gap the outlines fill (a small triangle
+# or the square sliding past a neighbour) overlap by part of their length only.
+FULL_CONTACT = 0.92
+PARTIAL = 0.4  # confidence of a contact that covers only part of the shorter side
 
 
 def piece_models(dictionary: Dictionary) -> list[ObjectModel]:
@@ -179,6 +186,7 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
     ids = sorted(placed)
     edges = []
     unsure: list[str] = []
+    partial: list[Uncertain] = []
     tolerances = {"max_angle": math.radians(config.side_angle_degrees),
                   "max_distance": config.side_distance, "min_overlap": config.side_overlap}
     for i, a in enumerate(ids):
@@ -189,6 +197,13 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
             for sa, sb in touching:
                 edges.append(Edge(source=a, relation="touches", target=b, source_side=sa,
                                   target_side=sb))
+                share = contact_share(placed[a], placed[b], (sa, sb))
+                if share < FULL_CONTACT:
+                    partial.append(Uncertain(
+                        item=f"{a} touches {b} ({sa}, {sb})", confidence=PARTIAL,
+                        reason=f"the sides meet along {share:.0%} of the shorter one only: "
+                               "sides aligned to touch meet along all of it; these may run "
+                               "side by side across a gap the outlines hide"))
             for sa in range(len(placed[a].vertices)):
                 for sb in range(len(placed[b].vertices)):
                     if borderline(placed[a], placed[b], (sa, sb), **tolerances):
@@ -202,6 +217,7 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
     uncertain += [Uncertain(item=name, confidence=0.4, reason="the sides lie near the "
                             "limit of touching; the picture cannot tell whether they touch")
                   for name in unsure]
+    merge_doubts(confidence, uncertain, partial)
     occluded: list[str] = []
     if occluders:
         # Pieces rejected for their shape are named too: the occluder may be why.

@@ -106,6 +106,21 @@ def contacts(a: PlacedPiece, b: PlacedPiece, *, max_angle: float, max_distance: 
     return out
 
 
+def contact_share(a: PlacedPiece, b: PlacedPiece, sides: tuple[int, int]) -> float:
+    """Share of the shorter of two facing sides that the other one covers, measured
+    along side `sides[0]` of `a` (1.0: the shorter side lies wholly along the longer)."""
+    i, j = sides
+    p0, p1 = np.array(a.vertices[i]), np.array(a.vertices[(i + 1) % len(a.vertices)])
+    q0, q1 = np.array(b.vertices[j]), np.array(b.vertices[(j + 1) % len(b.vertices)])
+    lp, lq = float(np.linalg.norm(p1 - p0)), float(np.linalg.norm(q1 - q0))
+    if min(lp, lq) < 1e-9:
+        return 0.0
+    direction = (p1 - p0) / lp
+    t0, t1 = float((q0 - p0) @ direction), float((q1 - p0) @ direction)
+    overlap = min(lp, max(t0, t1)) - max(0.0, min(t0, t1))
+    return max(0.0, overlap) / min(lp, lq)
+
+
 def borderline(a: PlacedPiece, b: PlacedPiece, sides: tuple[int, int], *, max_angle: float,
                max_distance: float, min_overlap: float) -> bool:
     """Whether a pair of sides touches under tolerances `MARGIN` times as wide as the

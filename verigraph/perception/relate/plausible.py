@@ -14,12 +14,22 @@ the scene that looks like an object), so it is never returned as fact:
   border (it goes on outside the picture, or it is something hanging into it; for
   furniture only the top border counts, since a crop or a tilted camera often cuts its
   sides or legs off, while its top is always inside the picture) are emitted but
-  uncertain, each with the reason (`plausibility_doubts`), so the result is a proposal.
+  uncertain, each with the reason (`plausibility_doubts`), so the result is a proposal;
+- an object that meets the wall without its outline along a stretch of its edge
+  (`unoutlined_doubts`): every object is seen with its edge (the drawn outline),
+  so a straight cut into the wall's colour is something of the wall's colour in front
+  of it (a white pole on a white wall shows only where it crosses objects), which may
+  have split it in two or hidden what it carries. It is emitted but uncertain. The
+  floor never shows the wall's colour either: where it does (`wall_on_floor`), a thing
+  of the wall's colour stands in front, and the objects above it are doubted.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+
+import cv2
+import numpy as np
 
 from verigraph.graph.dictionary import Dictionary
 from verigraph.graph.model import SceneGraph
@@ -96,3 +106,87 @@ def plausibility_doubts(graph: SceneGraph, detections: Sequence[Detection],
                      f"not wider than a {carrier.label} by the dictionary")
                   + "): the reading is unlikely")
     return out
+
+
+OUTLINE_DARK = 110  # brightest channel of an outline pixel, blurred or scaled down
+UNOUTLINED = 12  # px of an object's edge meeting the wall with no outline: a cut
+
+
+def unoutlined_doubts(graph: SceneGraph, detections: Sequence[Detection],
+                      image: np.ndarray, wall: np.ndarray) -> list[Uncertain]:
+    """Uncertain items for objects whose edge meets the wall (`wall`: bool, its
+    pixels) with no outline (`OUTLINE_DARK`) along at least `UNOUTLINED` connected px:
+    something of the wall's colour stands in front and cuts them."""
+    h, w = wall.shape
+    dark = (image.max(axis=2) <= OUTLINE_DARK).view(np.uint8)
+    near_dark = cv2.dilate(dark, np.ones((5, 5), np.uint8)).astype(bool)
+    near_wall = cv2.dilate(wall.view(np.uint8), np.ones((5, 5), np.uint8)).astype(bool)
+    out: list[Uncertain] = []
+    for det in detections:
+        r = det.region
+        if r.area < 4 * UNOUTLINED:
+            continue
+        y0, y1, x0, x1 = r.y0, r.y0 + r.mask.shape[0], r.x0, r.x0 + r.mask.shape[1]
+        mask = r.mask.view(np.uint8)
+        inner = cv2.erode(mask, np.ones((3, 3), np.uint8), borderType=cv2.BORDER_CONSTANT,
+                          borderValue=0)
+        edge = (mask & ~inner.astype(bool).view(np.uint8)).astype(bool)
+        cut = edge & near_wall[y0:y1, x0:x1] & ~near_dark[y0:y1, x0:x1]
+        if np.count_nonzero(cut) < UNOUTLINED:
+            continue
+        n, _, stats, _ = cv2.connectedComponentsWithStats(cut.view(np.uint8), connectivity=8)
+        longest = int(stats[1:n, cv2.CC_STAT_AREA].max()) if n > 1 else 0
+        if longest < UNOUTLINED:
+            continue
+        reason = (f"{longest} px of its edge meet the wall with no outline: something of "
+                  "the wall's colour may stand in front of it, cutting it or hiding what "
+                  "it carries")
+        out.append(Uncertain(item=det.id, confidence=IMPLAUSIBLE, reason=reason))
+        for e in graph.edges:
+            if det.id in (e.source, e.target):
+                out.append(Uncertain(item=edge_name(e.source, e.relation, e.target),
+                                     confidence=IMPLAUSIBLE, reason=f"{det.id} is doubtful"))
+    return out
+
+
+WALL_ON_FLOOR = 3  # rows below the floor line before wall-coloured pixels count there
+WALL_DOWN = 0.9  # share of a floor-band column in the wall's colour that counts
+WALL_BAND = 6  # fewest rows of floor band the check needs
+WALL_RUN = 0.25  # widest run of such columns, as a share of the width (a bar, no wedge)
+
+
+def wall_on_floor(graph: SceneGraph, detections: Sequence[Detection], wall: np.ndarray,
+                  floor_row: int | None) -> tuple[list[str], list[Uncertain]]:
+    """(warnings, uncertain items) for wall-coloured columns inside the floor band
+    (away from the image's sides): something of the wall's colour stands in front
+    there, and every object over those columns may be cut by it."""
+    h, w = wall.shape
+    if floor_row is None or floor_row + WALL_ON_FLOOR + WALL_BAND >= h - 1:
+        return [], []  # no floor band tall enough to tell a bar from a tilted edge
+    band = wall[floor_row + WALL_ON_FLOOR:h - 1]
+    if not band.size:
+        return [], []
+    # A thing in front covers the floor band from its top to the picture's bottom; a
+    # slightly rolled floor line only lets the wall into the band's top rows.
+    flags = np.concatenate(([0], (band.mean(axis=0) >= WALL_DOWN).view(np.int8), [0]))
+    steps = np.flatnonzero(np.diff(flags))
+    # Runs with floor on both sides: a rolled camera's corners reach in from the sides.
+    runs = [(a, b) for a, b in zip(steps[::2].tolist(), steps[1::2].tolist(), strict=True)
+            if a > 2 and b < w - 2 and 2 <= b - a <= WALL_RUN * w]
+    if not runs:
+        return [], []
+    x0, x1 = min(a for a, _ in runs), max(b for _, b in runs)
+    hit = [det for det in detections if det.region.x0 < x1 + 2 and det.region.x1 > x0 - 2]
+    warning = (f"the floor shows the wall's colour at columns {x0}-{x1}: something of the "
+               "wall's colour stands in front of the scene there"
+               + (f"; it may cut or hide {', '.join(d.id for d in hit)}" if hit else "")
+               + ": confirm the graph")
+    out: list[Uncertain] = []
+    for det in hit:
+        out.append(Uncertain(item=det.id, confidence=IMPLAUSIBLE, reason=f"something of "
+                             f"the wall's colour stands in front at columns {x0}-{x1}"))
+        for e in graph.edges:
+            if det.id in (e.source, e.target):
+                out.append(Uncertain(item=edge_name(e.source, e.relation, e.target),
+                                     confidence=IMPLAUSIBLE, reason=f"{det.id} is doubtful"))
+    return [warning], out
