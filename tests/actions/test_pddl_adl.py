@@ -109,8 +109,8 @@ def test_adl_feedback_names_the_condition_and_a_counterexample():
 
 
 @pytest.mark.parametrize("edit,requirement", [
-    (lambda d: d.replace("(:action unlock", "(:derived (open) (not (locked)))\n (:action unlock"),
-     ":derived-predicates"),
+    (lambda d: d.replace("(:action unlock", "(:constraints (always (locked)))\n (:action unlock"),
+     ":constraints"),
 ])
 def test_what_stays_unsupported_is_refused_by_name(edit, requirement):
     with pytest.raises(Exception, match=requirement):

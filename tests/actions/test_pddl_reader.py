@@ -358,8 +358,8 @@ def test_either_types_and_action_costs_over_static_functions():
     (lambda d: d.replace("(road ?a ?b))\n", "(road ?a ?b) (> (distance ?a ?b) 2))\n"),
      ":numeric-fluents"),
     (lambda d: d.replace("(:action wait", "(:durative-action wait"), ":durative-actions"),
-    (lambda d: d.replace(":action-costs", ":action-costs :derived-predicates"),
-     ":derived-predicates"),
+    (lambda d: d.replace(":action-costs", ":action-costs :timed-initial-literals"),
+     ":timed-initial-literals"),
     (lambda d: d.replace(":action-costs", ":action-costs :fluents"), ":fluents"),
 ])
 def test_numeric_and_temporal_pddl_stays_refused_by_name(edit, requirement):

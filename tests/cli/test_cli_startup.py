@@ -91,3 +91,15 @@ def test_a_strips_check_loads_no_pydantic_and_no_scene_graph(tmp_path):
                                      "--problem", "p.pddl", "--plan", "plan.txt"], tmp_path)
     assert status == 0
     assert loaded(modules, OTHER_STACKS + SCENE_STACK) == []
+
+
+@pytest.mark.parametrize("command", ["validate", "val"])
+def test_a_blocks_world_check_loads_no_pydantic_and_no_scene_graph(command):
+    """The native blocks-world engine runs on plain dicts: the scene-graph models (and
+    pydantic) load only when a caller asks for a `ValidationReport`."""
+    args = (["validate", "--domain", BLOCKS[0], "--problem", BLOCKS[1], "--plan", BLOCKS[2]]
+            if command == "validate" else ["val", *BLOCKS])
+    status, modules = modules_after(args)
+    assert status == 0
+    assert "verigraph.actions.blocksworld.validate" in modules  # the native engine judged it
+    assert loaded(modules, OTHER_STACKS + SCENE_STACK) == []

@@ -14,8 +14,7 @@ import difflib
 
 from verigraph.actions.blocksworld.domain import BlocksDomain, UnsupportedDomainError
 from verigraph.actions.blocksworld.plans import PlanStep
-from verigraph.actions.blocksworld.problem import BlocksProblem
-from verigraph.graph.state import WorldState
+from verigraph.actions.blocksworld.problem import BlocksProblem, BlocksState
 
 # (constraint, message, blocking, suggestion)
 Failure = tuple[str, str, list[str], str]
@@ -27,7 +26,7 @@ class HandModel:
 
     __slots__ = ("state", "table", "hand", "declared", "domain")
 
-    def __init__(self, state: WorldState, problem: BlocksProblem, domain: BlocksDomain) -> None:
+    def __init__(self, state: BlocksState, problem: BlocksProblem, domain: BlocksDomain) -> None:
         self.state = state
         self.table = problem.table
         self.hand = problem.hand

@@ -14,15 +14,6 @@ from dataclasses import dataclass
 
 from verigraph.actions.blocksworld.domain import BlocksDomain, UnsupportedDomainError
 from verigraph.actions.blocksworld.sexpr import PddlSyntaxError, SExpr, define_body, typed_names
-from verigraph.graph.dictionary import Dictionary, ObjectProperties
-from verigraph.graph.state import ObjectInfo, WorldState
-
-BLOCKSWORLD = Dictionary(name="blocksworld", relations=("on", "in"), objects={
-    "table": ObjectProperties(movable=False, surface=True),
-    "block": ObjectProperties(movable=True, surface=True, capacity=1),
-    "gripper": ObjectProperties(synonyms=("hand", "arm"), movable=False, container=True,
-                                capacity=1),
-})
 
 GoalAtom = tuple[str, tuple[str, ...]]  # (role, args)
 
@@ -178,18 +169,39 @@ def _check_state(name: str, blocks: list[str], init: list[GoalAtom], goal: list[
                          hand)
 
 
-def native_state(problem: BlocksProblem) -> WorldState:
-    """The scene the problem describes, indexed for the validator (no pydantic round trip)."""
-    state = WorldState(BLOCKSWORLD)
-    props = BLOCKSWORLD.objects
-    state.objects[problem.table] = ObjectInfo(problem.table, "table", props["table"], {})
+class BlocksState:
+    """The scene the hand model works on, as plain dicts: each object's label, its support
+    (`block -> (relation, target)`: `on` a block or the table, `in` the hand) and what
+    each object carries. It is the index `graph.state.WorldState` keeps, without the
+    scene-graph dictionary and its pydantic models, so checking a blocks-world plan from
+    the shell loads neither (docs/validator.md, Start-up)."""
+
+    __slots__ = ("objects", "support", "carried")
+
+    def __init__(self) -> None:
+        self.objects: dict[str, str] = {}  # id -> label: table, gripper or block
+        self.support: dict[str, tuple[str, str]] = {}
+        self.carried: dict[str, dict[str, str]] = {}
+
+    def set_support(self, obj: str, relation: str, target: str) -> None:
+        """Replace obj's support edge (O(1))."""
+        old = self.support.get(obj)
+        if old is not None:
+            del self.carried[old[1]][obj]
+        self.support[obj] = (relation, target)
+        self.carried[target][obj] = relation
+
+
+def native_state(problem: BlocksProblem) -> BlocksState:
+    """The scene the problem describes, indexed for the validator (no pydantic model)."""
+    state = BlocksState()
+    state.objects[problem.table] = "table"
     state.carried[problem.table] = {}
-    state.fixed_surfaces.append(problem.table)
     if problem.hand is not None:
-        state.objects[problem.hand] = ObjectInfo(problem.hand, "gripper", props["gripper"], {})
+        state.objects[problem.hand] = "gripper"
         state.carried[problem.hand] = {}
     for b in problem.blocks:
-        state.objects[b] = ObjectInfo(b, "block", props["block"], {})
+        state.objects[b] = "block"
         state.carried[b] = {}
     for b in problem.blocks:
         if b in problem.on:

@@ -11,14 +11,16 @@ cheaper to build, and the same JSON.
 from __future__ import annotations
 
 import gc
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from verigraph.actions.blocksworld.domain import BlocksDomain, cached_domain
 from verigraph.actions.blocksworld.hand import HandModel
 from verigraph.actions.blocksworld.plans import parse_blocks_plan, plain_actions
 from verigraph.actions.blocksworld.problem import BlocksProblem, native_state, read_blocks_problem
-from verigraph.actions.report import ValidationReport
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
+
+if TYPE_CHECKING:
+    from verigraph.actions.report import ValidationReport
 
 
 def _edge(e: tuple[str, str, str]) -> dict[str, str]:
@@ -62,7 +64,7 @@ def _report(domain_text: str, problem_text: str, plan_text: str) -> dict[str, An
         "goal_diff": {"satisfied": not missing, "missing_nodes": [], "extra_nodes": [],
                       "missing_edges": missing, "extra_edges": []},
         "final_graph": {
-            "nodes": [{"id": o.id, "label": o.label, "attrs": {}} for o in state.objects.values()],
+            "nodes": [{"id": o, "label": label, "attrs": {}} for o, label in state.objects.items()],
             "edges": [_edge((o, r, t)) for o, (r, t) in state.support.items()],
             "dictionary": "blocksworld"},
     }
@@ -210,5 +212,7 @@ def validate_pddl_plan(domain_text: str, problem_text: str, plan_text: str
     PddlSyntaxError for unreadable PDDL and PlanParseError (naming the line) for plan
     lines that are no action or have the wrong number of arguments.
     """
+    from verigraph.actions.report import ValidationReport
+
     return ValidationReport.model_validate(
         validate_blocks_dict(domain_text, problem_text, plan_text))

@@ -27,7 +27,8 @@ CostTerm = float | tuple[str, tuple[Term, ...]]
 SUPPORTED_REQUIREMENTS = (":strips", ":typing", ":negative-preconditions", ":equality",
                           ":action-costs", ":disjunctive-preconditions",
                           ":existential-preconditions", ":universal-preconditions",
-                          ":quantified-preconditions", ":conditional-effects", ":adl")
+                          ":quantified-preconditions", ":conditional-effects", ":adl",
+                          ":derived-predicates")
 ROOT_TYPE = "object"
 
 
@@ -80,6 +81,7 @@ class Domain:
     span: dict[str, tuple[int, int]] = field(default_factory=dict)  # see index_types
     static: frozenset[str] = frozenset()  # predicates no action changes
     compiled: dict[str, Any] = field(default_factory=dict)  # the simulator's, per schema
+    axioms: Any = None  # the compiled `(:derived ...)` rules (axioms.Axioms), if any
 
     def index_types(self) -> list[str]:
         """Number the type tree depth-first; returns the types no path leads to from

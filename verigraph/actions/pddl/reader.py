@@ -4,11 +4,12 @@ Supported: `:strips`, `:typing` (with `(either ...)` types in parameter, predica
 constant and object lists), `:negative-preconditions`, `:equality` and `:action-costs`
 (`(increase (total-cost) N)` and `(increase (total-cost) (f ?x ?y))` over functions
 whose values the problem's `:init` gives; the report sums the plan's cost, as VAL
-does). Conjunctions may nest (`(and (and ...))`) in preconditions, effects and goals.
-Anything else (`:conditional-effects`, `:disjunctive-preconditions`, numeric fluents
-beyond action costs, durative actions, ...) is refused with the requirement named, and so
-is a construct that needs one (`or`, `forall`, `when`), so a plan is never judged under
-rules this model does not implement.
+does), ADL (`or`, `imply`, `not`, `exists`, `forall` in preconditions and goals;
+`when` and `forall` in effects) and derived predicates (`(:derived ...)`, compiled and
+stratified by `axioms`). Conjunctions may nest (`(and (and ...))`) in preconditions,
+effects and goals. Anything else (numeric fluents beyond action costs, durative actions,
+preferences, ...) is refused with the requirement named, and so is a construct that
+needs one, so a plan is never judged under rules this model does not implement.
 
 Nothing is skipped silently: every section of a domain or problem and every part of an
 action is read or refused by name. A misspelt keyword (`:precondtion`, `:efect`,
@@ -23,8 +24,11 @@ reader bounds nesting depth and refuses non-ASCII names with the line.
 from __future__ import annotations
 
 import difflib
+import re
 
-from verigraph.actions.blocksworld.sexpr import SExpr, define_body
+from verigraph.actions.blocksworld.sexpr import SExpr
+from verigraph.actions.blocksworld.sexpr import define_body as _define_body
+from verigraph.actions.pddl.axioms import Definition, compile_axioms, head_types_for
 from verigraph.actions.pddl.formulas import Formula
 from verigraph.actions.pddl.model import (
     ROOT_TYPE,
@@ -60,9 +64,8 @@ KNOWN_REQUIREMENTS = SUPPORTED_REQUIREMENTS + (
     ":ucpop", ":safety-constraints", ":action-expansions", ":foreach-expansions",
     ":dag-expansions", ":subgoals-through-axioms", ":time", ":timed-initial-fluents")
 DOMAIN_SECTIONS = (":requirements", ":types", ":constants", ":predicates", ":functions",
-                   ":action")
-UNSUPPORTED_DOMAIN_SECTIONS = {":derived": ":derived-predicates",
-                               ":durative-action": ":durative-actions", ":process": ":time",
+                   ":action", ":derived")
+UNSUPPORTED_DOMAIN_SECTIONS = {":durative-action": ":durative-actions", ":process": ":time",
                                ":event": ":time", ":constraints": ":constraints",
                                ":axiom": ":domain-axioms", ":timeless": ":strips (PDDL 1.2)",
                                ":extends": ":strips (PDDL 1.2 domain extension)"}
@@ -74,6 +77,34 @@ UNSUPPORTED_ACTION_KEYS = {":vars": ":strips (PDDL 1.2 :vars)",
                            ":expansion": ":action-expansions", ":duration": ":durative-actions",
                            ":condition": ":durative-actions"}
 ACTION_FORM = "(:action NAME :parameters (?x - type ...) :precondition (and ...) :effect (and ...))"
+
+
+_GLUED = re.compile(r"[^\s()?]\?")  # a name with a variable glued on: `(aircraft?a)`
+_VARIABLE_PARTS = re.compile(r"\??[^?]+|\?")
+
+
+def _split_glued(expr: SExpr) -> SExpr:
+    """`aircraft?a` -> `aircraft`, `?a`: `?` cannot occur in a PDDL name, so it starts a
+    variable wherever it stands (VAL's and Fast Downward's lexers read it so; zenotravel
+    of IPC 2002 writes `(aircraft?a)`)."""
+    if isinstance(expr, str):
+        return expr
+    out: list[SExpr] = []
+    for item in expr:
+        if isinstance(item, str) and "?" in item[1:]:
+            out.extend(_VARIABLE_PARTS.findall(item))
+        else:
+            out.append(_split_glued(item))
+    return out
+
+
+def define_body(text: str, *, what: str, kind: str) -> tuple[str, list[SExpr]]:
+    """`(define (KIND name) sections...)` -> (name, sections), glued variables split
+    (see `_split_glued`; a regex scan decides whether the walk is needed)."""
+    name, sections = _define_body(text, what=what, kind=kind)
+    if _GLUED.search(text):
+        sections = [_split_glued(s) for s in sections]
+    return name, sections
 
 
 class PddlInputError(VeriGraphError):
@@ -421,6 +452,64 @@ class _ActionReader:
                       [e for e in self.effects if e.add or e.delete], self.slot_names)
 
 
+class _RuleReader(_ActionReader):
+    """The body of one `(:derived (p ?x ...) formula)`: the head's variables are its scope."""
+
+    def __init__(self, domain: Domain, section: list[SExpr]) -> None:
+        self.domain = domain
+        head = section[1] if len(section) == 3 else None
+        if not (isinstance(head, list) and head and isinstance(head[0], str)):
+            raise PddlInputError(f"malformed {_show(section)[:60]}", field="domain",
+                                 value=_show(section)[:60],
+                                 fix="write (:derived (predicate ?x - type ...) formula)")
+        pred = head[0]
+        self.name, self.where = pred, f"the rule of derived predicate {pred}"
+        if pred not in domain.predicates:
+            raise PddlInputError(f"derived predicate '{pred}' is not declared in "
+                                 "(:predicates ...)", field="domain", value=pred,
+                                 fix=f"declare ({pred} ...) in :predicates")
+        typed = _types(domain, head[1:], "domain")
+        if len(typed) != len(domain.predicates[pred]):
+            raise PddlInputError(f"{self.where} has {len(typed)} variable(s); {pred} takes "
+                                 f"{len(domain.predicates[pred])}", field="domain", value=pred,
+                                 fix=f"give {pred} {len(domain.predicates[pred])} variable(s)")
+        for name, _ in typed:
+            if not name.startswith("?"):
+                raise PddlInputError(f"{self.where}: {name} in its head is not a variable",
+                                     field="domain", value=name, fix=f"write ?{name}")
+        self.params = [n for n, _ in typed]
+        self.index = {n: i for i, n in enumerate(self.params)}
+        if len(self.index) != len(self.params):
+            raise PddlInputError(f"{self.where} names a variable twice in its head",
+                                 field="domain", value=pred, fix="rename the variable")
+        self.slot_names = list(self.params)
+        self.cost = []
+        self.types = head_types_for(domain, pred, [t for _, t in typed])
+        self.formula = self.condition(section[2], self.index)
+
+    def definition(self) -> Definition:
+        return Definition(self.name, self.formula, self.slot_names, self.types)
+
+
+def _derived(domain: Domain, sections: list[list[SExpr]]) -> None:
+    """Read and compile the `(:derived ...)` rules (see axioms); actions may not change a
+    derived predicate."""
+    definitions: dict[str, list[Definition]] = {}
+    for section in sections:
+        d = _RuleReader(domain, section).definition()
+        definitions.setdefault(d.predicate, []).append(d)
+    for schema in domain.schemas.values():
+        for lit in schema.add + schema.delete + [x for e in schema.cond_effects
+                                                 for x in e.add + e.delete]:
+            if lit[0] in definitions:
+                raise PddlInputError(f"action {schema.name} changes derived predicate "
+                                     f"{lit[0]}", field="domain", value=lit[0],
+                                     fix=f"only the (:derived ...) rules decide {lit[0]}: "
+                                         "remove it from the effect, or make it a basic "
+                                         "predicate without rules")
+    domain.axioms = compile_axioms(domain, definitions)
+
+
 class _GoalReader(_ActionReader):
     """A goal's formulas: names are the problem's objects, variables are quantified."""
 
@@ -476,6 +565,7 @@ def read_domain(text: str) -> Domain:
     name, sections = define_body(text, what="domain", kind="domain")
     domain = Domain(name, [], {}, {}, {}, {})
     actions: list[list[SExpr]] = []
+    rules: list[list[SExpr]] = []
     checked: list[list[SExpr]] = []
     for section in sections:  # types first, wherever they are written: the rest uses them
         if not isinstance(section, list) or not section or not isinstance(section[0], str):
@@ -516,6 +606,8 @@ def read_domain(text: str) -> Domain:
             _functions(domain, rest)
         elif head == ":action":
             actions.append(section)
+        elif head == ":derived":
+            rules.append(section)
         elif head in UNSUPPORTED_DOMAIN_SECTIONS:
             raise UnsupportedRequirementError(UNSUPPORTED_DOMAIN_SECTIONS[head], "domain",
                                               f"section {head}")
@@ -527,7 +619,12 @@ def read_domain(text: str) -> Domain:
             raise PddlInputError(f"action {schema.name} is defined twice", field="domain",
                                  value=schema.name, fix="rename one of them")
         domain.schemas[schema.name] = schema
-    changed = {lit[0] for s in domain.schemas.values() for lit in s.add + s.delete}
+    if rules:
+        _derived(domain, rules)
+    changed = {lit[0] for s in domain.schemas.values()
+               for lit in s.add + s.delete + [x for e in s.cond_effects for x in e.add + e.delete]}
+    if domain.axioms is not None:
+        changed |= domain.axioms.predicates  # recomputed in every state, never fixed
     domain.static = frozenset(domain.predicates) - changed
     return domain
 
@@ -679,6 +776,13 @@ def read_problem(text: str, domain: Domain) -> Problem:
             _value(domain, objects, item, values)
             continue
         init.add(_ground(domain, objects, item, "initial state"))
+    if domain.axioms is not None:
+        for atom in init:
+            if atom[0] in domain.axioms.predicates:
+                raise PddlInputError(f"the initial state lists {_show(list(atom))}, of derived "
+                                     f"predicate {atom[0]}", field="problem", value=atom[0],
+                                     fix=f"leave {atom[0]} out of :init: the domain's "
+                                         "(:derived ...) rules decide it in every state")
     goal_complex: list[Formula] = []
     reader = _GoalReader(domain, objects)
     for item, positive in _goal_literals(raw_goal):
