@@ -11,8 +11,8 @@ from verigraph.planning import InProcessTools, PlannerRequest
 from verigraph.planning.greedy import GreedyPlanner, goal_moves
 from verigraph.planning.models import Feedback
 from verigraph.planning.rule_based import RuleBasedPlanner
-from verigraph.tasks.task import EpisodeSpec
 from verigraph.tasks.suite_blocks import block_graph
+from verigraph.tasks.task import EpisodeSpec
 
 pytestmark = pytest.mark.fast
 
