@@ -16,8 +16,6 @@ import pytest
 from verigraph.actions.pddl import validate_pddl_dict
 from verigraph.errors import VeriGraphError
 
-pytestmark = pytest.mark.fast
-
 BENCH = Path(__file__).parent.parent.parent / "benchmarks" / "bench_ipc.py"
 
 
