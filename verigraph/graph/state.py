@@ -18,6 +18,7 @@ from verigraph.graph.dictionary import (
     load_dictionary,
 )
 from verigraph.graph.model import Edge, Node, SceneGraph
+from verigraph.graph.support import SupportIndex
 from verigraph.graph.wellformed import check_and_resolve, open_labels
 
 Side = tuple[str, int]
@@ -33,18 +34,16 @@ class ObjectInfo:
     attrs: dict[str, object]
 
 
-class WorldState:
+class WorldState(SupportIndex):
     """Objects, supports (`obj -> (relation, target)`), carried sets and tangram contacts."""
 
-    __slots__ = ("dictionary", "move_relations", "objects", "support", "carried", "contacts",
-                 "_fixed_surfaces")
+    __slots__ = ("dictionary", "move_relations", "objects", "contacts", "_fixed_surfaces")
 
     def __init__(self, dictionary: Dictionary) -> None:
+        super().__init__()
         self.dictionary = dictionary
         self.move_relations = tuple(r for r in dictionary.relations if r in SUPPORT_RELATIONS)
         self.objects: dict[str, ObjectInfo] = {}
-        self.support: dict[str, tuple[str, str]] = {}
-        self.carried: dict[str, dict[str, str]] = {}
         # Every contact of every side: a long side can touch two small pieces at once.
         self.contacts: dict[Side, list[Side]] = {}
         self._fixed_surfaces: list[str] = []
@@ -125,15 +124,7 @@ class WorldState:
     def side_count(self, obj: str) -> int | None:
         return self.objects[obj].props.sides
 
-    # -- edits -----------------------------------------------------------------------------
-    def set_support(self, obj: str, relation: str, target: str) -> None:
-        """Replace obj's support edge (O(1))."""
-        old = self.support.get(obj)
-        if old is not None:
-            del self.carried[old[1]][obj]
-        self.support[obj] = (relation, target)
-        self.carried[target][obj] = relation
-
+    # -- edits (set_support: SupportIndex) ----------------------------------------------------
     def partners(self, side: Side) -> list[Side]:
         """The sides touching a side (none, one, or several along a long side)."""
         return self.contacts.get(side, [])

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 from verigraph.actions.blocksworld.domain import BlocksDomain, UnsupportedDomainError
 from verigraph.actions.blocksworld.sexpr import PddlSyntaxError, SExpr, define_body, typed_names
+from verigraph.graph.support import SupportIndex
 
 GoalAtom = tuple[str, tuple[str, ...]]  # (role, args)
 
@@ -169,27 +170,18 @@ def _check_state(name: str, blocks: list[str], init: list[GoalAtom], goal: list[
                          hand)
 
 
-class BlocksState:
+class BlocksState(SupportIndex):
     """The scene the hand model works on, as plain dicts: each object's label, its support
     (`block -> (relation, target)`: `on` a block or the table, `in` the hand) and what
-    each object carries. It is the index `graph.state.WorldState` keeps, without the
+    each object carries. It is `graph.state.WorldState`'s support index without the
     scene-graph dictionary and its pydantic models, so checking a blocks-world plan from
     the shell loads neither (docs/validator.md, Start-up)."""
 
-    __slots__ = ("objects", "support", "carried")
+    __slots__ = ("objects",)
 
     def __init__(self) -> None:
+        super().__init__()
         self.objects: dict[str, str] = {}  # id -> label: table, gripper or block
-        self.support: dict[str, tuple[str, str]] = {}
-        self.carried: dict[str, dict[str, str]] = {}
-
-    def set_support(self, obj: str, relation: str, target: str) -> None:
-        """Replace obj's support edge (O(1))."""
-        old = self.support.get(obj)
-        if old is not None:
-            del self.carried[old[1]][obj]
-        self.support[obj] = (relation, target)
-        self.carried[target][obj] = relation
 
 
 def native_state(problem: BlocksProblem) -> BlocksState:
