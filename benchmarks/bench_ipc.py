@@ -444,8 +444,9 @@ def val_verdict(case: Case, val: str, tmp: Path) -> None:
         case.val_detail += " | " + out.strip()[-200:].replace("\n", " ")
 
 
-def batch_time(cases: list[Case], tmp: Path) -> tuple[float, int, int]:
-    """Whole-process `verigraph validate --batch` over all cases: seconds, items, lines."""
+def batch_items(cases: list[Case], tmp: Path) -> Path:
+    """The cases as a `verigraph validate --batch` file in `tmp` (item i's plan in
+    `tmp/case{i}.plan`, id i)."""
     lines = []
     for i, c in enumerate(cases):
         plan = tmp / f"case{i}.plan"
@@ -454,6 +455,12 @@ def batch_time(cases: list[Case], tmp: Path) -> tuple[float, int, int]:
                                  "problem": str(c.problem_file), "plan": str(plan)}))
     items = tmp / "items.jsonl"
     items.write_text("\n".join(lines) + "\n")
+    return items
+
+
+def batch_time(cases: list[Case], tmp: Path) -> tuple[float, int, int]:
+    """Whole-process `verigraph validate --batch` over all cases: seconds, items, lines."""
+    items = batch_items(cases, tmp)
     exe = Path(sys.executable).parent / "verigraph"
     cmd = [str(exe) if exe.exists() else "verigraph", "validate", "--batch", str(items),
            "--no-progress"]

@@ -444,21 +444,7 @@ SMALL_LOGISTICS = """(define (problem one-truck) (:domain logistics)
   (:goal (and (at p0 l1))))
 """
 SMALL_LOGISTICS_PLAN = "(load-truck p0 t0 l0)\n(drive-truck t0 l0 l1 c0)\n(unload-truck p0 t0 l1)\n"
-GRIPPER_DOMAIN = """(define (domain gripper-strips)
-  (:predicates (room ?r) (ball ?b) (gripper ?g) (at-robby ?r) (at ?b ?r) (free ?g)
-               (carry ?o ?g))
-  (:action move :parameters (?from ?to)
-    :precondition (and (room ?from) (room ?to) (at-robby ?from))
-    :effect (and (at-robby ?to) (not (at-robby ?from))))
-  (:action pick :parameters (?obj ?room ?gripper)
-    :precondition (and (ball ?obj) (room ?room) (gripper ?gripper) (at ?obj ?room)
-                       (at-robby ?room) (free ?gripper))
-    :effect (and (carry ?obj ?gripper) (not (at ?obj ?room)) (not (free ?gripper))))
-  (:action drop :parameters (?obj ?room ?gripper)
-    :precondition (and (ball ?obj) (room ?room) (gripper ?gripper) (carry ?obj ?gripper)
-                       (at-robby ?room))
-    :effect (and (at ?obj ?room) (free ?gripper) (not (carry ?obj ?gripper)))))
-"""  # IPC 1998 gripper, as in aibasel/downward-benchmarks
+GRIPPER_DOMAIN = Path(__file__).parent / "data" / "gripper" / "domain.pddl"  # IPC 1998
 IPC = Path(__file__).parent / "data" / "ipc"
 
 
@@ -524,10 +510,9 @@ def ipc_long_rows(args: argparse.Namespace, work: Path, val: str | None,
     from verigraph.actions.pddl import validate_pddl_dict
     from verigraph.actions.pddl.simulate import cached_strips_problem
 
-    (work / "gripper_domain.pddl").write_text(GRIPPER_DOMAIN)
     cases: list[tuple[str, Path, str, list[str]]] = []
     problem_text, plan = gripper_walk(20, 100_000)
-    cases.append(("gripper (IPC 1998), 20 balls, 100,000 steps", work / "gripper_domain.pddl",
+    cases.append(("gripper (IPC 1998), 20 balls, 100,000 steps", GRIPPER_DOMAIN,
                   problem_text, plan))
     problem_text, plan = visitall_walk(20, 100_000)
     cases.append(("visitall (IPC 2011), 20 x 20 grid, 100,000 steps",
@@ -573,7 +558,7 @@ def ipc_corpus_rows(args: argparse.Namespace, work: Path, py: list[str], val: st
                     rows: list[list[str]]) -> None:
     """Every IPC case (plans and mutations, bench_ipc.py's): the slowest in-process
     check, and `--batch` over all of them against VAL once per case."""
-    from bench_ipc import load_cases
+    from bench_ipc import batch_items, load_cases
 
     from verigraph.actions.pddl import validate_pddl_dict
     from verigraph.actions.pddl.simulate import cached_strips_problem
@@ -600,14 +585,7 @@ def ipc_corpus_rows(args: argparse.Namespace, work: Path, py: list[str], val: st
                  f"({worst[1][0] * 1000:.1f} ms)", "-", "-", f"{worst[0][0] * 1000:.1f} ms",
                  "-", "-", "-"])
     print(rows[-1], flush=True)
-    lines = []
-    for i, c in enumerate(cases):
-        plan_file = work / f"ipc{i}.plan"
-        plan_file.write_text(c.plan)
-        lines.append(json.dumps({"id": i, "domain": str(c.domain_file),
-                                 "problem": str(c.problem_file), "plan": str(plan_file)}))
-    (work / "ipc.jsonl").write_text("\n".join(lines) + "\n")
-    cmd = [*py, "validate", "--batch", str(work / "ipc.jsonl"), "--no-progress"]
+    cmd = [*py, "validate", "--batch", str(batch_items(cases, work)), "--no-progress"]
     seconds = process_time(cmd, runs=3)
     cpu = last_cpu(cmd)
     val_seconds = val_cpu_total = None
@@ -617,7 +595,7 @@ def ipc_corpus_rows(args: argparse.Namespace, work: Path, py: list[str], val: st
         start = time.perf_counter()
         for i, c in enumerate(cases):
             subprocess.run([val, str(c.domain_file), str(c.problem_file),
-                            str(work / f"ipc{i}.plan")], capture_output=True, check=False,
+                            str(work / f"case{i}.plan")], capture_output=True, check=False,
                            env=env, timeout=120)
         val_seconds = time.perf_counter() - start
         after = resource.getrusage(resource.RUSAGE_CHILDREN)

@@ -19,27 +19,9 @@ from verigraph.actions.pddl import validate_strips_dict
 pytestmark = pytest.mark.fast
 
 IPC = Path(__file__).parents[2] / "benchmarks" / "data" / "ipc"
-GRIPPER = """(define (domain gripper-strips)
-  (:predicates (room ?r) (ball ?b) (gripper ?g) (at-robby ?r) (at ?b ?r) (free ?g)
-               (carry ?o ?g))
-  (:action move :parameters (?from ?to)
-    :precondition (and (room ?from) (room ?to) (at-robby ?from))
-    :effect (and (at-robby ?to) (not (at-robby ?from))))
-  (:action pick :parameters (?obj ?room ?gripper)
-    :precondition (and (ball ?obj) (room ?room) (gripper ?gripper) (at ?obj ?room)
-                       (at-robby ?room) (free ?gripper))
-    :effect (and (carry ?obj ?gripper) (not (at ?obj ?room)) (not (free ?gripper))))
-  (:action drop :parameters (?obj ?room ?gripper)
-    :precondition (and (ball ?obj) (room ?room) (gripper ?gripper) (carry ?obj ?gripper)
-                       (at-robby ?room))
-    :effect (and (at ?obj ?room) (free ?gripper) (not (carry ?obj ?gripper)))))
-"""
-VISITALL = """(define (domain grid-visit-all) (:requirements :typing) (:types place - object)
-  (:predicates (connected ?x ?y - place) (at-robot ?x - place) (visited ?x - place))
-  (:action move :parameters (?curpos ?nextpos - place)
-    :precondition (and (at-robot ?curpos) (connected ?curpos ?nextpos))
-    :effect (and (at-robot ?nextpos) (not (at-robot ?curpos)) (visited ?nextpos))))
-"""
+# The long-plan benchmark's domains (benchmarks/bench_validate.py), as shipped.
+GRIPPER = (IPC.parent / "gripper" / "domain.pddl").read_text()
+VISITALL = (IPC / "visitall" / "domain.pddl").read_text()
 
 
 def _both(domain: str, problem: str, plan: str) -> tuple[dict, dict]:
