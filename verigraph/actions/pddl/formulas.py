@@ -1,4 +1,5 @@
-"""ADL conditions as plain tuples: evaluation, the reason one is false, and its text.
+"""ADL conditions as plain tuples: evaluation (interpreted, or compiled into a closure for
+the conditions of conditional effects), the reason one is false, and its text.
 
 A formula is one of
     ("atom", (pred, terms))          terms: int (a variable slot) or str (an object)
@@ -13,6 +14,7 @@ a quantifier over a product of large types is refused, never judged half-way).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from itertools import product
 from typing import Any
 
@@ -115,6 +117,65 @@ class Evaluator:
                         binding[slot] = None
                     return f"for {where}: {reason}"
         return "false"
+
+
+Check = Callable[[list[Any], set[GroundAtom]], bool]
+
+
+def compile_condition(f: Any) -> Check | None:
+    """A condition as a closure over (slots, state) with `Evaluator.holds`'s truth value
+    on a full binding: atoms, equality, not, and, or and imply; None when a quantifier is
+    inside (the evaluator takes it)."""
+    kind = f[0]
+    if kind == "atom":
+        pred, terms = f[1]
+        if pred == "=":
+            a, b = terms
+            if isinstance(a, int) and isinstance(b, int):
+                return lambda s, st: s[a] == s[b]
+            if isinstance(a, int):
+                return lambda s, st: s[a] == b
+            if isinstance(b, int):
+                return lambda s, st: a == s[b]
+            return lambda s, st: a == b
+        if len(terms) == 1 and isinstance(terms[0], int):
+            one = terms[0]
+            return lambda s, st: (pred, s[one]) in st
+        if len(terms) == 2 and all(isinstance(t, int) for t in terms):
+            i, j = terms
+            return lambda s, st: (pred, s[i], s[j]) in st
+        fixed = tuple(terms)
+        return lambda s, st: (pred, *[s[t] if isinstance(t, int) else t for t in fixed]) in st
+    if kind == "not":
+        inner = compile_condition(f[1])
+        if inner is None:
+            return None
+        return lambda s, st: not inner(s, st)
+    if kind in ("and", "or"):
+        parts = [compile_condition(g) for g in f[1]]
+        if any(p is None for p in parts):
+            return None
+        checks = [p for p in parts if p is not None]
+        if kind == "and":
+            def every(s: list[Any], st: set[GroundAtom]) -> bool:
+                for c in checks:  # noqa: SIM110 - a loop: no generator per test
+                    if not c(s, st):
+                        return False
+                return True
+            return every
+
+        def some(s: list[Any], st: set[GroundAtom]) -> bool:
+            for c in checks:  # noqa: SIM110 - a loop: no generator per test
+                if c(s, st):
+                    return True
+            return False
+        return some
+    if kind == "imply":
+        first, then = compile_condition(f[1]), compile_condition(f[2])
+        if first is None or then is None:
+            return None
+        return lambda s, st: not first(s, st) or then(s, st)
+    return None  # exists / forall: the evaluator
 
 
 def text(f: Formula, binding: list[str | None], names: list[str]) -> str:

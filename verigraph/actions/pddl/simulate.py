@@ -48,7 +48,7 @@ from verigraph.actions.pddl.explain import (
     holds,
     literal_text,
 )
-from verigraph.actions.pddl.formulas import Evaluator, _atom
+from verigraph.actions.pddl.formulas import Check, Evaluator, _atom, compile_condition
 from verigraph.actions.pddl.formulas import text as formula_text
 from verigraph.actions.pddl.model import Domain, GroundAtom, Literal, Problem, Schema, show
 from verigraph.actions.pddl.plans import MAX_STEPS, Step, parse_strips_plan
@@ -539,9 +539,6 @@ def _adl_step(domain: Domain, problem: Problem, schema: Schema, binding: tuple[s
     return adds, dels
 
 
-Check = Callable[[list[Any], set[GroundAtom]], bool]
-
-
 def _condition_check(domain: Domain, condition: Any) -> Check | None:
     """The condition of a conditional effect as a closure over (slots, state), built once
     per domain: a `forall` effect tests it once per object of its variables' types, and
@@ -553,62 +550,9 @@ def _condition_check(domain: Domain, condition: Any) -> Check | None:
     key = f"condition {id(condition)}"  # beside the schemas' names (no name has a space)
     found = domain.compiled.get(key)
     if found is None or found[0] is not condition:  # the condition kept: no id reuse
-        found = domain.compiled[key] = (condition, _compile_condition(condition))
+        found = domain.compiled[key] = (condition, compile_condition(condition))
     check: Check | None = found[1]
     return check
-
-
-def _compile_condition(f: Any) -> Check | None:
-    kind = f[0]
-    if kind == "atom":
-        pred, terms = f[1]
-        if pred == "=":
-            a, b = terms
-            if isinstance(a, int) and isinstance(b, int):
-                return lambda s, st: s[a] == s[b]
-            if isinstance(a, int):
-                return lambda s, st: s[a] == b
-            if isinstance(b, int):
-                return lambda s, st: a == s[b]
-            return lambda s, st: a == b
-        if len(terms) == 1 and isinstance(terms[0], int):
-            one = terms[0]
-            return lambda s, st: (pred, s[one]) in st
-        if len(terms) == 2 and all(isinstance(t, int) for t in terms):
-            i, j = terms
-            return lambda s, st: (pred, s[i], s[j]) in st
-        fixed = tuple(terms)
-        return lambda s, st: (pred, *[s[t] if isinstance(t, int) else t for t in fixed]) in st
-    if kind == "not":
-        inner = _compile_condition(f[1])
-        if inner is None:
-            return None
-        return lambda s, st: not inner(s, st)
-    if kind in ("and", "or"):
-        parts = [_compile_condition(g) for g in f[1]]
-        if any(p is None for p in parts):
-            return None
-        checks = [p for p in parts if p is not None]
-        if kind == "and":
-            def every(s: list[Any], st: set[GroundAtom]) -> bool:
-                for c in checks:  # noqa: SIM110 - a loop: no generator per test
-                    if not c(s, st):
-                        return False
-                return True
-            return every
-
-        def some(s: list[Any], st: set[GroundAtom]) -> bool:
-            for c in checks:  # noqa: SIM110 - a loop: no generator per test
-                if c(s, st):
-                    return True
-            return False
-        return some
-    if kind == "imply":
-        first, then = _compile_condition(f[1]), _compile_condition(f[2])
-        if first is None or then is None:
-            return None
-        return lambda s, st: not first(s, st) or then(s, st)
-    return None  # exists / forall: the evaluator
 
 
 def _unsatisfied(schema: Schema, binding: tuple[str, ...], state: set[GroundAtom],
