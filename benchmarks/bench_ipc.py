@@ -4,8 +4,9 @@ The corpus is shipped in benchmarks/data/ipc/<domain>/ (see its README.md): for 
 instance `NAME.pddl`, its domain (`domain.pddl`, or `NAME.domain.pddl` where the IPC gave
 one domain file per instance) and `NAME.plan`, a Fast Downward (lama-first) plan. The
 benchmark runs from these files alone; `--prepare SRC` rebuilds them from a checkout of
-aibasel/downward-benchmarks (it runs Fast Downward, so it needs the planner; the agreement
-run does not).
+aibasel/downward-benchmarks (and `--classical-domains SRC` from one of
+AI-Planning/classical-domains, for the one domain that collection lacks); it runs Fast
+Downward, so it needs the planner; the agreement run does not.
 
 Each plan is checked as given and in nine mutations (dropped, swapped, duplicated and
 truncated steps, a replaced argument, a misspelt action name, a wrong arity, an
@@ -120,28 +121,67 @@ DOMAINS: dict[str, tuple[str, str]] = {
     "spider": ("spider-sat18-strips", "IPC 2018"),
     "termes": ("termes-sat18-strips", "IPC 2018"),
     "folding": ("folding-sat23-adl", "IPC 2023"),
-    "labyrinth": ("labyrinth-sat23-adl", "IPC 2023"),
+    # the optimal track's folder: the same domain file, smaller problems (lama-first
+    # solved none of the satisficing track's smallest ones here, see PLANNING)
+    "labyrinth": ("labyrinth-opt23-adl", "IPC 2023"),
     "quantum-layout": ("quantum-layout-sat23-strips", "IPC 2023"),
     "recharging-robots": ("recharging-robots-sat23-adl", "IPC 2023"),
     "ricochet-robots": ("ricochet-robots-sat23-adl", "IPC 2023"),
     "rubiks-cube": ("rubiks-cube-sat23-adl", "IPC 2023"),
     "slitherlink": ("slitherlink-sat23-adl", "IPC 2023"),
+    # not in downward-benchmarks: the folder of AI-Planning/classical-domains (--prepare
+    # with --classical-domains), the IPC 2008 files under their original names
+    "cybersec": ("classical/cybersec", "IPC 2008"),
+}
+# the domains whose folder is in AI-Planning/classical-domains, not downward-benchmarks
+FROM_CLASSICAL_DOMAINS = {"cybersec"}
+
+
+@dataclass(frozen=True)
+class Planning:
+    """How --prepare plans one domain other than by default (the smallest problems by
+    file size, lama-first, --time-limit), and why; an entry with only `why` gives the
+    reason for the domain's folder in DOMAINS."""
+
+    instances: tuple[str, ...] = ()     # these problems (stems), not the smallest ones
+    time_limit: int | None = None       # planner seconds per instance
+    translate_options: tuple[str, ...] = ()   # Fast Downward --translate-options
+    why: str = ""
+
+
+PLANNING: dict[str, Planning] = {
+    "organic-synthesis": Planning(
+        instances=("p06", "p07"), time_limit=300,
+        why="the only two problems with the small (12 KB) per-instance domain (about "
+            "20 s and 90 s); on the others, with their 71 KB domain, Fast Downward's "
+            "translator runs out of 6 GB (the smallest, p01, after 80 s)"),
+    "labyrinth": Planning(
+        time_limit=300,
+        why="the optimal track's p01 (3x3 cards) and p02 (4x4) take 3 s and 35 s; the "
+            "satisficing track's problems have 5x5 cards or more, and for its p04 and p01 "
+            "(the smallest file, and the one scrambled by a single rotation) lama-first "
+            "found no plan in 400 s and 580 s, nor did greedy search with type-based "
+            "exploration (p01, 590 s) or blind A* (p04, out of 8 GB): 1.5 million ground "
+            "actions, and the FF heuristic stays on a plateau"),
+    "ricochet-robots": Planning(
+        time_limit=300,
+        why="p01 takes about 135 s, p07 about 65 s"),
+    "slitherlink": Planning(
+        time_limit=120, translate_options=("--invariant-generation-max-candidates", "0"),
+        why="without mutex groups the negated goal literals stay single facts; with them "
+            "the translator multiplies the goal out into exponentially many conjunctions "
+            "(out of 6 GB on a 5x3 grid)"),
+    "petri-net-alignment": Planning(
+        why="the collection has only the optimal track's folder (the domain's only track)"),
+    "cybersec": Planning(
+        instances=("p09",), time_limit=120,
+        why="the smallest domain file (336 KB: each problem has its own grounded domain, "
+            "whose translation takes about 30 s); p24 is the same problem and domain with "
+            "other action costs, the others' domains are 0.6 MB and larger"),
 }
 
 # Classical IPC 2008-2023 domains with no case in the corpus, and why (see the README).
-NOT_IN_CORPUS: dict[str, tuple[str, str]] = {
-    "cybersec": ("IPC 2008", "not in downward-benchmarks"),
-    "organic-synthesis": ("IPC 2018", "lama-first found no plan for the 6 smallest "
-                          "instances in 20 s, nor for the 3 smallest in 60 s (the split "
-                          "formulation, organic-synthesis-split, is in)"),
-    "labyrinth": ("IPC 2023", "lama-first found no plan for the 6 smallest instances in "
-                  "20 s, nor for the 3 smallest in 60 s (Fast Downward's translation alone "
-                  "takes most of it)"),
-    "ricochet-robots": ("IPC 2023", "lama-first found no plan for the 6 smallest instances "
-                        "in 20 s, nor for the 2 smallest in 60 s"),
-    "slitherlink": ("IPC 2023", "lama-first found no plan for the 6 smallest instances in "
-                    "20 s"),
-}
+NOT_IN_CORPUS: dict[str, tuple[str, str]] = {}
 # Tracks outside classical planning: their domains declare :durative-actions or
 # :numeric-fluents, which VeriGraph refuses by name; downward-benchmarks has none of them.
 OTHER_TRACKS = ("temporal tracks of IPC 2008, 2011, 2014 and 2018 (`:durative-actions`: "
@@ -189,18 +229,28 @@ def _is_problem(path: Path) -> bool:
 
 
 def prepare(src_root: Path, per_domain: int, time_limit: int, fd: str,
-            only: set[str] | None = None, tries: int = 6) -> None:
+            only: set[str] | None = None, tries: int = 6,
+            classical_root: Path | None = None) -> None:
     """Copy the smallest problems of each domain (by file size; up to `tries` of them
-    are tried when the planner fails on some) and plan them with Fast Downward."""
+    are tried when the planner fails on some), or those PLANNING names, and plan them
+    with Fast Downward."""
     for name, (folder, _) in DOMAINS.items():
         if only and name not in only:
             continue
-        src = src_root / folder
+        root = classical_root if name in FROM_CLASSICAL_DOMAINS else src_root
+        if root is None:
+            print(f"{name}: needs --classical-domains", file=sys.stderr)
+            continue
+        src = root / folder
         if not src.is_dir():
             print(f"{name}: no folder {src}", file=sys.stderr)
             continue
+        how = PLANNING.get(name, Planning())
+        limit = how.time_limit or time_limit
         problems = sorted((p for p in src.iterdir() if _is_problem(p)),
                           key=lambda p: (p.stat().st_size, p.name))
+        if how.instances:
+            problems = [src / f"{inst}.pddl" for inst in how.instances]
         dest = DATA / name
         dest.mkdir(parents=True, exist_ok=True)
         done = 0
@@ -211,14 +261,16 @@ def prepare(src_root: Path, per_domain: int, time_limit: int, fd: str,
             if dom is None:
                 continue
             inst = prob.stem
+            translate = ["--translate-options", *how.translate_options] \
+                if how.translate_options else []
             with tempfile.TemporaryDirectory() as tmp:
                 plan_file = Path(tmp) / "plan"
                 subprocess.run([sys.executable, fd, "--plan-file", str(plan_file),
-                                "--overall-time-limit", f"{time_limit}s", "--alias",
-                                "lama-first", str(dom), str(prob)],
+                                "--overall-time-limit", f"{limit}s", "--alias",
+                                "lama-first", str(dom), str(prob), *translate],
                                capture_output=True, cwd=tmp, check=False)
                 if not plan_file.exists():
-                    print(f"{name}/{inst}: no plan in {time_limit}s", file=sys.stderr)
+                    print(f"{name}/{inst}: no plan in {limit}s", file=sys.stderr)
                     continue
                 shutil.copy(prob, dest / f"{inst}.pddl")
                 shared = dom.name == "domain.pddl"
@@ -313,6 +365,8 @@ def mutate(steps: list[str], objects: list[str], kind: str, rng: random.Random
     if kind == "no-last-step":
         return s[:-1] if n >= 1 else None
     with_args = [i for i in range(n) if len(parts[i]) > 1]
+    if not with_args and kind == "misspelt-name":
+        with_args = list(range(n))   # a grounded domain: no action takes an argument
     if not with_args:
         return None
     i = rng.choice(with_args)
@@ -502,10 +556,13 @@ def agree(c: Case) -> bool:
 
 def render(cases: list[Case], batch: tuple[float, int, int] | None, val: str,
            machine_before: str, machine_after: str) -> str:
+    home = str(Path.home())
+    shown = "~" + val[len(home):] if val.startswith(home + os.sep) else val
     out = ["# VeriGraph's PDDL validator against VAL on IPC domains", "",
            "Generated by `benchmarks/bench_ipc.py` (see its docstring for the method). "
            "Corpus: `benchmarks/data/ipc/` (README.md there names the source). "
-           f"VAL: `{val}` (KCL-Planning/VAL built from source).", "",
+           f"VAL: `{shown}` (KCL-Planning/VAL built from source with "
+           "`-DYYMAXDEPTH=10000000`, as `docs/validator.md` gives it).", "",
            f"Machine at start: {machine_before}.  ",
            f"Machine at end: {machine_after}.", "",
            "## Agreement", "",
@@ -576,6 +633,28 @@ def render(cases: list[Case], batch: tuple[float, int, int] | None, val: str,
     for name, (ipc, why) in sorted(NOT_IN_CORPUS.items()):
         out.append(f"- {name} ({ipc}): {why}")
     out += [f"- {t}" for t in OTHER_TRACKS]
+    out += ["", "## Instances and planning other than the default", "",
+            "By default a domain's two smallest problems (by file size) of its "
+            "downward-benchmarks folder (for a domain of the IPCs since 2008, the "
+            "satisficing track's), planned by `lama-first` within `--time-limit`. "
+            "Otherwise:", ""]
+    for name, (folder, _) in DOMAINS.items():
+        how = PLANNING.get(name)
+        source = ("AI-Planning/classical-domains" if name in FROM_CLASSICAL_DOMAINS
+                  else "downward-benchmarks")
+        if how is None and "-opt" not in folder:
+            continue
+        parts = [f"`{folder}` of {source}"]
+        if how is not None:
+            if how.instances:
+                parts.append("problems " + ", ".join(how.instances))
+            if how.time_limit:
+                parts.append(f"time limit {how.time_limit} s")
+            if how.translate_options:
+                parts.append("`--translate-options " + " ".join(how.translate_options)
+                             + "`")
+        why = f": {how.why}" if how is not None and how.why else ""
+        out.append(f"- {name}: {'; '.join(parts)}{why}")
     out += ["", "## VeriGraph refusals", ""]
     ref = Counter((c.domain, c.vg_detail[:200]) for c in cases if c.vg == "refused")
     if not ref:
@@ -646,6 +725,9 @@ def main() -> None:
                     help="with --prepare: smallest problems tried per domain")
     ap.add_argument("--time-limit", type=int, default=30, help="planner seconds per instance")
     ap.add_argument("--fast-downward", help="path of fast-downward.py (for --prepare)")
+    ap.add_argument("--classical-domains", type=Path, metavar="SRC",
+                    help="with --prepare: a checkout of AI-Planning/classical-domains, for "
+                    "the domains DOMAINS takes from it")
     args = ap.parse_args()
     if args.prepare:
         fd = args.fast_downward
@@ -654,7 +736,8 @@ def main() -> None:
 
             fd = str(Path(up_fast_downward.__file__).parent / "downward" / "fast-downward.py")
         prepare(args.prepare, args.per_domain, args.time_limit, fd,
-                set(args.only.split(",")) if args.only else None, args.tries)
+                set(args.only.split(",")) if args.only else None, args.tries,
+                args.classical_domains)
         return
     val = find_val(args.val)
     if val is None or not Path(val).exists():

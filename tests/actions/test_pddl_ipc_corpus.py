@@ -64,3 +64,14 @@ def test_domain_agrees_with_val(domain: str) -> None:
     assert not wrong, wrong[:5]
     originals = [k for k in keys if k.endswith("/original")]
     assert originals and all(EXPECTED[k]["expected"] == "valid" for k in originals)
+
+
+def test_every_listed_domain_is_in_the_corpus() -> None:
+    """Each domain of the benchmark's table (among them every classical domain of the IPCs
+    2008-2023) has cases here unless it is listed, with the reason, as not in the corpus;
+    and each folder here has its source in the table."""
+    assert not set(bench.DOMAINS) - set(DOMAINS) - set(bench.NOT_IN_CORPUS)
+    assert not set(DOMAINS) - set(bench.DOMAINS)
+    recent = {name for name, (_, ipc) in bench.DOMAINS.items() if ipc >= "IPC 2008"}
+    assert {"cybersec", "labyrinth", "organic-synthesis", "ricochet-robots",
+            "slitherlink"} <= recent & set(DOMAINS)
