@@ -141,3 +141,15 @@ def test_cli_html_is_for_scene_plans_only():
                   "planbench_instance.pddl", "--plan", "planbench_plan.txt", "--html", "x.html",
                   cwd=DATA)
     assert r.returncode == 2 and "scene plans only" in r.stderr
+
+
+def test_the_ascii_line_pattern_reads_every_ascii_line_as_the_unicode_one():
+    """The fast run reads ASCII plans with the name class written as byte ranges; on
+    every ASCII character, in every position of a line, it agrees with the Unicode one."""
+    from verigraph.actions.blocksworld.plans import _PLAIN_ASCII_LINE, _PLAIN_LINE
+
+    for code in range(128):
+        c = chr(code)
+        for line in (f"(pick-up a{c}b)", f"({c}stack a b)", f"(stack a b{c})", f"(x {c} y)",
+                     f"(move a b c{c})", f"(x y)\n({c})\n(z w)", f"(x y){c}"):
+            assert _PLAIN_ASCII_LINE.findall(line) == _PLAIN_LINE.findall(line), repr(line)

@@ -26,7 +26,7 @@ def test_move_accepted_agrees_with_the_constraints_on_random_moves():
         for _ in range(10):
             a = MoveAction(object=rng.choice(ids), relation=rng.choice(["on", "in", "under"]),
                            target=rng.choice(ids))
-            fast = move_accepted(state, a)
+            fast = move_accepted(state, a.object, a.relation, a.target)
             assert fast == (validate_action(state, a) is None), a
             outcomes[fast] += 1
             if fast:

@@ -6,7 +6,7 @@ import networkx as nx
 import pytest
 
 from verigraph.errors import InputFileError
-from verigraph.graph import Edge, Node, SceneGraph, load_scene, save_graph
+from verigraph.graph import Edge, Node, SceneGraph, WorldState, load_scene, save_graph
 from verigraph.graph.builtin_scenes import cup_on_book
 from verigraph.graph.io import scene_from_data
 
@@ -69,3 +69,25 @@ def test_wrong_shape_names_the_field():
     assert err.value.field == "scene.nodes.0.label"
     with pytest.raises(InputFileError, match="mapping"):
         scene_from_data(json.loads("[1, 2]"))
+
+
+def test_to_graph_equals_the_graph_built_model_by_model():
+    """`WorldState.to_graph` validates plain data in one call: the same graph (and fields
+    set) as building each Node and Edge, blocks and tangram contacts alike."""
+    tangram = SceneGraph(nodes=[Node(id="square", label="square", attrs={"color": "red"}),
+                                Node(id="parallelogram", label="parallelogram"),
+                                Node(id="small_triangle", label="small_triangle_1")],
+                         edges=[Edge(source="square", relation="touches", target="parallelogram",
+                                     source_side=1, target_side=3),
+                                Edge(source="small_triangle", relation="touches",
+                                     target="square", source_side=0, target_side=2)],
+                         dictionary="tangram")
+    for graph in (cup_on_book(), tangram):
+        state = WorldState.from_graph(graph)
+        built = SceneGraph(nodes=[Node(id=o.id, label=o.label, attrs=dict(o.attrs))
+                                  for o in state.objects.values()], edges=state.edges(),
+                           dictionary=state.dictionary.reference()).canonical()
+        got = state.to_graph()
+        assert got == built and got.model_dump_json() == built.model_dump_json()
+        assert [n.model_fields_set for n in got.nodes] == [n.model_fields_set for n in built.nodes]
+        assert [e.model_fields_set for e in got.edges] == [e.model_fields_set for e in built.edges]

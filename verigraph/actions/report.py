@@ -2,11 +2,16 @@
 
 The run is `verigraph.actions.execution.run_actions`; its compact step records become
 `StepReport`s here, at the edge, with `trusted`: pydantic objects built without
-re-validating data the run already checked.
+re-validating data the run already checked, through the setters of pydantic's own slots;
+the frozen `Edge` a block leaves is the one an earlier step added. A long plan's report
+(a hundred thousand acyclic objects) is built with the cyclic collector paused, and its
+objects are then moved to the oldest generation (`graph.bulk.promote_young_objects`)
+rather than scanned when the collector resumes.
 """
 
 from __future__ import annotations
 
+import gc
 from typing import Any, TypeVar
 
 from pydantic import BaseModel, Field
@@ -17,7 +22,7 @@ from verigraph.actions.model import AnyAction, MoveAction
 from verigraph.actions.parser import parse_plan
 from verigraph.actions.validator import GraphEdit
 from verigraph.budget import checkpoint
-from verigraph.graph.bulk import collector_paused
+from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.io import goal_from_data, scene_from_data
 from verigraph.graph.model import Edge, SceneGraph
@@ -25,7 +30,14 @@ from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import label_readings, readings_line
 
 M = TypeVar("M", bound=BaseModel)
-_setattr = object.__setattr__
+# Setters of the four slots every pydantic model instance fills (`BaseModel.__slots__`:
+# the field values, the fields set, extras, private attributes), called on the slot
+# descriptors themselves: what `object.__setattr__` ends in, without its per-call lookup.
+_SLOTS = vars(BaseModel)
+_set_values = _SLOTS["__dict__"].__set__
+_set_fields_set = _SLOTS["__pydantic_fields_set__"].__set__
+_set_extra = _SLOTS["__pydantic_extra__"].__set__
+_set_private = _SLOTS["__pydantic_private__"].__set__
 EDGE_FIELDS = frozenset({"source", "relation", "target"})
 STEP_FIELDS = frozenset({"step", "ok", "action", "text", "violation", "edit"})
 EDIT_FIELDS = frozenset({"removed", "added"})
@@ -38,10 +50,10 @@ def trusted(cls: type[M], values: dict[str, Any], fields_set: frozenset[str]) ->
     attributes, extras or post-init hooks, at a fraction of the cost.
     """
     m = cls.__new__(cls)
-    _setattr(m, "__dict__", values)
-    _setattr(m, "__pydantic_fields_set__", set(fields_set))
-    _setattr(m, "__pydantic_extra__", None)
-    _setattr(m, "__pydantic_private__", None)
+    _set_values(m, values)
+    _set_fields_set(m, set(fields_set))
+    _set_extra(m, None)
+    _set_private(m, None)
     return m
 
 
@@ -139,6 +151,8 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
         goal_reached = None if goal_diff is None else goal_diff.satisfied
         steps = _steps_from_records(records)
         final_graph = state.to_graph()
+        if size >= LARGE_GRAPH_ITEMS and gc.get_freeze_count() == 0:
+            promote_young_objects()  # see there: the report is acyclic
     return ValidationReport.model_construct(
         valid=plan_valid and goal_reached is not False, plan_valid=plan_valid,
         goal_reached=goal_reached, steps=steps, violations=violations,
@@ -147,7 +161,9 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
 
 
 def _is_parsed(plan: object) -> bool:
-    return isinstance(plan, list) and all(isinstance(a, BaseModel) for a in plan) and bool(plan)
+    """A non-empty list of models (actions already parsed); checked per kind of item."""
+    return isinstance(plan, list) and bool(plan) and all(
+        issubclass(kind, BaseModel) for kind in set(map(type, plan)))
 
 
 def _action_dict(action: AnyAction) -> dict[str, Any]:
@@ -161,53 +177,61 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
     """StepReports for the records (the edge where compact tuples become models).
 
     Accepted moves, the bulk of any long plan, are built inline with `object.__new__`
-    and the model's own slots (what `model_construct` does, minus its per-call
-    bookkeeping). The caller pauses the garbage collector (`collector_paused`). One
+    and the setters of the model's own slots (what `model_construct` does, minus its
+    per-call bookkeeping). The caller pauses the garbage collector (`collector_paused`). One
     fields-set object serves all instances of a class: StepReport's and GraphEdit's name
-    every field, so an assignment adds nothing to them, and Edge is frozen.
+    every field, so an assignment adds nothing to them, and Edge is frozen. Frozen, an
+    Edge is shared too: the edge a block leaves is the one the step that put it there
+    added (`placed`, valid while only accepted moves ran since; any other edit empties it).
     """
     steps: list[Any] = []
-    new, setattr_ = object.__new__, object.__setattr__
+    new = object.__new__
+    values, fields_set, extra, private = _set_values, _set_fields_set, _set_extra, _set_private
     edge_set, edit_set, step_set = set(EDGE_FIELDS), set(EDIT_FIELDS), set(STEP_FIELDS)
+    placed: dict[str, Edge] = {}  # object -> the Edge of its current support
     for index, action, payload in records:
         if not index & 63:
             checkpoint()  # the server's per-call budget and cancellation
         if payload is not None and type(payload) is not tuple:  # not an accepted move
             ok = isinstance(payload, GraphEdit)
-            values = {"step": index, "ok": ok, "action": _action_dict(action),
-                      "text": action.text(), "violation": None if ok else payload,
-                      "edit": payload if ok else None}
-            steps.append(trusted(StepReport, values, STEP_FIELDS))
+            if ok:
+                placed.clear()
+            steps.append(trusted(StepReport, {
+                "step": index, "ok": ok, "action": _action_dict(action), "text": action.text(),
+                "violation": None if ok else payload, "edit": payload if ok else None},
+                STEP_FIELDS))
             continue
         obj, rel, target = action.object, action.relation, action.target  # type: ignore[union-attr]
         added = new(Edge)
-        setattr_(added, "__dict__", {"source": obj, "relation": rel, "target": target,
-                                     "source_side": None, "target_side": None})
-        setattr_(added, "__pydantic_fields_set__", edge_set)
-        setattr_(added, "__pydantic_extra__", None)
-        setattr_(added, "__pydantic_private__", None)
+        values(added, {"source": obj, "relation": rel, "target": target, "source_side": None,
+                       "target_side": None})
+        fields_set(added, edge_set)
+        extra(added, None)
+        private(added, None)
         removed = []
         if payload is not None:
-            old = new(Edge)
-            setattr_(old, "__dict__", {"source": obj, "relation": payload[0],
-                                       "target": payload[1], "source_side": None,
-                                       "target_side": None})
-            setattr_(old, "__pydantic_fields_set__", edge_set)
-            setattr_(old, "__pydantic_extra__", None)
-            setattr_(old, "__pydantic_private__", None)
+            old = placed.get(obj)
+            if old is None:
+                old = new(Edge)
+                values(old, {"source": obj, "relation": payload[0], "target": payload[1],
+                             "source_side": None, "target_side": None})
+                fields_set(old, edge_set)
+                extra(old, None)
+                private(old, None)
             removed.append(old)
+        placed[obj] = added
         edit = new(GraphEdit)
-        setattr_(edit, "__dict__", {"removed": removed, "added": [added]})
-        setattr_(edit, "__pydantic_fields_set__", edit_set)
-        setattr_(edit, "__pydantic_extra__", None)
-        setattr_(edit, "__pydantic_private__", None)
+        values(edit, {"removed": removed, "added": [added]})
+        fields_set(edit, edit_set)
+        extra(edit, None)
+        private(edit, None)
         step = new(StepReport)
-        setattr_(step, "__dict__", {
+        values(step, {
             "step": index, "ok": True,
             "action": {"action": "move", "object": obj, "relation": rel, "target": target},
             "text": f"move({obj}, {rel}, {target})", "violation": None, "edit": edit})
-        setattr_(step, "__pydantic_fields_set__", step_set)
-        setattr_(step, "__pydantic_extra__", None)
-        setattr_(step, "__pydantic_private__", None)
+        fields_set(step, step_set)
+        extra(step, None)
+        private(step, None)
         steps.append(step)
     return steps

@@ -58,6 +58,13 @@ class Edge(BaseModel):
         return (self.source, self.relation, self.target, self.source_side, self.target_side)
 
 
+def _edge_order(e: Edge) -> tuple[str, str, str, str, str]:
+    """The sort key of `SceneGraph.canonical`: the edge's key, a missing side as ''."""
+    source, relation, target, source_side, target_side = e.key()
+    return (source, relation, target, "" if source_side is None else str(source_side),
+            "" if target_side is None else str(target_side))
+
+
 class SceneGraph(BaseModel):
     """A scene as JSON (docs/design.md section 2). Checked by `check_well_formed` before use."""
 
@@ -83,8 +90,7 @@ class SceneGraph(BaseModel):
     def canonical(self) -> SceneGraph:
         """Same graph with nodes and edges in a stable order: equal scenes dump equally."""
         return SceneGraph(nodes=sorted(self.nodes, key=lambda n: n.id),
-                          edges=sorted(self.edges, key=lambda e: tuple(
-                              "" if v is None else str(v) for v in e.key())),
+                          edges=sorted(self.edges, key=_edge_order),
                           dictionary=self.dictionary)
 
     def to_networkx(self) -> nx.DiGraph:

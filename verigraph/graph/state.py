@@ -2,7 +2,9 @@
 
 `SceneGraph` is the boundary format (JSON, pydantic); `WorldState` is what actions are
 checked against and applied to. It indexes each object's support and what each object
-carries, so every constraint check costs O(degree) rather than O(graph).
+carries, so every constraint check costs O(degree) rather than O(graph). Back at the
+boundary (`to_graph`), the nodes and edges go to pydantic-core as plain data and are
+validated in one call, rather than one model at a time.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from verigraph.graph.dictionary import (
     ObjectProperties,
     load_dictionary,
 )
-from verigraph.graph.model import Edge, Node, SceneGraph
+from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.support import SupportIndex
 from verigraph.graph.wellformed import check_and_resolve, open_labels
 
@@ -154,7 +156,12 @@ class WorldState(SupportIndex):
 
     # -- export ----------------------------------------------------------------------------
     def edges(self) -> list[Edge]:
-        edges = [Edge(source=o, relation=r, target=t) for o, (r, t) in self.support.items()]
+        return [Edge(source=o, relation=r, target=t) for o, (r, t) in self.support.items()] \
+            + self._contact_edges()
+
+    def _contact_edges(self) -> list[Edge]:
+        """One edge per tangram contact (each touching pair once)."""
+        edges = []
         seen: set[frozenset[Side]] = set()
         for a, others in self.contacts.items():
             for b in others:
@@ -167,7 +174,15 @@ class WorldState(SupportIndex):
         return edges
 
     def to_graph(self) -> SceneGraph:
-        """Back to the boundary format (canonical labels, stable order)."""
-        nodes = [Node(id=o.id, label=o.label, attrs=dict(o.attrs)) for o in self.objects.values()]
-        return SceneGraph(nodes=nodes, edges=self.edges(),
-                          dictionary=self.dictionary.reference()).canonical()
+        """Back to the boundary format (canonical labels, stable order).
+
+        The nodes and support edges go in as plain data and are validated in one call,
+        the list at once (about a third of the cost of building each model on its own), into
+        the same models `Node(...)` and `Edge(...)` give.
+        """
+        nodes = [{"id": o.id, "label": o.label, "attrs": o.attrs} for o in self.objects.values()]
+        edges: list[dict[str, str] | Edge] = [
+            {"source": o, "relation": r, "target": t} for o, (r, t) in self.support.items()]
+        edges += self._contact_edges()
+        return SceneGraph.model_validate({"nodes": nodes, "edges": edges,
+                                          "dictionary": self.dictionary.reference()}).canonical()

@@ -41,9 +41,18 @@ def _fresh(base: str, taken: set[str]) -> str:
 
 
 def _atoms(expr: SExpr, domain: BlocksDomain, where: str) -> list[GoalAtom]:
+    """The atoms of a conjunction (or of one atom); a plain known atom takes one dict
+    lookup, anything else (and every error) the checks below."""
     items = expr[1:] if isinstance(expr, list) and expr and expr[0] == "and" else [expr]
+    roles = domain.predicates
     out: list[GoalAtom] = []
     for item in items:
+        if type(item) is list and item:
+            role = roles.get(item[0]) if type(item[0]) is str else None
+            args = item[1:]
+            if role is not None and all(type(a) is str for a in args):
+                out.append((role, tuple(args)))  # type: ignore[arg-type]
+                continue
         if not (isinstance(item, list) and item and all(isinstance(a, str) for a in item)):
             raise UnsupportedDomainError(f"the {where} holds {item!r}; only positive "
                                          "blocks-world atoms are supported")

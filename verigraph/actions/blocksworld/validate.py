@@ -5,7 +5,8 @@ violations, not_checked, done, goal_diff, final_graph) and is built as plain dic
 batch runs and `--json` never pay for pydantic; `validate_pddl_plan` wraps it in the
 model for library users. Step numbers are 1-based indices of actions in the plan.
 An accepted step's arrays (`args`, `edit.removed`, `edit.added`) are tuples: immutable,
-cheaper to build, and the same JSON.
+cheaper to build, and the same JSON; the edge a block leaves, with the tuple around it,
+is the one the step that put it there added.
 """
 
 from __future__ import annotations
@@ -91,7 +92,7 @@ def _plain_run(domain: BlocksDomain, problem: BlocksProblem, plan_text: str) -> 
     on_table, in_hand = ("on", table), ("in", hand)
     roles = {name: op.role for name, op in domain.operators.items()}
     held = carried[hand]
-    last_edge: dict[str, dict[str, str]] = {}
+    placed: dict[str, tuple[dict[str, str]]] = {}
     out_steps: list[dict[str, Any]] = []
     append = out_steps.append
     for index, (line, name, x, y, extra) in enumerate(matches, start=1):
@@ -126,11 +127,12 @@ def _plain_run(domain: BlocksDomain, problem: BlocksProblem, plan_text: str) -> 
         del carried[t0][x]
         support[x] = new
         carried[new[1]][x] = new[0]
-        # the edge a block leaves is the one an earlier step added: share the dict
-        removed = last_edge.get(x) or {"source": x, "relation": r0, "target": t0}
-        added = last_edge[x] = {"source": x, "relation": new[0], "target": new[1]}
+        # the edge a block leaves is the one an earlier step added: share it (and the
+        # tuple around it)
+        removed = placed.get(x) or ({"source": x, "relation": r0, "target": t0},)
+        added = placed[x] = ({"source": x, "relation": new[0], "target": new[1]},)
         append({"step": index, "ok": True, "action": {"action": name, "args": args},
-                "text": line, "edit": {"removed": (removed,), "added": (added,)}})
+                "text": line, "edit": {"removed": removed, "added": added}})
     return model, out_steps, [], len(matches)
 
 
