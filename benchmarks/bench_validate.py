@@ -11,6 +11,8 @@
 * long IPC plans in process against VAL's whole process: gripper (IPC 1998) and visitall
   (IPC 2011) walks of 100,000 steps, and the shipped nomystery plans with their large
   initial states (benchmarks/data/ipc);
+* every plan of the IPC corpus as given, in process against VAL's process (the ratios
+  summarised, the long plans apart);
 * every case of the IPC corpus (benchmarks/data/ipc: the Fast Downward plans and their
   mutations, as bench_ipc.py makes them): the slowest in-process check (an invalid
   plan's explanation included), and `--batch` over all of them against VAL run once per
@@ -179,16 +181,23 @@ def up_validate(domain: Path, problem_file: Path, actions: list[str]) -> float:
     return time.perf_counter() - start
 
 
-def cpu_rate(fn, n: int, runs: int = 5) -> float:  # type: ignore[no-untyped-def]
-    fn()
-    best = min(_cpu(fn) for _ in range(runs))
-    return n / best
+def cpu_rate(fn, n: int, runs: int = 5, before=None) -> float:  # type: ignore[no-untyped-def]
+    return n / _in_process_cpu(fn, runs, before)
 
 
-def _cpu(fn) -> float:  # type: ignore[no-untyped-def]
+def _cpu(fn, before=None) -> float:  # type: ignore[no-untyped-def]
+    """CPU seconds of one call; `before` (dropping a cache) runs untimed ahead of it."""
+    if before is not None:
+        before()
     start = time.process_time()
     fn()
     return time.process_time() - start
+
+
+def _cold() -> None:
+    """Drop the read problems: the next call reads its problem, as VAL does (the one it
+    drops is freed here, untimed: VAL's process leaves that to the end)."""
+    cached_strips_problem.cache_clear()
 
 
 def main() -> None:
@@ -204,6 +213,7 @@ def main() -> None:
     py = [sys.executable, "-m", "verigraph"]
     if args.ipc_only:
         ipc_long_rows(args, work, find_val(args.val), [])
+        ipc_plan_rows(args, work, find_val(args.val), [])
         ipc_corpus_rows(args, work, py, find_val(args.val), [])
         return
     scene = big_scene()
@@ -213,14 +223,18 @@ def main() -> None:
     rows: list[list[str]] = []
 
     def row(name: str, seconds: float, n: int, cpu: float | None = None,
-            up_rate: float | None = None, val_rate: float | None = None,
-            val_cpu: float | None = None) -> None:
+            up_rate: float | None = None, val_time: tuple[float, float] | None = None
+            ) -> None:
+        """One row; `val_time` is VAL's (wall, CPU) seconds on the same plan, and the VAL
+        columns are its time over ours (a scene move is two of VAL's hand actions: the
+        plan, not the action, is what both validate)."""
         rate = n / seconds
         rows.append([name, f"{seconds * 1000:.1f}", f"{rate:,.0f}",
                      "-" if cpu is None else f"{cpu:,.0f}",
                      "-" if up_rate is None else f"{rate / up_rate:,.1f}x",
-                     "-" if val_rate is None else f"{rate / val_rate:.2f}x",
-                     "-" if val_cpu is None or cpu is None else f"{cpu / val_cpu:.2f}x"])
+                     "-" if val_time is None else f"{val_time[0] / seconds:.2f}x",
+                     "-" if val_time is None or cpu is None else
+                     f"{val_time[1] / (n / cpu):.2f}x"])
         print(rows[-1], flush=True)
 
     # PDDL form of the same plan, and the peers on it
@@ -230,13 +244,13 @@ def main() -> None:
     domain_text = DOMAIN_FILE.read_text()
     up_seconds = up_validate(DOMAIN_FILE, work / "big.pddl", hand[:args.up_actions])
     up_rate = args.up_actions / up_seconds
-    val_rate = val_process = val_cpu = None
+    val_time: tuple[float, float] | None = None
     val = find_val(args.val)
     if val:
         val_process, val_seconds_cpu, verdict = run_val(val, DOMAIN_FILE, work / "big.pddl",
                                                         work / "big_plan.txt")
         assert verdict == "valid", verdict  # a refused plan would time nothing
-        val_rate, val_cpu = len(hand) / val_process, len(hand) / val_seconds_cpu
+        val_time = (val_process, val_seconds_cpu)
     def core() -> None:
         run = run_actions(state.copy(), plan)
         assert not run.violations and len(run.records) == N_ACTIONS
@@ -250,9 +264,9 @@ def main() -> None:
         assert validate_blocks_dict(domain_text, problem_text, hand_text)["valid"]
 
     def pddl_strips() -> None:
-        cached_strips_problem.cache_clear()  # every run reads the problem, as VAL does
         assert validate_strips_dict(domain_text, problem_text, hand_text)["valid"]
 
+    measured = []
     for name, fn, n in [("scene: validate + apply (core loop)", core, N_ACTIONS),
                         ("scene: validate_plan with per-step report", report, N_ACTIONS),
                         ("scene: parse 10,000-line text plan",
@@ -261,8 +275,13 @@ def main() -> None:
                          len(hand)),
                         ("PDDL 4-op: general STRIPS engine with report (20,000 actions)",
                          pddl_strips, len(hand))]:
-        med, _ = median_time(fn, runs=5)
-        row(name, med, n, cpu_rate(fn, n), up_rate, val_rate, val_cpu)
+        med, _ = median_time(fn, runs=5, before=_cold)
+        measured.append((name, med, n, cpu_rate(fn, n, before=_cold)))
+    if val and val_time is not None:  # VAL again after our rows: the lower of its timings
+        wall, cpu_s, _ = run_val(val, DOMAIN_FILE, work / "big.pddl", work / "big_plan.txt")
+        val_time = (min(val_time[0], wall), min(val_time[1], cpu_s))
+    for name, med, n, cpu in measured:
+        row(name, med, n, cpu, up_rate, val_time)
     rows.append(["unified-planning SequentialPlanValidator (first "
                  f"{args.up_actions} hand actions)", f"{up_seconds * 1000:.1f}",
                  f"{up_rate:,.0f}", "-", "1.0x", "-", "-"])
@@ -272,17 +291,18 @@ def main() -> None:
            str(work / "plan.txt"), "--json"]
     seconds = process_time(cmd)
     row("process: verigraph validate --json, scene, 10,000 moves", seconds, N_ACTIONS,
-        N_ACTIONS / last_cpu(cmd), up_rate=up_rate, val_rate=val_rate, val_cpu=val_cpu)
+        N_ACTIONS / last_cpu(cmd), up_rate=up_rate, val_time=val_time)
     cmd = [*py, "validate", "--domain", str(DOMAIN_FILE), "--problem", str(work / "big.pddl"),
            "--plan", str(work / "big_plan.txt"), "--json"]
     seconds = process_time(cmd)
     row("process: verigraph validate --json, PDDL, 20,000 actions", seconds, len(hand),
-        len(hand) / last_cpu(cmd), up_rate=up_rate, val_rate=val_rate, val_cpu=val_cpu)
-    if val_process is not None:
-        rows.append(["process: VAL Validate, PDDL, 20,000 actions (wall: median of 5)",
-                     f"{val_process * 1000:.1f}", f"{len(hand) / val_process:,.0f}",
-                     f"{val_cpu:,.0f}", f"{len(hand) / val_process / up_rate:,.1f}x", "1.00x",
-                     "1.00x"])
+        len(hand) / last_cpu(cmd), up_rate=up_rate, val_time=val_time)
+    if val_time is not None:
+        rows.append(["process: VAL Validate, PDDL, 20,000 actions (wall: median of 5, the "
+                     "lower of two timings; CPU: best of 10)",
+                     f"{val_time[0] * 1000:.1f}", f"{len(hand) / val_time[0]:,.0f}",
+                     f"{len(hand) / val_time[1]:,.0f}",
+                     f"{len(hand) / val_time[0] / up_rate:,.1f}x", "1.00x", "1.00x"])
     logistics_rows(args, work, val, rows)
     bare_python = process_time([sys.executable, "-c", "pass"], runs=15)
     rows.append(["process: `python -c pass` (the floor for any Python command)",
@@ -327,17 +347,22 @@ def main() -> None:
                      f"{startup * 1000:.0f}", "-", f"{best * 1000:.0f} ms", "-", "-", "-"])
     batch_rows(args, work, py, rows)
     ipc_long_rows(args, work, val, rows)
+    ipc_plan_rows(args, work, val, rows)
     ipc_corpus_rows(args, work, py, val, rows)
     write_table("validate", "Validator throughput against unified-planning and VAL",
                 ["what", "median ms", "actions/s (wall)", "actions/s (CPU)",
                  "vs unified-planning", "vs VAL (wall)", "vs VAL (CPU)"], rows,
                 notes=f"{N_ACTIONS:,} valid moves on a {N_OBJECTS:,}-object blocks scene "
                       "(as PDDL: 20,000 4-op actions). In-process rows: median of 5 runs "
-                      "after a warm-up (wall), best of 5 (CPU). Ratios compare wall-clock "
-                      "rates measured in this run, the CPU ratio CPU rates (best of 5 on both "
-                      "sides; steadier on a shared machine); the VAL ratio of an in-process "
-                      "row compares it with VAL's whole process on the same files (VAL has "
-                      "no library form; its start-up is a few milliseconds). Load average "
+                      "after a warm-up (wall), best of 5 (CPU); a PDDL row reads its "
+                      "problem in every run, as VAL does (the cache is dropped untimed "
+                      "before each). Ratios compare the time to validate the same plan "
+                      "(wall, and CPU: best of N on both sides, steadier on a shared "
+                      "machine): a scene move is two of VAL's hand actions, so the scene "
+                      "rows' VAL columns are VAL's time on the plan's PDDL form over ours, "
+                      "not actions per second. The VAL ratio of an in-process row compares "
+                      "it with VAL's whole process on the same files (VAL has no library "
+                      "form; its start-up is a few milliseconds). Load average "
                       f"at the end of the run: {os.getloadavg()[0]:.1f} on "
                       f"{os.cpu_count()} cores. VAL: "
                       + ("measured (Validate built with YYMAXDEPTH=10000000, docs/validator.md)"
@@ -367,12 +392,11 @@ def logistics_rows(args: argparse.Namespace, work: Path, val: str | None,
         val_rate, val_cpu = len(plan) / val_seconds, len(plan) / val_seconds_cpu
 
     def strips() -> None:
-        cached_strips_problem.cache_clear()
         assert validate_strips_dict(domain_text, problem_text, text)["valid"]
 
-    med, _ = median_time(strips, runs=5)
+    med, _ = median_time(strips, runs=5, before=_cold)
     rate = len(plan) / med
-    cpu = cpu_rate(strips, len(plan))
+    cpu = cpu_rate(strips, len(plan), before=_cold)
     rows.append(["STRIPS logistics (typed, equality, negative precondition, constant): "
                  "general engine with report, 20,000 actions", f"{med * 1000:.1f}",
                  f"{rate:,.0f}", f"{cpu:,.0f}", f"{rate / up_rate:,.1f}x",
@@ -498,9 +522,10 @@ def visitall_walk(n: int, steps: int, seed: int = 0) -> tuple[str, list[str]]:
     return problem_text, plan[:steps]
 
 
-def _in_process_cpu(fn, runs: int) -> float:  # type: ignore[no-untyped-def]
-    fn()
-    return min(_cpu(fn) for _ in range(runs))
+def _in_process_cpu(fn, runs: int, before=None) -> float:  # type: ignore[no-untyped-def]
+    """Best CPU seconds of `runs` calls after a warm-up (`before` untimed ahead of each)."""
+    _cpu(fn, before)
+    return min(_cpu(fn, before) for _ in range(runs))
 
 
 def ipc_long_rows(args: argparse.Namespace, work: Path, val: str | None,
@@ -508,7 +533,6 @@ def ipc_long_rows(args: argparse.Namespace, work: Path, val: str | None,
     """Long plans of IPC domains: `validate_pddl_dict` in process (the report built)
     against VAL's whole process on the same files; best-of-N CPU on both sides."""
     from verigraph.actions.pddl import validate_pddl_dict
-    from verigraph.actions.pddl.simulate import cached_strips_problem
 
     cases: list[tuple[str, Path, str, list[str]]] = []
     problem_text, plan = gripper_walk(20, 100_000)
@@ -532,12 +556,11 @@ def ipc_long_rows(args: argparse.Namespace, work: Path, val: str | None,
 
         def check(domain_text: str = domain_text, problem_text: str = problem_text,
                   text: str = text) -> None:
-            cached_strips_problem.cache_clear()  # every run reads the problem, as VAL does
             assert validate_pddl_dict(domain_text, problem_text, text)["valid"]
 
         runs = 5 if len(plan) > 1000 else 20
-        med, _ = median_time(check, runs=runs)
-        cpu = _in_process_cpu(check, runs)
+        med, _ = median_time(check, runs=runs, before=_cold)
+        cpu = _in_process_cpu(check, runs, before=_cold)
         val_wall = val_cpu = None
         if val:
             val_wall, val_cpu, verdict = run_val(val, domain_file, work / f"{slug}.pddl",
@@ -554,6 +577,51 @@ def ipc_long_rows(args: argparse.Namespace, work: Path, val: str | None,
                          f"{len(plan) / val_cpu:,.0f}", "-", "1.00x", "1.00x"])
 
 
+def ipc_plan_rows(args: argparse.Namespace, work: Path, val: str | None,
+                  rows: list[list[str]]) -> None:
+    """Every plan of the IPC corpus as the planner gave it: `validate_pddl_dict` in
+    process (the problem read again each run, as VAL reads it) against VAL's whole
+    process, best CPU of 5 and 3; the ratios summarised, plans of 100 steps or more
+    (the long ones) apart, and the lowest named."""
+    from bench_ipc import load_cases
+
+    from verigraph.actions.pddl import validate_pddl_dict
+
+    if not val:
+        return
+    env = dict(os.environ, LD_LIBRARY_PATH=str(Path(val).parent))
+    ratios: list[tuple[float, str, int]] = []
+    for i, c in enumerate(x for x in load_cases(quick=False) if x.mutation == "original"):
+        plan_file = work / f"plan{i}.plan"
+        plan_file.write_text(c.plan)
+        domain_text, problem_text = c.domain_file.read_text(), c.problem_file.read_text()
+
+        def check(d: str = domain_text, p: str = problem_text, plan: str = c.plan) -> None:
+            validate_pddl_dict(d, p, plan)
+
+        ours = _in_process_cpu(check, 5, before=_cold)
+        theirs = 1e9
+        for _ in range(3):
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            subprocess.run([val, str(c.domain_file), str(c.problem_file), str(plan_file)],
+                           capture_output=True, check=False, env=env, timeout=120)
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            theirs = min(theirs, after.ru_utime + after.ru_stime - before.ru_utime
+                         - before.ru_stime)
+        steps = sum(1 for line in c.plan.splitlines() if line.startswith("("))
+        ratios.append((theirs / ours, f"{c.domain} {c.instance}", steps))
+    for what, group in [("every plan", ratios),
+                        ("plans of 100 steps or more", [r for r in ratios if r[2] >= 100])]:
+        group = sorted(group)
+        median = group[len(group) // 2][0]
+        below = [r for r in group if r[0] < 2]
+        lowest = ", ".join(f"{name} ({n} steps) {r:.2f}x" for r, name, n in group[:3])
+        rows.append([f"IPC plans as given, in process vs VAL's process: {what} ({len(group)} "
+                     f"plans); median ratio in the CPU column; under 2x: {len(below)}; "
+                     f"lowest: {lowest}", "-", "-", "-", "-", "-", f"{median:.2f}x"])
+        print(rows[-1], flush=True)
+
+
 def ipc_corpus_rows(args: argparse.Namespace, work: Path, py: list[str], val: str | None,
                     rows: list[list[str]]) -> None:
     """Every IPC case (plans and mutations, bench_ipc.py's): the slowest in-process
@@ -561,7 +629,6 @@ def ipc_corpus_rows(args: argparse.Namespace, work: Path, py: list[str], val: st
     from bench_ipc import batch_items, load_cases
 
     from verigraph.actions.pddl import validate_pddl_dict
-    from verigraph.actions.pddl.simulate import cached_strips_problem
     from verigraph.errors import VeriGraphError
 
     cases = load_cases(quick=False)
@@ -572,12 +639,11 @@ def ipc_corpus_rows(args: argparse.Namespace, work: Path, py: list[str], val: st
         problem_text = texts.setdefault(c.problem_file, c.problem_file.read_text())
 
         def check(d: str = domain_text, p: str = problem_text, plan: str = c.plan) -> None:
-            cached_strips_problem.cache_clear()  # each case reads its problem
             with contextlib.suppress(VeriGraphError):  # a refused domain: timed all the same
                 validate_pddl_dict(d, p, plan)
 
         check()  # the domain text is read once per batch too (cached)
-        best = min(_cpu(check) for _ in range(3))
+        best = min(_cpu(check, _cold) for _ in range(3))  # each case reads its problem
         worst.append((best, f"{c.domain} {c.instance} {c.mutation}"))
     worst.sort(reverse=True)
     rows.append([f"IPC corpus, in process: slowest of {len(cases)} cases (plans and "

@@ -18,11 +18,17 @@ RESULTS = Path(__file__).parent / "results"
 __all__ = ["RESULTS", "machine", "median_time", "write_table"]
 
 
-def median_time(fn: Callable[[], object], runs: int = 7) -> tuple[float, list[float]]:
-    """Median wall time of `runs` calls after one warm-up call."""
+def median_time(fn: Callable[[], object], runs: int = 7,
+                before: Callable[[], object] | None = None) -> tuple[float, list[float]]:
+    """Median wall time of `runs` calls after one warm-up call; `before` runs untimed
+    ahead of each (dropping a cache, so each call starts cold)."""
+    if before is not None:
+        before()
     fn()
     times = []
     for _ in range(runs):
+        if before is not None:
+            before()
         start = time.perf_counter()
         fn()
         times.append(time.perf_counter() - start)

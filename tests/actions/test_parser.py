@@ -6,7 +6,7 @@ import pytest
 
 from verigraph.actions import AlignAction, MoveAction, parse_plan
 from verigraph.actions.model import DoneAction
-from verigraph.actions.parser import parse_text_plan
+from verigraph.actions.parser import _plain_moves, parse_action_text, parse_text_plan
 from verigraph.errors import PlanParseError
 
 pytestmark = pytest.mark.fast
@@ -91,3 +91,54 @@ def test_every_bad_line_is_reported_and_the_location_once():
     text = str(e)
     assert text.startswith("plan line 2, column 1: not an action; also line 3, column 1: ")
     assert text.count("line 2") == 1 and "line 5, column" in text
+
+
+def _line_by_line(text: str) -> list:
+    """The reader's answer line by line (what the one-pass reading of plain moves must
+    give): the actions, or the error it raises."""
+    try:
+        actions = []
+        for number, raw in enumerate(text.splitlines(), start=1):
+            if raw.split("#", 1)[0].strip():
+                actions.append(parse_action_text(raw, number))
+        return actions
+    except PlanParseError as exc:
+        return [exc.message]
+
+
+def test_plain_moves_read_in_one_pass_are_the_actions_read_line_by_line():
+    """Spacing, case, two or three arguments, names at the length limit and past it,
+    characters a name may not hold, quotes, comments: wherever the one-pass reading
+    takes a plan it gives the line-by-line reading's actions, and it takes the plain
+    ones."""
+    import random
+
+    rng = random.Random(7)
+    names = ["cup", "b_1", "x.y-z", "A" * 128, "A" * 129, "-bad", "sh elf", "'cup'", "bowl#1"]
+    relations = ["on", "IN", "On", "r" * 32, "r" * 33, ""]
+    taken = 0
+    for trial in range(600):
+        clean = trial % 2 == 0  # half the plans from names and relations that are valid
+        lines = []
+        for _ in range(rng.randint(1, 5)):
+            obj, target = rng.choice(names[:4] if clean else names), \
+                rng.choice(names[:4] if clean else names)
+            relation = rng.choice(relations[:4] + [""] if clean else relations)
+            pad = rng.choice(["", " ", "\t", "  "])
+            head = rng.choice(["move", "MOVE", "Move", "move "] if clean else
+                              ["move", "MOVE", "mv"])
+            args = [obj, relation, target] if relation else [obj, target]
+            lines.append(f"{pad}{head}({pad}{f'{pad},{pad}'.join(args)}{pad}){pad}")
+            if rng.random() < 0.1 and not clean:
+                lines.append(rng.choice(["", "   ", "# note", "done"]))
+        text = "\n".join(lines)
+        fast = _plain_moves(text)
+        if fast is not None:
+            taken += 1
+            assert fast == _line_by_line(text), text
+            assert [a.model_fields_set for a in fast] == \
+                [a.model_fields_set for a in _line_by_line(text)]
+    assert taken > 50  # the plain plans were taken
+    assert _plain_moves("move(cup, on, table)\nmove(book, shelf)") == [
+        MoveAction(object="cup", relation="on", target="table"),
+        MoveAction(object="book", relation="on", target="shelf")]

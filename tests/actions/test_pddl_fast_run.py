@@ -1,9 +1,10 @@
-"""The fast run of a valid plan gives exactly the step-by-step report.
+"""The fast run gives exactly the step-by-step report.
 
-`validate_strips_dict` first runs a plan on ground actions cached per distinct line
-(simulate._fast_run) and falls back to the step-by-step simulation for anything that
-fails; `all_errors=True` always takes the step-by-step run, so the two reports of one
-valid plan can be compared field by field (the fast one has no `after_failure`).
+`validate_strips_dict` runs a plan on ground actions cached per distinct line
+(simulate._fast_run) and hands a failing step or an unmet goal to the step-by-step
+simulation; `all_errors=True` (and `simulate(..., try_fast=False)`) takes the
+step-by-step run throughout, so the two reports of one plan can be compared field by
+field (the all-errors one adds `after_failure`).
 """
 
 from __future__ import annotations
@@ -14,7 +15,9 @@ from pathlib import Path
 
 import pytest
 
-from verigraph.actions.pddl import validate_strips_dict
+from verigraph.actions.pddl import read_domain, read_problem, validate_strips_dict
+from verigraph.actions.pddl.plans import line_reader, parse_strips_plan
+from verigraph.actions.pddl.simulate import cached_strips_problem, simulate
 
 pytestmark = pytest.mark.fast
 
@@ -92,3 +95,78 @@ def test_every_shipped_ipc_plan_gets_the_step_by_step_report(plan_file: Path):
     domain, problem = domain_file.read_text(), plan_file.with_suffix(".pddl").read_text()
     fast, slow = _both(domain, problem, plan_file.read_text())
     assert json.dumps(fast, sort_keys=True) == json.dumps(slow, sort_keys=True)
+
+
+def _mutations(plan: str) -> dict[str, str]:
+    """The ways a plan breaks (a dropped, swapped or repeated step, a misspelt action, an
+    undeclared object, a wrong arity, no last step), deterministic per plan."""
+    lines = plan.splitlines()
+    steps = [k for k, line in enumerate(lines) if line.startswith("(")]
+    mid = steps[len(steps) // 2]
+    words = lines[mid].strip("()").split()
+    out = {"drop": lines[:mid] + lines[mid + 1:],
+           "swap": lines[:mid] + [lines[mid + 1], lines[mid]] + lines[mid + 2:]
+           if mid + 1 < len(lines) else lines[::-1],
+           "repeat": lines[:mid + 1] + [lines[mid]] + lines[mid + 1:],
+           "misspelt": lines[:mid] + ["(" + " ".join([words[0] + "x", *words[1:]]) + ")"]
+           + lines[mid + 1:],
+           "undeclared": lines[:mid] + ["(" + " ".join([*words[:-1], "nosuchobject"]) + ")"
+                                        if len(words) > 1 else lines[mid]] + lines[mid + 1:],
+           "arity": lines[:mid] + ["(" + " ".join([*words, words[-1]]) + ")"]
+           + lines[mid + 1:],
+           "truncate": [lines[k] for k in steps[:-1]]}
+    return {kind: "\n".join(v) for kind, v in out.items()}
+
+
+@pytest.mark.parametrize("plan_file", sorted(IPC.glob("*/*.plan"))[::3],
+                         ids=lambda p: p.parent.name + "/" + p.stem)
+def test_a_failing_step_handed_over_gets_the_step_by_step_report(plan_file: Path):
+    """The fast run meets the failing step (or the unmet goal) and hands its state to the
+    step-by-step run, with the history read back from its edits: the report is the one
+    the step-by-step run gives from the start (`simulate(..., try_fast=False)`)."""
+    domain_file = plan_file.with_suffix(".domain.pddl")
+    if not domain_file.exists():
+        domain_file = plan_file.parent / "domain.pddl"
+    domain_text, problem_text = domain_file.read_text(), plan_file.with_suffix(".pddl").read_text()
+    domain = read_domain(domain_text)
+    for kind, plan in _mutations(plan_file.read_text()).items():
+        problem = read_problem(problem_text, domain)
+        fast = validate_strips_dict(domain_text, problem_text, plan)
+        slow = simulate(domain, problem, parse_strips_plan(plan, domain), try_fast=False)
+        assert json.dumps(fast, sort_keys=True) == json.dumps(slow, sort_keys=True), kind
+
+
+def test_plans_of_one_problem_share_its_ground_actions_and_get_their_own_reports():
+    """A batch's plans of one problem reuse the ground actions kept on it: a broken plan
+    after the valid one gets the report it gets alone."""
+    problem = ("(define (problem g) (:domain gripper-strips) (:objects rooma roomb left b1)"
+               " (:init (room rooma) (room roomb) (gripper left) (at-robby rooma) (free left)"
+               " (ball b1) (at b1 rooma)) (:goal (and (at b1 roomb))))")
+    good = "(pick b1 rooma left)\n(move rooma roomb)\n(drop b1 roomb left)"
+    bad = "(pick b1 rooma left)\n(drop b1 roomb left)\n(move rooma roomb)"
+    cached_strips_problem.cache_clear()
+    alone = validate_strips_dict(GRIPPER, problem, bad)
+    assert alone["violations"][0]["step"] == 2
+    cached_strips_problem.cache_clear()
+    assert validate_strips_dict(GRIPPER, problem, good)["valid"]
+    assert cached_strips_problem(GRIPPER, problem).grounded  # kept for the next plan
+    after = validate_strips_dict(GRIPPER, problem, bad)
+    assert json.dumps(after, sort_keys=True) == json.dumps(alone, sort_keys=True)
+
+
+def test_each_line_read_alone_is_the_step_the_whole_plan_reading_gives():
+    """The fast run reads one line at a time (`line_reader`); every kind of line gives the
+    step `parse_strips_plan` gives: plain, spaced, upper case, VAL's prefixes and
+    suffixes, comments, sentences, the wrong arity, an unknown action, no action."""
+    domain = read_domain(GRIPPER)
+    lines = ["(pick b1 rooma left)", "(pick  b1 rooma left)", "( pick b1 rooma left)",
+             "(PICK B1 RoomA left)", "0: (pick b1 rooma left) [1]", "1. (move rooma roomb)",
+             "(move rooma roomb) ; a comment", "; only a comment", "", "[PLAN]",
+             "pick b1 from rooma with left", "(pick b1 rooma)", "(fly rooma)", "()",
+             "(1) (move rooma roomb)", "(move\trooma roomb)", "(drop b1 roomb left)"]
+    text = "\n".join(lines)
+    lowered = text.lower().splitlines()
+    step_at = line_reader(text, lowered, domain)
+    read = [step for step in map(step_at, range(len(lowered))) if step is not None]
+    assert read == parse_strips_plan(text, domain)
+    assert sum(s.problem is not None for s in read) == 4  # arity, unknown, (), (1) (...)

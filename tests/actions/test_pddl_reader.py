@@ -5,16 +5,18 @@ explanations that say what holds instead and list only achievers that can apply.
 
 from __future__ import annotations
 
+import re
 import time
 from pathlib import Path
 
 import pytest
 
-from verigraph.actions.blocksworld.sexpr import PddlSyntaxError
+from verigraph.actions.blocksworld.sexpr import PddlSyntaxError, parse_sexpr
 from verigraph.actions.pddl import (
     PddlInputError,
     UnsupportedRequirementError,
     as_validation_report,
+    explain,
     read_domain,
     report_text,
     validate_pddl_dict,
@@ -108,6 +110,56 @@ def test_sections_that_are_not_lists_are_refused_in_domain_and_problem():
         validate_pddl_dict(LOGISTICS.replace("(:predicates", "(:predicate"), LOG_PROBLEM, "")
 
 
+@pytest.mark.parametrize("where", ["(at p0 l0)", "(at p0 ap)"])  # in the init, in the goal
+@pytest.mark.parametrize("bad,named", [
+    ("(att p0 l0)", "predicate 'att'"),
+    ("(at p0)", "has 1 argument(s); at takes 2"),
+    ("(at p0 zz)", "names 'zz'"),
+    ("(at ap l0)", "ap is a airport, but argument 1 of at is a physobj"),
+    ("(in p0 (t0))", "which is not a ground atom"),
+])
+def test_a_wrong_atom_among_many_is_named_first_in_file_order(where, bad, named):
+    """Initial and goal atoms are checked a predicate at a time; one that fails is named
+    as the atom-by-atom check names it, the first wrong one in the file's order."""
+    many = " ".join(f"(in-city l{k} c0)" for k in range(50))
+    objects = " ".join(f"l{k}" for k in range(50))
+    problem = LOG_PROBLEM.replace("l0 - location", f"l0 {objects} - location", 1)
+    problem = problem.replace("(in-city l0 c0)", f"(in-city l0 c0) {many}", 1)
+    problem = problem.replace(where, f"{bad} {where} (at t0 zz2)", 1)
+    with pytest.raises(PddlInputError) as err:
+        validate_pddl_dict(LOGISTICS, problem, "")
+    assert named in err.value.message and "zz2" not in err.value.message
+    assert ("initial state" in err.value.message) == (where == "(at p0 l0)")
+
+
+@pytest.mark.parametrize("path", sorted((Path(__file__).parents[2] / "benchmarks" / "data"
+                                         / "ipc").glob("*/*.pddl"))[::7] + [
+    PDDL_DATA / "logistics_typed_domain.pddl"], ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_the_reader_builds_the_nesting_the_tokens_give(path):
+    """Innermost lists are split in one pass (a marker token stands for each); the
+    result is the nesting the plain token-by-token reading builds, marker-free text or
+    not."""
+    text = path.read_text()
+    assert parse_sexpr(text, what="x") == _token_by_token(text)
+    with_nul = text.replace("(define", "(define ; \x00\n", 1) + "\n(\x00)"
+    assert parse_sexpr(with_nul, what="x") == _token_by_token(with_nul)
+
+
+def _token_by_token(text: str) -> list:
+    body = re.sub(r";[^\n]*", "", text).lower()
+    stack: list[list] = [[]]
+    for token in re.findall(r"[()]|[^\s()]+", body):
+        if token == "(":
+            stack.append([])
+        elif token == ")":
+            done = stack.pop()
+            stack[-1].append(done)
+        else:
+            stack[-1].append(token)
+    assert len(stack) == 1
+    return stack[0]
+
+
 # -- 2. requirements that are not keywords --------------------------------------------------
 
 @pytest.mark.parametrize("domain,problem", [(LOGISTICS, LOG_PROBLEM),
@@ -181,7 +233,8 @@ def test_a_deep_type_hierarchy_reads_in_about_linear_time():
 # -- 5. explanations are bounded by the plan and the goal -----------------------------------
 
 def _many_groundings(actions: int = 10, params: int = 6, objects: int = 40, goals: int = 20):
-    """Every action has 40^6 groundings, all blocked by one precondition no atom fits."""
+    """Every action has 40^6 groundings; its precondition (r ?x5 ?x2) fits only the two r
+    atoms of the initial state."""
     preds = " ".join(f"(p{i} ?a ?b)" for i in range(actions)) + " (q ?a) (r ?a ?b)"
     acts = []
     for i in range(actions):
@@ -208,7 +261,8 @@ def test_explaining_an_empty_plan_is_bounded_by_the_goal_not_the_groundings():
     goal = report["unmet_goals"][0]
     (achiever,) = goal["achievers"]
     assert achiever["action"] == "(a0 o0 o3 ?x2 ?x3 ?x4 ?x5)"
-    assert achiever["applicable_now"] is None and len(achiever["needs"]) <= 1
+    args = achiever["applicable_now"].strip("()").split()[1:]  # found by joining (r ?x5 ?x2)
+    assert args[:2] == ["o0", "o3"] and (args[5], args[2]) in {("o1", "o3"), ("o4", "o2")}
     many = _many_groundings(actions=40)
     start = time.process_time()
     validate_pddl_dict(*many, "")
@@ -220,6 +274,33 @@ def test_a_long_simulation_stops_at_the_call_budget():
     with pytest.raises(BudgetExceeded):
         run_within(CallBudget(wall_s=0.0), "validate_plan",
                    lambda: validate_pddl_dict(LOGISTICS, LOG_PROBLEM, plan))
+
+
+@pytest.mark.parametrize("plan_file", sorted((Path(__file__).parents[2] / "benchmarks"
+                                              / "data" / "ipc").glob("*/*.plan"))[1::6],
+                         ids=lambda p: f"{p.parent.name}/{p.stem}")
+def test_achievers_searched_below_the_last_kept_are_the_best_ones(plan_file, monkeypatch):
+    """Once `MAX_ACHIEVERS` achievers are found, a later action is searched only for a
+    grounding that needs less: the list is the head of the list every achiever's full
+    search ranks (applicable now, then fewest needs, then the domain's order)."""
+    domain_file = plan_file.with_suffix(".domain.pddl")
+    if not domain_file.exists():
+        domain_file = plan_file.parent / "domain.pddl"
+    domain, problem = domain_file.read_text(), plan_file.with_suffix(".pddl").read_text()
+    steps = [line for line in plan_file.read_text().splitlines() if line.startswith("(")]
+    for plan in ("\n".join(steps[:len(steps) // 2]), "\n".join(steps[1:])):
+        bounded = validate_pddl_dict(domain, problem, plan)
+        with monkeypatch.context() as m:
+            m.setattr(explain, "MAX_ACHIEVERS", 10_000)  # no bound: every achiever searched
+            every = validate_pddl_dict(domain, problem, plan)
+        items = [*bounded.get("unmet_goals", []), *[u for v in bounded["violations"]
+                                                    for u in v.get("unsatisfied", [])]]
+        full = [*every.get("unmet_goals", []), *[u for v in every["violations"]
+                                                  for u in v.get("unsatisfied", [])]]
+        assert [u["literal"] for u in items] == [u["literal"] for u in full]
+        for mine, all_of_them in zip(items, full, strict=True):
+            if "achievers" in mine:
+                assert mine["achievers"] == all_of_them["achievers"][:explain.MAX_ACHIEVERS]
 
 
 # -- 6. plan lines that are no action are failing steps -------------------------------------

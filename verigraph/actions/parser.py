@@ -114,10 +114,32 @@ def _check_name(arg: str, col: int, line: int, text: str, expected: str) -> None
 
 
 MAX_REPORTED_ERRORS = 10  # bad lines named in one error; a garbage file stops there
+_ID = r"[A-Za-z0-9_][A-Za-z0-9_.\-]{0,127}"  # _NAME, at most MAX_NAME characters
+_PLAIN_MOVE = re.compile(  # `move(a, on, b)` or `move(a, b)`: what planners write most
+    rf"^[ \t]*(?i:move)[ \t]*\([ \t]*({_ID})[ \t]*,[ \t]*"
+    rf"(?:([A-Za-z0-9_][A-Za-z0-9_.\-]{{0,31}})[ \t]*,[ \t]*)?({_ID})[ \t]*\)[ \t]*$",
+    re.MULTILINE)
+
+
+def _plain_moves(text: str) -> list[AnyAction] | None:
+    """The plan when every line that holds something is a plain move with valid names
+    (one regex pass over the whole text; the same actions `parse_action_text` reads),
+    else None: comments, numbering, quotes, `align`, `done` and every error go through
+    the line-by-line reader."""
+    if not text.isascii() or "#" in text:
+        return None
+    moves = _PLAIN_MOVE.findall(text)
+    if len(moves) != sum(1 for line in text.splitlines() if line.strip()):
+        return None
+    return [MoveAction(object=obj, relation=relation.lower() if relation else "on",
+                       target=target) for obj, relation, target in moves]
 
 
 def parse_text_plan(text: str) -> list[AnyAction]:
     """A text plan; blank lines and comments are skipped; nothing may follow `done`."""
+    fast = _plain_moves(text)
+    if fast is not None:
+        return fast
     actions: list[AnyAction] = []
     errors: list[PlanParseError] = []
     done_line = 0

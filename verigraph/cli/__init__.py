@@ -141,7 +141,12 @@ def _dispatch(argv: list[str]) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     args = list(sys.argv[1:] if argv is None else argv)
-    return run_guarded(lambda: _dispatch(args))
+    code = run_guarded(lambda: _dispatch(args))
+    if argv is None:  # the process's own command line: it ends now
+        from verigraph.graph.bulk import before_exit
+
+        before_exit()
+    return code
 
 
 if __name__ == "__main__":

@@ -95,21 +95,37 @@ def emit_error(exc: VeriGraphError, as_json: bool) -> int:
     return EXIT_BAD_INPUT
 
 
+MAX_CACHED_TEXTS = 64  # paths
+MAX_CACHED_CHARS = 1 << 20  # a larger file is read for every item that names it
+
+
+def _cached_text(path: str | Path, field: str, cache: dict[str, str] | None) -> str:
+    """A domain or problem file's text; a batch reads each path once (its items repeat
+    a few domains and problems), keeping the last `MAX_CACHED_TEXTS` paths of files
+    under `MAX_CACHED_CHARS` (at most 64 MiB held)."""
+    if cache is None:
+        return read_text_file(path, field)
+    key = f"{field} {path}"
+    text = cache.get(key)
+    if text is None:
+        text = read_text_file(path, field)
+        if len(text) <= MAX_CACHED_CHARS:
+            cache[key] = text
+            if len(cache) > MAX_CACHED_TEXTS:
+                del cache[next(iter(cache))]
+    return text
+
+
 def pddl_report(domain: str | Path, problem: str | Path, plan: str | Path,
                 cache: dict[str, str] | None = None, *, engine: str = "auto",
                 planbench: bool = False, all_errors: bool = False) -> dict[str, Any]:
-    """The JSON-ready report for a PDDL item (domain texts cached per path in a batch)."""
+    """The JSON-ready report for a PDDL item (domain and problem texts cached per path
+    in a batch)."""
     from verigraph.actions.pddl.text import planbench_verdict
     from verigraph.actions.pddl.validate import validate_pddl_dict
 
-    key = str(domain)
-    if cache is not None and key in cache:
-        domain_text = cache[key]
-    else:
-        domain_text = read_text_file(domain, "domain")
-        if cache is not None:
-            cache[key] = domain_text
-    data = validate_pddl_dict(domain_text, read_text_file(problem, "problem"),
+    data = validate_pddl_dict(_cached_text(domain, "domain", cache),
+                              _cached_text(problem, "problem", cache),
                               read_text_file(plan, "plan"), engine=engine,
                               all_errors=all_errors)
     if planbench:

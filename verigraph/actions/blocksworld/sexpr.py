@@ -17,6 +17,9 @@ from verigraph.errors import VeriGraphError
 
 _TOKEN = re.compile(r";[^\n]*|\(|\)|[^\s()]+|\n")
 _FAST_TOKEN = re.compile(r"[()]|[^\s()]+")
+_INNERMOST = re.compile(r"\(([^()]*)\)")  # a list with no list inside
+_MARK = "\x00"  # stands for one innermost list in the rest of the text
+_MARKED_TOKEN = re.compile(r"[()\x00]|[^\s()\x00]+")
 _COMMENT = re.compile(r";[^\n]*")
 
 SExpr = str | list["SExpr"]
@@ -30,14 +33,28 @@ class PddlSyntaxError(VeriGraphError):
 def parse_sexpr(text: str, *, what: str) -> list[SExpr]:
     """All top-level expressions in `text` (a domain or problem file's contents).
 
-    The fast path tokenizes with one regex; line numbers are only computed for errors.
+    The fast path splits the innermost lists (a problem's thousands of atoms) with one
+    regex and `str.split`, leaving one marker token each, and builds the nesting from
+    the remaining tokens; line numbers are only computed for errors.
     """
     body = _COMMENT.sub("", text)
     if not body.isascii():
         _non_ascii(text, what)
+    body = body.lower()
+    mark: str | None = _MARK
+    if _MARK in body:  # the text holds the marker: read it token by token
+        mark, flat, tokens = None, [], _FAST_TOKEN.findall(body)
+    else:
+        flat = [content.split() for content in _INNERMOST.findall(body)]
+        tokens = _MARKED_TOKEN.findall(_INNERMOST.sub(_MARK, body))
+    lists = iter(flat)
     stack: list[list[SExpr]] = [[]]
-    for token in _FAST_TOKEN.findall(body.lower()):
-        if token == "(":
+    for token in tokens:
+        if token == mark:  # an innermost list: one level deeper than where it stands
+            if len(stack) > MAX_DEPTH:
+                _too_deep(text, what)
+            stack[-1].append(next(lists))
+        elif token == "(":
             if len(stack) > MAX_DEPTH:
                 _too_deep(text, what)
             stack.append([])

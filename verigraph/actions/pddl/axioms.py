@@ -4,10 +4,10 @@
 holds for `?x = a`; several rules for one predicate are a disjunction, and a rule may
 use derived predicates, itself included (least fixpoint: `upstream` in psr is a
 transitive closure). Actions never change a derived predicate and the initial state
-never lists one (the reader refuses both by name): after the initial state and after
-every step the simulator recomputes all derived atoms from the basic ones
-(`refresh`), so preconditions, conditions of conditional effects and goals read them as
-ordinary atoms of the state.
+never lists one (the reader refuses both by name): in the initial state and after every
+step the simulator brings the derived atoms up to date with the basic ones
+(`Derivation`), so preconditions, conditions of conditional effects and goals read them
+as ordinary atoms of the state.
 
 Each rule body (any ADL formula: and, or, not, imply, exists, forall, equality) is
 compiled once per domain into conjunctive rules, as Fast Downward's translator does:
@@ -18,9 +18,10 @@ rule. Negation must be stratified: a derived predicate (auxiliaries included) ma
 negated only in a rule of a predicate in a higher stratum, never in one it feeds, else
 the rules have no single meaning and the domain is refused by name (`field="domain"`,
 with the predicates at fault). A stratum is evaluated by joins over the atoms that hold
-(bound variables first, each body literal checked as soon as its variables are bound;
-a variable no positive literal binds ranges over the objects of its type) and repeated
-until nothing new is derived; strata run bottom-up.
+(`joins`: bound variables first, each body literal checked as soon as its variables are
+bound; a variable no positive literal binds ranges over the objects of its type) and
+repeated until nothing new is derived; strata run bottom-up, and after a step only
+those that read a predicate the step changed.
 
 Limits: one recomputation may try at most `MAX_DERIVED_BINDINGS` bindings (a
 VeriGraphError beyond, never a half-computed state), and a rule body may expand into
@@ -33,15 +34,22 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from verigraph.actions.pddl.formulas import Evaluator, Formula, text
-from verigraph.actions.pddl.model import ROOT_TYPE, Domain, GroundAtom, Problem, Term, show
-from verigraph.budget import checkpoint
+from verigraph.actions.pddl.joins import BodyLiteral, Index, Joiner, plan
+from verigraph.actions.pddl.model import (
+    ROOT_TYPE,
+    Domain,
+    GroundAtom,
+    Grounder,
+    Problem,
+    Term,
+    grounder,
+    show,
+)
 from verigraph.errors import VeriGraphError
 
 MAX_DERIVED_BINDINGS = 5_000_000
 MAX_CONJUNCTIONS = 4_096
 AUX = "#forall"  # auxiliary predicate names: `p#forall1` (no PDDL name has '#')
-
-BodyLiteral = tuple[bool, str, tuple[Term, ...]]  # (positive, predicate, terms)
 
 
 class DerivedPredicateError(VeriGraphError):
@@ -68,9 +76,13 @@ class Rule:
     types: dict[int, str]
     slots: int
     ops: list[tuple[Any, ...]] = field(default_factory=list)
+    ground: Grounder = field(init=False)  # the head's atom under a binding
     # semi-naive evaluation: one join order per body literal of the rule's own stratum,
     # that literal joined first over the atoms the last round derived
     delta_ops: list[list[tuple[Any, ...]]] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        self.ground = grounder((self.head, self.head_terms))
 
 
 @dataclass(slots=True)
@@ -81,6 +93,8 @@ class Axioms:
     definitions: dict[str, list[Definition]]
     strata: list[tuple[list[Rule], bool]]  # rules per stratum, and whether it recurses
     used_basic: frozenset[str]  # basic predicates some rule reads
+    reads: list[frozenset[str]]  # per stratum: the predicates its rules read
+    heads: list[frozenset[str]]  # per stratum: the predicates it derives
 
 
 # ---------------------------------------------------------------- compiling
@@ -164,76 +178,11 @@ class _Compiler:
 
 def _plan(domain: Domain, rule: Rule, derived: set[str], first: int | None = None
           ) -> list[tuple[Any, ...]]:
-    """The join order of one rule: ops ("join" | "bind" | "enum" | "check", ...); with
-    `first`, that body literal is joined first, over the last round's new atoms."""
-    pending = list(rule.body)
-    bound: set[int] = set()
-    ops: list[tuple[Any, ...]] = []
+    """The join order of one rule (see joins.plan); with `first`, that body literal is
+    joined first, over the last round's new atoms."""
     needed = {t for t in rule.head_terms if isinstance(t, int)}
-    for _, _, terms in pending:
-        needed.update(t for t in terms if isinstance(t, int))
-
-    def is_bound(t: Term) -> bool:
-        return not isinstance(t, int) or t in bound
-
-    def admits(slot: int, given: str | None) -> str | None:
-        wanted = rule.types.get(slot, ROOT_TYPE)
-        if wanted == ROOT_TYPE or (given is not None and domain.is_a(given, wanted)):
-            return None
-        return wanted
-
-    def join(lit: BodyLiteral, delta: bool) -> None:
-        _, pred, terms = lit
-        signature = domain.predicates.get(pred)
-        fixed = [(pos, t) for pos, t in enumerate(terms, start=1) if is_bound(t)]
-        free: list[tuple[int, int, str | None]] = []
-        same: list[tuple[int, int]] = []
-        seen: dict[int, int] = {}
-        for pos, t in enumerate(terms, start=1):
-            if is_bound(t):
-                continue
-            assert isinstance(t, int)
-            if t in seen:
-                same.append((pos, seen[t]))
-                continue
-            seen[t] = pos
-            given = signature[pos - 1] if signature is not None else None
-            free.append((pos, t, admits(t, given)))
-        ops.append(("join", pred, fixed, free, same, pred in derived, delta))
-        bound.update(seen)
-        pending.remove(lit)
-
-    if first is not None:
-        join(rule.body[first], True)
-    while pending or needed - bound:
-        progress = False
-        for lit in list(pending):  # checks as soon as their variables are bound
-            positive, pred, terms = lit
-            if all(is_bound(t) for t in terms):
-                ops.append(("check", positive, pred, terms, pred in derived))
-                pending.remove(lit)
-                progress = True
-        for lit in list(pending):  # (= ?x c) with one side bound binds the other
-            positive, pred, terms = lit
-            if positive and pred == "=":
-                a, b = terms
-                if is_bound(a) != is_bound(b):
-                    target, source = (b, a) if is_bound(a) else (a, b)
-                    assert isinstance(target, int)
-                    ops.append(("bind", target, source, admits(target, None)))
-                    bound.add(target)
-                    pending.remove(lit)
-                    progress = True
-        if progress:
-            continue
-        joins = [lit for lit in pending if lit[0] and lit[1] != "="]
-        if joins:
-            join(max(joins, key=lambda x: sum(is_bound(t) for t in x[2])), False)
-            continue
-        slot = min(needed - bound)
-        ops.append(("enum", slot, rule.types.get(slot, ROOT_TYPE)))
-        bound.add(slot)
-    return ops
+    return plan(domain, rule.body, rule.types, needed, joinable=lambda pred: True,
+                derived=derived, first=first)
 
 
 def compile_axioms(domain: Domain, definitions: dict[str, list[Definition]]) -> Axioms:
@@ -274,7 +223,9 @@ def compile_axioms(domain: Domain, definitions: dict[str, list[Definition]]) -> 
         strata.append((group, any(r.delta_ops for r in group)))
     used = frozenset(pred for r in rules for _, pred, _ in r.body
                      if pred not in heads and pred != "=")
-    return Axioms(frozenset(definitions), definitions, strata, used)
+    reads = [frozenset(pred for r in group for _, pred, _ in r.body) for group, _ in strata]
+    derives = [frozenset(r.head for r in group) for group, _ in strata]
+    return Axioms(frozenset(definitions), definitions, strata, used, reads, derives)
 
 
 def _unstratifiable(rules: list[Rule], heads: set[str], stratum: dict[str, int],
@@ -314,188 +265,124 @@ def _unstratifiable(rules: list[Rule], heads: set[str], stratum: dict[str, int],
 
 # ---------------------------------------------------------------- evaluation
 
-class _Index:
-    """Atoms by predicate, and by (predicate, position) -> object, growing as rules fire."""
-
-    __slots__ = ("by_pred", "by_arg")
-
-    def __init__(self) -> None:
-        self.by_pred: dict[str, list[GroundAtom]] = {}
-        self.by_arg: dict[tuple[str, int], dict[str, list[GroundAtom]]] = {}
-
-    def add(self, atom: GroundAtom) -> None:
-        self.by_pred.setdefault(atom[0], []).append(atom)
-        for pos in range(1, len(atom)):
-            table = self.by_arg.get((atom[0], pos))
-            if table is not None:
-                table.setdefault(atom[pos], []).append(atom)
-
-    def matching(self, pred: str, pos: int, obj: str) -> list[GroundAtom]:
-        table = self.by_arg.get((pred, pos))
-        if table is None:
-            table = {}
-            for atom in self.by_pred.get(pred, ()):
-                table.setdefault(atom[pos], []).append(atom)
-            self.by_arg[(pred, pos)] = table
-        return table.get(obj, [])
+def _too_many(tried: int) -> VeriGraphError:
+    return DerivedPredicateError(
+        f"computing the derived predicates of one state tries more than "
+        f"{MAX_DERIVED_BINDINGS:,} bindings", field="domain", value=tried,
+        fix="give the rules' variables smaller types or fewer objects")
 
 
-class _Run:
-    """One recomputation: the basic state, the derived atoms so far, the binding budget."""
+class Derivation:
+    """The derived atoms of a simulation's states, kept up to date step by step.
 
-    def __init__(self, domain: Domain, problem: Problem, state: set[GroundAtom],
-                 axioms: Axioms) -> None:
-        self.domain, self.problem, self.state = domain, problem, state
-        self.derived: set[GroundAtom] = set()
-        self.index = _Index()
+    The basic atoms the rules read are indexed once and the index follows each step's
+    edit (`follow`); a stratum is evaluated again only when a predicate it reads
+    changed (a basic one in the step's edit, or a derived one whose atoms a lower
+    stratum changed), else its atoms carry over from the state before. Each evaluated
+    stratum joins its rules over the atoms that hold; a recursive one semi-naively (see
+    `_stratum`). `atoms` are the derived atoms of the declared predicates (auxiliaries
+    left out): what the state holds of them."""
+
+    def __init__(self, domain: Domain, problem: Problem, state: set[GroundAtom]) -> None:
+        axioms = domain.axioms
+        assert axioms is not None
+        self.domain, self.problem, self.axioms = domain, problem, axioms
         used = axioms.used_basic
-        for atom in state:
+        self.basic = Index(atom for atom in state if atom[0] in used)
+        self.by_stratum: list[set[GroundAtom]] = [set() for _ in axioms.strata]
+        self.atoms: set[GroundAtom] = set()
+        self._evaluate(state, None)
+
+    def follow(self, state: set[GroundAtom], removed: list[GroundAtom],
+               added: list[GroundAtom], changed: dict[GroundAtom, tuple[int, str]],
+               step: int, action: str) -> None:
+        """Update the derived atoms of `state` after a step removed and added these
+        basic atoms: the ones no longer derived leave it, the new ones join it, each flip
+        recorded in `changed` as made by `step` (the step whose effects caused it)."""
+        used, basic = self.axioms.used_basic, self.basic
+        touched = set()
+        for atom in removed:
+            touched.add(atom[0])
             if atom[0] in used:
-                self.index.add(atom)
-        self.tried = 0
-        self.types: dict[str, frozenset[str]] = {}
-        self.delta = _Index()
-
-    def admits(self, kind: str) -> frozenset[str]:
-        found = self.types.get(kind)
-        if found is None:
-            found = self.types[kind] = frozenset(self.problem.of_type(self.domain, kind))
-        return found
-
-    def tick(self, n: int = 1) -> None:
-        before = self.tried
-        self.tried += n
-        if self.tried >> 12 != before >> 12:
-            checkpoint()
-            if self.tried > MAX_DERIVED_BINDINGS:
-                raise DerivedPredicateError(
-                    f"computing the derived predicates of one state tries more than "
-                    f"{MAX_DERIVED_BINDINGS:,} bindings", field="domain",
-                    value=self.tried, fix="give the rules' variables smaller types or "
-                                          "fewer objects")
-
-    def fire(self, rule: Rule, ops: list[tuple[Any, ...]]) -> list[GroundAtom]:
-        out: list[GroundAtom] = []
-        binding: list[str | None] = [None] * rule.slots
-        self._step(rule, ops, 0, binding, out)
-        return out
-
-    def _step(self, rule: Rule, ops: list[tuple[Any, ...]], k: int, b: list[str | None],
-              out: list[GroundAtom]) -> None:
-        while k < len(ops):
-            op = ops[k]
-            kind = op[0]
-            if kind == "check":
-                _, positive, pred, terms, is_derived = op
-                atom = (pred, *(b[t] if isinstance(t, int) else t for t in terms))
-                if pred == "=":
-                    value = atom[1] == atom[2]
-                else:
-                    value = atom in (self.derived if is_derived else self.state)
-                if value != positive:
-                    return
-                k += 1
-                continue
-            if kind == "bind":
-                _, target, source, wanted = op
-                obj = b[source] if isinstance(source, int) else source
-                if wanted is not None and obj not in self.admits(wanted):
-                    return
-                b[target] = obj
-                k += 1
-                continue
-            if kind == "enum":
-                _, slot, kind_name = op
-                objs = self.problem.of_type(self.domain, kind_name)
-                self.tick(len(objs))
-                for obj in objs:
-                    b[slot] = obj
-                    self._step(rule, ops, k + 1, b, out)
-                b[slot] = None
-                return
-            _, pred, fixed, free, same, _, delta = op
-            index = self.delta if delta else self.index
-            if fixed:
-                pos, t = fixed[0]
-                candidates = index.matching(pred, pos, str(b[t] if isinstance(t, int) else t))
-                rest = fixed[1:]
-            else:
-                candidates = index.by_pred.get(pred, [])
-                rest = fixed
-            self.tick(len(candidates))
-            for atom in candidates:
-                if any(atom[pos] != (b[t] if isinstance(t, int) else t) for pos, t in rest):
-                    continue
-                if any(atom[p] != atom[q] for p, q in same):
-                    continue
-                ok = True
-                for pos, slot, wanted in free:
-                    if wanted is not None and atom[pos] not in self.admits(wanted):
-                        ok = False
-                        break
-                    b[slot] = atom[pos]
-                if ok:
-                    self._step(rule, ops, k + 1, b, out)
-            for _, slot, _ in free:
-                b[slot] = None
-            return
-        out.append((rule.head, *(str(b[t]) if isinstance(t, int) else t
-                                 for t in rule.head_terms)))
-
-    def run(self, axioms: Axioms) -> set[GroundAtom]:
-        """Strata bottom-up; a recursive one semi-naively: first its rules that need none
-        of its own atoms, then, round by round, every derivation that uses an atom the
-        last round found (joined first, from `delta`) until a round finds nothing new."""
-        derived, index = self.derived, self.index
-        for rules, recursive in axioms.strata:
-            new: list[GroundAtom] = []
-            for rule in rules:
-                if not rule.delta_ops:
-                    for atom in self.fire(rule, rule.ops):
-                        if atom not in derived:
-                            derived.add(atom)
-                            index.add(atom)
-                            new.append(atom)
-            while recursive and new:
-                self.delta = _Index()
-                for atom in new:
-                    self.delta.add(atom)
-                new = []
-                for rule in rules:
-                    for ops in rule.delta_ops:
-                        for atom in self.fire(rule, ops):
-                            if atom not in derived:
-                                derived.add(atom)
-                                index.add(atom)
-                                new.append(atom)
-        keep = axioms.predicates
-        return {a for a in derived if a[0] in keep}
-
-
-def derive(domain: Domain, problem: Problem, state: set[GroundAtom]) -> set[GroundAtom]:
-    """The derived atoms that hold in `state` (whose derived atoms, if any, are ignored)."""
-    axioms = domain.axioms
-    assert axioms is not None
-    return _Run(domain, problem, state, axioms).run(axioms)
-
-
-def refresh(domain: Domain, problem: Problem, state: set[GroundAtom],
-            previous: set[GroundAtom], changed: dict[GroundAtom, tuple[int, str]] | None,
-            step: int, action: str) -> set[GroundAtom]:
-    """Recompute the derived atoms of `state` in place after a change of its basic atoms:
-    the ones no longer derived leave it, the new ones join it, each flip recorded in
-    `changed` as made by `step` (the step whose effects caused it). Returns the new set."""
-    now = derive(domain, problem, state)
-    gone = previous - now
-    new = now - previous
-    state.difference_update(gone)
-    state.update(new)
-    if changed is not None and step:
+                basic.discard(atom)
+        for atom in added:
+            touched.add(atom[0])
+            if atom[0] in used:
+                basic.add(atom)
+        previous = self.atoms
+        self._evaluate(state, touched)
+        gone, new = previous - self.atoms, self.atoms - previous
+        state.difference_update(gone)
+        state.update(new)
         for atom in gone:
             changed[atom] = (step, action)
         for atom in new:
             changed[atom] = (step, action)
-    return now
+
+    def _evaluate(self, state: set[GroundAtom], touched: set[str] | None) -> None:
+        """Strata bottom-up; with `touched`, only those that read a changed predicate."""
+        axioms = self.axioms
+        derived: set[GroundAtom] = set()
+        derived_index = Index()
+        joiner = Joiner(self.domain, self.problem, state, self.basic,
+                        limit=MAX_DERIVED_BINDINGS, error=_too_many, derived=derived,
+                        derived_index=derived_index)
+        for k, (rules, recursive) in enumerate(axioms.strata):
+            before = self.by_stratum[k]
+            if touched is not None and touched.isdisjoint(axioms.reads[k]):
+                atoms = before
+                for atom in atoms:
+                    derived_index.add(atom)
+            else:
+                atoms = _stratum(joiner, rules, recursive, derived_index)
+                self.by_stratum[k] = atoms
+                if touched is not None and atoms != before:
+                    touched.update(axioms.heads[k])
+            derived |= atoms
+        keep = axioms.predicates
+        self.atoms = {a for a in derived if a[0] in keep}
+
+
+def _stratum(joiner: Joiner, rules: list[Rule], recursive: bool, index: Index
+             ) -> set[GroundAtom]:
+    """The atoms of one stratum: first its rules that need none of its own atoms, then,
+    for a recursive one, round by round every derivation that uses an atom the last
+    round found (joined first, from the joiner's `delta`) until a round finds nothing
+    new. Each atom joins `index` and the joiner's derived set as it is found."""
+    derived = joiner.derived
+    found: set[GroundAtom] = set()
+    new: list[GroundAtom] = []
+
+    def keep(atoms: list[GroundAtom]) -> None:
+        for atom in atoms:
+            if atom not in derived:
+                derived.add(atom)
+                found.add(atom)
+                index.add(atom)
+                new.append(atom)
+
+    for rule in rules:
+        if not rule.delta_ops:
+            keep(_fire(joiner, rule, rule.ops))
+    while recursive and new:
+        joiner.delta = Index(new)
+        new = []
+        for rule in rules:
+            for ops in rule.delta_ops:
+                keep(_fire(joiner, rule, ops))
+    return found
+
+
+def _fire(joiner: Joiner, rule: Rule, ops: list[tuple[Any, ...]]) -> list[GroundAtom]:
+    out: list[GroundAtom] = []
+    ground, append = rule.ground, out.append
+    joiner.run(ops, [None] * rule.slots, lambda b: append(ground(b)))
+    return out
+
+
+def derive(domain: Domain, problem: Problem, state: set[GroundAtom]) -> set[GroundAtom]:
+    """The derived atoms that hold in `state` (whose derived atoms, if any, are ignored)."""
+    return Derivation(domain, problem, state).atoms
 
 
 def explain(domain: Domain, problem: Problem, state: set[GroundAtom], atom: GroundAtom,
@@ -528,8 +415,8 @@ def head_types_for(domain: Domain, pred: str, given: list[str]) -> list[str]:
     return [g if g != ROOT_TYPE else s for g, s in zip(given, signature, strict=True)]
 
 
-__all__ = ["Axioms", "Definition", "DerivedPredicateError", "compile_axioms", "derive",
-           "explain", "head_types_for", "note", "refresh"]
+__all__ = ["Axioms", "Definition", "Derivation", "DerivedPredicateError", "compile_axioms",
+           "derive", "explain", "head_types_for", "note"]
 
 
 def note(domain: Domain, problem: Problem, state: set[GroundAtom], item: dict[str, Any],

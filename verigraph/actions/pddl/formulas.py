@@ -14,7 +14,7 @@ a quantifier over a product of large types is refused, never judged half-way).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from itertools import product
 from typing import Any
 
@@ -119,7 +119,7 @@ class Evaluator:
         return "false"
 
 
-Check = Callable[[list[Any], set[GroundAtom]], bool]
+Check = Callable[[Sequence[Any], set[GroundAtom]], bool]
 
 
 def compile_condition(f: Any) -> Check | None:
@@ -157,14 +157,14 @@ def compile_condition(f: Any) -> Check | None:
             return None
         checks = [p for p in parts if p is not None]
         if kind == "and":
-            def every(s: list[Any], st: set[GroundAtom]) -> bool:
+            def every(s: Sequence[Any], st: set[GroundAtom]) -> bool:
                 for c in checks:  # noqa: SIM110 - a loop: no generator per test
                     if not c(s, st):
                         return False
                 return True
             return every
 
-        def some(s: list[Any], st: set[GroundAtom]) -> bool:
+        def some(s: Sequence[Any], st: set[GroundAtom]) -> bool:
             for c in checks:  # noqa: SIM110 - a loop: no generator per test
                 if c(s, st):
                     return True

@@ -15,7 +15,9 @@ with 10,000 objects read in about 0.1 s, where walking up the chain took 6 s).
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from operator import itemgetter
 from typing import Any
 
 Term = int | str  # parameter index, or constant / object name
@@ -41,6 +43,12 @@ class CondEffect:
     condition: tuple[Any, ...] | None
     add: list[Literal]
     delete: list[Literal]
+    # the variables' bindings as a join over static predicates (joins.plan), when the
+    # condition is a conjunction of literals; else each binding is enumerated and tested
+    join: list[tuple[Any, ...]] | None = None
+    # the condition compiled into a closure over (slots, state) (formulas.compile_condition);
+    # None: no condition, or one with a quantifier inside (the evaluator takes it)
+    check: Any = None
 
 
 @dataclass(slots=True)
@@ -60,6 +68,9 @@ class Schema:
     pre_complex: list[tuple[Any, ...]] = field(default_factory=list)
     cond_effects: list[CondEffect] = field(default_factory=list)
     slot_names: list[str] = field(default_factory=list)
+    # per conjunct of pre_complex, its compiled closure over (slots, state), or None when a
+    # quantifier is inside (the evaluator takes it)
+    checks: list[Any] = field(default_factory=list)
 
     def ground(self, literal: Literal, binding: tuple[str, ...]) -> GroundAtom:
         pred, terms = literal
@@ -136,6 +147,11 @@ class Problem:
     values: dict[GroundAtom, float] = field(default_factory=dict)  # `(= (f a b) 5)` of :init
     goal_complex: list[tuple[Any, ...]] = field(default_factory=list)  # ADL goal conjuncts
     goal_slots: list[str] = field(default_factory=list)  # their variables' names
+    static_index: Any = None  # joins.static_index: the static atoms, indexed on first use
+    # the fast run's ground actions (by plan line) and compiled schemas, kept for the
+    # next plan of this problem (a batch's plans and their mutations share most lines)
+    grounded: dict[Any, Any] = field(default_factory=dict)
+    compiled: dict[str, Any] = field(default_factory=dict)
 
     def of_type(self, domain: Domain, kind: str) -> list[str]:
         """Objects of `kind` or a subtype, cached per type."""
@@ -144,6 +160,67 @@ class Problem:
             found = [o for o, t in self.objects.items() if domain.is_a(t, kind)]
             self.by_type[kind] = found
         return found
+
+
+Grounder = Callable[[Sequence[Any]], GroundAtom]
+
+
+def grounder(literal: Literal) -> Grounder:
+    """The literal's atom under a binding (a sequence indexed by slot), as fast as CPython
+    builds a tuple: the hot loops ground millions of atoms, so one, two or three slots
+    are indexed directly, more through `itemgetter`, and a literal with constants fills
+    a template."""
+    pred, terms = literal
+    if not any(isinstance(t, int) for t in terms):  # constants only: one atom
+        ground = (pred, *(str(t) for t in terms))
+        return lambda b: ground
+    if not all(isinstance(t, int) for t in terms):
+        template: list[Any] = [pred, *(None if isinstance(t, int) else t for t in terms)]
+        fill = [(k, t) for k, t in enumerate(terms, start=1) if isinstance(t, int)]
+
+        def mixed(b: Sequence[Any]) -> GroundAtom:
+            out = template.copy()
+            for k, t in fill:
+                out[k] = b[t]
+            return tuple(out)
+        return mixed
+    idx = [int(t) for t in terms]
+    if len(idx) == 1:
+        i = idx[0]
+        return lambda b: (pred, b[i])
+    if len(idx) == 2:
+        i, j = idx
+        return lambda b: (pred, b[i], b[j])
+    if len(idx) == 3:
+        i, j, k = idx
+        return lambda b: (pred, b[i], b[j], b[k])
+    head, get = (pred,), itemgetter(*idx)
+    return lambda b: head + get(b)
+
+
+Shower = Callable[[Sequence[Any]], str]
+
+
+def shower(literal: Literal) -> Shower:
+    """The literal's atom under a binding as the report writes it (`show` of the
+    grounded atom), built from the binding without the tuple in between."""
+    pred, terms = literal
+    if not terms:
+        shown = f"({pred})"
+        return lambda b: shown
+    if not all(isinstance(t, int) for t in terms):
+        ground = grounder(literal)
+        return lambda b: "(" + " ".join(ground(b)) + ")"
+    head = f"({pred} "
+    idx = [int(t) for t in terms]
+    if len(idx) == 1:
+        i = idx[0]
+        return lambda b: head + b[i] + ")"
+    if len(idx) == 2:
+        i, j = idx
+        return lambda b: head + b[i] + " " + b[j] + ")"
+    get = itemgetter(*idx)
+    return lambda b: head + " ".join(get(b)) + ")"
 
 
 def show(atom: GroundAtom | tuple[str, ...]) -> str:

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import difflib
 import re
+from collections.abc import Callable
 from typing import NamedTuple
 
 from verigraph.actions.blocksworld.plans import _DURATION, _STEP_PREFIX, _ascii_names
@@ -81,6 +82,46 @@ def _read_line(raw: str, body: str, number: int, domain: Domain) -> Step:
     return Step(schema.name, args, number)
 
 
+def read_step(raw: str, number: int, domain: Domain) -> Step | None:
+    """Line `number` of a plan, `raw` as written: its Step (a malformed one for a line
+    that is no action of the domain), or None for a line that holds no step (blank, a
+    comment, a `[PLAN]` marker, a bare `0:` prefix)."""
+    body = raw.split(";", 1)[0].strip().lower()
+    if not body or body.startswith("[plan"):
+        return None
+    if not (body[0] == "(" and body[-1] == ")"):
+        body = _DURATION.sub("", _STEP_PREFIX.sub("", body)).rstrip(".").strip()
+        if not body:
+            return None
+    return _read_line(raw, body, number, domain)
+
+
+def line_reader(text: str, lowered: list[str], domain: Domain
+                ) -> Callable[[int], Step | None]:
+    """Reads the plan's line at a position (0-based) as `parse_strips_plan` reads it;
+    `lowered` is `text.lower().splitlines()`. A plain `(action arg ...)` line of the
+    action's arity (printable, one space between words) is split at once; any other
+    goes through `read_step`."""
+    schemas = domain.schemas
+    original: list[str] = []
+
+    def step_at(position: int) -> Step | None:
+        line = lowered[position]
+        inner = line[1:-1]
+        if line[:1] == "(" and line[-1:] == ")" and inner.isprintable() \
+                and "(" not in inner and ")" not in inner:
+            words = inner.split(" ")  # `_PLAIN_LINE`'s words, when none is empty
+            schema = schemas.get(words[0])
+            if schema is not None and len(schema.params) == len(words) - 1 \
+                    and "" not in words:
+                return Step(words[0], tuple(words[1:]), position + 1)
+        if not original:
+            original.extend(text.splitlines())
+        return read_step(original[position], position + 1, domain)
+
+    return step_at
+
+
 def parse_strips_plan(text: str, domain: Domain) -> list[Step]:
     """Every action line of a plan, in order; an empty plan is valid input."""
     if not text.isascii():
@@ -97,14 +138,10 @@ def parse_strips_plan(text: str, domain: Domain) -> list[Step]:
             return plain
     steps: list[Step] = []
     for number, raw in enumerate(text.splitlines(), start=1):
-        body = raw.split(";", 1)[0].strip().lower()
-        if not body or body.startswith("[plan"):
+        step = read_step(raw, number, domain)
+        if step is None:
             continue
-        if not (body[0] == "(" and body[-1] == ")"):
-            body = _DURATION.sub("", _STEP_PREFIX.sub("", body)).rstrip(".").strip()
-            if not body:
-                continue
-        steps.append(_read_line(raw, body, number, domain))
+        steps.append(step)
         if len(steps) > MAX_STEPS:
             raise PlanParseError(f"the plan has more than {MAX_STEPS:,} actions", line=number,
                                  column=1, text="", expected=f"at most {MAX_STEPS:,} actions")

@@ -25,11 +25,13 @@ from __future__ import annotations
 
 import difflib
 import re
+from operator import itemgetter
 
 from verigraph.actions.blocksworld.sexpr import SExpr
 from verigraph.actions.blocksworld.sexpr import define_body as _define_body
 from verigraph.actions.pddl.axioms import Definition, compile_axioms, head_types_for
-from verigraph.actions.pddl.formulas import Formula
+from verigraph.actions.pddl.formulas import Formula, compile_condition
+from verigraph.actions.pddl.joins import conjunction, plan
 from verigraph.actions.pddl.model import (
     ROOT_TYPE,
     SUPPORTED_REQUIREMENTS,
@@ -79,7 +81,9 @@ UNSUPPORTED_ACTION_KEYS = {":vars": ":strips (PDDL 1.2 :vars)",
 ACTION_FORM = "(:action NAME :parameters (?x - type ...) :precondition (and ...) :effect (and ...))"
 
 
-_GLUED = re.compile(r"[^\s()?]\?")  # a name with a variable glued on: `(aircraft?a)`
+# a name with a variable glued on: `(aircraft?a)`; the `?` is matched first and what
+# precedes it looked behind at, so the scan jumps from `?` to `?` (25x a plain class)
+_GLUED = re.compile(r"\?(?<=[^\s()?]\?)")
 _VARIABLE_PARTS = re.compile(r"\??[^?]+|\?")
 
 
@@ -626,7 +630,33 @@ def read_domain(text: str) -> Domain:
     if domain.axioms is not None:
         changed |= domain.axioms.predicates  # recomputed in every state, never fixed
     domain.static = frozenset(domain.predicates) - changed
+    _plan_effect_joins(domain)
     return domain
+
+
+def _plan_effect_joins(domain: Domain) -> None:
+    """Compile each ADL condition once (a closure, see formulas.compile_condition) and plan
+    each quantified conditional effect whose condition is a conjunction of literals as a
+    join over the static predicates (see joins)."""
+    static = domain.static
+    for schema in domain.schemas.values():
+        schema.checks = [compile_condition(f) for f in schema.pre_complex]
+        types = dict(enumerate(schema.types))
+        for effect in schema.cond_effects:
+            if effect.condition is not None:
+                effect.check = compile_condition(effect.condition)
+            if not effect.variables or effect.condition is None:
+                continue
+            body = conjunction(effect.condition)
+            if body is None:
+                continue
+            slots = {slot for slot, _, _ in effect.variables}
+            if any(isinstance(t, int) and t >= len(schema.params) and t not in slots
+                   for _, _, terms in body for t in terms):
+                continue  # a slot bound elsewhere: the general evaluator takes it
+            effect.join = plan(domain, body, {**types, **{s: k for s, _, k in effect.variables}},
+                               slots, joinable=static.__contains__,
+                               bound=range(len(schema.params)))
 
 
 def _ground(domain: Domain, objects: dict[str, str], expr: SExpr, where: str) -> GroundAtom:
@@ -696,6 +726,67 @@ def _value(domain: Domain, objects: dict[str, str], item: list[SExpr],
                              f"{len(signature)} declared object(s)", field="problem", value=name,
                              fix="name declared objects, one per argument")
     values[(name, *args)] = value
+
+
+def _read_init(domain: Domain, objects: dict[str, str], items: list[SExpr],
+               init: set[GroundAtom], values: dict[GroundAtom, float], fitting: _Fitting
+               ) -> None:
+    """The initial atoms and function values. The atoms are checked per predicate, a
+    column at a time (declared, of its arity, every object of each position one that
+    position takes: set operations at C speed, where one check per atom made a large
+    :init dominate a short plan's validation); anything that fails, and every `(= ...)`,
+    goes through `_ground` / `_value` in the file's order, which name what is wrong."""
+    plain = [item for item in items if type(item) is list and item and item[0] != "="]
+    try:
+        atoms = set(map(tuple, plain))
+    except TypeError:  # a list where an object should be
+        atoms = None
+    if atoms is not None and _atoms_fit(domain, fitting, atoms):
+        init.update(atoms)  # type: ignore[arg-type]
+        rest = [item for item in items if not (type(item) is list and item and item[0] != "=")]
+    else:
+        rest = items
+    for item in rest:
+        if isinstance(item, list) and item and item[0] == "=" and (
+                len(item) != 3 or isinstance(item[1], list)):
+            _value(domain, objects, item, values)
+            continue
+        init.add(_ground(domain, objects, item, "initial state"))
+
+
+class _Fitting:
+    """The declared objects a type takes (itself and its subtypes), computed once per
+    type and problem from the objects grouped by their own type."""
+
+    def __init__(self, domain: Domain, objects: dict[str, str]) -> None:
+        self.domain = domain
+        self.by_type: dict[str, list[str]] = {}
+        for name, kind in objects.items():
+            self.by_type.setdefault(kind, []).append(name)
+        self.takes: dict[str, frozenset[str]] = {}
+
+    def __call__(self, kind: str) -> frozenset[str]:
+        found = self.takes.get(kind)
+        if found is None:
+            found = self.takes[kind] = frozenset().union(
+                *(names for own, names in self.by_type.items() if self.domain.is_a(own, kind)))
+        return found
+
+
+def _atoms_fit(domain: Domain, fitting: _Fitting, atoms: set[tuple[SExpr, ...]]) -> bool:
+    """Every atom is of a declared predicate, of its arity, each object declared with a
+    type its position takes."""
+    groups: dict[SExpr, list[tuple[SExpr, ...]]] = {}
+    for atom in atoms:
+        groups.setdefault(atom[0], []).append(atom)
+    for pred, group in groups.items():
+        signature = domain.predicates.get(pred) if isinstance(pred, str) else None
+        if signature is None or set(map(len, group)) != {len(signature) + 1}:
+            return False
+        for position, kind in enumerate(signature, start=1):
+            if not fitting(kind).issuperset(map(itemgetter(position), group)):
+                return False
+    return True
 
 
 def _goal_literals(expr: SExpr) -> list[tuple[SExpr, bool]]:
@@ -770,12 +861,8 @@ def read_problem(text: str, domain: Domain) -> Problem:
     if not goal_seen:
         raise PddlInputError("the problem has no (:goal ...)", field="problem", value=name,
                              fix="add (:goal (and ...))")
-    for item in raw_init:
-        if isinstance(item, list) and item and item[0] == "=" and (
-                len(item) != 3 or isinstance(item[1], list)):
-            _value(domain, objects, item, values)
-            continue
-        init.add(_ground(domain, objects, item, "initial state"))
+    fitting = _Fitting(domain, objects)
+    _read_init(domain, objects, raw_init, init, values, fitting)
     if domain.axioms is not None:
         for atom in init:
             if atom[0] in domain.axioms.predicates:
@@ -785,11 +872,20 @@ def read_problem(text: str, domain: Domain) -> Problem:
                                          "(:derived ...) rules decide it in every state")
     goal_complex: list[Formula] = []
     reader = _GoalReader(domain, objects)
-    for item, positive in _goal_literals(raw_goal):
+    literals = _goal_literals(raw_goal)
+    plain = [item for item, _ in literals if type(item) is list and item and item[0] != "="
+             and not (item[0] in ADL_HEADS and item[0] not in domain.predicates)]
+    try:  # atoms of declared predicates and fitting objects: checked a column at a time
+        fit = _atoms_fit(domain, fitting, set(map(tuple, plain)))
+    except TypeError:  # a list where an object should be: `_ground` says so
+        fit = False
+    for item, positive in literals:
         first = item[0] if isinstance(item, list) and item else None
         if first in ADL_HEADS and first not in domain.predicates:
             formula = reader.condition(item, {})
             goal_complex.append(formula if positive else ("not", formula))
+        elif fit and type(item) is list and first != "=":
+            (goal_pos if positive else goal_neg).append(tuple(item))  # type: ignore[arg-type]
         else:
             (goal_pos if positive else goal_neg).append(_ground(domain, objects, item, "goal"))
     return Problem(name, objects, init, goal_pos, goal_neg, values=values,

@@ -8,9 +8,12 @@ explanations need (see explain): for an unsatisfied precondition, the step and a
 that last made it false (or "never true", with what holds instead); for an unmet goal,
 the same, and the actions that would achieve it, each with its closest grounding.
 
-A valid plan takes a fast run first (`_fast_run`: each distinct line grounded once into
-frozen sets, no history kept); a failing step or an unmet goal sends the plan through the
-step-by-step run below, which gives every explanation (docs/validator.md, Performance).
+A plan takes the fast run (`_fast_run`: each distinct line read and grounded once into
+frozen sets, its static preconditions checked then, the ground actions kept on the
+problem for its next plan; no history kept). At a failing step, or with the goal unmet,
+it hands its state to the step-by-step run (`_Simulation`), which reads the history back
+from the report's edits and gives every explanation; with `all_errors` or derived
+predicates the step-by-step run takes the whole plan (docs/validator.md, Performance).
 
 A plan line that is no action of the domain (an unknown action, the wrong number of
 arguments, `(no plan possible)`, `(1) (feast d b)`) is a failing step of an invalid plan,
@@ -31,10 +34,8 @@ from __future__ import annotations
 
 import difflib
 import gc
-import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from functools import lru_cache
-from operator import itemgetter
 from typing import Any
 
 from verigraph.actions.pddl import axioms as derived_predicates
@@ -48,17 +49,38 @@ from verigraph.actions.pddl.explain import (
     holds,
     literal_text,
 )
-from verigraph.actions.pddl.formulas import Check, Evaluator, _atom, compile_condition
+from verigraph.actions.pddl.formulas import (
+    MAX_QUANTIFIED,
+    Check,
+    Evaluator,
+    QuantifierLimitError,
+    _atom,
+)
 from verigraph.actions.pddl.formulas import text as formula_text
-from verigraph.actions.pddl.model import Domain, GroundAtom, Literal, Problem, Schema, show
-from verigraph.actions.pddl.plans import MAX_STEPS, Step, parse_strips_plan
+from verigraph.actions.pddl.joins import Joiner, static_index
+from verigraph.actions.pddl.model import (
+    Domain,
+    GroundAtom,
+    Grounder,
+    Literal,
+    Problem,
+    Schema,
+    Shower,
+    grounder,
+    show,
+    shower,
+)
+from verigraph.actions.pddl.plans import MAX_STEPS, Step, line_reader, parse_strips_plan
 from verigraph.actions.pddl.reader import read_domain, read_problem
 from verigraph.budget import checkpoint
+from verigraph.errors import VeriGraphError
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
 
 __all__ = ["MAX_ACHIEVERS", "complete_binding", "simulate", "validate_strips_dict"]
-_ONE_PLAIN_LINE = re.compile(r"\(([^\s()]+)((?: [^\s()]+)*)\)")  # plans._PLAIN_LINE, one line
 MAX_EXPLAINED_GOALS = 20
+# a plan that stopped at a failing step: that step is what to fix, and its state is not
+# where the plan meant to end, so only the first unmet goals get achievers
+MAX_EXPLAINED_GOALS_AFTER_FAILURE = 3
 MAX_EXPLAINED_FAILURES = 20  # with all_errors: failing steps that get achievers
 SKIPPED = "skipped"  # all_errors: a failing step changes nothing, later steps go on
 
@@ -72,8 +94,9 @@ def cached_strips_domain(text: str) -> Domain:
 @lru_cache(maxsize=16)
 def cached_strips_problem(domain_text: str, problem_text: str) -> Problem:
     """A batch checks many plans of one problem (a planner's plans, their mutations):
-    read each (domain, problem) pair once. Nothing changes a Problem after reading
-    (a simulation copies the initial state; `by_type` only fills a cache)."""
+    read each (domain, problem) pair once. Nothing changes what a Problem says after
+    reading (a simulation copies the initial state); its caches (`by_type`, the static
+    index, the fast run's ground actions) only fill."""
     return read_problem(problem_text, cached_strips_domain(domain_text))
 
 
@@ -95,10 +118,11 @@ def _check_objects(domain: Domain, problem: Problem, schema: Schema, step: Step
     objects = problem.objects
     for k, a in enumerate(step.args):
         kind = objects.get(a)
-        if kind is None:
-            near = difflib.get_close_matches(a, list(objects)[:5000], n=3, cutoff=0.5)
+        if kind is None:  # suggest objects the parameter takes
+            fitting = problem.of_type(domain, schema.types[k]) or list(objects)
+            near = difflib.get_close_matches(a, fitting[:5000], n=3, cutoff=0.5)
             hint = (f"did you mean {' or '.join(near)}?" if near else
-                    f"use a declared object: {', '.join(list(objects)[:8])}")
+                    f"use a declared object: {', '.join(fitting[:8])}")
             return "unknown_object", f"the problem declares no object '{a}'", hint
         if not domain.is_a(kind, schema.types[k]):
             return ("wrong_type", f"{a} is a {kind}, but {schema.params[k]} of {schema.name} "
@@ -107,54 +131,56 @@ def _check_objects(domain: Domain, problem: Problem, schema: Schema, step: Step
     return None
 
 
-Grounder = Callable[[tuple[str, ...]], GroundAtom]
-
-
-def _grounder(schema: Schema, literal: Literal) -> Grounder:
-    """A C-speed grounding of one literal: itemgetter over the binding when every term is
-    a parameter, the general path when a constant appears."""
-    pred, terms = literal
-    if not all(isinstance(t, int) for t in terms):
-        return lambda binding: schema.ground(literal, binding)
-    idx = [int(t) for t in terms]
-    if not idx:
-        atom = (pred,)
-        return lambda binding: atom
-    if len(idx) == 1:
-        one = idx[0]
-        return lambda binding: (pred, binding[one])
-    get = itemgetter(*idx)
-    return lambda binding: (pred, *get(binding))
-
-
 class _Compiled:
     """A schema's literals as grounders (built once per domain), the objects each
-    parameter admits (per problem), its cost."""
+    parameter admits (per problem), its cost. `static_pos` / `static_neg` are the
+    preconditions on static predicates (no action changes them: the fast run checks them
+    once per ground action, against the initial state)."""
 
     __slots__ = ("pre_pos", "pre_neg", "add", "delete", "admits", "fixed_cost", "fn_costs",
-                 "adl")
+                 "adl", "checks", "static_pos", "static_neg", "dynamic_pos", "dynamic_neg",
+                 "add_shown", "delete_shown")
     pre_pos: list[tuple[Grounder, bool]]
     pre_neg: list[tuple[Grounder, bool]]
     add: list[Grounder]
     delete: list[Grounder]
     fixed_cost: float
     fn_costs: list[Grounder]
-    adl: Schema | None  # the schema, when it has ADL conditions or effects
+    adl: Schema | None  # the schema, when it has conditional effects or quantifiers
+    checks: tuple[Check, ...] | None  # else its ADL preconditions, compiled (or None)
+    static_pos: list[tuple[Grounder, bool]]  # equalities among them
+    static_neg: list[tuple[Grounder, bool]]
+    dynamic_pos: list[Grounder]
+    dynamic_neg: list[Grounder]
+    add_shown: list[Shower]  # the adds and deletes as the report's edit writes them
+    delete_shown: list[Shower]
 
     def __init__(self, domain: Domain, problem: Problem, schema: Schema) -> None:
         shared = domain.compiled.get(schema.name)
         if shared is None:
+            static = domain.static | {"="}
             shared = domain.compiled[schema.name] = (
-                [(_grounder(schema, lit), lit[0] == "=") for lit in schema.pre_pos],
-                [(_grounder(schema, lit), lit[0] == "=") for lit in schema.pre_neg],
-                [_grounder(schema, lit) for lit in schema.add],
-                [_grounder(schema, lit) for lit in schema.delete],
+                [(grounder(lit), lit[0] == "=") for lit in schema.pre_pos],
+                [(grounder(lit), lit[0] == "=") for lit in schema.pre_neg],
+                [grounder(lit) for lit in schema.add],
+                [grounder(lit) for lit in schema.delete],
                 float(sum(c for c in schema.cost if isinstance(c, float))),
-                [_grounder(schema, c) for c in schema.cost if not isinstance(c, float)])
-        self.pre_pos, self.pre_neg, self.add, self.delete, self.fixed_cost, self.fn_costs = \
-            shared
+                [grounder(c) for c in schema.cost if not isinstance(c, float)],
+                [(grounder(lit), lit[0] == "=") for lit in schema.pre_pos
+                 if lit[0] in static],
+                [(grounder(lit), lit[0] == "=") for lit in schema.pre_neg
+                 if lit[0] in static],
+                [grounder(lit) for lit in schema.pre_pos if lit[0] not in static],
+                [grounder(lit) for lit in schema.pre_neg if lit[0] not in static],
+                [shower(lit) for lit in schema.add], [shower(lit) for lit in schema.delete])
+        (self.pre_pos, self.pre_neg, self.add, self.delete, self.fixed_cost, self.fn_costs,
+         self.static_pos, self.static_neg, self.dynamic_pos, self.dynamic_neg,
+         self.add_shown, self.delete_shown) = shared
         self.admits = [frozenset(problem.of_type(domain, t)) for t in schema.types]
-        self.adl = schema if schema.pre_complex or schema.cond_effects else None
+        compiled = schema.pre_complex and all(c is not None for c in schema.checks)
+        self.checks = tuple(schema.checks) if compiled and not schema.cond_effects else None
+        self.adl = schema if schema.cond_effects or (schema.pre_complex and not compiled) \
+            else None
 
 
 def _cost(fast: _Compiled, binding: tuple[str, ...], values: dict[GroundAtom, float]
@@ -173,291 +199,388 @@ def _cost(fast: _Compiled, binding: tuple[str, ...], values: dict[GroundAtom, fl
 def simulate(domain: Domain, problem: Problem, steps: list[Step], *,
              all_errors: bool = False, try_fast: bool = True) -> dict[str, Any]:
     """Run the plan; stop at the first failing step (or, with `all_errors`, skip it and
-    go on); explain the failures and any unmet goal. A valid plan is judged by
-    `_fast_run` alone (unless `try_fast` is False: the caller tried it already); any other
-    goes (again) through the step-by-step run below."""
+    go on); explain the failures and any unmet goal. Without `all_errors` or derived
+    predicates the plan takes the fast run (`_fast_run`); `try_fast=False` runs every
+    step through `_Simulation.run` instead, which gives the same report."""
     if try_fast and not all_errors and domain.axioms is None:
-        fast_report = _fast_steps(domain, problem, steps)
-        if fast_report is not None:
-            return fast_report
-    state = set(problem.init)
-    derived = None if domain.axioms is None else \
-        derived_predicates.refresh(domain, problem, state, set(), None, 0, "")
+        return _fast_run(domain, problem, [s[:2] for s in steps], steps.__getitem__)
+    sim = _Simulation(domain, problem)
+    sim.run(steps, 1, all_errors)
+    return sim.report(len(steps) - len(sim.out_steps), all_errors)
+
+
+def _replayed(out_steps: list[dict[str, Any]]) -> Changed:
+    """The step that last changed each atom, read back from the report's edits (the fast
+    run keeps no history; it is needed only to explain a failure or an unmet goal)."""
     changed: Changed = {}
-    out_steps: list[dict[str, Any]] = []
-    violations: list[dict[str, Any]] = []
-    schemas = domain.schemas
-    compiled: dict[str, _Compiled] = {}
-    explainer = Explainer(domain, problem)
-    costs = bool(domain.functions) or any(s.cost for s in schemas.values())
-    total_cost = 0.0
-    values = problem.values
-    fast: _Compiled
-    for index, step in enumerate(steps, start=1):
-        name, binding, _, failure = step
-        if not index & 4095:
+    for s in out_steps:
+        if not s["step"] & 4095:
             checkpoint()  # the server's per-call budget and cancellation
-        if failure is not None:
-            text = name
-            action = {"action": name, "args": list(binding)}
-            unsatisfied: list[dict[str, Any]] = []
-        else:
-            got = compiled.get(name)
-            if got is None:
-                got = compiled[name] = _Compiled(domain, problem, schemas[name])
-            fast = got
-            text = "(" + " ".join((name, *binding)) + ")"
-            action = {"action": name, "args": list(binding)}
-            for arg, admits in zip(binding, fast.admits, strict=True):
-                if arg not in admits:
-                    failure = _check_objects(domain, problem, schemas[name], step)
-                    break
-            unsatisfied = []
-        if failure is None:
-            holds_all = True
-            for g, eq in fast.pre_pos:
-                atom = g(binding)
-                if not (atom[1] == atom[2] if eq else atom in state):
-                    holds_all = False
-                    break
-            if holds_all:
-                for g, eq in fast.pre_neg:
+        mark = (s["step"], s["text"])
+        edit = s["edit"]
+        for shown in edit["removed"]:
+            changed[tuple(shown[1:-1].split(" "))] = mark
+        for shown in edit["added"]:
+            changed[tuple(shown[1:-1].split(" "))] = mark
+    return changed
+
+
+def _has_costs(domain: Domain) -> bool:
+    return bool(domain.functions) or any(s.cost for s in domain.schemas.values())
+
+
+class _Simulation:
+    """The step-by-step run: the state, the step that last changed each atom, the
+    report's steps and violations. `run` goes on from wherever they are: from the
+    initial state, or from the state in which the fast run met a failing step."""
+
+    def __init__(self, domain: Domain, problem: Problem,
+                 state: set[GroundAtom] | None = None,
+                 out_steps: list[dict[str, Any]] | None = None, total_cost: float = 0.0
+                 ) -> None:
+        self.domain, self.problem = domain, problem
+        self._changed: Changed | None = None
+        if state is None or out_steps is None:
+            state, out_steps = set(problem.init), []
+            self._changed = {}
+        self.state = state
+        self.out_steps = out_steps
+        self.derived: derived_predicates.Derivation | None = None
+        if domain.axioms is not None:
+            self.derived = derived_predicates.Derivation(domain, problem, state)
+            state.update(self.derived.atoms)
+        self.violations: list[dict[str, Any]] = []
+        self.explainer = Explainer(domain, problem)
+        self.total_cost = total_cost
+
+    @property
+    def changed(self) -> Changed:
+        if self._changed is None:
+            self._changed = _replayed(self.out_steps)
+        return self._changed
+
+    def run(self, steps: Iterable[Step], first: int, all_errors: bool) -> None:
+        """Apply `steps`, numbered from `first`, until one fails (or, with `all_errors`,
+        skipping each that fails)."""
+        domain, problem, state = self.domain, self.problem, self.state
+        derived, changed, explainer = self.derived, self.changed, self.explainer
+        out_steps, violations = self.out_steps, self.violations
+        schemas = domain.schemas
+        compiled: dict[str, _Compiled] = problem.compiled
+        costs = _has_costs(domain)
+        total_cost = self.total_cost
+        values = problem.values
+        fast: _Compiled
+        for index, step in enumerate(steps, start=first):
+            name, binding, _, failure = step
+            if not index & 4095:
+                checkpoint()  # the server's per-call budget and cancellation
+            if failure is not None:
+                text = name
+                action = {"action": name, "args": list(binding)}
+                unsatisfied: list[dict[str, Any]] = []
+            else:
+                got = compiled.get(name)
+                if got is None:
+                    got = compiled[name] = _Compiled(domain, problem, schemas[name])
+                fast = got
+                text = "(" + " ".join((name, *binding)) + ")"
+                action = {"action": name, "args": list(binding)}
+                for arg, admits in zip(binding, fast.admits, strict=True):
+                    if arg not in admits:
+                        failure = _check_objects(domain, problem, schemas[name], step)
+                        break
+                unsatisfied = []
+            if failure is None:
+                holds_all = True
+                for g, eq in fast.pre_pos:
                     atom = g(binding)
-                    if atom[1] == atom[2] if eq else atom in state:
+                    if not (atom[1] == atom[2] if eq else atom in state):
                         holds_all = False
                         break
-            if holds_all and fast.adl is not None:
-                adl = _adl_step(domain, problem, fast.adl, binding, state)
-                if adl is None:
-                    holds_all = False
-            if holds_all and costs:
-                cost = _cost(fast, binding, values)
-                if isinstance(cost, tuple):
-                    failure = ("precondition_unsatisfied", f"{text} needs a value for "
-                               f"{show(cost)}, its cost, which the initial state does not give",
-                               f"add (= {show(cost)} N) to the problem's :init")
-                    holds_all = False
-                else:
-                    total_cost += cost
-            if holds_all:
-                dels = [g(binding) for g in fast.delete]
-                adds = [g(binding) for g in fast.add]
-                if fast.adl is not None and adl is not None:
-                    dels += adl[1]
-                    adds += adl[0]
-                if len(dels) < 2 and len(adds) < 2:
-                    add_set: set[GroundAtom] | tuple[GroundAtom, ...] = tuple(adds)
-                else:
-                    add_set = set(adds)
-                removed = [a for a in dict.fromkeys(dels) if a in state and a not in add_set]
-                state.difference_update(removed)
-                added = [a for a in dict.fromkeys(adds) if a not in state]
-                state.update(added)
-                for atom in removed:
-                    changed[atom] = (index, text)
-                for atom in added:
-                    changed[atom] = (index, text)
-                if derived is not None:  # derived predicates follow the basic atoms
-                    derived = derived_predicates.refresh(domain, problem, state, derived,
-                                                         changed, index, text)
-                out_steps.append({"step": index, "ok": True, "action": action, "text": text,
-                                  "edit": {"removed": [show(a) for a in removed],
-                                           "added": [show(a) for a in added]}})
-                continue
-            if failure is None:
-                unsatisfied = _unsatisfied(schemas[name], binding, state, changed, domain,
-                                           problem)
-        if failure is not None:
-            constraint, message, suggestion = failure
-        else:
-            state_index = StateIndex(state)
-            for k, item in enumerate(unsatisfied):
-                if "atom" not in item:
+                if holds_all:
+                    for g, eq in fast.pre_neg:
+                        atom = g(binding)
+                        if atom[1] == atom[2] if eq else atom in state:
+                            holds_all = False
+                            break
+                if holds_all and fast.adl is not None:
+                    adl = _adl_step(domain, problem, fast.adl, binding, state)
+                    if adl is None:
+                        holds_all = False
+                elif holds_all and fast.checks is not None:
+                    holds_all = all(check(binding, state) for check in fast.checks)
+                if holds_all and costs:
+                    cost = _cost(fast, binding, values)
+                    if isinstance(cost, tuple):
+                        failure = ("precondition_unsatisfied", f"{text} needs a value for "
+                                   f"{show(cost)}, its cost, which the initial state does not "
+                                   "give", f"add (= {show(cost)} N) to the problem's :init")
+                        holds_all = False
+                    else:
+                        total_cost += cost
+                if holds_all:
+                    dels = [g(binding) for g in fast.delete]
+                    adds = [g(binding) for g in fast.add]
+                    if fast.adl is not None and adl is not None:
+                        dels += adl[1]
+                        adds += adl[0]
+                    if len(dels) < 2 and len(adds) < 2:
+                        add_set: set[GroundAtom] | tuple[GroundAtom, ...] = tuple(adds)
+                    else:
+                        add_set = set(adds)
+                    removed = [a for a in dict.fromkeys(dels) if a in state and a not in add_set]
+                    state.difference_update(removed)
+                    added = [a for a in dict.fromkeys(adds) if a not in state]
+                    state.update(added)
+                    for atom in removed:
+                        changed[atom] = (index, text)
+                    for atom in added:
+                        changed[atom] = (index, text)
+                    if derived is not None:  # derived predicates follow the basic atoms
+                        derived.follow(state, removed, added, changed, index, text)
+                    out_steps.append({"step": index, "ok": True, "action": action,
+                                      "text": text,
+                                      "edit": {"removed": [show(a) for a in removed],
+                                               "added": [show(a) for a in added]}})
+                    continue
+                if failure is None:
+                    unsatisfied = _unsatisfied(schemas[name], binding, state, changed, domain,
+                                               problem)
+            if failure is not None:
+                constraint, message, suggestion = failure
+            else:
+                state_index = StateIndex(state)
+                for k, item in enumerate(unsatisfied):
+                    if "atom" not in item:
+                        if derived is not None:
+                            derived_predicates.note(domain, problem, state, item, None)
+                        continue  # an ADL condition: explained by why_false already
+                    atom = item.pop("atom")
+                    item.update(history(atom, item["expected"], changed, state, state_index,
+                                        domain.static))
                     if derived is not None:
-                        derived_predicates.note(domain, problem, state, item, None)
-                    continue  # an ADL condition: explained by why_false already
-                atom = item.pop("atom")
-                item.update(history(atom, item["expected"], changed, state, state_index,
-                                    domain.static))
-                if derived is not None:
-                    derived_predicates.note(domain, problem, state, item, atom)
-                if k < 3 and len(violations) < MAX_EXPLAINED_FAILURES:
-                    item["achievers"] = explainer.achievers(state_index, atom,
-                                                            item["expected"])
-            constraint = "precondition_unsatisfied"
-            message = f"{text} needs " + "; ".join(
-                f"{u['literal']} ({u['explanation']})" for u in unsatisfied)
-            fixed = [u["literal"] for u in unsatisfied if u.get("fixed")]
-            suggestion = (f"choose other arguments: {', '.join(fixed)} is fixed by the problem"
-                          if fixed else _suggest(unsatisfied, "choose an action whose "
-                                                 "preconditions hold"))
-        violation = {"ok": False, "step": index, "action": action, "constraint": constraint,
-                     "message": message, "blocking": [], "suggestion": suggestion,
-                     "unsatisfied": unsatisfied}
-        violations.append(violation)
-        out_steps.append({"step": index, "ok": False, "action": action, "text": text,
-                          "violation": violation})
-        if not all_errors:
-            break
-    unmet: list[dict[str, Any]] = []
-    final_index = StateIndex(state)
-    for goals, expected in ((problem.goal_pos, True), (problem.goal_neg, False)):
-        for atom in goals:
-            if holds(atom, state) != expected:
-                goal: dict[str, Any] = {"literal": literal_text(atom, expected),
-                                        "expected": expected,
-                                        **history(atom, expected, changed, state, final_index,
-                                                domain.static)}
-                if len(unmet) < MAX_EXPLAINED_GOALS:
-                    goal["achievers"] = explainer.achievers(final_index, atom, expected)
-                if derived is not None:
-                    derived_predicates.note(domain, problem, state, goal, atom)
-                unmet.append(goal)
-    if problem.goal_complex:
-        ev = Evaluator(domain, problem, state)
-        for f in problem.goal_complex:
-            slots: list[str | None] = [None] * len(problem.goal_slots)
-            if not ev.holds(f, slots):
-                unmet.append({"literal": formula_text(f, slots, problem.goal_slots),
-                              "expected": True, "last_changed": None,
-                              "explanation": ev.why_false(f, slots, problem.goal_slots)})
-                if derived is not None:
-                    derived_predicates.note(domain, problem, state, unmet[-1], None)
-    plan_valid = not violations
-    missing = [u["literal"] for u in unmet]
-    report: dict[str, Any] = {
-        "engine": "strips", "valid": plan_valid and not unmet, "plan_valid": plan_valid,
-        "goal_reached": not unmet, "steps": out_steps, "violations": violations,
-        "not_checked": len(steps) - len(out_steps), "done": False,
-        "goal_diff": {"satisfied": not unmet, "missing_nodes": [], "extra_nodes": [],
-                      "missing_edges": missing, "extra_edges": []},
-        "unmet_goals": unmet,
-        "final_state": sorted(show(a) for a in state),
-    }
-    if all_errors:
-        report["after_failure"] = SKIPPED
-    if costs:
-        report["total_cost"] = int(total_cost) if total_cost == int(total_cost) else total_cost
-    return report
+                        derived_predicates.note(domain, problem, state, item, atom)
+                    if k < 3 and len(violations) < MAX_EXPLAINED_FAILURES:
+                        item["achievers"] = explainer.achievers(state_index, atom,
+                                                                item["expected"])
+                constraint = "precondition_unsatisfied"
+                message = f"{text} needs " + "; ".join(
+                    f"{u['literal']} ({u['explanation']})" for u in unsatisfied)
+                fixed = [u["literal"] for u in unsatisfied if u.get("fixed")]
+                suggestion = (f"choose other arguments: {', '.join(fixed)} is fixed by the "
+                              "problem" if fixed else
+                              _suggest(unsatisfied, "choose an action whose preconditions hold"))
+            violation = {"ok": False, "step": index, "action": action, "constraint": constraint,
+                         "message": message, "blocking": [], "suggestion": suggestion,
+                         "unsatisfied": unsatisfied}
+            violations.append(violation)
+            out_steps.append({"step": index, "ok": False, "action": action, "text": text,
+                              "violation": violation})
+            if not all_errors:
+                break
+        self.total_cost = total_cost
+
+    def report(self, not_checked: int, all_errors: bool) -> dict[str, Any]:
+        """The JSON-ready report of the run so far: its steps and violations, and the
+        goal checked in the state it ended in (unmet goals explained)."""
+        domain, problem, state = self.domain, self.problem, self.state
+        derived, violations, explainer = self.derived, self.violations, self.explainer
+        unmet: list[dict[str, Any]] = []
+        final_index = StateIndex(state)
+        explained = MAX_EXPLAINED_GOALS if all_errors or not violations \
+            else MAX_EXPLAINED_GOALS_AFTER_FAILURE
+        for goals, expected in ((problem.goal_pos, True), (problem.goal_neg, False)):
+            for atom in goals:
+                if holds(atom, state) != expected:
+                    goal: dict[str, Any] = {"literal": literal_text(atom, expected),
+                                            "expected": expected,
+                                            **history(atom, expected, self.changed, state,
+                                                      final_index, domain.static)}
+                    if len(unmet) < explained:
+                        goal["achievers"] = explainer.achievers(final_index, atom, expected)
+                    if derived is not None:
+                        derived_predicates.note(domain, problem, state, goal, atom)
+                    unmet.append(goal)
+        if problem.goal_complex:
+            ev = Evaluator(domain, problem, state)
+            for f in problem.goal_complex:
+                slots: list[str | None] = [None] * len(problem.goal_slots)
+                if not ev.holds(f, slots):
+                    unmet.append({"literal": formula_text(f, slots, problem.goal_slots),
+                                  "expected": True, "last_changed": None,
+                                  "explanation": ev.why_false(f, slots, problem.goal_slots)})
+                    if derived is not None:
+                        derived_predicates.note(domain, problem, state, unmet[-1], None)
+        plan_valid = not violations
+        missing = [u["literal"] for u in unmet]
+        report: dict[str, Any] = {
+            "engine": "strips", "valid": plan_valid and not unmet, "plan_valid": plan_valid,
+            "goal_reached": not unmet, "steps": self.out_steps, "violations": violations,
+            "not_checked": not_checked, "done": False,
+            "goal_diff": {"satisfied": not unmet, "missing_nodes": [], "extra_nodes": [],
+                          "missing_edges": missing, "extra_edges": []},
+            "unmet_goals": unmet,
+            "final_state": sorted(map(show, state)),
+        }
+        if all_errors:
+            report["after_failure"] = SKIPPED
+        if _has_costs(domain):
+            total = self.total_cost
+            report["total_cost"] = int(total) if total == int(total) else total
+        return report
 
 
-# A ground action of the fast run: positive and negative preconditions, the deletes that
-# are not also added (a set and in order), the adds, their texts in the report's edit,
-# the atoms whose membership picks the edit of a step, the cost, the step's text and
-# action, and (ADL) the schema whose conditions are evaluated per step, with its plain
-# deletes and adds
-_Ground = tuple[frozenset[GroundAtom], frozenset[GroundAtom], frozenset[GroundAtom],
-                tuple[GroundAtom, ...], tuple[GroundAtom, ...], dict[str, list[str]],
-                tuple[GroundAtom, ...], float, str, dict[str, Any], Schema | None,
-                list[GroundAtom], list[GroundAtom],
-                dict[tuple[bool, ...], tuple[list[GroundAtom], list[GroundAtom],
-                                             dict[str, list[str]]]]]
+# A ground action of the fast run: the positive and negative preconditions on predicates
+# some action changes (the static ones are checked once, when it is grounded; no
+# negative ones: None), the deletes that are not also added, the adds, the report's edit
+# when every delete held and no add did, the step's action and text, its cost, whether
+# every delete is a precondition (so it surely held) and there is no ADL part, its
+# compiled ADL preconditions (or None), the deletes in order (for another edit), for a
+# step with conditional effects or quantified preconditions its compiled schema, and the
+# other edits seen so far, by which atoms held
+_Ground = tuple[frozenset[GroundAtom], frozenset[GroundAtom] | None, frozenset[GroundAtom],
+                tuple[GroundAtom, ...], dict[str, list[str]], dict[str, Any], str, float,
+                bool, tuple[Check, ...] | None, tuple[GroundAtom, ...], _Compiled | None,
+                dict[tuple[bool, ...], Any]]
 
 
 def _ground_action(domain: Domain, problem: Problem, fast: _Compiled, step: Step
                    ) -> _Ground | None:
     """Ground one distinct (action, args) of the plan once, for every step that repeats
-    it; None when the fast run cannot take it (an undeclared or mistyped object, a false
-    equality, a cost with no value): the step-by-step run then explains it."""
+    it; None when it cannot apply in any state (an undeclared or mistyped object, a false
+    equality or static precondition, a cost with no value): the step-by-step run then
+    explains it."""
     name, binding = step.name, step.args
-    for arg, admits in zip(binding, fast.admits, strict=True):
-        if arg not in admits:
+    if not all(map(frozenset.__contains__, fast.admits, binding)):
+        return None
+    init = problem.init
+    for g, eq in fast.static_pos:
+        atom = g(binding)
+        if not (atom[1] == atom[2] if eq else atom in init):
             return None
-    pos: list[GroundAtom] = []
-    for g, eq in fast.pre_pos:
+    for g, eq in fast.static_neg:
         atom = g(binding)
-        if eq:
-            if atom[1] != atom[2]:
-                return None
-        else:
-            pos.append(atom)
-    neg: list[GroundAtom] = []
-    for g, eq in fast.pre_neg:
-        atom = g(binding)
-        if eq:
-            if atom[1] == atom[2]:
-                return None
-        else:
-            neg.append(atom)
+        if atom[1] == atom[2] if eq else atom in init:
+            return None
     cost = _cost(fast, binding, problem.values)
     if isinstance(cost, tuple):
         return None
+    pre = frozenset([g(binding) for g in fast.dynamic_pos])
+    neg = frozenset([g(binding) for g in fast.dynamic_neg]) if fast.dynamic_neg else None
     dels = [g(binding) for g in fast.delete]
     adds = [g(binding) for g in fast.add]
-    add_set = set(adds)
-    removed = tuple(a for a in dict.fromkeys(dels) if a not in add_set)
-    added = tuple(dict.fromkeys(adds))
+    removed = frozenset(dels)
+    if len(removed) == len(dels) and removed.isdisjoint(adds) and len(set(adds)) == len(adds):
+        ordered, added = tuple(dels), tuple(adds)  # the usual case: the literals' own texts
+        edit = {"removed": [sh(binding) for sh in fast.delete_shown],
+                "added": [sh(binding) for sh in fast.add_shown]}
+    else:  # a delete that is also added (PDDL: the add wins), or one given twice
+        add_set = set(adds)
+        ordered = tuple(a for a in dict.fromkeys(dels) if a not in add_set)
+        removed = frozenset(ordered)
+        added = tuple(dict.fromkeys(adds))
+        edit = {"removed": [show(a) for a in ordered], "added": [show(a) for a in added]}
     text = "(" + " ".join((name, *binding)) + ")"
-    edit = {"removed": [show(a) for a in removed], "added": [show(a) for a in added]}
-    return (frozenset(pos), frozenset(neg), frozenset(removed), removed, added, edit,
-            removed + added, cost, text, {"action": name, "args": list(binding)}, fast.adl,
-            dels, adds, {})
+    sure = fast.adl is None and removed <= pre
+    return (pre, neg, removed, added, edit, {"action": name, "args": list(binding)}, text,
+            cost, sure, fast.checks, ordered, fast if fast.adl is not None else None, {})
 
 
-def _fast_run(domain: Domain, problem: Problem, keys: list[Any],
-              resolve: Callable[[Any], Step | None]) -> dict[str, Any] | None:
-    """The report of a plan whose every step applies and whose goal holds, or None.
+_SKIP: Any = ()  # the fast run's entry for a line that holds no step
+# ground actions kept per problem for the plans after (see Problem.grounded); beyond,
+# the cache starts again
+MAX_GROUNDED = 200_000
 
-    `keys` are the plan's steps as hashable keys (its lines, or (action, args)), and
-    `resolve` reads one key into a Step (None: no action of the domain). Each distinct
-    key is read and grounded once into frozen sets (`_ground_action`), so a step costs a
-    dict lookup, a subset test, a disjointness test and two set updates; no history of
-    changed atoms is kept and no failure is explained. Steps of one ground action with
-    the same edit (which deletes held, which adds did not) share their `action` and
-    `edit` objects: the report is read-only JSON data. Anything else (a line that is no
-    action, a failing step, an unmet goal) returns None at once, and the plan is run
-    again step by step (`simulate`), which gives every explanation: a failing plan
-    costs at most one extra pass up to its failure.
+
+def _fast_run(domain: Domain, problem: Problem, keys: Sequence[Any],
+              step_at: Callable[[int], Step | None]) -> dict[str, Any]:
+    """The report of the plan whose steps are `keys` (its lines, or (action, args)),
+    `step_at(position)` reading the step at a position (None: a line that holds none).
+
+    Each distinct key is read and grounded once into frozen sets (`_ground_action`; kept
+    on the problem for its next plan), so a step costs a dict lookup, a subset test, a
+    disjointness test and two set updates; no history of changed atoms is kept. Steps
+    of one ground action with the same edit (which deletes held, which adds did not)
+    share their `action` and `edit` objects, also across plans of one problem: a report
+    is read-only JSON data. At the first step that does not apply (a line that is
+    no action, a failing precondition, an undeclared object) the run hands its state to
+    the step-by-step run (`_Simulation`), which judges and explains that step with the
+    history read back from the report's edits; an unmet goal is explained the same way.
     """
     state = set(problem.init)
     schemas = domain.schemas
-    compiled: dict[str, _Compiled] = {}
-    grounded: dict[Any, _Ground] = {}
+    compiled: dict[str, _Compiled] = problem.compiled
+    grounded: dict[Any, _Ground] = problem.grounded
+    if len(grounded) > MAX_GROUNDED:
+        grounded.clear()
     out_steps: list[dict[str, Any]] = []
     append = out_steps.append
     total_cost = 0.0
     contains = state.__contains__
-    for index, key in enumerate(keys, start=1):
-        if not index & 4095:
-            checkpoint()  # the server's per-call budget and cancellation
+    index = 0
+    for position, key in enumerate(keys):
         entry = grounded.get(key)
         if entry is None:
-            step = resolve(key)
-            if step is None or step.problem is not None:
-                return None
+            step = step_at(position)
+            if step is None:
+                grounded[key] = _SKIP
+                continue
+            index += 1
+            if step.problem is not None:
+                return _handed_over(domain, problem, state, out_steps, total_cost, keys,
+                                    step_at, position, index, step)
             fast = compiled.get(step.name)
             if fast is None:
                 fast = compiled[step.name] = _Compiled(domain, problem, schemas[step.name])
             got = _ground_action(domain, problem, fast, step)
             if got is None:
-                return None
+                return _handed_over(domain, problem, state, out_steps, total_cost, keys,
+                                    step_at, position, index, step)
             entry = grounded[key] = got
-        pre, neg, removed, ordered, added, edit, probe, cost, text, action, adl, dels, adds, \
-            variants = entry
-        if not pre <= state or not state.isdisjoint(neg):
-            return None
-        total_cost += cost
-        if adl is None:
-            if removed <= state and state.isdisjoint(added):
-                state -= removed
-                state.update(added)
-            else:  # a delete that did not hold or an add that did: another edit
-                held = tuple(map(contains, probe))
-                variant = variants.get(held)
-                if variant is None:
-                    gone = [a for a, h in zip(ordered, held, strict=False) if h]
-                    new = [a for a, h in zip(added, held[len(ordered):], strict=True) if not h]
-                    variant = variants[held] = (gone, new, {
-                        "removed": [show(a) for a in gone], "added": [show(a) for a in new]})
-                state.difference_update(variant[0])
-                state.update(variant[1])
-                edit = variant[2]
-            append({"step": index, "ok": True, "action": action, "text": text, "edit": edit})
+        elif entry is _SKIP:
+            continue
         else:
-            effects = _adl_step(domain, problem, adl, tuple(action["args"]), state)
+            index += 1
+        if not index & 4095:
+            checkpoint()  # the server's per-call budget and cancellation
+        pre, neg, removed, added, edit, action, text, cost, sure, checks, ordered, adl, \
+            edits = entry
+        if not pre <= state or (neg is not None and not state.isdisjoint(neg)) or (
+                checks is not None and not all(c(action["args"], state) for c in checks)):
+            return _handed_over(domain, problem, state, out_steps, total_cost, keys, step_at,
+                                position, index)
+        if sure and state.isdisjoint(added):  # the common case: the edit made at grounding
+            state -= removed
+            state.update(added)
+            append({"step": index, "ok": True, "action": action, "text": text, "edit": edit})
+        elif adl is None:  # a delete that did not hold or an add that did: another edit
+            probe = added if sure else ordered + added  # the atoms that pick the edit
+            held = tuple(map(contains, probe))
+            variant = edits.get(held)
+            if variant is None:
+                if sure:  # every delete held (a precondition): the adds pick the edit
+                    gone, new = list(ordered), [a for a, h in zip(added, held, strict=True)
+                                                if not h]
+                else:
+                    gone = [a for a, h in zip(ordered, held, strict=False) if h]
+                    new = [a for a, h in zip(added, held[len(ordered):], strict=True)
+                           if not h]
+                variant = edits[held] = (gone, new, {
+                    "removed": [show(a) for a in gone], "added": [show(a) for a in new]})
+            state.difference_update(variant[0])
+            state.update(variant[1])
+            append({"step": index, "ok": True, "action": action, "text": text,
+                    "edit": variant[2]})
+        else:
+            args, schema = tuple(action["args"]), adl.adl
+            assert schema is not None
+            effects = _adl_step(domain, problem, schema, args, state)
             if effects is None:
-                return None
-            step_dels, step_adds = dels + effects[1], adds + effects[0]
+                return _handed_over(domain, problem, state, out_steps, total_cost, keys,
+                                    step_at, position, index)
+            step_dels = [g(args) for g in adl.delete] + effects[1]
+            step_adds = [g(args) for g in adl.add] + effects[0]
             add_set = set(step_adds)
             gone = [a for a in dict.fromkeys(step_dels) if a in state and a not in add_set]
             state.difference_update(gone)
@@ -466,49 +589,29 @@ def _fast_run(domain: Domain, problem: Problem, keys: list[Any],
             append({"step": index, "ok": True, "action": action, "text": text,
                     "edit": {"removed": [show(a) for a in gone],
                              "added": [show(a) for a in new]}})
-    if any(a[1] != a[2] if a[0] == "=" else a not in state for a in problem.goal_pos) \
-            or any(a[1] == a[2] if a[0] == "=" else a in state for a in problem.goal_neg):
-        return None
-    if problem.goal_complex:
-        ev = Evaluator(domain, problem, state)
-        if not all(ev.holds(f, [None] * len(problem.goal_slots)) for f in problem.goal_complex):
-            return None
-    report: dict[str, Any] = {
-        "engine": "strips", "valid": True, "plan_valid": True, "goal_reached": True,
-        "steps": out_steps, "violations": [], "not_checked": 0, "done": False,
-        "goal_diff": {"satisfied": True, "missing_nodes": [], "extra_nodes": [],
-                      "missing_edges": [], "extra_edges": []},
-        "unmet_goals": [], "final_state": sorted(show(a) for a in state)}
-    if bool(domain.functions) or any(s.cost for s in schemas.values()):
-        report["total_cost"] = int(total_cost) if total_cost == int(total_cost) else total_cost
-    return report
+        total_cost += cost
+    return _Simulation(domain, problem, state, out_steps, total_cost).report(0, False)
 
 
-def _plain_line(domain: Domain) -> Callable[[str], Step | None]:
-    """Reads one lower-case plan line that is exactly `(action arg ...)` of the domain's
-    arity into a Step (None for any other line: the general reader takes the plan)."""
-    schemas = domain.schemas
+def _handed_over(domain: Domain, problem: Problem, state: set[GroundAtom],
+                 out_steps: list[dict[str, Any]], total_cost: float, keys: Sequence[Any],
+                 step_at: Callable[[int], Step | None], position: int, index: int,
+                 read: Step | None = None) -> dict[str, Any]:
+    """The fast run met a step it does not apply (number `index`, at `position`; `read`:
+    that step, if it was read just now): the step-by-step run takes the plan from there,
+    in the state before that step."""
+    def rest() -> Iterator[Step]:
+        if read is not None:
+            yield read
+        for q in range(position + (read is not None), len(keys)):
+            step = step_at(q)
+            if step is not None:
+                yield step
 
-    def resolve(line: str) -> Step | None:
-        m = _ONE_PLAIN_LINE.fullmatch(line)
-        if m is None:
-            return None
-        name, rest = m.groups()
-        args = tuple(rest.split())
-        schema = schemas.get(name)
-        if schema is None or len(schema.params) != len(args):
-            return None
-        return Step(name, args, 0)
-
-    return resolve
-
-
-def _fast_steps(domain: Domain, problem: Problem, steps: list[Step]) -> dict[str, Any] | None:
-    """`_fast_run` over steps already read (keyed by action and arguments)."""
-    if any(s.problem is not None for s in steps):
-        return None
-    return _fast_run(domain, problem, [s[:2] for s in steps],
-                     lambda key: Step(key[0], key[1], 0))
+    steps = rest()
+    sim = _Simulation(domain, problem, state, out_steps, total_cost)
+    sim.run(steps, index, False)
+    return sim.report(sum(1 for _ in steps), False)
 
 
 def _slots(schema: Schema, binding: tuple[str, ...]) -> list[str | None]:
@@ -518,16 +621,34 @@ def _slots(schema: Schema, binding: tuple[str, ...]) -> list[str | None]:
 def _adl_step(domain: Domain, problem: Problem, schema: Schema, binding: tuple[str, ...],
               state: set[GroundAtom]) -> tuple[list[GroundAtom], list[GroundAtom]] | None:
     """None when an ADL precondition is false; else the conditional effects' (adds,
-    deletes), every condition evaluated in the state before the step (PDDL's rule)."""
+    deletes), every condition evaluated in the state before the step (PDDL's rule). A
+    quantified effect whose condition is a conjunction of literals is a join over the
+    static predicates (`CondEffect.join`); the others enumerate their bindings."""
     ev = Evaluator(domain, problem, state)
     slots = _slots(schema, binding)
-    if not all(ev.holds(f, slots) for f in schema.pre_complex):
-        return None
+    for f, check in zip(schema.pre_complex, schema.checks, strict=True):
+        if not (ev.holds(f, slots) if check is None else check(slots, state)):
+            return None
     adds: list[GroundAtom] = []
     dels: list[GroundAtom] = []
+    joiner: Joiner | None = None
     for effect in schema.cond_effects:
+        if effect.join is not None:
+            if joiner is None:
+                joiner = Joiner(domain, problem, state, static_index(domain, problem),
+                                limit=MAX_QUANTIFIED, error=_too_many_bindings)
+            add_lits, del_lits = effect.add, effect.delete
+
+            def emit(b: list[Any], add_lits: list[Literal] = add_lits,
+                     del_lits: list[Literal] = del_lits, adds: list[GroundAtom] = adds,
+                     dels: list[GroundAtom] = dels) -> None:
+                adds.extend([_atom(lit, b) for lit in add_lits])
+                dels.extend([_atom(lit, b) for lit in del_lits])
+
+            joiner.run(effect.join, slots, emit)
+            continue
         combos = ev.bindings(effect.variables) if effect.variables else [()]
-        check = _condition_check(domain, effect.condition)
+        check = effect.check
         places = [slot for slot, _, _ in effect.variables]
         for objs in combos:
             for slot, obj in zip(places, objs, strict=True):
@@ -539,20 +660,11 @@ def _adl_step(domain: Domain, problem: Problem, schema: Schema, binding: tuple[s
     return adds, dels
 
 
-def _condition_check(domain: Domain, condition: Any) -> Check | None:
-    """The condition of a conditional effect as a closure over (slots, state), built once
-    per domain: a `forall` effect tests it once per object of its variables' types, and
-    the general evaluator's recursion dominated such steps. Atoms, equality, not, and,
-    or and imply are compiled; a condition with a quantifier inside gets None (the
-    evaluator takes it). The same truth value as `Evaluator.holds` on a full binding."""
-    if condition is None:
-        return None
-    key = f"condition {id(condition)}"  # beside the schemas' names (no name has a space)
-    found = domain.compiled.get(key)
-    if found is None or found[0] is not condition:  # the condition kept: no id reuse
-        found = domain.compiled[key] = (condition, compile_condition(condition))
-    check: Check | None = found[1]
-    return check
+def _too_many_bindings(tried: int) -> VeriGraphError:
+    return QuantifierLimitError(
+        f"a conditional effect's quantified variables range over more than "
+        f"{MAX_QUANTIFIED:,} bindings in one step", field="domain", value=tried,
+        fix="quantify over smaller types, or compile the quantifier away")
 
 
 def _unsatisfied(schema: Schema, binding: tuple[str, ...], state: set[GroundAtom],
@@ -584,19 +696,18 @@ def validate_strips_dict(domain_text: str, problem_text: str, plan_text: str, *,
     cannot be read raises a VeriGraphError naming the requirement or name at fault; a plan
     line that is no action of the domain is a failing step)."""
     lines = plan_text.count("\n") + 1
-    with collector_paused(lines):
+    # a long plan's report, or a large problem's state and its explanations
+    with collector_paused(lines + problem_text.count("(")):
         domain = cached_strips_domain(domain_text)
         problem = cached_strips_problem(domain_text, problem_text)
-        report: dict[str, Any] | None = None
-        tried = False
-        if not all_errors and domain.axioms is None and plan_text.isascii():
-            plain = plan_text.lower().splitlines()  # a valid plain plan: read as it runs
-            if len(plain) <= MAX_STEPS:
-                tried = True
-                report = _fast_run(domain, problem, plain, _plain_line(domain))
-        if report is None:
+        lowered = plan_text.lower().splitlines() if plan_text.isascii() else []
+        if all_errors or domain.axioms is not None or not plan_text.isascii() \
+                or len(lowered) > MAX_STEPS:
             report = simulate(domain, problem, parse_strips_plan(plan_text, domain),
-                              all_errors=all_errors, try_fast=not tried)
+                              all_errors=all_errors)
+        else:  # the lines are read as they run, each distinct line once
+            report = _fast_run(domain, problem, lowered,
+                               line_reader(plan_text, lowered, domain))
         if lines >= LARGE_GRAPH_ITEMS and gc.get_freeze_count() == 0:
             promote_young_objects()  # see there: the report is acyclic
     return report

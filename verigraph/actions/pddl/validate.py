@@ -19,6 +19,7 @@ after a failure. The report says which engine judged it (`engine`).
 from __future__ import annotations
 
 import re
+from functools import lru_cache
 from typing import Any
 
 from verigraph.actions.blocksworld.domain import UnsupportedDomainError, cached_domain
@@ -88,8 +89,17 @@ def validate_pddl_dict(domain_text: str, problem_text: str, plan_text: str, *,
     return validate_strips_dict(domain_text, problem_text, plan_text, all_errors=all_errors)
 
 
+@lru_cache(maxsize=64)
 def _blocks_world(domain_text: str) -> bool:
-    """Whether the domain is a blocks world up to renaming (recognised once per text)."""
+    """Whether the domain is a blocks world up to renaming, answered once per text (a
+    batch of another domain asks for every item; a refusal is not cached below). A
+    domain whose predicates or actions cannot be the family's (one binary predicate, at
+    most three unary and one nullary, three or four actions) is not read again."""
+    domain = cached_strips_domain(domain_text)
+    arities = [len(signature) for signature in domain.predicates.values()]
+    if len(domain.schemas) not in (3, 4) or max(arities, default=0) > 2 \
+            or arities.count(2) != 1 or arities.count(1) > 3 or arities.count(0) > 1:
+        return False
     try:
         cached_domain(domain_text)
     except VeriGraphError:  # another domain, or PDDL the recogniser does not take
