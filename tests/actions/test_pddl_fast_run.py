@@ -9,6 +9,7 @@ field (the all-errors one adds `after_failure`).
 
 from __future__ import annotations
 
+import importlib
 import json
 import random
 from pathlib import Path
@@ -152,6 +153,21 @@ def test_plans_of_one_problem_share_its_ground_actions_and_get_their_own_reports
     assert cached_strips_problem(GRIPPER, problem).grounded  # kept for the next plan
     after = validate_strips_dict(GRIPPER, problem, bad)
     assert json.dumps(after, sort_keys=True) == json.dumps(alone, sort_keys=True)
+
+
+def test_a_plan_that_leaves_too_many_ground_actions_behind_empties_the_cache(monkeypatch):
+    """What a problem keeps for its next plan is bounded (a server keeps problems read)."""
+    problem = ("(define (problem g) (:domain gripper-strips) (:objects rooma roomb left b1)"
+               " (:init (room rooma) (room roomb) (gripper left) (at-robby rooma) (free left)"
+               " (ball b1) (at b1 rooma)) (:goal (and (at b1 roomb))))")
+    plan = "(pick b1 rooma left)\n(move rooma roomb)\n(drop b1 roomb left)"
+    cached_strips_problem.cache_clear()
+    module = importlib.import_module("verigraph.actions.pddl.simulate")  # not the function
+    monkeypatch.setattr(module, "MAX_GROUNDED", 3)
+    assert validate_strips_dict(GRIPPER, problem, plan)["valid"]
+    assert len(cached_strips_problem(GRIPPER, problem).grounded) == 3
+    assert validate_strips_dict(GRIPPER, problem, plan + "\n(move roomb rooma)")["valid"]
+    assert not cached_strips_problem(GRIPPER, problem).grounded  # four: emptied
 
 
 def test_each_line_read_alone_is_the_step_the_whole_plan_reading_gives():

@@ -488,9 +488,10 @@ def _ground_action(domain: Domain, problem: Problem, fast: _Compiled, step: Step
 
 
 _SKIP: Any = ()  # the fast run's entry for a line that holds no step
-# ground actions kept per problem for the plans after (see Problem.grounded); beyond,
-# the cache starts again
-MAX_GROUNDED = 200_000
+# ground actions kept per problem for the plans after (see Problem.grounded), about a
+# kilobyte each: a plan that leaves more behind empties the cache (a server keeps up to
+# 16 problems read)
+MAX_GROUNDED = 20_000
 
 
 def _fast_run(domain: Domain, problem: Problem, keys: Sequence[Any],
@@ -499,21 +500,30 @@ def _fast_run(domain: Domain, problem: Problem, keys: Sequence[Any],
     `step_at(position)` reading the step at a position (None: a line that holds none).
 
     Each distinct key is read and grounded once into frozen sets (`_ground_action`; kept
-    on the problem for its next plan), so a step costs a dict lookup, a subset test, a
-    disjointness test and two set updates; no history of changed atoms is kept. Steps
-    of one ground action with the same edit (which deletes held, which adds did not)
-    share their `action` and `edit` objects, also across plans of one problem: a report
-    is read-only JSON data. At the first step that does not apply (a line that is
-    no action, a failing precondition, an undeclared object) the run hands its state to
-    the step-by-step run (`_Simulation`), which judges and explains that step with the
-    history read back from the report's edits; an unmet goal is explained the same way.
+    on the problem for its next plan, up to `MAX_GROUNDED` of them), so a step costs a
+    dict lookup, a subset test, a disjointness test and two set updates; no history of
+    changed atoms is kept. Steps of one ground action with the same edit (which deletes
+    held, which adds did not) share their `action` and `edit` objects, also across plans
+    of one problem: a report is read-only JSON data. At the first step that does not
+    apply (a line that is no action, a failing precondition, an undeclared object) the
+    run hands its state to the step-by-step run (`_Simulation`), which judges and
+    explains that step with the history read back from the report's edits; an unmet goal
+    is explained the same way.
     """
+    try:
+        return _fast_steps(domain, problem, keys, step_at)
+    finally:
+        if len(problem.grounded) > MAX_GROUNDED:
+            problem.grounded.clear()
+
+
+def _fast_steps(domain: Domain, problem: Problem, keys: Sequence[Any],
+                step_at: Callable[[int], Step | None]) -> dict[str, Any]:
+    """`_fast_run`'s loop."""
     state = set(problem.init)
     schemas = domain.schemas
     compiled: dict[str, _Compiled] = problem.compiled
     grounded: dict[Any, _Ground] = problem.grounded
-    if len(grounded) > MAX_GROUNDED:
-        grounded.clear()
     out_steps: list[dict[str, Any]] = []
     append = out_steps.append
     total_cost = 0.0
