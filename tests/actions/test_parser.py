@@ -1,5 +1,6 @@
 """Plan parsing: text and JSON, errors with line and column, linear time."""
 
+import gc
 import time
 
 import pytest
@@ -71,9 +72,16 @@ def test_bad_json_plan_names_the_action_and_field():
 def test_parsing_is_linear_in_plan_length():
     def timed(n):
         text = "move(cup, on, table)\n" * n
-        start = time.perf_counter()
-        assert len(parse_plan(text)) == n
-        return time.perf_counter() - start
+        best = float("inf")
+        for _ in range(3):  # best of three, the collector paused: a busy machine adds noise
+            gc.disable()
+            try:
+                start = time.perf_counter()
+                assert len(parse_plan(text)) == n
+                best = min(best, time.perf_counter() - start)
+            finally:
+                gc.enable()
+        return best
 
     small, large = timed(10_000), timed(100_000)
     # Linear would be 10x; allow generous noise but catch quadratic behaviour (100x).
