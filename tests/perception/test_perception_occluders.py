@@ -9,12 +9,14 @@ are in benchmarks/results/sgg_robustness.md; these seeds are apart from its seed
 
 from __future__ import annotations
 
+import cv2
 import numpy as np
 import pytest
 
 from verigraph.graph.dictionary import builtin_dictionary
 from verigraph.perception import perceive_image, score_graph
-from verigraph.perception.detect.occlusion import find_occluders
+from verigraph.perception.detect.colors import brightest
+from verigraph.perception.detect.occlusion import _outline, find_occluders
 from verigraph.perception.detect.regions import Region
 from verigraph.perception.detect.tangram import outline
 from verigraph.perception.robustness import SHAKE_AND_OCCLUDERS, SUITE
@@ -169,3 +171,30 @@ def test_a_bar_across_a_tangram_names_the_pieces_it_hides(level: str) -> None:
         assert not result.confident
         named += bool(hidden)
     assert named >= 1  # the bar did hide something
+
+
+def test_a_components_outline_gives_the_hull_and_rectangle_of_all_its_pixels() -> None:
+    """The occluder search fits its rectangles and hulls to a component's outer boundary
+    (`_outline`), not to every pixel: the results must be the same."""
+    rng = np.random.default_rng(5)
+    for _ in range(20):
+        comp = np.zeros((90, 120), np.uint8)
+        for _ in range(3):  # a few overlapping rotated bars and discs: one blob or a band
+            centre = (int(rng.integers(30, 90)), int(rng.integers(20, 70)))
+            if rng.random() < 0.5:
+                cv2.circle(comp, centre, int(rng.integers(5, 20)), 1, -1)
+            else:
+                box = cv2.boxPoints((centre, (float(rng.integers(40, 110)),
+                                              float(rng.integers(3, 12))),
+                                     float(rng.uniform(0, 180))))
+                cv2.fillPoly(comp, [np.round(box).astype(np.int32)], 1)
+        n, labels = cv2.connectedComponents(comp, connectivity=4)
+        part = labels == 1
+        every = np.column_stack(np.nonzero(part)[::-1]).astype(np.float32)
+        boundary = _outline(part).astype(np.float32)
+        (_, size_all, _), (_, size_out, _) = cv2.minAreaRect(every), cv2.minAreaRect(boundary)
+        assert sorted(size_all) == pytest.approx(sorted(size_out), abs=1e-3)
+        assert cv2.contourArea(cv2.convexHull(every)) == pytest.approx(
+            cv2.contourArea(cv2.convexHull(boundary)))
+    image = rng.integers(0, 256, (40, 50, 3), dtype=np.uint8)
+    assert np.array_equal(brightest(image), image.max(axis=2))

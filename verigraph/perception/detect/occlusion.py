@@ -7,10 +7,11 @@ meets the frame with both ends (an arm reaching in) and is at least twice as lon
 wide. A pole is a plain bar reaching in from the top edge or a side (a pole, a cable,
 an arm link), square to it or tilted, found by following from that edge inwards a run
 of one colour that the scenery there does not have, with its width unchanged, along a
-straight line, for at least twice its width (`find_poles`); its colour does not matter
-(it may be any object's), only its geometry. Their pixels
-are then read as no object, and parts of one colour facing each other across them are
-one object (`join_across`).
+straight line, for at least twice its width from a side and 1.25 times from the top
+(`find_poles`); its colour does not matter (it may be any object's), only its
+geometry. Their pixels, the end of a tilted bar and the part of one that leaves the
+picture through another edge included, are then read as no object, and parts of one
+colour facing each other across them are one object (`join_across`).
 
 A bar, an arm or an unknown object in front of a table splits its fill into two
 regions. Two fills of one furniture colour whose tops lie on one line, with no wall
@@ -28,6 +29,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
+from verigraph.perception.detect import colors
 from verigraph.perception.detect.colors import BACKGROUND, FLOOR, UNKNOWN
 from verigraph.perception.detect.regions import Region
 
@@ -179,7 +181,8 @@ POLE_MATCH = 28  # largest channel difference from the pole's colour along it ..
 POLE_MATCH_SHARE = 0.5  # ... and at most this share of its difference from the wall
 POLE_ROW_SHARE = 0.8  # share of a row's inner columns in the pole's colour
 POLE_MIN_LENGTH = 0.06  # shortest pole, as a share of the image height
-POLE_ASPECT = 2.0  # ... and at least this many times as long as wide (as a band)
+POLE_ASPECT = 2.0  # ... and at least this many times as long as wide (as a band) ...
+POLE_TOP_ASPECT = 1.25  # ... or this many from the top edge, where the scene never shows
 POLE_MAX_WIDTH = 0.25  # widest pole, as a share of the image width
 POLE_APART = 0.6  # share of its rows in which a pole's sides differ from it
 POLE_EDGES = ("top", "left", "right")  # edges a bar is looked for at
@@ -189,8 +192,11 @@ OUTLINE_DARK = 110  # brightest channel of an outline pixel (drawn 25, 25, 25; w
 OUTLINE_STEP = 40  # ... at least this much darker than the run's own colour ...
 OUTLINE_MIN = 40  # ... and a run too dark to leave that room is not judged
 OUTLINED = 0.5  # share of its rows in which a scene object cut by the frame shows them
-POLE_REFERENCE = 0.3  # running-median window along an edge, as a share of its length
-MEDIAN_SAMPLES = 31  # samples per window of the running median along an edge
+POLE_REFERENCE = 0.3  # running-medoid window along an edge, as a share of its length
+POLE_PASSES = 3  # times the scenery is found again with the runs found taken out
+POLE_CORE = 10  # channel difference from its median colour of most of a bar's run where
+# two sceneries meet
+MEDIAN_SAMPLES = 31  # samples per window of the running medoid along an edge
 POLE_DRIFT = 3  # px a bar's run is looked for beyond where its line puts it
 POLE_TILT = 0.7  # largest drift of a bar's centre per row (35 degrees from square)
 
@@ -250,7 +256,7 @@ def find_occluders(image: np.ndarray, scenery: Sequence[tuple[int, int, int]],
                                                  and bh < BAND_REACH * h):
             continue  # the wall, the floor, the table; or a thing standing at the border
         comp = labels[y:y + bh, x:x + bw] == i
-        kind = _band_or_blob(comp, x, y, (h, w), image, foreign)
+        kind = _band_or_blob(comp, area, x, y, (h, w), image, foreign)
         if kind is not None:
             # The flat interior, grown by 2 px over the occluder's own edges and outline.
             gx0, gy0 = max(0, x - 2), max(0, y - 2)
@@ -271,22 +277,25 @@ def find_poles(image: np.ndarray, bands: Sequence[Occluder] = (),
     The rows and columns at the edges of a picture show the scenery only (the wall, the
     floor, the tangram table): objects stand inside the frame. Each edge is turned to
     the top (`_edge_view`) and searched as the top edge is: a run of pixels that
-    differs from the scenery along the edge (its running median, `POLE_REFERENCE`) in
+    differs from the scenery along the edge (its running medoid, `POLE_REFERENCE`) in
     the `POLE_TOP_ROWS` outermost rows is followed inwards as long as its inner pixels
     keep its colour (`POLE_MATCH`, or half its difference from the scenery when that is
     less; `POLE_ROW_SHARE`; one row's gap is bridged), its centre allowed to drift row
     by row along a straight line (a tilted bar). It is a bar when it runs at least
-    `POLE_ASPECT` times its width and `POLE_MIN_LENGTH` of the picture in, and its
-    sides differ from it along most of that length (`POLE_APART`; a same-coloured
-    object it crosses joins it there, a thing merely reaching the edge does not keep
-    its width). Its mask covers the run and 2 px around it (the anti-aliased sides).
-    A run already inside a band crossing the frame is that band. Only where the
-    edge shows the scenery (`scenery`, and the colours of the picture's top and
-    bottom rows; `POLE_SCENERY`) around the run is it a bar: a camera rolled or
-    tilted far enough cuts furniture and what stands on it off at a side, and that
-    stretch of the edge (an object, its outline) is the scene, not something in front.
-    A bar of the scenery's own colour does not show at the edge and is not found
-    here."""
+    `POLE_ASPECT` times its width in (`POLE_TOP_ASPECT` from the top edge, where the
+    scene never shows; both measured along the bar's axis) and `POLE_MIN_LENGTH` of
+    the picture, and its sides differ from it along most of that length (`POLE_APART`;
+    a same-coloured object it crosses joins it there, a thing merely reaching the edge
+    does not keep its width). Its mask covers the run and 2 px around it (the
+    anti-aliased sides), its end past the last row followed, and the rest of a bar
+    that leaves through another edge (`_bar_end`). A run already inside a band crossing
+    the frame is that band. Only where the edge shows the scenery (`scenery`, and the
+    colours of the picture's top and bottom rows; `POLE_SCENERY`) around the run is it
+    a bar (at a side: the wall before it, the wall or the floor after it): a camera
+    rolled or tilted far enough cuts furniture and what stands on it off at a side, and
+    that stretch of the edge (an object, its outline) is the scene, not something in
+    front. A bar of the scenery's own colour does not show at the edge and is not
+    found here."""
     h, w = image.shape[:2]
     if min(h, w) < 4 * POLE_TOP_ROWS or min(h, w) < 8:
         return []
@@ -298,10 +307,13 @@ def find_poles(image: np.ndarray, bands: Sequence[Occluder] = (),
     for edge in POLE_EDGES:
         view = _edge_view(image, edge)
         taken = None if covered is None else _edge_view(covered, edge)
-        # At a side the wall must show around a bar: the floor's edge there is where
-        # a rolled or tilted camera cuts furniture off.
+        # At a side the wall must show before a bar (above it) and the wall or the
+        # floor after it: where a rolled or tilted camera cuts furniture off, the edge
+        # shows the furniture's outline and the floor on its other side too, but the
+        # scene's objects never stand with the floor above them.
         near = known if edge == "top" else known[[*([0] if scenery else []), -2]]
-        for mask in _bars_from_top(view, taken, near):
+        aspect = POLE_TOP_ASPECT if edge == "top" else POLE_ASPECT
+        for mask in _bars_from_top(view, taken, near, known, aspect):
             full = _edge_back(mask, edge)
             ys, xs = np.nonzero(full)
             x0, y0, x1, y1 = int(xs.min()), int(ys.min()), int(xs.max()) + 1, int(ys.max()) + 1
@@ -327,39 +339,76 @@ def _edge_back(mask: np.ndarray, edge: str) -> np.ndarray:
     return mask
 
 
-def _bars_from_top(img: np.ndarray, taken: np.ndarray | None, known: np.ndarray
-                   ) -> list[np.ndarray]:
+def _bars_from_top(img: np.ndarray, taken: np.ndarray | None, known: np.ndarray,
+                   below: np.ndarray, aspect: float) -> list[np.ndarray]:
     """Masks (the view's shape) of the bars hanging from the top row of a view, where
-    the edge around them shows one of the `known` scenery colours."""
+    the edge shows one of the `known` scenery colours before the run and under half of
+    it, and one of the `below` colours after it (a side bar may enter right above the
+    floor), and that run at least `aspect` times their width in (both measured in the
+    bar's own frame: a tilted bar's run along the edge is wider than the bar). A run
+    must differ from the pixels right beside it, and where it lies between two
+    sceneries (the wall and the floor) most of it must show one colour (`POLE_CORE`):
+    a soft or restored floor edge passes through a range of colours and rings."""
     h, w = img.shape[:2]
     top = img[:POLE_TOP_ROWS].astype(np.int16)
     whole: np.ndarray | None = None  # the whole view in int16, made once it is needed
     line = np.median(top, axis=0)
     window = max(9, int(POLE_REFERENCE * w))
-    reference = _running_median(line, window)
-    off = (np.abs(top - reference).max(axis=2) > POLE_OFF_WALL).all(axis=0)
-    if off.any():
-        # A bar next to a step of the scenery (the floor's edge) pulls the median off
-        # the step; the median of the line with the bars taken out keeps it.
-        reference = _running_median(_fill_runs(line, off), window)
-        off = (np.abs(top - reference).max(axis=2) > POLE_OFF_WALL).all(axis=0)
+    before, after = _scenery_around(line, window)
+    off = _differs(top, before) & _differs(top, after)
+    filled = off
+    for _ in range(POLE_PASSES):
+        if not filled.any():
+            break
+        # A run wider than half the window pulls the scenery towards its colour: the
+        # scenery of the line with the runs found (and their anti-aliased sides)
+        # taken out does not.
+        before, after = _scenery_around(_fill_runs(line, _grown(filled, 2)), window)
+        off = _differs(top, before) & _differs(top, after)
+        if not (off & ~filled).any():
+            break
+        filled = filled | off
     if taken is not None:
         off &= ~taken[:POLE_TOP_ROWS].any(axis=0)
-    scenic = (np.abs(reference[:, None, :] - known[None]).max(axis=2) <= POLE_SCENERY
-              ).any(axis=1)
+
+    def scenic(colours: np.ndarray, at: np.ndarray) -> np.ndarray:
+        return np.asarray((np.abs(at[:, None, :] - colours[None]).max(axis=2)
+                           <= POLE_SCENERY).any(axis=1))
+
     edges = np.flatnonzero(np.diff(np.concatenate(([0], off.view(np.int8), [0]))))
     out: list[np.ndarray] = []
     for a, b in zip(edges[::2].tolist(), edges[1::2].tolist(), strict=True):
         width = b - a
         if width < 2 or width > POLE_MAX_WIDTH * w or a <= 2 * BORDER or b >= w - 2 * BORDER:
             continue  # a run into a corner is the scenery changing (the floor), no bar
-        if not (scenic[max(0, a - 3):a].all() and scenic[b:b + 3].all()
-                and scenic[a:b].mean() >= 0.5):
+        past = np.median(line[b + 1:b + 4], axis=0)[None]  # beyond its anti-aliased end
+        if not (scenic(known, before[max(0, a - 3):a]).all()
+                and scenic(below, after[b:b + 3]).all()
+                and (scenic(known, before[a:b]) | scenic(known, after[a:b])).mean() >= 0.5
+                and scenic(known, np.median(line[a - 4:a - 1], axis=0)[None]).all()
+                and scenic(below, past).all()):
             continue  # the edge cuts an object of the scene there
+        if not scenic(known, past).all() and _seam_beside(line, a, b):
+            continue  # furniture standing on the floor, cut by the frame: it is outlined
+        if np.abs(before[max(0, a - 1)] - after[min(w - 1, b)]).max() > POLE_OFF_WALL:
+            # Between two sceneries (the wall above the floor) a soft or restored edge
+            # of the floor passes through a range of colours; a bar shows one colour
+            # across most of its run (all but its anti-aliased ends).
+            stretch = top[:, a:b]
+            alike = np.abs(stretch - np.median(stretch.reshape(-1, 3), axis=0)).max(axis=2)
+            if (alike <= POLE_CORE).sum(axis=1).min() < 2 or (alike <= POLE_CORE).mean() < 0.5:
+                continue
         inner = (a + 1, b - 1) if width >= 4 else (a, b)
         colour = np.median(top[:, inner[0]:inner[1]].reshape(-1, 3),
                            axis=0).astype(np.int16)
-        wall = reference[a:b].reshape(-1, 3)
+        # A thing in front differs from what lies right beside it (past an anti-aliased
+        # pixel), not only from the scenery along the edge: a ringing trough along a
+        # restored floor line differs from the floor's medoid, not from the floor next
+        # to it.
+        if min(int(np.abs(line[max(0, a - 2)] - colour).max()),
+               int(np.abs(line[min(w - 1, b + 1)] - colour).max())) <= POLE_OFF_WALL:
+            continue
+        wall = np.concatenate([before[a:b], after[a:b]])
         # A bar nearly the scenery's colour (white on the wall) is followed more tightly.
         match = min(POLE_MATCH,
                     POLE_MATCH_SHARE * float(np.abs(wall - colour).max(axis=1).min()))
@@ -370,11 +419,14 @@ def _bars_from_top(img: np.ndarray, taken: np.ndarray | None, known: np.ndarray
             continue  # a speck of noise along the edge, no bar
         if whole is None:
             whole = img.astype(np.int16)
-        centres = _follow(whole, colour, match, (a + b - 1) / 2, max(2, solid - 1), width)
-        end = len(centres)
-        if end < max(POLE_ASPECT * width, POLE_MIN_LENGTH * h):
+        run = _follow(whole, colour, match, (a + b - 1) / 2, max(2, solid - 1), width)
+        end = len(run.centres)
+        # Along its axis a bar tilted by slope s runs end * sqrt(1 + s^2) rows in, and
+        # it is width / sqrt(1 + s^2) wide.
+        if end * (1 + run.slope ** 2) < aspect * width or end < POLE_MIN_LENGTH * h:
             continue
         rows = np.arange(end)
+        centres = run.centres
         lefts = np.round(centres - width / 2 - 1.5).astype(int)
         rights = np.round(centres + width / 2 + 0.5).astype(int)
         apart = np.zeros(end, bool)
@@ -392,27 +444,112 @@ def _bars_from_top(img: np.ndarray, taken: np.ndarray | None, known: np.ndarray
             c = centres[min(r, end - 1)]
             mask[r, max(0, int(np.floor(c - width / 2 - 2))):
                  min(w, int(np.ceil(c + width / 2 + 2)))] = True
+        mask |= _bar_end(whole, colour, match, run, width)
         out.append(mask)
     return out
 
 
+def _scenery_around(line: np.ndarray, window: int) -> tuple[np.ndarray, np.ndarray]:
+    """The scenery just before and just after each place of an edge's row of colours:
+    the running medoid of the `window` ending just before it and of the one starting
+    just after it. A run is off the scenery where it differs from both: at a step of
+    the scenery (the wall meeting the floor) every place matches the side it belongs
+    to, and a bar right beside the step differs from both sides."""
+    centred = _running_medoid(line, window)
+    reach = (window | 1) // 2 + 1
+    padded = np.pad(centred, ((reach, reach), (0, 0)), mode="edge")
+    return padded[:len(line)], padded[2 * reach:]
+
+
+def _seam_beside(line: np.ndarray, a: int, b: int) -> bool:
+    """Whether a run `a:b` of an edge's row of colours may have a dark seam (an object's
+    drawn outline, `OUTLINE_DARK` and `OUTLINE_STEP` darker than the run) at either end,
+    between it and the scenery: an object of the scene cut by the frame. A run too dark
+    to tell its outline from its own anti-aliased ends may (it is not taken)."""
+    colour = np.median(line[a:b], axis=0)
+    limit = min(OUTLINE_DARK, int(colour.max()) - OUTLINE_STEP)
+    if limit < OUTLINE_MIN:
+        return True
+    ends = np.concatenate([line[max(0, a - 2):a + 1], line[b - 1:b + 2]])
+    return bool((ends.max(axis=1) <= limit).any())
+
+
+def _differs(top: np.ndarray, reference: np.ndarray) -> np.ndarray:
+    """Columns of the edge rows `top` off the `reference` colours in every row."""
+    return np.asarray((np.abs(top - reference).max(axis=2) > POLE_OFF_WALL).all(axis=0))
+
+
+def _grown(flags: np.ndarray, by: int) -> np.ndarray:
+    """A row of flags, each set one grown by `by` places either way."""
+    kernel = np.ones(2 * by + 1, np.int32)
+    return np.asarray(np.convolve(flags.view(np.int8).astype(np.int32), kernel,
+                                  mode="same") > 0)
+
+
+@dataclass(frozen=True, slots=True)
+class _Run:
+    """A bar followed from the top row of a view: its centre per row, the straight
+    line fitted through them (x = base + slope * row), and whether it ended by leaving
+    the view through a side (`exits`) rather than by losing its colour."""
+
+    centres: np.ndarray
+    slope: float
+    base: float
+    exits: bool
+
+
+def _bar_end(img: np.ndarray, colour: np.ndarray, match: float, run: _Run,
+             width: int) -> np.ndarray:
+    """The pixels of a bar past its last row followed (a mask of the view's shape):
+    those of its colour between its two sides (its line, `width` wide) where its end
+    is cut square to a tilted bar (the end spans `width * s / (1 + s^2)` rows), or, for
+    a bar leaving the view through a side, up to where it has left, grown by 2 px over
+    its anti-aliased sides. What the bar covers there is no object, however it is
+    cut."""
+    h, w = img.shape[:2]
+    out = np.zeros((h, w), bool)
+    start = len(run.centres)
+    slope = run.slope
+    stop = h if run.exits else min(h, start + 2 + int(np.ceil(
+        width * abs(slope) / (1 + slope * slope))))
+    misses = 0
+    for r in range(start, stop):
+        c = run.base + slope * r
+        lo, hi = max(0, int(np.floor(c - width / 2 - 1))), min(w, int(np.ceil(c + width / 2 + 1)))
+        if lo >= hi:
+            break  # wholly out of the view
+        hits = np.abs(img[r, lo:hi] - colour).max(axis=1) <= match
+        if not hits.any():
+            misses += 1
+            if misses >= 2:
+                break
+            continue
+        misses = 0
+        out[r, lo:hi] = hits
+    if out.any():
+        out = cv2.dilate(out.view(np.uint8), np.ones((5, 5), np.uint8)).astype(bool)
+    return out
+
+
 def _follow(img: np.ndarray, colour: np.ndarray, match: float, centre: float,
-            inner: int, width: int) -> np.ndarray:
-    """Centres (one per row, from the top) of a run of `colour` (`width` px wide, its
-    `inner` px solid) that starts at `centre` in the top row and goes on along a
-    straight line; it ends at two rows in a row off its colour (the last rows off it
-    are dropped)."""
+            inner: int, width: int) -> _Run:
+    """A run of `colour` (`width` px wide, its `inner` px solid) that starts at
+    `centre` in the top row and goes on along a straight line, followed row by row; it
+    ends at two rows in a row off its colour (the last rows off it are dropped) or
+    where its solid core reaches a side of the view."""
     h, w = img.shape[:2]
     half = inner / 2
     reach = int(np.ceil(width / 2)) + POLE_DRIFT
     centres: list[float] = []
     fit: list[tuple[int, float]] = []  # rows whose run kept the bar's width
     misses = 0
+    exits = False
     slope, base = 0.0, centre
     sums = (0.0, 0.0, 0.0, 0.0, 0.0)  # n, sum r, sum x, sum r^2, sum r x
     for r in range(h):
         guess = base + slope * r
         if guess - half < 0 or guess + half > w:
+            exits = True
             break
         # Re-centre on the run nearest the line when it still has the bar's width (not
         # where it crosses an object of its colour), then refit the line through them.
@@ -453,7 +590,7 @@ def _follow(img: np.ndarray, colour: np.ndarray, match: float, centre: float,
     while misses and centres:
         centres.pop()
         misses -= 1
-    return np.array(centres, float)
+    return _Run(np.array(centres, float), slope, base, exits)
 
 
 def _outlined(img: np.ndarray, centres: np.ndarray, width: int, colour: np.ndarray) -> bool:
@@ -499,59 +636,85 @@ def _fill_runs(line: np.ndarray, off: np.ndarray) -> np.ndarray:
     return out
 
 
-def _running_median(line: np.ndarray, window: int) -> np.ndarray:
-    """Running median along a row of colours (per channel), `window` wide: the scenery
-    along an edge, whose steps (wall to floor) it keeps and whose narrow runs (a bar)
-    it drops. Each window is sampled at about `MEDIAN_SAMPLES` points, and the median
-    is taken every sampling interval (a step of the scenery is placed within one
-    interval, 1/31 of the window; the cost stays linear in the edge's length)."""
+def _running_medoid(line: np.ndarray, window: int) -> np.ndarray:
+    """The scenery along a row of colours: at each place, the medoid of the colours in
+    a `window` around it (the sampled colour nearest all the others, summing channel
+    differences), which keeps the scenery's steps (wall to floor) and drops narrow runs
+    (a bar). A medoid is a colour the window shows: a per-channel median there would
+    mix the channels of a bar and the floor next to it into a colour neither has. A
+    window of one colour (within `POLE_OFF_WALL` per channel, most of an edge) takes
+    its per-channel median, the same colour for less work. Each window is sampled at
+    about `MEDIAN_SAMPLES` points, and the medoid is taken every sampling interval (a
+    step of the scenery is placed within one interval, 1/31 of the window; the cost
+    stays linear in the edge's length)."""
     window |= 1
     pad = window // 2
     step = max(1, window // MEDIAN_SAMPLES)
-    padded = np.pad(line, ((pad, pad), (0, 0)), mode="edge")
+    padded = np.pad(line, ((pad, pad), (0, 0)), mode="edge").astype(np.float32)
     windows = np.lib.stride_tricks.sliding_window_view(padded, window, axis=0)
-    at = windows[::step, :, ::step]
-    medians = np.median(at, axis=2)
-    return np.asarray(np.repeat(medians, step, axis=0)[:len(line)], dtype=np.int16)
+    at = np.ascontiguousarray(windows[::step, :, ::step])  # windows, channels, samples
+    out = np.median(at, axis=2)
+    mixed = np.flatnonzero((at.max(axis=2) - at.min(axis=2)).max(axis=1) > POLE_OFF_WALL)
+    if len(mixed):
+        # Window k samples grid points k .. k + m - 1 of the line taken every `step`
+        # places, so one table of distances between grid points (prefix-summed along
+        # its rows) gives every sample's summed distance to its window in one lookup
+        # (an edge's colours are medians of two rows, halves: the sums are exact).
+        samples = at.shape[2]
+        grid = padded[::step][:len(at) + samples - 1].astype(np.float64)
+        apart = sum(np.abs(grid[:, None, c] - grid[None, :, c]) for c in range(3))
+        summed = np.zeros((len(grid), len(grid) + 1))
+        np.cumsum(apart, axis=1, out=summed[:, 1:])
+        rows = mixed[:, None] + np.arange(samples)[None, :]
+        spread = summed[rows, (mixed + samples)[:, None]] - summed[rows, mixed[:, None]]
+        out[mixed] = grid[mixed + np.argmin(spread, axis=1)]
+    return np.asarray(np.repeat(out, step, axis=0)[:len(line)], dtype=np.int16)
 
 
 def _step(image: np.ndarray) -> np.ndarray:
     """Largest colour step to a 3x3 neighbour, per pixel (the channels' morphological
     gradients, their maximum taken by OpenCV: numpy's max over the last axis costs more
     than the rest of the search)."""
-    grad = cv2.morphologyEx(image, cv2.MORPH_GRADIENT, np.ones((3, 3), np.uint8))
-    if grad.ndim == 2:
-        return np.asarray(grad)
-    b, g, r = cv2.split(grad)
-    return np.asarray(cv2.max(cv2.max(b, g), r))
+    return colors.brightest(cv2.morphologyEx(image, cv2.MORPH_GRADIENT,
+                                             np.ones((3, 3), np.uint8)))
 
 
-def _band_or_blob(comp: np.ndarray, x: int, y: int, shape: tuple[int, int],
+def _band_or_blob(comp: np.ndarray, area: int, x: int, y: int, shape: tuple[int, int],
                   image: np.ndarray, foreign: np.ndarray) -> str | None:
+    """"band", "blob" or None for a flat component (`comp`: its pixels in its box at
+    (x, y), `area` of them)."""
     h, w = shape
     bh, bw = comp.shape
     touches = (x <= BORDER, y <= BORDER, x + bw >= w - BORDER, y + bh >= h - BORDER)
-    area = float(np.count_nonzero(comp))
-    points = np.column_stack(np.nonzero(comp)[::-1]).astype(np.float32)
     if sum(touches) in (2, 3) and (bw >= BAND_REACH * w or bh >= BAND_REACH * h):
         # Its two ends meet the frame, not a long side (a floor cut in two by a bar
         # meets the frame along its bottom; the wall meets it along three sides).
         on_frame = _frame_pixels(comp, touches)
         # (the test below needs on_frame <= 3 width + 4 <= 1.5 length + 4, so the
         # rectangle is not fitted to a component that cannot pass: the wall)
-        (_, _), (rw, rh), _ = cv2.minAreaRect(points) if on_frame <= 1.5 * float(
+        (_, _), (rw, rh), _ = cv2.minAreaRect(_outline(comp)) if on_frame <= 1.5 * float(
             np.hypot(bw, bh)) + 4 else ((0.0, 0.0), (0.0, 0.0), 0.0)
         length, width = max(rw, rh), min(rw, rh)
         if length > 0 and width <= BAND_THIN * length and \
                 area >= BAND_FILL * length * width and on_frame <= 3 * width + 4:
             return "band"
     if not any(touches) and area >= BLOB_SHARE * h * w and len(foreign):
-        colour = image[y:y + bh, x:x + bw][comp].astype(np.float32).mean(axis=0)
+        colour = np.asarray(cv2.mean(image[y:y + bh, x:x + bw], comp.view(np.uint8))[:3],
+                            dtype=np.float32)
         if float(np.min(np.linalg.norm(foreign - colour, axis=1))) >= BLOB_FOREIGN:
-            hull = cv2.convexHull(points)
+            hull = cv2.convexHull(_outline(comp))
             if area >= BLOB_SOLIDITY * max(float(cv2.contourArea(hull)), 1.0):
                 return "blob"
     return None
+
+
+def _outline(comp: np.ndarray) -> np.ndarray:
+    """The pixels of a component's outer boundary, (n, 1, 2) int32 (x, y): every corner
+    of its convex hull, so its hull and its smallest rectangle are those of all its
+    pixels, found from far fewer points."""
+    contours, _ = cv2.findContours(comp.view(np.uint8), cv2.RETR_EXTERNAL,
+                                   cv2.CHAIN_APPROX_SIMPLE)
+    return np.concatenate(contours)
 
 
 def _frame_pixels(comp: np.ndarray, touches: tuple[bool, bool, bool, bool]) -> int:

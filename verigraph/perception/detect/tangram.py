@@ -19,8 +19,9 @@ from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.perception.config import PerceptionConfig
 from verigraph.perception.correct.photometry import correct_colours
 from verigraph.perception.detect import colors
-from verigraph.perception.detect.occlusion import find_occluders, hidden_mask
+from verigraph.perception.detect.occlusion import TOUCH, find_occluders, hidden_mask
 from verigraph.perception.detect.regions import Region, colour_fragments
+from verigraph.perception.detect.tangram_hidden import complete_piece, drawn_offset
 from verigraph.perception.detect.tangram_sides import (
     PlacedPiece,
     borderline,
@@ -131,7 +132,11 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
         classes[hidden] = colors.UNKNOWN  # no piece is read off an occluder's pixels
     fragments = colour_fragments(corrected, classes, table, min_core=config.min_core_pixels)
     pieces = _largest_per_colour(fragments)
+    cut: set[int] = set()  # colours of pieces partly under an occluder
+    if hidden is not None:
+        pieces, cut = _parts_around(fragments, pieces, hidden)
     found: list[tuple[ObjectModel, np.ndarray]] = []
+    pending: list[tuple[ObjectModel, Region]] = []  # pieces to complete under an occluder
     regions = [pieces[c] for c in sorted(pieces)]
     colours = [table.names[c] for c in sorted(pieces)]
     labels = labeller.label(corrected, regions, colours, models, 0.0)
@@ -146,43 +151,56 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
                                               box=(region.x0, region.y0, region.x1, region.y1),
                                               score=score)
         seen[model.label] = region
-        poly = outline(region, len(piece_model(model.label)))
-        if poly is None:
-            warnings.append(f"the {colour} region does not look like a {model.label}")
+        if region.cls in cut and region.area >= MIN_PIECE_PIXELS:
+            pending.append((model, region))
             continue
-        if region.area < MIN_PIECE_PIXELS:
-            warnings.append(f"the {colour} region is too small for a piece "
-                            f"({region.area} px); ignored")
+        poly, drop = _outline_of(region, model, colour, warnings)
+        if drop:
             objects.pop(model.label, None)
-            continue
-        filled = region.area / max(abs(float(cv2.contourArea(poly.astype(np.float32)))), 1.0)
-        if filled < MIN_FILL:
-            # A piece is a solid polygon; scattered specks of its colour (noise, texture)
-            # are not, however well their outline happens to fit.
-            warnings.append(f"the {colour} region is not solid ({filled:.0%} filled); ignored")
-            objects.pop(model.label, None)
-            continue
-        found.append((model, poly))
+        if poly is not None:
+            found.append((model, poly))
     scale = _scale(found)
+    if scale <= 0 and pending:  # every piece is cut: what shows of them gives the scale
+        shown = [(model, outline(region, len(piece_model(model.label))))
+                 for model, region in pending]
+        scale = _scale([(model, poly) for model, poly in shown if poly is not None])
     placed: dict[str, PlacedPiece] = {}
     for model, poly in found:
         if scale <= 0:
             break
-        corners = clockwise(to_world(poly, scale))
-        start, flipped = canonical_start(model.label, corners)
-        corners = np.roll(corners, -start, axis=0)
-        piece = fit_model(model.label, corners)
-        if flipped:
-            warnings.append(f"{model.label} looks mirrored; tangram pieces are never flipped")
-        if piece.fit_error > REJECT_FIT_ERROR:
-            warnings.append(f"the {model.colour} region is not a {model.label} "
-                            f"({piece.fit_error:.2f} units off its shape); ignored")
+        piece = _place(model, poly, scale, warnings)
+        if piece is None:
+            objects.pop(model.label, None)
+        else:
+            placed[model.label] = piece
+    # The drawn fill's sides lie a little in or out of the model's at this scale (the
+    # outlines): pieces in full view show how far, for the cut ones that cannot.
+    inset = drawn_offset([(_pixels(placed[m.label], scale), seen[m.label].mask,
+                           (seen[m.label].x0, seen[m.label].y0))
+                          for m, _ in found if m.label in placed]) if pending else 0.0
+    completed: list[str] = []  # pieces whose hidden sides were read from what shows ...
+    settled: list[str] = []  # ... where no other placement explains it as well
+    for model, region in pending:
+        completion = complete_piece(model.label, _full_mask(region, classes.shape),
+                                    hidden if hidden is not None
+                                    else np.zeros(classes.shape, bool), scale, inset)
+        if completion is not None:
+            poly = completion.corners
+        else:
+            poly, drop = _outline_of(region, model, table.names[region.cls], warnings)
+            if drop:
+                objects.pop(model.label, None)
+        if poly is None:
+            continue
+        piece = _place(model, poly, scale, warnings)
+        if piece is None:
             objects.pop(model.label, None)
             continue
-        if piece.fit_error > MAX_FIT_ERROR:
-            warnings.append(f"{model.label} fits its shape poorly "
-                            f"({piece.fit_error:.2f} units off)")
         placed[model.label] = piece
+        if completion is not None:
+            completed.append(model.label)
+            if completion.settled:
+                settled.append(model.label)
     ids = sorted(placed)
     edges = []
     unsure: list[str] = []
@@ -191,9 +209,12 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
                   "max_distance": config.side_distance, "min_overlap": config.side_overlap}
     for i, a in enumerate(ids):
         for b in ids[i + 1:]:
+            # A completed piece's hidden sides are inferred, not seen sharply: the hidden
+            # gap test, which needs both pieces' sides where they sit, does not apply.
+            whole = a not in completed and b not in completed
             touching = [pair for pair in contacts(placed[a], placed[b], **tolerances)
                         if not gap_visible(classes, scale, placed[a], placed[b], pair)
-                        and not hidden_gap(placed[a], placed[b], pair)]
+                        and not (whole and hidden_gap(placed[a], placed[b], pair))]
             for sa, sb in touching:
                 edges.append(Edge(source=a, relation="touches", target=b, source_side=sa,
                                   target_side=sb))
@@ -208,8 +229,7 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
                 for sb in range(len(placed[b].vertices)):
                     if borderline(placed[a], placed[b], (sa, sb), **tolerances):
                         unsure.append(f"{a} touches {b} ({sa}, {sb})")
-    by_label = {m.label: m for m, _ in found}
-    nodes = [Node(id=p, label=p, attrs={"color": by_label[p].colour}) for p in ids]
+    nodes = [Node(id=p, label=p, attrs={"color": objects[p].colour}) for p in ids]
     if not nodes:
         warnings.append("no tangram pieces were found in the image")
     graph = SceneGraph(nodes=nodes, edges=edges, dictionary="tangram").canonical()
@@ -223,7 +243,7 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
         # Pieces rejected for their shape are named too: the occluder may be why.
         hiding, doubts, occluded = occlusion_doubts(
             graph, list(seen), list(seen.values()), occluders, classes.shape,
-            edge_name=_contact_name, supports=False)
+            edge_name=_contact_name, supports=False, completed=settled)
         warnings += hiding
         missing = sorted(set(m.label for m in models) - set(placed))
         if missing:
@@ -238,6 +258,78 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
                             uncertain=uncertain, occluded=occluded,
                             blocked=blocked_views(occluders, list(seen), list(seen.values()),
                                                   classes.shape))
+
+
+def _place(model: ObjectModel, poly: np.ndarray, scale: float, warnings: list[str]
+           ) -> PlacedPiece | None:
+    """The piece's exact model fitted onto an outline's corners (pixels), or None when
+    the outline is too far from the piece's shape (`REJECT_FIT_ERROR`; with a warning)."""
+    corners = clockwise(to_world(poly, scale))
+    start, flipped = canonical_start(model.label, corners)
+    corners = np.roll(corners, -start, axis=0)
+    piece = fit_model(model.label, corners)
+    if flipped:
+        warnings.append(f"{model.label} looks mirrored; tangram pieces are never flipped")
+    if piece.fit_error > REJECT_FIT_ERROR:
+        warnings.append(f"the {model.colour} region is not a {model.label} "
+                        f"({piece.fit_error:.2f} units off its shape); ignored")
+        return None
+    if piece.fit_error > MAX_FIT_ERROR:
+        warnings.append(f"{model.label} fits its shape poorly "
+                        f"({piece.fit_error:.2f} units off)")
+    return piece
+
+
+def _pixels(piece: PlacedPiece, scale: float) -> np.ndarray:
+    """A placed piece's corners in pixels (x right, y down)."""
+    out = np.array(piece.vertices, dtype=np.float64) * scale
+    out[:, 1] *= -1
+    return out
+
+
+def _outline_of(region: Region, model: ObjectModel, colour: str, warnings: list[str]
+                ) -> tuple[np.ndarray | None, bool]:
+    """The polygon a piece's region outlines (None when it does not look like the
+    piece, with a warning), and whether the region is no piece at all (too small, or
+    not solid)."""
+    poly = outline(region, len(piece_model(model.label)))
+    if poly is None:
+        warnings.append(f"the {colour} region does not look like a {model.label}")
+        return None, False
+    if region.area < MIN_PIECE_PIXELS:
+        warnings.append(f"the {colour} region is too small for a piece "
+                        f"({region.area} px); ignored")
+        return None, True
+    filled = region.area / max(abs(float(cv2.contourArea(poly.astype(np.float32)))), 1.0)
+    if filled < MIN_FILL:
+        # A piece is a solid polygon; scattered specks of its colour (noise, texture)
+        # are not, however well their outline happens to fit.
+        warnings.append(f"the {colour} region is not solid ({filled:.0%} filled); ignored")
+        return None, True
+    return poly, False
+
+
+def _parts_around(fragments: list[Region], pieces: dict[int, Region], hidden: np.ndarray
+                  ) -> tuple[dict[int, Region], set[int]]:
+    """The pieces with every part of their colour that meets an occluder (`hidden`)
+    joined to them (each colour is one piece, so parts of it on both sides of a bar
+    are that piece), and the colours of the pieces an occluder meets."""
+    near = cv2.dilate(hidden.view(np.uint8), np.ones((2 * TOUCH + 1,) * 2, np.uint8))
+    out = dict(pieces)
+    cut: set[int] = set()
+    for part in fragments:
+        if not np.any(near[part.y0:part.y1, part.x0:part.x1][part.mask]):
+            continue
+        cut.add(part.cls)
+        if part is not pieces.get(part.cls):
+            out[part.cls] = out[part.cls].merged(part)
+    return out, cut
+
+
+def _full_mask(region: Region, shape: tuple[int, int]) -> np.ndarray:
+    out = np.zeros(shape, bool)
+    out[region.y0:region.y1, region.x0:region.x1] = region.mask
+    return out
 
 
 def _contact_name(e: Edge) -> str:

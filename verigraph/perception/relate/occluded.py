@@ -13,7 +13,7 @@ hidden part (a lid seen resting on a counter may stand in a pan behind a pole).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Sequence
 
 import numpy as np
 
@@ -30,12 +30,15 @@ UNDER = 9  # px under an object's bottom where what it rests on is looked for
 
 def occlusion_doubts(graph: SceneGraph, ids: Sequence[str], regions: Sequence[Region],
                      occluders: Sequence[Occluder], shape: tuple[int, int], *,
-                     edge_name: Callable[[Edge], str], supports: bool = True
+                     edge_name: Callable[[Edge], str], supports: bool = True,
+                     completed: Collection[str] = ()
                      ) -> tuple[list[str], list[Uncertain], list[str]]:
     """(warnings, uncertain items, occluded ids) for the occluders found in an image.
 
     `supports`: edges are `source rests on/in target` (tabletop); tangram contacts have
-    no supporter, so only the shape's completion is judged."""
+    no supporter, so only the shape's completion is judged. `completed`: objects whose
+    hidden part was read from what shows of them and their known shape (tangram
+    pieces): inferred, still uncertain."""
     warnings: list[str] = []
     doubts: dict[str, Uncertain] = {}
     rests_on = {e.source: e for e in graph.edges} if supports else {}
@@ -66,6 +69,10 @@ def occlusion_doubts(graph: SceneGraph, ids: Sequence[str], regions: Sequence[Re
                        if through else
                        f"what it rests on behind it cannot be inferred ({edge.target} is "
                        "hidden there too)")
+            elif obj in completed:
+                inferable = True
+                why = ("its hidden sides were read from its visible sides and its known "
+                       "shape")
             else:
                 inferable = both_sides
                 why = ("its shape can be completed: it shows on both sides" if inferable

@@ -33,6 +33,7 @@ import numpy as np
 
 from verigraph.graph.dictionary import Dictionary
 from verigraph.graph.model import SceneGraph
+from verigraph.perception.detect import colors
 from verigraph.perception.detect.tabletop import Detection
 from verigraph.perception.relate.confidence import edge_name
 from verigraph.perception.result import Uncertain
@@ -118,7 +119,7 @@ def unoutlined_doubts(graph: SceneGraph, detections: Sequence[Detection],
     pixels) with no outline (`OUTLINE_DARK`) along at least `UNOUTLINED` connected px:
     something of the wall's colour stands in front and cuts them."""
     h, w = wall.shape
-    dark = (image.max(axis=2) <= OUTLINE_DARK).view(np.uint8)
+    dark = (colors.brightest(image) <= OUTLINE_DARK).view(np.uint8)
     near_dark = cv2.dilate(dark, np.ones((5, 5), np.uint8)).astype(bool)
     near_wall = cv2.dilate(wall.view(np.uint8), np.ones((5, 5), np.uint8)).astype(bool)
     out: list[Uncertain] = []
