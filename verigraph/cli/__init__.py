@@ -97,9 +97,11 @@ class PipeSafeStream:
         return getattr(self._stream, name)
 
 
-def run_guarded(command: Callable[[], int]) -> int:
+def run_guarded(command: Callable[[], int], *, process_ends: bool = False) -> int:
     """`command()` with standard output and error wrapped in PipeSafeStream (flushed
-    before the wrappers are removed, so a pipe closed at the very end is caught here)."""
+    before the wrappers are removed, so a pipe closed at the very end is caught here).
+    `process_ends`: it runs the process's own command line, which ends next
+    (`graph.bulk.before_exit`)."""
     out, err = sys.stdout, sys.stderr
     guards = [PipeSafeStream(s) for s in (out, err) if s is not None]  # None: no console
     if out is not None:
@@ -112,6 +114,10 @@ def run_guarded(command: Callable[[], int]) -> int:
         for guard in guards:
             guard.flush()
         sys.stdout, sys.stderr = out, err
+        if process_ends:
+            from verigraph.graph.bulk import before_exit
+
+            before_exit()
 
 
 def build_parser(modules: Sequence[str] = SUBCOMMAND_MODULES) -> argparse.ArgumentParser:
@@ -141,12 +147,7 @@ def _dispatch(argv: list[str]) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     args = list(sys.argv[1:] if argv is None else argv)
-    code = run_guarded(lambda: _dispatch(args))
-    if argv is None:  # the process's own command line: it ends now
-        from verigraph.graph.bulk import before_exit
-
-        before_exit()
-    return code
+    return run_guarded(lambda: _dispatch(args), process_ends=argv is None)
 
 
 if __name__ == "__main__":

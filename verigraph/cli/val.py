@@ -412,12 +412,7 @@ def main(argv: list[str] | None = None) -> int:
     from verigraph.cli import run_guarded
 
     args = list(sys.argv[1:] if argv is None else argv)
-    code = run_guarded(lambda: run(args))
-    if argv is None:  # the process's own command line: it ends now
-        from verigraph.graph.bulk import before_exit
-
-        before_exit()
-    return code
+    return run_guarded(lambda: run(args), process_ends=argv is None)
 
 
 if __name__ == "__main__":

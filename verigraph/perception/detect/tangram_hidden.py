@@ -23,6 +23,7 @@ fit (and doubted for the occluder).
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import cv2
@@ -248,19 +249,25 @@ def _clear_points(hull: np.ndarray, near: np.ndarray) -> np.ndarray:
 def _sides_seen(corners: np.ndarray, pts: np.ndarray) -> int:
     """How many sides of an outline the visible hull points `pts` show along at least
     `SEEN_POINTS` px (within `ON_EDGE` px of the side, clear of its corners)."""
+    return sum(int(np.count_nonzero(on) >= SEEN_POINTS)
+               for _, _, on in _near_sides(corners, pts, ON_EDGE))
+
+
+def _near_sides(corners: np.ndarray, pts: np.ndarray, reach: float, offset: float = 0.0
+                ) -> Iterator[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """For each side of a convex outline longer than `2 * CORNER_GAP`, moved out by
+    `offset` px: its unit outward normal, its first corner (unmoved), and which of the
+    points `pts` lie within `reach` px of it, at least `CORNER_GAP` px from its ends."""
     n = len(corners)
-    seen = 0
+    normals = _outward(corners)
     for j in range(n):
         a, b = corners[j], corners[(j + 1) % n]
         length = float(np.linalg.norm(b - a))
         if length <= 2 * CORNER_GAP:
             continue
-        along = (b - a) / length
-        t = (pts - a) @ along
-        d = (pts - a) @ np.array([-along[1], along[0]])
-        on = (np.abs(d) <= ON_EDGE) & (t >= CORNER_GAP) & (t <= length - CORNER_GAP)
-        seen += int(np.count_nonzero(on) >= SEEN_POINTS)
-    return seen
+        t = (pts - a) @ ((b - a) / length)
+        d = (pts - a) @ normals[j] - offset
+        yield normals[j], a, (np.abs(d) <= reach) & (t >= CORNER_GAP) & (t <= length - CORNER_GAP)
 
 
 def _settles_offset(normals: np.ndarray) -> bool:
@@ -300,19 +307,8 @@ def _side_points(corners: np.ndarray, pts: np.ndarray, offset: float
     out by `offset` (within `ON_SIDE` px of it, at least `CORNER_GAP` px from its
     ends): each one's side as its unit outward normal and line (normal . x = line on
     the moved side), and the points."""
-    n = len(corners)
-    normals_all = _outward(corners)
     normals, lines, chosen = [], [], []
-    for j in range(n):
-        a, b = corners[j], corners[(j + 1) % n]
-        length = float(np.linalg.norm(b - a))
-        if length <= 2 * CORNER_GAP:
-            continue
-        along = (b - a) / length
-        normal = normals_all[j]
-        t = (pts - a) @ along
-        d = (pts - a) @ normal - offset
-        keep = (np.abs(d) <= ON_SIDE) & (t >= CORNER_GAP) & (t <= length - CORNER_GAP)
+    for normal, a, keep in _near_sides(corners, pts, ON_SIDE, offset):
         count = int(keep.sum())
         if count < MIN_SIDE_POINTS:
             continue
