@@ -181,9 +181,9 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
     completed: list[str] = []  # pieces whose hidden sides were read from what shows ...
     settled: list[str] = []  # ... where no other placement explains it as well
     for model, region in pending:
-        completion = complete_piece(model.label, _full_mask(region, classes.shape),
-                                    hidden if hidden is not None
-                                    else np.zeros(classes.shape, bool), scale, inset)
+        assert hidden is not None  # a piece is pending only where an occluder cuts it
+        completion = complete_piece(model.label, _full_mask(region, classes.shape), hidden,
+                                    scale, inset)
         if completion is not None:
             poly = completion.corners
         else:
