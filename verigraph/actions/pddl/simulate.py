@@ -36,7 +36,7 @@ import difflib
 import gc
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from functools import lru_cache
-from typing import Any
+from typing import Any, cast
 
 from verigraph.actions.pddl import axioms as derived_predicates
 from verigraph.actions.pddl.explain import (
@@ -49,6 +49,7 @@ from verigraph.actions.pddl.explain import (
     holds,
     literal_text,
 )
+from verigraph.actions.pddl.fastground import UNUSUAL, GroundFunction, ground_function
 from verigraph.actions.pddl.formulas import (
     MAX_QUANTIFIED,
     Check,
@@ -131,6 +132,9 @@ def _check_objects(domain: Domain, problem: Problem, schema: Schema, step: Step
     return None
 
 
+GENERATE_AFTER = 32  # see _Compiled.ground
+
+
 class _Compiled:
     """A schema's literals as grounders (built once per domain), the objects each
     parameter admits (per problem), its cost. `static_pos` / `static_neg` are the
@@ -139,7 +143,7 @@ class _Compiled:
 
     __slots__ = ("pre_pos", "pre_neg", "add", "delete", "admits", "fixed_cost", "fn_costs",
                  "adl", "checks", "static_pos", "static_neg", "dynamic_pos", "dynamic_neg",
-                 "add_shown", "delete_shown")
+                 "add_shown", "delete_shown", "ground", "grounded")
     pre_pos: list[tuple[Grounder, bool]]
     pre_neg: list[tuple[Grounder, bool]]
     add: list[Grounder]
@@ -154,8 +158,17 @@ class _Compiled:
     dynamic_neg: list[Grounder]
     add_shown: list[Shower]  # the adds and deletes as the report's edit writes them
     delete_shown: list[Shower]
+    # the usual case of `_ground_action` as one generated function (fastground), made for
+    # the domain at a schema's GENERATE_AFTER-th distinct action in a problem (compiling
+    # costs about as much as grounding a hundred actions through the closures)
+    ground: GroundFunction | None
+    grounded: int  # distinct actions of the schema grounded through the closures
 
     def __init__(self, domain: Domain, problem: Problem, schema: Schema) -> None:
+        compiled = schema.pre_complex and all(c is not None for c in schema.checks)
+        self.checks = tuple(schema.checks) if compiled and not schema.cond_effects else None
+        self.adl = schema if schema.cond_effects or (schema.pre_complex and not compiled) \
+            else None
         shared = domain.compiled.get(schema.name)
         if shared is None:
             static = domain.static | {"="}
@@ -176,11 +189,9 @@ class _Compiled:
         (self.pre_pos, self.pre_neg, self.add, self.delete, self.fixed_cost, self.fn_costs,
          self.static_pos, self.static_neg, self.dynamic_pos, self.dynamic_neg,
          self.add_shown, self.delete_shown) = shared
+        self.ground = domain.compiled.get(f"ground {schema.name}")
+        self.grounded = 0
         self.admits = [frozenset(problem.of_type(domain, t)) for t in schema.types]
-        compiled = schema.pre_complex and all(c is not None for c in schema.checks)
-        self.checks = tuple(schema.checks) if compiled and not schema.cond_effects else None
-        self.adl = schema if schema.cond_effects or (schema.pre_complex and not compiled) \
-            else None
 
 
 def _cost(fast: _Compiled, binding: tuple[str, ...], values: dict[GroundAtom, float]
@@ -452,6 +463,16 @@ def _ground_action(domain: Domain, problem: Problem, fast: _Compiled, step: Step
     equality or static precondition, a cost with no value): the step-by-step run then
     explains it."""
     name, binding = step.name, step.args
+    ground = fast.ground
+    if ground is None and fast.adl is None:
+        fast.grounded += 1
+        if fast.grounded == GENERATE_AFTER:
+            ground = fast.ground = domain.compiled[f"ground {name}"] = ground_function(
+                domain.schemas[name], domain.static | {"="}, fast.checks)
+    if ground is not None:
+        got = ground(binding, problem.init, problem.values, fast.admits)
+        if got is not UNUSUAL:
+            return cast(_Ground | None, got)
     if not all(map(frozenset.__contains__, fast.admits, binding)):
         return None
     init = problem.init
