@@ -20,6 +20,7 @@ from verigraph.actions.pddl.simulate import cached_strips_domain, cached_strips_
 
 pytestmark = pytest.mark.fast
 simulate = importlib.import_module("verigraph.actions.pddl.simulate")  # not the function
+fastground = importlib.import_module("verigraph.actions.pddl.fastground")
 IPC = Path(__file__).parents[2] / "benchmarks" / "data" / "ipc"
 
 DOMAIN = """(define (domain shop) (:requirements :typing :equality :negative-preconditions
@@ -57,8 +58,7 @@ def test_every_binding_grounds_as_the_closures_ground_it() -> None:
         assert generated is not None
         for binding in itertools.product(names, repeat=len(schema.params)):
             got = generated(binding, problem.init, problem.values, fast.admits)
-            fast.ground = None  # the closures, from the same compiled schema
-            fast.grounded = -10**9  # never generate while comparing
+            fast.generated = None  # the closures, from the same compiled schema
             want = simulate._ground_action(domain, problem, fast, Step(schema.name, binding, 1))
             if got is UNUSUAL:
                 seen["unusual"] += 1
@@ -96,7 +96,7 @@ def test_a_plan_gets_one_report_whichever_grounds_its_actions(
     plans = ["\n".join(lines), "\n".join(lines[:len(lines) // 2] + lines[len(lines) // 2 + 1:])]
     reports = []
     for after in (10**9, 1):  # the closures only; generated from the first action
-        monkeypatch.setattr(simulate, "GENERATE_AFTER", after)
+        monkeypatch.setattr(fastground, "GENERATE_AFTER", after)
         cached_strips_domain.cache_clear()
         cached_strips_problem.cache_clear()
         reports.append([json.dumps(validate_strips_dict(domain_text, problem_text, plan),
@@ -104,3 +104,29 @@ def test_a_plan_gets_one_report_whichever_grounds_its_actions(
     cached_strips_domain.cache_clear()
     cached_strips_problem.cache_clear()
     assert reports[0] == reports[1]
+
+
+def test_the_function_is_made_once_a_domains_problems_have_grounded_enough() -> None:
+    """A plan checked once with few distinct actions pays no compilation; the domain's
+    count goes on across its problems (a batch, a server), and the function is kept."""
+    domain_text = (IPC / "visitall" / "domain.pddl").read_text()
+    cells = [f"c{k}" for k in range(41)]
+    init = " ".join(f"(connected {a} {b}) (connected {b} {a})"
+                    for a, b in zip(cells, cells[1:], strict=False))
+
+    def problem(start: int) -> str:
+        return (f"(define (problem p{start}) (:domain grid-visit-all) (:objects "
+                f"{' '.join(cells)} - place) (:init (at-robot c{start}) (visited c{start}) "
+                f"{init}) (:goal (and (visited c{start + 20}))))")
+
+    def walk(start: int) -> str:
+        return "\n".join(f"(move c{k} c{k + 1})" for k in range(start, start + 20))
+
+    cached_strips_domain.cache_clear()
+    cached_strips_problem.cache_clear()
+    assert validate_strips_dict(domain_text, problem(0), walk(0))["valid"]
+    generated = cached_strips_domain(domain_text).compiled["ground move"]
+    assert generated.function is None and generated.waiting == fastground.GENERATE_AFTER - 20
+    assert validate_strips_dict(domain_text, problem(20), walk(20))["valid"]
+    assert generated.function is not None  # the 32nd action of the schema made it
+    assert cached_strips_domain(domain_text).compiled["ground move"] is generated

@@ -18,6 +18,7 @@ from verigraph.actions.pddl import (
     as_validation_report,
     explain,
     read_domain,
+    read_problem,
     report_text,
     validate_pddl_dict,
 )
@@ -450,3 +451,40 @@ def test_numeric_and_temporal_pddl_stays_refused_by_name(edit, requirement):
         validate_pddl_dict(domain, COST_PROBLEM, "")
     with pytest.raises(UnsupportedRequirementError, match=":numeric-fluents"):
         validate_pddl_dict(COSTS, COST_PROBLEM.replace("(total-cost))", "(distance x y))"), "")
+
+
+IPC = Path(__file__).parents[2] / "benchmarks" / "data" / "ipc"
+
+
+@pytest.mark.parametrize("problem_file", [IPC / "data-network" / "p03.pddl",
+                                          IPC / "elevators" / "p01.pddl"],
+                         ids=lambda p: p.parent.name)
+def test_function_values_read_at_once_are_the_files_values(problem_file: Path):
+    """Cost values are checked a function at a time; what is read is every
+    `(= (f obj ...) n)` of the file but total-cost's start (a regex reads them here)."""
+    domain_file = problem_file.parent / "domain.pddl"
+    problem = read_problem(problem_file.read_text(), read_domain(domain_file.read_text()))
+    pairs = re.findall(r"\(=\s*\(([^()]*)\)\s*([^\s()]+)\s*\)", problem_file.read_text().lower())
+    expected = {tuple(fn.split()): float(n) for fn, n in pairs if fn.split()[0] != "total-cost"}
+    assert len(expected) > 20 and problem.values == expected
+
+
+@pytest.mark.parametrize("extra,message", [
+    ("(= (distance x y) abc)", "'abc' is not a number"),
+    ("(= (speed x) 4)", "the domain declares no function 'speed'"),
+    ("(= (distance x) 4)", "distance takes 2 declared object(s)"),
+    ("(= (distance x q) 4)", "distance takes 2 declared object(s)"),
+    ("(= (distance x (y)) 4)", "neither an atom nor (= (function obj ...) number)"),
+])
+def test_a_wrong_function_value_among_good_ones_is_named(extra: str, message: str):
+    problem = COST_PROBLEM.replace("(= (total-cost) 0)", f"(= (total-cost) 0) {extra}")
+    with pytest.raises(PddlInputError) as caught:
+        validate_pddl_dict(COSTS, problem, "")
+    assert message in caught.value.message and extra in caught.value.message
+
+
+def test_a_value_given_twice_keeps_the_last():
+    problem = COST_PROBLEM.replace("(= (total-cost) 0)", "(= (total-cost) 0) "
+                                   "(= (distance x y) 5)")
+    report = validate_pddl_dict(COSTS, problem, "(drive t x y)")
+    assert report["total_cost"] == 5

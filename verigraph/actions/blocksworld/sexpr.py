@@ -11,7 +11,7 @@ another). Comments may hold any text.
 from __future__ import annotations
 
 import re
-from typing import NoReturn
+from typing import Any, NoReturn
 
 from verigraph.errors import VeriGraphError
 
@@ -33,20 +33,23 @@ class PddlSyntaxError(VeriGraphError):
 def parse_sexpr(text: str, *, what: str) -> list[SExpr]:
     """All top-level expressions in `text` (a domain or problem file's contents).
 
-    The fast path splits the innermost lists (a problem's thousands of atoms) with one
-    regex and `str.split`, leaving one marker token each, and builds the nesting from
-    the remaining tokens; line numbers are only computed for errors.
+    The fast path splits the text at its innermost lists (a problem's thousands of atoms)
+    with one regex pass and each list with `str.split`, leaves one marker token for each
+    in the text between them, and builds the nesting from that text's tokens; line
+    numbers are only computed for errors.
     """
     body = _COMMENT.sub("", text)
     if not body.isascii():
         _non_ascii(text, what)
     body = body.lower()
     mark: str | None = _MARK
+    flat: list[Any]  # the innermost lists' words, in order
     if _MARK in body:  # the text holds the marker: read it token by token
         mark, flat, tokens = None, [], _FAST_TOKEN.findall(body)
-    else:
-        flat = [content.split() for content in _INNERMOST.findall(body)]
-        tokens = _MARKED_TOKEN.findall(_INNERMOST.sub(_MARK, body))
+    else:  # one pass: the text between innermost lists, then the lists themselves
+        parts: list[str] = _INNERMOST.split(body)
+        flat = [content.split() for content in parts[1::2]]
+        tokens = _MARKED_TOKEN.findall(_MARK.join(parts[0::2]))
     lists = iter(flat)
     stack: list[list[SExpr]] = [[]]
     for token in tokens:

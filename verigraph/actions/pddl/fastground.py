@@ -31,6 +31,30 @@ from verigraph.actions.pddl.model import CostTerm, GroundAtom, Literal, Schema
 UNUSUAL: Any = object()  # the binding makes two effect literals one atom
 GroundFunction = Callable[[tuple[str, ...], set[GroundAtom], dict[GroundAtom, float],
                            list[frozenset[str]]], Any]
+GENERATE_AFTER = 32  # see Generated
+
+
+class Generated:
+    """A schema's `ground`, generated for its domain once GENERATE_AFTER of its actions
+    have been grounded without it, in any of the domain's problems: compiling (about
+    0.25 ms) costs what grounding about a hundred actions through the closures does, so
+    a short plan checked once never pays it, and a batch or a server, which keep the
+    domain read, pay it once."""
+
+    __slots__ = ("checks", "function", "schema", "static", "waiting")
+
+    def __init__(self, schema: Schema, static: frozenset[str],
+                 checks: tuple[Any, ...] | None) -> None:
+        self.schema, self.static, self.checks = schema, static, checks
+        self.waiting = GENERATE_AFTER
+        self.function: GroundFunction | None = None
+
+    def counted(self) -> GroundFunction | None:
+        """Count one action grounded without the function; the function once made."""
+        self.waiting -= 1
+        if self.waiting == 0:
+            self.function = ground_function(self.schema, self.static, self.checks)
+        return self.function
 
 
 def _term(t: int | str) -> str:

@@ -26,6 +26,7 @@ from __future__ import annotations
 import difflib
 import re
 from operator import itemgetter
+from typing import Any
 
 from verigraph.actions.blocksworld.sexpr import SExpr
 from verigraph.actions.blocksworld.sexpr import define_body as _define_body
@@ -734,8 +735,9 @@ def _read_init(domain: Domain, objects: dict[str, str], items: list[SExpr],
     """The initial atoms and function values. The atoms are checked per predicate, a
     column at a time (declared, of its arity, every object of each position one that
     position takes: set operations at C speed, where one check per atom made a large
-    :init dominate a short plan's validation); anything that fails, and every `(= ...)`,
-    goes through `_ground` / `_value` in the file's order, which name what is wrong."""
+    :init dominate a short plan's validation); the function values likewise, all at once
+    (`_values_fit`). Anything that fails goes through `_ground` / `_value` in the file's
+    order, which name what is wrong."""
     plain = [item for item in items if type(item) is list and item and item[0] != "="]
     try:
         atoms = set(map(tuple, plain))
@@ -746,12 +748,45 @@ def _read_init(domain: Domain, objects: dict[str, str], items: list[SExpr],
         rest = [item for item in items if not (type(item) is list and item and item[0] != "=")]
     else:
         rest = items
+    if rest is not items:
+        fit = _values_fit(domain, objects, rest)
+        if fit is not None:
+            values.update(fit)
+            return
     for item in rest:
         if isinstance(item, list) and item and item[0] == "=" and (
                 len(item) != 3 or isinstance(item[1], list)):
             _value(domain, objects, item, values)
             continue
         init.add(_ground(domain, objects, item, "initial state"))
+
+
+def _values_fit(domain: Domain, objects: dict[str, str], items: list[SExpr]
+                ) -> dict[GroundAtom, float] | None:
+    """The values of `items`, every one `(= (function obj ...) number)` of a declared
+    function, its arity and declared objects (total-cost's start left out, as `_value`
+    leaves it), checked a function at a time; None when one is not."""
+    if not all(type(item) is list and len(item) == 3 and type(item[1]) is list and item[1]
+               and type(item[2]) is str for item in items):
+        return None
+    try:
+        read: dict[Any, float] = {tuple(item[1]): float(item[2]) for item in items}  # type: ignore[arg-type]
+    except (TypeError, ValueError):  # a list where a name should be; not a number
+        return None
+    groups: dict[Any, list[tuple[Any, ...]]] = {}
+    for key in read:
+        groups.setdefault(key[0], []).append(key)
+    named: set[str] = set()
+    for name, keys in groups.items():
+        if name == "total-cost":
+            for key in keys:
+                del read[key]
+            continue
+        signature = domain.functions.get(name) if isinstance(name, str) else None
+        if signature is None or set(map(len, keys)) != {len(signature) + 1}:
+            return None
+        named.update(*(key[1:] for key in keys))
+    return read if named <= objects.keys() else None
 
 
 class _Fitting:

@@ -49,7 +49,7 @@ from verigraph.actions.pddl.explain import (
     holds,
     literal_text,
 )
-from verigraph.actions.pddl.fastground import UNUSUAL, GroundFunction, ground_function
+from verigraph.actions.pddl.fastground import UNUSUAL, Generated
 from verigraph.actions.pddl.formulas import (
     MAX_QUANTIFIED,
     Check,
@@ -132,9 +132,6 @@ def _check_objects(domain: Domain, problem: Problem, schema: Schema, step: Step
     return None
 
 
-GENERATE_AFTER = 32  # see _Compiled.ground
-
-
 class _Compiled:
     """A schema's literals as grounders (built once per domain), the objects each
     parameter admits (per problem), its cost. `static_pos` / `static_neg` are the
@@ -143,7 +140,7 @@ class _Compiled:
 
     __slots__ = ("pre_pos", "pre_neg", "add", "delete", "admits", "fixed_cost", "fn_costs",
                  "adl", "checks", "static_pos", "static_neg", "dynamic_pos", "dynamic_neg",
-                 "add_shown", "delete_shown", "ground", "grounded")
+                 "add_shown", "delete_shown", "generated")
     pre_pos: list[tuple[Grounder, bool]]
     pre_neg: list[tuple[Grounder, bool]]
     add: list[Grounder]
@@ -158,11 +155,9 @@ class _Compiled:
     dynamic_neg: list[Grounder]
     add_shown: list[Shower]  # the adds and deletes as the report's edit writes them
     delete_shown: list[Shower]
-    # the usual case of `_ground_action` as one generated function (fastground), made for
-    # the domain at a schema's GENERATE_AFTER-th distinct action in a problem (compiling
-    # costs about as much as grounding a hundred actions through the closures)
-    ground: GroundFunction | None
-    grounded: int  # distinct actions of the schema grounded through the closures
+    # the usual case of `_ground_action` as one generated function, kept with the domain
+    # (fastground.Generated; None for a schema with an ADL part)
+    generated: Generated | None
 
     def __init__(self, domain: Domain, problem: Problem, schema: Schema) -> None:
         compiled = schema.pre_complex and all(c is not None for c in schema.checks)
@@ -189,8 +184,11 @@ class _Compiled:
         (self.pre_pos, self.pre_neg, self.add, self.delete, self.fixed_cost, self.fn_costs,
          self.static_pos, self.static_neg, self.dynamic_pos, self.dynamic_neg,
          self.add_shown, self.delete_shown) = shared
-        self.ground = domain.compiled.get(f"ground {schema.name}")
-        self.grounded = 0
+        key = f"ground {schema.name}"  # beside the schemas' names (no name has a space)
+        self.generated = domain.compiled.get(key)
+        if self.generated is None and self.adl is None:
+            self.generated = domain.compiled[key] = Generated(schema, domain.static | {"="},
+                                                              self.checks)
         self.admits = [frozenset(problem.of_type(domain, t)) for t in schema.types]
 
 
@@ -463,12 +461,8 @@ def _ground_action(domain: Domain, problem: Problem, fast: _Compiled, step: Step
     equality or static precondition, a cost with no value): the step-by-step run then
     explains it."""
     name, binding = step.name, step.args
-    ground = fast.ground
-    if ground is None and fast.adl is None:
-        fast.grounded += 1
-        if fast.grounded == GENERATE_AFTER:
-            ground = fast.ground = domain.compiled[f"ground {name}"] = ground_function(
-                domain.schemas[name], domain.static | {"="}, fast.checks)
+    generated = fast.generated
+    ground = None if generated is None else generated.function or generated.counted()
     if ground is not None:
         got = ground(binding, problem.init, problem.values, fast.admits)
         if got is not UNUSUAL:
