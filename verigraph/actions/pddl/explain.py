@@ -124,7 +124,9 @@ class StateIndex:
     """The atoms of one state by predicate (sorted: the same explanation in every
     process), and by (predicate, position, object): the first lookups of a (predicate,
     position) filter its atoms, later ones get a table of them all, built once (a
-    search looks up many objects at one position; `instead` looks up one)."""
+    search looks up many objects at one position; `instead` looks up one). A read-only
+    view of one state, for explanations; `joins.Index` is the index atoms join and
+    leave as a plan runs (derived predicates, quantified effects)."""
 
     __slots__ = ("state", "by_pred", "by_arg", "sorted", "found", "lookups")
 

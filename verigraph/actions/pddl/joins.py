@@ -49,7 +49,9 @@ Op = tuple[Any, ...]
 
 class Index:
     """Atoms by predicate, and by (predicate, position) -> object (tables built on first
-    use); atoms may join and leave it (each group is an insertion-ordered dict)."""
+    use); atoms may join and leave it (each group is an insertion-ordered dict). An
+    explanation reads one state through `explain.StateIndex` instead, which sorts its
+    answers and builds a position's table only after a few lookups."""
 
     __slots__ = ("by_pred", "by_arg")
 
