@@ -769,9 +769,10 @@ def _values_fit(domain: Domain, objects: dict[str, str], items: list[SExpr]
     if not all(type(item) is list and len(item) == 3 and type(item[1]) is list and item[1]
                and type(item[2]) is str for item in items):
         return None
-    try:
-        read: dict[Any, float] = {tuple(item[1]): float(item[2]) for item in items}  # type: ignore[arg-type]
-    except (TypeError, ValueError):  # a list where a name should be; not a number
+    try:  # a list where a name should be, or no number: the per-item reading names it
+        read: dict[Any, float] = {tuple(item[1]): float(item[2])  # type: ignore[arg-type]
+                                  for item in items}
+    except (TypeError, ValueError):
         return None
     groups: dict[Any, list[tuple[Any, ...]]] = {}
     for key in read:

@@ -459,7 +459,8 @@ def _ground_action(domain: Domain, problem: Problem, fast: _Compiled, step: Step
     """Ground one distinct (action, args) of the plan once, for every step that repeats
     it; None when it cannot apply in any state (an undeclared or mistyped object, a false
     equality or static precondition, a cost with no value): the step-by-step run then
-    explains it."""
+    explains it. Once the schema's generated function is made (fastground.Generated),
+    it grounds the usual case; the closures below ground the rest."""
     name, binding = step.name, step.args
     generated = fast.generated
     ground = None if generated is None else generated.function or generated.counted()
