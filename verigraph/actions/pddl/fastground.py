@@ -82,19 +82,15 @@ def _set(literals: list[Literal]) -> str:
 
 
 def ground_function(schema: Schema, static: frozenset[str], checks: tuple[Any, ...] | None
-                    ) -> GroundFunction | None:
-    """The generated `ground` for `schema` (module docstring), or None when a literal
-    names a slot past the parameters; `static` names the predicates no action changes
-    (and `=`), whose preconditions are checked here once."""
+                    ) -> GroundFunction:
+    """The generated `ground` for `schema` (module docstring); `static` names the
+    predicates no action changes (and `=`), whose preconditions are checked here once.
+    The binding has the schema's arity (the fast run hands a step of another arity to
+    the step-by-step run before grounding), and a schema's literals and costs name only
+    its parameters (quantified variables live in its ADL parts)."""
     arity = len(schema.params)
-    literals = [*schema.pre_pos, *schema.pre_neg, *schema.add, *schema.delete,
-                *(c for c in schema.cost if not isinstance(c, float))]
-    if any(isinstance(t, int) and not 0 <= t < arity for _, terms in literals for t in terms):
-        return None
     names = [f"b{k}" for k in range(arity)]
-    lines = ["def ground(b, init, values, admits):",
-             f"    if len(b) != {arity}:",
-             "        return None"]
+    lines = ["def ground(b, init, values, admits):"]
     if arity:
         lines.append(f"    {', '.join(names)}, = b")
         takes = " and ".join(f"b{k} in admits[{k}]" for k in range(arity))
