@@ -356,6 +356,8 @@ def _from_words(instruction: str, state: WorldState | None) -> _Reading:
     reading = read_instruction(instruction, state.to_graph())
     notes = [f"understood: '{c}'" for c in reading.understood]
     notes += [f"not understood: '{c}' ({why})" for c, why in reading.not_understood]
+    notes += [f"cannot place: '{e}' ({why}); the proposal leaves it out, so accepting it "
+              "narrows the request: tell the user" for e, why in reading.unplaced]
     if not reading.edges:
         return _Reading(None, accepted=False, notes=notes)
     graph = state.to_graph()
