@@ -8,7 +8,7 @@ a copy and committed at the end, so bad input leaves the episode exactly as it w
 
 from __future__ import annotations
 
-from typing import Annotated
+from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, Field, WithJsonSchema, model_validator
 
@@ -17,6 +17,7 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.actions.parser import parse_plan
 from verigraph.actions.pddl.conversion import as_validation_report
+from verigraph.actions.pddl.text import plain_summary
 from verigraph.actions.pddl.validate import validate_pddl_dict
 from verigraph.actions.report import ValidationReport, validate_plan
 from verigraph.actions.validator import GraphEdit, all_violations, apply_action
@@ -151,6 +152,8 @@ class ExecutionOutput(BaseModel):
     goal_satisfied: bool | None
     goal_diff: GraphDiff | None
     runs_on: str | None = Field(default=None, description="the episode's executor")
+    observed: str | None = Field(default=None, description="a simulator or arm episode: "
+                                 "whether what the world observed matched the prediction")
 
     def summary(self) -> str:
         if self.executed:
@@ -169,7 +172,23 @@ class ExecutionOutput(BaseModel):
         elif self.done:
             parts.append("end token received: call end_episode for the verdict")
         where = [f"executor: {self.runs_on}"] if self.runs_on else []
+        where += [self.observed] if self.observed else []
         return "\n".join(["; ".join(parts), *where, edges_line(self.graph, "graph now")])
+
+
+def observed_text(executor: str, executed: int, violation: Violation | None) -> str | None:
+    """For an episode with a world (sim2d, an arm): whether what it observed after each
+    action matched what the plan predicted, said every time (the graph alone: None)."""
+    if executor == "graph":
+        return None
+    world = "the 2D simulator" if executor == "sim2d" else f"the arm ({executor})"
+    if violation is not None and violation.constraint == "execution_failed":
+        return (f"observed != predicted: {world} did not end as planned (see stopped); "
+                "the graph below is what it observed")
+    if not executed:
+        return f"observed = predicted: nothing ran in {world}, nothing changed"
+    return (f"observed = predicted: after each of the {executed} action(s) {world}'s "
+            "observed graph matched the plan's prediction")
 
 
 def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionOutput:
@@ -230,7 +249,9 @@ def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionO
             violation=violation, edits=edits, graph=new_state.to_graph(), tau=tau,
             t=episode.t, threshold_reached=episode.threshold_reached, done=done,
             goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
-            runs_on=runs_on(episode.executor, arm_mode_of(episode.world)))
+            runs_on=runs_on(episode.executor, arm_mode_of(episode.world)),
+            observed=observed_text(episode.executor, len(executed), violation)
+            if episode.world is not None else None)
         if params.request_id is not None:
             episode.requests.record(params.request_id, proposed, output.model_dump(mode="json"))
             episode.mark_changed()  # an in-place edit: durable stores save it with the rest
@@ -368,12 +389,41 @@ def _validate_pddl(pddl: dict[str, str], plan: str, *, all_errors: bool = False
             raise ToolArgumentError(f"the plan has more than {MAX_PLAN_ACTIONS} actions",
                                     field="plan", value=None,
                                     fix="use verigraph validate --batch for longer plans")
-        return as_validation_report(data)
+        report = as_validation_report(data)
+        _summarise_failures(report, data)
+        return report
     except VeriGraphError as exc:
         field = exc.field if exc.field in ("domain", "problem") else exc.field or "plan"
         raise ToolArgumentError(exc.message, field=f"pddl.{field}" if field in (
             "domain", "problem") else field, value=exc.value if isinstance(
             exc.value, int | None) else str(exc.value)[:120], fix=exc.fix) from None
+
+
+# A PDDL failure whose raw text is longer than this gets a plain line before it.
+PLAIN_FROM_CHARS = 160
+
+
+def _summarise_failures(report: ValidationReport, data: dict[str, Any]) -> None:
+    """Put a plain one-line summary (`in short: ...`) before each long PDDL failure, so
+    a reader gets what failed for which object before the raw formulas."""
+    unsatisfied = {v["step"]: v.get("unsatisfied") or [] for v in data["violations"]}
+    found = [report.violations, [s.violation for s in report.steps if s.violation]]
+    for violation in (v for group in found for v in group):
+        parts = unsatisfied.get(violation.step)
+        if parts and len(violation.message) > PLAIN_FROM_CHARS and \
+                not violation.message.startswith("in short: "):
+            action = next((s.text for s in report.steps if s.step == violation.step), "it")
+            violation.message = (f"in short: {plain_summary(action, parts)}. In full: "
+                                 + violation.message)
+
+
+def _cost_text(detail: str) -> str:
+    """`total cost 216` -> `plan cost 216 (the sum of its actions' costs, the domain's
+    total-cost)`: the figure a costed domain's user asks for, said in the verdict."""
+    if detail.startswith("total cost "):
+        return (f"plan cost {detail.removeprefix('total cost ')} (the sum of its actions' "
+                "costs, the domain's total-cost)")
+    return detail
 
 
 def report_summary(report: ValidationReport) -> str:
@@ -389,6 +439,8 @@ def report_summary(report: ValidationReport) -> str:
         head += f", {len(report.violations)} violation(s)"
     if report.goal_diff is not None:
         head += f"; {report.goal_diff.summary()}"
+        if report.goal_diff.satisfied and report.goal_diff.detail:  # a PDDL plan's cost
+            head += f"; {_cost_text(report.goal_diff.detail)}"
     lines = [head + " (a check only, nothing was executed)"]
     hidden_ok = hidden_failed = 0
     failures = 0

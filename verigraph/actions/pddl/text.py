@@ -47,6 +47,30 @@ def _achiever_text(item: dict[str, Any]) -> str:
     return f"; {text}" if text else ""
 
 
+# A precondition the text shows as it is written only when it is this short; a longer
+# one (an ADL `imply` over quantifiers) is named by what failed in it.
+SHORT_LITERAL = 60
+PLAIN_PARTS = 3
+
+
+def plain_summary(action: str, unsatisfied: list[dict[str, Any]]) -> str:
+    """One plain line for a failing step, before the raw PDDL: `(stop f3) cannot run
+    here: for ?q = bob: none of (served bob), (not (origin bob f3)) holds; ...`. Each
+    unsatisfied precondition is said by what failed in it (the innermost part of its
+    explanation, after any `... holds but`), a short one with its literal."""
+    parts = []
+    for u in unsatisfied[:PLAIN_PARTS]:
+        why = str(u.get("explanation") or "is false")
+        core = why.rsplit(" holds but ", 1)[-1]
+        literal = str(u.get("literal", ""))
+        parts.append(f"{literal} {core}" if len(literal) <= SHORT_LITERAL and
+                     not core.startswith(literal) else core)
+    more = len(unsatisfied) - PLAIN_PARTS
+    tail = f"; and {more} more" if more > 0 else ""
+    count = f"{len(unsatisfied)} precondition(s) fail" if unsatisfied else "a precondition fails"
+    return f"{action} cannot run here, {count}: " + "; ".join(parts) + tail
+
+
 AFTER_FAILURE = ("later steps are checked from the state before each failing step (the "
                  "failing step is skipped)")
 
