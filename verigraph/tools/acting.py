@@ -10,7 +10,14 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from pydantic import BaseModel, ConfigDict, Field, WithJsonSchema, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    WithJsonSchema,
+    field_validator,
+    model_validator,
+)
 
 from verigraph.actions.execution import execute_in_world
 from verigraph.actions.feedback import Violation
@@ -24,6 +31,7 @@ from verigraph.actions.validator import GraphEdit, all_violations, apply_action
 from verigraph.errors import PlanParseError, VeriGraphError
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
+from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import label_readings, readings_line
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import EpisodeStateError, ToolArgumentError
@@ -127,12 +135,20 @@ class ExecuteActionsInput(BaseModel):
     episode_id: EpisodeId
     actions: list[ActionInput] = Field(
         min_length=1, max_length=MAX_ACTIONS_PER_CALL,
-        description="JSON or text (an item may hold several lines)")
+        description="JSON or text (lines)")
+    whole_plan: bool = Field(
+        default=False, description="over k (to 50): checked first; no real arm")
     request_id: RequestId | None = Field(
         default=None, description="retry key: a repeat returns the first result")
     expected_calls: int | None = Field(
         default=None, ge=0, description="run only after this many "
                                         "execute_actions calls")
+
+    @field_validator("actions", mode="before")
+    @classmethod
+    def _text_plan(cls, value: Any) -> Any:
+        """A plan given as one text (one action per line) is that text's actions."""
+        return [value] if isinstance(value, str) else value
 
 
 class ExecutionOutput(BaseModel):
@@ -152,8 +168,6 @@ class ExecutionOutput(BaseModel):
     goal_satisfied: bool | None
     goal_diff: GraphDiff | None
     runs_on: str | None = Field(default=None, description="the episode's executor")
-    observed: str | None = Field(default=None, description="a simulator or arm episode: "
-                                 "whether what the world observed matched the prediction")
 
     def summary(self) -> str:
         if self.executed:
@@ -172,8 +186,29 @@ class ExecutionOutput(BaseModel):
         elif self.done:
             parts.append("end token received: call end_episode for the verdict")
         where = [f"executor: {self.runs_on}"] if self.runs_on else []
-        where += [self.observed] if self.observed else []
+        observed = observed_text(self.runs_on.split(" ")[0], len(self.executed),
+                                 self.violation) if self.runs_on else None
+        where += [observed] if observed else []
         return "\n".join(["; ".join(parts), *where, edges_line(self.graph, "graph now")])
+
+
+def _check_whole_plan(state: WorldState, actions: list[AnyAction], arm_mode: str | None
+                      ) -> None:
+    """A whole plan runs in one call only if every step is valid on the current graph
+    (checked before anything runs); a real arm keeps its k per call, each asked for."""
+    if arm_mode == "real":
+        raise ToolArgumentError(
+            "whole_plan is not available on a real arm: the user approves each call of at "
+            "most k actions", field="whole_plan", value=True,
+            fix="send at most k actions per call")
+    report = validate_plan(state, actions)
+    if not report.valid:
+        first = report.violations[0]
+        raise ToolArgumentError(
+            f"whole_plan: the plan is not valid from the current graph, nothing was run: "
+            f"step {first.step} {first.text(with_step=False)}", field="actions",
+            value=first.step, fix="correct the plan (validate_plan with this episode_id "
+            "shows every step) and send it again")
 
 
 def observed_text(executor: str, executed: int, violation: Violation | None) -> str | None:
@@ -217,12 +252,15 @@ def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionO
                 field="episode_id", value=episode.id,
                 fix="call end_episode for the verdict, then load_scene to try again")
         moves = count_moves(actions)
-        if moves > episode.k:
+        if moves > episode.k and params.whole_plan:
+            _check_whole_plan(state, actions, arm_mode_of(episode.world))
+        elif moves > episode.k:
             raise ToolArgumentError(
                 f"{moves} actions given but this episode allows at most k={episode.k} per call",
                 field="actions", value=moves,
                 fix=f"send the first {episode.k} actions now and the rest after seeing the "
-                    "result (or load the scene with a larger k)")
+                    "result, or the whole plan with whole_plan=true (checked first, then "
+                    "run step by step)")
         if len(episode.executed) + moves > ctx.config.max_actions_per_episode:
             raise EpisodeStateError(
                 "this episode reached the maximum number of executed actions "
@@ -249,9 +287,7 @@ def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionO
             violation=violation, edits=edits, graph=new_state.to_graph(), tau=tau,
             t=episode.t, threshold_reached=episode.threshold_reached, done=done,
             goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
-            runs_on=runs_on(episode.executor, arm_mode_of(episode.world)),
-            observed=observed_text(episode.executor, len(executed), violation)
-            if episode.world is not None else None)
+            runs_on=runs_on(episode.executor, arm_mode_of(episode.world)))
         if params.request_id is not None:
             episode.requests.record(params.request_id, proposed, output.model_dump(mode="json"))
             episode.mark_changed()  # an in-place edit: durable stores save it with the rest
@@ -363,7 +399,7 @@ def validate_plan_tool(ctx: ToolContext, params: ValidatePlanInput) -> Validatio
     """Per-step report for a plan; nothing is stored or modified. Its `label_readings`
     say how the graphs the client wrote were read, as load_scene reports them."""
     if params.pddl is not None:
-        return _validate_pddl(params.pddl, str(params.plan), all_errors=params.all_errors)
+        return pddl_report(params.pddl, str(params.plan), all_errors=params.all_errors)
     actions = _plan_actions(params.plan)
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
                                    graph=params.graph, goal=None)
@@ -381,7 +417,7 @@ SHOWN_FIRST_STEPS = 20
 SHOWN_MAX_FAILURES = 50
 
 
-def _validate_pddl(pddl: dict[str, str], plan: str, *, all_errors: bool = False
+def pddl_report(pddl: dict[str, str], plan: str, *, all_errors: bool = False
                    ) -> ValidationReport:
     try:
         data = validate_pddl_dict(pddl["domain"], pddl["problem"], plan, all_errors=all_errors)
