@@ -344,8 +344,8 @@ def applied_line(graph: SceneGraph | None, dictionary: Dictionary,
     written = next((g for g in (graph, *more) if g is not None), None)
     named = ("all built-ins, none named" if written is None or written.dictionary is None
              else dictionary.name)
-    return (f"built-in properties applied (dictionary: {named}): " + "; ".join(entries)
-            + f". {DEFAULTS_NOTE}")
+    note = f". {DEFAULTS_NOTE}" if any("capacity" in e for e in entries) else ""
+    return f"built-in properties applied (dictionary: {named}): " + "; ".join(entries) + note
 
 
 def readings_line(readings: list[str]) -> str:

@@ -22,6 +22,7 @@ from verigraph.tools.texts import (
     executor_line,
     goal_line,
     graph_lines,
+    sides_line,
 )
 
 
@@ -75,6 +76,7 @@ class EpisodeState(BaseModel):
             text += f"; {self.scene_check.summary()}"
         lines = [text, executor, self.executors, graph_lines(self.graph, self.dictionary),
                  defaults_line(self.graph, self.dictionary),
+                 sides_line(self.graph, self.dictionary),
                  dictionary_line(self.dictionary, self.user_labels, self.label_readings),
                  goal_line(self.goal)]
         if self.last_violation is not None:

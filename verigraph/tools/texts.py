@@ -147,6 +147,19 @@ def defaults_line(graph: SceneGraph, dictionary: str | InlineDictionary | None =
             "node's attrs.capacity wins): " + ", ".join(shown))
 
 
+SIDES_TEXT = ("sides: numbered clockwise (seen from above) from vertex 0, side i from vertex "
+              "i to i+1; vertex 0 is a triangle's right angle (sides 0 and 2 the legs, 1 "
+              "the hypotenuse), the parallelogram's acute vertex that starts a long side (0 "
+              "and 2 long, 1 and 3 short); a square's sides are alike")
+
+
+def sides_line(graph: SceneGraph, dictionary: str | InlineDictionary | None = None) -> str:
+    """How tangram sides are numbered, when the graph has pieces; empty otherwise."""
+    d = _dictionary(graph.dictionary or dictionary)
+    pieces = any((p := _properties(n, d)) is not None and p.sides for n in graph.nodes)
+    return SIDES_TEXT if pieces else ""
+
+
 def properties_line(graph: SceneGraph, *more: SceneGraph | None) -> str:
     """What a stateless check assumed about each built-in kind in the graph (and goal),
     with the dictionary in use: `built-in properties applied (dictionary: all
