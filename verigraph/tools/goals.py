@@ -322,10 +322,14 @@ def _match_perceived(seen: Perceived, state: WorldState | None) -> _Reading:
             ambiguous.append(node.id)
         rename[node.id] = match
         shown[node.id] = f"{node.id} -> {match} {conf:.2f}{how}"
-    nodes = [n.model_copy(update={"id": rename.get(n.id, n.id)}) for n in graph.nodes]
-    edges = [e.model_copy(update={"source": rename.get(e.source, e.source),
-                                  "target": rename.get(e.target, e.target)})
-             for e in graph.edges]
+    # A photo object the scene lacks is left out with its edges, named, and the rest is
+    # proposed as a partial goal (never a refusal of the whole photo).
+    unmatched = [n.id for n in graph.nodes if n.id not in rename]
+    nodes = [n.model_copy(update={"id": rename[n.id]}) for n in graph.nodes if n.id in rename]
+    edges = [e.model_copy(update={"source": rename[e.source], "target": rename[e.target]})
+             for e in graph.edges if e.source in rename and e.target in rename]
+    dropped = [e.sentence() for e in graph.edges
+               if e.source not in rename or e.target not in rename]
     matched = graph.model_copy(update={"nodes": nodes, "edges": edges})
     listed = [shown[n.id] for n in graph.nodes if n.id in shown]
     more = f"; ... and {len(listed) - MAX_LISTED_MATCHES} more" \
@@ -345,7 +349,12 @@ def _match_perceived(seen: Perceived, state: WorldState | None) -> _Reading:
     if ambiguous:
         notes.append("look-alike objects make the match a guess, so this goal is only "
                      "proposed: confirm or correct it with edges")
-    return _Reading(Goal(graph=matched), accepted=not ambiguous, notes=notes)
+    if unmatched:
+        notes.append(f"not in the scene, left out: {', '.join(unmatched)} (with "
+                     f"{'; '.join(dropped) or 'no edges'}); the rest is only proposed, as a "
+                     "partial goal: confirm it with edges, and tell the user what was left out")
+    return _Reading(Goal(graph=matched, partial=bool(unmatched)),
+                    accepted=not ambiguous and not unmatched, notes=notes)
 
 
 def _from_words(instruction: str, state: WorldState | None) -> _Reading:
@@ -393,7 +402,7 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
             assert reading.goal is not None
             graph = reading.goal.graph
         goal: Goal | None = None
-        partial = bool(params.partial)
+        partial = bool(params.partial) or (reading.goal is not None and reading.goal.partial)
         if params.edges is not None:
             edges_goal = goal_from_edges(params.edges, episode.state,
                                          partial=params.partial is not False)

@@ -150,7 +150,8 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              "Execute up to k actions (done not counted) until the first violation; the valid "
              "prefix stays. move(x, on|in, y): x movable, clear (nothing on/in it); y a "
              "surface/container with room. Returns graph, feedback with a fix, "
-             "tau, goal check, executor (a real arm asks the user first). End with done.",
+             "tau, goal check, executor (graph, sim2d: nothing physical moves; a real arm "
+             "asks first). End with done.",
              acting.ExecuteActionsInput, acting.ExecutionOutput, acting.execute_actions,
              read_only=False, destructive=True, open_world=True, viewer=True, moves_arm=True,
              confirmation=Confirmation(arm.preview_execute,
