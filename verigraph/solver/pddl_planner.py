@@ -49,7 +49,7 @@ def plan_pddl(domain: str, problem: str, *, time_limit: float) -> PddlPlan:
                              field="pddl", value=None,
                              fix="check the domain and problem (validate_plan with pddl "
                                  "reports where they fail)") from None
-    tried = []
+    tried: list[str] = []
     for engine, name in (OPTIMAL, SATISFICING):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")

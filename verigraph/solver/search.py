@@ -233,10 +233,10 @@ def _solve_tangram(state: WorldState, goal: Goal, budget: SearchBudget,
 
     bound = len(check_goal(state, goal).missing_edges)
     if goal.graph is not None:
-        plan = tangram_plan(state, goal, step=step)
-        if plan is not None:
-            return SolveResult(reachable=True, plan=list(plan), expanded=budget.expansions,
-                               optimal=len(plan) <= bound, lower_bound=bound or None)
+        aligns = tangram_plan(state, goal, step=step)
+        if aligns is not None:
+            return SolveResult(reachable=True, plan=list(aligns), expanded=budget.expansions,
+                               optimal=len(aligns) <= bound, lower_bound=bound or None)
     pieces = [o.id for o in state.objects.values() if o.props.sides and o.props.movable]
     layer: list[tuple[WorldState, list[AnyAction]]] = [(state, [])]
     for _ in range(max_depth):
