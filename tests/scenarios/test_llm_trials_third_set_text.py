@@ -23,7 +23,7 @@ from mcp import Client
 from mcp.types import CallToolResult
 from mcp_helpers import structured, text
 
-from llm_trials import THIRD_SET, refused, transcript, with_attachments
+from llm_trials import THIRD_SET, refused, shown, transcript, with_attachments
 from verigraph.server import build_server
 from verigraph.tools import Toolbox
 
@@ -34,6 +34,11 @@ TASKS = sorted(p.name for p in THIRD_SET.iterdir() if (p / "transcript.jsonl").e
 # test_llm_trials_third_set_pddl.py; the fast tier stops before it).
 NOW_ANSWERED = {("t09_tangram", 1), ("t03_deliveries", 3)}
 NEEDS_AN_EXTRA = {"t03_deliveries": 2}
+# Verdicts the model read, kept word for word at the start of the new answer, except
+# where the answer now says more: the dinner's end is PARTIAL (the kettle was asked for).
+VERDICTS = ("SUCCESS: goal reached", "VALID:", "INVALID:", "goal set", "executed ",
+            "plan of ")
+NEW_VERDICT = {("t10_dinner", 10)}
 Results = list[tuple[dict[str, Any], CallToolResult]]
 
 
@@ -53,9 +58,12 @@ async def run_recorded(client: Client, task: str, calls: int | None = None) -> R
             task, number, entry["tool"], text(result))
         if result.is_error:
             assert "fix: " in text(result), (task, number)
+        elif not refused(entry) and (task, number) not in NEW_VERDICT:
+            then = shown(entry)
+            kept = [v for v in VERDICTS if then.startswith(v)]
+            assert all(text(result).startswith(v) for v in kept), (task, number, text(result))
         if entry["tool"] == "load_scene" and not result.is_error and not answered_now:
-            then = entry["shown"][0]["text"]
-            old = re.match(r"episode (ep_[\w-]+):", then)
+            old = re.match(r"episode (ep_[\w-]+):", shown(entry))
             assert old is not None
             ids[old.group(1)] = structured(result)["episode_id"]
         out.append((entry, result))
