@@ -66,7 +66,27 @@ class EpisodeVerdict(BaseModel):
         default_factory=list, description="what the episode's first instruction asked "
         "for that does not hold at the end (with why, when it could not be placed)")
 
+    def observed(self) -> str | None:
+        """A simulator or arm episode: whether every action ended as predicted."""
+        if self.runs_on is None or self.runs_on.startswith("graph"):
+            return None
+        differed = [t.call for t in self.trace
+                    if t.violation is not None and t.violation.constraint == "execution_failed"]
+        if differed:
+            return ("observed != predicted in call(s) " + ", ".join(map(str, differed))
+                    + " (execution_failed): the final graph is what the world observed")
+        return (f"observed = predicted: each of the {self.steps} action(s) ended where the "
+                "plan said")
+
     def summary(self) -> str:
+        text = self._verdict_text()
+        observed = self.observed()
+        if observed is None:
+            return text
+        lines = text.split("\n")
+        return "\n".join([*lines[:2], observed, *lines[2:]])
+
+    def _verdict_text(self) -> str:
         if self.verdict == "partial":
             text = ("PARTIAL: the goal set was reached, but it is narrower than the request "
                     "the episode was loaded with; not done: " + "; ".join(self.asked_missing)
