@@ -8,7 +8,8 @@ then 1.5) and finally A* (w = 1), each pruned by the best length so far; the res
 carries the lower bound it proved: the heuristic at the start, raised to the smallest
 f-value A* left open when it stopped. A search the budget stops before any plan is found
 still returns that bound (`lower_bound`: every plan needs at least that many moves).
-Tangram goals are solved by breadth-first search.
+Tangram goals are solved by breadth-first search: goal-directed first (`solver.tangram`),
+then over every align to depth 2.
 """
 
 from __future__ import annotations
