@@ -16,7 +16,7 @@ from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.translator import read_instruction
 from verigraph.tools.context import ToolContext
-from verigraph.tools.executors import arm_mode_of
+from verigraph.tools.executors import arm_mode_of, executors_text
 from verigraph.tools.fields import EpisodeId
 from verigraph.tools.store import LiveEpisode, TraceEntry
 from verigraph.tools.summaries import EpisodeState, describe_episode
@@ -34,7 +34,9 @@ class EpisodeRef(BaseModel):
 
 def get_state(ctx: ToolContext, params: EpisodeRef) -> EpisodeState:
     with ctx.store.use(params.episode_id) as episode:
-        return describe_episode(episode)
+        out = describe_episode(episode)
+    out.executors = executors_text(ctx.config.executor, ctx.config.arm)
+    return out
 
 
 # -- end_episode ----------------------------------------------------------------------------

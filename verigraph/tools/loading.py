@@ -24,11 +24,11 @@ from verigraph.tools.episodes import ASKED
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.executors import (
     EXECUTOR_HELP,
-    ArmSetup,
     SceneCheck,
     arm_setup_for,
     check_executor,
     enabled_executors,
+    executors_text,
 )
 from verigraph.tools.fields import (
     BoundedGoal,
@@ -195,19 +195,6 @@ def load_scene_tool(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
         out.label_readings = label_readings(source.graph, state.dictionary)
     out.executors = executors_text(ctx.config.executor, ctx.config.arm)
     return out
-
-
-def executors_text(default: str, arm: ArmSetup | None) -> str:
-    """`executors on this server: graph (verified only, default), sim2d (simulated); no
-    robot connected: ...`: said when a scene loads, so whether a robot is there is never
-    learnt by a refused call."""
-    text = f"executors on this server: {enabled_executors(default, arm)}"
-    if arm is None:
-        return (text + "; no robot connected: no executor here moves a real robot (a plan "
-                "runs on the graph or in the simulator only)")
-    if arm.config.mode != "real":
-        return text + f"; {arm.executor} is an arm in {arm.config.mode} mode: no real robot moves"
-    return text + f"; {arm.executor} reaches a real robot (arm_status: its connection)"
 
 
 def _with_dictionary(graph: SceneGraph, name: str | InlineDictionary | None) -> SceneGraph:
