@@ -254,6 +254,7 @@ def read_instruction(instruction: str, graph: SceneGraph) -> Reading:
     text = instruction.strip().lower().rstrip(".")
     text = re.sub(r"\s+leave everything else as it is$", "", text).rstrip(".")
     text = re.sub(r"\s*\([^)]*\)", lambda m: ". " + m.group(0).strip()[1:-1] + ". ", text)
+    text = re.sub(rf" (?:lying|sitting|standing|resting)(?= {PLACE} )", "", text)
     wanted: dict[str, tuple[str, str]] = {}
     reading = Reading()
     for clause in _clauses(text):
