@@ -22,7 +22,7 @@ from contextlib import contextmanager, suppress
 from pathlib import Path
 
 from verigraph.tools.errors import StoreError
-from verigraph.tools.store_backend import StoredEpisode
+from verigraph.tools.store_backend import Admission, Limits, StoredEpisode
 
 # Refresh an episode's last-used time at most this often, so a read is not a write.
 TOUCH_EVERY_S = 5.0
@@ -34,10 +34,14 @@ CREATE TABLE IF NOT EXISTS episodes (
     created_at REAL NOT NULL,
     updated_at REAL NOT NULL,
     last_used REAL NOT NULL,
-    record TEXT NOT NULL
+    record TEXT NOT NULL,
+    owner TEXT NOT NULL DEFAULT ''
 );
 CREATE INDEX IF NOT EXISTS episodes_last_used ON episodes(last_used);
 """
+# A store made before episodes had owners gains the column (its episodes own "").
+_OWNER_COLUMN = "ALTER TABLE episodes ADD COLUMN owner TEXT NOT NULL DEFAULT ''"
+_OWNER_INDEX = "CREATE INDEX IF NOT EXISTS episodes_owner ON episodes(owner, last_used)"
 
 
 def create_private_file(path: Path) -> None:
@@ -101,6 +105,22 @@ def _switch_to_wal(connection: sqlite3.Connection, patience_s: float = 30.0) -> 
             time.sleep(0.01)
 
 
+def _add_owner_column(connection: sqlite3.Connection) -> None:
+    """The owner column and its index, on a store made before owners (once, under the
+    write lock: several workers may open the same old file at once)."""
+    connection.execute("BEGIN IMMEDIATE")
+    try:
+        columns = {row[1] for row in connection.execute("PRAGMA table_info(episodes)")}
+        if "owner" not in columns:
+            connection.execute(_OWNER_COLUMN)
+        connection.execute(_OWNER_INDEX)
+        connection.execute("COMMIT")
+    except BaseException:
+        if connection.in_transaction:
+            connection.execute("ROLLBACK")
+        raise
+
+
 class SqliteBackend:
     """Episode records in one SQLite table."""
 
@@ -116,6 +136,7 @@ class SqliteBackend:
             # another process wrote (two workers creating the table) fails at once
             # instead of waiting for the lock.
             connection.executescript(f"BEGIN IMMEDIATE;{_SCHEMA}COMMIT;")
+            _add_owner_column(connection)
             if existed:
                 os.chmod(self.path, 0o600)  # only once it is known to be a store
         except (OSError, sqlite3.Error) as exc:
@@ -144,21 +165,34 @@ class SqliteBackend:
             cache[str(self.path)] = connection
         return connection
 
-    def create(self, episode_id: str, record: str, now: float, cap: int, idle: float
-               ) -> bool:
+    def create(self, episode_id: str, owner: str, record: str, now: float, limits: Limits
+               ) -> Admission:
         with self._guard("the new episode"):
             db = self._connection()
             db.execute("BEGIN IMMEDIATE")
             try:
-                db.execute("DELETE FROM episodes WHERE last_used < ?", (now - idle,))
-                (count,) = db.execute("SELECT count(*) FROM episodes").fetchone()
-                if count >= cap:
+                db.execute("DELETE FROM episodes WHERE last_used < ?", (now - limits.idle,))
+                (held,) = db.execute("SELECT count(*) FROM episodes WHERE owner = ?",
+                                     (owner,)).fetchone()
+                if held >= limits.share:
                     db.execute("COMMIT")
-                    return False
-                db.execute("INSERT INTO episodes VALUES (?, 1, ?, ?, ?, ?)",
-                           (episode_id, now, now, now, record))
+                    return Admission("share", held)
+                (count,) = db.execute("SELECT count(*) FROM episodes").fetchone()
+                reclaimed = None
+                if count >= limits.cap:
+                    row = db.execute("SELECT id FROM episodes WHERE last_used <= ? "
+                                     "ORDER BY last_used LIMIT 1",
+                                     (now - limits.reclaim_after,)).fetchone()
+                    if row is None:
+                        db.execute("COMMIT")
+                        return Admission("full", held)
+                    reclaimed = str(row[0])
+                    db.execute("DELETE FROM episodes WHERE id = ?", (reclaimed,))
+                db.execute("INSERT INTO episodes (id, version, created_at, updated_at, "
+                           "last_used, record, owner) VALUES (?, 1, ?, ?, ?, ?, ?)",
+                           (episode_id, now, now, now, record, owner))
                 db.execute("COMMIT")
-                return True
+                return Admission("created", held, reclaimed)
             except BaseException:
                 if db.in_transaction:  # SQLite may have rolled back already (disk full)
                     db.execute("ROLLBACK")
