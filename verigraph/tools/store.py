@@ -295,7 +295,7 @@ class EpisodeStore:
             with self._lock:
                 dropped = self._drop_expired(now)
                 held = sum(1 for ep in self._episodes.values() if ep.owner == caller)
-                if held >= self.share:
+                if held >= self.share < self.max_episodes:  # one share of all: "full"
                     raise self.share_error(caller, held)
                 if len(self._episodes) >= self.max_episodes:
                     dropped += self._reclaim(now)

@@ -6,8 +6,9 @@ sorted set `verigraph:episodes` indexes live ids by last use for the cap, the re
 of idle episodes and the operator listing, and `verigraph:owner:<caller>` does the same
 for one caller's share. Every step is one Lua script, so it is atomic on the server:
 create checks the share and the cap (reclaiming an idle episode when full) and inserts,
-swap is the compare-and-set on the version. Index entries of expired keys are dropped by
-score (a last use older than the idle timeout) before anything is counted.
+swap is the compare-and-set on the version. Before anything is counted, create drops
+every episode whose last use (its score) is older than the idle timeout, as SQLite does,
+whether or not its key's TTL has run out yet (another replica's clock may differ).
 """
 
 from __future__ import annotations
@@ -28,10 +29,18 @@ T = TypeVar("T")
 # KEYS: episode, index, owner index. ARGV: id, record, now, cap, idle ms, expiry cutoff,
 # owner, share, reclaim cutoff, episode key prefix.
 _CREATE = """
+local expired = redis.call('ZRANGEBYSCORE', KEYS[2], '-inf', '(' .. ARGV[6])
+for _, id in ipairs(expired) do
+  local owner = redis.call('HGET', ARGV[10] .. id, 'owner')
+  redis.call('DEL', ARGV[10] .. id)
+  if owner then redis.call('ZREM', '""" + OWNER_PREFIX + """' .. owner, id) end
+end
 redis.call('ZREMRANGEBYSCORE', KEYS[2], '-inf', '(' .. ARGV[6])
 redis.call('ZREMRANGEBYSCORE', KEYS[3], '-inf', '(' .. ARGV[6])
 local held = redis.call('ZCARD', KEYS[3])
-if held >= tonumber(ARGV[8]) then return {'share', held, ''} end
+if held >= tonumber(ARGV[8]) and tonumber(ARGV[8]) < tonumber(ARGV[4]) then
+  return {'share', held, ''}
+end
 local reclaimed = ''
 if redis.call('ZCARD', KEYS[2]) >= tonumber(ARGV[4]) then
   local idle = redis.call('ZRANGEBYSCORE', KEYS[2], '-inf', ARGV[9], 'LIMIT', 0, 1)

@@ -174,7 +174,7 @@ class SqliteBackend:
                 db.execute("DELETE FROM episodes WHERE last_used < ?", (now - limits.idle,))
                 (held,) = db.execute("SELECT count(*) FROM episodes WHERE owner = ?",
                                      (owner,)).fetchone()
-                if held >= limits.share:
+                if held >= limits.share < limits.cap:
                     db.execute("COMMIT")
                     return Admission("share", held)
                 (count,) = db.execute("SELECT count(*) FROM episodes").fetchone()

@@ -1,0 +1,57 @@
+"""Who a request comes from: its caller (docs/architecture.md, glossary).
+
+Over HTTP the caller is the bearer token it matched when the server has several (one per
+caller), else the address it connects from; over stdio the one peer. The HTTP wing's
+BearerTokenAuth writes a token caller into the ASGI scope under CALLER_KEY; the per-
+caller budgets there and the episode store's owners and shares read it with `caller_of`.
+
+A token caller is named `token` and a fingerprint of the token (a slow hash of it, cut
+to 12 hex digits; never the token): the same token is the same caller after a restart
+whatever the order of `--token`, so a durable store's episodes stay with their caller,
+and a log line never carries anything a token could be recovered from cheaply.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from typing import Any
+
+from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
+
+from verigraph.tools.store import calling_as
+
+CALLER_KEY = "verigraph.caller"
+STDIO_CALLER = "stdio"
+_SALT = b"verigraph caller"
+_ROUNDS = 50_000  # once per token at start-up (~25 ms); a guess costs as much offline
+
+
+def token_caller(token: str) -> str:
+    """`token 1a2b3c4d5e6f`: the caller a bearer token stands for."""
+    digest = hashlib.pbkdf2_hmac("sha256", token.encode(), _SALT, _ROUNDS, dklen=6)
+    return f"token {digest.hex()}"
+
+
+def caller_of(scope: Any) -> str:
+    """A token caller (several tokens), else `address 127.0.0.1`."""
+    named = scope.get(CALLER_KEY)
+    if isinstance(named, str):
+        return named
+    peer = scope.get("client")
+    return f"address {peer[0] if peer else 'unknown'}"
+
+
+def request_caller(ctx: ServerRequestContext[Any, Any]) -> str:
+    """The caller of one MCP request: from its HTTP request's scope, else stdio's peer."""
+    scope = getattr(ctx.request, "scope", None)
+    return caller_of(scope) if isinstance(scope, dict) else STDIO_CALLER
+
+
+class CallerScope:
+    """Server middleware (outermost): every request runs as its caller, so tools,
+    resources and prompts find only that caller's episodes and open them in its share."""
+
+    async def __call__(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
+                       ) -> HandlerResult:
+        with calling_as(request_caller(ctx)):
+            return await call_next(ctx)
