@@ -61,7 +61,7 @@ from verigraph.budget import DEFAULT_MEMORY_MIB
 from verigraph.errors import VeriGraphError
 from verigraph.server.http.workers import PR_SET_PDEATHSIG
 from verigraph.server.jsonrpc_screen import top_level_id
-from verigraph.server.rpc_errors import INVALID_REQUEST, PARSE_ERROR
+from verigraph.server.rpc_errors import INVALID_REQUEST, PARSE_ERROR, id_problem
 from verigraph.server.table import SERVER_TOOLS
 from verigraph.tools.registry import parse_arguments
 
@@ -87,6 +87,9 @@ class Prepared:
 def _refusal(message: Any, size: int) -> Prepared:
     method = message.get("method") if isinstance(message, dict) else None
     request_id = message.get("id") if isinstance(message, dict) else None
+    too_long = id_problem(request_id)
+    if too_long is not None:  # answered with a null id: it cannot be echoed
+        return Prepared(refusal=too_long, status=400)
     what = repr(method) if isinstance(method, str) else "a message that is no single request"
     return Prepared(refusal=f"Request too large for {what} ({size} bytes): only tools/call "
                             "arguments may be this large; send a smaller request",
@@ -124,6 +127,8 @@ def _prepare(body: bytes, threshold: int) -> Prepared:
         message = json.loads(body)
     except (ValueError, RecursionError):
         return _parse_error(body)
+    if isinstance(message, dict) and id_problem(message.get("id")) is not None:
+        return _refusal(message, len(body))
     params = message.get("params") if isinstance(message, dict) else None
     if not (isinstance(params, dict) and message.get("method") == "tools/call"
             and isinstance(params.get("arguments"), dict)):
