@@ -2,9 +2,10 @@
 
 This is OpenEnv's infrastructure boundary served beside `verigraph serve`:
 `create_openenv_app()` is OpenEnv's own routes (`openenv.core.env_server.
-HTTPEnvServer.register_routes`, what its `create_app` serves) around `VeriGraphServerEnv`, one environment per WebSocket session, so a
-trainer anywhere drives `reset(seed, task=...)`, `step({"actions": ...})` and `state`
-with OpenEnv's clients (`GenericEnvClient`). The reward and the verdict are computed on
+HTTPEnvServer.register_routes`, what its `create_app` serves) around
+`VeriGraphServerEnv`, one environment per WebSocket session, so a trainer anywhere
+drives `reset(seed, task=...)`, `step({"actions": ...})` and `state` with OpenEnv's
+clients (`GenericEnvClient`). The reward and the verdict are computed on
 the server; the observation carries the prompt, the step reward and the episode return.
 
 `RemoteSessionFactory(url)` turns such a server back into OpenEnv harness sessions
@@ -548,5 +549,6 @@ class RemoteSessionFactory(ResourceSessionFactory):
 
 
 __all__ = ["DEFAULT_MAX_SESSIONS", "DEFAULT_RECLAIM_AFTER", "DEFAULT_SESSION_TIMEOUT",
-           "TOOL_NAME", "ActAction", "BearerToken", "Callers", "SharedSessions", "NoEpisodeError", "PromptObservation", "RemoteSessionFactory",
-           "TokenEnvClient", "VeriGraphServerEnv", "create_openenv_app", "serve_openenv"]
+           "TOOL_NAME", "ActAction", "BearerToken", "Callers", "NoEpisodeError",
+           "PromptObservation", "RemoteSessionFactory", "SharedSessions", "TokenEnvClient",
+           "VeriGraphServerEnv", "create_openenv_app", "serve_openenv"]

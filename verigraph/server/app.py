@@ -13,8 +13,8 @@ from verigraph.server.apps import UI_META, AppsGate, episode_apps
 from verigraph.server.callers import CallerScope
 from verigraph.server.heavy import HeavyCalls, HeavyLimits
 from verigraph.server.prompts import PromptGate, register_prompts
-from verigraph.server.rpc_errors import INVALID_REQUEST, id_problem
 from verigraph.server.resources import register_resources
+from verigraph.server.rpc_errors import INVALID_REQUEST, id_problem
 from verigraph.server.tools import ToolCalls, build_tools
 from verigraph.tools.context import ToolConfig
 from verigraph.tools.executors import enabled_executors
