@@ -62,3 +62,21 @@ def test_stdio_refuses_a_long_id_too() -> None:
         server.still_serving()
     finally:
         server.close()
+
+
+@pytest.mark.parametrize(("params", "named"), [
+    ({"name": "n" * 70_000, "arguments": {}}, "params.name"),
+    ({"name": "load_scene", "arguments": {"scene_id": "cup_on_book"},
+      "_meta": {"note": "m" * 70_000}}, "params._meta"),
+])
+def test_a_large_tools_call_names_the_field_that_is_not_its_arguments(
+        url: str, params: dict[str, Any], named: str) -> None:
+    reply = post(url, 5, params=params).json()
+    message = reply["error"]["message"]
+    assert reply["id"] == 5 and f"its field {named} is" in message
+    assert f"send a shorter {named}" in message
+
+
+def test_large_tools_call_arguments_that_are_no_object_are_named(url: str) -> None:
+    reply = post(url, 6, params={"name": "load_scene", "arguments": ["x" * 70_000]}).json()
+    assert "params.arguments must be an object" in reply["error"]["message"]
