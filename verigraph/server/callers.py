@@ -1,7 +1,8 @@
 """Who a request comes from: its caller (docs/architecture.md, glossary).
 
 Over HTTP the caller is the bearer token it matched when the server has several (one per
-caller), else the address it connects from; over stdio the one peer. The HTTP wing's
+caller), else the address it connects from (an IPv6 address by its /64); over stdio the
+one peer. The HTTP wing's
 BearerTokenAuth writes a token caller into the ASGI scope under CALLER_KEY; the per-
 caller budgets there and the episode store's owners and shares read it with `caller_of`.
 
@@ -14,6 +15,7 @@ and a log line never carries anything a token could be recovered from cheaply.
 from __future__ import annotations
 
 import hashlib
+import ipaddress
 from typing import Any
 
 from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
@@ -38,7 +40,24 @@ def caller_of(scope: Any) -> str:
     if isinstance(named, str):
         return named
     peer = scope.get("client")
-    return f"address {peer[0] if peer else 'unknown'}"
+    return address_caller(str(peer[0])) if peer else "address unknown"
+
+
+def address_caller(host: str) -> str:
+    """The caller an address stands for. An IPv6 host is its /64: one end site is
+    given a /64 (RFC 6177) and may use any of its 2**64 addresses, so counting them
+    one by one would give a single client unbounded shares; an IPv4-mapped address is
+    its IPv4 address."""
+    try:
+        ip = ipaddress.ip_address(host.split("%", 1)[0])
+    except ValueError:
+        return f"address {host[:64]}"
+    if isinstance(ip, ipaddress.IPv6Address):
+        if ip.ipv4_mapped is not None:
+            return f"address {ip.ipv4_mapped}"
+        if not ip.is_loopback:
+            return f"address {ipaddress.IPv6Network((ip, 64), strict=False)}"
+    return f"address {ip}"
 
 
 def request_caller(ctx: ServerRequestContext[Any, Any]) -> str:
