@@ -240,3 +240,16 @@ def test_share_settings_are_checked() -> None:
         with pytest.raises(VeriGraphError) as err:
             create_openenv_app(tasks=TASKS, **options)
         assert err.value.field == field
+
+
+def test_bodies_are_bounded_before_openenv_reads_them() -> None:
+    with serving(TASKS) as url:
+        big = httpx.post(f"{url}/reset", content=b"{" + b" " * (17 << 20) + b"}",
+                         headers={"Content-Type": "application/json"}, timeout=60)
+        assert big.status_code == 413 and big.json()["detail"]["field"] == "body"
+        chunked = httpx.post(f"{url}/mcp", timeout=60,  # no Content-Length: counted
+                             content=iter([b"{" + b" " * (1 << 20), b"}"]))
+        assert chunked.status_code == 413
+        deep = httpx.post(f"{url}/mcp", content=b"[" * 500_000, timeout=60)
+        assert deep.status_code == 200 and deep.json()["error"]["code"] == -32700
+        assert httpx.post(f"{url}/reset", json={"task": 0}).status_code == 200

@@ -122,6 +122,7 @@ DEFAULT_RECLAIM_AFTER = 300.0  # a full server replaces sessions idle this long
 _CALLER: ContextVar[str] = ContextVar("verigraph_openenv_caller", default="unknown")
 MAX_MCP_BODY = 1 << 20  # POST /mcp bodies read to check their session_id (OpenEnv's own
 # JSON-RPC requests are a few hundred bytes)
+MAX_BODY = 16 << 20  # any other body (a reset's task record at most a few MiB), as serve
 OPEN_PATHS = frozenset({"/health"})  # answered without a token: says only "healthy"
 SESSION_FIX = ("run the episode in one WebSocket session (/ws, e.g. OpenEnv's "
                "GenericEnvClient or TokenEnvClient): reset, then step")
@@ -311,8 +312,10 @@ class SharedSessions(HTTPEnvServer):
 
 class Callers:
     """ASGI layer: every request and WebSocket runs as its caller (verigraph.server.
-    callers: its token when the server has several, else its address), and a `POST /mcp`
-    that names another caller's `session_id` gets OpenEnv's answer for an unknown one."""
+    callers: its token when the server has several, else its address); a request body
+    is read here up to its limit (MAX_MCP_BODY for `POST /mcp`, MAX_BODY for the rest;
+    413 beyond, before OpenEnv reads it whole), and a `POST /mcp` that names another
+    caller's `session_id` gets OpenEnv's answer for an unknown one."""
 
     def __init__(self, app: Any, sessions: SharedSessions) -> None:
         self.app = app
@@ -325,27 +328,30 @@ class Callers:
         caller = caller_of(scope)
         token = _CALLER.set(caller)
         try:
-            if scope["type"] == "http" and scope.get("method") == "POST" \
-                    and scope.get("path") == "/mcp":
-                body = await _read_body(receive)
-                refusal = self._foreign_session(body, caller)
-                if refusal is not None:
-                    await _send_json(send, 200 if body is not None else 413, refusal)
+            if scope["type"] == "http" and scope.get("method") in ("POST", "PUT", "PATCH"):
+                mcp = scope.get("path") == "/mcp"
+                limit = MAX_MCP_BODY if mcp else MAX_BODY
+                body = await _read_body(receive, limit, _content_length(scope))
+                if body is None:
+                    await _send_json(send, 413, {"detail": VeriGraphError(
+                        f"the request body is larger than {limit} bytes", field="body",
+                        fix="send a smaller request: an action is at most a few KiB"
+                    ).to_dict()})
                     return
-                receive = _replay(body or b"")
+                refusal = self._foreign_session(body, caller) if mcp else None
+                if refusal is not None:
+                    await _send_json(send, 200, refusal)
+                    return
+                receive = _replay(body)
             await self.app(scope, receive, send)
         finally:
             _CALLER.reset(token)
 
-    def _foreign_session(self, body: bytes | None, caller: str) -> dict[str, Any] | None:
-        """The answer to a body naming another caller's session (or too large), else None."""
-        if body is None:
-            return JsonRpcResponse.error_response(
-                JsonRpcErrorCode.INVALID_REQUEST,
-                f"request body larger than {MAX_MCP_BODY} bytes").model_dump()
+    def _foreign_session(self, body: bytes, caller: str) -> dict[str, Any] | None:
+        """The answer to a body naming another caller's session, else None."""
         try:
             message = json.loads(body)
-        except ValueError:
+        except (ValueError, RecursionError):
             return None  # OpenEnv answers it
         params = message.get("params") if isinstance(message, dict) else None
         session_id = params.get("session_id") if isinstance(params, dict) else None
@@ -358,8 +364,17 @@ class Callers:
         ).model_dump()
 
 
-async def _read_body(receive: Any) -> bytes | None:
-    """The request body, or None once it passes MAX_MCP_BODY (the rest is not kept)."""
+def _content_length(scope: dict[str, Any]) -> int | None:
+    for name, value in scope.get("headers", []):
+        if name.lower() == b"content-length":
+            return int(value) if value.isdigit() else None
+    return None
+
+
+async def _read_body(receive: Any, limit: int, declared: int | None) -> bytes | None:
+    """The request body, or None once it passes `limit` (the rest is not read)."""
+    if declared is not None and declared > limit:
+        return None
     chunks, size, more = [], 0, True
     while more:
         message = await receive()
@@ -367,7 +382,7 @@ async def _read_body(receive: Any) -> bytes | None:
             break
         chunk = message.get("body", b"")
         size += len(chunk)
-        if size > MAX_MCP_BODY:
+        if size > limit:
             return None
         chunks.append(chunk)
         more = message.get("more_body", False)
