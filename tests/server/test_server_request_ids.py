@@ -80,3 +80,17 @@ def test_a_large_tools_call_names_the_field_that_is_not_its_arguments(
 def test_large_tools_call_arguments_that_are_no_object_are_named(url: str) -> None:
     reply = post(url, 6, params={"name": "load_scene", "arguments": ["x" * 70_000]}).json()
     assert "params.arguments must be an object" in reply["error"]["message"]
+
+
+def test_stdio_does_not_echo_a_long_id_of_a_line_it_cannot_accept() -> None:
+    server = RawStdio("--store", "memory://")
+    try:
+        server.initialize()
+        server.send(json.dumps({"jsonrpc": "2.0", "id": "s" * 100_000, "method": "tools/call",
+                                "params": {"name": "\ud800"}}))  # a lone surrogate
+        reply = server.reply()
+        assert reply["id"] is None
+        assert_refused_for_its_id(reply["error"]["message"], 100_000)
+        server.still_serving()
+    finally:
+        server.close()
