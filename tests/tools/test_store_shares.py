@@ -8,6 +8,7 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable
+from pathlib import Path
 
 import pytest
 from store_helpers import redis_url  # noqa: F401 - the session fixture
@@ -156,3 +157,26 @@ def test_two_tool_hosts_count_a_callers_episodes_together(
         thread.join()
     assert len(admitted) == 5 and len(refused) == 24 - 5  # atomic in the shared store
     assert len(hosts[0]) == 5
+
+
+def test_a_store_made_before_owners_gains_them_and_keeps_its_episodes(tmp_path: Path) -> None:
+    import sqlite3
+
+    path = tmp_path / "old.db"
+    old = DurableStore(open_backend(f"sqlite:///{path}"), 8, 3600.0)
+    kept = add(old, "local")
+    old.close()
+    with sqlite3.connect(path) as db:  # the table as it was: no owner column
+        record = db.execute("SELECT record FROM episodes").fetchone()[0]
+        db.executescript("DROP TABLE episodes; CREATE TABLE episodes (id TEXT PRIMARY KEY, "
+                         "version INTEGER NOT NULL, created_at REAL NOT NULL, updated_at "
+                         "REAL NOT NULL, last_used REAL NOT NULL, record TEXT NOT NULL);")
+        db.execute("INSERT INTO episodes VALUES (?, 1, ?, ?, ?, ?)",
+                   (kept, time.time(), time.time(), time.time(),
+                    record.replace('"owner":"local"', '"owner":""')))
+    store = DurableStore(open_backend(f"sqlite:///{path}"), 8, 3600.0, share=2)
+    touch(store, "token zzz", kept)  # no owner then: whoever holds the id, as before
+    add(store, "token zzz")
+    add(store, "token zzz")
+    with pytest.raises(EpisodeShareError):  # the old episode counts for no caller
+        add(store, "token zzz")
