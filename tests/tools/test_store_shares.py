@@ -130,7 +130,7 @@ def test_the_toolbox_acts_as_the_local_caller_with_the_whole_store() -> None:
 
 @pytest.mark.parametrize("kind", ["sqlite", "redis"])
 def test_two_tool_hosts_count_a_callers_episodes_together(
-        kind: str, tmp_path: pytest.TempPathFactory, request: pytest.FixtureRequest) -> None:
+        kind: str, tmp_path: Path, request: pytest.FixtureRequest) -> None:
     if kind == "sqlite":
         url = f"sqlite:///{tmp_path}/episodes.db"
     else:
