@@ -20,10 +20,12 @@ from typing import Any
 
 from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
 
-from verigraph.tools.store import calling_as
+from verigraph.tools.store import LOCAL_CALLER, calling_as
 
 CALLER_KEY = "verigraph.caller"
-STDIO_CALLER = "stdio"
+# stdio's one peer is the user who started the server: the same caller as in-process
+# tool calls (the CLI, the library, a test driving both), so their episodes are shared
+STDIO_CALLER = LOCAL_CALLER
 _SALT = b"verigraph caller"
 _ROUNDS = 50_000  # once per token at start-up (~25 ms); a guess costs as much offline
 

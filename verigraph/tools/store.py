@@ -3,7 +3,7 @@
 The MCP protocol has no sessions, so every stateful tool names its episode. Ids come
 from `secrets.token_urlsafe` (unguessable), and each episode belongs to the caller that
 opened it (docs/architecture.md: over HTTP its token, else its address; over stdio the
-one peer; in-process `local`): another caller's id answers exactly as an unknown one
+one peer, `local` like in-process calls): another caller's id answers exactly as an unknown one
 does, so an id that leaks reads or ends nothing.
 
 Shares (docs/server.md, "Episodes per caller"): the store holds at most `max_episodes`,
@@ -49,7 +49,7 @@ DEFAULT_T = 5
 DEFAULT_MAX_EPISODES = 256
 DEFAULT_IDLE_TIMEOUT_S = 3600.0
 DEFAULT_RECLAIM_IDLE_S = 600.0  # a full store replaces episodes idle this long
-LOCAL_CALLER = "local"  # the caller of in-process tool calls (CLI, environment, tests)
+LOCAL_CALLER = "local"  # in-process tool calls (CLI, environment, tests) and stdio's peer
 
 # Set while a tool runs on an event loop thread (see `non_blocking`).
 _NON_BLOCKING: ContextVar[bool] = ContextVar("verigraph_non_blocking", default=False)
