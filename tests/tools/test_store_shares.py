@@ -180,3 +180,23 @@ def test_a_store_made_before_owners_gains_them_and_keeps_its_episodes(tmp_path: 
     add(store, "token zzz")
     with pytest.raises(EpisodeShareError):  # the old episode counts for no caller
         add(store, "token zzz")
+
+
+@pytest.fixture(params=["sqlite", "redis"])
+def durable_url(request: pytest.FixtureRequest, tmp_path: Path) -> str:
+    if request.param == "sqlite":
+        return f"sqlite:///{tmp_path}/episodes.db"
+    url: str = request.getfixturevalue("redis_url")
+    import redis
+    redis.Redis.from_url(url).flushdb()
+    return url
+
+
+def test_purging_every_episode_frees_every_share(durable_url: str) -> None:
+    store_url = durable_url  # memory:// has no operator purge: it ends with its process
+    store = store_for(store_url, Clock(), cap=8, share=2)
+    add(store, "token aaa")
+    add(store, "token aaa")
+    assert open_backend(store_url).sweep(time.time(), -1.0)  # verigraph episodes purge --all
+    add(store, "token aaa")  # counted from nothing again
+    add(store, "token aaa")

@@ -167,11 +167,21 @@ class RedisBackend:
         cutoff = f"({now - idle}"
         ids = [str(i) for i in self._call(self.client.zrangebyscore, INDEX, "-inf", cutoff)]
         if ids:
+            owners = self._call(self._owners_of, ids)
             pipe = self.client.pipeline()
             pipe.delete(*[_key(i) for i in ids])
             pipe.zrem(INDEX, *ids)
+            for episode_id, owner in zip(ids, owners, strict=True):
+                if owner is not None:  # its share is free again at once (purge --all)
+                    pipe.zrem(OWNER_PREFIX + str(owner), episode_id)
             self._call(pipe.execute)
         return ids
+
+    def _owners_of(self, ids: list[str]) -> list[str | None]:
+        pipe = self.client.pipeline()
+        for episode_id in ids:
+            pipe.hget(_key(episode_id), "owner")
+        return list(pipe.execute())
 
     def entries(self, now: float, idle: float) -> list[StoredEpisode]:
         ids = [str(i) for i in self._call(self.client.zrangebyscore, INDEX, now - idle, "+inf")]
