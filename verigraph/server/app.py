@@ -4,9 +4,7 @@ from __future__ import annotations
 
 from typing import Any, Literal
 
-from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
 from mcp.server.mcpserver import MCPServer
-from mcp.shared.exceptions import MCPError
 
 from verigraph import __version__
 from verigraph.server.apps import UI_META, AppsGate, episode_apps
@@ -14,7 +12,6 @@ from verigraph.server.callers import CallerScope
 from verigraph.server.heavy import HeavyCalls, HeavyLimits
 from verigraph.server.prompts import PromptGate, register_prompts
 from verigraph.server.resources import register_resources
-from verigraph.server.rpc_errors import INVALID_REQUEST, id_problem
 from verigraph.server.tools import ToolCalls, build_tools
 from verigraph.tools.context import ToolConfig
 from verigraph.tools.executors import enabled_executors
@@ -45,19 +42,6 @@ def executors_instruction(config: ToolConfig) -> str:
             f"   an episode runs on): {enabled_executors(config.executor, config.arm)}.\n")
 
 
-class IdLimit:
-    """Server middleware (outermost): a request whose id is longer than MAX_ID_CHARS is
-    refused for its id, whatever its method (the HTTP wing refuses such a large body
-    before it is parsed here, with the same words)."""
-
-    async def __call__(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
-                       ) -> HandlerResult:
-        problem = id_problem(ctx.request_id)
-        if problem is not None:
-            raise MCPError(INVALID_REQUEST, problem)
-        return await call_next(ctx)
-
-
 LogLevel = Literal["DEBUG", "INFO", "WARNING", "ERROR", "CRITICAL"]
 
 
@@ -79,7 +63,7 @@ def build_server(toolbox: Toolbox | None = None, *, config: ToolConfig | None = 
         "verigraph", title="VeriGraph", version=__version__,
         instructions=INSTRUCTIONS + executors_instruction(toolbox.context.config),
         description="Scene-graph verifier for LLM robot planning",
-        middleware=[IdLimit(), CallerScope(), calls, AppsGate(), PromptGate()], log_level=log_level,
+        middleware=[CallerScope(), calls, AppsGate(), PromptGate()], log_level=log_level,
         extensions=[episode_apps(app_only)], tools=tools, subscriptions=False)
     register_resources(server, toolbox)
     register_prompts(server, toolbox)

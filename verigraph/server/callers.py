@@ -19,7 +19,9 @@ import ipaddress
 from typing import Any
 
 from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
+from mcp.shared.exceptions import MCPError
 
+from verigraph.server.rpc_errors import INVALID_REQUEST, MAX_ID_CHARS, id_problem
 from verigraph.tools.store import LOCAL_CALLER, calling_as
 
 CALLER_KEY = "verigraph.caller"
@@ -62,17 +64,19 @@ def address_caller(host: str) -> str:
     return f"address {ip}"
 
 
-def request_caller(ctx: ServerRequestContext[Any, Any]) -> str:
-    """The caller of one MCP request: from its HTTP request's scope, else stdio's peer."""
-    scope = getattr(ctx.request, "scope", None)
-    return caller_of(scope) if isinstance(scope, dict) else STDIO_CALLER
-
-
 class CallerScope:
     """Server middleware (outermost): every request runs as its caller, so tools,
-    resources and prompts find only that caller's episodes and open them in its share."""
+    resources and prompts find only that caller's episodes and open them in its share;
+    a request whose id is longer than MAX_ID_CHARS is refused for its id, whatever its
+    method (the HTTP wing refuses such a large body before it is parsed, in the same
+    words). A tools/call enters no other module of the server than this one and
+    verigraph.server.tools."""
 
     async def __call__(self, ctx: ServerRequestContext[Any, Any], call_next: CallNext
                        ) -> HandlerResult:
-        with calling_as(request_caller(ctx)):
+        request_id = ctx.request_id
+        if isinstance(request_id, str) and len(request_id) > MAX_ID_CHARS:
+            raise MCPError(INVALID_REQUEST, id_problem(request_id) or "id too long")
+        scope = getattr(ctx.request, "scope", None)
+        with calling_as(caller_of(scope) if isinstance(scope, dict) else STDIO_CALLER):
             return await call_next(ctx)
