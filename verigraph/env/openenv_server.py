@@ -284,11 +284,13 @@ class SharedSessions(HTTPEnvServer):
             held = sum(1 for c in self.owners.values() if c == caller) + self._making[caller]
             cap = self._max_concurrent_envs
             if held >= self.share < cap:
+                timeout = self._session_idle_timeout_s
+                idle_s = f"after {timeout:.0f} s idle" if timeout else "never, here"
                 raise SessionCapacityError(len(self._sessions), cap, message=(
                     f"Session share reached: this caller ({caller}) holds {held} of its "
                     f"{self.share} sessions (sessions_per_caller) on a server of {cap}; "
                     "other callers are not affected. Close a session (end its WebSocket), "
-                    f"wait until an idle one is closed ({self._session_idle_timeout_s} s), "
+                    f"wait until an idle one is closed ({idle_s}), "
                     "or start the server with a larger sessions_per_caller"))
             idle = None
             if len(self._sessions) + sum(self._making.values()) >= cap:
