@@ -285,7 +285,7 @@ class SharedSessions(HTTPEnvServer):
             cap = self._max_concurrent_envs
             if held >= self.share < cap:
                 timeout = self._session_idle_timeout_s
-                idle_s = f"after {timeout:.0f} s idle" if timeout else "never, here"
+                idle_s = f"after {timeout:.0f} s idle" if timeout else "this server closes none"
                 raise SessionCapacityError(len(self._sessions), cap, message=(
                     f"Session share reached: this caller ({caller}) holds {held} of its "
                     f"{self.share} sessions (sessions_per_caller) on a server of {cap}; "
