@@ -200,3 +200,10 @@ def test_purging_every_episode_frees_every_share(durable_url: str) -> None:
     assert open_backend(store_url).sweep(time.time(), -1.0)  # verigraph episodes purge --all
     add(store, "token aaa")  # counted from nothing again
     add(store, "token aaa")
+
+
+def test_the_operator_listing_names_each_episodes_caller(durable_url: str) -> None:
+    store = store_for(durable_url, Clock(), cap=8, share=4)
+    mine, theirs = add(store, "token aaa"), add(store, "address 10.0.0.7")
+    entries = open_backend(durable_url).entries(time.time(), 3600.0)
+    assert {e.id: e.owner for e in entries} == {mine: "token aaa", theirs: "address 10.0.0.7"}

@@ -21,6 +21,7 @@ class StoredEpisode:
     updated_at: float
     last_used: float
     size: int
+    owner: str = ""  # the caller that opened it ("": stored before episodes had owners)
 
 
 @dataclass(frozen=True)

@@ -187,7 +187,7 @@ class RedisBackend:
         ids = [str(i) for i in self._call(self.client.zrangebyscore, INDEX, now - idle, "+inf")]
         pipe = self.client.pipeline()
         for episode_id in ids:
-            pipe.hmget(_key(episode_id), ["v", "created", "updated", "used"])
+            pipe.hmget(_key(episode_id), ["v", "created", "updated", "used", "owner"])
             pipe.hstrlen(_key(episode_id), "rec")
         replies = self._call(pipe.execute) if ids else []
         out = []
@@ -196,7 +196,8 @@ class RedisBackend:
             if fields[0] is None:
                 continue  # expired between the two calls
             out.append(StoredEpisode(episode_id, int(fields[0]), float(fields[1]),
-                                     float(fields[2]), float(fields[3]), int(size)))
+                                     float(fields[2]), float(fields[3]), int(size),
+                                     str(fields[4] or "")))
         return sorted(out, key=lambda e: e.created_at)
 
     def close(self) -> None:

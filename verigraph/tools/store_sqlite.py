@@ -243,7 +243,7 @@ class SqliteBackend:
     def entries(self, now: float, idle: float) -> list[StoredEpisode]:
         with self._guard("listing the episodes"):
             rows = self._connection().execute(
-                "SELECT id, version, created_at, updated_at, last_used, length(record) "
+                "SELECT id, version, created_at, updated_at, last_used, length(record), owner "
                 "FROM episodes WHERE last_used >= ? ORDER BY created_at",
                 (now - idle,)).fetchall()
         return [StoredEpisode(*row) for row in rows]
