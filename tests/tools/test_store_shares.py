@@ -159,27 +159,41 @@ def test_two_tool_hosts_count_a_callers_episodes_together(
     assert len(hosts[0]) == 5
 
 
-def test_a_store_made_before_owners_gains_them_and_keeps_its_episodes(tmp_path: Path) -> None:
+def test_a_store_an_earlier_version_writes_keeps_working_beside_owners(
+        tmp_path: Path) -> None:
     import sqlite3
 
+    donor = DurableStore(open_backend(f"sqlite:///{tmp_path / 'donor.db'}"), 8, 3600.0)
+    with sqlite3.connect(tmp_path / "donor.db") as db:  # a record as an earlier one wrote it
+        record = db.execute("SELECT record FROM episodes WHERE id = ?",
+                            (add(donor, "local"),)).fetchone()[0]
+    record = record.replace('"owner":"local"', '"owner":""')
+    assert '"owner":""' in record
     path = tmp_path / "old.db"
-    old = DurableStore(open_backend(f"sqlite:///{path}"), 8, 3600.0)
-    kept = add(old, "local")
-    old.close()
-    with sqlite3.connect(path) as db:  # the table as it was: no owner column
-        record = db.execute("SELECT record FROM episodes").fetchone()[0]
-        db.executescript("DROP TABLE episodes; CREATE TABLE episodes (id TEXT PRIMARY KEY, "
-                         "version INTEGER NOT NULL, created_at REAL NOT NULL, updated_at "
-                         "REAL NOT NULL, last_used REAL NOT NULL, record TEXT NOT NULL);")
-        db.execute("INSERT INTO episodes VALUES (?, 1, ?, ?, ?, ?)",
-                   (kept, time.time(), time.time(), time.time(),
-                    record.replace('"owner":"local"', '"owner":""')))
+    old_shape = ("CREATE TABLE episodes (id TEXT PRIMARY KEY, version INTEGER NOT NULL, "
+                 "created_at REAL NOT NULL, updated_at REAL NOT NULL, last_used REAL NOT "
+                 "NULL, record TEXT NOT NULL)")
+    old_insert = "INSERT INTO episodes VALUES (?, 1, ?, ?, ?, ?)"  # its own statement
+    with sqlite3.connect(path) as db:
+        db.execute(old_shape)
+        db.execute(old_insert, ("ep_old", time.time(), time.time(), time.time(),
+                                record.replace(json_id(record), "ep_old")))
     store = DurableStore(open_backend(f"sqlite:///{path}"), 8, 3600.0, share=2)
-    touch(store, "token zzz", kept)  # no owner then: whoever holds the id, as before
+    touch(store, "token zzz", "ep_old")  # no owner then: whoever holds the id, as before
+    with sqlite3.connect(path) as db:  # an earlier version still writes beside this one
+        db.execute(old_insert, ("ep_old2", time.time(), time.time(), time.time(),
+                                record.replace(json_id(record), "ep_old2")))
     add(store, "token zzz")
     add(store, "token zzz")
-    with pytest.raises(EpisodeShareError):  # the old episode counts for no caller
+    with pytest.raises(EpisodeShareError):  # the earlier episodes count for no caller
         add(store, "token zzz")
+    assert {"ep_old", "ep_old2"} <= set(store.ids())
+
+
+def json_id(record: str) -> str:
+    import json
+
+    return str(json.loads(record)["id"])
 
 
 @pytest.fixture(params=["sqlite", "redis"])

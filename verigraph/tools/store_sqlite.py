@@ -34,14 +34,20 @@ CREATE TABLE IF NOT EXISTS episodes (
     created_at REAL NOT NULL,
     updated_at REAL NOT NULL,
     last_used REAL NOT NULL,
-    record TEXT NOT NULL,
-    owner TEXT NOT NULL DEFAULT ''
+    record TEXT NOT NULL
 );
 CREATE INDEX IF NOT EXISTS episodes_last_used ON episodes(last_used);
+CREATE TABLE IF NOT EXISTS episode_owners (
+    id TEXT PRIMARY KEY,
+    owner TEXT NOT NULL
+);
+CREATE INDEX IF NOT EXISTS episode_owners_owner ON episode_owners(owner);
 """
-# A store made before episodes had owners gains the column (its episodes own "").
-_OWNER_COLUMN = "ALTER TABLE episodes ADD COLUMN owner TEXT NOT NULL DEFAULT ''"
-_OWNER_INDEX = "CREATE INDEX IF NOT EXISTS episodes_owner ON episodes(owner, last_used)"
+# Owners have a table of their own, so the episodes table keeps its shape: a server of an
+# earlier version on the same file (a rolling upgrade) still writes its rows, which own
+# nothing. An owner row whose episode is gone (ended, expired, or deleted by such a
+# server) is dropped before owners are counted.
+_DROP_ORPHANS = "DELETE FROM episode_owners WHERE id NOT IN (SELECT id FROM episodes)"
 
 
 def create_private_file(path: Path) -> None:
@@ -105,22 +111,6 @@ def _switch_to_wal(connection: sqlite3.Connection, patience_s: float = 30.0) -> 
             time.sleep(0.01)
 
 
-def _add_owner_column(connection: sqlite3.Connection) -> None:
-    """The owner column and its index, on a store made before owners (once, under the
-    write lock: several workers may open the same old file at once)."""
-    connection.execute("BEGIN IMMEDIATE")
-    try:
-        columns = {row[1] for row in connection.execute("PRAGMA table_info(episodes)")}
-        if "owner" not in columns:
-            connection.execute(_OWNER_COLUMN)
-        connection.execute(_OWNER_INDEX)
-        connection.execute("COMMIT")
-    except BaseException:
-        if connection.in_transaction:
-            connection.execute("ROLLBACK")
-        raise
-
-
 class SqliteBackend:
     """Episode records in one SQLite table."""
 
@@ -136,7 +126,6 @@ class SqliteBackend:
             # another process wrote (two workers creating the table) fails at once
             # instead of waiting for the lock.
             connection.executescript(f"BEGIN IMMEDIATE;{_SCHEMA}COMMIT;")
-            _add_owner_column(connection)
             if existed:
                 os.chmod(self.path, 0o600)  # only once it is known to be a store
         except (OSError, sqlite3.Error) as exc:
@@ -172,7 +161,8 @@ class SqliteBackend:
             db.execute("BEGIN IMMEDIATE")
             try:
                 db.execute("DELETE FROM episodes WHERE last_used < ?", (now - limits.idle,))
-                (held,) = db.execute("SELECT count(*) FROM episodes WHERE owner = ?",
+                db.execute(_DROP_ORPHANS)
+                (held,) = db.execute("SELECT count(*) FROM episode_owners WHERE owner = ?",
                                      (owner,)).fetchone()
                 if held >= limits.share < limits.cap:
                     db.execute("COMMIT")
@@ -188,9 +178,12 @@ class SqliteBackend:
                         return Admission("full", held)
                     reclaimed = str(row[0])
                     db.execute("DELETE FROM episodes WHERE id = ?", (reclaimed,))
+                    db.execute("DELETE FROM episode_owners WHERE id = ?", (reclaimed,))
                 db.execute("INSERT INTO episodes (id, version, created_at, updated_at, "
-                           "last_used, record, owner) VALUES (?, 1, ?, ?, ?, ?, ?)",
-                           (episode_id, now, now, now, record, owner))
+                           "last_used, record) VALUES (?, 1, ?, ?, ?, ?)",
+                           (episode_id, now, now, now, record))
+                db.execute("INSERT INTO episode_owners (id, owner) VALUES (?, ?)",
+                           (episode_id, owner))
                 db.execute("COMMIT")
                 return Admission("created", held, reclaimed)
             except BaseException:
@@ -229,22 +222,25 @@ class SqliteBackend:
 
     def delete(self, episode_id: str) -> bool:
         with self._guard("ending the episode"):
-            cursor = self._connection().execute("DELETE FROM episodes WHERE id = ?",
-                                                (episode_id,))
+            db = self._connection()
+            cursor = db.execute("DELETE FROM episodes WHERE id = ?", (episode_id,))
+            db.execute("DELETE FROM episode_owners WHERE id = ?", (episode_id,))
         return cursor.rowcount == 1
 
     def sweep(self, now: float, idle: float) -> list[str]:
         with self._guard("dropping idle episodes"):
-            rows = self._connection().execute(
-                "DELETE FROM episodes WHERE last_used < ? RETURNING id",
-                (now - idle,)).fetchall()
+            db = self._connection()
+            rows = db.execute("DELETE FROM episodes WHERE last_used < ? RETURNING id",
+                              (now - idle,)).fetchall()
+            db.execute(_DROP_ORPHANS)
         return [str(r[0]) for r in rows]
 
     def entries(self, now: float, idle: float) -> list[StoredEpisode]:
         with self._guard("listing the episodes"):
             rows = self._connection().execute(
-                "SELECT id, version, created_at, updated_at, last_used, length(record), owner "
-                "FROM episodes WHERE last_used >= ? ORDER BY created_at",
+                "SELECT e.id, version, created_at, updated_at, last_used, length(record), "
+                "coalesce(o.owner, '') FROM episodes e LEFT JOIN episode_owners o "
+                "ON o.id = e.id WHERE last_used >= ? ORDER BY created_at",
                 (now - idle,)).fetchall()
         return [StoredEpisode(*row) for row in rows]
 
