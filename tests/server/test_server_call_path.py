@@ -52,8 +52,10 @@ async def test_a_small_call_on_a_graph_episode_runs_in_one_server_module_and_no_
         executed = await modules_entered(client, "execute_actions", {
             "episode_id": episode["episode_id"], "actions": ["move(book, on, shelf)"]})
     assert not {m for m in seen | executed if m.startswith("verigraph.arm")}, seen | executed
-    assert {m for m in seen if m.startswith("verigraph.server")} == {"verigraph.server.tools"}
-    assert len(seen) <= 16, sorted(seen)
+    # the call's path, and who it comes from (the caller its episode must belong to)
+    assert {m for m in seen if m.startswith("verigraph.server")} == {
+        "verigraph.server.tools", "verigraph.server.callers"}
+    assert len(seen) <= 17, sorted(seen)  # 16, and the caller's module
 
 
 def test_a_stdio_server_imports_nothing_of_the_http_wing() -> None:

@@ -59,7 +59,8 @@ def _run(args: argparse.Namespace, backend: Backend) -> int:
         print(f"{len(entries)} episode(s) in {redacted(backend.url)}")
         for e in entries:
             print(f"{e.id}  v{e.version}  created {_when(e.created_at)}  "
-                  f"used {_when(e.last_used)}  {e.size} bytes")
+                  f"used {_when(e.last_used)}  {e.size} bytes  "
+                  f"caller {e.owner or '(none)'}")
         return 0
     if args.action == "show":
         if args.episode_id is None:
