@@ -82,6 +82,17 @@ RESET_OPTIONS = frozenset({"task"})
 CUT = "\n[... cut to the observation limit]\n"
 
 
+def _within_action_space(text: str) -> str:
+    """`text` if the action space holds it; else ParseFailure naming the limit, before a
+    character of it is read (a longer reply is outside the space, so it is a malformed
+    step, and no parser spends time on it)."""
+    if len(text) > MAX_ACTION:
+        raise ParseFailure(f"the answer is {len(text):,} characters, more than the {MAX_ACTION:,} "
+                           "an action may hold; write only the actions, as "
+                           '{"actions": [...]} or one move(...) per line')
+    return text
+
+
 def fit_text(text: str, limit: int = MAX_OBSERVATION) -> str:
     """`text` inside the observation space: known characters, at most `limit` long."""
     if not _ALLOWED.issuperset(text):
@@ -272,8 +283,9 @@ class VeriGraphEnv(gym.Env[str, str]):
         out: dict[str, Any] = {}
         ended = False
         feedback: Feedback | None = None
+        text = action if isinstance(action, str) else str(action)
         try:
-            parsed = parse_answer(action if isinstance(action, str) else str(action))
+            parsed = parse_answer(_within_action_space(text))
             moves, done, dropped = split_proposal(parsed, self.k)
             error = None
         except ParseFailure as exc:
