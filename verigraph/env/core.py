@@ -59,7 +59,7 @@ from verigraph.planning.models import (
     PlannerReply,
     PlannerRequest,
 )
-from verigraph.planning.parsing import ParseFailure, parse_answer, split_proposal
+from verigraph.planning.parsing import EXPECTED, ParseFailure, parse_answer, split_proposal
 from verigraph.planning.progress import (
     goal_distance,
     malformed_feedback,
@@ -88,8 +88,7 @@ def _within_action_space(text: str) -> str:
     step, and no parser spends time on it)."""
     if len(text) > MAX_ACTION:
         raise ParseFailure(f"the answer is {len(text):,} characters, more than the {MAX_ACTION:,} "
-                           "an action may hold; write only the actions, as "
-                           '{"actions": [...]} or one move(...) per line')
+                           f"an action may hold; write it as {EXPECTED}")
     return text
 
 
