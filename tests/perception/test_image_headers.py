@@ -3,6 +3,7 @@ size the decoder then allocates, however the file hides another one."""
 
 from __future__ import annotations
 
+import base64
 import random
 import struct
 
@@ -13,6 +14,8 @@ import pytest
 from verigraph.budget import rss_bytes
 from verigraph.perception.config import ImageLimits
 from verigraph.perception.imageio import ImageInputError, decode_image, image_size
+from verigraph.tools.errors import ToolArgumentError
+from verigraph.tools.images import decode_base64_image
 
 pytestmark = pytest.mark.fast
 
@@ -47,21 +50,24 @@ def with_frame(parts: list[bytes], width: int, height: int) -> list[bytes]:
     return out
 
 
-def hidden_frame_jpeg(width: int, height: int) -> bytes:
+def hidden_frame_jpeg(width: int, height: int, lead: bytes = b"\xff\x01") -> bytes:
     """A small JPEG whose real frame is width x height, with a 16x16 frame header inside
-    an APP1 segment that libjpeg skips. Before it, FF 00 (stuffed data, no marker to
-    libjpeg) followed by two bytes a naive walk takes for a length: that walk jumps over
-    the real frame into the APP1 payload and finds the 16x16 one first."""
+    an APP1 segment that libjpeg skips. Before the real frame, `lead` (TEM, which has no
+    length, or FF 00, which is no marker at all) and two bytes a naive walk takes for
+    its length: that walk jumps over the real frame onto the hidden one, while libjpeg
+    skips the two bytes as stray data and reads the real frame."""
     soi, *rest = with_frame(jpeg_segments(), width, height)
     frame = next(p for p in rest if p[1] == 0xC0)
     others = [p for p in rest if p is not frame]
     app1 = segment(0xE1, b"Exif\x00\x00" + FAKE_FRAME)
-    jump = b"\xff\x00" + struct.pack(">H", 2 + len(frame) + 4 + 2)  # lands before FAKE_FRAME
+    # a walk that reads a length here goes on 2 + length bytes on: onto FAKE_FRAME
+    jump = lead + struct.pack(">H", 2 + len(frame) + 4 + 6)
     return soi + jump + frame + app1 + b"".join(others)
 
 
-def test_a_frame_hidden_in_a_skipped_segment_is_not_the_size_read() -> None:
-    data = hidden_frame_jpeg(12_000, 12_000)
+@pytest.mark.parametrize("lead", [b"\xff\x01", b"\xff\x00"], ids=["TEM", "FF00"])
+def test_a_frame_hidden_in_a_skipped_segment_is_not_the_size_read(lead: bytes) -> None:
+    data = hidden_frame_jpeg(12_000, 12_000, lead)
     assert len(data) < 1024
     # libjpeg's own reading (at 1/8 scale, so nothing large is allocated): 12000x12000
     small = cv2.imdecode(np.frombuffer(data, np.uint8), cv2.IMREAD_REDUCED_COLOR_8)
@@ -72,7 +78,20 @@ def test_a_frame_hidden_in_a_skipped_segment_is_not_the_size_read() -> None:
         decode_image(data)
     assert "12000x12000" in err.value.message and "40000000 pixels" in err.value.message
     assert err.value.field == "image"
+    with pytest.raises(ToolArgumentError) as tool_err:  # generate_scene_graph's intake
+        decode_base64_image(base64.b64encode(data).decode())
+    assert "12000x12000 pixels, too large" in tool_err.value.message
     assert rss_bytes() - before < 64 * 1024 * 1024  # the pixels (432 MB) never allocated
+
+
+def test_a_size_opencv_itself_refuses_is_an_error_not_an_exception() -> None:
+    """1 x 10,000,000 is under the pixel limit, but OpenCV throws past 2**20 a side."""
+    png = bytearray(cv2.imencode(".png", np.zeros((4, 4, 3), np.uint8))[1].tobytes())
+    png[16:24] = struct.pack(">II", 1, 10_000_000)
+    with pytest.raises(ToolArgumentError, match="1x10000000 pixels, too large"):
+        decode_base64_image(base64.b64encode(bytes(png)).decode())
+    with pytest.raises(ImageInputError, match="1x10000000"):
+        decode_image(bytes(png))
 
 
 def _libjpeg_size(data: bytes) -> tuple[int, int] | None:

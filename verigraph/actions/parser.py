@@ -216,6 +216,13 @@ def parse_plan(plan: str | list[Any] | dict[str, Any], *, allow_empty: bool = Fa
                                      column=exc.colno, text=plan.splitlines()[exc.lineno - 1]
                                      if plan.splitlines() else "", expected="a JSON list of "
                                      "actions") from None
+            except (RecursionError, ValueError) as exc:
+                # valid JSON Python will not hold: nesting past the recursion limit, or an
+                # integer past int_max_str_digits (4,300 digits)
+                why = "nests too deeply" if isinstance(exc, RecursionError) \
+                    else "holds a number too long to read"
+                raise PlanParseError(f"the JSON plan {why}", line=1, column=1,
+                                     text=plan[:80], expected="a JSON list of actions") from None
             actions = parse_json_plan(decoded)
         else:
             actions = parse_text_plan(plan)

@@ -149,7 +149,10 @@ def decode_image(data: bytes, limits: ImageLimits | None = None) -> np.ndarray:
     fmt, width, height = image_size(data)
     check_size(width, height, limits)
     _check_complete(fmt, data)
-    image = cv2.imdecode(np.frombuffer(data, dtype=np.uint8), cv2.IMREAD_COLOR)
+    try:
+        image = cv2.imdecode(np.frombuffer(data, dtype=np.uint8), cv2.IMREAD_COLOR)
+    except cv2.error:  # a check of OpenCV's own refused the file
+        image = None
     if image is None or image.size == 0:
         raise ImageInputError(f"the {fmt.upper()} data is corrupt and cannot be decoded",
                               field="image", value=data[:8].hex(),
