@@ -17,8 +17,8 @@ import time
 from collections.abc import Callable
 
 import pytest
-from blocksworld_corpus import DATA
 
+from blocksworld_corpus import DATA
 from verigraph.actions.blocksworld import plans as blocks_plans
 from verigraph.actions.blocksworld import sexpr
 from verigraph.actions.blocksworld.domain import recognise_domain
@@ -185,3 +185,15 @@ def test_an_instruction_is_read_in_linear_time() -> None:
     assert_linear(lambda s: read_instruction(s, graph), lambda n: "put a" + " " * n + "on b")
     reading = read_instruction("the a " + "on " * 1_000, graph)
     assert "at most 400 characters" in reading.not_understood[0][1]
+
+
+@pytest.mark.parametrize("plan,why", [
+    ("[" * 100_000, "nests too deeply"),
+    ('{"actions": [' + '{"a": ' * 3_000 + "1" + "}" * 3_000 + "]}", "nests too deeply"),
+    ("[" + "9" * 5_000 + "]", "holds a number too long to read"),
+])
+def test_a_json_plan_python_will_not_hold_is_a_parse_error(plan: str, why: str) -> None:
+    with pytest.raises(PlanParseError) as err:  # was a RecursionError or ValueError
+        parse_plan(plan)
+    assert err.value.message == f"the JSON plan {why}" and err.value.line == 1
+    assert len(err.value.text) <= 80

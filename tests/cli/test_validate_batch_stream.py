@@ -11,7 +11,6 @@ import threading
 from pathlib import Path
 
 from blocksworld_corpus import DATA
-
 from verigraph.cli.batch import MAX_LINE_BYTES, MAX_SKIPPED_BYTES
 
 CAP_BYTES = 1 << 30  # address space of the CLI under test: far below what reading all takes
