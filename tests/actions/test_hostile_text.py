@@ -25,6 +25,7 @@ from verigraph.actions.blocksworld.domain import recognise_domain
 from verigraph.actions.parser import _CALL, _NAME, _NUMBERING, _PLAIN_MOVE, parse_plan
 from verigraph.actions.pddl import plans as pddl_plans
 from verigraph.actions.pddl import validate as pddl_validate
+from verigraph.budget import BudgetExceeded, CallBudget, run_within
 from verigraph.errors import PlanParseError
 from verigraph.graph import Edge, Node, SceneGraph, dictionary
 from verigraph.graph.translator import read_instruction
@@ -197,3 +198,11 @@ def test_a_json_plan_python_will_not_hold_is_a_parse_error(plan: str, why: str) 
         parse_plan(plan)
     assert err.value.message == f"the JSON plan {why}" and err.value.line == 1
     assert len(err.value.text) <= 80
+
+
+def test_a_long_plan_stops_at_its_call_budget() -> None:
+    """The line-by-line reader is a Python loop that checks the call's budget: a plan of
+    300,000 commented lines (seconds to read) stops at a 0.05 s budget."""
+    plan = "move(a, b)  # c\n" * 300_000
+    with pytest.raises(BudgetExceeded, match="longer than its 0.05 s budget"):
+        run_within(CallBudget(wall_s=0.05), "validate_plan", lambda: parse_plan(plan))
