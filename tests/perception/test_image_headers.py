@@ -13,7 +13,12 @@ import pytest
 
 from verigraph.budget import rss_bytes
 from verigraph.perception.config import ImageLimits
-from verigraph.perception.imageio import ImageInputError, decode_image, image_size
+from verigraph.perception.imageio import (
+    MAX_JPEG_SCANS,
+    ImageInputError,
+    decode_image,
+    image_size,
+)
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.images import decode_base64_image
 
@@ -167,3 +172,19 @@ def test_a_hidden_size_meets_every_limit(width: int, height: int, limits: ImageL
                                          expected: str) -> None:
     with pytest.raises(ImageInputError, match=f"{width}x{height} pixels.*{expected}"):
         decode_image(hidden_frame_jpeg(width, height), limits)
+
+
+def test_a_jpeg_of_thousands_of_scans_is_refused_before_decoding() -> None:
+    """Each scan is a pass of libjpeg over the whole image: 2,000 copies of a progressive
+    JPEG's last scan in 52 KB took 7 s of CPU in one uninterruptible call."""
+    ok, buf = cv2.imencode(".jpg", np.full((256, 256, 3), 128, np.uint8),
+                           [cv2.IMWRITE_JPEG_PROGRESSIVE, 1])
+    data = buf.tobytes()
+    assert ok and 1 < data.count(b"\xff\xda") <= MAX_JPEG_SCANS
+    assert image_size(data) == ("jpeg", 256, 256)  # an encoder's progressive file is read
+    last = data[data.rindex(b"\xff\xda"):-2]
+    bomb = data[:-2] + last * 2_000 + b"\xff\xd9"
+    with pytest.raises(ImageInputError, match=f"2010 scans, more than the {MAX_JPEG_SCANS}"):
+        decode_image(bomb)
+    with pytest.raises(ToolArgumentError, match="2010 scans"):
+        decode_base64_image(base64.b64encode(bomb).decode())
