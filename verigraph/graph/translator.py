@@ -47,6 +47,7 @@ SHOULD = r"(?:should be|should end up|should sit|belongs?)"
 NAME = r"(?:the )?[a-z0-9_][a-z0-9_ ,]*?"  # commas: a list ("the pot, the pan and the kettle")
 # "the board on the counter with the knife on it": the second object's place is the first.
 WITH_IT = re.compile(rf"(.+?) ({PLACE}) (.+?) with (.+?) ({PLACE}) it")
+MAX_CLAUSE = 400  # characters of one clause; a spoken clause is a small fraction of it
 
 
 class TranslationError(ValueError):
@@ -132,6 +133,9 @@ Wanted = list[tuple[str, str, str]]  # (object, relation, target)
 
 
 def _clause(clause: str, state: WorldState) -> Wanted:
+    if len(clause) > MAX_CLAUSE:  # each place word is tried against the rest: quadratic
+        raise TranslationError(f"a clause is at most {MAX_CLAUSE} characters; this one has "
+                               f"{len(clause)}")
     np = _np_regex()
     tower = re.fullmatch(rf"build a tower of the {_C}, {_C} and {_C} blocks with the \1 one at "
                          r"the bottom(?: and the \3 one on top)?", clause)
@@ -251,8 +255,10 @@ def _over_capacity(wanted: dict[str, tuple[str, str]], state: WorldState
 def read_instruction(instruction: str, graph: SceneGraph) -> Reading:
     """Every clause the grammar reads (with its goal edges) and every one it does not."""
     state = WorldState.from_graph(graph)
-    text = instruction.strip().lower().rstrip(".")
-    text = re.sub(r"\s+leave everything else as it is$", "", text).rstrip(".")
+    # Single spaces: the patterns below then read each run of spaces once, not once per
+    # space (a long run of spaces was quadratic).
+    text = " ".join(instruction.lower().split()).rstrip(".")
+    text = re.sub(r" leave everything else as it is$", "", text).rstrip(".")
     text = re.sub(r"\s*\([^)]*\)", lambda m: ". " + m.group(0).strip()[1:-1] + ". ", text)
     text = re.sub(rf" (?:lying|sitting|standing|resting)(?= {PLACE} )", "", text)
     wanted: dict[str, tuple[str, str]] = {}

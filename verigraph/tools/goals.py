@@ -176,8 +176,12 @@ class _Reading:
     notes: list[str] = field(default_factory=list)
 
 
-_EDGE_TEXT = re.compile(r"\s*(?:move\s*\()?\s*([\w.-]+)\s*,?\s+([a-z_]+)\s*,?\s+([\w.-]+)"
-                        r"\s*\)?\s*")
+# `source relation target`, words apart by spaces or a comma and spaces, `move(...)` around
+# them allowed. Possessive runs (`*+`, `++`) and a separator read one way: each run of
+# spaces is read once (the backtracking form was quadratic in a long run of spaces).
+_SEP = r"(?:\s*+,\s++|\s++)"
+_EDGE_TEXT = re.compile(rf"\s*+(?:move\s*+\()?+\s*+([\w.-]++){_SEP}([a-z_]++){_SEP}([\w.-]++)"
+                        r"\s*+\)?+\s*+")
 
 
 def goal_from_edges(text: str, state: WorldState | None, *, field: str = "edges",

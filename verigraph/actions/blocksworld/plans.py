@@ -34,8 +34,13 @@ PLANBENCH_COLOURS = {"red": "a", "blue": "b", "orange": "c", "yellow": "d", "whi
 ROLE_ARITY = {"pick-up": 1, "put-down": 1, "stack": 2, "unstack": 2, "move-b-to-b": 3,
               "move-b-to-t": 2, "move-t-to-b": 2}
 _IDENTITY = {0: (), 1: (0,), 2: (0, 1), 3: (0, 1, 2)}
-_STEP_PREFIX = re.compile(r"^\s*(?:\d+(?:\.\d+)?\s*:|\d+[.)]|[-*])\s*")
-_DURATION = re.compile(r"\s*\[[\d.]+\]\s*$")
+# Every pattern here reads its text in linear time. Possessive quantifiers (`*+`, `++`)
+# never give back a run the next part could not use anyway; `_DURATION`, searched at every
+# position, starts only where a run of spaces starts (`(?<!\s)`), so a long run is read
+# once, not once per space; `_ENGLISH` reads a sentence whose spaces are single (a lazy
+# name followed by `\s+from` would otherwise retry the whole run of spaces at each space).
+_STEP_PREFIX = re.compile(r"^\s*+(?:\d++(?:\.\d++)?+\s*+:|\d++[.)]|[-*])\s*+")
+_DURATION = re.compile(r"(?<!\s)\s*+\[[\d.]++\]\s*+$")
 _ENGLISH = [
     ("unstack", re.compile(r"^unstack\s+(?P<x>.+?)\s+from(?:\s+on)?(?:\s+top)?(?:\s+of)?\s+"
                            r"(?P<y>.+)$")),
@@ -118,6 +123,7 @@ def _english_step(body: str, number: int, raw: str, domain: BlocksDomain,
         raise PlanParseError("PlanBench sentences describe the hand operators; this domain "
                              "moves blocks directly", line=number, column=1, text=raw,
                              expected="(op arg ...) lines")
+    body = " ".join(body.split())  # single spaces: each pattern reads it in linear time
     for role, pattern in _ENGLISH:
         match = pattern.match(body)
         if match:
