@@ -184,6 +184,8 @@ def test_an_instruction_is_read_in_linear_time() -> None:
                                                                 target="b")]
     assert_linear(lambda s: read_instruction(s, graph), lambda n: "a" + " " * n + "x")
     assert_linear(lambda s: read_instruction(s, graph), lambda n: "put a" + " " * n + "on b")
+    # "A on B with C on it" is read only within a clause's length (its pattern is cubic)
+    assert_linear(lambda s: read_instruction(s, graph), lambda n: "a on b with " * (n // 12))
     reading = read_instruction("the a " + "on " * 1_000, graph)
     assert "at most 400 characters" in reading.not_understood[0][1]
 

@@ -201,7 +201,9 @@ def _comma_parts(clause: str) -> list[str]:
 
 
 def _with_it(part: str) -> list[str]:
-    m = WITH_IT.fullmatch(part)
+    # WITH_IT's three open groups are cubic in the text: a part past a clause's length is
+    # left whole (and refused by name as one clause).
+    m = WITH_IT.fullmatch(part) if len(part) <= MAX_CLAUSE else None
     if m is None:
         return [part]
     subject = re.sub(rf"^{VERB} ", "", m.group(1))
