@@ -19,7 +19,9 @@ negated only in a rule of a predicate in a higher stratum, never in one it feeds
 the rules have no single meaning and the domain is refused by name (`field="domain"`,
 with the predicates at fault). A stratum is evaluated by joins over the atoms that hold
 (`joins`: bound variables first, each body literal checked as soon as its variables are
-bound; a variable no positive literal binds ranges over the objects of its type) and
+bound; a variable no positive literal binds ranges over the objects of its type, and a
+quantified variable no literal mentions, as in `(exists (?t - tool) (ready))`, still
+needs an object of its type: PDDL's exists over no objects is false, its forall true) and
 repeated until nothing new is derived; strata run bottom-up, and after a step only
 those that read a predicate the step changed.
 
@@ -75,6 +77,9 @@ class Rule:
     body: list[BodyLiteral]
     types: dict[int, str]
     slots: int
+    # types that must have an object: those of quantified variables no body literal
+    # mentions (`exists (?t - tool) (ready)` is false when there is no tool)
+    nonempty: tuple[str, ...] = ()
     ops: list[tuple[Any, ...]] = field(default_factory=list)
     ground: Grounder = field(init=False)  # the head's atom under a binding
     # semi-naive evaluation: one join order per body literal of the rule's own stratum,
@@ -153,16 +158,26 @@ class _Compiler:
         for slot, _, kind_name in f[1]:
             types[slot] = kind_name
         if (kind == "exists") == positive:
-            return self.dnf(f[2], positive, types, owner)
+            # ("some", vars): the variables range over their types even where no literal
+            # of the body mentions them (exists over a type with no objects is false)
+            return [[*c, ("some", f[1])] for c in self.dnf(f[2], positive, types, owner)]
         return [[("forall", f[1], f[2], positive)]]
 
     def add_rules(self, head: str, head_terms: tuple[Term, ...], f: Formula, positive: bool,
-                  types: dict[int, str], slots: int, owner: str) -> None:
+                  types: dict[int, str], slots: int, owner: str,
+                  quantified: tuple[tuple[int, str, str], ...] = ()) -> None:
+        """The rules of `head(head_terms) :- f` (negated when not `positive`);
+        `quantified`: the variables the body is existentially quantified over besides
+        its own `exists` (an auxiliary's: those of the forall it stands for)."""
         for conj in self.dnf(f, positive, types, owner):
             body: list[BodyLiteral] = []
+            witnesses = list(quantified)
             for item in conj:
                 if item[0] == "lit":
                     body.append((item[1], item[2], item[3]))
+                    continue
+                if item[0] == "some":
+                    witnesses.extend(item[1])
                     continue
                 _, variables, inner, sign = item
                 bound = {slot for slot, _, _ in variables}
@@ -171,9 +186,15 @@ class _Compiler:
                 aux = f"{owner}{AUX}{n}"
                 self.origin[aux] = owner
                 # forall v. g  ==  not aux(free), aux(free) := exists v. not g
-                self.add_rules(aux, free, inner, not sign, types, slots, owner)
+                self.add_rules(aux, free, inner, not sign, types, slots, owner,
+                               tuple(variables))
                 body.append((False, aux, free))
-            self.rules.append(Rule(head, head_terms, body, dict(types), slots))
+            mentioned = {t for _, _, terms in body for t in terms if isinstance(t, int)}
+            # a quantified variable no literal mentions: its type needs an object, no more
+            nonempty = tuple(dict.fromkeys(kind for slot, _, kind in witnesses
+                                           if slot not in mentioned))
+            self.rules.append(Rule(head, head_terms, body, dict(types), slots,
+                                   nonempty=nonempty))
 
 
 def _plan(domain: Domain, rule: Rule, derived: set[str], first: int | None = None
@@ -182,7 +203,7 @@ def _plan(domain: Domain, rule: Rule, derived: set[str], first: int | None = Non
     joined first, over the last round's new atoms."""
     needed = {t for t in rule.head_terms if isinstance(t, int)}
     return plan(domain, rule.body, rule.types, needed, joinable=lambda pred: True,
-                derived=derived, first=first)
+                derived=derived, first=first, nonempty=rule.nonempty)
 
 
 def compile_axioms(domain: Domain, definitions: dict[str, list[Definition]]) -> Axioms:
