@@ -24,6 +24,7 @@ reader bounds nesting depth and refuses non-ASCII names with the line.
 from __future__ import annotations
 
 import difflib
+import math
 import re
 from operator import itemgetter
 from typing import Any
@@ -48,6 +49,7 @@ from verigraph.actions.pddl.model import (
 from verigraph.errors import VeriGraphError
 
 MAX_OBJECTS = 100_000
+TOTAL_COST: GroundAtom = ("total-cost",)
 MAX_INIT_ATOMS = 2_000_000
 # constructs outside STRIPS -> the requirement a domain would need for them
 NEEDS = {"assign": ":numeric-fluents", "increase": ":numeric-fluents",
@@ -86,6 +88,20 @@ ACTION_FORM = "(:action NAME :parameters (?x - type ...) :precondition (and ...)
 # precedes it looked behind at, so the scan jumps from `?` to `?` (25x a plain class)
 _GLUED = re.compile(r"\?(?<=[^\s()?]\?)")
 _VARIABLE_PARTS = re.compile(r"\??[^?]+|\?")
+
+
+# a PDDL number: decimal digits with an optional fraction and exponent (no `nan`, `inf`,
+# `0x10` or `1_000`, which Python's float() would take)
+_NUMBER = re.compile(r"[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:e[-+]?[0-9]+)?")
+
+
+def number(text: str) -> float | None:
+    """The value of a PDDL number (the text lower-cased, as the reader gives it), or None
+    for text that is no decimal number or is beyond a double's range (`1e999`)."""
+    if _NUMBER.fullmatch(text) is None:
+        return None
+    value = float(text)
+    return value if math.isfinite(value) else None
 
 
 def _split_glued(expr: SExpr) -> SExpr:
@@ -317,15 +333,13 @@ class _ActionReader:
     def cost_term(self, expr: SExpr, whole: SExpr) -> CostTerm:
         """The amount of `(increase (total-cost) X)`: a number or a static function."""
         if isinstance(expr, str):
-            try:
-                value = float(expr)
-            except ValueError:
-                value = float("nan")
-            if value != value or value < 0 or value in (float("inf"),):
+            value = number(expr)
+            if value is None or value < 0:
                 raise PddlInputError(f"{self.where}: {_show(whole)[:60]} adds "
-                                     f"'{expr}', not a non-negative number", field="domain",
-                                     value=expr, fix="increase (total-cost) by a number >= 0 "
-                                                     "or by a function such as (distance ?a ?b)")
+                                     f"'{expr}', not a finite non-negative decimal number",
+                                     field="domain", value=expr,
+                                     fix="increase (total-cost) by a number >= 0 (such as 1 "
+                                         "or 2.5) or by a function such as (distance ?a ?b)")
             return value
         if expr and isinstance(expr[0], str) and expr[0] in self.domain.functions:
             signature = self.domain.functions[expr[0]]
@@ -699,23 +713,28 @@ def _ground(domain: Domain, objects: dict[str, str], expr: SExpr, where: str) ->
 
 def _value(domain: Domain, objects: dict[str, str], item: list[SExpr],
            values: dict[GroundAtom, float]) -> None:
-    """`(= (f a b) 5)` in :init: the value of a cost function (or total-cost's start)."""
+    """`(= (f a b) 5)` in :init: the value of a cost function (a finite decimal >= 0), or
+    total-cost's start (any finite decimal; VAL's `Final value` counts from it)."""
     fn = item[1] if len(item) == 3 else None
-    number = item[2] if len(item) == 3 else None
+    amount = item[2] if len(item) == 3 else None
     if not (isinstance(fn, list) and fn and all(isinstance(a, str) for a in fn)
-            and isinstance(number, str)):
+            and isinstance(amount, str)):
         raise PddlInputError(f"the initial state holds {_show(item)[:60]}, which is neither an "
                              "atom nor (= (function obj ...) number)", field="problem",
                              value=_show(item)[:60], fix="write (= (road-length a b) 10)")
-    try:
-        value = float(number)
-    except ValueError:
-        raise PddlInputError(f"{_show(item)[:60]} in the initial state: '{number}' is not a "
-                             "number", field="problem", value=number,
-                             fix="give the function a number") from None
+    value = _init_number(item, amount)
     name = str(fn[0])
     if name == "total-cost":
+        if len(fn) != 1:
+            raise PddlInputError(f"{_show(item)[:60]} in the initial state: total-cost takes "
+                                 "no arguments", field="problem", value=name,
+                                 fix="write (= (total-cost) 0)")
+        values[TOTAL_COST] = value
         return
+    if value < 0:
+        raise PddlInputError(f"{_show(item)[:60]} in the initial state: '{amount}' is a "
+                             "negative cost", field="problem", value=amount,
+                             fix="give action costs values >= 0 (PDDL's action costs)")
     signature = domain.functions.get(name)
     if signature is None:
         raise PddlInputError(f"{_show(item)[:60]} in the initial state: the domain declares no "
@@ -727,6 +746,19 @@ def _value(domain: Domain, objects: dict[str, str], item: list[SExpr],
                              f"{len(signature)} declared object(s)", field="problem", value=name,
                              fix="name declared objects, one per argument")
     values[(name, *args)] = value
+
+
+def _init_number(item: list[SExpr], text: str) -> float:
+    """The number of `(= (f ...) text)` in :init, or the error naming it."""
+    value = number(text)
+    if value is None:
+        finite = _NUMBER.fullmatch(text) is not None
+        raise PddlInputError(
+            f"{_show(item)[:60]} in the initial state: '{text[:40]}' is "
+            + ("beyond the range of a double (about 1.8e308)" if finite
+               else "not a number"), field="problem", value=text[:40],
+            fix="give the function a finite decimal number, such as 4 or 2.5")
+    return value
 
 
 def _read_init(domain: Domain, objects: dict[str, str], items: list[SExpr],
@@ -764,30 +796,33 @@ def _read_init(domain: Domain, objects: dict[str, str], items: list[SExpr],
 def _values_fit(domain: Domain, objects: dict[str, str], items: list[SExpr]
                 ) -> dict[GroundAtom, float] | None:
     """The values of `items`, every one `(= (function obj ...) number)` of a declared
-    function, its arity and declared objects (total-cost's start left out, as `_value`
-    leaves it), checked a function at a time; None when one is not."""
+    function, its arity and declared objects, a finite non-negative decimal (total-cost's
+    start under `TOTAL_COST`, any finite decimal), checked a function at a time; None
+    when one is not (`_value` then names it)."""
     if not all(type(item) is list and len(item) == 3 and type(item[1]) is list and item[1]
                and type(item[2]) is str for item in items):
         return None
-    try:  # a list where a name should be, or no number: the per-item reading names it
-        read: dict[Any, float] = {tuple(item[1]): float(item[2])  # type: ignore[arg-type]
-                                  for item in items}
-    except (TypeError, ValueError):
+    try:  # a list where a name should be: the per-item reading names it
+        read: dict[Any, float | None] = {tuple(item[1]): number(item[2])  # type: ignore
+                                         for item in items}
+    except TypeError:
         return None
     groups: dict[Any, list[tuple[Any, ...]]] = {}
-    for key in read:
+    for key, value in read.items():
+        if value is None or value < 0 and key != TOTAL_COST:  # `_value` names it
+            return None
         groups.setdefault(key[0], []).append(key)
     named: set[str] = set()
     for name, keys in groups.items():
         if name == "total-cost":
-            for key in keys:
-                del read[key]
+            if keys != [TOTAL_COST]:
+                return None
             continue
         signature = domain.functions.get(name) if isinstance(name, str) else None
         if signature is None or set(map(len, keys)) != {len(signature) + 1}:
             return None
         named.update(*(key[1:] for key in keys))
-    return read if named <= objects.keys() else None
+    return read if named <= objects.keys() else None  # type: ignore[return-value]
 
 
 class _Fitting:
@@ -924,5 +959,6 @@ def read_problem(text: str, domain: Domain) -> Problem:
             (goal_pos if positive else goal_neg).append(tuple(item))  # type: ignore[arg-type]
         else:
             (goal_pos if positive else goal_neg).append(_ground(domain, objects, item, "goal"))
+    start = values.pop(TOTAL_COST, None)
     return Problem(name, objects, init, goal_pos, goal_neg, values=values,
-                   goal_complex=goal_complex, goal_slots=reader.slot_names)
+                   goal_complex=goal_complex, goal_slots=reader.slot_names, initial_cost=start)
