@@ -229,6 +229,24 @@ def _types(domain: Domain, items: list[SExpr], where: str) -> list[tuple[str, st
     return out
 
 
+def declared_twice(what: str, name: str, where: str, first: str = "", second: str = ""
+                   ) -> PddlInputError:
+    """The refusal of a name declared twice (the later one never silently wins)."""
+    kinds = f" (as {first} and as {second})" if first and second and first != second else ""
+    return PddlInputError(f"{what} {name} is declared twice{kinds}", field=where, value=name,
+                          fix=f"declare {name} once: remove or rename the second {name}")
+
+
+def _once(names: list[str], what: str, where: str) -> None:
+    """Refuse the first name of `names` that occurs twice."""
+    if len(set(names)) != len(names):
+        seen: set[str] = set()
+        for name in names:
+            if name in seen:
+                raise declared_twice(what, name, where)
+            seen.add(name)
+
+
 class _ActionReader:
     """Turns one `(:action ...)` into a Schema, checking names against the domain."""
 
@@ -275,10 +293,8 @@ class _ActionReader:
                                      field="domain", value=p, fix=f"write ?{p}")
         self.params = [p for p, _ in typed]
         self.types = [t for _, t in typed]
+        _once(self.params, f"{self.where}: parameter", "domain")
         self.index = {p: i for i, p in enumerate(self.params)}
-        if len(self.index) != len(self.params):
-            raise PddlInputError(f"{self.where} declares a parameter twice",
-                                 field="domain", value=self.name, fix="rename the parameter")
         self.cost: list[CostTerm] = []
 
     def term(self, arg: SExpr, literal: SExpr, scope: dict[str, int] | None = None) -> Term:
@@ -361,7 +377,9 @@ class _ActionReader:
                                  fix="write (forall (?x - type) ...)")
         out = []
         inner = dict(scope)
-        for name, kind in _types(self.domain, expr, "domain"):
+        typed = _types(self.domain, expr, "domain")
+        _once([name for name, _ in typed], f"{self.where}: quantified variable", "domain")
+        for name, kind in typed:
             if not name.startswith("?"):
                 raise PddlInputError(f"{self.where}: quantified {name} does not start "
                                      "with ?", field="domain", value=name, fix=f"write ?{name}")
@@ -497,10 +515,8 @@ class _RuleReader(_ActionReader):
                 raise PddlInputError(f"{self.where}: {name} in its head is not a variable",
                                      field="domain", value=name, fix=f"write ?{name}")
         self.params = [n for n, _ in typed]
+        _once(self.params, f"{self.where}: head variable", "domain")
         self.index = {n: i for i, n in enumerate(self.params)}
-        if len(self.index) != len(self.params):
-            raise PddlInputError(f"{self.where} names a variable twice in its head",
-                                 field="domain", value=pred, fix="rename the variable")
         self.slot_names = list(self.params)
         self.cost = []
         self.types = head_types_for(domain, pred, [t for _, t in typed])
@@ -551,6 +567,7 @@ class _GoalReader(_ActionReader):
 def _functions(domain: Domain, items: list[SExpr]) -> None:
     """`(:functions (total-cost) - number (road-length ?a ?b - place) - number)`."""
     i = 0
+    seen_total = False
     while i < len(items):
         item = items[i]
         if item == "-":
@@ -564,6 +581,9 @@ def _functions(domain: Domain, items: list[SExpr]) -> None:
             raise PddlInputError(f"malformed function {_show(item)[:60]}", field="domain",
                                  value=_show(item)[:60], fix="write (:functions (name ?x - t) "
                                                              "- number)")
+        if item[0] in domain.functions or item[0] == "total-cost" and seen_total:
+            raise declared_twice("function", item[0], "domain")
+        seen_total = seen_total or item[0] == "total-cost"
         if item[0] != "total-cost":
             domain.functions[item[0]] = [t for _, t in _types(domain, item[1:], "domain")]
         i += 1
@@ -603,7 +623,13 @@ def read_domain(text: str) -> Domain:
                     raise UnsupportedRequirementError(":typing with (either ...) as a "
                                                       "supertype", "domain", _show(parent))
                 # `t - t` (seen in the wild) declares t, under object
-                domain.parents[child] = ROOT_TYPE if parent in (None, child) else parent
+                parent = ROOT_TYPE if parent in (None, child) else parent
+                before = domain.parents.get(child, ROOT_TYPE)
+                if before != ROOT_TYPE and parent not in (ROOT_TYPE, before):
+                    # under two parents: no tree. Under object and then another type (IPC
+                    # storage: `area - object` ... `area crate - surface`) it is the other
+                    raise declared_twice("type", child, "domain", before, str(parent))
+                domain.parents[child] = parent if before == ROOT_TYPE else before
             domain.parents.pop(ROOT_TYPE, None)
     _check_types(domain)
     for section in checked:
@@ -613,13 +639,19 @@ def read_domain(text: str) -> Domain:
         elif head == ":types":
             continue
         elif head == ":constants":
-            domain.constants.update(_types(domain, rest, "domain"))
+            for name, kind in _types(domain, rest, "domain"):
+                if name in domain.constants:
+                    raise declared_twice("constant", name, "domain", domain.constants[name],
+                                         kind)
+                domain.constants[name] = kind
         elif head == ":predicates":
             for pred in rest:
                 if not isinstance(pred, list) or not pred or not isinstance(pred[0], str):
                     raise PddlInputError(f"malformed predicate {_show(pred)[:60]}",
                                          field="domain", value=None,
                                          fix="write (name ?x - type ...)")
+                if pred[0] in domain.predicates:
+                    raise declared_twice("predicate", pred[0], "domain")
                 domain.predicates[pred[0]] = [t for _, t in _types(domain, pred[1:], "domain")]
         elif head == ":functions":
             _functions(domain, rest)
@@ -636,7 +668,8 @@ def read_domain(text: str) -> Domain:
         schema = _ActionReader(domain, body).schema()
         if schema.name in domain.schemas:
             raise PddlInputError(f"action {schema.name} is defined twice", field="domain",
-                                 value=schema.name, fix="rename one of them")
+                                 value=schema.name,
+                                 fix=f"define {schema.name} once: rename or remove the second")
         domain.schemas[schema.name] = schema
     if rules:
         _derived(domain, rules)
@@ -881,6 +914,7 @@ def read_problem(text: str, domain: Domain) -> Problem:
     """The problem in `text` against `domain`; objects include the domain's constants."""
     name, sections = define_body(text, what="problem", kind="problem")
     objects = dict(domain.constants)
+    declared: set[str] = set()  # the problem's own objects
     init: set[GroundAtom] = set()
     values: dict[GroundAtom, float] = {}
     goal_pos: list[GroundAtom] = []
@@ -900,7 +934,17 @@ def read_problem(text: str, domain: Domain) -> Problem:
                 raise PddlInputError(f"the problem declares {len(section) - 1:,} objects",
                                      field="problem", value=len(section) - 1,
                                      fix=f"keep it under {MAX_OBJECTS:,} objects")
-            objects.update(_types(domain, section[1:], "problem"))
+            for obj, kind in _types(domain, section[1:], "problem"):
+                if obj in objects:
+                    if obj in domain.constants and obj not in declared:
+                        raise PddlInputError(
+                            f"{obj} is declared twice: a constant of the domain and an object "
+                            "of the problem", field="problem", value=obj,
+                            fix=f"leave {obj} out of :objects (the domain's constants are "
+                                f"objects of every problem), or rename the object {obj}")
+                    raise declared_twice("object", obj, "problem", objects[obj], kind)
+                objects[obj] = kind
+                declared.add(obj)
         elif head == ":init":
             if len(section) - 1 > MAX_INIT_ATOMS:
                 raise PddlInputError(f"the initial state has {len(section) - 1:,} atoms",
