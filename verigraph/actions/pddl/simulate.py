@@ -721,6 +721,7 @@ def _unsatisfied(schema: Schema, binding: tuple[str, ...], state: set[GroundAtom
         ev = Evaluator(domain, problem, state)
         slots = _slots(schema, binding)
         for f in schema.pre_complex:
+            ev.tried = 0  # each condition a check of its own (the step stopped at one)
             if not ev.holds(f, slots):
                 out.append({"literal": formula_text(f, slots, schema.slot_names),
                             "expected": True,
