@@ -49,7 +49,7 @@ from verigraph.actions.pddl.model import (
 )
 from verigraph.errors import VeriGraphError
 
-MAX_DERIVED_BINDINGS = 5_000_000
+MAX_DERIVED_BINDINGS = 1_000_000
 MAX_CONJUNCTIONS = 4_096
 AUX = "#forall"  # auxiliary predicate names: `p#forall1` (no PDDL name has '#')
 
@@ -100,6 +100,7 @@ class Axioms:
     used_basic: frozenset[str]  # basic predicates some rule reads
     reads: list[frozenset[str]]  # per stratum: the predicates its rules read
     heads: list[frozenset[str]]  # per stratum: the predicates it derives
+    joined: frozenset[str] = frozenset()  # derived predicates a rule joins on (indexed)
 
 
 # ---------------------------------------------------------------- compiling
@@ -246,7 +247,9 @@ def compile_axioms(domain: Domain, definitions: dict[str, list[Definition]]) -> 
                      if pred not in heads and pred != "=")
     reads = [frozenset(pred for r in group for _, pred, _ in r.body) for group, _ in strata]
     derives = [frozenset(r.head for r in group) for group, _ in strata]
-    return Axioms(frozenset(definitions), definitions, strata, used, reads, derives)
+    joined = frozenset(pred for r in rules for positive, pred, _ in r.body
+                       if positive and pred in heads)
+    return Axioms(frozenset(definitions), definitions, strata, used, reads, derives, joined)
 
 
 def _unstratifiable(rules: list[Rule], heads: set[str], stratum: dict[str, int],
@@ -352,10 +355,11 @@ class Derivation:
             before = self.by_stratum[k]
             if touched is not None and touched.isdisjoint(axioms.reads[k]):
                 atoms = before
-                for atom in atoms:
-                    derived_index.add(atom)
+                if not axioms.joined.isdisjoint(axioms.heads[k]):
+                    for atom in atoms:
+                        derived_index.add(atom)
             else:
-                atoms = _stratum(joiner, rules, recursive, derived_index)
+                atoms = _stratum(joiner, rules, recursive, derived_index, axioms.joined)
                 self.by_stratum[k] = atoms
                 if touched is not None and atoms != before:
                     touched.update(axioms.heads[k])
@@ -364,12 +368,13 @@ class Derivation:
         self.atoms = {a for a in derived if a[0] in keep}
 
 
-def _stratum(joiner: Joiner, rules: list[Rule], recursive: bool, index: Index
-             ) -> set[GroundAtom]:
+def _stratum(joiner: Joiner, rules: list[Rule], recursive: bool, index: Index,
+             joined: frozenset[str]) -> set[GroundAtom]:
     """The atoms of one stratum: first its rules that need none of its own atoms, then,
     for a recursive one, round by round every derivation that uses an atom the last
     round found (joined first, from the joiner's `delta`) until a round finds nothing
-    new. Each atom joins `index` and the joiner's derived set as it is found."""
+    new. Each atom joins the joiner's derived set as it is found, and `index` when some
+    rule joins on its predicate (`joined`)."""
     derived = joiner.derived
     found: set[GroundAtom] = set()
     new: list[GroundAtom] = []
@@ -379,7 +384,8 @@ def _stratum(joiner: Joiner, rules: list[Rule], recursive: bool, index: Index
             if atom not in derived:
                 derived.add(atom)
                 found.add(atom)
-                index.add(atom)
+                if atom[0] in joined:  # a later join reads it
+                    index.add(atom)
                 new.append(atom)
 
     for rule in rules:
