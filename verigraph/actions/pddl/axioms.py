@@ -26,8 +26,10 @@ repeated until nothing new is derived; strata run bottom-up, and after a step on
 those that read a predicate the step changed.
 
 Limits: one recomputation may try at most `MAX_DERIVED_BINDINGS` bindings (a
-VeriGraphError beyond, never a half-computed state), and a rule body may expand into
-at most `MAX_CONJUNCTIONS` conjunctions.
+VeriGraphError beyond, never a half-computed state), a rule body (or a forall's) may
+expand into at most `MAX_CONJUNCTIONS` conjunctions, refused before they are built, and
+a domain's rules into at most `MAX_RULES` (a forall is compiled once, however many
+conjunctions it is part of).
 """
 
 from __future__ import annotations
@@ -51,6 +53,7 @@ from verigraph.errors import VeriGraphError
 
 MAX_DERIVED_BINDINGS = 1_000_000
 MAX_CONJUNCTIONS = 4_096
+MAX_RULES = 16_384  # conjunctive rules of a whole domain (auxiliaries' included)
 AUX = "#forall"  # auxiliary predicate names: `p#forall1` (no PDDL name has '#')
 
 
@@ -105,6 +108,15 @@ class Axioms:
 
 # ---------------------------------------------------------------- compiling
 
+def _bounded(conjunctions: int, owner: str) -> None:
+    if conjunctions > MAX_CONJUNCTIONS:
+        raise DerivedPredicateError(
+            f"the rule of derived predicate {owner} expands into more than "
+            f"{MAX_CONJUNCTIONS:,} conjunctions", field="domain", value=owner,
+            fix="split the rule into several (:derived ...) rules or simplify its "
+                "disjunctions")
+
+
 def _slots_in(f: Formula) -> set[int]:
     kind = f[0]
     if kind == "atom":
@@ -124,18 +136,23 @@ class _Compiler:
         self.rules: list[Rule] = []
         self.aux_count: dict[str, int] = {}
         self.origin: dict[str, str] = {}  # auxiliary -> the derived predicate it serves
+        # a forall item (by identity: a product copies it into many conjunctions) -> its
+        # auxiliary and free variables, compiled once; the item is kept alive with it
+        self.aux_of: dict[int, tuple[Any, str, tuple[int, ...]]] = {}
 
     def _product(self, parts: list[list[list[Any]]], owner: str) -> list[list[Any]]:
+        """The conjunctions of a conjunction of DNFs, refused before it is built when it
+        would have more than MAX_CONJUNCTIONS (two halves of 4,096 make 16.7 million)."""
         out: list[list[Any]] = [[]]
         for options in parts:
+            _bounded(len(out) * len(options), owner)
             out = [a + b for a in out for b in options]
-            if len(out) > MAX_CONJUNCTIONS:
-                raise DerivedPredicateError(
-                    f"the rule of derived predicate {owner} expands into more than "
-                    f"{MAX_CONJUNCTIONS:,} conjunctions", field="domain", value=owner,
-                    fix="split the rule into several (:derived ...) rules or simplify "
-                        "its disjunctions")
         return out
+
+    def _union(self, parts: list[list[list[Any]]], owner: str) -> list[list[Any]]:
+        """The conjunctions of a disjunction of DNFs, bounded as `_product`'s."""
+        _bounded(sum(map(len, parts)), owner)
+        return [c for p in parts for c in p]
 
     def dnf(self, f: Formula, positive: bool, types: dict[int, str], owner: str
             ) -> list[list[Any]]:
@@ -150,10 +167,11 @@ class _Compiler:
             parts = [self.dnf(g, positive, types, owner) for g in f[1]]
             if (kind == "and") == positive:
                 return self._product(parts, owner)
-            return [c for p in parts for c in p]
+            return self._union(parts, owner)
         if kind == "imply":
             if positive:
-                return self.dnf(f[1], False, types, owner) + self.dnf(f[2], True, types, owner)
+                return self._union([self.dnf(f[1], False, types, owner),
+                                    self.dnf(f[2], True, types, owner)], owner)
             return self._product([self.dnf(f[1], True, types, owner),
                                   self.dnf(f[2], False, types, owner)], owner)
         for slot, _, kind_name in f[1]:
@@ -180,15 +198,20 @@ class _Compiler:
                 if item[0] == "some":
                     witnesses.extend(item[1])
                     continue
-                _, variables, inner, sign = item
-                bound = {slot for slot, _, _ in variables}
-                free = tuple(sorted(_slots_in(inner) - bound))
-                n = self.aux_count[owner] = self.aux_count.get(owner, 0) + 1
-                aux = f"{owner}{AUX}{n}"
-                self.origin[aux] = owner
-                # forall v. g  ==  not aux(free), aux(free) := exists v. not g
-                self.add_rules(aux, free, inner, not sign, types, slots, owner,
-                               tuple(variables))
+                known = self.aux_of.get(id(item))
+                if known is None:
+                    _, variables, inner, sign = item
+                    bound = {slot for slot, _, _ in variables}
+                    free = tuple(sorted(_slots_in(inner) - bound))
+                    n = self.aux_count[owner] = self.aux_count.get(owner, 0) + 1
+                    aux = f"{owner}{AUX}{n}"
+                    self.origin[aux] = owner
+                    self.aux_of[id(item)] = (item, aux, free)
+                    # forall v. g  ==  not aux(free), aux(free) := exists v. not g
+                    self.add_rules(aux, free, inner, not sign, types, slots, owner,
+                                   tuple(variables))
+                else:
+                    _, aux, free = known
                 body.append((False, aux, free))
             mentioned = {t for _, _, terms in body for t in terms if isinstance(t, int)}
             # a quantified variable no literal mentions: its type needs an object, no more
@@ -196,6 +219,12 @@ class _Compiler:
                                            if slot not in mentioned))
             self.rules.append(Rule(head, head_terms, body, dict(types), slots,
                                    nonempty=nonempty))
+            if len(self.rules) > MAX_RULES:
+                raise DerivedPredicateError(
+                    f"the derived predicates compile into more than {MAX_RULES:,} "
+                    f"conjunctive rules (at the rule of {owner})", field="domain",
+                    value=owner, fix="write fewer or simpler (:derived ...) rules: fewer "
+                                     "disjunctions, and foralls over simpler formulas")
 
 
 def _plan(domain: Domain, rule: Rule, derived: set[str], first: int | None = None
