@@ -44,11 +44,13 @@ def _holds(atom: GroundAtom, state: set[GroundAtom]) -> bool:
 class Evaluator:
     """Evaluates formulas in one state for one problem, counting quantified bindings."""
 
-    def __init__(self, domain: Domain, problem: Problem, state: set[GroundAtom]) -> None:
+    def __init__(self, domain: Domain, problem: Problem, state: set[GroundAtom],
+                 limit: int = MAX_QUANTIFIED) -> None:
         self.domain = domain
         self.problem = problem
         self.state = state
         self.tried = 0
+        self.limit = limit  # bindings one check may try (QuantifierLimitError beyond)
         # a quantifier's body compiled into a closure (compile_condition), by the body's
         # id, made once per evaluator for a quantifier over many bindings
         self.compiled: dict[int, Check | None] = {}
@@ -59,10 +61,10 @@ class Evaluator:
         for objs in lists:
             total *= len(objs)
         self.tried += total
-        if self.tried > MAX_QUANTIFIED:
+        if self.tried > self.limit:
             names = " ".join(name for _, name, _ in variables)
             raise QuantifierLimitError(
-                f"a quantifier over {names} ranges over more than {MAX_QUANTIFIED:,} "
+                f"a quantifier over {names} ranges over more than {self.limit:,} "
                 "bindings in one check", field="domain", value=names,
                 fix="quantify over smaller types, or compile the quantifier away")
         return product(*lists)

@@ -437,6 +437,7 @@ class _Simulation:
             ev = Evaluator(domain, problem, state)
             for f in problem.goal_complex:
                 slots: list[str | None] = [None] * len(problem.goal_slots)
+                ev.tried = 0  # each goal formula a check of its own
                 if not ev.holds(f, slots):
                     unmet.append({"literal": formula_text(f, slots, problem.goal_slots),
                                   "expected": True, "last_changed": None,
