@@ -49,6 +49,8 @@ class CondEffect:
     # the condition compiled into a closure over (slots, state) (formulas.compile_condition);
     # None: no condition, or one with a quantifier inside (the evaluator takes it)
     check: Any = None
+    # the adds' and deletes' grounders (model.grounder), made on first use
+    grounders: tuple[list[Any], list[Any]] | None = None
 
 
 @dataclass(slots=True)

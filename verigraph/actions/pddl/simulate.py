@@ -38,6 +38,7 @@ import gc
 import math
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from functools import lru_cache
+from itertools import product
 from typing import Any, cast
 
 from verigraph.actions.pddl import axioms as derived_predicates
@@ -57,7 +58,6 @@ from verigraph.actions.pddl.formulas import (
     Check,
     Evaluator,
     QuantifierLimitError,
-    _atom,
 )
 from verigraph.actions.pddl.formulas import text as formula_text
 from verigraph.actions.pddl.joins import Joiner, static_index
@@ -677,35 +677,57 @@ def _adl_step(domain: Domain, problem: Problem, schema: Schema, binding: tuple[s
     for f, check in zip(schema.pre_complex, schema.checks, strict=True):
         if not (ev.holds(f, slots) if check is None else check(slots, state)):
             return None
-    adds: list[GroundAtom] = []
-    dels: list[GroundAtom] = []
+    # each atom once, in the order of first occurrence (what the callers keep of them)
+    adds: dict[GroundAtom, None] = {}
+    dels: dict[GroundAtom, None] = {}
     joiner: Joiner | None = None
     for effect in schema.cond_effects:
+        if effect.grounders is None:
+            effect.grounders = ([grounder(lit) for lit in effect.add],
+                                [grounder(lit) for lit in effect.delete])
+        add_g, del_g = effect.grounders
         if effect.join is not None:
             if joiner is None:
                 joiner = Joiner(domain, problem, state, static_index(domain, problem),
                                 limit=MAX_QUANTIFIED, error=_too_many_bindings)
-            add_lits, del_lits = effect.add, effect.delete
 
-            def emit(b: list[Any], add_lits: list[Literal] = add_lits,
-                     del_lits: list[Literal] = del_lits, adds: list[GroundAtom] = adds,
-                     dels: list[GroundAtom] = dels) -> None:
-                adds.extend([_atom(lit, b) for lit in add_lits])
-                dels.extend([_atom(lit, b) for lit in del_lits])
+            def emit(b: list[Any], add_g: list[Grounder] = add_g,
+                     del_g: list[Grounder] = del_g) -> None:
+                for g in add_g:
+                    adds[g(b)] = None
+                for g in del_g:
+                    dels[g(b)] = None
 
             joiner.run(effect.join, slots, emit)
             continue
-        combos = ev.bindings(effect.variables) if effect.variables else [()]
-        check = effect.check
-        places = [slot for slot, _, _ in effect.variables]
-        for objs in combos:
+        condition, check = effect.condition, effect.check
+        if not effect.variables:
+            if condition is None or (ev.holds(condition, slots) if check is None
+                                     else check(slots, state)):
+                adds.update(dict.fromkeys(g(slots) for g in add_g))
+                dels.update(dict.fromkeys(g(slots) for g in del_g))
+            continue
+        ev.bindings(effect.variables)  # counted against the step's limit
+        *outer, (last, _, kind) = effect.variables
+        inner = problem.of_type(domain, kind)
+        places = [slot for slot, _, _ in outer]
+        tried = 0
+        for objs in product(*[problem.of_type(domain, k) for _, _, k in outer]):
+            tried += len(inner)
+            if tried >= 4096:
+                tried = 0
+                checkpoint()  # the call's budget and cancellation
             for slot, obj in zip(places, objs, strict=True):
                 slots[slot] = obj
-            if effect.condition is None or (ev.holds(effect.condition, slots) if check is None
-                                            else check(slots, state)):
-                adds += [_atom(lit, slots) for lit in effect.add]
-                dels += [_atom(lit, slots) for lit in effect.delete]
-    return adds, dels
+            for obj in inner:  # the last variable in the inner loop
+                slots[last] = obj
+                if condition is None or (ev.holds(condition, slots) if check is None
+                                         else check(slots, state)):
+                    for g in add_g:
+                        adds[g(slots)] = None
+                    for g in del_g:
+                        dels[g(slots)] = None
+    return list(adds), list(dels)
 
 
 def _too_many_bindings(tried: int) -> VeriGraphError:
