@@ -331,10 +331,14 @@ class Derivation:
     The basic atoms the rules read are indexed once and the index follows each step's
     edit (`follow`); a stratum is evaluated again only when a predicate it reads
     changed (a basic one in the step's edit, or a derived one whose atoms a lower
-    stratum changed), else its atoms carry over from the state before. Each evaluated
-    stratum joins its rules over the atoms that hold; a recursive one semi-naively (see
-    `_stratum`). `atoms` are the derived atoms of the declared predicates (auxiliaries
-    left out): what the state holds of them."""
+    stratum changed), else its atoms carry over from the state before, at no cost: the
+    set of every derived atom (auxiliaries included, which checks read) and the index of
+    those some rule joins on are kept too, and only an evaluated stratum's old atoms
+    leave them and its new ones join them (a step that changes nothing the rules read
+    costs nothing however many atoms are derived). Each evaluated stratum joins its
+    rules over the atoms that hold; a recursive one semi-naively (see `_stratum`).
+    `atoms` are the derived atoms of the declared predicates (auxiliaries left out):
+    what the state holds of them."""
 
     def __init__(self, domain: Domain, problem: Problem, state: set[GroundAtom]) -> None:
         axioms = domain.axioms
@@ -343,6 +347,8 @@ class Derivation:
         used = axioms.used_basic
         self.basic = Index(atom for atom in state if atom[0] in used)
         self.by_stratum: list[set[GroundAtom]] = [set() for _ in axioms.strata]
+        self.derived: set[GroundAtom] = set()  # every stratum's atoms
+        self.index = Index()  # those of predicates a rule joins on (`Axioms.joined`)
         self.atoms: set[GroundAtom] = set()
         self._evaluate(state, None)
 
@@ -362,9 +368,7 @@ class Derivation:
             touched.add(atom[0])
             if atom[0] in used:
                 basic.add(atom)
-        previous = self.atoms
-        self._evaluate(state, touched)
-        gone, new = previous - self.atoms, self.atoms - previous
+        gone, new = self._evaluate(state, touched)
         state.difference_update(gone)
         state.update(new)
         for atom in gone:
@@ -372,29 +376,37 @@ class Derivation:
         for atom in new:
             changed[atom] = (step, action)
 
-    def _evaluate(self, state: set[GroundAtom], touched: set[str] | None) -> None:
-        """Strata bottom-up; with `touched`, only those that read a changed predicate."""
+    def _evaluate(self, state: set[GroundAtom], touched: set[str] | None
+                  ) -> tuple[list[GroundAtom], list[GroundAtom]]:
+        """Strata bottom-up; with `touched`, only those that read a changed predicate.
+        Returns the atoms of declared predicates that stopped and started to hold."""
         axioms = self.axioms
-        derived: set[GroundAtom] = set()
-        derived_index = Index()
+        keep, joined, derived, index = axioms.predicates, axioms.joined, self.derived, \
+            self.index
         joiner = Joiner(self.domain, self.problem, state, self.basic,
                         limit=MAX_DERIVED_BINDINGS, error=_too_many, derived=derived,
-                        derived_index=derived_index)
+                        derived_index=index)
+        gone: list[GroundAtom] = []
+        new: list[GroundAtom] = []
         for k, (rules, recursive) in enumerate(axioms.strata):
-            before = self.by_stratum[k]
             if touched is not None and touched.isdisjoint(axioms.reads[k]):
-                atoms = before
-                if not axioms.joined.isdisjoint(axioms.heads[k]):
-                    for atom in atoms:
-                        derived_index.add(atom)
-            else:
-                atoms = _stratum(joiner, rules, recursive, derived_index, axioms.joined)
-                self.by_stratum[k] = atoms
-                if touched is not None and atoms != before:
+                continue  # its atoms carry over
+            before = self.by_stratum[k]
+            derived.difference_update(before)  # a rule reads no higher stratum's atoms
+            if not joined.isdisjoint(axioms.heads[k]):
+                for atom in before:
+                    if atom[0] in joined:
+                        index.discard(atom)
+            atoms = _stratum(joiner, rules, recursive, index, joined)
+            self.by_stratum[k] = atoms
+            if atoms != before:
+                if touched is not None:
                     touched.update(axioms.heads[k])
-            derived |= atoms
-        keep = axioms.predicates
-        self.atoms = {a for a in derived if a[0] in keep}
+                gone += [a for a in before - atoms if a[0] in keep]
+                new += [a for a in atoms - before if a[0] in keep]
+        self.atoms.difference_update(gone)
+        self.atoms.update(new)
+        return gone, new
 
 
 def _stratum(joiner: Joiner, rules: list[Rule], recursive: bool, index: Index,
