@@ -92,3 +92,14 @@ def test_a_conditional_effect_at_the_binding_limit_applies_its_atoms_once():
     assert report["valid"] and report["steps"][0]["edit"]["added"] == ["(done)"]
     with pytest.raises(QuantifierLimitError):
         validate_pddl_dict(EFFECTS, problem(N + 1), "(mark)")
+
+
+def test_a_quantified_effect_over_a_type_with_no_objects_costs_nothing():
+    """Three variables over 1,000 objects and one over none: no binding, and no loop over
+    the billion combinations of the others (the count of bindings is 0)."""
+    domain = EFFECTS.replace("(:types obj)", "(:types obj none)").replace(
+        "(forall (?x ?y - obj) (when", "(forall (?x ?y ?w - obj ?n - none) (when")
+    started = time.process_time()
+    report = validate_pddl_dict(domain, problem(N), "(mark)")
+    assert time.process_time() - started < 5
+    assert report["valid"] is False and report["steps"][0]["edit"]["added"] == []

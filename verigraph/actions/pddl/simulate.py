@@ -711,8 +711,11 @@ def _adl_step(domain: Domain, problem: Problem, schema: Schema, binding: tuple[s
         *outer, (last, _, kind) = effect.variables
         inner = problem.of_type(domain, kind)
         places = [slot for slot, _, _ in outer]
+        lists = [problem.of_type(domain, k) for _, _, k in outer]
+        if not inner or not all(lists):
+            continue  # a type with no objects: no binding (and no empty loop over others)
         tried = 0
-        for objs in product(*[problem.of_type(domain, k) for _, _, k in outer]):
+        for objs in product(*lists):
             tried += len(inner)
             if tried >= 4096:
                 tried = 0
