@@ -10,8 +10,8 @@ import random
 import time
 from collections import Counter
 from itertools import product
-from typing import Any
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -381,14 +381,15 @@ def test_random_quantified_rules_agree_with_their_definition_when_a_type_may_be_
     bindings) give the truth value of the formula by definition."""
     monkeypatch.setattr(formulas, "COMPILE_FROM", compile_from)
     rng = random.Random(43)
-    compared = Counter()
-    for case in range(40):
+    compared: Counter[tuple[bool, bool]] = Counter()
+    for _ in range(40):
         bodies = [_formula(rng, [("?h", "A")] if k % 2 else [], 3) for k in range(8)]
         rules = "\n".join(f"(:derived (d{k}{' ?h - A' if k % 2 else ''}) {body})"
                           for k, body in enumerate(bodies))
         heads = " ".join(f"(d{k}{' ?h - A' if k % 2 else ''})" for k in range(8))
         text = (f"(define (domain rnd) (:requirements :typing :adl :derived-predicates) "
-                f"(:types A B) (:constants a0 - A) (:predicates (p) (q ?x - A) (r ?x - A ?y - B) {heads}) "
+                f"(:types A B) (:constants a0 - A) "
+                f"(:predicates (p) (q ?x - A) (r ?x - A ?y - B) {heads}) "
                 f"{rules} (:action noop :parameters () :precondition (and) :effect (p)))")
         domain = read_domain(text)
         assert domain.axioms is not None

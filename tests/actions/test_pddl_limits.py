@@ -5,16 +5,12 @@ check that runs longer, with a structured error."""
 
 from __future__ import annotations
 
-import json
 import time
-from pathlib import Path
 
 import pytest
 
 from verigraph.actions.pddl import validate_pddl_dict
 from verigraph.actions.pddl.formulas import MAX_QUANTIFIED, QuantifierLimitError
-from verigraph.cli import main as verigraph_main
-from verigraph.cli import val
 
 pytestmark = pytest.mark.fast
 

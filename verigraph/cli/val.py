@@ -334,7 +334,6 @@ class _Checker:
 
     def validate(self, plan_text: str) -> dict[str, Any]:
         from verigraph.actions.pddl.validate import validate_pddl_dict
-
         from verigraph.cli.validating import within_cpu_budget
 
         def check(engine: str) -> dict[str, Any]:

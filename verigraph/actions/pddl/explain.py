@@ -30,9 +30,10 @@ not by the number of groundings:
   after the others), `REPORT_QUANTIFIED` bindings for the quantifiers of the ADL
   preconditions of every candidate of a report (beyond, such a precondition counts as
   unsatisfied: 1,000 candidates of an action whose forall spans a million bindings took
-  minutes, now one step's worth), and it checks the call's budget (`verigraph.budget`) as it goes, so
-  a server can stop it. Explaining 20 unmet goals of a domain of 10 six-parameter actions
-  over 40 objects takes a few milliseconds, and no search takes more than about 50 ms.
+  minutes; now they cost one step's worth), and it checks the call's budget (`verigraph.budget`)
+  as it goes, so a server can stop it. Explaining 20 unmet goals of a domain of 10
+  six-parameter actions over 40 objects takes a few milliseconds, and no search takes
+  more than about 50 ms.
 """
 
 from __future__ import annotations

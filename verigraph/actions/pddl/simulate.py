@@ -65,7 +65,6 @@ from verigraph.actions.pddl.model import (
     Domain,
     GroundAtom,
     Grounder,
-    Literal,
     Problem,
     Schema,
     Shower,
