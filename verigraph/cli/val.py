@@ -297,8 +297,9 @@ def run(argv: list[str]) -> int:
         domain_text = _read(opts.files[0], "domain")
         if len(opts.files) == 1:  # VAL: a domain alone is checked, and that is all
             from verigraph.actions.pddl.reader import read_domain
+            from verigraph.cli.validating import within_cpu_budget
 
-            read_domain(domain_text)
+            within_cpu_budget(lambda: read_domain(domain_text), "val")
             return 0
         problem_text = _read(opts.files[1], "problem")
     except VeriGraphError as exc:
