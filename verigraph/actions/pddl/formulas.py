@@ -94,7 +94,7 @@ class Evaluator:
         """The first objects for `variables` under which `body` does not have the truth
         value `want` (a forall's counterexample, an exists' witness), left bound in
         `binding`; None when there are none. Over many bindings the body is compiled into
-        a closure (`compile_condition`, about 5x faster) and the last variable is the
+        a closure (`compile_condition`, about ten times faster) and the last variable is the
         inner loop."""
         before = self.tried
         combos = self.bindings(variables)
