@@ -175,13 +175,16 @@ def plan(domain: Domain, body: list[BodyLiteral], types: dict[int, str], needed:
         join(body[first], True)
     while pending or needed - is_bound_slot:
         progress = False
-        for lit in list(pending):  # checks as soon as their variables are bound
+        kept = []  # (a new list, not list.remove: a body of 100,000 literals stays linear)
+        for lit in pending:  # checks as soon as their variables are bound
             positive, pred, terms = lit
             if all(is_bound(t) for t in terms):
                 ops.append(("check", positive, pred, grounder((pred, terms)), pred in derived))
-                pending.remove(lit)
                 progress = True
-        for lit in list(pending):  # (= ?x c) with one side bound binds the other
+            else:
+                kept.append(lit)
+        pending[:] = []
+        for lit in kept:  # (= ?x c) with one side bound binds the other
             positive, pred, terms = lit
             if positive and pred == "=":
                 a, b = terms
@@ -190,8 +193,9 @@ def plan(domain: Domain, body: list[BodyLiteral], types: dict[int, str], needed:
                     assert isinstance(target, int)
                     ops.append(("bind", target, source, admits(target, None)))
                     is_bound_slot.add(target)
-                    pending.remove(lit)
                     progress = True
+                    continue
+            pending.append(lit)
         if progress:
             continue
         joins = [lit for lit in pending if lit[0] and lit[1] != "=" and joinable(lit[1])]
