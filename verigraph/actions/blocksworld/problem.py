@@ -111,6 +111,13 @@ def read_blocks_problem(text: str, domain: BlocksDomain) -> BlocksProblem:
         raise UnsupportedDomainError(f"objects of types the domain does not declare: "
                                      f"{', '.join(wrong_type)}")
     blocks = list(dict.fromkeys(o for o, _ in objects))
+    if len(blocks) != len(objects):  # the later declaration never silently wins
+        seen: set[str] = set()
+        for o, _ in objects:
+            if o in seen:
+                raise PddlSyntaxError(f"object {o} is declared twice", field="problem", value=o,
+                                      fix=f"declare {o} once: remove or rename the second {o}")
+            seen.add(o)
     return _check_state(name, blocks, init, goal, domain)
 
 

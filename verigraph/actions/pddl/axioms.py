@@ -19,18 +19,23 @@ negated only in a rule of a predicate in a higher stratum, never in one it feeds
 the rules have no single meaning and the domain is refused by name (`field="domain"`,
 with the predicates at fault). A stratum is evaluated by joins over the atoms that hold
 (`joins`: bound variables first, each body literal checked as soon as its variables are
-bound; a variable no positive literal binds ranges over the objects of its type) and
+bound; a variable no positive literal binds ranges over the objects of its type, and a
+quantified variable no literal mentions, as in `(exists (?t - tool) (ready))`, still
+needs an object of its type: PDDL's exists over no objects is false, its forall true) and
 repeated until nothing new is derived; strata run bottom-up, and after a step only
 those that read a predicate the step changed.
 
 Limits: one recomputation may try at most `MAX_DERIVED_BINDINGS` bindings (a
-VeriGraphError beyond, never a half-computed state), and a rule body may expand into
-at most `MAX_CONJUNCTIONS` conjunctions.
+VeriGraphError beyond, never a half-computed state), a rule body (or a forall's) may
+expand into at most `MAX_CONJUNCTIONS` conjunctions, refused before they are built, and
+a domain's rules into at most `MAX_RULES` (a forall is compiled once, however many
+conjunctions it is part of).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import chain, product
 from typing import Any
 
 from verigraph.actions.pddl.formulas import Evaluator, Formula, text
@@ -47,8 +52,9 @@ from verigraph.actions.pddl.model import (
 )
 from verigraph.errors import VeriGraphError
 
-MAX_DERIVED_BINDINGS = 5_000_000
+MAX_DERIVED_BINDINGS = 1_000_000
 MAX_CONJUNCTIONS = 4_096
+MAX_RULES = 16_384  # conjunctive rules of a whole domain (auxiliaries' included)
 AUX = "#forall"  # auxiliary predicate names: `p#forall1` (no PDDL name has '#')
 
 
@@ -75,6 +81,9 @@ class Rule:
     body: list[BodyLiteral]
     types: dict[int, str]
     slots: int
+    # types that must have an object: those of quantified variables no body literal
+    # mentions (`exists (?t - tool) (ready)` is false when there is no tool)
+    nonempty: tuple[str, ...] = ()
     ops: list[tuple[Any, ...]] = field(default_factory=list)
     ground: Grounder = field(init=False)  # the head's atom under a binding
     # semi-naive evaluation: one join order per body literal of the rule's own stratum,
@@ -95,9 +104,19 @@ class Axioms:
     used_basic: frozenset[str]  # basic predicates some rule reads
     reads: list[frozenset[str]]  # per stratum: the predicates its rules read
     heads: list[frozenset[str]]  # per stratum: the predicates it derives
+    joined: frozenset[str] = frozenset()  # derived predicates a rule joins on (indexed)
 
 
 # ---------------------------------------------------------------- compiling
+
+def _bounded(conjunctions: int, owner: str) -> None:
+    if conjunctions > MAX_CONJUNCTIONS:
+        raise DerivedPredicateError(
+            f"the rule of derived predicate {owner} expands into more than "
+            f"{MAX_CONJUNCTIONS:,} conjunctions", field="domain", value=owner,
+            fix="split the rule into several (:derived ...) rules or simplify its "
+                "disjunctions")
+
 
 def _slots_in(f: Formula) -> set[int]:
     kind = f[0]
@@ -118,18 +137,25 @@ class _Compiler:
         self.rules: list[Rule] = []
         self.aux_count: dict[str, int] = {}
         self.origin: dict[str, str] = {}  # auxiliary -> the derived predicate it serves
+        # a forall item (by identity: a product copies it into many conjunctions) -> its
+        # auxiliary and free variables, compiled once; the item is kept alive with it
+        self.aux_of: dict[int, tuple[Any, str, tuple[int, ...]]] = {}
 
     def _product(self, parts: list[list[list[Any]]], owner: str) -> list[list[Any]]:
-        out: list[list[Any]] = [[]]
+        """The conjunctions of a conjunction of DNFs, refused before it is built when it
+        would have more than MAX_CONJUNCTIONS (two halves of 4,096 make 16.7 million)."""
+        total = 1
         for options in parts:
-            out = [a + b for a in out for b in options]
-            if len(out) > MAX_CONJUNCTIONS:
-                raise DerivedPredicateError(
-                    f"the rule of derived predicate {owner} expands into more than "
-                    f"{MAX_CONJUNCTIONS:,} conjunctions", field="domain", value=owner,
-                    fix="split the rule into several (:derived ...) rules or simplify "
-                        "its disjunctions")
-        return out
+            total *= len(options)
+            _bounded(total, owner)
+        # each conjunction built once (growing them part by part was quadratic in a long
+        # `and`: 200,000 literals took 36 s)
+        return [list(chain.from_iterable(combo)) for combo in product(*parts)]
+
+    def _union(self, parts: list[list[list[Any]]], owner: str) -> list[list[Any]]:
+        """The conjunctions of a disjunction of DNFs, bounded as `_product`'s."""
+        _bounded(sum(map(len, parts)), owner)
+        return [c for p in parts for c in p]
 
     def dnf(self, f: Formula, positive: bool, types: dict[int, str], owner: str
             ) -> list[list[Any]]:
@@ -144,36 +170,64 @@ class _Compiler:
             parts = [self.dnf(g, positive, types, owner) for g in f[1]]
             if (kind == "and") == positive:
                 return self._product(parts, owner)
-            return [c for p in parts for c in p]
+            return self._union(parts, owner)
         if kind == "imply":
             if positive:
-                return self.dnf(f[1], False, types, owner) + self.dnf(f[2], True, types, owner)
+                return self._union([self.dnf(f[1], False, types, owner),
+                                    self.dnf(f[2], True, types, owner)], owner)
             return self._product([self.dnf(f[1], True, types, owner),
                                   self.dnf(f[2], False, types, owner)], owner)
         for slot, _, kind_name in f[1]:
             types[slot] = kind_name
         if (kind == "exists") == positive:
-            return self.dnf(f[2], positive, types, owner)
+            # ("some", vars): the variables range over their types even where no literal
+            # of the body mentions them (exists over a type with no objects is false)
+            return [[*c, ("some", f[1])] for c in self.dnf(f[2], positive, types, owner)]
         return [[("forall", f[1], f[2], positive)]]
 
     def add_rules(self, head: str, head_terms: tuple[Term, ...], f: Formula, positive: bool,
-                  types: dict[int, str], slots: int, owner: str) -> None:
+                  types: dict[int, str], slots: int, owner: str,
+                  quantified: tuple[tuple[int, str, str], ...] = ()) -> None:
+        """The rules of `head(head_terms) :- f` (negated when not `positive`);
+        `quantified`: the variables the body is existentially quantified over besides
+        its own `exists` (an auxiliary's: those of the forall it stands for)."""
         for conj in self.dnf(f, positive, types, owner):
             body: list[BodyLiteral] = []
+            witnesses = list(quantified)
             for item in conj:
                 if item[0] == "lit":
                     body.append((item[1], item[2], item[3]))
                     continue
-                _, variables, inner, sign = item
-                bound = {slot for slot, _, _ in variables}
-                free = tuple(sorted(_slots_in(inner) - bound))
-                n = self.aux_count[owner] = self.aux_count.get(owner, 0) + 1
-                aux = f"{owner}{AUX}{n}"
-                self.origin[aux] = owner
-                # forall v. g  ==  not aux(free), aux(free) := exists v. not g
-                self.add_rules(aux, free, inner, not sign, types, slots, owner)
+                if item[0] == "some":
+                    witnesses.extend(item[1])
+                    continue
+                known = self.aux_of.get(id(item))
+                if known is None:
+                    _, variables, inner, sign = item
+                    bound = {slot for slot, _, _ in variables}
+                    free = tuple(sorted(_slots_in(inner) - bound))
+                    n = self.aux_count[owner] = self.aux_count.get(owner, 0) + 1
+                    aux = f"{owner}{AUX}{n}"
+                    self.origin[aux] = owner
+                    self.aux_of[id(item)] = (item, aux, free)
+                    # forall v. g  ==  not aux(free), aux(free) := exists v. not g
+                    self.add_rules(aux, free, inner, not sign, types, slots, owner,
+                                   tuple(variables))
+                else:
+                    _, aux, free = known
                 body.append((False, aux, free))
-            self.rules.append(Rule(head, head_terms, body, dict(types), slots))
+            mentioned = {t for _, _, terms in body for t in terms if isinstance(t, int)}
+            # a quantified variable no literal mentions: its type needs an object, no more
+            nonempty = tuple(dict.fromkeys(kind for slot, _, kind in witnesses
+                                           if slot not in mentioned))
+            self.rules.append(Rule(head, head_terms, body, dict(types), slots,
+                                   nonempty=nonempty))
+            if len(self.rules) > MAX_RULES:
+                raise DerivedPredicateError(
+                    f"the derived predicates compile into more than {MAX_RULES:,} "
+                    f"conjunctive rules (at the rule of {owner})", field="domain",
+                    value=owner, fix="write fewer or simpler (:derived ...) rules: fewer "
+                                     "disjunctions, and foralls over simpler formulas")
 
 
 def _plan(domain: Domain, rule: Rule, derived: set[str], first: int | None = None
@@ -182,7 +236,7 @@ def _plan(domain: Domain, rule: Rule, derived: set[str], first: int | None = Non
     joined first, over the last round's new atoms."""
     needed = {t for t in rule.head_terms if isinstance(t, int)}
     return plan(domain, rule.body, rule.types, needed, joinable=lambda pred: True,
-                derived=derived, first=first)
+                derived=derived, first=first, nonempty=rule.nonempty)
 
 
 def compile_axioms(domain: Domain, definitions: dict[str, list[Definition]]) -> Axioms:
@@ -225,7 +279,9 @@ def compile_axioms(domain: Domain, definitions: dict[str, list[Definition]]) -> 
                      if pred not in heads and pred != "=")
     reads = [frozenset(pred for r in group for _, pred, _ in r.body) for group, _ in strata]
     derives = [frozenset(r.head for r in group) for group, _ in strata]
-    return Axioms(frozenset(definitions), definitions, strata, used, reads, derives)
+    joined = frozenset(pred for r in rules for positive, pred, _ in r.body
+                       if positive and pred in heads)
+    return Axioms(frozenset(definitions), definitions, strata, used, reads, derives, joined)
 
 
 def _unstratifiable(rules: list[Rule], heads: set[str], stratum: dict[str, int],
@@ -278,10 +334,14 @@ class Derivation:
     The basic atoms the rules read are indexed once and the index follows each step's
     edit (`follow`); a stratum is evaluated again only when a predicate it reads
     changed (a basic one in the step's edit, or a derived one whose atoms a lower
-    stratum changed), else its atoms carry over from the state before. Each evaluated
-    stratum joins its rules over the atoms that hold; a recursive one semi-naively (see
-    `_stratum`). `atoms` are the derived atoms of the declared predicates (auxiliaries
-    left out): what the state holds of them."""
+    stratum changed), else its atoms carry over from the state before, at no cost: the
+    set of every derived atom (auxiliaries included, which checks read) and the index of
+    those some rule joins on are kept too, and only an evaluated stratum's old atoms
+    leave them and its new ones join them (a step that changes nothing the rules read
+    costs nothing however many atoms are derived). Each evaluated stratum joins its
+    rules over the atoms that hold; a recursive one semi-naively (see `_stratum`).
+    `atoms` are the derived atoms of the declared predicates (auxiliaries left out):
+    what the state holds of them."""
 
     def __init__(self, domain: Domain, problem: Problem, state: set[GroundAtom]) -> None:
         axioms = domain.axioms
@@ -290,6 +350,8 @@ class Derivation:
         used = axioms.used_basic
         self.basic = Index(atom for atom in state if atom[0] in used)
         self.by_stratum: list[set[GroundAtom]] = [set() for _ in axioms.strata]
+        self.derived: set[GroundAtom] = set()  # every stratum's atoms
+        self.index = Index()  # those of predicates a rule joins on (`Axioms.joined`)
         self.atoms: set[GroundAtom] = set()
         self._evaluate(state, None)
 
@@ -309,9 +371,7 @@ class Derivation:
             touched.add(atom[0])
             if atom[0] in used:
                 basic.add(atom)
-        previous = self.atoms
-        self._evaluate(state, touched)
-        gone, new = previous - self.atoms, self.atoms - previous
+        gone, new = self._evaluate(state, touched)
         state.difference_update(gone)
         state.update(new)
         for atom in gone:
@@ -319,36 +379,46 @@ class Derivation:
         for atom in new:
             changed[atom] = (step, action)
 
-    def _evaluate(self, state: set[GroundAtom], touched: set[str] | None) -> None:
-        """Strata bottom-up; with `touched`, only those that read a changed predicate."""
+    def _evaluate(self, state: set[GroundAtom], touched: set[str] | None
+                  ) -> tuple[list[GroundAtom], list[GroundAtom]]:
+        """Strata bottom-up; with `touched`, only those that read a changed predicate.
+        Returns the atoms of declared predicates that stopped and started to hold."""
         axioms = self.axioms
-        derived: set[GroundAtom] = set()
-        derived_index = Index()
+        keep, joined, derived, index = axioms.predicates, axioms.joined, self.derived, \
+            self.index
         joiner = Joiner(self.domain, self.problem, state, self.basic,
                         limit=MAX_DERIVED_BINDINGS, error=_too_many, derived=derived,
-                        derived_index=derived_index)
+                        derived_index=index)
+        gone: list[GroundAtom] = []
+        new: list[GroundAtom] = []
         for k, (rules, recursive) in enumerate(axioms.strata):
-            before = self.by_stratum[k]
             if touched is not None and touched.isdisjoint(axioms.reads[k]):
-                atoms = before
-                for atom in atoms:
-                    derived_index.add(atom)
-            else:
-                atoms = _stratum(joiner, rules, recursive, derived_index)
-                self.by_stratum[k] = atoms
-                if touched is not None and atoms != before:
+                continue  # its atoms carry over
+            before = self.by_stratum[k]
+            derived.difference_update(before)  # a rule reads no higher stratum's atoms
+            if not joined.isdisjoint(axioms.heads[k]):
+                for atom in before:
+                    if atom[0] in joined:
+                        index.discard(atom)
+            atoms = _stratum(joiner, rules, recursive, index, joined)
+            self.by_stratum[k] = atoms
+            if atoms != before:
+                if touched is not None:
                     touched.update(axioms.heads[k])
-            derived |= atoms
-        keep = axioms.predicates
-        self.atoms = {a for a in derived if a[0] in keep}
+                gone += [a for a in before - atoms if a[0] in keep]
+                new += [a for a in atoms - before if a[0] in keep]
+        self.atoms.difference_update(gone)
+        self.atoms.update(new)
+        return gone, new
 
 
-def _stratum(joiner: Joiner, rules: list[Rule], recursive: bool, index: Index
-             ) -> set[GroundAtom]:
+def _stratum(joiner: Joiner, rules: list[Rule], recursive: bool, index: Index,
+             joined: frozenset[str]) -> set[GroundAtom]:
     """The atoms of one stratum: first its rules that need none of its own atoms, then,
     for a recursive one, round by round every derivation that uses an atom the last
     round found (joined first, from the joiner's `delta`) until a round finds nothing
-    new. Each atom joins `index` and the joiner's derived set as it is found."""
+    new. Each atom joins the joiner's derived set as it is found, and `index` when some
+    rule joins on its predicate (`joined`)."""
     derived = joiner.derived
     found: set[GroundAtom] = set()
     new: list[GroundAtom] = []
@@ -358,7 +428,8 @@ def _stratum(joiner: Joiner, rules: list[Rule], recursive: bool, index: Index
             if atom not in derived:
                 derived.add(atom)
                 found.add(atom)
-                index.add(atom)
+                if atom[0] in joined:  # a later join reads it
+                    index.add(atom)
                 new.append(atom)
 
     for rule in rules:

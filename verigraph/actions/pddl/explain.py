@@ -27,16 +27,20 @@ not by the number of groundings:
   searched in full);
 - every search is bounded: `ACHIEVER_NODES` candidate bindings per achiever and
   `REPORT_NODES` per report (an achiever whose search ran out is listed as unsearched,
-  after the others), and it checks the call's budget (`verigraph.budget`) as it goes, so
-  a server can stop it. Explaining 20 unmet goals of a domain of 10 six-parameter actions
-  over 40 objects takes a few milliseconds, and no search takes more than about 50 ms.
+  after the others), `REPORT_QUANTIFIED` bindings for the quantifiers of the ADL
+  preconditions of every candidate of a report (beyond, such a precondition counts as
+  unsatisfied: 1,000 candidates of an action whose forall spans a million bindings took
+  minutes; now they cost one step's worth), and it checks the call's budget (`verigraph.budget`)
+  as it goes, so a server can stop it. Explaining 20 unmet goals of a domain of 10
+  six-parameter actions over 40 objects takes a few milliseconds, and no search takes
+  more than about 50 ms.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from verigraph.actions.pddl.formulas import Evaluator
+from verigraph.actions.pddl.formulas import MAX_QUANTIFIED, Evaluator, QuantifierLimitError
 from verigraph.actions.pddl.formulas import text as formula_text
 from verigraph.actions.pddl.model import (
     Domain,
@@ -53,6 +57,7 @@ Changed = dict[GroundAtom, tuple[int, str]]  # atom -> (step, action) that last 
 ACHIEVER_NODES = 1_000
 REPORT_NODES = 8_000
 MAX_ACHIEVERS = 4
+REPORT_QUANTIFIED = MAX_QUANTIFIED  # see Explainer.quantified
 MAX_INSTEAD = 2
 
 
@@ -346,13 +351,21 @@ class _Search:
             return
         if self.schema.pre_complex:  # ADL conjuncts, once the binding is complete
             domain, state = self.e.domain, self.index.state
-            ev = Evaluator(domain, self.e.problem, state)
+            ev = Evaluator(domain, self.e.problem, state, limit=self.e.quantified)
             slots = [*self.values, *([None] * (len(self.schema.slot_names) - len(self.values)))]
             extra = []
             for k, (f, check) in enumerate(zip(self.schema.pre_complex, self.schema.checks,
                                                strict=True)):
-                if not (ev.holds(f, slots) if check is None else check(slots, state)):
+                if check is not None:
+                    ok = check(slots, state)
+                else:
+                    try:
+                        ok = ev.holds(f, slots)
+                    except QuantifierLimitError:  # the report's share is spent: unknown,
+                        ok = False                # counted as unsatisfied
+                if not ok:
                     extra.append(len(self.literals) + k)
+            self.e.quantified = max(0, self.e.quantified - ev.tried)
             if extra and self.exact:
                 return
             cost, failed = cost + len(extra), failed + extra
@@ -416,6 +429,10 @@ class Explainer:
         self.domain = domain
         self.problem = problem
         self.nodes = REPORT_NODES
+        # bindings the quantifiers of ADL preconditions may try in all the searches of
+        # one report (each candidate grounding evaluates them): beyond, such a
+        # precondition counts as unsatisfied, so explaining costs at most one more step
+        self.quantified = REPORT_QUANTIFIED
         self._admits: dict[str, list[frozenset[str]]] = {}
         self._cache: dict[tuple[Any, ...], dict[str, Any] | None] = {}
 

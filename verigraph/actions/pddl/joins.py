@@ -19,6 +19,7 @@ every pair of levels.
 Ops, run left to right:
     ("check", positive, pred, ground, derived)  the literal, fully bound (`ground` makes
                                                 its atom from the binding), has its sign
+    ("some", type)                              the type has an object (else no binding)
     ("bind", slot, source, type)                slot := a bound slot or a constant
     ("enum", slot, type)                        slot ranges over the objects of type
     ("join", pred, fixed, free, same, derived, delta)
@@ -127,13 +128,15 @@ def conjunction(formula: Any) -> list[BodyLiteral] | None:
 
 def plan(domain: Domain, body: list[BodyLiteral], types: dict[int, str], needed: set[int],
          *, joinable: Callable[[str], bool], derived: frozenset[str] | set[str] = frozenset(),
-         bound: Iterable[int] = (), first: int | None = None) -> list[Op]:
+         bound: Iterable[int] = (), first: int | None = None,
+         nonempty: Iterable[str] = ()) -> list[Op]:
     """The join order of a conjunction (module docstring). `needed` are the slots to
     bind (with every variable of the body), `bound` the ones bound before it runs;
-    with `first`, that body literal is joined first, over the `delta` index."""
+    with `first`, that body literal is joined first, over the `delta` index;
+    `nonempty`: types that must have an object (checked first)."""
     pending = list(body)
     is_bound_slot = set(bound)
-    ops: list[Op] = []
+    ops: list[Op] = [("some", kind) for kind in nonempty]
     needed = set(needed)
     for _, _, terms in pending:
         needed.update(t for t in terms if isinstance(t, int))
@@ -172,13 +175,16 @@ def plan(domain: Domain, body: list[BodyLiteral], types: dict[int, str], needed:
         join(body[first], True)
     while pending or needed - is_bound_slot:
         progress = False
-        for lit in list(pending):  # checks as soon as their variables are bound
+        kept = []  # (a new list, not list.remove: a body of 100,000 literals stays linear)
+        for lit in pending:  # checks as soon as their variables are bound
             positive, pred, terms = lit
             if all(is_bound(t) for t in terms):
                 ops.append(("check", positive, pred, grounder((pred, terms)), pred in derived))
-                pending.remove(lit)
                 progress = True
-        for lit in list(pending):  # (= ?x c) with one side bound binds the other
+            else:
+                kept.append(lit)
+        pending[:] = []
+        for lit in kept:  # (= ?x c) with one side bound binds the other
             positive, pred, terms = lit
             if positive and pred == "=":
                 a, b = terms
@@ -187,8 +193,9 @@ def plan(domain: Domain, body: list[BodyLiteral], types: dict[int, str], needed:
                     assert isinstance(target, int)
                     ops.append(("bind", target, source, admits(target, None)))
                     is_bound_slot.add(target)
-                    pending.remove(lit)
                     progress = True
+                    continue
+            pending.append(lit)
         if progress:
             continue
         joins = [lit for lit in pending if lit[0] and lit[1] != "=" and joinable(lit[1])]
@@ -264,6 +271,11 @@ class Joiner:
                 if wanted is not None and obj not in self.admits(wanted):
                     return
                 b[target] = obj
+                k += 1
+                continue
+            if kind == "some":
+                if not self.problem.of_type(self.domain, op[1]):
+                    return
                 k += 1
                 continue
             if kind == "enum":

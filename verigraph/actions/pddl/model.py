@@ -49,6 +49,8 @@ class CondEffect:
     # the condition compiled into a closure over (slots, state) (formulas.compile_condition);
     # None: no condition, or one with a quantifier inside (the evaluator takes it)
     check: Any = None
+    # the adds' and deletes' grounders (model.grounder), made on first use
+    grounders: tuple[list[Any], list[Any]] | None = None
 
 
 @dataclass(slots=True)
@@ -145,6 +147,7 @@ class Problem:
     goal_neg: list[GroundAtom]
     by_type: dict[str, list[str]] = field(default_factory=dict)
     values: dict[GroundAtom, float] = field(default_factory=dict)  # `(= (f a b) 5)` of :init
+    initial_cost: float | None = None  # `(= (total-cost) N)` of :init: where totals start
     goal_complex: list[tuple[Any, ...]] = field(default_factory=list)  # ADL goal conjuncts
     goal_slots: list[str] = field(default_factory=list)  # their variables' names
     static_index: Any = None  # joins.static_index: the static atoms, indexed on first use

@@ -24,6 +24,7 @@ reader bounds nesting depth and refuses non-ASCII names with the line.
 from __future__ import annotations
 
 import difflib
+import math
 import re
 from operator import itemgetter
 from typing import Any
@@ -48,6 +49,7 @@ from verigraph.actions.pddl.model import (
 from verigraph.errors import VeriGraphError
 
 MAX_OBJECTS = 100_000
+TOTAL_COST: GroundAtom = ("total-cost",)
 MAX_INIT_ATOMS = 2_000_000
 # constructs outside STRIPS -> the requirement a domain would need for them
 NEEDS = {"assign": ":numeric-fluents", "increase": ":numeric-fluents",
@@ -86,6 +88,20 @@ ACTION_FORM = "(:action NAME :parameters (?x - type ...) :precondition (and ...)
 # precedes it looked behind at, so the scan jumps from `?` to `?` (25x a plain class)
 _GLUED = re.compile(r"\?(?<=[^\s()?]\?)")
 _VARIABLE_PARTS = re.compile(r"\??[^?]+|\?")
+
+
+# a PDDL number: decimal digits with an optional fraction and exponent (no `nan`, `inf`,
+# `0x10` or `1_000`, which Python's float() would take)
+_NUMBER = re.compile(r"[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:e[-+]?[0-9]+)?")
+
+
+def number(text: str) -> float | None:
+    """The value of a PDDL number (the text lower-cased, as the reader gives it), or None
+    for text that is no decimal number or is beyond a double's range (`1e999`)."""
+    if _NUMBER.fullmatch(text) is None:
+        return None
+    value = float(text)
+    return value if math.isfinite(value) else None
 
 
 def _split_glued(expr: SExpr) -> SExpr:
@@ -213,6 +229,24 @@ def _types(domain: Domain, items: list[SExpr], where: str) -> list[tuple[str, st
     return out
 
 
+def declared_twice(what: str, name: str, where: str, first: str = "", second: str = ""
+                   ) -> PddlInputError:
+    """The refusal of a name declared twice (the later one never silently wins)."""
+    kinds = f" (as {first} and as {second})" if first and second and first != second else ""
+    return PddlInputError(f"{what} {name} is declared twice{kinds}", field=where, value=name,
+                          fix=f"declare {name} once: remove or rename the second {name}")
+
+
+def _once(names: list[str], what: str, where: str) -> None:
+    """Refuse the first name of `names` that occurs twice."""
+    if len(set(names)) != len(names):
+        seen: set[str] = set()
+        for name in names:
+            if name in seen:
+                raise declared_twice(what, name, where)
+            seen.add(name)
+
+
 class _ActionReader:
     """Turns one `(:action ...)` into a Schema, checking names against the domain."""
 
@@ -259,10 +293,8 @@ class _ActionReader:
                                      field="domain", value=p, fix=f"write ?{p}")
         self.params = [p for p, _ in typed]
         self.types = [t for _, t in typed]
+        _once(self.params, f"{self.where}: parameter", "domain")
         self.index = {p: i for i, p in enumerate(self.params)}
-        if len(self.index) != len(self.params):
-            raise PddlInputError(f"{self.where} declares a parameter twice",
-                                 field="domain", value=self.name, fix="rename the parameter")
         self.cost: list[CostTerm] = []
 
     def term(self, arg: SExpr, literal: SExpr, scope: dict[str, int] | None = None) -> Term:
@@ -317,15 +349,13 @@ class _ActionReader:
     def cost_term(self, expr: SExpr, whole: SExpr) -> CostTerm:
         """The amount of `(increase (total-cost) X)`: a number or a static function."""
         if isinstance(expr, str):
-            try:
-                value = float(expr)
-            except ValueError:
-                value = float("nan")
-            if value != value or value < 0 or value in (float("inf"),):
+            value = number(expr)
+            if value is None or value < 0:
                 raise PddlInputError(f"{self.where}: {_show(whole)[:60]} adds "
-                                     f"'{expr}', not a non-negative number", field="domain",
-                                     value=expr, fix="increase (total-cost) by a number >= 0 "
-                                                     "or by a function such as (distance ?a ?b)")
+                                     f"'{expr}', not a finite non-negative decimal number",
+                                     field="domain", value=expr,
+                                     fix="increase (total-cost) by a number >= 0 (such as 1 "
+                                         "or 2.5) or by a function such as (distance ?a ?b)")
             return value
         if expr and isinstance(expr[0], str) and expr[0] in self.domain.functions:
             signature = self.domain.functions[expr[0]]
@@ -347,7 +377,9 @@ class _ActionReader:
                                  fix="write (forall (?x - type) ...)")
         out = []
         inner = dict(scope)
-        for name, kind in _types(self.domain, expr, "domain"):
+        typed = _types(self.domain, expr, "domain")
+        _once([name for name, _ in typed], f"{self.where}: quantified variable", "domain")
+        for name, kind in typed:
             if not name.startswith("?"):
                 raise PddlInputError(f"{self.where}: quantified {name} does not start "
                                      "with ?", field="domain", value=name, fix=f"write ?{name}")
@@ -483,10 +515,8 @@ class _RuleReader(_ActionReader):
                 raise PddlInputError(f"{self.where}: {name} in its head is not a variable",
                                      field="domain", value=name, fix=f"write ?{name}")
         self.params = [n for n, _ in typed]
+        _once(self.params, f"{self.where}: head variable", "domain")
         self.index = {n: i for i, n in enumerate(self.params)}
-        if len(self.index) != len(self.params):
-            raise PddlInputError(f"{self.where} names a variable twice in its head",
-                                 field="domain", value=pred, fix="rename the variable")
         self.slot_names = list(self.params)
         self.cost = []
         self.types = head_types_for(domain, pred, [t for _, t in typed])
@@ -537,6 +567,7 @@ class _GoalReader(_ActionReader):
 def _functions(domain: Domain, items: list[SExpr]) -> None:
     """`(:functions (total-cost) - number (road-length ?a ?b - place) - number)`."""
     i = 0
+    seen_total = False
     while i < len(items):
         item = items[i]
         if item == "-":
@@ -550,6 +581,9 @@ def _functions(domain: Domain, items: list[SExpr]) -> None:
             raise PddlInputError(f"malformed function {_show(item)[:60]}", field="domain",
                                  value=_show(item)[:60], fix="write (:functions (name ?x - t) "
                                                              "- number)")
+        if item[0] in domain.functions or item[0] == "total-cost" and seen_total:
+            raise declared_twice("function", item[0], "domain")
+        seen_total = seen_total or item[0] == "total-cost"
         if item[0] != "total-cost":
             domain.functions[item[0]] = [t for _, t in _types(domain, item[1:], "domain")]
         i += 1
@@ -589,7 +623,13 @@ def read_domain(text: str) -> Domain:
                     raise UnsupportedRequirementError(":typing with (either ...) as a "
                                                       "supertype", "domain", _show(parent))
                 # `t - t` (seen in the wild) declares t, under object
-                domain.parents[child] = ROOT_TYPE if parent in (None, child) else parent
+                parent = ROOT_TYPE if parent in (None, child) else parent
+                before = domain.parents.get(child, ROOT_TYPE)
+                if before != ROOT_TYPE and parent not in (ROOT_TYPE, before):
+                    # under two parents: no tree. Under object and then another type (IPC
+                    # storage: `area - object` ... `area crate - surface`) it is the other
+                    raise declared_twice("type", child, "domain", before, str(parent))
+                domain.parents[child] = parent if before == ROOT_TYPE else before
             domain.parents.pop(ROOT_TYPE, None)
     _check_types(domain)
     for section in checked:
@@ -599,13 +639,19 @@ def read_domain(text: str) -> Domain:
         elif head == ":types":
             continue
         elif head == ":constants":
-            domain.constants.update(_types(domain, rest, "domain"))
+            for name, kind in _types(domain, rest, "domain"):
+                if name in domain.constants:
+                    raise declared_twice("constant", name, "domain", domain.constants[name],
+                                         kind)
+                domain.constants[name] = kind
         elif head == ":predicates":
             for pred in rest:
                 if not isinstance(pred, list) or not pred or not isinstance(pred[0], str):
                     raise PddlInputError(f"malformed predicate {_show(pred)[:60]}",
                                          field="domain", value=None,
                                          fix="write (name ?x - type ...)")
+                if pred[0] in domain.predicates:
+                    raise declared_twice("predicate", pred[0], "domain")
                 domain.predicates[pred[0]] = [t for _, t in _types(domain, pred[1:], "domain")]
         elif head == ":functions":
             _functions(domain, rest)
@@ -622,7 +668,8 @@ def read_domain(text: str) -> Domain:
         schema = _ActionReader(domain, body).schema()
         if schema.name in domain.schemas:
             raise PddlInputError(f"action {schema.name} is defined twice", field="domain",
-                                 value=schema.name, fix="rename one of them")
+                                 value=schema.name,
+                                 fix=f"define {schema.name} once: rename or remove the second")
         domain.schemas[schema.name] = schema
     if rules:
         _derived(domain, rules)
@@ -699,23 +746,28 @@ def _ground(domain: Domain, objects: dict[str, str], expr: SExpr, where: str) ->
 
 def _value(domain: Domain, objects: dict[str, str], item: list[SExpr],
            values: dict[GroundAtom, float]) -> None:
-    """`(= (f a b) 5)` in :init: the value of a cost function (or total-cost's start)."""
+    """`(= (f a b) 5)` in :init: the value of a cost function (a finite decimal >= 0), or
+    total-cost's start (any finite decimal; VAL's `Final value` counts from it)."""
     fn = item[1] if len(item) == 3 else None
-    number = item[2] if len(item) == 3 else None
+    amount = item[2] if len(item) == 3 else None
     if not (isinstance(fn, list) and fn and all(isinstance(a, str) for a in fn)
-            and isinstance(number, str)):
+            and isinstance(amount, str)):
         raise PddlInputError(f"the initial state holds {_show(item)[:60]}, which is neither an "
                              "atom nor (= (function obj ...) number)", field="problem",
                              value=_show(item)[:60], fix="write (= (road-length a b) 10)")
-    try:
-        value = float(number)
-    except ValueError:
-        raise PddlInputError(f"{_show(item)[:60]} in the initial state: '{number}' is not a "
-                             "number", field="problem", value=number,
-                             fix="give the function a number") from None
+    value = _init_number(item, amount)
     name = str(fn[0])
     if name == "total-cost":
+        if len(fn) != 1:
+            raise PddlInputError(f"{_show(item)[:60]} in the initial state: total-cost takes "
+                                 "no arguments", field="problem", value=name,
+                                 fix="write (= (total-cost) 0)")
+        values[TOTAL_COST] = value
         return
+    if value < 0:
+        raise PddlInputError(f"{_show(item)[:60]} in the initial state: '{amount}' is a "
+                             "negative cost", field="problem", value=amount,
+                             fix="give action costs values >= 0 (PDDL's action costs)")
     signature = domain.functions.get(name)
     if signature is None:
         raise PddlInputError(f"{_show(item)[:60]} in the initial state: the domain declares no "
@@ -727,6 +779,19 @@ def _value(domain: Domain, objects: dict[str, str], item: list[SExpr],
                              f"{len(signature)} declared object(s)", field="problem", value=name,
                              fix="name declared objects, one per argument")
     values[(name, *args)] = value
+
+
+def _init_number(item: list[SExpr], text: str) -> float:
+    """The number of `(= (f ...) text)` in :init, or the error naming it."""
+    value = number(text)
+    if value is None:
+        finite = _NUMBER.fullmatch(text) is not None
+        raise PddlInputError(
+            f"{_show(item)[:60]} in the initial state: '{text[:40]}' is "
+            + ("beyond the range of a double (about 1.8e308)" if finite
+               else "not a number"), field="problem", value=text[:40],
+            fix="give the function a finite decimal number, such as 4 or 2.5")
+    return value
 
 
 def _read_init(domain: Domain, objects: dict[str, str], items: list[SExpr],
@@ -764,30 +829,33 @@ def _read_init(domain: Domain, objects: dict[str, str], items: list[SExpr],
 def _values_fit(domain: Domain, objects: dict[str, str], items: list[SExpr]
                 ) -> dict[GroundAtom, float] | None:
     """The values of `items`, every one `(= (function obj ...) number)` of a declared
-    function, its arity and declared objects (total-cost's start left out, as `_value`
-    leaves it), checked a function at a time; None when one is not."""
+    function, its arity and declared objects, a finite non-negative decimal (total-cost's
+    start under `TOTAL_COST`, any finite decimal), checked a function at a time; None
+    when one is not (`_value` then names it)."""
     if not all(type(item) is list and len(item) == 3 and type(item[1]) is list and item[1]
                and type(item[2]) is str for item in items):
         return None
-    try:  # a list where a name should be, or no number: the per-item reading names it
-        read: dict[Any, float] = {tuple(item[1]): float(item[2])  # type: ignore[arg-type]
-                                  for item in items}
-    except (TypeError, ValueError):
+    try:  # a list where a name should be: the per-item reading names it
+        read: dict[Any, float | None] = {tuple(item[1]): number(item[2])  # type: ignore
+                                         for item in items}
+    except TypeError:
         return None
     groups: dict[Any, list[tuple[Any, ...]]] = {}
-    for key in read:
+    for key, value in read.items():
+        if value is None or value < 0 and key != TOTAL_COST:  # `_value` names it
+            return None
         groups.setdefault(key[0], []).append(key)
     named: set[str] = set()
     for name, keys in groups.items():
         if name == "total-cost":
-            for key in keys:
-                del read[key]
+            if keys != [TOTAL_COST]:
+                return None
             continue
         signature = domain.functions.get(name) if isinstance(name, str) else None
         if signature is None or set(map(len, keys)) != {len(signature) + 1}:
             return None
         named.update(*(key[1:] for key in keys))
-    return read if named <= objects.keys() else None
+    return read if named <= objects.keys() else None  # type: ignore[return-value]
 
 
 class _Fitting:
@@ -846,6 +914,7 @@ def read_problem(text: str, domain: Domain) -> Problem:
     """The problem in `text` against `domain`; objects include the domain's constants."""
     name, sections = define_body(text, what="problem", kind="problem")
     objects = dict(domain.constants)
+    declared: set[str] = set()  # the problem's own objects
     init: set[GroundAtom] = set()
     values: dict[GroundAtom, float] = {}
     goal_pos: list[GroundAtom] = []
@@ -865,7 +934,17 @@ def read_problem(text: str, domain: Domain) -> Problem:
                 raise PddlInputError(f"the problem declares {len(section) - 1:,} objects",
                                      field="problem", value=len(section) - 1,
                                      fix=f"keep it under {MAX_OBJECTS:,} objects")
-            objects.update(_types(domain, section[1:], "problem"))
+            for obj, kind in _types(domain, section[1:], "problem"):
+                if obj in objects:
+                    if obj in domain.constants and obj not in declared:
+                        raise PddlInputError(
+                            f"{obj} is declared twice: a constant of the domain and an object "
+                            "of the problem", field="problem", value=obj,
+                            fix=f"leave {obj} out of :objects (the domain's constants are "
+                                f"objects of every problem), or rename the object {obj}")
+                    raise declared_twice("object", obj, "problem", objects[obj], kind)
+                objects[obj] = kind
+                declared.add(obj)
         elif head == ":init":
             if len(section) - 1 > MAX_INIT_ATOMS:
                 raise PddlInputError(f"the initial state has {len(section) - 1:,} atoms",
@@ -924,5 +1003,6 @@ def read_problem(text: str, domain: Domain) -> Problem:
             (goal_pos if positive else goal_neg).append(tuple(item))  # type: ignore[arg-type]
         else:
             (goal_pos if positive else goal_neg).append(_ground(domain, objects, item, "goal"))
+    start = values.pop(TOTAL_COST, None)
     return Problem(name, objects, init, goal_pos, goal_neg, values=values,
-                   goal_complex=goal_complex, goal_slots=reader.slot_names)
+                   goal_complex=goal_complex, goal_slots=reader.slot_names, initial_cost=start)

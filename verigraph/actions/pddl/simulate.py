@@ -24,8 +24,9 @@ rule for an undefined numeric value).
 By default the simulation stops at the first failing step. With `all_errors=True` it
 goes on as VAL does when asked to continue: the failing step is skipped (the state stays
 as it was before it) and every later step is checked from there; the report says so
-(`after_failure`). With action costs, the report's `total_cost` is the sum of the
-applied steps' `(increase (total-cost) ...)`, VAL's "Final value". The report is a
+(`after_failure`). With action costs, the report's `total_cost` is the initial
+`(= (total-cost) N)` (0 when not given) plus the applied steps' `(increase (total-cost)
+...)`, VAL's "Final value" (`total_value` says how it is written). The report is a
 JSON-ready dict with the keys of the blocks-world report (valid, plan_valid,
 goal_reached, steps, violations, not_checked, goal_diff).
 """
@@ -34,8 +35,10 @@ from __future__ import annotations
 
 import difflib
 import gc
+import math
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from functools import lru_cache
+from itertools import product
 from typing import Any, cast
 
 from verigraph.actions.pddl import axioms as derived_predicates
@@ -55,7 +58,6 @@ from verigraph.actions.pddl.formulas import (
     Check,
     Evaluator,
     QuantifierLimitError,
-    _atom,
 )
 from verigraph.actions.pddl.formulas import text as formula_text
 from verigraph.actions.pddl.joins import Joiner, static_index
@@ -63,7 +65,6 @@ from verigraph.actions.pddl.model import (
     Domain,
     GroundAtom,
     Grounder,
-    Literal,
     Problem,
     Schema,
     Shower,
@@ -72,12 +73,13 @@ from verigraph.actions.pddl.model import (
     shower,
 )
 from verigraph.actions.pddl.plans import MAX_STEPS, Step, line_reader, parse_strips_plan
-from verigraph.actions.pddl.reader import read_domain, read_problem
+from verigraph.actions.pddl.reader import PddlInputError, read_domain, read_problem
 from verigraph.budget import checkpoint
 from verigraph.errors import VeriGraphError
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
 
-__all__ = ["MAX_ACHIEVERS", "complete_binding", "simulate", "validate_strips_dict"]
+__all__ = ["MAX_ACHIEVERS", "complete_binding", "simulate", "total_value",
+           "validate_strips_dict"]
 MAX_EXPLAINED_GOALS = 20
 # a plan that stopped at a failing step: that step is what to fix, and its state is not
 # where the plan meant to end, so only the first unmet goals get achievers
@@ -238,6 +240,24 @@ def _has_costs(domain: Domain) -> bool:
     return bool(domain.functions) or any(s.cost for s in domain.schemas.values())
 
 
+# the largest integer a total is written as (beyond it, or with a fraction: a float, whose
+# JSON and text are its shortest repr, `17.5`, `1e+300`, never hundreds of digits)
+MAX_INTEGRAL_TOTAL = 2 ** 53
+
+
+def total_value(total: float) -> int | float:
+    """A plan's total cost as the report gives it: an int when it is integral and at
+    most 2**53 in size (`18`), else the float (`17.5`, `1e+300`). A total beyond a
+    double's range (finite costs whose sum overflows) is refused, never written as inf."""
+    if not math.isfinite(total):
+        raise PddlInputError("the plan's total cost is beyond the range of a double (about "
+                             "1.8e308)", field="problem", value=str(total),
+                             fix="give the actions (and the initial total-cost) smaller costs")
+    if total.is_integer() and abs(total) <= MAX_INTEGRAL_TOTAL:
+        return int(total)
+    return total
+
+
 class _Simulation:
     """The step-by-step run: the state, the step that last changed each atom, the
     report's steps and violations. `run` goes on from wherever they are: from the
@@ -245,8 +265,8 @@ class _Simulation:
 
     def __init__(self, domain: Domain, problem: Problem,
                  state: set[GroundAtom] | None = None,
-                 out_steps: list[dict[str, Any]] | None = None, total_cost: float = 0.0
-                 ) -> None:
+                 out_steps: list[dict[str, Any]] | None = None,
+                 total_cost: float | None = None) -> None:
         self.domain, self.problem = domain, problem
         self._changed: Changed | None = None
         if state is None or out_steps is None:
@@ -260,7 +280,8 @@ class _Simulation:
             state.update(self.derived.atoms)
         self.violations: list[dict[str, Any]] = []
         self.explainer = Explainer(domain, problem)
-        self.total_cost = total_cost
+        # the cost so far: from the initial `(= (total-cost) N)`, as VAL counts it
+        self.total_cost = (problem.initial_cost or 0.0) if total_cost is None else total_cost
 
     @property
     def changed(self) -> Changed:
@@ -415,6 +436,7 @@ class _Simulation:
             ev = Evaluator(domain, problem, state)
             for f in problem.goal_complex:
                 slots: list[str | None] = [None] * len(problem.goal_slots)
+                ev.tried = 0  # each goal formula a check of its own
                 if not ev.holds(f, slots):
                     unmet.append({"literal": formula_text(f, slots, problem.goal_slots),
                                   "expected": True, "last_changed": None,
@@ -434,9 +456,8 @@ class _Simulation:
         }
         if all_errors:
             report["after_failure"] = SKIPPED
-        if _has_costs(domain):
-            total = self.total_cost
-            report["total_cost"] = int(total) if total == int(total) else total
+        if _has_costs(domain) or problem.initial_cost is not None:
+            report["total_cost"] = total_value(self.total_cost)
         return report
 
 
@@ -542,7 +563,7 @@ def _fast_steps(domain: Domain, problem: Problem, keys: Sequence[Any],
     grounded: dict[Any, _Ground] = problem.grounded
     out_steps: list[dict[str, Any]] = []
     append = out_steps.append
-    total_cost = 0.0
+    total_cost = problem.initial_cost or 0.0
     contains = state.__contains__
     index = 0
     for position, key in enumerate(keys):
@@ -655,35 +676,60 @@ def _adl_step(domain: Domain, problem: Problem, schema: Schema, binding: tuple[s
     for f, check in zip(schema.pre_complex, schema.checks, strict=True):
         if not (ev.holds(f, slots) if check is None else check(slots, state)):
             return None
-    adds: list[GroundAtom] = []
-    dels: list[GroundAtom] = []
+    # each atom once, in the order of first occurrence (what the callers keep of them)
+    adds: dict[GroundAtom, None] = {}
+    dels: dict[GroundAtom, None] = {}
     joiner: Joiner | None = None
     for effect in schema.cond_effects:
+        if effect.grounders is None:
+            effect.grounders = ([grounder(lit) for lit in effect.add],
+                                [grounder(lit) for lit in effect.delete])
+        add_g, del_g = effect.grounders
         if effect.join is not None:
             if joiner is None:
                 joiner = Joiner(domain, problem, state, static_index(domain, problem),
                                 limit=MAX_QUANTIFIED, error=_too_many_bindings)
-            add_lits, del_lits = effect.add, effect.delete
 
-            def emit(b: list[Any], add_lits: list[Literal] = add_lits,
-                     del_lits: list[Literal] = del_lits, adds: list[GroundAtom] = adds,
-                     dels: list[GroundAtom] = dels) -> None:
-                adds.extend([_atom(lit, b) for lit in add_lits])
-                dels.extend([_atom(lit, b) for lit in del_lits])
+            def emit(b: list[Any], add_g: list[Grounder] = add_g,
+                     del_g: list[Grounder] = del_g) -> None:
+                for g in add_g:
+                    adds[g(b)] = None
+                for g in del_g:
+                    dels[g(b)] = None
 
             joiner.run(effect.join, slots, emit)
             continue
-        combos = ev.bindings(effect.variables) if effect.variables else [()]
-        check = effect.check
-        places = [slot for slot, _, _ in effect.variables]
-        for objs in combos:
+        condition, check = effect.condition, effect.check
+        if not effect.variables:
+            if condition is None or (ev.holds(condition, slots) if check is None
+                                     else check(slots, state)):
+                adds.update(dict.fromkeys(g(slots) for g in add_g))
+                dels.update(dict.fromkeys(g(slots) for g in del_g))
+            continue
+        ev.bindings(effect.variables)  # counted against the step's limit
+        *outer, (last, _, kind) = effect.variables
+        inner = problem.of_type(domain, kind)
+        places = [slot for slot, _, _ in outer]
+        lists = [problem.of_type(domain, k) for _, _, k in outer]
+        if not inner or not all(lists):
+            continue  # a type with no objects: no binding (and no empty loop over others)
+        tried = 0
+        for objs in product(*lists):
+            tried += len(inner)
+            if tried >= 4096:
+                tried = 0
+                checkpoint()  # the call's budget and cancellation
             for slot, obj in zip(places, objs, strict=True):
                 slots[slot] = obj
-            if effect.condition is None or (ev.holds(effect.condition, slots) if check is None
-                                            else check(slots, state)):
-                adds += [_atom(lit, slots) for lit in effect.add]
-                dels += [_atom(lit, slots) for lit in effect.delete]
-    return adds, dels
+            for obj in inner:  # the last variable in the inner loop
+                slots[last] = obj
+                if condition is None or (ev.holds(condition, slots) if check is None
+                                         else check(slots, state)):
+                    for g in add_g:
+                        adds[g(slots)] = None
+                    for g in del_g:
+                        dels[g(slots)] = None
+    return list(adds), list(dels)
 
 
 def _too_many_bindings(tried: int) -> VeriGraphError:
@@ -700,6 +746,7 @@ def _unsatisfied(schema: Schema, binding: tuple[str, ...], state: set[GroundAtom
         ev = Evaluator(domain, problem, state)
         slots = _slots(schema, binding)
         for f in schema.pre_complex:
+            ev.tried = 0  # each condition a check of its own (the step stopped at one)
             if not ev.holds(f, slots):
                 out.append({"literal": formula_text(f, slots, schema.slot_names),
                             "expected": True,

@@ -24,14 +24,20 @@ from typing import Any
 
 from verigraph.actions.blocksworld.domain import UnsupportedDomainError, cached_domain
 from verigraph.actions.blocksworld.sexpr import _COMMENT
-from verigraph.actions.pddl.reader import PROBLEM_SECTIONS, SUPPORTED_REQUIREMENTS, read_problem
-from verigraph.actions.pddl.simulate import cached_strips_domain, validate_strips_dict
+from verigraph.actions.pddl.reader import PROBLEM_SECTIONS, SUPPORTED_REQUIREMENTS
+from verigraph.actions.pddl.simulate import (
+    cached_strips_domain,
+    cached_strips_problem,
+    total_value,
+    validate_strips_dict,
+)
 from verigraph.errors import PlanParseError, VeriGraphError
 
 ENGINES = ("auto", "blocksworld", "strips")
 _SECTION = re.compile(r"\(\s*(:[^\s()]+)")
 _REQUIREMENTS = re.compile(r"\(\s*:requirements\b([^()]*)\)")
 _STRAY = re.compile(r"\)\s*[^\s()]+\s*\(")  # a bare word between two lists
+_VALUE = re.compile(r"\(\s*=")  # `(= (total-cost) 0)`: its number is checked
 
 
 def _check_problem(problem_text: str, domain_text: str) -> None:
@@ -41,13 +47,32 @@ def _check_problem(problem_text: str, domain_text: str) -> None:
     text = _COMMENT.sub("", problem_text) if ";" in problem_text else problem_text
     text = text.lower()
     suspicious = any(k not in PROBLEM_SECTIONS for k in _SECTION.findall(text)) \
-        or _STRAY.search(text) is not None
+        or _STRAY.search(text) is not None or _VALUE.search(text) is not None
     if not suspicious and ":requirements" in text:
         found = _REQUIREMENTS.findall(text)
         suspicious = not found or any(r not in SUPPORTED_REQUIREMENTS
                                       for items in found for r in items.split())
     if suspicious:
-        read_problem(problem_text, cached_strips_domain(domain_text))
+        cached_strips_problem(domain_text, problem_text)
+
+
+def _add_total_cost(data: dict[str, Any], domain_text: str, problem_text: str) -> None:
+    """A blocks-world report's `total_cost`, as the STRIPS engine gives it: the initial
+    `(= (total-cost) N)` plus the cost of every applied step (a blocks world's costs are
+    numbers: its only function is total-cost)."""
+    domain = cached_strips_domain(domain_text)
+    has_costs = any(s.cost for s in domain.schemas.values()) or bool(domain.functions)
+    if not has_costs and "total-cost" not in problem_text.lower():
+        return
+    problem = cached_strips_problem(domain_text, problem_text)
+    if not has_costs and problem.initial_cost is None:
+        return
+    total = problem.initial_cost or 0.0
+    for step in data["steps"]:
+        if step["ok"]:
+            schema = domain.schemas[step["action"]["action"]]
+            total += sum(c for c in schema.cost if isinstance(c, float))
+    data["total_cost"] = total_value(total)
 
 
 def validate_pddl_dict(domain_text: str, problem_text: str, plan_text: str, *,
@@ -79,6 +104,7 @@ def validate_pddl_dict(domain_text: str, problem_text: str, plan_text: str, *,
                 raise
         else:
             data = {"engine": "blocksworld", **data}
+            _add_total_cost(data, domain_text, problem_text)
             if not data["valid"]:
                 if all_errors and data["violations"]:
                     return validate_strips_dict(
