@@ -182,3 +182,4 @@ def test_the_pddl_export_agrees_with_the_verifier_on_household_plans() -> None:
             "nodes": [{"id": "milk", "label": "milk"}, {"id": "table", "label": "table"}],
             "edges": [{"source": "milk", "relation": "under", "target": "table"}]},
             "partial": True}))
+
