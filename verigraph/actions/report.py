@@ -219,7 +219,7 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
                 "edit": edit_from(row, args, payload)}, STEP_FIELDS))
             continue
         # The move row, the bulk of any long plan: its placement edge replaced.
-        obj, rel, target = action.object, action.relation, action.target  # type: ignore[union-attr]
+        obj, rel, target = action.object, action.relation, action.target
         added = new(Edge)
         values(added, {"source": obj, "relation": rel, "target": target,
                        "source_side": None, "target_side": None})
