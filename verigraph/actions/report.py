@@ -20,7 +20,8 @@ from verigraph.actions.execution import Record, run_actions
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, MoveAction
 from verigraph.actions.parser import parse_plan
-from verigraph.actions.validator import GraphEdit
+from verigraph.actions.schemas import MOVE, Place, schema_of
+from verigraph.actions.validator import GraphEdit, edit_from
 from verigraph.budget import checkpoint
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
@@ -29,6 +30,7 @@ from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import label_readings, readings_line
 
+assert isinstance(MOVE.effect, Place)  # the fast path below builds a placement's edit
 M = TypeVar("M", bound=BaseModel)
 # Setters of the four slots every pydantic model instance fills (`BaseModel.__slots__`:
 # the field values, the fields set, extras, private attributes), called on the slot
@@ -40,7 +42,7 @@ _set_extra = _SLOTS["__pydantic_extra__"].__set__
 _set_private = _SLOTS["__pydantic_private__"].__set__
 EDGE_FIELDS = frozenset({"source", "relation", "target"})
 STEP_FIELDS = frozenset({"step", "ok", "action", "text", "violation", "edit"})
-EDIT_FIELDS = frozenset({"removed", "added"})
+EDIT_FIELDS = frozenset({"removed", "added", "states"})
 
 
 def trusted(cls: type[M], values: dict[str, Any], fields_set: frozenset[str]) -> M:
@@ -89,7 +91,8 @@ class ValidationReport(BaseModel):
         lines = []
         for s in self.steps:
             if s.ok:
-                edit = f"   {s.edit.text()}" if s.edit and (s.edit.added or s.edit.removed) else ""
+                edit = f"   {s.edit.text()}" if s.edit and (
+                    s.edit.added or s.edit.removed or s.edit.states) else ""
                 lines.append(f"{s.step:>4} ok    {s.text}{edit}")
             else:
                 assert s.violation is not None
@@ -176,24 +179,29 @@ def _action_dict(action: AnyAction) -> dict[str, Any]:
 def _steps_from_records(records: list[Record]) -> list[Any]:
     """StepReports for the records (the edge where compact tuples become models).
 
-    Accepted moves, the bulk of any long plan, are built inline with `object.__new__`
-    and the setters of the model's own slots (what `model_construct` does, minus its
-    per-call bookkeeping). The caller pauses the garbage collector (`collector_paused`). One
-    fields-set object serves all instances of a class: StepReport's and GraphEdit's name
-    every field, so an assignment adds nothing to them, and Edge is frozen. Frozen, an
-    Edge is shared too: the edge a block leaves is the one the step that put it there
-    added (`placed`, valid while only accepted moves ran since; any other edit empties it).
+    An action of the table applied on the fast path left what its effect replaced; its
+    row gives the edit (`validator.edit_from`). Accepted moves, the bulk of any long plan,
+    are built inline (the move row's effect replaces the object's placement edge) with
+    `object.__new__` and the setters of the model's own slots (what `model_construct`
+    does, minus its per-call bookkeeping). The caller
+    pauses the garbage collector (`collector_paused`). One fields-set object serves all
+    instances of a class: StepReport's and GraphEdit's name every field, so an
+    assignment adds nothing to them, and Edge is frozen. Frozen, an Edge is shared too:
+    the edge an object leaves is the one the step that put it there added (`placed`,
+    valid while only the table's actions ran since; any other edit empties it).
     """
     steps: list[Any] = []
     new = object.__new__
     values, fields_set, extra, private = _set_values, _set_fields_set, _set_extra, _set_private
     edge_set, edit_set, step_set = set(EDGE_FIELDS), set(EDIT_FIELDS), set(STEP_FIELDS)
-    placed: dict[str, Edge] = {}  # object -> the Edge of its current support
+    placed: dict[str, Edge] = {}  # object -> the Edge of its current placement
+    move_type, built_edit, refused, name = MoveAction, GraphEdit, Violation, MOVE.name
     for index, action, payload in records:
         if not index & 63:
             checkpoint()  # the server's per-call budget and cancellation
-        if payload is not None and type(payload) is not tuple:  # not an accepted move
-            ok = isinstance(payload, GraphEdit)
+        kind = type(payload)
+        if kind is built_edit or kind is refused:  # built already
+            ok = kind is built_edit
             if ok:
                 placed.clear()
             steps.append(trusted(StepReport, {
@@ -201,10 +209,20 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
                 "violation": None if ok else payload, "edit": payload if ok else None},
                 STEP_FIELDS))
             continue
-        obj, rel, target = action.object, action.relation, action.target  # type: ignore[union-attr]
+        if type(action) is not move_type:  # a state row: its edit as models
+            row = schema_of(action)
+            assert row is not None
+            args = row.args(action)
+            steps.append(trusted(StepReport, {
+                "step": index, "ok": True, "action": row.action_dict(*args),
+                "text": row.text(*args), "violation": None,
+                "edit": edit_from(row, args, payload)}, STEP_FIELDS))
+            continue
+        # The move row, the bulk of any long plan: its placement edge replaced.
+        obj, rel, target = action.object, action.relation, action.target
         added = new(Edge)
-        values(added, {"source": obj, "relation": rel, "target": target, "source_side": None,
-                       "target_side": None})
+        values(added, {"source": obj, "relation": rel, "target": target,
+                       "source_side": None, "target_side": None})
         fields_set(added, edge_set)
         extra(added, None)
         private(added, None)
@@ -221,15 +239,15 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
             removed.append(old)
         placed[obj] = added
         edit = new(GraphEdit)
-        values(edit, {"removed": removed, "added": [added]})
+        values(edit, {"removed": removed, "added": [added], "states": None})
         fields_set(edit, edit_set)
         extra(edit, None)
         private(edit, None)
         step = new(StepReport)
         values(step, {
             "step": index, "ok": True,
-            "action": {"action": "move", "object": obj, "relation": rel, "target": target},
-            "text": f"move({obj}, {rel}, {target})", "violation": None, "edit": edit})
+            "action": {"action": name, "object": obj, "relation": rel, "target": target},
+            "text": f"{name}({obj}, {rel}, {target})", "violation": None, "edit": edit})
         fields_set(step, step_set)
         extra(step, None)
         private(step, None)

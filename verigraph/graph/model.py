@@ -8,9 +8,10 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Annotated, Any
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema, field_validator
+from pydantic_core import PydanticCustomError
 
-from verigraph.graph.dictionary import InlineDictionary, inline_or_name
+from verigraph.graph.dictionary import STATE_ROLES, InlineDictionary, inline_or_name
 
 if TYPE_CHECKING:  # networkx loads only where a graph is converted (fast CLI start-up)
     import networkx as nx
@@ -32,6 +33,28 @@ class Node(BaseModel):
     label: str = Field(min_length=1, max_length=128, description="a name from the dictionary D")
     attrs: dict[str, Any] = Field(default_factory=dict,
                                   description="colour; overrides (capacity, movable)")
+    # Serialised only when set, so a scene without states dumps as it always did.
+    state: Annotated[dict[str, bool], WithJsonSchema({"type": "object"})] = Field(
+        default_factory=dict, exclude_if=lambda state: not state,
+        description="open, toggled_on: true/false; missing = closed, off")
+
+    @field_validator("state", mode="before")
+    @classmethod
+    def _known_states(cls, value: Any) -> Any:
+        """Only the state keys there are, each a JSON boolean (refused with the fix)."""
+        if not isinstance(value, dict):
+            return value
+        for key, on in value.items():
+            if key not in STATE_ROLES:
+                reason = (f"unknown state '{str(key)[:32]}' (fix: use "
+                          f"{' or '.join(STATE_ROLES)}, e.g. {{\"open\": false}})")
+            elif not isinstance(on, bool):
+                reason = (f"state '{key}' must be true or false, got {str(on)[:32]!r} "
+                          f"(fix: write {{\"{key}\": true}})")
+            else:
+                continue
+            raise PydanticCustomError("node_state", "{reason}", {"reason": reason})
+        return value
 
 
 class Edge(BaseModel):
@@ -81,6 +104,11 @@ class SceneGraph(BaseModel):
     def node_ids(self) -> list[str]:
         return [n.id for n in self.nodes]
 
+    def stateless_nodes(self) -> list[Node]:
+        """The nodes without their states: a goal built on a scene's nodes asks only for
+        the edges (and states) it lists, not for every state the scene has now."""
+        return [n.model_copy(update={"state": {}}) if n.state else n for n in self.nodes]
+
     def edge_keys(self) -> set[tuple[str, str, str, int | None, int | None]]:
         return {e.key() for e in self.edges}
 
@@ -103,7 +131,7 @@ class SceneGraph(BaseModel):
 
         g = nx.DiGraph(dictionary=self.dictionary)
         for n in self.nodes:
-            g.add_node(n.id, label=n.label, attrs=dict(n.attrs))
+            g.add_node(n.id, label=n.label, attrs=dict(n.attrs), state=dict(n.state))
         for e in self.edges:
             data: dict[str, Any] = {"relation": e.relation}
             if e.source_side is not None:
@@ -116,7 +144,8 @@ class SceneGraph(BaseModel):
     @classmethod
     def from_networkx(cls, g: nx.DiGraph) -> SceneGraph:
         """Inverse of `to_networkx`; a missing `label` falls back to the node id."""
-        nodes = [Node(id=str(n), label=str(d.get("label", n)), attrs=dict(d.get("attrs", {})))
+        nodes = [Node(id=str(n), label=str(d.get("label", n)), attrs=dict(d.get("attrs", {})),
+                      state=dict(d.get("state", {})))
                  for n, d in g.nodes(data=True)]
         edges = [Edge(source=str(u), target=str(v), relation=str(d.get("relation", "on")),
                       source_side=d.get("source_side"), target_side=d.get("target_side"))

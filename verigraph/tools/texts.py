@@ -9,11 +9,15 @@ from __future__ import annotations
 
 from verigraph.errors import VeriGraphError
 from verigraph.graph.dictionary import (
+    ROOM_RELATION,
+    STATE_WORDS,
     Dictionary,
     InlineDictionary,
     ObjectProperties,
     load_dictionary,
     open_label_properties,
+    properties_text,
+    state_text,
 )
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Node, SceneGraph
@@ -45,11 +49,14 @@ def role(props: ObjectProperties | None) -> str:
     """`fixed surface, capacity 2`, `movable container`, `movable` ..."""
     if props is None:
         return "unknown to the dictionary"
-    kinds = [k for k, on in (("surface", props.surface), ("container", props.container)) if on]
-    text = " ".join(["movable" if props.movable else "fixed", *kinds])
-    if kinds:
-        text += f", capacity {props.capacity if props.capacity is not None else 'unlimited'}"
-    return text
+    return properties_text(props)
+
+
+def _role_and_state(node: Node, props: ObjectProperties | None) -> str:
+    """`fixed container, capacity 4, openable; closed (default)`."""
+    text = role(props)
+    states = state_text(props, node.state) if props is not None else ""
+    return f"{text}; {states}" if states else text
 
 
 def runs_on(executor: str, arm_mode: str | None = None) -> str:
@@ -97,17 +104,37 @@ def objects_line(graph: SceneGraph, dictionary: str | InlineDictionary | None = 
     with the sizes a node's attrs give (`plate_b (plate: ..., width 18)`)."""
     d = _dictionary(graph.dictionary or dictionary)
     parts = [f"{n.id} ({n.label}: {'your label, ' if _your_label(n, d) else ''}"
-             f"{role(_properties(n, d))}{_sizes(n)})" for n in graph.nodes]
+             f"{_role_and_state(n, _properties(n, d))}{_sizes(n)})" for n in graph.nodes]
     return "objects: " + ("; ".join(parts) or "none")
 
 
 def edges_line(graph: SceneGraph, prefix: str = "edges") -> str:
-    return f"{prefix}: " + ("; ".join(graph.sentences()) or "none")
+    """`edges: cup on table; ...`, then the states nodes have set (`; states: fridge
+    closed, stove on`)."""
+    states = [f"{n.id} {STATE_WORDS[k][v]}" for n in graph.nodes for k, v in n.state.items()]
+    return f"{prefix}: " + ("; ".join(graph.sentences()) or "none") + (
+        f"; states: {', '.join(states)}" if states else "")
+
+
+def rooms_line(graph: SceneGraph) -> str:
+    """`rooms: kitchen: counter, fridge, stove; dining_room: table` (the furniture of
+    each room, from its `inroom` edges); empty when the graph has no rooms."""
+    by_room: dict[str, list[str]] = {}
+    for e in graph.edges:
+        if e.relation == ROOM_RELATION:
+            by_room.setdefault(e.target, []).append(e.source)
+    if not by_room:
+        return ""
+    return "rooms: " + "; ".join(f"{room}: {', '.join(sorted(items))}"
+                                 for room, items in by_room.items())
 
 
 def graph_lines(graph: SceneGraph, dictionary: str | InlineDictionary | None = None) -> str:
-    """Two lines: every object with label and role, then every edge."""
-    return f"{objects_line(graph, dictionary)}\n{edges_line(graph)}"
+    """Two lines: every object with label and role (and state), then every edge; a
+    third with the furniture of each room when the graph has rooms."""
+    rooms = rooms_line(graph)
+    return f"{objects_line(graph, dictionary)}\n{edges_line(graph)}" + (
+        f"\n{rooms}" if rooms else "")
 
 
 def dictionary_line(name: str, user_labels: list[str], readings: list[str]) -> str:
@@ -179,7 +206,9 @@ def goal_line(goal: Goal | None) -> str | None:
         return None
     parts = []
     if goal.graph is not None:
-        parts.append("; ".join(goal.graph.sentences()) or "no edges")
+        states = [f"{n.id} {STATE_WORDS[k][v]}" for n in goal.graph.nodes
+                  for k, v in n.state.items()]
+        parts.append("; ".join([*goal.graph.sentences(), *states]) or "no edges")
     if goal.predicate:
         parts.append(goal.predicate)
     if not parts:
