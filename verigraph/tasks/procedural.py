@@ -302,8 +302,8 @@ def _levels(*rows: tuple[int, int, int, int, int]) -> tuple[LevelConfig, ...]:
 
 
 #                 objects distractors constraints length towers
-BLOCKS_LEVELS = _levels((3, 0, 0, 0, 1), (4, 1, 0, 0, 1), (5, 2, 1, 0, 1),
-                        (6, 2, 2, 0, 2), (7, 3, 3, 0, 2), (8, 4, 4, 0, 2))
+BLOCKS_LEVELS = _levels((3, 0, 0, 0, 1), (4, 1, 0, 0, 1), (5, 1, 1, 0, 1),
+                        (6, 2, 2, 0, 2), (7, 3, 2, 0, 2), (8, 3, 3, 0, 2))
 KITCHEN_LEVELS = _levels((4, 0, 0, 2, 1), (5, 1, 0, 3, 1), (6, 1, 1, 4, 1),
                          (7, 2, 1, 5, 1), (8, 2, 2, 6, 1), (9, 3, 2, 7, 1))
 TANGRAM_LEVELS = _levels((3, 0, 0, 1, 1), (4, 0, 0, 2, 1), (5, 1, 1, 3, 1),
