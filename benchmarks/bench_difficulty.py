@@ -9,8 +9,9 @@ For each family with a procedural generator (verigraph.tasks.procedural) and eac
 - the noisy planner (verigraph.planning.noisy: the reference solver with seeded
   mistakes, `--noise` per action, never handed the ground-truth goal), `--samples`
   rollouts per task, with the same fixed environment settings at every level: one
-  reply holding the whole plan (`--k 20 --threshold 1 --max-steps 1`), and again with
-  the environment's defaults (iterative, the verifier's feedback after every reply).
+  reply holding the whole plan (`--k 20 --threshold 1 --max-steps 1`), so every
+  mistake counts (with the defaults the verifier's feedback repairs most of them, and
+  the reference solver the noisy planner re-plans with dominates the run time).
 
 The table gives the mean objects, distractors, constraints and optimal length of the
 level's tasks, the generation time per task, the oracle's success and the noisy
@@ -53,17 +54,15 @@ def level_row(family: str, level: int, args: argparse.Namespace,
                        policy_seed=i * args.samples + s)
             for i, t in enumerate(tasks) for s in range(args.samples)]
     noisy = run_rollouts(jobs, {"tasks": tasks, **settings})
-    iterative = run_rollouts(jobs, {"tasks": tasks})
     oracle_rate = sum(r.success for r in oracle) / len(oracle)
     noisy_rate = sum(r.success for r in noisy) / len(noisy)
-    iterative_rate = sum(r.success for r in iterative) / len(iterative)
     counts = [_counts(t.category) for t in tasks]
     row = [family, str(level), f"{statistics.fmean(t.objects for t in tasks):.1f}",
            f"{statistics.fmean(c[0] for c in counts):.1f}",
            f"{statistics.fmean(c[1] for c in counts):.1f}",
            f"{statistics.fmean(t.optimal_length for t in tasks):.1f}",
            f"{per_task * 1000:.0f} ms", f"{oracle_rate:.2f} ({len(oracle)})",
-           f"{noisy_rate:.2f} ({len(noisy)})", f"{iterative_rate:.2f}"]
+           f"{noisy_rate:.2f} ({len(noisy)})"]
     print(" | ".join(row), flush=True)
     return row, oracle_rate, noisy_rate
 
@@ -92,17 +91,17 @@ def main() -> None:
                        f"{rates[0][1]:.2f} at level 1, {rates[-1][1]:.2f} at level "
                        f"{len(rates)}")
     notes = (f"Noisy planner: action_error {args.noise}, {args.samples} rollouts per task, "
-             "each with its own policy seed. One reply: the whole plan in one answer "
-             f"(k={args.k}, threshold={args.threshold}, max_steps={args.max_steps}); "
-             "iterative: the environment's defaults (k=3, threshold=5, max_steps=40, "
-             "feedback full), where the verifier's feedback lets the planner recover. "
+             "each with its own policy seed, the whole plan in one reply "
+             f"(k={args.k}, threshold={args.threshold}, max_steps={args.max_steps}). With "
+             "the environment's defaults (k=3, threshold=5, max_steps=40) the verifier's "
+             "feedback lets it recover from most mistakes (blocks levels 1-5: 1.00, 0.97, "
+             "0.96, 0.90, 0.91 in a run of the same tasks). "
              f"Reward: success only. {args.tasks} tasks per level, generator seed 0.\n\n"
              + "\n".join(f"- {line}" for line in falling))
     write_table("difficulty", "Difficulty levels: oracle and a fixed offline planner",
                 ["family", "level", "objects", "distractors", "constraints",
                  "optimal length", "generate / task", "oracle success",
-                 "noisy success, one reply (rollouts)", "noisy success, iterative"],
-                rows, notes)
+                 "noisy success (rollouts)"], rows, notes)
 
 
 if __name__ == "__main__":
