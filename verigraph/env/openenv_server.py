@@ -48,6 +48,7 @@ from pydantic import Field
 
 from verigraph.env.core import VeriGraphEnv
 from verigraph.env.openenv_adapter import ACT_TOOL, SYSTEM_PROMPT, TOOL_NAME
+from verigraph.env.procedural import ProceduralEnv, make_env
 from verigraph.errors import VeriGraphError
 from verigraph.extras import require
 
@@ -115,7 +116,7 @@ class VeriGraphServerEnv(Environment[ActAction, PromptObservation, State]):
 
     def __init__(self, **env_kwargs: Any) -> None:
         super().__init__()
-        self.env = VeriGraphEnv(**env_kwargs)
+        self.env = make_env(**env_kwargs)
         self.episode_id: str | None = None
         self.closed = False
 
@@ -137,15 +138,24 @@ class VeriGraphServerEnv(Environment[ActAction, PromptObservation, State]):
             reward=reward, done=terminated or truncated)
 
     def reset(self, seed: int | None = None, episode_id: str | None = None,
-              task: str | int | dict[str, Any] | None = None, **kwargs: Any
-              ) -> PromptObservation:
+              task: str | int | dict[str, Any] | None = None, level: int | None = None,
+              **kwargs: Any) -> PromptObservation:
         """A new episode: `task` is a task id, an index into the tasks or a task record;
-        without one the seeded generator picks. Any other field is refused by name."""
+        without one the seeded generator picks. `level` moves a procedural server's
+        difficulty knob first. Any other field is refused by name."""
         env = self._open()
         if kwargs:
             names = ", ".join(sorted(kwargs))[:120]
             raise VeriGraphError(f"unknown reset field(s): {names}", field="reset",
-                                 value=names, fix="reset takes seed, episode_id and task")
+                                 value=names,
+                                 fix="reset takes seed, episode_id, task and level")
+        if level is not None:
+            if not isinstance(env, ProceduralEnv):
+                raise VeriGraphError("this server serves fixed tasks: it has no levels",
+                                     field="level", value=level,
+                                     fix="serve with family and level (serve_openenv("
+                                         "family='blocks', level=1)) to move the level")
+            env.set_level(level)
         prompt, info = env.reset(seed=seed, options=None if task is None else {"task": task})
         self.episode_id = episode_id
         return self._observation(prompt, info, None)
@@ -250,7 +260,7 @@ def create_openenv_app(*, token: str | Sequence[str] | None = None,
         raise VeriGraphError("session_timeout must be a positive number of seconds (at "
                              "most a week), or None", field="session_timeout",
                              value=session_timeout, fix="use e.g. 600")
-    VeriGraphEnv(**env_kwargs).close()  # bad environment arguments fail here, not per session
+    make_env(**env_kwargs).close()  # bad environment arguments fail here, not per session
     concurrency = ConcurrencyConfig(max_concurrent_envs=max_sessions,
                                     session_timeout=session_timeout)
     # a partial of the class: OpenEnv reads SUPPORTS_CONCURRENT_SESSIONS from it without

@@ -101,6 +101,13 @@ class ProceduralEnv(VeriGraphEnv):
         return {**super()._info(**kwargs), "level": self.level}
 
 
+def make_env(**env_kwargs: Any) -> VeriGraphEnv:
+    """A `ProceduralEnv` when the arguments name a `level`, else a `VeriGraphEnv`."""
+    if "level" in env_kwargs:
+        return ProceduralEnv(**env_kwargs)
+    return VeriGraphEnv(**env_kwargs)
+
+
 def register_procedural_envs() -> list[str]:
     """Register `verigraph/FAMILY-procedural-v0` for every generator (idempotent)."""
     ids = []
