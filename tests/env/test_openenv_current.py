@@ -12,7 +12,6 @@ done), a level moved on reset, and a refused reset reported as an error.
 from __future__ import annotations
 
 import json
-import os
 import subprocess
 import sys
 import time
@@ -22,13 +21,14 @@ from typing import Any
 
 import pytest
 
-from optional import in_ci, require
+from optional import require
 
 require("openenv", "pip install 'verigraph-mcp[env]'")
 
 import httpx  # noqa: E402
 from mcp_helpers import free_port  # noqa: E402
 from openenv_helpers import serving_app  # noqa: E402
+from venv_helpers import OUTSIDE, child_env, venv_python  # noqa: E402
 
 from verigraph.env.openenv_server import create_openenv_app  # noqa: E402
 from verigraph.graph.model import SceneGraph  # noqa: E402
@@ -36,24 +36,12 @@ from verigraph.graph.state import WorldState  # noqa: E402
 from verigraph.solver import solve  # noqa: E402
 from verigraph.tasks.procedural import generate_task  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[2]
-VENV_PYTHON = Path(os.environ.get("VERIGRAPH_OPENENV_PYTHON",
-                                  ROOT / ".tools" / "openenv-venv" / "bin" / "python"))
 
-
-def child_env(**extra: str) -> dict[str, str]:
-    """This process's environment without PYTHONPATH: the child sees its own packages."""
-    return {**{k: v for k, v in os.environ.items() if k != "PYTHONPATH"}, **extra}
+pytestmark = pytest.mark.slow
 
 
 def openenv_python() -> Path:
-    if not VENV_PYTHON.exists():
-        message = (f"no OpenEnv 0.10 environment at {VENV_PYTHON}; build it with "
-                   "`bash scripts/install_openenv.sh`")
-        if in_ci():
-            pytest.fail(message, pytrace=False)
-        pytest.skip(message)
-    return VENV_PYTHON
+    return venv_python("openenv", "VERIGRAPH_OPENENV_PYTHON")
 
 
 @pytest.fixture(scope="module")
@@ -158,6 +146,6 @@ def test_the_openenv_environment_cannot_import_verigraph() -> None:
         [str(openenv_python()), "-c", "import importlib.metadata as m, importlib.util as u; "
          "print(m.version('openenv'), m.version('mcp'), u.find_spec('verigraph') is None)"],
         capture_output=True, text=True, timeout=60, check=True, env=child_env(),
-        cwd=ROOT / "tests" / "data").stdout.split()  # not the checkout: no verigraph/ here
+        cwd=OUTSIDE).stdout.split()
     assert out[0] == "0.10.0" and int(out[1].split(".")[0]) < 2 and out[2] == "True"
     assert sys.version_info >= (3, 10)

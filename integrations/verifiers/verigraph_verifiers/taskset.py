@@ -129,10 +129,7 @@ def load_environment(base_url: str = "http://127.0.0.1:8001", level: int | None 
                      **env: Any) -> vf.Env:
     """The verifiers Env for a VeriGraph server: what `vf.load_environment` builds for
     `--env.taskset.id verigraph-verifiers` with these taskset settings."""
-    from verifiers.v1.configs.env import resolve_env_config
-    from verifiers.v1.utils.loaders import load_environment as vf_load
-
-    config = resolve_env_config({**env, "taskset": {
+    config = vf.resolve_env_config({**env, "taskset": {
         "id": "verigraph-verifiers", "base_url": base_url, "level": level, "size": size,
         "token": token}})
-    return vf_load(config)
+    return vf.load_environment(config)
