@@ -37,6 +37,7 @@ Access and capacity (docs/env.md, "Served"):
 
 from __future__ import annotations
 
+import asyncio
 import functools
 import hmac
 import json
@@ -305,11 +306,13 @@ class TokenEnvClient(GenericEnvClient):
         super().__init__(base_url=base_url, **kwargs)
         self._token = token
 
-    async def connect(self) -> TokenEnvClient:
+    async def _connect_async(self) -> TokenEnvClient:
+        # OpenEnv's connect (async and sync alike) comes here: the one place to add the
+        # header
         if getattr(self, "_ws", None) is not None:  # already connected
             return self
         if self._token is None:
-            await super().connect()
+            await super()._connect_async()
             return self
         from websockets.asyncio.client import connect as ws_connect
 
@@ -320,6 +323,7 @@ class TokenEnvClient(GenericEnvClient):
                 self._ws_url, open_timeout=self._connect_timeout,
                 max_size=self._max_message_size, proxy=None if loopback else True,
                 additional_headers={"Authorization": f"Bearer {self._token}"})
+            self._ws_loop = asyncio.get_running_loop()
         except Exception as exc:  # noqa: BLE001 (OpenEnv's client raises ConnectionError)
             raise ConnectionError(f"Failed to connect to {self._ws_url}: {exc}") from exc
         return self
