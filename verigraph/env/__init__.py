@@ -8,7 +8,7 @@
 (True, 0)
 >>> env.close()
 
-Needs the `env` extra (`pip install 'verigraph-mcp[env]'`): gymnasium, and openenv-core
+Needs the `env` extra (`pip install 'verigraph-mcp[env]'`): gymnasium, and openenv
 for the OpenEnv adapter (verigraph.env.openenv_adapter).
 """
 
