@@ -28,7 +28,7 @@ require("openenv", "pip install 'verigraph-mcp[env]'")
 import httpx  # noqa: E402
 from mcp_helpers import free_port  # noqa: E402
 from openenv_helpers import serving_app  # noqa: E402
-from venv_helpers import OUTSIDE, child_env, venv_python  # noqa: E402
+from venv_helpers import OUTSIDE, ROOT, child_env, venv_python  # noqa: E402
 
 from verigraph.env.openenv_server import create_openenv_app  # noqa: E402
 from verigraph.graph.model import SceneGraph  # noqa: E402
@@ -148,3 +148,14 @@ def test_the_openenv_environment_cannot_import_verigraph() -> None:
         cwd=OUTSIDE).stdout.split()
     assert out[0] == "0.10.0" and int(out[1].split(".")[0]) < 2 and out[2] == "True"
     assert sys.version_info >= (3, 10)
+
+
+def test_openenv_validate_passes_the_package_and_the_running_server(openenv_url: str
+                                                                    ) -> None:
+    """OpenEnv's own quality bar: the manifest (static) and the served API (runtime)."""
+    cli = str(openenv_python().parent / "openenv")
+    for target in (["integrations/openenv", "--level", "static", "--skip-build"],
+                   ["--url", openenv_url, "--level", "runtime"]):
+        out = subprocess.run([cli, "validate", *target], capture_output=True, text=True,
+                             timeout=300, env=child_env(), cwd=ROOT)
+        assert "Verdict: PASS" in out.stdout, (out.stdout + out.stderr)[-3000:]
