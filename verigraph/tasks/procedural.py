@@ -249,9 +249,10 @@ def draw_tangram(rng: random.Random, cfg: LevelConfig) -> Generated | None:
         want_chain = chained < cfg.constraints
         pool = [p for p in leaves if (p in on_out) == want_chain] or leaves
         piece = rng.choice(pool)
+        chained += piece in on_out
         edges = {(a, b) for a, b in edges if piece not in (a, b)}
         out.append(piece)
-    # a piece is "chained" when its figure partner was taken out before it
+    # a piece is "chained" when a figure partner of it was taken out before it
     chained = sum(1 for i, p in enumerate(out) if any(
         p in (a, b) and ({a, b} - {p}) & set(out[:i]) for a, b in contacts))
     kept = [e for e in figure.edges if e.source not in out and e.target not in out]
