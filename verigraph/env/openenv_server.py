@@ -45,6 +45,7 @@ Access and capacity (docs/env.md, "Served"):
 
 from __future__ import annotations
 
+import asyncio
 import functools
 import hmac
 import json
@@ -59,6 +60,7 @@ from pydantic import Field
 
 from verigraph.env.core import VeriGraphEnv
 from verigraph.env.openenv_adapter import ACT_TOOL, SYSTEM_PROMPT, TOOL_NAME
+from verigraph.env.procedural import ProceduralEnv, make_env
 from verigraph.errors import VeriGraphError
 from verigraph.extras import require
 from verigraph.server.callers import CALLER_KEY, caller_of, token_caller
@@ -139,7 +141,7 @@ class VeriGraphServerEnv(Environment[ActAction, PromptObservation, State]):
 
     def __init__(self, **env_kwargs: Any) -> None:
         super().__init__()
-        self.env = VeriGraphEnv(**env_kwargs)
+        self.env = make_env(**env_kwargs)
         self.episode_id: str | None = None
         self.closed = False
 
@@ -162,15 +164,24 @@ class VeriGraphServerEnv(Environment[ActAction, PromptObservation, State]):
             reward=reward, done=terminated or truncated)
 
     def reset(self, seed: int | None = None, episode_id: str | None = None,
-              task: str | int | dict[str, Any] | None = None, **kwargs: Any
-              ) -> PromptObservation:
+              task: str | int | dict[str, Any] | None = None, level: int | None = None,
+              **kwargs: Any) -> PromptObservation:
         """A new episode: `task` is a task id, an index into the tasks or a task record;
-        without one the seeded generator picks. Any other field is refused by name."""
+        without one the seeded generator picks. `level` moves a procedural server's
+        difficulty knob first. Any other field is refused by name."""
         env = self._open()
         if kwargs:
             names = ", ".join(sorted(kwargs))[:120]
             raise VeriGraphError(f"unknown reset field(s): {names}", field="reset",
-                                 value=names, fix="reset takes seed, episode_id and task")
+                                 value=names,
+                                 fix="reset takes seed, episode_id, task and level")
+        if level is not None:
+            if not isinstance(env, ProceduralEnv):
+                raise VeriGraphError("this server serves fixed tasks: it has no levels",
+                                     field="level", value=level,
+                                     fix="serve with family and level (serve_openenv("
+                                         "family='blocks', level=1)) to move the level")
+            env.set_level(level)
         prompt, info = env.reset(seed=seed, options=None if task is None else {"task": task})
         self.episode_id = episode_id
         return self._observation(prompt, info, None)
@@ -449,7 +460,7 @@ def create_openenv_app(*, token: str | Sequence[str] | None = None,
         raise VeriGraphError("reclaim_after must be a positive number of seconds (at most a "
                              "week)", field="reclaim_after", value=reclaim_after,
                              fix="use e.g. 300")
-    VeriGraphEnv(**env_kwargs).close()  # bad environment arguments fail here, not per session
+    make_env(**env_kwargs).close()  # bad environment arguments fail here, not per session
     concurrency = ConcurrencyConfig(max_concurrent_envs=max_sessions,
                                     session_timeout=session_timeout)
     # OpenEnv's app (create_app's routes and reaper) around its session server with the
@@ -500,11 +511,13 @@ class TokenEnvClient(GenericEnvClient):
         super().__init__(base_url=base_url, **kwargs)
         self._token = token
 
-    async def connect(self) -> TokenEnvClient:
+    async def _connect_async(self) -> TokenEnvClient:
+        # OpenEnv's connect (async and sync alike) comes here: the one place to add the
+        # header
         if getattr(self, "_ws", None) is not None:  # already connected
             return self
         if self._token is None:
-            await super().connect()
+            await super()._connect_async()
             return self
         from websockets.asyncio.client import connect as ws_connect
 
@@ -515,6 +528,7 @@ class TokenEnvClient(GenericEnvClient):
                 self._ws_url, open_timeout=self._connect_timeout,
                 max_size=self._max_message_size, proxy=None if loopback else True,
                 additional_headers={"Authorization": f"Bearer {self._token}"})
+            self._ws_loop = asyncio.get_running_loop()
         except Exception as exc:  # noqa: BLE001 (OpenEnv's client raises ConnectionError)
             raise ConnectionError(f"Failed to connect to {self._ws_url}: {exc}") from exc
         return self

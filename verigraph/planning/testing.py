@@ -61,9 +61,9 @@ class RecordedResponseServerForTests:
                 payload = reply.body if isinstance(reply.body, str) else json.dumps(reply.body)
                 data = payload.encode("utf-8")
                 self.send_response(reply.status)
-                self.send_header("content-type", "application/json")
+                headers = {"content-type": "application/json", **reply.headers}
                 self.send_header("content-length", str(len(data)))
-                for key, value in reply.headers.items():
+                for key, value in headers.items():
                     self.send_header(key, value)
                 self.end_headers()
                 self.wfile.write(data)
