@@ -80,7 +80,8 @@ def test_a_pddl_check_loads_no_other_stack(command):
     assert status == 0
     assert loaded(modules, OTHER_STACKS) == []
     cli = [m for m in modules if m.startswith("verigraph.cli")]
-    assert cli == sorted({"verigraph.cli", COMMANDS[command]} | {"verigraph.cli.validating"})
+    assert cli == sorted({"verigraph.cli", COMMANDS[command]}
+                         | {"verigraph.cli.validating", "verigraph.cli.exits"})
 
 
 def test_a_strips_check_loads_no_pydantic_and_no_scene_graph(tmp_path):

@@ -30,13 +30,8 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, Any
 
-from verigraph.cli.validating import (
-    EXIT_BAD_INPUT,
-    EXIT_NEGATIVE,
-    EXIT_OK,
-    pddl_report,
-    scene_report,
-)
+from verigraph.cli.exits import EXIT_BAD_INPUT, EXIT_NEGATIVE, EXIT_OK
+from verigraph.cli.validating import pddl_report, scene_report
 from verigraph.errors import InputFileError, VeriGraphError
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused
 

@@ -15,9 +15,9 @@ from typing import Any
 import cv2
 import numpy as np
 
+from verigraph.cli.exits import EXIT_NEGATIVE, EXIT_OK
 from verigraph.errors import InputFileError, VeriGraphError
 
-EXIT_OK, EXIT_NEGATIVE = 0, 1
 GENERATED = re.compile(r"^(?P<family>[a-z_]+):(?P<seed>\d+)(?::(?P<n>\d+))?$")
 DEMO_SCENES = ("cup_on_book", "kitchen_pan")
 
