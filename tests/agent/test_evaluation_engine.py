@@ -14,6 +14,12 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from planning_doubles import RecordedResponse as R
+from planning_doubles import (
+    RecordedResponseServerForTests,
+    ScriptedPlannerForTests,
+    chat_completion,
+)
 
 from verigraph.agent.evaluation import Setting
 from verigraph.agent.evaluation.engine import RunOptions, run_jobs
@@ -27,12 +33,6 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.jobs.limiter import BackendLimits, Gate, RateLimiter
 from verigraph.planning.factory import PlannerOptions
-from verigraph.planning.testing import RecordedResponse as R
-from verigraph.planning.testing import (
-    RecordedResponseServerForTests,
-    ScriptedPlannerForTests,
-    chat_completion,
-)
 from verigraph.planning.tool_calls import InProcessTools
 from verigraph.solver import solve
 from verigraph.tasks import build_groups

@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from arm_deps import require
 from arm_server_helpers import LAYOUT, BlockCellStandIn, loose_blocks, xarm_toolbox
 from mcp import Client
 from mcp.client.context import ClientRequestContext
@@ -24,7 +25,6 @@ from mcp.types import CallToolResult, ElicitRequestParams, ElicitResult
 from mcp_helpers import png_b64, structured, text
 
 from verigraph.arm import parse_arm_config
-from verigraph.arm.testing.deps import require
 from verigraph.errors import VeriGraphError
 from verigraph.server import build_server
 from verigraph.tools import TOOL_SPECS, Toolbox, ToolConfig
