@@ -105,7 +105,7 @@ def degrade(image: np.ndarray, spec: Degradation, seed: int = 0) -> np.ndarray:
     if spec.lighting > 0:
         out = _lighting(out, spec.lighting, rng)
     if spec.crop > 0:
-        out = ops.crop(out, spec.crop, keep, rng)
+        out = ops.crop_randomly(out, spec.crop, keep, rng)
     if spec.rotation:
         out = ops.rotate(out, spec.rotation, 1.0)
     if spec.scale != 1.0:

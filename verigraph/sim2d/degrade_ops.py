@@ -77,7 +77,7 @@ def content_box(image: np.ndarray, background: list[tuple[int, int, int]]
     return int(cols[0]), int(rows[0]), int(cols[-1]) + 1, int(rows[-1]) + 1
 
 
-def crop(image: np.ndarray, fraction: float, keep: tuple[int, int, int, int],
+def crop_randomly(image: np.ndarray, fraction: float, keep: tuple[int, int, int, int],
          rng: np.random.Generator) -> np.ndarray:
     """Up to `fraction` of each side cut off at random, never into the `keep` box."""
     h, w = image.shape[:2]
