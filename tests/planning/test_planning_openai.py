@@ -2,7 +2,7 @@
 
 `RecordedResponseServerForTests` replays canned chat-completions answers (well formed,
 malformed, truncated, transient 503s), so every edge case is reproducible; the real
-local model is exercised in test_agent_llm_local.py.
+local model is exercised in test_planning_llm_local.py.
 """
 
 from __future__ import annotations
