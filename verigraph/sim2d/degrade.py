@@ -75,7 +75,7 @@ class Degradation:
 
 def _background(image: np.ndarray) -> Colour:
     """The background colour the render was drawn on (side-view wall or tangram table)."""
-    counts = [int(np.count_nonzero((image == np.array(c, dtype=np.uint8)).all(axis=2)))
+    counts = [cv2.countNonZero(cv2.inRange(image, np.array(c, np.uint8), np.array(c, np.uint8)))
               for c in (palette.BACKGROUND, palette.TANGRAM_BACKGROUND)]
     return palette.BACKGROUND if counts[0] >= counts[1] else palette.TANGRAM_BACKGROUND
 
