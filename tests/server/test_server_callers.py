@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from verigraph.server.callers import CALLER_KEY, caller_of, token_caller
+from verigraph.server.callers import CALLER_KEY, TokenGate, caller_of, token_caller
 
 pytestmark = pytest.mark.fast
 
@@ -35,3 +35,26 @@ def test_an_address_caller_groups_an_ipv6_host_by_its_64(peer: str, caller: str)
 def test_a_named_caller_wins_and_no_peer_is_unknown() -> None:
     assert caller_of({"client": ("127.0.0.1", 1), CALLER_KEY: "token abc"}) == "token abc"
     assert caller_of({}) == "address unknown"
+
+
+def _scope(*authorization: bytes) -> dict[str, object]:
+    return {"type": "http", "headers": [(b"Authorization", a) for a in authorization]}
+
+
+def test_the_token_gate_admits_a_token_and_says_why_it_refuses() -> None:
+    gate = TokenGate(["one"])
+    admitted = _scope(b"Bearer one")
+    assert gate.check(admitted) is None
+    assert CALLER_KEY not in admitted  # one token: every holder is alike
+    assert gate.check(_scope()) == "missing_token"
+    assert gate.check(_scope(b"  ")) == "missing_token"
+    assert gate.check(_scope(b"Bearer two")) == "wrong_token"
+    assert gate.check(_scope(b"one")) == "wrong_token"
+    assert gate.check(_scope(b"Bearer two", b"Bearer one")) == "wrong_token"  # the first
+
+
+def test_with_several_tokens_the_gate_names_the_caller_of_the_one_matched() -> None:
+    gate = TokenGate(["one", "two"])
+    scope = _scope(b"Bearer two")
+    assert gate.check(scope) is None
+    assert scope[CALLER_KEY] == token_caller("two") == caller_of(scope)

@@ -30,13 +30,8 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, Any
 
-from verigraph.cli.validating import (
-    EXIT_BAD_INPUT,
-    EXIT_NEGATIVE,
-    EXIT_OK,
-    pddl_report,
-    scene_report,
-)
+from verigraph.cli.exits import EXIT_BAD_INPUT, EXIT_NEGATIVE, EXIT_OK
+from verigraph.cli.validating import pddl_item_report, scene_report
 from verigraph.errors import InputFileError, VeriGraphError
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused
 
@@ -166,7 +161,7 @@ def _item_report(item: Any, base: Path, cache: dict[str, str], planbench: bool,
         if engine not in ("auto", "blocksworld", "strips"):
             raise InputFileError("'engine' is auto, blocksworld or strips", field="engine",
                                  value=str(engine)[:80], fix='drop "engine" or give "auto"')
-        return pddl_report(path("domain"), path("problem"), path("plan"), cache,
+        return pddl_item_report(path("domain"), path("problem"), path("plan"), cache,
                            engine=str(engine), planbench=planbench)
     if "scene" in item:
         goal = path("goal") if item.get("goal") is not None else None

@@ -11,6 +11,7 @@ from typing import Any
 
 import anyio
 
+from verigraph.cli.exits import EXIT_OK
 from verigraph.errors import VeriGraphError
 
 TOKEN_ENV = "VERIGRAPH_TOKEN"
@@ -176,7 +177,7 @@ def run_serve(args: argparse.Namespace) -> int:
         server = build_server(config=config, log_level=args.log_level, heavy=heavy)
         keep_loop_responsive()
         anyio.run(run_stdio, server, max_bytes)
-        return 0
+        return EXIT_OK
     from verigraph.server.http import HttpOptions, serve_http
     from verigraph.server.http.workers import listening_socket, run_workers
 
@@ -200,7 +201,7 @@ def run_serve(args: argparse.Namespace) -> int:
     if args.workers > 1:  # each process builds its own server after the fork
         return run_workers(args.workers, listening_socket(options.host, options.port), serve)
     serve()
-    return 0
+    return EXIT_OK
 
 
 def episodes_per_caller(args: argparse.Namespace) -> int | None:

@@ -45,10 +45,9 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from verigraph.budget import CPU_SECONDS_ENV, BudgetExceeded, command_line_budget
+from verigraph.cli.exits import EXIT_FATAL, EXIT_OK, MAX_FAILED_STATUS
 from verigraph.errors import InputFileError, VeriGraphError
 
-EXIT_FATAL = 255  # VAL's exit(-1): the domain, problem or arguments cannot be used
-MAX_FAILED_STATUS = 254  # a count of failed plans never wraps to 0 nor reads as 255
 UNSUPPORTED = {
     "r": "robustness analysis", "j": "robustness analysis of events", "g": "graphplan length",
     "c": "continuing past an unsatisfied precondition", "e": "the full error report and "
@@ -288,7 +287,7 @@ def run(argv: list[str]) -> int:
         return EXIT_FATAL
     if opts.help or not opts.files:
         print(USAGE, end="")
-        return 0
+        return EXIT_OK
     try:  # each plan's CPU budget, refused here when $VERIGRAPH_CPU_SECONDS is no number
         command_line_budget(None)
     except VeriGraphError as exc:
@@ -300,7 +299,7 @@ def run(argv: list[str]) -> int:
             from verigraph.cli.validating import within_cpu_budget
 
             within_cpu_budget(lambda: read_domain(domain_text), "val")
-            return 0
+            return EXIT_OK
         problem_text = _read(opts.files[1], "problem")
     except VeriGraphError as exc:
         return _input_failure(exc)

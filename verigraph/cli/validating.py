@@ -22,9 +22,9 @@ from contextvars import ContextVar
 from pathlib import Path
 from typing import Any, TypeVar
 
+from verigraph.cli.exits import EXIT_BAD_INPUT, EXIT_NEGATIVE, EXIT_OK
 from verigraph.errors import InputFileError, VeriGraphError
 
-EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
 MAX_PLAN_BYTES = 64 * 1024 * 1024
 T = TypeVar("T")
 
@@ -148,7 +148,7 @@ def _cached_text(path: str | Path, field: str, cache: dict[str, str] | None) -> 
     return text
 
 
-def pddl_report(domain: str | Path, problem: str | Path, plan: str | Path,
+def pddl_item_report(domain: str | Path, problem: str | Path, plan: str | Path,
                 cache: dict[str, str] | None = None, *, engine: str = "auto",
                 planbench: bool = False, all_errors: bool = False) -> dict[str, Any]:
     """The JSON-ready report for a PDDL item (domain and problem texts cached per path
@@ -217,7 +217,7 @@ def run_validate(args: argparse.Namespace) -> int:
             if args.html or args.dictionary:
                 raise _usage_error("--html and --dictionary apply to scene plans only",
                                    "drop --html and --dictionary for a PDDL plan")
-            data = pddl_report(args.domain, args.problem, args.plan, engine=args.engine,
+            data = pddl_item_report(args.domain, args.problem, args.plan, engine=args.engine,
                                planbench=args.planbench, all_errors=args.all_errors)
             if args.json:
                 print(json.dumps(data))

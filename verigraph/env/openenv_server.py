@@ -47,7 +47,6 @@ from __future__ import annotations
 
 import asyncio
 import functools
-import hmac
 import json
 import time
 from collections import Counter
@@ -63,7 +62,7 @@ from verigraph.env.openenv_adapter import ACT_TOOL, SYSTEM_PROMPT, TOOL_NAME
 from verigraph.env.procedural import ProceduralEnv, make_env
 from verigraph.errors import VeriGraphError
 from verigraph.extras import require
-from verigraph.server.callers import CALLER_KEY, caller_of, token_caller
+from verigraph.server.callers import TokenGate, caller_of
 
 require("env", "openenv")
 
@@ -228,25 +227,16 @@ class BearerToken:
 
     def __init__(self, app: Any, tokens: Sequence[str]) -> None:
         self.app = app
-        self.expected = [f"Bearer {t}".encode() for t in tokens]
-        # with several tokens each is one caller's own (see Callers), as in serve --token
-        self.callers = [token_caller(t) for t in tokens] if len(tokens) > 1 else []
+        self.gate = TokenGate(tokens)
 
     async def __call__(self, scope: dict[str, Any], receive: Any, send: Any) -> None:
         if scope["type"] not in ("http", "websocket") or scope.get("path") in OPEN_PATHS:
             await self.app(scope, receive, send)
             return
-        given = b""
-        for name, value in scope.get("headers", []):
-            if name.lower() == b"authorization":
-                given = value
-        matches = [hmac.compare_digest(given, e) for e in self.expected]
-        if any(matches):
-            if self.callers:
-                scope[CALLER_KEY] = self.callers[matches.index(True)]
+        reason = self.gate.check(scope)
+        if reason is None:
             await self.app(scope, receive, send)
             return
-        reason = "missing_token" if not given.strip() else "wrong_token"
         body = json.dumps({"detail": {
             "error": "Forbidden", "reason": reason,
             "message": ("no token was sent" if reason == "missing_token"

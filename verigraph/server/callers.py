@@ -2,9 +2,10 @@
 
 Over HTTP the caller is the bearer token it matched when the server has several (one per
 caller), else the address it connects from (an IPv6 address by its /64); over stdio the
-one peer. The HTTP wing's
-BearerTokenAuth writes a token caller into the ASGI scope under CALLER_KEY; the per-
-caller budgets there and the episode store's owners and shares read it with `caller_of`.
+one peer. `TokenGate` is the one bearer-token check of every HTTP endpoint (the MCP
+server's BearerTokenAuth, the OpenEnv server's BearerToken): it writes a token caller
+into the ASGI scope under CALLER_KEY; the per-caller budgets there and the episode
+store's owners and shares read it with `caller_of`.
 
 A token caller is named `token` and a fingerprint of the token (a slow hash of it, cut
 to 12 hex digits; never the token): the same token is the same caller after a restart
@@ -15,8 +16,10 @@ and a log line never carries anything a token could be recovered from cheaply.
 from __future__ import annotations
 
 import hashlib
+import hmac
 import ipaddress
-from typing import Any
+from collections.abc import MutableMapping, Sequence
+from typing import Any, Literal
 
 from mcp.server.context import CallNext, HandlerResult, ServerRequestContext
 from mcp.shared.exceptions import MCPError
@@ -36,6 +39,44 @@ def token_caller(token: str) -> str:
     """`token 1a2b3c4d5e6f`: the caller a bearer token stands for."""
     digest = hashlib.pbkdf2_hmac("sha256", token.encode(), _SALT, _ROUNDS, dklen=6)
     return f"token {digest.hex()}"
+
+
+Refusal = Literal["missing_token", "wrong_token"]
+
+
+class TokenGate:
+    """The bearer-token check of an ASGI request (HTTP or WebSocket handshake): the
+    request's first `Authorization` header, as sent, against `Bearer <token>` for each
+    accepted token, in constant time and every token compared.
+
+    `check(scope)` gives None when a token matches, and then, with several tokens (one
+    per caller), writes the matched token's caller into the scope under CALLER_KEY; else
+    why not (`missing_token`, `wrong_token`), which each endpoint answers in its own
+    words. Checked from the headers alone, so a refused client makes the server read no
+    body.
+    """
+
+    def __init__(self, tokens: Sequence[str]) -> None:
+        self.expected = [f"Bearer {token}".encode() for token in tokens]
+        # with several tokens each is one caller's own; with one, every holder is alike
+        self.callers = [token_caller(t) for t in tokens] if len(tokens) > 1 else []
+
+    def check(self, scope: MutableMapping[str, Any]) -> Refusal | None:
+        given = authorization(scope)
+        matches = [hmac.compare_digest(given, expected) for expected in self.expected]
+        if not any(matches):
+            return "wrong_token" if given.strip() else "missing_token"
+        if self.callers:
+            scope[CALLER_KEY] = self.callers[matches.index(True)]
+        return None
+
+
+def authorization(scope: MutableMapping[str, Any]) -> bytes:
+    """The first `Authorization` header of an ASGI scope, as sent (b"" if none)."""
+    for name, value in scope.get("headers", ()):
+        if name.lower() == b"authorization":
+            return bytes(value)
+    return b""
 
 
 def caller_of(scope: Any) -> str:

@@ -28,7 +28,6 @@ port), never by prefix.
 
 from __future__ import annotations
 
-import hmac
 import json
 import logging
 import re
@@ -41,7 +40,7 @@ from starlette.responses import Response
 from starlette.types import ASGIApp, Receive, Scope, Send
 
 from verigraph import __version__
-from verigraph.server.callers import CALLER_KEY, caller_of, token_caller
+from verigraph.server.callers import CALLER_KEY, Refusal, TokenGate, caller_of
 from verigraph.server.rpc_errors import FORBIDDEN, INVALID_REQUEST, error_bytes
 
 __all__ = ["CALLER_KEY", "BearerTokenAuth", "HealthCheck", "HostCheck", "HostPolicy",
@@ -100,29 +99,25 @@ class BearerTokenAuth:
 
     def __init__(self, app: ASGIApp, tokens: tuple[str, ...]) -> None:
         self.app = app
-        self.expected = [f"Bearer {token}".encode() for token in tokens]
-        self.callers = [token_caller(token) for token in tokens]
+        self.gate = TokenGate(tokens)
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] == "http":
-            given = Headers(scope=scope).get("authorization", "").encode()
-            matches = [hmac.compare_digest(given, expected) for expected in self.expected]
-            if not any(matches):
-                await _refusal(given)(scope, receive, send)
+            refusal = self.gate.check(scope)
+            if refusal is not None:
+                await _refusal(refusal)(scope, receive, send)
                 return
-            if len(self.expected) > 1:
-                scope[CALLER_KEY] = self.callers[matches.index(True)]
         await self.app(scope, receive, send)
 
 
-def _refusal(given: bytes) -> Response:
-    if not given.strip():
-        reason, message = "missing_token", (
+def _refusal(reason: Refusal) -> Response:
+    if reason == "missing_token":
+        message = (
             "Forbidden: no token was sent; this VeriGraph server needs the header "
             "'Authorization: Bearer <token>' with the token it was started with "
             "(--token or VERIGRAPH_TOKEN)")
     else:
-        reason, message = "wrong_token", (
+        message = (
             "Forbidden: the token sent does not match; send 'Authorization: Bearer <token>' "
             "with the token this VeriGraph server was started with (--token or "
             "VERIGRAPH_TOKEN)")

@@ -2,7 +2,7 @@
 
 `RecordedResponseServerForTests` replays canned chat-completions answers (well formed,
 malformed, truncated, transient 503s), so every edge case is reproducible; the real
-local model is exercised in test_agent_llm_local.py.
+local model is exercised in test_planning_llm_local.py.
 """
 
 from __future__ import annotations
@@ -11,14 +11,14 @@ import json
 from typing import Any
 
 import pytest
+from planning_doubles import RecordedResponse as R
+from planning_doubles import RecordedResponseServerForTests, chat_completion
 
 from verigraph.agent import LoopConfig, run_episode
 from verigraph.graph.builtin_scenes import cup_on_book, cup_on_book_goal
 from verigraph.llm.http import JsonHttpClient, LLMEndpointError
 from verigraph.planning import InProcessTools, PlannerRequest
 from verigraph.planning.openai_backend import OpenAIConfig, OpenAIPlanner
-from verigraph.planning.testing import RecordedResponse as R
-from verigraph.planning.testing import RecordedResponseServerForTests, chat_completion
 from verigraph.tasks import EpisodeSpec
 
 MOVE_CUP = {"action": "move", "object": "cup", "relation": "on", "target": "desk"}

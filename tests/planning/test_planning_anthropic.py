@@ -9,6 +9,8 @@ from __future__ import annotations
 from typing import Any
 
 import pytest
+from planning_doubles import RecordedResponse as R
+from planning_doubles import RecordedResponseServerForTests, anthropic_tool_use
 
 from verigraph.agent import LoopConfig, run_episode
 from verigraph.graph.builtin_scenes import three_blocks
@@ -16,8 +18,6 @@ from verigraph.graph.goal import Goal
 from verigraph.llm.http import JsonHttpClient
 from verigraph.planning import InProcessTools, PlannerRequest
 from verigraph.planning.anthropic_backend import TOOL_NAME, AnthropicConfig, AnthropicPlanner
-from verigraph.planning.testing import RecordedResponse as R
-from verigraph.planning.testing import RecordedResponseServerForTests, anthropic_tool_use
 from verigraph.tasks import EpisodeSpec
 
 STACK = [{"action": "move", "object": "green_block", "relation": "on", "target": "red_block"},

@@ -18,13 +18,14 @@ import json
 from collections.abc import Iterable
 from typing import Any
 
-from verigraph.env.core import VeriGraphEnv
-from verigraph.env.rollout import Policy, RolloutJob, run_rollout
-from verigraph.planning.testing import (
+from planning_doubles import (
     ReceivedRequest,
     RecordedResponse,
     RecordedResponseServerForTests,
 )
+
+from verigraph.env.core import VeriGraphEnv
+from verigraph.env.rollout import Policy, RolloutJob, run_rollout
 
 
 def script_from_policy(env: VeriGraphEnv, policy: Policy, task_ids: Iterable[str],
@@ -82,7 +83,7 @@ def _text(content: Any) -> str:
 class ScriptedPlannerEndpointForTests(RecordedResponseServerForTests):
     """Serves `script` (observation -> answer) as /v1/chat/completions on 127.0.0.1.
 
-    The HTTP side is `RecordedResponseServerForTests` (verigraph.planning.testing); only
+    The HTTP side is `RecordedResponseServerForTests` (tests/planning_doubles.py); only
     the choice of answer differs: looked up in the script, not taken from a queue.
     `requests` keeps every request received (its `body` is the chat request).
     """
