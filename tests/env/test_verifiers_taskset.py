@@ -20,13 +20,13 @@ from optional import require
 
 require("openenv", "pip install 'verigraph-mcp[env]'")
 
+from env_doubles import ScriptedPlannerEndpointForTests  # noqa: E402
 from openenv_helpers import serving_app  # noqa: E402
 from venv_helpers import OUTSIDE, child_env, venv_python  # noqa: E402
 
 from verigraph.env.openenv_server import create_openenv_app  # noqa: E402
 from verigraph.env.procedural import ProceduralEnv  # noqa: E402
 from verigraph.env.rollout import REFUSED_ACTION, make_policy  # noqa: E402
-from verigraph.env.testing import ScriptedPlannerEndpointForTests  # noqa: E402
 
 pytestmark = pytest.mark.slow
 
