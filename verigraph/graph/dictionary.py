@@ -740,6 +740,9 @@ def wrong_dictionary_advice(labels: list[str], chosen: str, every_label: list[st
     home_dictionary = builtin_dictionary(home)
     if len(groups) == 1 and all(home_dictionary.resolve(x) is not None for x in every_label):
         verb = "is" if len(known) == 1 else "are"
+        if home not in UNION_DICTIONARIES:  # the household: only by its name
+            return (f"{_quoted(known)} {verb} in the {home} dictionary; use it",
+                    f'set "dictionary": "{home}"', list(elsewhere))
         return (f"{_quoted(known)} {verb} in the {home} dictionary; use it, or omit "
                 "`dictionary` to use all built-ins",
                 f'set "dictionary": "{home}" or leave it out', list(elsewhere))
