@@ -474,9 +474,11 @@ def report_summary(report: ValidationReport) -> str:
     if report.violations:
         head += f", {len(report.violations)} violation(s)"
     if report.goal_diff is not None:
-        head += f"; {report.goal_diff.summary()}"
-        if report.goal_diff.satisfied and report.goal_diff.detail:  # a PDDL plan's cost
-            head += f"; {_cost_text(report.goal_diff.detail)}"
+        if report.goal_diff.satisfied and report.goal_diff.detail:  # a PDDL plan's cost,
+            # said once, in words (the diff's own summary carries it as a bare note)
+            head += f"; goal reached; {_cost_text(report.goal_diff.detail)}"
+        else:
+            head += f"; {report.goal_diff.summary()}"
     lines = [head + " (a check only, nothing was executed)"]
     hidden_ok = hidden_failed = 0
     failures = 0
