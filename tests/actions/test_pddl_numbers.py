@@ -156,7 +156,7 @@ async def test_mcp_refuses_a_bad_number_naming_it(client: Client) -> None:
     assert refused.is_error and "'1e999'" in text(refused) and "pddl.problem" in text(refused)
     fine = await client.call_tool("validate_plan", {"plan": PLAN, "pddl": {
         "domain": ROADS, "problem": trip()}})
-    assert "total cost 18" in text(fine) and structured(fine)["valid"]
+    assert "plan cost 18 " in text(fine) and structured(fine)["valid"]
 
 
 # -- how totals are written -----------------------------------------------------------------

@@ -29,6 +29,7 @@ from verigraph.graph.dictionary import (
     SUPPORT_RELATIONS,
     Dictionary,
     ObjectProperties,
+    builtin_dictionary,
     canonical_token,
     kind_token,
     open_label_properties,
@@ -121,9 +122,21 @@ def _state_problems(node: Node, index: int, label: str, props: ObjectProperties
                 rule="state_without_role", node=node.id, field=f"nodes[{index}].state.{key}",
                 message=f"node '{node.id}' ({label}) has state '{key}', but a {label} is not "
                         f"{role}",
-                fix=f"remove '{key}' from its state, or declare the role in its attrs: "
-                    f'{{"{role}": true}}'))
+                fix=_state_fix(label, key, role)))
     return problems
+
+
+def _state_fix(label: str, key: str, role: str) -> str:
+    """Name the household dictionary when it gives `label` the role (a stove in the
+    kitchen dictionary or in a scene that names none); else declare the role."""
+    household = builtin_dictionary("household")
+    kind = household.resolve(label)
+    if kind is not None and getattr(household.objects[kind], role):
+        return (f'name the household dictionary ("dictionary": "household"), whose {kind} '
+                f"is {role}; or remove '{key}' from its state, or declare the role in its "
+                f'attrs: {{"{role}": true}}')
+    return f"remove '{key}' from its state, or declare the role in its attrs: " \
+           f'{{"{role}": true}}'
 
 
 class _GraphRoles:

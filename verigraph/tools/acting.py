@@ -473,10 +473,12 @@ def report_summary(report: ValidationReport) -> str:
     head = f"{verdict}: {len(report.steps)} step(s) checked"
     if report.violations:
         head += f", {len(report.violations)} violation(s)"
-    if report.goal_diff is not None and report.goal_diff.satisfied and report.goal_diff.detail:
-        head += f"; goal reached; {_cost_text(report.goal_diff.detail)}"  # a PDDL plan's cost
-    elif report.goal_diff is not None:
-        head += f"; {report.goal_diff.summary()}"
+    if report.goal_diff is not None:
+        if report.goal_diff.satisfied and report.goal_diff.detail:  # a PDDL plan's cost,
+            # said once, in words (the diff's own summary carries it as a bare note)
+            head += f"; goal reached; {_cost_text(report.goal_diff.detail)}"
+        else:
+            head += f"; {report.goal_diff.summary()}"
     lines = [head + " (a check only, nothing was executed)"]
     hidden_ok = hidden_failed = 0
     failures = 0
