@@ -48,11 +48,11 @@ from blocks_problems import DOMAIN_FILE, problem  # noqa: E402
 from common import median_time, write_table  # noqa: E402
 
 from verigraph.actions import MoveAction, parse_plan, validate_plan  # noqa: E402
-from verigraph.actions.blocksworld import validate_blocks_dict  # noqa: E402
 from verigraph.actions.execution import run_actions  # noqa: E402
-from verigraph.actions.pddl import validate_strips_dict  # noqa: E402
-from verigraph.actions.pddl.simulate import cached_strips_problem  # noqa: E402
 from verigraph.graph import Edge, Node, SceneGraph, WorldState  # noqa: E402
+from verigraph.pddl import validate_strips_dict  # noqa: E402
+from verigraph.pddl.blocksworld import validate_blocks_dict  # noqa: E402
+from verigraph.pddl.simulate import cached_strips_problem  # noqa: E402
 
 N_OBJECTS, N_ACTIONS = 1000, 10_000
 EXAMPLES = Path(__file__).parent.parent / "examples" / "scenes"
@@ -532,7 +532,7 @@ def ipc_long_rows(args: argparse.Namespace, work: Path, val: str | None,
                   rows: list[list[str]]) -> None:
     """Long plans of IPC domains: `validate_pddl_dict` in process (the report built)
     against VAL's whole process on the same files; best-of-N CPU on both sides."""
-    from verigraph.actions.pddl import validate_pddl_dict
+    from verigraph.pddl import validate_pddl_dict
 
     cases: list[tuple[str, Path, str, list[str]]] = []
     problem_text, plan = gripper_walk(20, 100_000)
@@ -585,7 +585,7 @@ def ipc_plan_rows(args: argparse.Namespace, work: Path, val: str | None,
     (the long ones) apart, and the lowest named."""
     from bench_ipc import load_cases
 
-    from verigraph.actions.pddl import validate_pddl_dict
+    from verigraph.pddl import validate_pddl_dict
 
     if not val:
         return
@@ -628,8 +628,8 @@ def ipc_corpus_rows(args: argparse.Namespace, work: Path, py: list[str], val: st
     check, and `--batch` over all of them against VAL once per case."""
     from bench_ipc import batch_items, load_cases
 
-    from verigraph.actions.pddl import validate_pddl_dict
     from verigraph.errors import VeriGraphError
+    from verigraph.pddl import validate_pddl_dict
 
     cases = load_cases(quick=False)
     texts: dict[Path, str] = {}

@@ -9,10 +9,10 @@ import sys
 import pytest
 
 from blocksworld_corpus import DATA
-from verigraph.actions.blocksworld import (
+from verigraph.actions.blocksworld import validate_pddl_plan
+from verigraph.pddl.blocksworld import (
     UnsupportedDomainError,
     recognise_domain,
-    validate_pddl_plan,
 )
 
 pytestmark = pytest.mark.fast
@@ -146,7 +146,7 @@ def test_cli_html_is_for_scene_plans_only():
 def test_the_ascii_line_pattern_reads_every_ascii_line_as_the_unicode_one():
     """The fast run reads ASCII plans with the name class written as byte ranges; on
     every ASCII character, in every position of a line, it agrees with the Unicode one."""
-    from verigraph.actions.blocksworld.plans import _PLAIN_ASCII_LINE, _PLAIN_LINE
+    from verigraph.pddl.blocksworld.plans import _PLAIN_ASCII_LINE, _PLAIN_LINE
 
     for code in range(128):
         c = chr(code)

@@ -41,8 +41,11 @@ from functools import lru_cache
 from itertools import product
 from typing import Any, cast
 
-from verigraph.actions.pddl import axioms as derived_predicates
-from verigraph.actions.pddl.explain import (
+from verigraph.budget import checkpoint
+from verigraph.errors import VeriGraphError
+from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
+from verigraph.pddl import axioms as derived_predicates
+from verigraph.pddl.explain import (
     MAX_ACHIEVERS,
     Changed,
     Explainer,
@@ -52,16 +55,16 @@ from verigraph.actions.pddl.explain import (
     holds,
     literal_text,
 )
-from verigraph.actions.pddl.fastground import UNUSUAL, Generated
-from verigraph.actions.pddl.formulas import (
+from verigraph.pddl.fastground import UNUSUAL, Generated
+from verigraph.pddl.formulas import (
     MAX_QUANTIFIED,
     Check,
     Evaluator,
     QuantifierLimitError,
 )
-from verigraph.actions.pddl.formulas import text as formula_text
-from verigraph.actions.pddl.joins import Joiner, static_index
-from verigraph.actions.pddl.model import (
+from verigraph.pddl.formulas import text as formula_text
+from verigraph.pddl.joins import Joiner, static_index
+from verigraph.pddl.model import (
     Domain,
     GroundAtom,
     Grounder,
@@ -72,11 +75,8 @@ from verigraph.actions.pddl.model import (
     show,
     shower,
 )
-from verigraph.actions.pddl.plans import MAX_STEPS, Step, line_reader, parse_strips_plan
-from verigraph.actions.pddl.reader import PddlInputError, read_domain, read_problem
-from verigraph.budget import checkpoint
-from verigraph.errors import VeriGraphError
-from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
+from verigraph.pddl.plans import MAX_STEPS, Step, line_reader, parse_strips_plan
+from verigraph.pddl.reader import PddlInputError, read_domain, read_problem
 
 __all__ = ["MAX_ACHIEVERS", "complete_binding", "simulate", "total_value",
            "validate_strips_dict"]
