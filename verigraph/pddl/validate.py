@@ -31,7 +31,7 @@ from verigraph.pddl.simulate import (
     total_value,
     validate_strips_dict,
 )
-from verigraph.pddl.syntax import COMMENT
+from verigraph.pddl.syntax import COMMENT, ascii_names
 
 ENGINES = ("auto", "blocksworld", "strips")
 _SECTION = re.compile(r"\(\s*(:[^\s()]+)")
@@ -85,34 +85,52 @@ def validate_pddl_dict(domain_text: str, problem_text: str, plan_text: str, *,
     if engine == "auto" and not _blocks_world(domain_text):
         engine = "strips"  # the blocks engine (and the scene-graph stack) is not loaded
     if engine != "strips":
-        from verigraph.pddl.blocksworld.validate import validate_blocks_dict
-
-        _check_problem(problem_text, domain_text)
-        try:
-            data = validate_blocks_dict(domain_text, problem_text, plan_text)
-        except UnsupportedDomainError:
-            if engine == "blocksworld":
-                raise
-        except PlanParseError as exc:
-            if "ASCII" in exc.message:
-                raise
-            return validate_strips_dict(domain_text, problem_text,
-                                        _canonical(domain_text, problem_text, plan_text),
-                                        all_errors=all_errors)
-        except VeriGraphError:  # PDDL the recogniser does not take (either types, ...)
-            if engine == "blocksworld":
-                raise
-        else:
-            data = {"engine": "blocksworld", **data}
-            _add_total_cost(data, domain_text, problem_text)
-            if not data["valid"]:
-                if all_errors and data["violations"]:
-                    return validate_strips_dict(
-                        domain_text, problem_text,
-                        _canonical(domain_text, problem_text, plan_text), all_errors=True)
-                _explain(data, domain_text, problem_text, plan_text)
+        data = _judge_blocks(domain_text, problem_text, plan_text, engine, all_errors)
+        if data is not None:
             return data
     return validate_strips_dict(domain_text, problem_text, plan_text, all_errors=all_errors)
+
+
+def _judge_blocks(domain_text: str, problem_text: str, plan_text: str, engine: str,
+                  all_errors: bool) -> dict[str, Any] | None:
+    """The report when the blocks world takes the domain and problem, explained by the
+    STRIPS simulator where the plan fails; None when it takes neither (the STRIPS
+    simulator then judges the plan as written; with engine="blocksworld" the refusal is
+    raised instead).
+
+    A plan line the blocks world cannot read is judged by the STRIPS simulator, which
+    makes it a failing step; a name that is not ASCII is bad input in every engine, so
+    that refusal (`ascii_names`, the first thing either engine's plan reader does) is
+    raised as it is.
+    """
+    from verigraph.pddl.blocksworld.validate import validate_blocks_dict
+
+    _check_problem(problem_text, domain_text)
+    try:
+        data = validate_blocks_dict(domain_text, problem_text, plan_text)
+    except UnsupportedDomainError:
+        if engine == "blocksworld":
+            raise
+        return None
+    except PlanParseError:
+        if not plan_text.isascii():
+            ascii_names(plan_text)
+        return validate_strips_dict(domain_text, problem_text,
+                                    _canonical(domain_text, problem_text, plan_text),
+                                    all_errors=all_errors)
+    except VeriGraphError:  # PDDL the recogniser does not take (either types, ...)
+        if engine == "blocksworld":
+            raise
+        return None
+    data = {"engine": "blocksworld", **data}
+    _add_total_cost(data, domain_text, problem_text)
+    if not data["valid"]:
+        if all_errors and data["violations"]:
+            return validate_strips_dict(domain_text, problem_text,
+                                        _canonical(domain_text, problem_text, plan_text),
+                                        all_errors=True)
+        _explain(data, domain_text, problem_text, plan_text)
+    return data
 
 
 @lru_cache(maxsize=64)
