@@ -19,16 +19,16 @@ from collections.abc import Callable
 import pytest
 
 from blocksworld_corpus import DATA
-from verigraph.actions.blocksworld import plans as blocks_plans
-from verigraph.actions.blocksworld import sexpr
-from verigraph.actions.blocksworld.domain import recognise_domain
 from verigraph.actions.parser import _CALL, _NAME, _NUMBERING, _PLAIN_MOVE, parse_plan
-from verigraph.actions.pddl import plans as pddl_plans
-from verigraph.actions.pddl import validate as pddl_validate
 from verigraph.budget import BudgetExceeded, CallBudget, run_within
 from verigraph.errors import PlanParseError
 from verigraph.graph import Edge, Node, SceneGraph, dictionary
 from verigraph.graph.translator import read_instruction
+from verigraph.pddl import plans as pddl_plans
+from verigraph.pddl import syntax
+from verigraph.pddl import validate as pddl_validate
+from verigraph.pddl.blocksworld import plans as blocks_plans
+from verigraph.pddl.blocksworld.domain import recognise_domain
 from verigraph.perception.label import vlm
 from verigraph.planning import parsing
 from verigraph.planning.parsing import ParseFailure, parse_answer
@@ -66,7 +66,7 @@ def _sub(p: re.Pattern[str]) -> Callable[[str], object]:
 def _all(*patterns: re.Pattern[str]) -> Callable[[str], object]:
     """The matches `findall` finds, counted as they are found: a list of 100,000 tokens
     would time the allocator (its cost per object grows with the heap), not the pattern.
-    (Patterns that only take one token at a time, such as sexpr._TOKEN, cannot backtrack
+    (Patterns that only take one token at a time, such as syntax._TOKEN, cannot backtrack
     and are left out: a match object per character times the same allocator effects.)"""
     return lambda s: [sum(1 for _ in p.finditer(s)) for p in patterns]
 
@@ -84,14 +84,14 @@ PATTERNS: dict[str, tuple[Callable[[str], object], list[Callable[[int], str]]]] 
         lambda n: "move(a," + " " * n + "x", lambda n: "move" + " " * n + "x",
         lambda n: "move(a, on," + "\t" * n + "b" + " " * n + "x",
         lambda n: "move(a, b)\n" * (n // 11) + "x", lambda n: " " * n + "move(a,b)x"]),
-    "blocksworld._STEP_PREFIX": (_sub(blocks_plans._STEP_PREFIX), [
+    "syntax.STEP_PREFIX": (_sub(syntax.STEP_PREFIX), [
         lambda n: " " * n + "x", lambda n: "1" * n + "x", lambda n: "1." + "1" * n + "x",
         lambda n: "1" + " " * n + "x"]),
-    "blocksworld._DURATION": (_sub(blocks_plans._DURATION), [
+    "syntax.DURATION": (_sub(syntax.DURATION), [
         lambda n: "a" + " " * n + "x", lambda n: "[" + "1" * n, lambda n: "[1]" + " " * n + "x",
         lambda n: "a [1]" * (n // 5) + "x", lambda n: " [" * (n // 2)]),
     "blocksworld._VERBS": (blocks_plans._VERBS.match, [lambda n: "pick" + "_" * n + "x"]),
-    "sexpr._INNERMOST": (_all(sexpr._INNERMOST), [
+    "syntax._INNERMOST": (_all(syntax._INNERMOST), [
         lambda n: "(" * n, lambda n: "( " * (n // 2) + "x", lambda n: ";" + " " * n,
         lambda n: "(a" + " b" * (n // 2)]),
     "pddl plan lines": (_all(pddl_plans._PLAIN_LINE, pddl_plans._INNER_ACTION), [

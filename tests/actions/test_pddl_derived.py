@@ -15,14 +15,14 @@ from typing import Any
 
 import pytest
 
-from verigraph.actions.pddl import formulas, read_domain, read_problem, validate_pddl_dict
-from verigraph.actions.pddl.axioms import DerivedPredicateError, derive
-from verigraph.actions.pddl.formulas import Evaluator
-from verigraph.actions.pddl.model import Domain, GroundAtom, Problem
-from verigraph.actions.pddl.plans import parse_strips_plan
-from verigraph.actions.pddl.reader import PddlInputError
-from verigraph.actions.pddl.simulate import simulate
 from verigraph.errors import VeriGraphError
+from verigraph.pddl import formulas, read_domain, read_problem, validate_pddl_dict
+from verigraph.pddl.axioms import DerivedPredicateError, derive
+from verigraph.pddl.formulas import Evaluator
+from verigraph.pddl.model import Domain, GroundAtom, Problem
+from verigraph.pddl.plans import parse_strips_plan
+from verigraph.pddl.reader import PddlInputError
+from verigraph.pddl.simulate import simulate
 
 pytestmark = pytest.mark.fast
 
@@ -461,7 +461,7 @@ def test_a_step_that_changes_nothing_the_rules_read_costs_no_derivation(
         monkeypatch: pytest.MonkeyPatch) -> None:
     """(tag c) adds (mark c), which no rule reads: no stratum is evaluated and no derived
     atom is touched (with a million derived atoms such a step took 0.3 s)."""
-    from verigraph.actions.pddl import axioms
+    from verigraph.pddl import axioms
 
     domain = read_domain(DOMAIN)
     problem = read_problem(PROBLEM, domain)

@@ -9,8 +9,8 @@ import time
 
 import pytest
 
-from verigraph.actions.pddl import validate_pddl_dict
-from verigraph.actions.pddl.formulas import MAX_QUANTIFIED, QuantifierLimitError
+from verigraph.pddl import validate_pddl_dict
+from verigraph.pddl.formulas import MAX_QUANTIFIED, QuantifierLimitError
 
 pytestmark = pytest.mark.fast
 

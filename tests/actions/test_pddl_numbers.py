@@ -12,14 +12,14 @@ import pytest
 from mcp import Client
 from mcp_helpers import in_process_client, structured, text  # noqa: F401 - the client fixture
 
-from verigraph.actions.pddl import (
+from verigraph.actions.pddl import as_validation_report
+from verigraph.cli import main as verigraph_main
+from verigraph.cli import val
+from verigraph.pddl import (
     PddlInputError,
-    as_validation_report,
     report_text,
     validate_pddl_dict,
 )
-from verigraph.cli import main as verigraph_main
-from verigraph.cli import val
 
 pytestmark = pytest.mark.fast
 

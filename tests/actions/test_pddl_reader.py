@@ -11,19 +11,19 @@ from pathlib import Path
 
 import pytest
 
-from verigraph.actions.blocksworld.sexpr import PddlSyntaxError, parse_sexpr
-from verigraph.actions.pddl import (
+from verigraph.actions.pddl import as_validation_report
+from verigraph.budget import BudgetExceeded, CallBudget, run_within
+from verigraph.errors import VeriGraphError
+from verigraph.pddl import (
     PddlInputError,
     UnsupportedRequirementError,
-    as_validation_report,
     explain,
     read_domain,
     read_problem,
     report_text,
     validate_pddl_dict,
 )
-from verigraph.budget import BudgetExceeded, CallBudget, run_within
-from verigraph.errors import VeriGraphError
+from verigraph.pddl.syntax import PddlSyntaxError, parse_sexpr
 
 pytestmark = pytest.mark.fast
 

@@ -102,7 +102,7 @@ def test_a_blocks_world_check_loads_no_pydantic_and_no_scene_graph(command):
             if command == "validate" else ["val", *BLOCKS])
     status, modules = modules_after(args)
     assert status == 0
-    assert "verigraph.actions.blocksworld.validate" in modules  # the native engine judged it
+    assert "verigraph.pddl.blocksworld.validate" in modules  # the native engine judged it
     assert loaded(modules, OTHER_STACKS + SCENE_STACK) == []
 
 

@@ -295,8 +295,8 @@ def run(argv: list[str]) -> int:
     try:
         domain_text = _read(opts.files[0], "domain")
         if len(opts.files) == 1:  # VAL: a domain alone is checked, and that is all
-            from verigraph.actions.pddl.reader import read_domain
             from verigraph.cli.validating import within_cpu_budget
+            from verigraph.pddl.reader import read_domain
 
             within_cpu_budget(lambda: read_domain(domain_text), "val")
             return EXIT_OK
@@ -333,8 +333,8 @@ class _Checker:
         self.fatal = 0
 
     def validate(self, plan_text: str) -> dict[str, Any]:
-        from verigraph.actions.pddl.validate import validate_pddl_dict
         from verigraph.cli.validating import within_cpu_budget
+        from verigraph.pddl.validate import validate_pddl_dict
 
         def check(engine: str) -> dict[str, Any]:
             return within_cpu_budget(lambda: validate_pddl_dict(

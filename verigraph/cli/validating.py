@@ -153,8 +153,8 @@ def pddl_item_report(domain: str | Path, problem: str | Path, plan: str | Path,
                 planbench: bool = False, all_errors: bool = False) -> dict[str, Any]:
     """The JSON-ready report for a PDDL item (domain and problem texts cached per path
     in a batch)."""
-    from verigraph.actions.pddl.text import planbench_verdict
-    from verigraph.actions.pddl.validate import validate_pddl_dict
+    from verigraph.pddl.text import planbench_verdict
+    from verigraph.pddl.validate import validate_pddl_dict
 
     texts = (_cached_text(domain, "domain", cache), _cached_text(problem, "problem", cache),
              read_text_file(plan, "plan"))
@@ -222,7 +222,7 @@ def run_validate(args: argparse.Namespace) -> int:
             if args.json:
                 print(json.dumps(data))
             else:
-                from verigraph.actions.pddl.text import report_text
+                from verigraph.pddl.text import report_text
 
                 print(data["planbench"]["message"] if args.planbench else report_text(data))
             return EXIT_OK if data["valid"] else EXIT_NEGATIVE

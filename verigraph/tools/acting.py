@@ -23,9 +23,7 @@ from verigraph.actions.execution import execute_in_world
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.actions.parser import parse_plan
-from verigraph.actions.pddl.conversion import as_validation_report
-from verigraph.actions.pddl.text import plain_summary
-from verigraph.actions.pddl.validate import validate_pddl_dict
+from verigraph.actions.pddl import as_validation_report
 from verigraph.actions.report import ValidationReport, validate_plan
 from verigraph.actions.validator import GraphEdit, all_violations, apply_action
 from verigraph.errors import PlanParseError, VeriGraphError
@@ -33,6 +31,8 @@ from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import label_readings, readings_line
+from verigraph.pddl.text import plain_summary
+from verigraph.pddl.validate import validate_pddl_dict
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import EpisodeStateError, ToolArgumentError
 from verigraph.tools.executors import arm_mode_of

@@ -33,7 +33,9 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Iterable
 from typing import Any
 
-from verigraph.actions.pddl.model import (
+from verigraph.budget import checkpoint
+from verigraph.errors import VeriGraphError
+from verigraph.pddl.model import (
     ROOT_TYPE,
     Domain,
     GroundAtom,
@@ -41,8 +43,6 @@ from verigraph.actions.pddl.model import (
     Term,
     grounder,
 )
-from verigraph.budget import checkpoint
-from verigraph.errors import VeriGraphError
 
 BodyLiteral = tuple[bool, str, tuple[Term, ...]]  # (positive, predicate, terms)
 Op = tuple[Any, ...]

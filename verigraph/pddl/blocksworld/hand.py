@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import difflib
 
-from verigraph.actions.blocksworld.domain import BlocksDomain, UnsupportedDomainError
-from verigraph.actions.blocksworld.plans import PlanStep
-from verigraph.actions.blocksworld.problem import BlocksProblem, BlocksState
+from verigraph.pddl.blocksworld.domain import BlocksDomain, UnsupportedDomainError
+from verigraph.pddl.blocksworld.plans import PlanStep
+from verigraph.pddl.blocksworld.problem import BlocksProblem, BlocksState
 
 # (constraint, message, blocking, suggestion)
 Failure = tuple[str, str, list[str], str]

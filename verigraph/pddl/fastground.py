@@ -26,7 +26,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from verigraph.actions.pddl.model import CostTerm, GroundAtom, Literal, Schema
+from verigraph.pddl.model import CostTerm, GroundAtom, Literal, Schema
 
 UNUSUAL: Any = object()  # the binding makes two effect literals one atom
 GroundFunction = Callable[[tuple[str, ...], set[GroundAtom], dict[GroundAtom, float],

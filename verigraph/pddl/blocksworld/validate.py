@@ -2,8 +2,8 @@
 
 The report has the shape of `ValidationReport` (valid, plan_valid, goal_reached, steps,
 violations, not_checked, done, goal_diff, final_graph) and is built as plain dicts, so
-batch runs and `--json` never pay for pydantic; `validate_pddl_plan` wraps it in the
-model for library users. Step numbers are 1-based indices of actions in the plan.
+batch runs and `--json` never pay for pydantic; `verigraph.actions.pddl.validate_pddl_plan`
+wraps it in the model for library users. Step numbers are 1-based indices of actions in the plan.
 An accepted step's arrays (`args`, `edit.removed`, `edit.added`) are tuples: immutable,
 cheaper to build, and the same JSON; the edge a block leaves, with the tuple around it,
 is the one the step that put it there added.
@@ -12,16 +12,13 @@ is the one the step that put it there added.
 from __future__ import annotations
 
 import gc
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-from verigraph.actions.blocksworld.domain import BlocksDomain, cached_domain
-from verigraph.actions.blocksworld.hand import HandModel
-from verigraph.actions.blocksworld.plans import parse_blocks_plan, plain_actions
-from verigraph.actions.blocksworld.problem import BlocksProblem, native_state, read_blocks_problem
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
-
-if TYPE_CHECKING:
-    from verigraph.actions.report import ValidationReport
+from verigraph.pddl.blocksworld.domain import BlocksDomain, cached_domain
+from verigraph.pddl.blocksworld.hand import HandModel
+from verigraph.pddl.blocksworld.plans import parse_blocks_plan, plain_actions
+from verigraph.pddl.blocksworld.problem import BlocksProblem, native_state, read_blocks_problem
 
 
 def _edge(e: tuple[str, str, str]) -> dict[str, str]:
@@ -205,16 +202,3 @@ def _stepwise_run(domain: BlocksDomain, problem: BlocksProblem, plan_text: str) 
         break
     return model, out_steps, violations, len(steps)
 
-
-def validate_pddl_plan(domain_text: str, problem_text: str, plan_text: str
-                       ) -> ValidationReport:
-    """Library form: the same report as a `ValidationReport`.
-
-    Raises UnsupportedDomainError for domains outside the blocks-world family,
-    PddlSyntaxError for unreadable PDDL and PlanParseError (naming the line) for plan
-    lines that are no action or have the wrong number of arguments.
-    """
-    from verigraph.actions.report import ValidationReport
-
-    return ValidationReport.model_validate(
-        validate_blocks_dict(domain_text, problem_text, plan_text))

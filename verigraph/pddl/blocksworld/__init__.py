@@ -1,9 +1,9 @@
 """PDDL blocks world in: the 4-operator hand domain and the 3-operator move domain.
 
-Layer: part of `actions` (it needs only `graph` and `actions`): a recognised domain and
+Layer: part of `pddl` (it reads PDDL with `pddl.syntax`): a recognised domain and
 problem become a native scene (blocks, a table, and a hand that holds one block), and
-the plan is checked by the hand model in `hand.py`. The solver layer may use it; it
-uses nothing above `actions`.
+the plan is checked by the hand model in `hand.py`. The report is plain data; the
+`ValidationReport` form is `actions.pddl.validate_pddl_plan`.
 
 The names are loaded on first use (`lazy_loader.attach_stub`; the list is `__init__.pyi`,
 which type checkers read), so importing one module of the package runs only what it needs.

@@ -20,9 +20,9 @@ import re
 from collections.abc import Callable
 from typing import NamedTuple
 
-from verigraph.actions.blocksworld.plans import _DURATION, _STEP_PREFIX, _ascii_names
-from verigraph.actions.pddl.model import Domain
 from verigraph.errors import PlanParseError
+from verigraph.pddl.model import Domain
+from verigraph.pddl.syntax import DURATION, STEP_PREFIX, ascii_names
 
 FILLER = frozenset({"object", "the", "from", "on", "top", "of", "onto", "to", "into", "at",
                     "in", "with", "and", "a", "an"})
@@ -90,7 +90,7 @@ def read_step(raw: str, number: int, domain: Domain) -> Step | None:
     if not body or body.startswith("[plan"):
         return None
     if not (body[0] == "(" and body[-1] == ")"):
-        body = _DURATION.sub("", _STEP_PREFIX.sub("", body)).rstrip(".").strip()
+        body = DURATION.sub("", STEP_PREFIX.sub("", body)).rstrip(".").strip()
         if not body:
             return None
     return _read_line(raw, body, number, domain)
@@ -125,7 +125,7 @@ def line_reader(text: str, lowered: list[str], domain: Domain
 def parse_strips_plan(text: str, domain: Domain) -> list[Step]:
     """Every action line of a plan, in order; an empty plan is valid input."""
     if not text.isascii():
-        _ascii_names(text)
+        ascii_names(text)
     schemas = domain.schemas
     lowered = text.lower()
     matches = _PLAIN_LINE.findall(lowered)

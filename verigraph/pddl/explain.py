@@ -40,9 +40,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from verigraph.actions.pddl.formulas import MAX_QUANTIFIED, Evaluator, QuantifierLimitError
-from verigraph.actions.pddl.formulas import text as formula_text
-from verigraph.actions.pddl.model import (
+from verigraph.budget import checkpoint
+from verigraph.pddl.formulas import MAX_QUANTIFIED, Evaluator, QuantifierLimitError
+from verigraph.pddl.formulas import text as formula_text
+from verigraph.pddl.model import (
     Domain,
     GroundAtom,
     Literal,
@@ -51,7 +52,6 @@ from verigraph.actions.pddl.model import (
     grounder,
     show,
 )
-from verigraph.budget import checkpoint
 
 Changed = dict[GroundAtom, tuple[int, str]]  # atom -> (step, action) that last changed it
 ACHIEVER_NODES = 1_000

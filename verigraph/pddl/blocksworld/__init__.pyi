@@ -1,9 +1,9 @@
 """PDDL blocks world in: the 4-operator hand domain and the 3-operator move domain.
 
-Layer: part of `actions` (it needs only `graph` and `actions`): a recognised domain and
+Layer: part of `pddl` (it reads PDDL with `pddl.syntax`): a recognised domain and
 problem become a native scene (blocks, a table, and a hand that holds one block), and
-the plan is checked by the hand model in `hand.py`. The solver layer may use it; it
-uses nothing above `actions`.
+the plan is checked by the hand model in `hand.py`. The report is plain data; the
+`ValidationReport` form is `actions.pddl.validate_pddl_plan`.
 """
 
 from .domain import BlocksDomain as BlocksDomain
@@ -14,14 +14,11 @@ from .plans import parse_blocks_plan as parse_blocks_plan
 from .problem import BlocksProblem as BlocksProblem
 from .problem import native_state as native_state
 from .problem import read_blocks_problem as read_blocks_problem
-from .sexpr import PddlSyntaxError as PddlSyntaxError
 from .validate import validate_blocks_dict as validate_blocks_dict
-from .validate import validate_pddl_plan as validate_pddl_plan
 
 __all__ = [
     "BlocksDomain",
     "BlocksProblem",
-    "PddlSyntaxError",
     "PlanStep",
     "UnsupportedDomainError",
     "native_state",
@@ -29,5 +26,4 @@ __all__ = [
     "read_blocks_problem",
     "recognise_domain",
     "validate_blocks_dict",
-    "validate_pddl_plan",
 ]

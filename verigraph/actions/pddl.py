@@ -1,5 +1,10 @@
 """The PDDL report as a `ValidationReport`, the model the library and the MCP tools return.
 
+The PDDL engines live in `verigraph.pddl` (below `actions`) and return plain dicts; this
+module is the one place a dict becomes the pydantic model. `validate_pddl_dict` (either
+engine, chosen as in `verigraph.pddl.validate`) is re-exported here, so
+`verigraph.actions.pddl.validate_pddl_dict` keeps working (docs/validator.md).
+
 Both engines' dicts convert: the blocks world keeps its scene (blocks, table, hand) as
 `final_graph`; a STRIPS report has no scene, so `final_graph` is empty and the final
 atoms stay in the dict form. The explanations the model has no field for are folded into
@@ -13,9 +18,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from verigraph.actions.pddl.text import AFTER_FAILURE, achiever_text
 from verigraph.actions.report import ValidationReport
 from verigraph.errors import VeriGraphError
+from verigraph.pddl.blocksworld.validate import validate_blocks_dict
+from verigraph.pddl.text import AFTER_FAILURE, achiever_text
+from verigraph.pddl.validate import validate_pddl_dict
+
+__all__ = ["as_validation_report", "validate_pddl_dict", "validate_pddl_plan"]
 
 MAX_DETAIL_GOALS = 10
 
@@ -77,3 +86,15 @@ def as_validation_report(data: dict[str, Any]) -> ValidationReport:
                              f"{str(exc).splitlines()[0][:120]}", field="problem", value=None,
                              fix="use object names of at most 128 characters, or the JSON "
                                  "report (verigraph validate --json)") from None
+
+
+def validate_pddl_plan(domain_text: str, problem_text: str, plan_text: str
+                       ) -> ValidationReport:
+    """The blocks-world engine alone, its report as a `ValidationReport`.
+
+    Raises UnsupportedDomainError for domains outside the blocks-world family,
+    PddlSyntaxError for unreadable PDDL and PlanParseError (naming the line) for plan
+    lines that are no action or have the wrong number of arguments.
+    """
+    return ValidationReport.model_validate(
+        validate_blocks_dict(domain_text, problem_text, plan_text))

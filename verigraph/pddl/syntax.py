@@ -1,4 +1,6 @@
-"""A small S-expression reader for PDDL: lists of lower-cased atoms, with line numbers.
+"""PDDL's syntax for both engines: the S-expression reader and the plan-line forms.
+
+The reader gives lists of lower-cased atoms, with line numbers.
 
 PDDL is case-insensitive, so every atom is lower-cased here once; `;` starts a comment.
 Two rules keep hostile files from reaching the rest of the code: nesting deeper than
@@ -6,6 +8,11 @@ Two rules keep hostile files from reaching the rest of the code: nesting deeper 
 and names are ASCII (PDDL's names are letters, digits, `-` and `_`; a non-ASCII name is
 refused in every mode, with its line, rather than judged in one mode and crashing in
 another). Comments may hold any text.
+
+The plan-line forms are what a plan line may carry around its action in either engine:
+a step number (`0:`, `1.`, `2)`, `-`), a duration (`[1]`), a comment (`;` to the end of
+the line); `ascii_names` refuses a plan line whose names are not ASCII. The blocks-world
+engine (`blocksworld/`) and the STRIPS engine both import them from here.
 """
 
 from __future__ import annotations
@@ -13,14 +20,19 @@ from __future__ import annotations
 import re
 from typing import Any, NoReturn
 
-from verigraph.errors import VeriGraphError
+from verigraph.errors import PlanParseError, VeriGraphError
 
 _TOKEN = re.compile(r";[^\n]*|\(|\)|[^\s()]+|\n")
 _FAST_TOKEN = re.compile(r"[()]|[^\s()]+")
 _INNERMOST = re.compile(r"\(([^()]*)\)")  # a list with no list inside
 _MARK = "\x00"  # stands for one innermost list in the rest of the text
 _MARKED_TOKEN = re.compile(r"[()\x00]|[^\s()\x00]+")
-_COMMENT = re.compile(r";[^\n]*")
+COMMENT = re.compile(r";[^\n]*")  # a comment, to the end of its line
+# Possessive quantifiers (`*+`, `++`) never give back a run the next part could not use
+# anyway; `DURATION`, searched at every position, starts only where a run of spaces
+# starts (`(?<!\s)`), so a long run is read once, not once per space.
+STEP_PREFIX = re.compile(r"^\s*+(?:\d++(?:\.\d++)?+\s*+:|\d++[.)]|[-*])\s*+")
+DURATION = re.compile(r"(?<!\s)\s*+\[[\d.]++\]\s*+$")
 
 SExpr = str | list["SExpr"]
 MAX_DEPTH = 64  # real domains nest about 8 deep; far below Python's recursion limit
@@ -38,7 +50,7 @@ def parse_sexpr(text: str, *, what: str) -> list[SExpr]:
     in the text between them, and builds the nesting from that text's tokens; line
     numbers are only computed for errors.
     """
-    body = _COMMENT.sub("", text)
+    body = COMMENT.sub("", text)
     if not body.isascii():
         _non_ascii(text, what)
     body = body.lower()
@@ -164,3 +176,13 @@ def typed_names(items: list[SExpr], *, what: str) -> list[tuple[str, str | None]
         i += 1
     out.extend((name, None) for name in pending)
     return out
+
+
+def ascii_names(text: str) -> None:
+    """Refuse a plan whose names (outside comments) are not ASCII, naming the line."""
+    for number, raw in enumerate(text.splitlines(), start=1):
+        body = raw.split(";", 1)[0]
+        if not body.isascii():
+            raise PlanParseError("names are ASCII (letters, digits, '-' and '_'), as in PDDL "
+                                 "domain and problem files", line=number, column=1,
+                                 text=raw[:80], expected="the problem's ASCII object names")

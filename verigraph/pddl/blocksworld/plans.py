@@ -25,8 +25,9 @@ from __future__ import annotations
 import re
 from typing import NamedTuple
 
-from verigraph.actions.blocksworld.domain import BlocksDomain
 from verigraph.errors import PlanParseError
+from verigraph.pddl.blocksworld.domain import BlocksDomain
+from verigraph.pddl.syntax import DURATION, STEP_PREFIX, ascii_names
 
 PLANBENCH_COLOURS = {"red": "a", "blue": "b", "orange": "c", "yellow": "d", "white": "e",
                      "magenta": "f", "black": "g", "cyan": "h", "green": "i", "violet": "j",
@@ -35,12 +36,10 @@ ROLE_ARITY = {"pick-up": 1, "put-down": 1, "stack": 2, "unstack": 2, "move-b-to-
               "move-b-to-t": 2, "move-t-to-b": 2}
 _IDENTITY = {0: (), 1: (0,), 2: (0, 1), 3: (0, 1, 2)}
 # Every pattern here reads its text in linear time. Possessive quantifiers (`*+`, `++`)
-# never give back a run the next part could not use anyway; `_DURATION`, searched at every
-# position, starts only where a run of spaces starts (`(?<!\s)`), so a long run is read
-# once, not once per space; `_ENGLISH` reads a sentence whose spaces are single (a lazy
+# never give back a run the next part could not use anyway (the line forms shared with the
+# STRIPS engine, `syntax.STEP_PREFIX` and `syntax.DURATION`, are read the same way);
+# `_ENGLISH` reads a sentence whose spaces are single (a lazy
 # name followed by `\s+from` would otherwise retry the whole run of spaces at each space).
-_STEP_PREFIX = re.compile(r"^\s*+(?:\d++(?:\.\d++)?+\s*+:|\d++[.)]|[-*])\s*+")
-_DURATION = re.compile(r"(?<!\s)\s*+\[[\d.]++\]\s*+$")
 _ENGLISH = [
     ("unstack", re.compile(r"^unstack\s+(?P<x>.+?)\s+from(?:\s+on)?(?:\s+top)?(?:\s+of)?\s+"
                            r"(?P<y>.+)$")),
@@ -149,15 +148,6 @@ def _named_step(body: str, number: int, raw: str, domain: BlocksDomain,
     return _sexpr_step(f"({' '.join((words[0], *objects))})", number, raw, domain)
 
 
-def _ascii_names(text: str) -> None:
-    for number, raw in enumerate(text.splitlines(), start=1):
-        body = raw.split(";", 1)[0]
-        if not body.isascii():
-            raise PlanParseError("names are ASCII (letters, digits, '-' and '_'), as in PDDL "
-                                 "domain and problem files", line=number, column=1,
-                                 text=raw[:80], expected="the problem's ASCII object names")
-
-
 PlainLine = tuple[str, str, str, str, str]  # line, operator, up to three arguments ("" if none)
 
 
@@ -204,7 +194,7 @@ def parse_blocks_plan(text: str, domain: BlocksDomain, declared: set[str]) -> li
     the general forms above, which also produce every error.
     """
     if not text.isascii():
-        _ascii_names(text)
+        ascii_names(text)
     plain = _plain_plan(text.lower(), domain)
     if plain is not None:
         return plain
@@ -236,7 +226,7 @@ def parse_blocks_plan(text: str, domain: BlocksDomain, declared: set[str]) -> li
         if not body or body.startswith("[plan"):
             continue
         if not (body[0] == "(" and body[-1] == ")"):  # prefixes, durations, full stops
-            body = _DURATION.sub("", _STEP_PREFIX.sub("", body)).rstrip(".").strip()
+            body = DURATION.sub("", STEP_PREFIX.sub("", body)).rstrip(".").strip()
             if not body:
                 continue
         if body[0] == "(":

@@ -16,8 +16,8 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from itertools import permutations
 
-from verigraph.actions.blocksworld.sexpr import SExpr, define_body, typed_names
 from verigraph.errors import VeriGraphError
+from verigraph.pddl.syntax import SExpr, define_body, typed_names
 
 ROLE_NAMES = {"on": "on", "ontable": "ontable", "clear": "clear", "handempty": "handempty",
               "armempty": "handempty", "emptyhand": "handempty", "holding": "holding",

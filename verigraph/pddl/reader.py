@@ -29,12 +29,11 @@ import re
 from operator import itemgetter
 from typing import Any
 
-from verigraph.actions.blocksworld.sexpr import SExpr
-from verigraph.actions.blocksworld.sexpr import define_body as _define_body
-from verigraph.actions.pddl.axioms import Definition, compile_axioms, head_types_for
-from verigraph.actions.pddl.formulas import Formula, compile_condition
-from verigraph.actions.pddl.joins import conjunction, plan
-from verigraph.actions.pddl.model import (
+from verigraph.errors import VeriGraphError
+from verigraph.pddl.axioms import Definition, compile_axioms, head_types_for
+from verigraph.pddl.formulas import Formula, compile_condition
+from verigraph.pddl.joins import conjunction, plan
+from verigraph.pddl.model import (
     ROOT_TYPE,
     SUPPORTED_REQUIREMENTS,
     CondEffect,
@@ -46,7 +45,8 @@ from verigraph.actions.pddl.model import (
     Schema,
     Term,
 )
-from verigraph.errors import VeriGraphError
+from verigraph.pddl.syntax import SExpr
+from verigraph.pddl.syntax import define_body as _define_body
 
 MAX_OBJECTS = 100_000
 TOTAL_COST: GroundAtom = ("total-cost",)

@@ -23,9 +23,9 @@ from collections.abc import Callable, Sequence
 from itertools import product
 from typing import Any
 
-from verigraph.actions.pddl.model import Domain, GroundAtom, Problem
 from verigraph.budget import checkpoint
 from verigraph.errors import VeriGraphError
+from verigraph.pddl.model import Domain, GroundAtom, Problem
 
 Formula = tuple[Any, ...]
 MAX_QUANTIFIED = 1_000_000

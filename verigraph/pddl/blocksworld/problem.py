@@ -12,9 +12,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from verigraph.actions.blocksworld.domain import BlocksDomain, UnsupportedDomainError
-from verigraph.actions.blocksworld.sexpr import PddlSyntaxError, SExpr, define_body, typed_names
 from verigraph.graph.support import SupportIndex
+from verigraph.pddl.blocksworld.domain import BlocksDomain, UnsupportedDomainError
+from verigraph.pddl.syntax import PddlSyntaxError, SExpr, define_body, typed_names
 
 GoalAtom = tuple[str, tuple[str, ...]]  # (role, args)
 

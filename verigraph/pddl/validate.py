@@ -22,16 +22,16 @@ import re
 from functools import lru_cache
 from typing import Any
 
-from verigraph.actions.blocksworld.domain import UnsupportedDomainError, cached_domain
-from verigraph.actions.blocksworld.sexpr import _COMMENT
-from verigraph.actions.pddl.reader import PROBLEM_SECTIONS, SUPPORTED_REQUIREMENTS
-from verigraph.actions.pddl.simulate import (
+from verigraph.errors import PlanParseError, VeriGraphError
+from verigraph.pddl.blocksworld.domain import UnsupportedDomainError, cached_domain
+from verigraph.pddl.reader import PROBLEM_SECTIONS, SUPPORTED_REQUIREMENTS
+from verigraph.pddl.simulate import (
     cached_strips_domain,
     cached_strips_problem,
     total_value,
     validate_strips_dict,
 )
-from verigraph.errors import PlanParseError, VeriGraphError
+from verigraph.pddl.syntax import COMMENT, ascii_names
 
 ENGINES = ("auto", "blocksworld", "strips")
 _SECTION = re.compile(r"\(\s*(:[^\s()]+)")
@@ -44,7 +44,7 @@ def _check_problem(problem_text: str, domain_text: str) -> None:
     """What the blocks-world reader would pass over (an unknown section, a requirement
     that is no supported keyword, a stray word between sections) is refused by the STRIPS
     reader, by name. A few regex scans; the full read runs only when one finds something."""
-    text = _COMMENT.sub("", problem_text) if ";" in problem_text else problem_text
+    text = COMMENT.sub("", problem_text) if ";" in problem_text else problem_text
     text = text.lower()
     suspicious = any(k not in PROBLEM_SECTIONS for k in _SECTION.findall(text)) \
         or _STRAY.search(text) is not None or _VALUE.search(text) is not None
@@ -85,34 +85,52 @@ def validate_pddl_dict(domain_text: str, problem_text: str, plan_text: str, *,
     if engine == "auto" and not _blocks_world(domain_text):
         engine = "strips"  # the blocks engine (and the scene-graph stack) is not loaded
     if engine != "strips":
-        from verigraph.actions.blocksworld.validate import validate_blocks_dict
-
-        _check_problem(problem_text, domain_text)
-        try:
-            data = validate_blocks_dict(domain_text, problem_text, plan_text)
-        except UnsupportedDomainError:
-            if engine == "blocksworld":
-                raise
-        except PlanParseError as exc:
-            if "ASCII" in exc.message:
-                raise
-            return validate_strips_dict(domain_text, problem_text,
-                                        _canonical(domain_text, problem_text, plan_text),
-                                        all_errors=all_errors)
-        except VeriGraphError:  # PDDL the recogniser does not take (either types, ...)
-            if engine == "blocksworld":
-                raise
-        else:
-            data = {"engine": "blocksworld", **data}
-            _add_total_cost(data, domain_text, problem_text)
-            if not data["valid"]:
-                if all_errors and data["violations"]:
-                    return validate_strips_dict(
-                        domain_text, problem_text,
-                        _canonical(domain_text, problem_text, plan_text), all_errors=True)
-                _explain(data, domain_text, problem_text, plan_text)
+        data = _judge_blocks(domain_text, problem_text, plan_text, engine, all_errors)
+        if data is not None:
             return data
     return validate_strips_dict(domain_text, problem_text, plan_text, all_errors=all_errors)
+
+
+def _judge_blocks(domain_text: str, problem_text: str, plan_text: str, engine: str,
+                  all_errors: bool) -> dict[str, Any] | None:
+    """The report when the blocks world takes the domain and problem, explained by the
+    STRIPS simulator where the plan fails; None when it takes neither (the STRIPS
+    simulator then judges the plan as written; with engine="blocksworld" the refusal is
+    raised instead).
+
+    A plan line the blocks world cannot read is judged by the STRIPS simulator, which
+    makes it a failing step; a name that is not ASCII is bad input in every engine, so
+    that refusal (`ascii_names`, the first thing either engine's plan reader does) is
+    raised as it is.
+    """
+    from verigraph.pddl.blocksworld.validate import validate_blocks_dict
+
+    _check_problem(problem_text, domain_text)
+    try:
+        data = validate_blocks_dict(domain_text, problem_text, plan_text)
+    except UnsupportedDomainError:
+        if engine == "blocksworld":
+            raise
+        return None
+    except PlanParseError:
+        if not plan_text.isascii():
+            ascii_names(plan_text)
+        return validate_strips_dict(domain_text, problem_text,
+                                    _canonical(domain_text, problem_text, plan_text),
+                                    all_errors=all_errors)
+    except VeriGraphError:  # PDDL the recogniser does not take (either types, ...)
+        if engine == "blocksworld":
+            raise
+        return None
+    data = {"engine": "blocksworld", **data}
+    _add_total_cost(data, domain_text, problem_text)
+    if not data["valid"]:
+        if all_errors and data["violations"]:
+            return validate_strips_dict(domain_text, problem_text,
+                                        _canonical(domain_text, problem_text, plan_text),
+                                        all_errors=True)
+        _explain(data, domain_text, problem_text, plan_text)
+    return data
 
 
 @lru_cache(maxsize=64)
@@ -136,8 +154,8 @@ def _blocks_world(domain_text: str) -> bool:
 def _canonical(domain_text: str, problem_text: str, plan_text: str) -> str:
     """The plan with each line the blocks world can read as `(op args)`, the others as
     written (the STRIPS reader makes them failing steps); one output line per input line."""
-    from verigraph.actions.blocksworld.plans import parse_blocks_plan
-    from verigraph.actions.blocksworld.problem import read_blocks_problem
+    from verigraph.pddl.blocksworld.plans import parse_blocks_plan
+    from verigraph.pddl.blocksworld.problem import read_blocks_problem
 
     domain = cached_domain(domain_text)
     declared = set(read_blocks_problem(problem_text, domain).blocks)
@@ -154,8 +172,8 @@ def _canonical(domain_text: str, problem_text: str, plan_text: str) -> str:
 
 def _explain(data: dict[str, Any], domain_text: str, problem_text: str, plan_text: str) -> None:
     """Add the STRIPS explanation (unsatisfied literals, achievers) to a blocks report."""
-    from verigraph.actions.blocksworld.plans import parse_blocks_plan
-    from verigraph.actions.blocksworld.problem import read_blocks_problem
+    from verigraph.pddl.blocksworld.plans import parse_blocks_plan
+    from verigraph.pddl.blocksworld.problem import read_blocks_problem
 
     try:
         domain = cached_domain(domain_text)

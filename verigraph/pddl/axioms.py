@@ -38,9 +38,10 @@ from dataclasses import dataclass, field
 from itertools import chain, product
 from typing import Any
 
-from verigraph.actions.pddl.formulas import Evaluator, Formula, text
-from verigraph.actions.pddl.joins import BodyLiteral, Index, Joiner, plan
-from verigraph.actions.pddl.model import (
+from verigraph.errors import VeriGraphError
+from verigraph.pddl.formulas import Evaluator, Formula, text
+from verigraph.pddl.joins import BodyLiteral, Index, Joiner, plan
+from verigraph.pddl.model import (
     ROOT_TYPE,
     Domain,
     GroundAtom,
@@ -50,7 +51,6 @@ from verigraph.actions.pddl.model import (
     grounder,
     show,
 )
-from verigraph.errors import VeriGraphError
 
 MAX_DERIVED_BINDINGS = 1_000_000
 MAX_CONJUNCTIONS = 4_096
