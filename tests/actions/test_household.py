@@ -159,7 +159,7 @@ def test_a_state_goal_alone_and_an_unreachable_one() -> None:
 
 
 def test_the_pddl_export_agrees_with_the_verifier_on_household_plans() -> None:
-    from verigraph.actions.pddl import validate_strips_dict
+    from verigraph.pddl import validate_strips_dict
     from verigraph.solver.pddl import domain_pddl, ground_plan, is_household, problem_pddl
 
     state, goal = world(), kitchen_household_goal()
