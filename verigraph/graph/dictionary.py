@@ -29,6 +29,7 @@ from pydantic import (
 from pydantic_core import PydanticCustomError
 
 from verigraph.errors import DictionaryError, InputFileError
+from verigraph.graph.behavior import BEHAVIOR, behavior_dictionary
 
 BUILTIN_DICTIONARIES = ("blocks", "kitchen", "tableware", "tangram")
 # The relations by which one object rests on or in another (tangram's `touches` is not one).
@@ -216,7 +217,7 @@ class InlineDictionary(BaseModel):
                              pattern=r"^[A-Za-z0-9][\w\-]*$", strict=True,
                              description="shown in texts; default: <extends>+yours")
     extends: str | None = Field(default=None, max_length=32, strict=True,
-                                description=f"{', '.join(BUILTIN_DICTIONARIES)} or all")
+                                description=f"{', '.join(BUILTIN_DICTIONARIES)}, all or behavior")
     objects: dict[LabelName, UserObject] = Field(min_length=1)
 
     @model_validator(mode="before")
@@ -242,9 +243,10 @@ class InlineDictionary(BaseModel):
     @field_validator("extends")
     @classmethod
     def _known_base(cls, value: str | None) -> str | None:
-        if value is not None and value not in (*BUILTIN_DICTIONARIES, "all"):
+        if value is not None and value not in (*BUILTIN_DICTIONARIES, "all", BEHAVIOR):
             raise ValueError(f"no built-in dictionary '{value[:32]}' to extend (fix: use one "
-                             f"of {', '.join(BUILTIN_DICTIONARIES)}, all, or leave extends out)")
+                             f"of {', '.join(BUILTIN_DICTIONARIES)}, all, {BEHAVIOR}, or leave "
+                             "extends out)")
         return value
 
     @model_validator(mode="after")
@@ -489,7 +491,7 @@ class Dictionary(BaseModel):
         """`your label`, or the dictionary a label comes from (`kitchen dictionary`)."""
         if canonical in self.user_labels:
             return "your label"
-        if self.name in BUILTIN_DICTIONARIES:
+        if self.name in (*BUILTIN_DICTIONARIES, BEHAVIOR):
             return f"{self.name} dictionary"
         homes = [n for n in BUILTIN_DICTIONARIES if canonical in builtin_dictionary(n).objects]
         return f"{' and '.join(homes) or self.name} dictionary"
@@ -601,11 +603,15 @@ def load_dictionary(spec: str | Path | Dictionary | InlineDictionary | None) -> 
         return builtin_dictionary(spec)
     if isinstance(spec, str) and spec == "all":
         return union_dictionary()
+    if isinstance(spec, str) and spec == BEHAVIOR:  # read on first use (3,299 kinds)
+        behavior: Dictionary = behavior_dictionary()
+        return behavior
     path = Path(spec)
     if not path.is_file():
         raise DictionaryError(f"dictionary '{spec}' is neither built in nor a file",
                               field="dictionary", value=str(spec),
-                              fix=f"use one of {', '.join(BUILTIN_DICTIONARIES)} or a file path")
+                              fix=f"use one of {', '.join(BUILTIN_DICTIONARIES)}, all, "
+                                  f"{BEHAVIOR} or a file path")
     try:
         data = yaml.safe_load(path.read_text())
         return Dictionary.model_validate(data)
