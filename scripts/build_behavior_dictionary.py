@@ -24,7 +24,9 @@ Roles from abilities (the knowledge base has no notion of a surface or of capaci
   shelves, floors, beds, chairs);
 - container: `fillable` or `openable`;
 - openable: `openable`; toggleable: `toggleable`;
-- capacity: unlimited on a fixed kind; 4 on a movable surface or container.
+- capacity: unlimited on a fixed kind; 4 on a movable surface or container;
+- room: BEHAVIOR's room types (`kitchen`, `living_room`; `bar_room` and `closet_room`
+  where an object kind has the word).
 Thermal abilities (`heatSource`, `coldSource`, `cookable`, `freezable`, `heatable`) are
 kept per kind in `abilities`, for the physical-process actions.
 """
@@ -137,6 +139,13 @@ def build(generated: Path, definitions: Path) -> dict[str, object]:
         kept = [a for a in KEPT_ABILITIES if a in abilities]
         if kept:
             abilities_out[label] = kept
+    # BEHAVIOR's room types as room kinds (furniture stands `inroom` them); a room type
+    # whose word an object kind has (`bar`, `closet`) is the kind `<type>_room`.
+    with (generated / "allowed_room_types.csv").open() as rows:
+        room_types = [line.strip() for line in rows.readlines()[1:] if line.strip()]
+    for room in room_types:
+        objects[room if room not in objects else f"{room}_room"] = {"movable": False,
+                                                                   "room": True}
     return {
         "name": "behavior",
         "relations": ["on", "in", "under", "nextto", "inroom"],

@@ -12,6 +12,8 @@ open is filled in as docs/worlds.md ("BEHAVIOR-1K activities") says:
   the floor is where it stands, not a placement); every other object is movable;
 - a kind is a surface where the activity puts something `ontop` it, a container where it
   puts something `inside` it (initially or in the goal), whatever the dictionary says;
+- an object the initial state places twice keeps its first placement (one activity of
+  BEHAVIOR-1K 3.6.0 puts a steak both on a shelf and on another steak);
 - capacities: BEHAVIOR has none, so a movable surface or container carries as many
   objects as the activity has (a bound that never binds), furniture any number.
 
@@ -291,8 +293,8 @@ def import_problem(text: str, *, activity: str | None = None) -> ImportedActivit
         if predicate == "inroom":
             rooms.setdefault(args[1], None)
             inroom[args[0]] = args[1]
-        else:
-            placed.setdefault(args[0], []).append((predicate, args[1]))
+        elif args[0] not in placed:  # an object placed twice keeps its first placement
+            placed[args[0]] = [(predicate, args[1])]
     roles: dict[str, set[str]] = {}
     for obj, places in placed.items():
         for predicate, target in places:
@@ -313,7 +315,9 @@ def import_problem(text: str, *, activity: str | None = None) -> ImportedActivit
             node["state"] = states[node_id]
         nodes.append(node)
     for room, room_id in room_ids.items():
-        nodes.append({"id": room_id, "label": _room_label(room)})
+        room_label = _room_label(room)
+        nodes.append({"id": room_id, "label": room_label} if room_label else
+                     {"id": room_id, "label": room, "attrs": {"room": True}})
     for obj, room in inroom.items():
         edges.append((ids[obj], "inroom", room_ids[room]))
     for obj, places in placed.items():
@@ -329,11 +333,17 @@ def import_problem(text: str, *, activity: str | None = None) -> ImportedActivit
                             classes=classes)
 
 
-def _room_label(room: str) -> str:
+def _room_label(room: str) -> str | None:
+    """The room kind of a BEHAVIOR room type (`kitchen`, `closet_room`); None for a type
+    the dictionary lacks (the node then declares itself a room in its attrs)."""
     from verigraph.graph.behavior import behavior_dictionary
 
-    props = behavior_dictionary().objects.get(room)
-    return room if props is not None and props.room else "room"
+    objects = behavior_dictionary().objects
+    for label in (room, f"{room}_room"):
+        props = objects.get(label)
+        if props is not None and props.room:
+            return label
+    return None
 
 
 def _room_id(room: str, taken: set[str]) -> str:
