@@ -27,9 +27,12 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
-from typing import Any, Union
+from typing import TYPE_CHECKING, Any, Union
 
 from verigraph.errors import VeriGraphError
+
+if TYPE_CHECKING:
+    from verigraph.graph.model import SceneGraph
 
 # Predicates an imported activity may use, by class (docs/worlds.md).
 SPATIAL = ("ontop", "inside", "inroom")
@@ -75,6 +78,20 @@ class ImportedActivity:
     @property
     def goal(self) -> dict[str, str]:
         return {"formula": self.formula}
+
+    def scene_graph(self) -> SceneGraph:
+        """The scene as a checked SceneGraph (MalformedGraphError if it is not well formed,
+        which no activity of BEHAVIOR-1K 3.6.0 within the supported predicates is)."""
+        from verigraph.errors import MalformedGraphError
+        from verigraph.graph.dictionary import load_dictionary
+        from verigraph.graph.model import SceneGraph
+        from verigraph.graph.wellformed import check_well_formed
+
+        graph = SceneGraph.model_validate(self.scene)
+        problems = check_well_formed(graph, load_dictionary("behavior"))
+        if problems:
+            raise MalformedGraphError(problems)
+        return graph
 
     @property
     def predicate_class(self) -> str:
