@@ -1,4 +1,5 @@
-"""Goals and the goal check: a graph to match (fully or partially) or a named predicate.
+"""Goals and the goal check: a graph to match (fully or partially), a named predicate, or
+a formula in BDDL's syntax (verigraph.graph.formula; evaluated by formula_eval).
 
 `diff` reports missing/extra nodes and edges. Tangram contacts are compared up to each
 piece's rotational symmetry (square: 4, parallelogram: 2), so a square turned by 90
@@ -10,10 +11,17 @@ from __future__ import annotations
 import itertools
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from verigraph.errors import GoalError
 from verigraph.graph.dictionary import ObjectProperties
+from verigraph.graph.formula import (
+    FORMULA_EXAMPLE,
+    MAX_FORMULA_CHARS,
+    looks_like_formula,
+    parse_formula,
+)
+from verigraph.graph.formula_eval import MAX_LISTED, FormulaResult, evaluate, facts_of
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import KIND_KEYS, GraphProblem, resolve_properties
@@ -23,7 +31,8 @@ EdgeKey = tuple[str, str, str, int | None, int | None]
 
 
 class Goal(BaseModel):
-    """What the planner must reach: a goal graph, a predicate, or both."""
+    """What the planner must reach: a goal graph, a predicate, a formula, or several
+    (all must hold)."""
 
     model_config = ConfigDict(extra="forbid")
 
@@ -31,17 +40,30 @@ class Goal(BaseModel):
     partial: bool = Field(default=False, description="only the listed edges must hold")
     predicate: Literal["single_stack"] | None = Field(
         default=None, description="single_stack: every movable object in one tower")
+    formula: str | None = Field(default=None, max_length=MAX_FORMULA_CHARS,
+                                description=f"BDDL formula, e.g. {FORMULA_EXAMPLE}")
     instruction: str | None = Field(default=None, description="the instruction it came from")
+
+    @field_validator("formula")
+    @classmethod
+    def _parses(cls, value: str | None) -> str | None:
+        if value is not None:
+            try:
+                parse_formula(value)
+            except GoalError as exc:
+                raise ValueError(f"{exc.message} (fix: {exc.fix})") from None
+        return value
 
     @model_validator(mode="after")
     def _needs_something(self) -> Goal:
-        if self.graph is None and self.predicate is None:
-            raise ValueError("a goal needs a 'graph' or a 'predicate'")
+        if self.graph is None and self.predicate is None and self.formula is None:
+            raise ValueError("a goal needs a 'graph', a 'predicate' or a 'formula'")
         return self
 
     @classmethod
     def parse(cls, data: object) -> Goal:
-        """Accept a Goal object, or a bare scene graph (an exact goal)."""
+        """Accept a Goal object, a bare scene graph (an exact goal), a predicate's name or
+        a formula's text (text starting with `(`)."""
         if isinstance(data, Goal):
             return data
         if isinstance(data, SceneGraph):
@@ -51,10 +73,14 @@ class Goal(BaseModel):
             graph = {k: v for k, v in data.items() if k != "partial"}
             return cls(graph=SceneGraph.model_validate(graph), partial=partial)
         if isinstance(data, str):
+            if looks_like_formula(data):
+                parse_formula(data)  # its GoalError names the position and the fix
+                return cls(formula=data)
             if data in PREDICATES:
                 return cls(predicate=data)  # type: ignore[arg-type]
             raise GoalError(f"unknown goal predicate '{data}'", field="goal", value=data,
-                            fix=f"use one of {', '.join(PREDICATES)} or a goal graph")
+                            fix=f"use one of {', '.join(PREDICATES)}, a goal graph or a "
+                                f"formula such as {FORMULA_EXAMPLE}")
         return cls.model_validate(data)
 
 
@@ -69,9 +95,19 @@ class GraphDiff(BaseModel):
                                    description="current edges the goal does not have")
     predicate: str | None = None
     detail: str | None = None
+    formula_failures: list[str] = Field(
+        default_factory=list, description="every counterexample of the goal formula (the "
+        "failing part with its objects, and why), up to 1,000")
+    formula_failure_count: int = Field(default=0, description="all counterexamples")
+    formula_witnesses: list[str] = Field(
+        default_factory=list, description="the objects that make each exists hold")
 
     def summary(self) -> str:
         if self.satisfied:
+            if self.formula_witnesses:
+                return "goal reached; " + "; ".join(self.formula_witnesses[:MAX_LISTED]) + (
+                    f"; ... and {len(self.formula_witnesses) - MAX_LISTED} more"
+                    if len(self.formula_witnesses) > MAX_LISTED else "")
             return "goal reached"
         parts = []
         if self.missing_edges:
@@ -84,7 +120,28 @@ class GraphDiff(BaseModel):
             parts.append("extra objects: " + ", ".join(self.extra_nodes))
         if self.detail:
             parts.append(self.detail)
+        if self.formula_failure_count:
+            parts.append(formula_text(FormulaResult(
+                False, self.formula_failures, self.formula_failure_count)))
         return "goal not reached: " + " | ".join(parts)
+
+
+def formula_text(result: FormulaResult) -> str:
+    """`formula fails (2 counterexamples): part fails: why; ...` (and N more)."""
+    if result.satisfied:
+        lines = result.lines()
+        return "formula holds" + (": " + "; ".join(lines) if lines else "")
+    n = result.counterexample_count
+    return (f"formula fails ({n} counterexample{'s' if n != 1 else ''}): "
+            + "; ".join(result.lines()))
+
+
+def check_formula(state: WorldState, formula: str) -> GraphDiff:
+    """The goal formula evaluated on the state, as a GraphDiff."""
+    result = evaluate(parse_formula(formula), facts_of(state))
+    return GraphDiff(satisfied=result.satisfied, formula_failures=result.counterexamples,
+                     formula_failure_count=result.counterexample_count,
+                     formula_witnesses=result.witnesses)
 
 
 def _sentence(key: EdgeKey) -> str:
@@ -184,10 +241,20 @@ def check_goal(state: WorldState, goal: Goal) -> GraphDiff:
     if goal.predicate == "single_stack":
         pred = single_stack(state)
         if result is None:
-            return pred
+            result = pred
+        else:
+            result = result.model_copy(update={
+                "satisfied": result.satisfied and pred.satisfied, "predicate": "single_stack",
+                "detail": pred.detail})
+    if goal.formula is not None:
+        holds = check_formula(state, goal.formula)
+        if result is None:
+            return holds
         result = result.model_copy(update={
-            "satisfied": result.satisfied and pred.satisfied, "predicate": "single_stack",
-            "detail": pred.detail})
+            "satisfied": result.satisfied and holds.satisfied,
+            "formula_failures": holds.formula_failures,
+            "formula_failure_count": holds.formula_failure_count,
+            "formula_witnesses": holds.formula_witnesses})
     assert result is not None
     return result
 
