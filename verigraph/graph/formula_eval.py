@@ -189,6 +189,11 @@ def holds(formula: Formula, facts: Facts) -> bool:
     return _Evaluator(facts).holds(formula, {})
 
 
+def holds_in(formula: Formula, facts: Facts, binding: dict[str, str]) -> bool:
+    """Whether a part holds with its free variables bound to objects."""
+    return _Evaluator(facts).holds(formula, binding)
+
+
 def evaluate(formula: Formula, facts: Facts) -> FormulaResult:
     """Whether the formula holds, with every counterexample or its witnesses."""
     ev = _Evaluator(facts)

@@ -20,6 +20,8 @@ from collections.abc import Callable
 
 from verigraph.actions.model import AlignAction, AnyAction
 from verigraph.actions.validator import apply_action, validate_action
+from verigraph.graph.formula import parse_formula
+from verigraph.graph.formula_eval import Facts, facts_of, holds
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
@@ -39,6 +41,7 @@ from verigraph.solver.encoding import (
     misplaced_heuristic,
     stack_heuristic,
 )
+from verigraph.solver.formula_bound import formula_bound
 from verigraph.solver.result import SolveResult, static_reason
 
 __all__ = ["DEFAULT_MAX_EXPANSIONS", "SolveResult", "solve"]
@@ -89,15 +92,26 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
     wanted = goal_codes(problem, goal_model.graph) if goal_model.graph is not None else {}
     h_graph = misplaced_heuristic(problem, wanted)
     h_stack = stack_heuristic(problem) if goal_model.predicate == "single_stack" else None
+    formula = parse_formula(goal_model.formula) if goal_model.formula is not None else None
+    facts_at = _facts_at(problem, state) if formula is not None else None
+    rest = goal_model.model_copy(update={"formula": None})
+    rest_checked = rest.graph is not None or rest.predicate is not None
 
     def h(codes: Codes) -> int:
         value = h_graph(codes) if wanted else 0
-        return max(value, h_stack(codes)) if h_stack else value
+        if h_stack:
+            value = max(value, h_stack(codes))
+        if formula is not None and facts_at is not None:
+            value = max(value, formula_bound(formula, facts_at(codes)))
+        return value
 
     def is_goal(codes: Codes) -> bool:
         if wanted and any(codes[k] != c for k, c in wanted.items()):
             return False
-        return _decoded_goal_check(problem, state, codes, goal_model)
+        if formula is not None and facts_at is not None \
+                and not holds(formula, facts_at(codes)):
+            return False
+        return not rest_checked or _decoded_goal_check(problem, state, codes, rest)
 
     if not anytime:
         proof = {"floor": h(problem.start)}
@@ -161,6 +175,21 @@ def _replay(problem: SearchProblem, moves: list[Move]) -> Codes:
     for i, r, j in moves:
         codes[problem.slot[i]] = j * 2 + r
     return tuple(codes)
+
+
+def _facts_at(problem: SearchProblem, state: WorldState) -> Callable[[Codes], Facts]:
+    """The facts of an encoded state for a goal formula: the start's objects, states and
+    the edges of fixed objects, with each movable object where the codes put it."""
+    base = facts_of(state)
+    moving = {problem.ids[i] for i in problem.movable}
+    kept = [edge for edge in base.edges if edge[1] not in moving]
+    ids, movable = problem.ids, problem.movable
+
+    def facts(codes: Codes) -> Facts:
+        return base.with_edges([*kept, *((RELATIONS[c & 1], ids[movable[k]], ids[c >> 1])
+                                         for k, c in enumerate(codes))])
+
+    return facts
 
 
 def _decoded_goal_check(problem: SearchProblem, state: WorldState, codes: Codes,
