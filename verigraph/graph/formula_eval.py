@@ -117,7 +117,8 @@ def facts_of(state: WorldState) -> Facts:
     """A WorldState's facts: its labels, its edges (tangram contacts aside), states."""
     labels = {o: info.label for o, info in state.objects.items()}
     edges = [(e.relation, e.source, e.target) for e in state.edges() if e.relation != "touches"]
-    states = {o: node_state(info) for o, info in state.objects.items()}
+    held = getattr(state, "states", {})  # the household WorldState keeps states by object
+    states = {o: dict(held.get(o, {})) or node_state(info) for o, info in state.objects.items()}
     return Facts(labels, edges, states, state.dictionary.resolve)
 
 
