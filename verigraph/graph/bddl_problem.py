@@ -8,8 +8,9 @@ and labels (`(forall (?plate - plate) (inside ?plate cabinet_1))`). What BEHAVIO
 open is filled in as docs/worlds.md ("BEHAVIOR-1K activities") says:
 
 - the agent (`agent.n.01`) and the `_*` objects a scene may add are left out;
-- an object placed by `inroom` is furniture: fixed, standing in its room (its `ontop`
-  the floor is where it stands, not a placement); every other object is movable;
+- an object placed by `inroom` is furniture: fixed, standing in its room; every other
+  object is movable. Furniture the goal places (`(nextto ?chair ?desk)`) is movable,
+  standing on its room's floor;
 - a kind is a surface where the activity puts something `ontop` it, a container where it
   puts something `inside` it (initially or in the goal), whatever the dictionary says;
 - an object the initial state places twice keeps its first placement (one activity of
@@ -46,6 +47,7 @@ STATES = ("open", "toggled_on", *THERMAL)
 CONNECTIVES = ("and", "or", "not", "imply", "forall", "exists", "forn", "forpairs",
                "fornpairs")
 AGENT = "agent.n.01"
+FLOOR = "floor.n.01"
 MAX_TEXT = 262_144  # bytes of BDDL: the largest activity is about 12 KB
 MAX_DEPTH = 64
 
@@ -228,7 +230,8 @@ def check_supported(init: list[Sexp], goal: Sexp, activity: str) -> tuple[str, .
 
 def _goal_roles(tree: Sexp, types: dict[str, str], objects: dict[str, str],
                 out: dict[str, set[str]]) -> None:
-    """Synsets (or objects) the goal puts something `ontop`/`inside`: surface, container."""
+    """Objects (or `type:<synset>`) the goal puts something `ontop` (surface) or `inside`
+    (container), and those it places itself (placed)."""
     if not isinstance(tree, list) or not tree:
         return
     head = tree[0]
@@ -247,13 +250,18 @@ def _goal_roles(tree: Sexp, types: dict[str, str], objects: dict[str, str],
         for part in tree[1:]:
             _goal_roles(part, types, objects, out)
         return
-    if head in ("ontop", "inside") and len(tree) == 3 and isinstance(tree[2], str):
-        target = tree[2].lstrip("?")
-        role = "surface" if head == "ontop" else "container"
-        if target in objects:
-            out.setdefault(target, set()).add(role)
-        elif target in types:
-            out.setdefault("type:" + types[target], set()).add(role)
+    if head in ("ontop", "inside", "nextto", "under") and len(tree) == 3 \
+            and all(isinstance(t, str) for t in tree[1:]):
+        for term, role in ((str(tree[1]), "placed"),
+                           (str(tree[2]), {"ontop": "surface", "inside": "container"}.get(
+                               str(head), ""))):
+            bare = term.lstrip("?")
+            if not role:
+                continue
+            if bare in objects:
+                out.setdefault(bare, set()).add(role)
+            elif bare in types:
+                out.setdefault("type:" + types[bare], set()).add(role)
 
 
 def import_problem(text: str, *, activity: str | None = None) -> ImportedActivity:
@@ -319,6 +327,13 @@ def import_problem(text: str, *, activity: str | None = None) -> ImportedActivit
                 roles.setdefault(target, set()).add(
                     "surface" if predicate == "ontop" else "container")
     _goal_roles(goal, {}, {o: o for o in ids}, roles)
+    # Furniture the goal places (a chair next to a desk) is movable, on its room's floor.
+    floors = {room: obj for obj, room in inroom.items() if declared[obj] == FLOOR}
+    for obj in [o for o in inroom if o not in floors.values()]:
+        moved = "placed" in roles.get(obj, set()) | roles.get("type:" + declared[obj], set())
+        if moved and inroom[obj] in floors:
+            placed[obj] = [("ontop", floors[inroom.pop(obj)])]
+            roles.setdefault(placed[obj][0][1], set()).add("surface")
     movable_count = sum(1 for o in ids if o not in inroom)
     room_ids = {room: _room_id(room, set(ids.values())) for room in rooms}
     nodes: list[dict[str, Any]] = []
@@ -379,7 +394,7 @@ def _attrs(obj: str, synset: str, label: str, roles: dict[str, set[str]], furnit
     elif props.movable == furniture:
         attrs["movable"] = not furniture
     movable = not furniture
-    wanted = roles.get(obj, set()) | roles.get("type:" + synset, set())
+    wanted = (roles.get(obj, set()) | roles.get("type:" + synset, set())) - {"placed"}
     for role in sorted(wanted):
         if props is None or not getattr(props, role):
             attrs[role] = True

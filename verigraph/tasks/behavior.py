@@ -9,8 +9,11 @@ back-end classes; only its files are needed here).
 from __future__ import annotations
 
 import importlib.util
+import time
+from dataclasses import asdict, dataclass, field
 from functools import cache
 from pathlib import Path
+from typing import Any
 
 from verigraph.errors import VeriGraphError
 from verigraph.extras import require
@@ -71,3 +74,110 @@ def problem_text(activity_or_file: str) -> tuple[str, str]:
         name = path.parent.name if path.name.startswith("problem") else path.stem
         return name, text
     return activity_or_file, activity_text(activity_or_file)
+
+
+@dataclass
+class ActivityOutcome:
+    """One activity through the whole path: import, solve, validate, execute, check.
+
+    `status`: `refused` (a predicate outside the supported set, named in `predicate`),
+    `solved` (a plan the verifier accepts and whose execution reaches the goal),
+    `budget` (the solver's budget ran out before any plan), `unreachable` (the solver
+    proved no plan exists), `invalid` (a plan the verifier refused: never expected),
+    `paper` (the validator says the goal is reached, the executed episode says not:
+    never expected).
+    """
+
+    activity: str
+    status: str
+    predicate_class: str | None = None
+    predicate: str | None = None
+    objects: int = 0
+    plan: list[str] = field(default_factory=list)
+    optimal: bool = False
+    lower_bound: int | None = None
+    reason: str | None = None
+    seconds: dict[str, float] = field(default_factory=dict)
+
+    def as_json(self) -> dict[str, Any]:
+        return asdict(self)
+
+
+def run_activity(name: str, *, time_limit: float = 10.0, tools: Any = None,
+                 text: str | None = None) -> ActivityOutcome:
+    """Import one activity, solve it within `time_limit` CPU seconds (optimal A* first,
+    then the anytime search with the same budget), validate the plan against the goal
+    formula, execute it in an episode on the graph executor and check the goal there."""
+    from verigraph.graph.bddl_problem import UnsupportedActivityError, import_problem
+    from verigraph.planning.tool_calls import InProcessTools
+
+    seconds: dict[str, float] = {}
+    start = time.perf_counter()
+    try:
+        imported = import_problem(text if text is not None else activity_text(name),
+                                  activity=name)
+        graph = imported.scene_graph()
+    except UnsupportedActivityError as exc:
+        return ActivityOutcome(name, "refused", predicate=exc.predicate, reason=exc.message)
+    seconds["import"] = time.perf_counter() - start
+    outcome = ActivityOutcome(name, "solved", predicate_class=imported.predicate_class,
+                              objects=len(imported.ids), seconds=seconds)
+    scene = graph.model_dump(mode="json", exclude_none=True)
+    goal = imported.goal
+    tools = tools or InProcessTools()
+    clock = time.perf_counter()
+    solved = tools.call("solve", {"graph": scene, "goal": goal, "time_limit": time_limit,
+                                  "max_expansions": 2_000_000})
+    if solved["reachable"] is None:
+        solved = tools.call("solve", {"graph": scene, "goal": goal, "time_limit": time_limit,
+                                      "max_expansions": 2_000_000, "anytime": True})
+    seconds["solve"] = time.perf_counter() - clock
+    outcome.optimal = bool(solved.get("optimal"))
+    outcome.lower_bound = solved.get("lower_bound")
+    if not solved["reachable"]:
+        outcome.status = "budget" if solved["reachable"] is None else "unreachable"
+        outcome.reason = solved.get("reason")
+        return outcome
+    outcome.plan = list(solved["plan"])
+    clock = time.perf_counter()
+    report = tools.call("validate_plan", {"graph": scene, "goal": goal,
+                                          "plan": outcome.plan or ["done"]})
+    seconds["validate"] = time.perf_counter() - clock
+    if not report["plan_valid"] or not report["goal_reached"]:
+        outcome.status = "invalid"
+        outcome.reason = "; ".join(v.get("message", "") for v in report["violations"])[:300] \
+            or "the validator says the goal is not reached"
+        return outcome
+    clock = time.perf_counter()
+    episode = tools.call("load_scene", {"graph": scene, "goal": goal, "k": 50,
+                                        "executor": "graph"})
+    episode_id = episode["episode_id"]
+    final = episode["graph"]
+    try:
+        for at in range(0, len(outcome.plan), 50):
+            run = tools.call("execute_actions", {"episode_id": episode_id,
+                                                 "actions": outcome.plan[at:at + 50]})
+            final = run["graph"]
+            if not run["ok"]:
+                outcome.status = "invalid"
+                outcome.reason = f"execution refused: {run['violation']}"[:300]
+                return outcome
+        reached = tools.call("check_goal", {"episode_id": episode_id})
+    finally:
+        tools.call("end_episode", {"episode_id": episode_id})
+    seconds["execute"] = time.perf_counter() - clock
+    if not reached["satisfied"] or not formula_holds(final, imported.formula):
+        outcome.status = "paper"
+        outcome.reason = "the executed episode does not reach the goal"
+    return outcome
+
+
+def formula_holds(graph: dict[str, Any], formula: str) -> bool:
+    """Whether the goal formula holds on a graph, by the formula evaluator itself."""
+    from verigraph.graph.formula import parse_formula
+    from verigraph.graph.formula_eval import facts_of, holds
+    from verigraph.graph.model import SceneGraph
+    from verigraph.graph.state import WorldState
+
+    state = WorldState.from_graph(SceneGraph.model_validate(graph))
+    return holds(parse_formula(formula), facts_of(state))
