@@ -164,10 +164,11 @@ async def test_box_is_no_longer_silently_a_block() -> None:
         blocks = await c.call_tool("load_scene", {"graph": {**graph, "dictionary": "blocks"}})
         assert blocks.is_error and "`box`" in text(blocks)
         kitchen = await c.call_tool("load_scene", {"graph": graph})  # the kitchen's box
-        assert "box (box: movable container, capacity 2, openable" in text(kitchen)
+        assert "box (box: movable container, capacity 2, openable; closed (default))" in text(
+            kitchen)
         graph["nodes"][1]["attrs"] = {"container": True, "capacity": 4}
         loaded = await c.call_tool("load_scene", {"graph": graph})
-        assert "box (box: your label, movable container, capacity 4)" in text(loaded)
+        assert "box (box: movable container, capacity 4, openable" in text(loaded)
 
 
 def test_no_builtin_word_names_two_kinds() -> None:

@@ -168,9 +168,9 @@ def _props_text(props: ObjectProperties) -> str:
     if kinds:
         text += f", capacity {'unlimited' if props.capacity is None else props.capacity}"
     if props.openable:
-        text += ", openable (closed unless its state says open)"
+        text += ", openable"
     if props.toggleable:
-        text += ", toggleable (off unless its state says toggled_on)"
+        text += ", toggleable"
     return text
 
 
@@ -178,6 +178,21 @@ def state_value(state: dict[str, bool], key: str) -> bool:
     """A node's state `key` (`open`, `toggled_on`), its default when the node has none:
     an openable object is closed and a toggleable one off unless its state says so."""
     return state.get(key, False)
+
+
+STATE_WORDS = {"open": ("closed", "open"), "toggled_on": ("off", "on")}
+
+
+def state_text(props: ObjectProperties, state: dict[str, bool]) -> str:
+    """`closed (default), on`: each state the kind has, `(default)` where the node does
+    not set it (an openable object is closed, a toggleable one off); empty for a kind
+    with no state."""
+    words = []
+    for key, role in STATE_ROLES.items():
+        if getattr(props, role):
+            word = STATE_WORDS[key][state_value(state, key)]
+            words.append(word if key in state else f"{word} (default)")
+    return ", ".join(words)
 
 
 def open_label_properties(attrs: dict[str, Any]) -> ObjectProperties | None:
