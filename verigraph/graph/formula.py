@@ -317,6 +317,8 @@ class _Parser:
                 raise self.fail(token, f"'{token.text}' is not an object id or a variable",
                                 "name an object by its scene id, or a variable ?x")
             terms.append(token.text)
+        if self.peek() is None:
+            self.take()  # raises: the formula ends with parentheses open
         if len(terms) != arity:
             example = f"({name} cup plate)" if arity == 2 else f"({name} fridge)"
             raise self.fail(head, f"({name} ...) takes {arity} term(s), got {len(terms)}",
