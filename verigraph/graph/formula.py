@@ -34,6 +34,7 @@ MAX_FORMULA_CHARS = 20_000
 MAX_DEPTH = 32  # nested parentheses
 MAX_PARTS = 2_000  # atoms, connectives and quantifiers together
 MAX_COUNT = 1_000  # the N of forn and fornpairs
+MAX_WORD = 128  # characters of an id, a kind or a variable (a node id's limit)
 
 # BDDL's predicate -> (the relation or state it reads, how many terms).
 PREDICATES: dict[str, tuple[str, int]] = {
@@ -148,6 +149,10 @@ def _tokens(text: str) -> list[_Token]:
     tokens = []
     for m in _TOKEN.finditer(text):
         word = m.group()
+        if len(word) > MAX_WORD and word[0] != ";" and not word[0].isspace():
+            raise GoalError(f"character {m.start() + 1}: a name of {len(word)} characters, "
+                            f"more than {MAX_WORD} (at '{word[:40]}')", field="formula",
+                            value=word[:40], fix="use the object's scene id or a kind's label")
         if not word[0].isspace() and word[0] != ";":
             tokens.append(_Token(word, m.start()))
     return tokens
@@ -317,6 +322,8 @@ class _Parser:
                 raise self.fail(token, f"'{token.text}' is not an object id or a variable",
                                 "name an object by its scene id, or a variable ?x")
             terms.append(token.text)
+        if self.peek() is None:
+            self.take()  # raises: the formula ends with parentheses open
         if len(terms) != arity:
             example = f"({name} cup plate)" if arity == 2 else f"({name} fridge)"
             raise self.fail(head, f"({name} ...) takes {arity} term(s), got {len(terms)}",

@@ -152,13 +152,16 @@ def check_names(formula: Formula, facts: Facts) -> None:
     for obj in sorted(ids):
         if not facts.knows(obj):
             near = difflib.get_close_matches(obj, every[:400], n=1, cutoff=0.6)
-            problems.append(f"no object '{obj}' in the scene"
-                            + (f" (did you mean {near[0]}?)" if near else ""))
+            problems.append(f"object '{obj}'" + (f" (did you mean {near[0]}?)" if near else ""))
     for word in sorted(kinds):
         if facts.resolve(word) is None and kind_token(word) not in facts.by_kind:
-            problems.append(f"'{word}' is not a kind of the dictionary or of the scene")
+            near = difflib.get_close_matches(kind_token(word), list(facts.by_kind), n=1,
+                                             cutoff=0.6)
+            problems.append(f"kind '{word}', known neither to the dictionary nor as a label "
+                            "of the scene" + (f" (did you mean {near[0]}?)" if near else ""))
     if problems:
-        raise GoalError("the formula names " + "; ".join(problems[:MAX_LISTED]),
+        raise GoalError("the formula names what the scene does not have: "
+                        + "; ".join(problems[:MAX_LISTED]),
                         field="formula", value=problems[0][:80],
                         fix="name objects by scene id and quantify over kinds the scene "
                             f"has: {', '.join(sorted(facts.by_kind)[:20])}")
@@ -383,10 +386,9 @@ class _Evaluator:
         if node.op == "exists":
             if not objs:
                 return f"missing: there is no {kind} in the scene"
-            first = self.why_false(node.body, _bound(env, name, objs[0]))
+            tried = [self.why_false(node.body, _bound(env, name, o)) for o in objs]
             return (f"missing: no {kind} as {name} makes {self.part(node.body, env)} "
-                    f"hold; checked {len(objs)} {kind}(s): {_joined(objs, ', ')} (e.g. "
-                    f"{first})")
+                    f"hold; of the {len(objs)} {kind}(s): {_joined(tried)}")
         found = self.satisfying(node, env)
         return (f"{len(found)} {kind}(s) satisfy it ({_joined(found, ', ') or 'none'}); "
                 f"exactly {node.count} wanted")

@@ -81,10 +81,12 @@ class PddlNames:
 
 def problem_pddl(state: WorldState, goal: Goal, name: str = "scene") -> str:
     """The problem for a tabletop scene and a goal graph (predicates cannot be exported)."""
-    if goal.graph is None:
-        raise GoalError(f"the goal predicate '{goal.predicate}' has no STRIPS form",
-                        field="goal", value=goal.predicate,
-                        fix="give a goal graph (scene JSON) instead of a predicate")
+    if goal.graph is None or goal.formula is not None:
+        what = (f"predicate '{goal.predicate}'" if goal.predicate is not None
+                else "formula (quantifiers and negation)")
+        raise GoalError(f"the goal {what} has no STRIPS form", field="goal",
+                        value=goal.predicate or goal.formula,
+                        fix="give a goal graph (scene JSON) instead")
     if state.contacts or any(o.props.sides for o in state.objects.values()):
         raise VeriGraphError("tangram scenes have no PDDL export", field="scene",
                              fix="export tabletop scenes (on/in relations) only")

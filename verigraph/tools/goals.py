@@ -55,7 +55,7 @@ def check_goal_against(goal: Goal, state: WorldState | None, *, field: str) -> N
     """A goal graph must be well formed and name only objects of the scene; a formula
     must name only the scene's objects and known kinds."""
     if goal.formula is not None and state is not None:
-        check_formula_against(goal.formula, state, field=field)
+        check_formula_against(goal.formula, state, field=f"{field}.formula")
     if goal.graph is None:
         return
     dictionary = state.dictionary if state is not None else dictionary_for(goal.graph.dictionary)
@@ -94,18 +94,19 @@ def check_formula_against(text: str, state: WorldState, *, field: str) -> None:
     try:
         check_names(parse_formula(text), facts_of(state))
     except GoalError as exc:
-        raise ToolArgumentError(exc.message, field=f"{field}.formula" if field != "formula"
-                                else field, value=exc.value, fix=exc.fix) from None
+        raise ToolArgumentError(exc.message, field=field, value=exc.value,
+                                fix=exc.fix) from None
 
 
 def goal_from_formula(text: str, state: WorldState | None, *, field: str = "formula",
                       partial: bool = True) -> Goal:
     """A formula's text as a goal, checked against the scene when there is one."""
     try:
-        goal = Goal(formula=text.strip(), partial=partial)
-    except ValueError:
-        parse_formula(text)  # raises the GoalError with the position and the fix
-        raise
+        parse_formula(text.strip())
+    except GoalError as exc:
+        raise ToolArgumentError(exc.message, field=field, value=exc.value,
+                                fix=exc.fix) from None
+    goal = Goal(formula=text.strip(), partial=partial)
     if state is not None:
         check_formula_against(goal.formula or "", state, field=field)
     return goal
@@ -431,15 +432,15 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
             graph = reading.goal.graph
         goal: Goal | None = None
         partial = bool(params.partial)
-        formula = params.formula
+        formula, formula_field = params.formula, "formula"
         if params.edges is not None and looks_like_formula(params.edges):
-            formula = params.edges
+            formula, formula_field = params.edges, "edges"
         elif params.edges is not None:
             edges_goal = goal_from_edges(params.edges, episode.state,
                                          partial=params.partial is not False)
             graph, partial = edges_goal.graph, edges_goal.partial
         if formula is not None:
-            formula = goal_from_formula(formula, episode.state, field="formula").formula
+            formula = goal_from_formula(formula, episode.state, field=formula_field).formula
         readings: list[str] = []
         if graph is not None or params.predicate is not None or formula is not None:
             goal = Goal(graph=graph, partial=partial, predicate=params.predicate,

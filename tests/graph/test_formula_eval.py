@@ -1,0 +1,245 @@
+"""Goal formulas evaluated over scenes: truth tables, every counterexample, the witnesses
+of exists and the missing ones said plainly, empty kinds, states, and the name check."""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, field
+
+import pytest
+
+from verigraph.errors import GoalError
+from verigraph.graph.dictionary import load_dictionary
+from verigraph.graph.formula import parse_formula
+from verigraph.graph.formula_eval import (
+    MAX_GROUND,
+    MAX_LISTED,
+    Facts,
+    check_names,
+    evaluate,
+    facts_of,
+    holds,
+    node_state,
+)
+from verigraph.graph.goal import Goal, check_goal
+from verigraph.graph.model import SceneGraph
+from verigraph.graph.state import WorldState
+
+pytestmark = pytest.mark.fast
+NO_CUP_ON_A_PLATE = "(forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))"
+
+
+def scene(edges: list[tuple[str, str, str]], extra: list[tuple[str, str]] = ()  # type: ignore[assignment]
+          ) -> WorldState:
+    """A tableware scene: a table, two plates, two cups, and `extra` (id, label) nodes."""
+    nodes = [("table", "table"), ("plate_1", "plate"), ("plate_2", "plate"),
+             ("cup_1", "cup"), ("cup_2", "cup"), *extra]
+    return WorldState.from_graph(SceneGraph.model_validate({
+        "nodes": [{"id": i, "label": label} for i, label in nodes],
+        "edges": [{"source": s, "relation": r, "target": t} for s, r, t in edges],
+        "dictionary": "tableware"}))
+
+
+ON_TABLE = [("plate_1", "on", "table"), ("plate_2", "on", "table")]
+
+
+def facts(edges: list[tuple[str, str, str]]) -> Facts:
+    return facts_of(scene(ON_TABLE + edges))
+
+
+def truth(text: str, edges: list[tuple[str, str, str]]) -> bool:
+    return holds(parse_formula(text), facts(edges))
+
+
+@pytest.mark.parametrize(("a", "b"), list(itertools.product([False, True], repeat=2)))
+def test_connectives_follow_their_truth_tables(a: bool, b: bool) -> None:
+    edges = [("cup_1", "on", "plate_1" if a else "table"),
+             ("cup_2", "on", "plate_2" if b else "table")]
+    A, B = "(ontop cup_1 plate_1)", "(ontop cup_2 plate_2)"
+    assert truth(A, edges) is a and truth(B, edges) is b
+    assert truth(f"(not {A})", edges) is (not a)
+    assert truth(f"(and {A} {B})", edges) is (a and b)
+    assert truth(f"(or {A} {B})", edges) is (a or b)
+    assert truth(f"(imply {A} {B})", edges) is ((not a) or b)
+    assert truth("(and)", edges) and not truth("(or)", edges)
+
+
+def test_quantifiers_range_over_the_kind() -> None:
+    one_on_a_plate = [("cup_1", "on", "plate_1"), ("cup_2", "on", "table")]
+    both = [("cup_1", "on", "plate_1"), ("cup_2", "on", "plate_2")]
+    none = [("cup_1", "on", "table"), ("cup_2", "on", "table")]
+    on_some_plate = "(forall (?c - cup) (exists (?p - plate) (ontop ?c ?p)))"
+    assert not truth(on_some_plate, one_on_a_plate) and truth(on_some_plate, both)
+    assert truth(NO_CUP_ON_A_PLATE, none) and not truth(NO_CUP_ON_A_PLATE, one_on_a_plate)
+    for n, expected in ((0, False), (1, True), (2, False)):
+        assert truth(f"(forn ({n}) (?c - cup) (on ?c table))", one_on_a_plate) is expected
+    assert truth("(forn (0) (?c - cup) (on ?c table))", both)
+    # a kind word reads as the dictionary reads labels (here a plural)
+    assert truth("(forall (?c - cups) (exists (?p - plate) (ontop ?c ?p)))", both)
+
+
+def test_empty_kinds_exists_false_forall_true() -> None:
+    edges = [("cup_1", "on", "table"), ("cup_2", "on", "table")]
+    assert not truth("(exists (?b - bowl) (on ?b table))", edges)
+    assert truth("(forall (?b - bowl) (on ?b table))", edges)
+    assert truth("(forn (0) (?b - bowl) (on ?b table))", edges)
+    assert truth("(forpairs (?b - bowl) (?c - cup) (in ?c ?b))", edges)  # 0 pairs needed
+    result = evaluate(parse_formula("(exists (?b - bowl) (on ?b table))"), facts(edges))
+    assert result.counterexamples == ["(exists (?b - bowl) (on ?b table)) fails: missing: "
+                                      "there is no bowl in the scene"]
+
+
+def test_pairs_need_a_one_to_one_matching_of_distinct_objects() -> None:
+    # cup_1 fits plate_1 and plate_2, cup_2 only plate_1: a matching exists
+    both_ok = [("cup_1", "on", "plate_2"), ("cup_2", "on", "plate_1")]
+    assert truth("(forpairs (?c - cup) (?p - plate) (ontop ?c ?p))", both_ok)
+    crowded = [("cup_1", "on", "plate_1"), ("cup_2", "on", "plate_1")]
+    pairs = "(forpairs (?c - cup) (?p - plate) (ontop ?c ?p))"
+    assert not truth(pairs, crowded)  # both cups on one plate: only one pair
+    assert truth("(fornpairs (1) (?c - cup) (?p - plate) (ontop ?c ?p))", crowded)
+    assert not truth("(fornpairs (2) (?c - cup) (?p - plate) (ontop ?c ?p))", crowded)
+    result = evaluate(parse_formula(pairs), facts(crowded))
+    assert result.counterexamples == [
+        f"{pairs} fails: only 1 of 2 one-to-one pairs (cup with plate) hold: cup_1 with "
+        "plate_1; unpaired: cup_2, plate_2"]
+    # a pair is two distinct objects, even of one kind
+    assert not truth("(exists (?p - plate) (forpairs (?a - plate) (?b - plate) (on ?a ?b)))",
+                     crowded)
+
+
+def test_every_counterexample_is_listed_with_its_part_and_objects() -> None:
+    extra = [(f"cup_{i}", "cup") for i in range(3, 8)]
+    where = {1: "plate_1", 3: "plate_1", 5: "plate_2", 7: "plate_2"}
+    s = scene(ON_TABLE + [(f"cup_{i}", "on", where.get(i, "table")) for i in range(1, 8)],
+              extra)
+    result = evaluate(parse_formula(NO_CUP_ON_A_PLATE), facts_of(s))
+    assert not result.satisfied and result.counterexample_count == 4
+    assert result.counterexamples == [
+        f"(not (exists (?p - plate) (ontop cup_{i} ?p))) fails: cup_{i} is on {where[i]}"
+        for i in (1, 3, 5, 7)]
+    text = check_goal(s, Goal(formula=NO_CUP_ON_A_PLATE)).summary()
+    assert text.startswith("goal not reached: formula fails (4 counterexamples): ")
+    assert all(f"cup_{i} is on {where[i]}" in text for i in (1, 3, 5, 7))
+
+
+def test_long_lists_end_with_and_n_more() -> None:
+    extra = [(f"cup_{i}", "cup") for i in range(3, 16)]
+    s = scene(ON_TABLE + [(f"cup_{i}", "on", "table") for i in range(1, 16)], extra)
+    result = evaluate(parse_formula("(forall (?c - cup) (ontop ?c plate_1))"), facts_of(s))
+    assert result.counterexample_count == 15 and len(result.counterexamples) == 15
+    lines = result.lines()
+    assert len(lines) == MAX_LISTED + 1 and lines[-1] == f"... and {15 - MAX_LISTED} more"
+    assert check_goal(s, Goal(formula="(forall (?c - cup) (ontop ?c plate_1))")).summary() \
+        .endswith(f"; ... and {15 - MAX_LISTED} more")
+
+
+def test_a_failing_exists_says_plainly_what_is_missing() -> None:
+    edges = [("cup_1", "on", "table"), ("cup_2", "on", "plate_2")]
+    f = "(exists (?p - plate) (ontop cup_1 ?p))"
+    result = evaluate(parse_formula(f), facts(edges))
+    assert result.counterexamples == [
+        f"{f} fails: missing: no plate as ?p makes (ontop cup_1 ?p) hold; of the 2 "
+        "plate(s): cup_1 is not on plate_1 (cup_1 is on table); cup_1 is not on plate_2 "
+        "(cup_1 is on table)"]
+
+
+def test_a_satisfied_exists_names_its_witnesses() -> None:
+    edges = [("cup_1", "on", "plate_2"), ("cup_2", "on", "plate_2")]
+    f = "(forall (?c - cup) (exists (?p - plate) (ontop ?c ?p)))"
+    result = evaluate(parse_formula(f), facts(edges))
+    assert result.satisfied and result.witness_count == 2
+    assert result.witnesses == [
+        "(exists (?p - plate) (ontop cup_1 ?p)) holds with ?p = plate_2",
+        "(exists (?p - plate) (ontop cup_2 ?p)) holds with ?p = plate_2"]
+    diff = check_goal(scene(ON_TABLE + edges), Goal(formula=f))
+    assert diff.satisfied and diff.formula_witnesses == result.witnesses
+    assert diff.summary() == "goal reached; " + "; ".join(result.witnesses)
+
+
+def test_negations_implications_and_counts_explain_themselves() -> None:
+    edges = [("cup_1", "on", "plate_1"), ("cup_2", "on", "table")]
+    cases = {
+        "(imply (ontop cup_1 plate_1) (ontop cup_2 plate_2))":
+            "cup_1 is on plate_1, but cup_2 is not on plate_2 (cup_2 is on table)",
+        "(or (ontop cup_1 table) (ontop cup_2 plate_1))":
+            "none holds: cup_1 is not on table (cup_1 is on plate_1) / cup_2 is not on "
+            "plate_1 (cup_2 is on table)",
+        "(forn (2) (?c - cup) (ontop ?c table))":
+            "1 cup(s) satisfy it (cup_2); exactly 2 wanted",
+        "(not (forall (?c - cup) (or (on ?c table) (on ?c plate_1))))":
+            "every cup (cup_1, cup_2) satisfies it",
+    }
+    for text, why in cases.items():
+        result = evaluate(parse_formula(text), facts(edges))
+        assert result.counterexamples == [f"{text} fails: {why}"], text
+
+
+@dataclass
+class StatefulInfo:
+    """An object as a scene with node states gives it: a `state` mapping."""
+
+    id: str
+    label: str
+    state: dict[str, bool] = field(default_factory=dict)
+
+
+def test_states_read_through_one_accessor_and_default_to_false() -> None:
+    assert node_state(StatefulInfo("fridge", "fridge", {"open": True})) == {"open": True}
+    plain = scene(ON_TABLE + [("cup_1", "on", "table"), ("cup_2", "on", "table")])
+    assert node_state(plain.objects["cup_1"]) == {}  # no state: all false
+    stateful = Facts({"fridge": "fridge", "stove": "stove", "lamp": "lamp"}, [],
+                     {"fridge": node_state(StatefulInfo("fridge", "fridge", {"open": True})),
+                      "stove": {"toggled_on": False}},
+                     load_dictionary(None).resolve)
+    assert holds(parse_formula("(open fridge)"), stateful)
+    assert not holds(parse_formula("(toggled_on stove)"), stateful)
+    assert not holds(parse_formula("(toggled_on lamp)"), stateful)
+    result = evaluate(parse_formula("(and (toggled_on stove) (toggled_on lamp) (open lamp))"),
+                      stateful)
+    assert result.counterexamples == [
+        "(toggled_on stove) fails: stove is off",
+        "(toggled_on lamp) fails: lamp is off (no state given: that is the default)",
+        "(open lamp) fails: lamp is closed (no state given: that is the default)"]
+
+
+def test_relations_are_read_by_name_and_nextto_either_way() -> None:
+    f = Facts({"box": "box", "table": "table", "sink": "sink", "cup": "cup",
+               "kitchen": "room"},
+              [("under", "box", "table"), ("nextto", "cup", "sink"),
+               ("inroom", "table", "kitchen")], {}, load_dictionary(None).resolve)
+    for text, expected in [("(under box table)", True), ("(under table box)", False),
+                           ("(nextto cup sink)", True), ("(nextto sink cup)", True),
+                           ("(inroom table kitchen)", True), ("(inroom box kitchen)", False),
+                           ("(exists (?r - room) (inroom table ?r))", True)]:
+        assert holds(parse_formula(text), f) is expected, text
+
+
+def test_names_are_checked_against_the_scene_all_at_once() -> None:
+    f = facts([("cup_1", "on", "table"), ("cup_2", "on", "table")])
+    check_names(parse_formula("(forall (?b - bowl) (ontop ?b plate_1))"), f)  # a known kind
+    with pytest.raises(GoalError) as err:
+        check_names(parse_formula("(and (ontop cupp_1 plate_1) (forall (?x - cupz) "
+                                  "(on ?x table)))"), f)
+    assert err.value.message == (
+        "the formula names what the scene does not have: object 'cupp_1' (did you mean "
+        "cup_1?); kind 'cupz', known neither to the dictionary nor as a label of the scene "
+        "(did you mean cup?)")
+    assert err.value.fix is not None and "cup, plate, table" in err.value.fix
+
+
+def test_formulas_that_ground_too_large_are_refused() -> None:
+    extra = [(f"cup_{i}", "cup") for i in range(3, 61)]
+    s = scene(ON_TABLE + [(f"cup_{i}", "on", "table") for i in range(1, 61)], extra)
+    nested = "(forall (?a - cup) (forall (?b - cup) (forall (?c - cup) (on ?a table))))"
+    assert 60 ** 3 > MAX_GROUND
+    with pytest.raises(GoalError, match="expands to 216000 instances"):
+        check_names(parse_formula(nested), facts_of(s))
+
+
+def test_goal_parse_reads_text_and_json_formulas() -> None:
+    assert Goal.parse(NO_CUP_ON_A_PLATE).formula == NO_CUP_ON_A_PLATE
+    assert Goal.parse({"formula": NO_CUP_ON_A_PLATE}).formula == NO_CUP_ON_A_PLATE
+    with pytest.raises(GoalError, match="character 2:"):
+        Goal.parse("(onn a b)")
+    with pytest.raises(ValueError, match="character 2:"):
+        Goal.model_validate({"formula": "(onn a b)"})
