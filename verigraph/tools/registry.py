@@ -123,12 +123,13 @@ class ToolSpec:
 
 TOOL_SPECS: tuple[ToolSpec, ...] = (
     ToolSpec("load_scene", "Start an episode",
-             "Start an episode (scene_id, graph, image or sim2d generator); returns the "
+             "Start an episode (scene_id, graph, image, sim2d generator or BDDL "
+             "problem); returns the "
              "episode_id. Your own label: its role in the node's attrs, e.g. "
              '{"id":"tin","label":"tin","attrs":{"container":true,"capacity":3}}.',
              loading.LoadSceneInput, summaries.EpisodeState, loading.load_scene_tool,
              read_only=False, open_world=True, opens_world=True,
-             heavy_when=HeavyWhen(given=("image", "generator", "simulate", "executor"),
+             heavy_when=HeavyWhen(given=("image", "generator", "bddl", "simulate", "executor"),
                                   graphs=("graph", "goal"), images=("image",))),
     ToolSpec("set_goal", "Set the goal",
              "Set the goal: edges ('cup on table; spoon in pot'), a graph, a predicate or an "
