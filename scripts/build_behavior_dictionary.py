@@ -23,12 +23,11 @@ Roles from abilities (the knowledge base has no notion of a surface or of capaci
 - surface: a `sceneObject` that is no wall, ceiling, door or window (tables, counters,
   shelves, floors, beds, chairs);
 - container: `fillable` or `openable`;
-- openable: `openable`; toggleable: `toggleable`;
+- openable, toggleable, cookable, heatable, freezable: the ability of that name;
+  heat_source: `heatSource`; cold_source: `coldSource`;
 - capacity: unlimited on a fixed kind; 4 on a movable surface or container;
 - room: BEHAVIOR's room types (`kitchen`, `living_room`; `bar_room` and `closet_room`
   where an object kind has the word).
-Thermal abilities (`heatSource`, `coldSource`, `cookable`, `freezable`, `heatable`) are
-kept per kind in `abilities`, for the physical-process actions.
 """
 
 from __future__ import annotations
@@ -56,7 +55,11 @@ COMMON_NAMES = {
     "straight_chair.n.01": "chair",
     "pot_plant.n.01": "potted_plant",
 }
-KEPT_ABILITIES = ("heatSource", "coldSource", "cookable", "freezable", "heatable")
+# BEHAVIOR ability -> the role it gives a kind.
+ROLES_OF_ABILITIES = (("openable", "openable"), ("toggleable", "toggleable"),
+                      ("cookable", "cookable"), ("heatable", "heatable"),
+                      ("freezable", "freezable"), ("heatSource", "heat_source"),
+                      ("coldSource", "cold_source"))
 NOT_SURFACES = ("wall.n.01", "ceiling.n.01", "door.n.01", "fixed_window.n.01",
                 "openable_window.n.01", "gate.n.01", "rail_fence.n.01", "mirror.n.01",
                 "photograph.n.01", "switch.n.01", "showerhead.n.01", "range_hood.n.01",
@@ -113,7 +116,6 @@ def build(generated: Path, definitions: Path) -> dict[str, object]:
     uses = activity_usage(definitions)
     labels = labels_of(synsets, uses)
     objects: dict[str, dict[str, object]] = {}
-    abilities_out: dict[str, list[str]] = {}
     for synset in synsets:
         abilities = annots[synset]
         label = labels[synset]
@@ -132,13 +134,10 @@ def build(generated: Path, definitions: Path) -> dict[str, object]:
             entry["container"] = True
         if (surface or container) and not fixed:
             entry["capacity"] = MOVABLE_CAPACITY
-        for ability, role in (("openable", "openable"), ("toggleable", "toggleable")):
+        for ability, role in ROLES_OF_ABILITIES:
             if ability in abilities:
                 entry[role] = True
         objects[label] = entry
-        kept = [a for a in KEPT_ABILITIES if a in abilities]
-        if kept:
-            abilities_out[label] = kept
     # BEHAVIOR's room types as room kinds (furniture stands `inroom` them); a room type
     # whose word an object kind has (`bar`, `closet`) is the kind `<type>_room`.
     with (generated / "allowed_room_types.csv").open() as rows:
@@ -151,7 +150,6 @@ def build(generated: Path, definitions: Path) -> dict[str, object]:
         "relations": ["on", "in", "under", "nextto", "inroom"],
         "objects": dict(sorted(objects.items())),
         "synsets": {labels[s]: s for s in synsets},
-        "abilities": dict(sorted(abilities_out.items())),
     }
 
 

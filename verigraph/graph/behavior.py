@@ -45,9 +45,3 @@ def synset(label: str) -> str | None:
 def label_of_synset() -> dict[str, str]:
     """Synset -> the label of its kind (`electric_refrigerator.n.01` -> `fridge`)."""
     return {s: label for label, s in _data()["synsets"].items()}
-
-
-def abilities(label: str) -> tuple[str, ...]:
-    """The thermal abilities BEHAVIOR gives a kind (`heatSource`, `coldSource`,
-    `cookable`, `freezable`, `heatable`)."""
-    return tuple(_data()["abilities"].get(label, ()))

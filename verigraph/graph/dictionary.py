@@ -48,6 +48,13 @@ HOUSEHOLD_RELATIONS = (*PLACEMENT_RELATIONS, ROOM_RELATION)
 # object is open or closed, a toggleable one on or off. A node without a state key has
 # its default (`state_value`): closed, off.
 STATE_ROLES = {"open": "openable", "toggled_on": "toggleable"}
+# Physical processes (BEHAVIOR's thermal states): a cookable object is raw or cooked, a
+# heatable one hot or not, a freezable one frozen or not; default false. They change by
+# the process actions (cook, heat, freeze, cool, thaw) on or in a heat or cold source.
+THERMAL_ROLES = {"cooked": "cookable", "hot": "heatable", "frozen": "freezable"}
+STATE_ROLES.update(THERMAL_ROLES)
+# Roles of the sources those actions need (a heat source must be on when toggleable).
+SOURCE_ROLES = ("heat_source", "cold_source")
 
 # Bounds of a dictionary given inline by a client: it is stored with the episode and
 # shown in texts and prompts, so it stays the size of a tabletop's vocabulary.
@@ -58,7 +65,7 @@ MAX_INLINE_BYTES = 32_768
 ROLE_KEYS = ("movable", "surface", "container")
 # Roles a kind may have beyond where things rest: a state it keeps (STATE_ROLES) and
 # whether it is a room (furniture stands `inroom` it).
-STATE_ROLE_KEYS = ("openable", "toggleable")
+STATE_ROLE_KEYS = ("openable", "toggleable", *THERMAL_ROLES.values(), *SOURCE_ROLES)
 # Bounds of every size the simulator, the renderer and perception build from, whichever
 # way it comes in (a built-in or inline dictionary, a dictionary file, a node's attrs):
 # widths and heights in the simulator's units (a built-in cup is 6 wide, a desk 60),
@@ -77,6 +84,8 @@ PROPERTY_BOUNDS = {
     "symmetry": f"an integer from 1 to {MAX_SYMMETRY} that divides sides",
     "movable": "true or false", "surface": "true or false", "container": "true or false",
     "openable": "true or false", "toggleable": "true or false", "room": "true or false",
+    "cookable": "true or false", "heatable": "true or false", "freezable": "true or false",
+    "heat_source": "true or false", "cold_source": "true or false",
     "color": "a colour name of at most 32 characters",
     "shape": "a shape name of at most 32 characters",
 }
@@ -100,6 +109,11 @@ class ObjectProperties(BaseModel):
     openable: bool = Field(default=False, description="open or closed (state `open`)")
     toggleable: bool = Field(default=False, description="on or off (state `toggled_on`)")
     room: bool = Field(default=False, description="a room: furniture stands `inroom` it")
+    cookable: bool = Field(default=False, description="raw or cooked (state `cooked`)")
+    heatable: bool = Field(default=False, description="hot or not (state `hot`)")
+    freezable: bool = Field(default=False, description="frozen or not (state `frozen`)")
+    heat_source: bool = Field(default=False, description="cooks and heats what is on or in it")
+    cold_source: bool = Field(default=False, description="freezes what is on or in it")
     # Descriptive properties used by the simulator, renderer and perception; bounded
     # here so that no way in (a dictionary or a node's attrs) reaches them unbounded.
     width: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
@@ -171,6 +185,9 @@ def _props_text(props: ObjectProperties) -> str:
         text += ", openable"
     if props.toggleable:
         text += ", toggleable"
+    for role in (*THERMAL_ROLES.values(), *SOURCE_ROLES):
+        if getattr(props, role):
+            text += f", {role.replace('_', ' ')}"
     return text
 
 
@@ -180,7 +197,9 @@ def state_value(state: dict[str, bool], key: str) -> bool:
     return state.get(key, False)
 
 
-STATE_WORDS = {"open": ("closed", "open"), "toggled_on": ("off", "on")}
+STATE_WORDS = {"open": ("closed", "open"), "toggled_on": ("off", "on"),
+               "cooked": ("raw", "cooked"), "hot": ("not hot", "hot"),
+               "frozen": ("not frozen", "frozen")}
 
 
 def state_text(props: ObjectProperties, state: dict[str, bool]) -> str:
@@ -232,6 +251,11 @@ class UserObject(BaseModel):
     openable: bool = Field(default=False, strict=True)
     toggleable: bool = Field(default=False, strict=True)
     room: bool = Field(default=False, strict=True)
+    cookable: bool = Field(default=False, strict=True)
+    heatable: bool = Field(default=False, strict=True)
+    freezable: bool = Field(default=False, strict=True)
+    heat_source: bool = Field(default=False, strict=True)
+    cold_source: bool = Field(default=False, strict=True)
     width: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
     height: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
     color: str | None = Field(default=None, max_length=32)
@@ -361,7 +385,8 @@ class InlineDictionary(BaseModel):
 
 
 def _same_kind(a: ObjectProperties, b: ObjectProperties) -> bool:
-    keys = ("movable", "surface", "container", "capacity", "openable", "toggleable", "room")
+    keys = ("movable", "surface", "container", "capacity", "openable", "toggleable", "room",
+            *THERMAL_ROLES.values(), *SOURCE_ROLES)
     return all(getattr(a, k) == getattr(b, k) for k in keys)
 
 

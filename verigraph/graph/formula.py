@@ -15,7 +15,8 @@ is the type: `(forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))`).
     atom     := (predicate term+)       term := ?var | object-id
 
 A whole `(:goal formula)` section is read as its formula. Predicates: `ontop`/`on`,
-`inside`/`in`, `under`, `nextto`, `inroom` (two terms), `open`, `toggled_on` (one).
+`inside`/`in`, `under`, `nextto`, `inroom` (two terms), `open`, `toggled_on`, and the
+thermal states `cooked`, `hot`, `frozen` (one).
 Parsing is one pass over the tokens, with the text's length, the nesting depth and the
 number of parts bounded; every error names the character position and the fix. Whether
 the ids and kinds exist is the evaluator's question (`formula_eval.check_names`): the
@@ -41,8 +42,9 @@ PREDICATES: dict[str, tuple[str, int]] = {
     "ontop": ("on", 2), "on": ("on", 2), "inside": ("in", 2), "in": ("in", 2),
     "under": ("under", 2), "nextto": ("nextto", 2), "inroom": ("inroom", 2),
     "open": ("open", 1), "toggled_on": ("toggled_on", 1),
+    "cooked": ("cooked", 1), "hot": ("hot", 1), "frozen": ("frozen", 1),
 }
-STATE_KEYS = ("open", "toggled_on")
+STATE_KEYS = ("open", "toggled_on", "cooked", "hot", "frozen")
 CONNECTIVES = ("and", "or", "not", "imply")
 QUANTIFIERS = ("forall", "exists", "forn", "forpairs", "fornpairs")
 FORMULA_EXAMPLE = "(forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))"
