@@ -17,6 +17,7 @@ from typing import Any
 
 from verigraph.errors import VeriGraphError
 from verigraph.extras import require
+from verigraph.tasks.task import Task
 
 MAX_PROBLEM_BYTES = 262_144
 
@@ -181,3 +182,37 @@ def formula_holds(graph: dict[str, Any], formula: str) -> bool:
 
     state = WorldState.from_graph(SceneGraph.model_validate(graph))
     return holds(parse_formula(formula), facts_of(state))
+
+
+# An activity becomes a task of `verigraph/behavior-v0` when the reference solver finds
+# its optimal plan this fast here (the oracle solves it again, with its default budget,
+# on every call: a margin keeps a slower machine from turning a task unsolvable).
+TASK_SOLVE_SECONDS = 1.0
+
+
+def behavior_tasks(max_solve_s: float = TASK_SOLVE_SECONDS) -> list[Task]:
+    """One task per activity that imports and that the reference solver solves optimally
+    within `max_solve_s`: the scene, its goal formula, its class as the kind and the
+    optimal plan length. Ids are `behavior/<activity>`; splits follow the content hash,
+    so each activity is wholly in train or in test."""
+    from verigraph.graph.bddl_problem import UnsupportedActivityError, import_problem
+    from verigraph.graph.goal import Goal
+    from verigraph.solver import solve
+
+    tasks = []
+    for name in activities():
+        try:
+            imported = import_problem(activity_text(name), activity=name)
+            graph = imported.scene_graph()
+        except UnsupportedActivityError:
+            continue
+        result = solve(graph, Goal(formula=imported.formula), time_limit=max_solve_s)
+        if not result.reachable or not result.optimal:
+            continue
+        tasks.append(Task.create(
+            task_id=f"behavior/{name}",
+            load={"graph": graph.model_dump(mode="json", exclude_none=True)},
+            set_goal={"formula": imported.formula}, family="behavior", group="behavior",
+            kind=imported.predicate_class, optimal_length=len(result.plan),
+            show_goal_graph=True))
+    return tasks

@@ -229,6 +229,13 @@ def tangram_tasks(n: int, seed: int, *, simulate: bool = False) -> GroupTasks:
     return GroupTasks(group="tangram", tasks=tasks, note=note)
 
 
+def _behavior_group(n: int) -> GroupTasks:
+    """BEHAVIOR-1K's activities the reference solver solves (verigraph.tasks.behavior)."""
+    from verigraph.tasks.behavior import behavior_tasks
+
+    return GroupTasks(group="behavior", tasks=behavior_tasks()[:n])
+
+
 def build_groups(groups: tuple[GroupName, ...], n: int, seed: int, *, ground_truth: bool,
                  simulate: bool = False) -> list[GroupTasks]:
     """Every requested group's tasks (or why it is not run)."""
@@ -240,5 +247,6 @@ def build_groups(groups: tuple[GroupName, ...], n: int, seed: int, *, ground_tru
         "ref_image_blocks": lambda: reference_image_tasks(
             "blocks", n, seed, ground_truth=ground_truth, simulate=simulate),
         "tangram": lambda: tangram_tasks(n, seed, simulate=simulate),
+        "behavior": lambda: _behavior_group(n),
     }
     return [builders[g]() for g in groups]

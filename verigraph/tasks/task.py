@@ -30,9 +30,10 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 
 SUITE_VERSION = "2"
-Family = Literal["blocks", "kitchen", "tangram"]
+Family = Literal["blocks", "kitchen", "tangram", "behavior"]
 FAMILIES: tuple[Family, ...] = get_args(Family)
-GroupName = Literal["stacking", "language", "ref_image_kitchen", "ref_image_blocks", "tangram"]
+GroupName = Literal["stacking", "language", "ref_image_kitchen", "ref_image_blocks", "tangram",
+                    "behavior"]
 GROUPS: tuple[GroupName, ...] = get_args(GroupName)
 
 RECORD_FIELDS = ("family", "group", "kind", "optimal_length", "objects", "show_goal_graph",
