@@ -31,8 +31,22 @@ from pydantic_core import PydanticCustomError
 from verigraph.errors import DictionaryError, InputFileError
 
 BUILTIN_DICTIONARIES = ("blocks", "kitchen", "tableware", "tangram")
-# The relations by which one object rests on or in another (tangram's `touches` is not one).
+# The relations by which one object rests on or in another (tangram's `touches` is not one):
+# they carry the object, so they count against the target's capacity.
 SUPPORT_RELATIONS = ("on", "in")
+# Every placement of a movable object: resting on or in its target, or under or next to
+# a reference object (these two carry nothing and count against no capacity; the object
+# stands where its reference stands). A movable object has exactly one of them.
+PLACEMENT_RELATIONS = ("on", "in", "under", "nextto")
+# Furniture (a fixed object) in a room; not a placement of a movable object, whose room
+# is the room of the furniture its placements lead down to.
+ROOM_RELATION = "inroom"
+# The relations of a household world (the kitchen dictionary's R).
+HOUSEHOLD_RELATIONS = (*PLACEMENT_RELATIONS, ROOM_RELATION)
+# Object states and the role a kind needs to have one (BEHAVIOR's names): an openable
+# object is open or closed, a toggleable one on or off. A node without a state key has
+# its default (`state_value`): closed, off.
+STATE_ROLES = {"open": "openable", "toggled_on": "toggleable"}
 
 # Bounds of a dictionary given inline by a client: it is stored with the episode and
 # shown in texts and prompts, so it stays the size of a tabletop's vocabulary.
@@ -41,6 +55,9 @@ MAX_LABEL_LENGTH = 64
 MAX_SYNONYMS = 16
 MAX_INLINE_BYTES = 32_768
 ROLE_KEYS = ("movable", "surface", "container")
+# Roles a kind may have beyond where things rest: a state it keeps (STATE_ROLES) and
+# whether it is a room (furniture stands `inroom` it).
+STATE_ROLE_KEYS = ("openable", "toggleable")
 # Bounds of every size the simulator, the renderer and perception build from, whichever
 # way it comes in (a built-in or inline dictionary, a dictionary file, a node's attrs):
 # widths and heights in the simulator's units (a built-in cup is 6 wide, a desk 60),
@@ -58,6 +75,7 @@ PROPERTY_BOUNDS = {
     "sides": f"an integer from 3 to {MAX_SIDES}",
     "symmetry": f"an integer from 1 to {MAX_SYMMETRY} that divides sides",
     "movable": "true or false", "surface": "true or false", "container": "true or false",
+    "openable": "true or false", "toggleable": "true or false", "room": "true or false",
     "color": "a colour name of at most 32 characters",
     "shape": "a shape name of at most 32 characters",
 }
@@ -78,6 +96,9 @@ class ObjectProperties(BaseModel):
     capacity: int | None = Field(
         default=None, ge=0, le=MAX_CAPACITY,
         description="how many objects it can carry on or in it at once; null = unlimited")
+    openable: bool = Field(default=False, description="open or closed (state `open`)")
+    toggleable: bool = Field(default=False, description="on or off (state `toggled_on`)")
+    room: bool = Field(default=False, description="a room: furniture stands `inroom` it")
     # Descriptive properties used by the simulator, renderer and perception; bounded
     # here so that no way in (a dictionary or a node's attrs) reaches them unbounded.
     width: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
@@ -139,11 +160,38 @@ def properties_text(props: ObjectProperties) -> str:
 
 
 def _props_text(props: ObjectProperties) -> str:
+    if props.room:
+        return "room"
     kinds = [k for k, on in (("surface", props.surface), ("container", props.container)) if on]
     text = " ".join(["movable" if props.movable else "fixed", *kinds])
     if kinds:
         text += f", capacity {'unlimited' if props.capacity is None else props.capacity}"
+    if props.openable:
+        text += ", openable"
+    if props.toggleable:
+        text += ", toggleable"
     return text
+
+
+def state_value(state: dict[str, bool], key: str) -> bool:
+    """A node's state `key` (`open`, `toggled_on`), its default when the node has none:
+    an openable object is closed and a toggleable one off unless its state says so."""
+    return state.get(key, False)
+
+
+STATE_WORDS = {"open": ("closed", "open"), "toggled_on": ("off", "on")}
+
+
+def state_text(props: ObjectProperties, state: dict[str, bool]) -> str:
+    """`closed (default), on`: each state the kind has, `(default)` where the node does
+    not set it (an openable object is closed, a toggleable one off); empty for a kind
+    with no state."""
+    words = []
+    for key, role in STATE_ROLES.items():
+        if getattr(props, role):
+            word = STATE_WORDS[key][state_value(state, key)]
+            words.append(word if key in state else f"{word} (default)")
+    return ", ".join(words)
 
 
 def open_label_properties(attrs: dict[str, Any]) -> ObjectProperties | None:
@@ -154,9 +202,11 @@ def open_label_properties(attrs: dict[str, Any]) -> ObjectProperties | None:
     carries 1 object unless `capacity` says otherwise (as a block does), a fixed one any
     number (as a table does). Raises DictionaryError for a role of the wrong type.
     """
-    if not any(key in attrs for key in ROLE_KEYS):
+    if not any(key in attrs for key in (*ROLE_KEYS, *STATE_ROLE_KEYS, "room")):
         return None
     base = ObjectProperties()
+    if attrs.get("room") is True and "movable" not in attrs:  # a room stays where it is
+        base = ObjectProperties(movable=False)
     movable = attrs.get("movable", True)
     if "capacity" not in attrs and movable is True and (
             attrs.get("surface") is True or attrs.get("container") is True):
@@ -178,6 +228,9 @@ class UserObject(BaseModel):
     surface: bool = Field(default=False, strict=True)
     container: bool = Field(default=False, strict=True)
     capacity: int | None = Field(default=None, ge=0, le=MAX_CAPACITY, strict=True)
+    openable: bool = Field(default=False, strict=True)
+    toggleable: bool = Field(default=False, strict=True)
+    room: bool = Field(default=False, strict=True)
     width: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
     height: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
     color: str | None = Field(default=None, max_length=32)
@@ -306,7 +359,7 @@ class InlineDictionary(BaseModel):
 
 
 def _same_kind(a: ObjectProperties, b: ObjectProperties) -> bool:
-    keys = ("movable", "surface", "container", "capacity")
+    keys = ("movable", "surface", "container", "capacity", "openable", "toggleable", "room")
     return all(getattr(a, k) == getattr(b, k) for k in keys)
 
 

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Annotated, Any
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema, field_validator
 
-from verigraph.graph.dictionary import InlineDictionary, inline_or_name
+from verigraph.graph.dictionary import STATE_ROLES, InlineDictionary, inline_or_name
 
 if TYPE_CHECKING:  # networkx loads only where a graph is converted (fast CLI start-up)
     import networkx as nx
@@ -32,6 +32,27 @@ class Node(BaseModel):
     label: str = Field(min_length=1, max_length=128, description="a name from the dictionary D")
     attrs: dict[str, Any] = Field(default_factory=dict,
                                   description="colour; overrides (capacity, movable)")
+    # Serialised only when set, so a scene without states dumps as it always did.
+    state: dict[str, bool] = Field(
+        default_factory=dict, exclude_if=lambda state: not state,
+        description="open (openable kinds), toggled_on (toggleable kinds); "
+                    "missing = closed, off")
+
+    @field_validator("state", mode="before")
+    @classmethod
+    def _known_states(cls, value: Any) -> Any:
+        """Only the state keys there are, each a JSON boolean (refused with the fix)."""
+        if not isinstance(value, dict):
+            return value
+        for key, on in value.items():
+            if key not in STATE_ROLES:
+                raise ValueError(
+                    f"unknown state '{str(key)[:32]}' (fix: use "
+                    f"{' or '.join(STATE_ROLES)}, e.g. {{\"open\": false}})")
+            if not isinstance(on, bool):
+                raise ValueError(f"state '{key}' must be true or false, got "
+                                 f"{str(on)[:32]!r} (fix: write {{\"{key}\": true}})")
+        return value
 
 
 class Edge(BaseModel):
@@ -103,7 +124,7 @@ class SceneGraph(BaseModel):
 
         g = nx.DiGraph(dictionary=self.dictionary)
         for n in self.nodes:
-            g.add_node(n.id, label=n.label, attrs=dict(n.attrs))
+            g.add_node(n.id, label=n.label, attrs=dict(n.attrs), state=dict(n.state))
         for e in self.edges:
             data: dict[str, Any] = {"relation": e.relation}
             if e.source_side is not None:
@@ -116,7 +137,8 @@ class SceneGraph(BaseModel):
     @classmethod
     def from_networkx(cls, g: nx.DiGraph) -> SceneGraph:
         """Inverse of `to_networkx`; a missing `label` falls back to the node id."""
-        nodes = [Node(id=str(n), label=str(d.get("label", n)), attrs=dict(d.get("attrs", {})))
+        nodes = [Node(id=str(n), label=str(d.get("label", n)), attrs=dict(d.get("attrs", {})),
+                      state=dict(d.get("state", {})))
                  for n, d in g.nodes(data=True)]
         edges = [Edge(source=str(u), target=str(v), relation=str(d.get("relation", "on")),
                       source_side=d.get("source_side"), target_side=d.get("target_side"))

@@ -14,10 +14,13 @@ from dataclasses import dataclass
 from verigraph.errors import MalformedGraphError
 from verigraph.graph.bulk import collector_paused
 from verigraph.graph.dictionary import (
+    PLACEMENT_RELATIONS,
+    ROOM_RELATION,
     SUPPORT_RELATIONS,
     Dictionary,
     ObjectProperties,
     load_dictionary,
+    state_value,
 )
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.support import SupportIndex
@@ -37,18 +40,33 @@ class ObjectInfo:
 
 
 class WorldState(SupportIndex):
-    """Objects, supports (`obj -> (relation, target)`), carried sets and tangram contacts."""
+    """Objects, placements (`obj -> (relation, target)`), what each object has placed on,
+    in, under or next to it (`carried`), object states, furniture's rooms and tangram
+    contacts.
 
-    __slots__ = ("dictionary", "move_relations", "objects", "contacts", "_fixed_surfaces")
+    `carried[x]` holds every placement relative to x, so `is_clear(x)` means nothing is
+    on, in, under or next to it; only `on` and `in` count against x's capacity (`load`).
+    """
+
+    __slots__ = ("dictionary", "move_relations", "objects", "contacts", "_fixed_surfaces",
+                 "states", "rooms", "_uncounted")
 
     def __init__(self, dictionary: Dictionary) -> None:
         super().__init__()
         self.dictionary = dictionary
-        self.move_relations = tuple(r for r in dictionary.relations if r in SUPPORT_RELATIONS)
+        self.move_relations = tuple(r for r in dictionary.relations
+                                    if r in PLACEMENT_RELATIONS)
+        # Whether `carried` may hold placements that carry nothing (under, nextto).
+        self._uncounted = len(self.move_relations) > len(
+            [r for r in self.move_relations if r in SUPPORT_RELATIONS])
         self.objects: dict[str, ObjectInfo] = {}
         # Every contact of every side: a long side can touch two small pieces at once.
         self.contacts: dict[Side, list[Side]] = {}
         self._fixed_surfaces: list[str] = []
+        # Object -> its state keys that are set (sparse: most objects have none).
+        self.states: dict[str, dict[str, bool]] = {}
+        # Furniture -> the room it stands in (never changes).
+        self.rooms: dict[str, str] = {}
 
     @classmethod
     def from_graph(cls, graph: SceneGraph, dictionary: Dictionary | str | None = None, *,
@@ -68,6 +86,7 @@ class WorldState(SupportIndex):
         self.objects = {n.id: ObjectInfo(n.id, label, props, dict(n.attrs))
                         for n, (label, props) in zip(graph.nodes, resolved.values(),
                                                      strict=True)}
+        self.states = {n.id: dict(n.state) for n in graph.nodes if n.state}
         carried: dict[str, dict[str, str]] = {node_id: {} for node_id in resolved}
         self.carried = carried
         self._fixed_surfaces = [i for i, (_, p) in resolved.items() if p.surface and not p.movable]
@@ -77,6 +96,8 @@ class WorldState(SupportIndex):
             if relation == "touches":
                 self.add_contact((edge.source, edge.source_side or 0),
                                  (edge.target, edge.target_side or 0))
+            elif relation == ROOM_RELATION:
+                self.rooms[edge.source] = edge.target
             else:
                 support[edge.source] = (relation, edge.target)
                 carried[edge.target][edge.source] = relation
@@ -92,6 +113,9 @@ class WorldState(SupportIndex):
         other.carried = {k: dict(v) for k, v in self.carried.items()}
         other.contacts = {k: list(v) for k, v in self.contacts.items()}
         other._fixed_surfaces = self._fixed_surfaces
+        other._uncounted = self._uncounted
+        other.states = {k: dict(v) for k, v in self.states.items()}
+        other.rooms = self.rooms
         return other
 
     # -- queries ---------------------------------------------------------------------------
@@ -104,7 +128,37 @@ class WorldState(SupportIndex):
 
     def has_room(self, target: str) -> bool:
         cap = self.objects[target].props.capacity
-        return cap is None or len(self.carried[target]) < cap
+        if cap is None:
+            return True
+        held = self.carried[target]
+        return len(held) < cap or (self._uncounted and self.load(target) < cap)
+
+    def load(self, target: str) -> int:
+        """How many objects are on or in `target` (what counts against its capacity)."""
+        held = self.carried[target]
+        if not self._uncounted:
+            return len(held)
+        return sum(1 for relation in held.values() if relation in SUPPORT_RELATIONS)
+
+    def state_value(self, obj: str, key: str) -> bool:
+        """`obj`'s state `key` (`open`, `toggled_on`); unset: closed, off."""
+        return state_value(self.states.get(obj, {}), key)
+
+    def set_state(self, obj: str, key: str, value: bool) -> None:
+        """Set one state key of `obj` (kept explicit, so the graph shows it)."""
+        self.states.setdefault(obj, {})[key] = value
+
+    def room_of(self, obj: str) -> str | None:
+        """The room `obj` is in: its own (furniture), or that of the furniture its
+        placements lead down to; None when no room is known (O(stack height))."""
+        room = self.rooms.get(obj)
+        if room is not None or not self.rooms:
+            return room
+        for below in self.supports_chain(obj):
+            room = self.rooms.get(below)
+            if room is not None:
+                return room
+        return None
 
     def supports_chain(self, obj: str) -> list[str]:
         """Objects below `obj`, nearest first (O(stack height))."""
@@ -157,7 +211,8 @@ class WorldState(SupportIndex):
     # -- export ----------------------------------------------------------------------------
     def edges(self) -> list[Edge]:
         return [Edge(source=o, relation=r, target=t) for o, (r, t) in self.support.items()] \
-            + self._contact_edges()
+            + self._contact_edges() + [Edge(source=o, relation=ROOM_RELATION, target=r)
+                                       for o, r in self.rooms.items()]
 
     def _contact_edges(self) -> list[Edge]:
         """One edge per tangram contact (each touching pair once)."""
@@ -181,8 +236,15 @@ class WorldState(SupportIndex):
         the same models `Node(...)` and `Edge(...)` give.
         """
         nodes = [{"id": o.id, "label": o.label, "attrs": o.attrs} for o in self.objects.values()]
+        if self.states:
+            states = self.states
+            for node in nodes:
+                if node["id"] in states:
+                    node["state"] = states[node["id"]]  # type: ignore[index]
         edges: list[dict[str, str] | Edge] = [
             {"source": o, "relation": r, "target": t} for o, (r, t) in self.support.items()]
         edges += self._contact_edges()
+        edges += [{"source": o, "relation": ROOM_RELATION, "target": r}
+                  for o, r in self.rooms.items()]
         return SceneGraph.model_validate({"nodes": nodes, "edges": edges,
                                           "dictionary": self.dictionary.reference()}).canonical()

@@ -1,9 +1,14 @@
 """Well-formedness rules for scene graphs, each reported with the node it concerns.
 
 A tabletop graph is well formed when ids are unique, labels and relations are known,
-every movable object has exactly one support, supports exist and suit the relation
-(`on` needs a surface, `in` a container), no capacity is exceeded and there is no
-cycle. A partial graph (a goal listing only some edges) skips the completeness rule.
+every movable object has exactly one placement (`on`, `in`, `under`, `nextto`),
+placements exist and suit the relation (`on` needs a surface, `in` a container,
+`under` furniture: a fixed surface, `nextto` anything but a room), no capacity is
+exceeded (only `on` and `in` count) and there is no cycle. `inroom` puts furniture (a
+fixed object) in a room, at most one; a node's state keys need the kind's role
+(`open`: openable, `toggled_on`: toggleable). A partial graph (a goal listing only
+some edges) skips the completeness rule. docs/worlds.md, "Household worlds", says what
+each relation means.
 """
 
 from __future__ import annotations
@@ -19,6 +24,8 @@ from verigraph.budget import checkpoint
 from verigraph.errors import DictionaryError
 from verigraph.graph.cycles import find_single_support_cycle, find_support_cycle
 from verigraph.graph.dictionary import (
+    ROOM_RELATION,
+    STATE_ROLES,
     SUPPORT_RELATIONS,
     Dictionary,
     ObjectProperties,
@@ -97,8 +104,26 @@ def resolve_properties(graph: SceneGraph, dictionary: Dictionary,
         except DictionaryError as exc:  # a bad override
             problems.append(_attribute_problem(node.id, i, exc))
             continue
+        if node.state:
+            problems.extend(_state_problems(node, i, label, props))
         resolved.setdefault(node.id, (label, props))
     return resolved
+
+
+def _state_problems(node: Node, index: int, label: str, props: ObjectProperties
+                    ) -> list[GraphProblem]:
+    """A state key on a node whose kind lacks its role (`open` on a plate)."""
+    problems = []
+    for key in node.state:
+        role = STATE_ROLES[key]
+        if not getattr(props, role):
+            problems.append(GraphProblem(
+                rule="state_without_role", node=node.id, field=f"nodes[{index}].state.{key}",
+                message=f"node '{node.id}' ({label}) has state '{key}', but a {label} is not "
+                        f"{role}",
+                fix=f"remove '{key}' from its state, or declare the role in its attrs: "
+                    f'{{"{role}": true}}'))
+    return problems
 
 
 class _GraphRoles:
@@ -339,6 +364,8 @@ def check_and_resolve(graph: SceneGraph, dictionary: Dictionary, *, partial: boo
     whenever no object has two supports (the rule that is already a problem otherwise).
     """
     problems: list[GraphProblem] = []
+    uncounted: list[str] = []  # targets of `under` and `nextto` (they carry nothing)
+    rooms: dict[str, str] = {}  # furniture -> its room
     id_list = [n.id for n in graph.nodes]
     ids = set(id_list)
     if len(ids) != len(id_list):
@@ -380,6 +407,9 @@ def check_and_resolve(graph: SceneGraph, dictionary: Dictionary, *, partial: boo
         if relation == "touches":
             problems.extend(_check_sides(edge, f"edges[{i}]", resolved))
             continue
+        if relation == ROOM_RELATION:
+            problems.extend(_room_problems(edge, i, resolved, rooms))
+            continue
         if source in below:
             more_below.setdefault(source, [below[source]]).append(target_id)
         else:
@@ -396,13 +426,18 @@ def check_and_resolve(graph: SceneGraph, dictionary: Dictionary, *, partial: boo
                             "surface",
                     fix=f"use '{edge.source} in {edge.target}'" if props.container else
                         f"put {edge.source} on a surface"))
-        elif relation == "in" and not props.container:
-            problems.append(GraphProblem(
-                rule="target_not_container", node=edge.target, field=f"edges[{i}]",
-                message=f"'{edge.sentence()}': {edge.target} ({target[0]}) is not a container",
-                fix=f"use '{edge.source} on {edge.target}'" if props.surface else
-                    f"put {edge.source} in a container"))
-    problems += _node_problems(resolved, below, more_below, partial)
+        elif relation == "in":
+            if not props.container:
+                problems.append(GraphProblem(
+                    rule="target_not_container", node=edge.target, field=f"edges[{i}]",
+                    message=f"'{edge.sentence()}': {edge.target} ({target[0]}) is not a "
+                            "container",
+                    fix=f"use '{edge.source} on {edge.target}'" if props.surface else
+                        f"put {edge.source} in a container"))
+        else:
+            uncounted.append(target_id)
+            problems.extend(_beside_problem(edge, i, target[0], props))
+    problems += _node_problems(resolved, below, more_below, partial, uncounted)
     if more_below:
         cycle = find_support_cycle({k: more_below.get(k) or [v] for k, v in below.items()})
     else:
@@ -416,8 +451,58 @@ def check_and_resolve(graph: SceneGraph, dictionary: Dictionary, *, partial: boo
     return problems, resolved
 
 
+def _room_problems(edge: Edge, i: int, resolved: dict[str, tuple[str, ObjectProperties]],
+                   rooms: dict[str, str]) -> list[GraphProblem]:
+    """`x inroom r`: r is a room, x furniture (fixed, not a room), in one room only."""
+    problems = []
+    source, room = resolved.get(edge.source), resolved.get(edge.target)
+    if room is not None and not room[1].room:
+        problems.append(GraphProblem(
+            rule="target_not_room", node=edge.target, field=f"edges[{i}]",
+            message=f"'{edge.sentence()}': {edge.target} ({room[0]}) is not a room",
+            fix="name a room as the target of inroom (a node labelled room, kitchen, "
+                "living_room, bedroom, ...)"))
+    if source is not None and (source[1].movable or source[1].room):
+        what = "a room" if source[1].room else "movable"
+        problems.append(GraphProblem(
+            rule="inroom_not_furniture", node=edge.source, field=f"edges[{i}]",
+            message=f"'{edge.sentence()}': {edge.source} ({source[0]}) is {what}; only "
+                    "furniture (a fixed object) stands in a room",
+            fix=f"place {edge.source} on, in, under or next to furniture that is in "
+                f"{edge.target}" if source[1].movable else "remove the edge"))
+    if edge.source in rooms and rooms[edge.source] != edge.target:
+        problems.append(GraphProblem(
+            rule="multiple_rooms", node=edge.source, field=f"edges[{i}]",
+            message=f"'{edge.source}' is in {rooms[edge.source]} and in {edge.target}; "
+                    "furniture stands in one room",
+            fix=f"keep one of the inroom edges from '{edge.source}'"))
+    rooms.setdefault(edge.source, edge.target)
+    return problems
+
+
+def _beside_problem(edge: Edge, i: int, label: str, props: ObjectProperties
+                    ) -> list[GraphProblem]:
+    """`under` needs furniture (a fixed surface) above; `nextto` anything but a room."""
+    if edge.relation == "under" and (props.movable or not props.surface):
+        return [GraphProblem(
+            rule="target_not_furniture", node=edge.target, field=f"edges[{i}]",
+            message=f"'{edge.sentence()}': {edge.target} ({label}) is not furniture (a fixed "
+                    "surface) for something to stand under",
+            fix=f"put {edge.source} under a table, desk or counter, or on {edge.target}"
+                if props.surface else f"put {edge.source} under a table, desk or counter")]
+    if props.room:
+        return [GraphProblem(
+            rule="target_is_room", node=edge.target, field=f"edges[{i}]",
+            message=f"'{edge.sentence()}': {edge.target} is a room; an object is placed by "
+                    "furniture, and is in the room its furniture is in",
+            fix=f"put {edge.source} on, in, under or next to furniture that is inroom "
+                f"{edge.target}")]
+    return []
+
+
 def _node_problems(resolved: dict[str, tuple[str, ObjectProperties]], below: dict[str, str],
-                   more_below: dict[str, list[str]], partial: bool) -> list[GraphProblem]:
+                   more_below: dict[str, list[str]], partial: bool,
+                   uncounted: list[str]) -> list[GraphProblem]:
     """The per-object rules (support count, capacity), in node order.
 
     Only objects that may break one are visited: those with two supports, those with
@@ -427,6 +512,7 @@ def _node_problems(resolved: dict[str, tuple[str, ObjectProperties]], below: dic
     carried = Counter(below.values())  # every support edge counts at its target
     for supports in more_below.values():
         carried.update(supports[1:])
+    carried.subtract(uncounted)  # but `under` and `nextto` carry nothing
     capacities = {id(p): p.capacity for _, p in resolved.values()
                   if p.capacity is not None and (p.surface or p.container)}
     flagged = set(more_below) | (resolved.keys() - below.keys())

@@ -14,6 +14,8 @@ from verigraph.graph.dictionary import (
     ObjectProperties,
     load_dictionary,
     open_label_properties,
+    properties_text,
+    state_text,
 )
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Node, SceneGraph
@@ -45,11 +47,14 @@ def role(props: ObjectProperties | None) -> str:
     """`fixed surface, capacity 2`, `movable container`, `movable` ..."""
     if props is None:
         return "unknown to the dictionary"
-    kinds = [k for k, on in (("surface", props.surface), ("container", props.container)) if on]
-    text = " ".join(["movable" if props.movable else "fixed", *kinds])
-    if kinds:
-        text += f", capacity {props.capacity if props.capacity is not None else 'unlimited'}"
-    return text
+    return properties_text(props)
+
+
+def _role_and_state(node: Node, props: ObjectProperties | None) -> str:
+    """`fixed container, capacity 4, openable; closed (default)`."""
+    text = role(props)
+    states = state_text(props, node.state) if props is not None else ""
+    return f"{text}; {states}" if states else text
 
 
 def runs_on(executor: str, arm_mode: str | None = None) -> str:
@@ -89,7 +94,7 @@ def objects_line(graph: SceneGraph, dictionary: str | InlineDictionary | None = 
     """`objects: table (table: fixed surface); cup_2 (mug: movable container, capacity 1)`"""
     d = _dictionary(graph.dictionary or dictionary)
     parts = [f"{n.id} ({n.label}: {'your label, ' if _your_label(n, d) else ''}"
-             f"{role(_properties(n, d))})" for n in graph.nodes]
+             f"{_role_and_state(n, _properties(n, d))})" for n in graph.nodes]
     return "objects: " + ("; ".join(parts) or "none")
 
 

@@ -67,8 +67,8 @@ def object_models(dictionary: Dictionary) -> tuple[ObjectModel, ...]:
 def _build_models(dictionary: Dictionary) -> tuple[ObjectModel, ...]:
     out: list[ObjectModel] = []
     for label, props in sorted(dictionary.objects.items()):
-        if props.sides is not None:
-            continue  # tangram pieces live in the top view
+        if props.sides is not None or props.room:
+            continue  # tangram pieces live in the top view; a room is never drawn
         colours = [props.color] if props.color else list(palette.BLOCK_COLORS)
         if props.movable:
             spec = movable_spec(label, props)
