@@ -6,10 +6,10 @@ state. The bound walks the formula once, computing each part's truth and, for th
 wanted, requirements of the form "one of these things must change" (a set of
 `(aspect, object)`, aspect `place`, `open` or `toggled_on`) that every solution meets:
 
-- an atom with the wrong truth: its thing must change (`on`/`in`: the source's place;
-  `open`, `toggled_on`: that state of the object); an atom of another relation
-  (`under`, `nextto`, `inroom`) only says that some action is needed, since moving
-  either object may change it;
+- an atom with the wrong truth: its thing must change (`on`/`in`/`under`: the source's
+  placement; `open`, `toggled_on`: that state of the object); `nextto` (read either
+  way) and `inroom` (a room follows what the object stands on) only say that some
+  action is needed, since moving either object, or what it stands on, may change them;
 - all parts wanted (and, forall; or, exists wanted false; ...): every part's
   requirements;
 - one part wanted (or, exists; and, forall wanted false; ...): one requirement, the
@@ -28,7 +28,7 @@ from verigraph.graph.formula_eval import Facts, holds_in
 
 Thing = tuple[str, str]
 Need = tuple[bool, list[frozenset[Thing]], bool]  # truth, requirements, some action needed
-PLACE_RELATIONS = ("on", "in")
+PLACE_RELATIONS = ("on", "in", "under")  # the source's placement: only moving it changes
 
 
 def formula_bound(formula: Formula, facts: Facts) -> int:
