@@ -150,7 +150,7 @@ def test_a_satisfied_exists_names_its_witnesses() -> None:
         "(exists (?p - plate) (ontop cup_1 ?p)) holds with ?p = plate_2",
         "(exists (?p - plate) (ontop cup_2 ?p)) holds with ?p = plate_2"]
     diff = check_goal(scene(ON_TABLE + edges), Goal(formula=f))
-    assert diff.satisfied and diff.formula_witnesses == result.witnesses
+    assert diff.satisfied and diff.formula_detail == result.witnesses
     assert diff.summary() == "goal reached; " + "; ".join(result.witnesses)
 
 

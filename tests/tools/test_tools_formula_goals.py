@@ -43,7 +43,7 @@ def test_set_goal_takes_a_formula_and_names_every_counterexample() -> None:
     eid = box.call("load_scene", {"graph": kitchen()}).episode_id
     out = box.call("set_goal", {"episode_id": eid, "formula": BOTH})
     assert out.goal is not None and out.goal.formula == BOTH and out.goal_satisfied is False
-    assert out.goal_diff is not None and out.goal_diff.formula_failure_count == 4
+    assert out.goal_diff is not None and out.goal_diff.formula_count() == 4
     summary = TOOLS["set_goal"].summary(out)
     assert summary.startswith("goal set; goal not reached: formula fails (4 counterexamples): ")
     for cup, plate in (("cup_1", "plate_1"), ("cup_2", "plate_1"), ("cup_3", "plate_2")):
@@ -126,8 +126,7 @@ async def test_formula_goals_over_mcp(client: Client) -> None:
     goal = await client.call_tool("set_goal", {"episode_id": eid, "formula": BOTH})
     data = structured(goal)
     assert data["goal"]["formula"] == BOTH
-    assert data["goal_diff"]["formula_failure_count"] == 4
-    assert len(data["goal_diff"]["formula_failures"]) == 4
+    assert len(data["goal_diff"]["formula_detail"]) == 4
     assert "formula fails (4 counterexamples)" in text(goal)
     solved = await client.call_tool("solve", {"episode_id": eid})
     assert structured(solved)["optimal"] is True and structured(solved)["length"] == 4

@@ -158,6 +158,13 @@ class FormulaResult:
     witnesses: list[str] = field(default_factory=list)
     witness_count: int = 0
 
+    def kept(self) -> list[str]:
+        """The counterexamples (or, when it holds, the witnesses) kept, the last item
+        saying "... and N more" when there were more than MAX_KEPT."""
+        items, total = ((self.witnesses, self.witness_count) if self.satisfied
+                        else (self.counterexamples, self.counterexample_count))
+        return items + ([f"... and {total - len(items)} more"] if total > len(items) else [])
+
     def lines(self, limit: int = MAX_LISTED) -> list[str]:
         """The counterexamples (or, when it holds, the witnesses), with "and N more"."""
         items, total = ((self.witnesses, self.witness_count) if self.satisfied
