@@ -4,12 +4,10 @@ of exists and the missing ones said plainly, empty kinds, states, and the name c
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass, field
 
 import pytest
 
 from verigraph.errors import GoalError
-from verigraph.graph.dictionary import load_dictionary
 from verigraph.graph.formula import parse_formula
 from verigraph.graph.formula_eval import (
     MAX_GROUND,
@@ -152,7 +150,7 @@ def test_a_satisfied_exists_names_its_witnesses() -> None:
         "(exists (?p - plate) (ontop cup_1 ?p)) holds with ?p = plate_2",
         "(exists (?p - plate) (ontop cup_2 ?p)) holds with ?p = plate_2"]
     diff = check_goal(scene(ON_TABLE + edges), Goal(formula=f))
-    assert diff.satisfied and diff.formula_witnesses == result.witnesses
+    assert diff.satisfied and diff.formula_detail == result.witnesses
     assert diff.summary() == "goal reached; " + "; ".join(result.witnesses)
 
 
@@ -174,44 +172,61 @@ def test_negations_implications_and_counts_explain_themselves() -> None:
         assert result.counterexamples == [f"{text} fails: {why}"], text
 
 
-@dataclass
-class StatefulInfo:
-    """An object as a scene with node states gives it: a `state` mapping."""
-
-    id: str
-    label: str
-    state: dict[str, bool] = field(default_factory=dict)
+def household() -> WorldState:
+    """A kitchen with node states and rooms: an open fridge with the milk, a stove that is
+    off, a lamp with no state (off by default), a box under the counter, a pot next to the
+    sink, and a bedroom with nothing in it."""
+    nodes = [("kitchen", "kitchen", {}), ("bedroom", "bedroom", {}),
+             ("counter", "counter", {}), ("fridge", "fridge", {"open": True}),
+             ("stove", "stove", {"toggled_on": False}), ("sink", "sink", {}),
+             ("lamp", "lamp", {}), ("milk", "milk", {}), ("box", "box", {}),
+             ("pot", "pot", {})]
+    edges = [("counter", "inroom", "kitchen"), ("fridge", "inroom", "kitchen"),
+             ("stove", "inroom", "kitchen"), ("sink", "inroom", "kitchen"),
+             ("lamp", "on", "counter"), ("milk", "in", "fridge"), ("box", "under", "counter"),
+             ("pot", "nextto", "sink")]
+    return WorldState.from_graph(SceneGraph.model_validate({
+        "nodes": [{"id": i, "label": label, **({"state": st} if st else {})}
+                  for i, label, st in nodes],
+        "edges": [{"source": s, "relation": r, "target": t} for s, r, t in edges],
+        "dictionary": "kitchen"}))
 
 
 def test_states_read_through_one_accessor_and_default_to_false() -> None:
-    assert node_state(StatefulInfo("fridge", "fridge", {"open": True})) == {"open": True}
-    plain = scene(ON_TABLE + [("cup_1", "on", "table"), ("cup_2", "on", "table")])
-    assert node_state(plain.objects["cup_1"]) == {}  # no state: all false
-    stateful = Facts({"fridge": "fridge", "stove": "stove", "lamp": "lamp"}, [],
-                     {"fridge": node_state(StatefulInfo("fridge", "fridge", {"open": True})),
-                      "stove": {"toggled_on": False}},
-                     load_dictionary(None).resolve)
-    assert holds(parse_formula("(open fridge)"), stateful)
-    assert not holds(parse_formula("(toggled_on stove)"), stateful)
-    assert not holds(parse_formula("(toggled_on lamp)"), stateful)
-    result = evaluate(parse_formula("(and (toggled_on stove) (toggled_on lamp) (open lamp))"),
-                      stateful)
+    state = household()
+    assert node_state(state, "fridge") == {"open": True}
+    assert node_state(state, "lamp") == {}  # no state set: off
+    f = facts_of(state)
+    assert holds(parse_formula("(open fridge)"), f)
+    assert not holds(parse_formula("(toggled_on stove)"), f)
+    assert not holds(parse_formula("(toggled_on lamp)"), f)
+    assert holds(parse_formula("(not (exists (?x - stove) (toggled_on ?x)))"), f)
+    result = evaluate(parse_formula("(and (toggled_on stove) (toggled_on lamp) (open box))"),
+                      f)
     assert result.counterexamples == [
         "(toggled_on stove) fails: stove is off",
         "(toggled_on lamp) fails: lamp is off (no state given: that is the default)",
-        "(open lamp) fails: lamp is closed (no state given: that is the default)"]
+        "(open box) fails: box is closed (no state given: that is the default)"]
+    state.set_state("lamp", "toggled_on", True)  # what toggle_on(lamp) leaves behind
+    assert holds(parse_formula("(toggled_on lamp)"), facts_of(state))
 
 
-def test_relations_are_read_by_name_and_nextto_either_way() -> None:
-    f = Facts({"box": "box", "table": "table", "sink": "sink", "cup": "cup",
-               "kitchen": "room"},
-              [("under", "box", "table"), ("nextto", "cup", "sink"),
-               ("inroom", "table", "kitchen")], {}, load_dictionary(None).resolve)
-    for text, expected in [("(under box table)", True), ("(under table box)", False),
-                           ("(nextto cup sink)", True), ("(nextto sink cup)", True),
-                           ("(inroom table kitchen)", True), ("(inroom box kitchen)", False),
-                           ("(exists (?r - room) (inroom table ?r))", True)]:
+def test_relations_are_read_by_name_rooms_follow_placements() -> None:
+    f = facts_of(household())
+    for text, expected in [("(under box counter)", True), ("(under counter box)", False),
+                           ("(nextto pot sink)", True), ("(nextto sink pot)", True),
+                           ("(nextto pot counter)", False),
+                           ("(inroom counter kitchen)", True),
+                           ("(inroom milk kitchen)", True),  # in the fridge, in the kitchen
+                           ("(inroom pot kitchen)", True),  # next to the sink
+                           ("(inroom milk bedroom)", False),
+                           ("(forall (?r - room) (exists (?x - counter) (inroom ?x ?r)))",
+                            False),  # the bedroom has no counter
+                           ("(exists (?r - room) (inroom lamp ?r))", True)]:
         assert holds(parse_formula(text), f) is expected, text
+    result = evaluate(parse_formula("(inroom milk bedroom)"), f)
+    assert result.counterexamples == [
+        "(inroom milk bedroom) fails: milk is not in room bedroom (milk is in fridge)"]
 
 
 def test_names_are_checked_against_the_scene_all_at_once() -> None:
@@ -231,7 +246,7 @@ def test_formulas_that_ground_too_large_are_refused() -> None:
     extra = [(f"cup_{i}", "cup") for i in range(3, 61)]
     s = scene(ON_TABLE + [(f"cup_{i}", "on", "table") for i in range(1, 61)], extra)
     nested = "(forall (?a - cup) (forall (?b - cup) (forall (?c - cup) (on ?a table))))"
-    assert 60 ** 3 > MAX_GROUND
+    assert MAX_GROUND < 60 ** 3
     with pytest.raises(GoalError, match="expands to 216000 instances"):
         check_names(parse_formula(nested), facts_of(s))
 

@@ -4,12 +4,16 @@ The evaluator reads a scene through `Facts`: the objects of each kind, the edges
 relation name and each node's states through one accessor (`node_state`), so it needs
 nothing of how a `WorldState` stores them. Meanings:
 
-- `(ontop a b)`/`(on a b)`, `(inside a b)`/`(in a b)`, `(under a b)`, `(inroom a r)`:
-  the scene has that edge (`a on b`, ...); `(nextto a b)`: an edge `nextto` either way.
+- `(ontop a b)`/`(on a b)`, `(inside a b)`/`(in a b)`, `(under a b)`: the scene has that
+  edge (`a on b`, ...); `(nextto a b)`: an edge `nextto` either way;
+- `(inroom a r)`: `a` is in room `r`: furniture by its own `inroom` edge, any other
+  object by the room of the furniture its placements lead down to (a cup on a plate on
+  the kitchen table is in the kitchen).
 - `(open x)`, `(toggled_on x)`: the node's state; a node without that state reads false
   (an openable without a state is closed, a toggleable one is off).
 - `forall`/`exists` range over the scene's objects of the kind (the dictionary label,
-  synonyms read as the dictionary reads them); over a kind the scene lacks, `forall` is
+  synonyms read as the dictionary reads them; `room` takes every room, whatever its room
+  kind); over a kind the scene lacks, `forall` is
   true and `exists` false. `forn (N)`: exactly N objects satisfy the body (BDDL's
   reading). `forpairs`: a one-to-one pairing of distinct objects, every object of the
   smaller kind paired; `fornpairs (N)`: N such pairs.
@@ -42,7 +46,7 @@ from verigraph.graph.formula import (
 )
 
 if TYPE_CHECKING:
-    from verigraph.graph.state import ObjectInfo, WorldState
+    from verigraph.graph.state import WorldState
 
 MAX_GROUND = 200_000  # ground instances a formula may expand to on one scene
 MAX_KEPT = 1_000  # counterexamples and witnesses kept (all are counted)
@@ -51,10 +55,10 @@ SHOWN_CHARS = 160  # a part is shown up to this many characters
 _WORDS = {"on": "on", "in": "in", "under": "under", "nextto": "next to", "inroom": "in room"}
 
 
-def node_state(info: ObjectInfo) -> Mapping[str, bool]:
-    """A node's states (`open`, `toggled_on`); none given reads as all false."""
-    state = getattr(info, "state", None)
-    return state if isinstance(state, Mapping) else {}
+def node_state(state: WorldState, obj: str) -> Mapping[str, bool]:
+    """The state keys a node sets (`open`, `toggled_on`); a key it does not set reads
+    false (an openable object is closed, a toggleable one off)."""
+    return state.states.get(obj, {})
 
 
 class Facts:
@@ -64,10 +68,14 @@ class Facts:
 
     def __init__(self, labels: Mapping[str, str], edges: Iterable[tuple[str, str, str]],
                  states: Mapping[str, Mapping[str, bool]],
-                 resolve: Callable[[str], str | None]) -> None:
+                 resolve: Callable[[str], str | None],
+                 groups: Mapping[str, list[str]] | None = None) -> None:
         self.by_kind: dict[str, list[str]] = {}
         for obj, label in labels.items():
             self.by_kind.setdefault(label, []).append(obj)
+        for kind, objs in (groups or {}).items():  # `room`: every room, of any room kind
+            mine = self.by_kind.setdefault(kind, [])
+            mine.extend(o for o in objs if o not in mine)
         self.states = states
         self.resolve = resolve
         self.edges: set[tuple[str, str, str]] = set()
@@ -100,7 +108,23 @@ class Facts:
     def related(self, relation: str, source: str, target: str) -> bool:
         if (relation, source, target) in self.edges:
             return True
+        if relation == "inroom":
+            return self.room(source) == target
         return relation == "nextto" and ("nextto", target, source) in self.edges
+
+    def room(self, obj: str) -> str | None:
+        """The room of `obj`: its own `inroom` edge, or that of what it is placed on,
+        in, under or next to, followed down (bounded: a placement chain has no cycle)."""
+        current: str | None = obj
+        for _ in range(len(self.placed) + 1):
+            if current is None:
+                return None
+            places = self.placed.get(current, [])
+            room = next((t for r, t in places if r == "inroom"), None)
+            if room is not None:
+                return room
+            current = next((t for r, t in places if r != "inroom"), None)
+        return None
 
     def flag(self, obj: str, key: str) -> bool:
         return bool(self.states.get(obj, {}).get(key, False))
@@ -108,6 +132,7 @@ class Facts:
     def where(self, obj: str) -> str:
         """`cup_1 is on table`, or that it rests on nothing."""
         places = self.placed.get(obj, [])
+        places = [(r, t) for r, t in places if r != "inroom"] or places
         if not places:
             return f"{obj} rests on nothing"
         return f"{obj} is " + ", ".join(f"{_WORDS.get(r, r)} {t}" for r, t in places)
@@ -117,9 +142,10 @@ def facts_of(state: WorldState) -> Facts:
     """A WorldState's facts: its labels, its edges (tangram contacts aside), states."""
     labels = {o: info.label for o, info in state.objects.items()}
     edges = [(e.relation, e.source, e.target) for e in state.edges() if e.relation != "touches"]
-    held = getattr(state, "states", {})  # the household WorldState keeps states by object
-    states = {o: dict(held.get(o, {})) or node_state(info) for o, info in state.objects.items()}
-    return Facts(labels, edges, states, state.dictionary.resolve)
+    states = {o: node_state(state, o) for o in state.states}
+    rooms = [o for o, info in state.objects.items() if info.props.room]
+    return Facts(labels, edges, states, state.dictionary.resolve,
+                 {"room": rooms} if rooms else None)
 
 
 @dataclass
@@ -131,6 +157,13 @@ class FormulaResult:
     counterexample_count: int = 0
     witnesses: list[str] = field(default_factory=list)
     witness_count: int = 0
+
+    def kept(self) -> list[str]:
+        """The counterexamples (or, when it holds, the witnesses) kept, the last item
+        saying "... and N more" when there were more than MAX_KEPT."""
+        items, total = ((self.witnesses, self.witness_count) if self.satisfied
+                        else (self.counterexamples, self.counterexample_count))
+        return items + ([f"... and {total - len(items)} more"] if total > len(items) else [])
 
     def lines(self, limit: int = MAX_LISTED) -> list[str]:
         """The counterexamples (or, when it holds, the witnesses), with "and N more"."""

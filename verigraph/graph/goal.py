@@ -9,6 +9,7 @@ degrees still matches.
 from __future__ import annotations
 
 import itertools
+import re
 from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
@@ -21,7 +22,7 @@ from verigraph.graph.formula import (
     looks_like_formula,
     parse_formula,
 )
-from verigraph.graph.formula_eval import MAX_LISTED, FormulaResult, evaluate, facts_of
+from verigraph.graph.formula_eval import MAX_LISTED, evaluate, facts_of
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import KIND_KEYS, GraphProblem, resolve_properties
@@ -41,7 +42,7 @@ class Goal(BaseModel):
     predicate: Literal["single_stack"] | None = Field(
         default=None, description="single_stack: every movable object in one tower")
     formula: str | None = Field(default=None, max_length=MAX_FORMULA_CHARS,
-                                description=f"BDDL formula, e.g. {FORMULA_EXAMPLE}")
+                                description="BDDL formula")
     instruction: str | None = Field(default=None, description="the instruction it came from")
 
     @field_validator("formula")
@@ -95,19 +96,20 @@ class GraphDiff(BaseModel):
                                    description="current edges the goal does not have")
     predicate: str | None = None
     detail: str | None = None
-    formula_failures: list[str] = Field(
-        default_factory=list, description="every counterexample of the goal formula (the "
-        "failing part with its objects, and why), up to 1,000")
-    formula_failure_count: int = Field(default=0, description="all counterexamples")
-    formula_witnesses: list[str] = Field(
-        default_factory=list, description="the objects that make each exists hold")
+    # A goal formula's findings: when the goal is not reached, every counterexample of
+    # the formula (its failing part with the objects, and why; empty when the formula
+    # holds); when it is reached, the witnesses of each exists. The first 1,000 are kept,
+    # the last item then saying "... and N more".
+    formula_detail: list[str] = Field(default_factory=list)
+
+    def formula_count(self) -> int:
+        """How many counterexamples (or witnesses) `formula_detail` stands for."""
+        return listed_count(self.formula_detail)
 
     def summary(self) -> str:
         if self.satisfied:
-            if self.formula_witnesses:
-                return "goal reached; " + "; ".join(self.formula_witnesses[:MAX_LISTED]) + (
-                    f"; ... and {len(self.formula_witnesses) - MAX_LISTED} more"
-                    if len(self.formula_witnesses) > MAX_LISTED else "")
+            if self.formula_detail:
+                return "goal reached; " + "; ".join(shortened(self.formula_detail))
             return "goal reached"
         parts = []
         if self.missing_edges:
@@ -120,28 +122,33 @@ class GraphDiff(BaseModel):
             parts.append("extra objects: " + ", ".join(self.extra_nodes))
         if self.detail:
             parts.append(self.detail)
-        if self.formula_failure_count:
-            parts.append(formula_text(FormulaResult(
-                False, self.formula_failures, self.formula_failure_count)))
+        if self.formula_detail:
+            n = self.formula_count()
+            parts.append(f"formula fails ({n} counterexample{'s' if n != 1 else ''}): "
+                         + "; ".join(shortened(self.formula_detail)))
         return "goal not reached: " + " | ".join(parts)
 
 
-def formula_text(result: FormulaResult) -> str:
-    """`formula fails (2 counterexamples): part fails: why; ...` (and N more)."""
-    if result.satisfied:
-        lines = result.lines()
-        return "formula holds" + (": " + "; ".join(lines) if lines else "")
-    n = result.counterexample_count
-    return (f"formula fails ({n} counterexample{'s' if n != 1 else ''}): "
-            + "; ".join(result.lines()))
+_MORE = re.compile(r"\.\.\. and (\d+) more")
+
+
+def listed_count(lines: list[str]) -> int:
+    """The items a kept list stands for (its last item may say "... and N more")."""
+    m = _MORE.fullmatch(lines[-1]) if lines else None
+    return len(lines) - 1 + int(m.group(1)) if m else len(lines)
+
+
+def shortened(lines: list[str], limit: int = MAX_LISTED) -> list[str]:
+    """The first `limit` items of a kept list, then "... and N more" for the rest."""
+    total = listed_count(lines)
+    shown = [line for line in lines[:limit] if not _MORE.fullmatch(line)]
+    return shown + ([f"... and {total - len(shown)} more"] if total > len(shown) else [])
 
 
 def check_formula(state: WorldState, formula: str) -> GraphDiff:
     """The goal formula evaluated on the state, as a GraphDiff."""
     result = evaluate(parse_formula(formula), facts_of(state))
-    return GraphDiff(satisfied=result.satisfied, formula_failures=result.counterexamples,
-                     formula_failure_count=result.counterexample_count,
-                     formula_witnesses=result.witnesses)
+    return GraphDiff(satisfied=result.satisfied, formula_detail=result.kept())
 
 
 def _sentence(key: EdgeKey) -> str:
@@ -250,11 +257,10 @@ def check_goal(state: WorldState, goal: Goal) -> GraphDiff:
         holds = check_formula(state, goal.formula)
         if result is None:
             return holds
-        result = result.model_copy(update={
-            "satisfied": result.satisfied and holds.satisfied,
-            "formula_failures": holds.formula_failures,
-            "formula_failure_count": holds.formula_failure_count,
-            "formula_witnesses": holds.formula_witnesses})
+        satisfied = result.satisfied and holds.satisfied
+        # witnesses only for a goal reached, counterexamples only for a formula that fails
+        detail = holds.formula_detail if satisfied or not holds.satisfied else []
+        result = result.model_copy(update={"satisfied": satisfied, "formula_detail": detail})
     assert result is not None
     return result
 

@@ -2,24 +2,23 @@
 
 Every action changes one thing about one object: a move changes where its object rests,
 `open`/`close` one object's `open` state, `toggle_on`/`toggle_off` its `toggled_on`
-state. So if, in every way of making the formula true, the object `a` must change where
-it rests (an `on`/`in` atom about `a` has the wrong truth), one action is spent on `a`;
-distinct such requirements cost distinct actions. The bound walks the formula and
-returns, for the truth value wanted, the requirements every solution shares (`needed`)
-and a count no solution beats (`least`):
+state. The bound walks the formula once, computing each part's truth and, for the truth
+wanted, requirements of the form "one of these things must change" (a set of
+`(aspect, object)`, aspect `place`, `open` or `toggled_on`) that every solution meets:
 
-- an atom with the wrong truth: one requirement (`on`/`in`: the source's place; `open`,
-  `toggled_on`: that state of the object) and at least one action; an atom of another
-  relation (`under`, `nextto`, `inroom`) counts one action and no requirement, since
-  moving either object may change it;
-- all parts wanted (and, forall, or wanted false, ...): the union of the parts'
-  requirements, at least as many actions as the union holds and as any part needs;
-- one part wanted (or, exists, ...): the requirements all parts share, the fewest
-  actions of any part;
-- `forn` and the pair quantifiers: one action when their truth is wrong.
+- an atom with the wrong truth: its thing must change (`on`/`in`/`under`: the source's
+  placement; `open`, `toggled_on`: that state of the object); `nextto` (read either
+  way) and `inroom` (a room follows what the object stands on) only say that some
+  action is needed, since moving either object, or what it stands on, may change them;
+- all parts wanted (and, forall; or, exists wanted false; ...): every part's
+  requirements;
+- one part wanted (or, exists; and, forall wanted false; ...): one requirement, the
+  union of each part's smallest (whichever part a solution makes true, it meets it);
+- `forn` and the pair quantifiers: some action, when their truth is wrong.
 
-A part whose truth is already the wanted one needs nothing, so the bound is 0 exactly
-at the goal. Admissible, so A* over it stays optimal.
+Requirements with no thing in common need distinct actions, so the size of a family of
+pairwise disjoint requirements (picked greedily, smallest first) is a lower bound; it is
+0 exactly at the goal. Admissible, so A* over it stays optimal.
 """
 
 from __future__ import annotations
@@ -27,26 +26,36 @@ from __future__ import annotations
 from verigraph.graph.formula import Atom, Formula, Imply, Junction, Not, Pairs, Quantified
 from verigraph.graph.formula_eval import Facts, holds_in
 
-Need = tuple[frozenset[tuple[str, str]], int]
-_NOTHING: Need = (frozenset(), 0)
-PLACE_RELATIONS = ("on", "in")
+Thing = tuple[str, str]
+Need = tuple[bool, list[frozenset[Thing]], bool]  # truth, requirements, some action needed
+PLACE_RELATIONS = ("on", "in", "under")  # the source's placement: only moving it changes
 
 
 def formula_bound(formula: Formula, facts: Facts) -> int:
     """Actions the formula needs at least, from the state `facts` describe."""
-    return _Bound(facts).need(formula, {}, True)[1]
+    truth, needs, some = _Bound(facts).need(formula, {}, True)
+    if truth:
+        return 0
+    taken: set[Thing] = set()
+    count = 0
+    for need in sorted(needs, key=len):
+        if taken.isdisjoint(need):
+            taken |= need
+            count += 1
+    return max(count, 1 if some or needs else 0)
 
 
-def _all(needs: list[Need]) -> Need:
-    union: frozenset[tuple[str, str]] = frozenset().union(*(n[0] for n in needs))
-    return union, max([len(union), *(n[1] for n in needs)])
+def _every(truth: bool, parts: list[Need]) -> Need:
+    """All parts must reach the wanted truth: every part's requirements."""
+    return truth, [n for part in parts for n in part[1]], any(part[2] for part in parts)
 
 
-def _any(needs: list[Need]) -> Need:
-    if not needs:
-        return frozenset(), 1
-    shared = frozenset.intersection(*(n[0] for n in needs))
-    return shared, max(len(shared), min(n[1] for n in needs))
+def _one(truth: bool, parts: list[Need]) -> Need:
+    """One part must: the union of each part's smallest requirement, when every part
+    has one; else only that some action is needed."""
+    if not parts or any(not part[1] for part in parts):
+        return truth, [], True
+    return truth, [frozenset().union(*(min(part[1], key=len) for part in parts))], True
 
 
 class _Bound:
@@ -54,27 +63,49 @@ class _Bound:
         self.facts = facts
 
     def need(self, node: Formula, env: dict[str, str], want: bool) -> Need:
-        if holds_in(node, self.facts, env) == want:
-            return _NOTHING
+        """(truth now, requirements to reach `want`, some action needed)."""
         if isinstance(node, Atom):
-            terms = [env.get(t, t) for t in node.terms]
-            if len(terms) == 1:
-                return frozenset({(node.relation, terms[0])}), 1
-            if node.relation in PLACE_RELATIONS:
-                return frozenset({("place", terms[0])}), 1
-            return frozenset(), 1
+            return self.atom(node, env, want)
         if isinstance(node, Not):
-            return self.need(node.body, env, not want)
+            truth, needs, some = self.need(node.body, env, not want)
+            return not truth, needs, some
         if isinstance(node, Junction):
             parts = [self.need(p, env, want) for p in node.parts]
-            return _all(parts) if (node.op == "and") == want else _any(parts)
+            every = node.op == "and"
+            truth = all(p[0] for p in parts) if every else any(p[0] for p in parts)
+            return self.combine(truth, want, parts, every == want)
         if isinstance(node, Imply):  # (or (not condition) then)
-            parts = [self.need(node.condition, env, not want), self.need(node.then, env, want)]
-            return _any(parts) if want else _all(parts)
+            condition = self.need(node.condition, env, not want)
+            then = self.need(node.then, env, want)
+            truth = not condition[0] or then[0]
+            return self.combine(truth, want, [condition, then], not want)
         if isinstance(node, Quantified) and node.op in ("forall", "exists"):
             name = node.param.name
             parts = [self.need(node.body, {**env, name: o}, want)
                      for o in self.facts.objects_of(node.param.kind)]
-            return _all(parts) if (node.op == "forall") == want else _any(parts)
+            every = node.op == "forall"
+            truth = all(p[0] for p in parts) if every else any(p[0] for p in parts)
+            return self.combine(truth, want, parts, every == want)
         assert isinstance(node, Quantified | Pairs)
-        return frozenset(), 1
+        truth = holds_in(node, self.facts, env)
+        return truth, [], truth != want
+
+    @staticmethod
+    def combine(truth: bool, want: bool, parts: list[Need], all_parts: bool) -> Need:
+        if truth == want:
+            return truth, [], False
+        return _every(truth, parts) if all_parts else _one(truth, parts)
+
+    def atom(self, node: Atom, env: dict[str, str], want: bool) -> Need:
+        terms = [env.get(t, t) for t in node.terms]
+        if len(terms) == 1:
+            truth = self.facts.flag(terms[0], node.relation)
+            thing = (node.relation, terms[0])
+        else:
+            truth = self.facts.related(node.relation, terms[0], terms[1])
+            thing = ("place", terms[0])
+        if truth == want:
+            return truth, [], False
+        if len(terms) == 2 and node.relation not in PLACE_RELATIONS:
+            return truth, [], True
+        return truth, [frozenset({thing})], True

@@ -120,8 +120,7 @@ class SetGoalInput(BaseModel):
     episode_id: EpisodeId
     graph: BoundedGraph | None = Field(default=None, description="goal scene graph")
     edges: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
-                              description="goal edges as text (or a formula: text "
-                                          "starting with '(')")
+                              description="goal edges as text")
     formula: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
                                 description="BDDL goal formula over kinds and ids, e.g. "
                                             f"{FORMULA_EXAMPLE}")
@@ -264,9 +263,8 @@ GoalText = Annotated[str, Field(min_length=1, max_length=MAX_GOAL_EDGES_CHARS)]
 # A stateless tool's goal: a goal object, or its edges as text (partial, nodes from the
 # scene) or a predicate's name.
 GoalArgument = BoundedGoal | GoalText
-GOAL_ARGUMENT_HELP = "edges text 'cup on table; spoon in pot' (partial), a BDDL formula " \
-                     "'(forall (?c - cup) ...)', or {graph, partial} (nodes from the " \
-                     "scene) or {formula}"
+GOAL_ARGUMENT_HELP = "edges text 'cup on table; spoon in pot' (partial), a formula " \
+                     "'(forall ...)' or {graph, partial}, nodes from the scene"
 
 
 def resolve_goal(goal: Goal | str, state: WorldState, *, field: str = "goal") -> Goal:
