@@ -95,7 +95,7 @@ def test_text_starting_with_a_parenthesis_is_a_formula() -> None:
     ("(and (on a b)", 14, "1 parenthesis(es) open", "close it with )"),
     ("(on a b))", 9, "a ')' closes nothing", "remove it"),
     ("(on a b) (on c d)", 10, "text after the end", "join several with (and"),
-    ("(cooked egg)", 2, "'cooked' is not a connective", "ontop"),
+    ("(sliced egg)", 2, "'sliced' is not a connective", "ontop"),
     ("(on a)", 2, "takes 2 term(s), got 1", "(on cup plate)"),
     ("(open a b)", 2, "takes 1 term(s), got 2", "(open fridge)"),
     ("(on ?x b)", 5, "?x is not bound", "bind it with (forall (?x - kind)"),

@@ -90,7 +90,8 @@ class ValidationReport(BaseModel):
         lines = []
         for s in self.steps:
             if s.ok:
-                edit = f"   {s.edit.text()}" if s.edit and (s.edit.added or s.edit.removed) else ""
+                edit = f"   {s.edit.text()}" if s.edit and (
+                    s.edit.added or s.edit.removed or s.edit.states) else ""
                 lines.append(f"{s.step:>4} ok    {s.text}{edit}")
             else:
                 assert s.violation is not None

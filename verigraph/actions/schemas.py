@@ -44,10 +44,14 @@ Changes = tuple[list[Triple], list[Triple], list[StateChange]]
 
 @dataclass(frozen=True, slots=True)
 class Parameter:
-    """One parameter: the action field it is read from and what it must be."""
+    """One parameter: the action field it is read from, what it must be (in words), and
+    the role a binding needs (`movable`, `openable`, `toggleable`: an object property;
+    `relation`: one of the scene's placement relations; None: any object), from which a
+    search enumerates the candidates before the preconditions decide."""
 
     name: str
     needs: str
+    role: str | None = None
 
 
 @dataclass(frozen=True)
@@ -232,8 +236,8 @@ def _compile(source: str, name: str) -> Callable[..., Any]:
 MOVE = ActionSchema(
     name="move",
     parameters=(Parameter("object", "a movable object with nothing on, in, under or next "
-                                    "to it, not inside a closed container"),
-                Parameter("relation", "on, in (household: under, nextto)"),
+                                    "to it, not inside a closed container", "movable"),
+                Parameter("relation", "on, in (household: under, nextto)", "relation"),
                 Parameter("target", "on: a surface; in: an open container; under: "
                                     "furniture; nextto: any object but a room; with room "
                                     "for on and in")),
@@ -278,7 +282,7 @@ def _state_row(name: str, key: str, value: bool) -> ActionSchema:
     return ActionSchema(
         name=name,
         parameters=(Parameter("object", f"{'an' if role[0] == 'o' else 'a'} {role} object "
-                                        f"that is not {word} already"),),
+                                        f"that is not {word} already", role),),
         preconditions=(
             Precondition("unknown_object", "obj in objects", c.explain_unknown_object,
                          gate=True),
