@@ -72,6 +72,28 @@ def active_source_below(state: WorldState, obj: str, role: str) -> bool:
     return source_on(state, source_below(state, obj, role))
 
 
+def process_needs(state: WorldState, obj: str, key: str, want: bool
+                  ) -> list[frozenset[tuple[str, str]]]:
+    """What else a search must do before a process changes `obj`'s state `key` to
+    `want`, as requirements ("one of these things must change": `("place", x)`,
+    `("toggled_on", source)`), for an admissible bound: to cook, heat or freeze, the
+    object (or what carries it) must come to rest on a working source, or the source
+    under it be turned on; to cool or thaw, the reverse."""
+    for name, (k, value, _, role, needed) in PROCESSES.items():
+        if k != key or value != want:
+            continue
+        if active_source_below(state, obj, role) != needed:
+            chain = [obj, *state.supports_chain(obj)]
+            source = source_below(state, obj, role)
+            things = {("place", o) for o in chain[: chain.index(source) if source else None]
+                      if state.objects[o].props.movable}
+            if source is not None and state.objects[source].props.toggleable:
+                things.add(("toggled_on", source))
+            return [frozenset(things)] if things else []
+        return []
+    return []
+
+
 HELPERS = {"source_below": source_below, "source_on": source_on,
            "active_source_below": active_source_below}
 

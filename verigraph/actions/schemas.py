@@ -311,7 +311,7 @@ def _process_row(name: str) -> ActionSchema:
                               p.still_at_source_explainer(name)),)
         needs = f"a {STATE_WORDS[key][True]} object, not on or in a {word} that is on"
     return ActionSchema(
-        name=name, parameters=(Parameter("object", needs),),
+        name=name, parameters=(Parameter("object", needs, role),),
         preconditions=(
             Precondition("unknown_object", "obj in objects", c.explain_unknown_object,
                          gate=True),

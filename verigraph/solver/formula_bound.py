@@ -12,8 +12,10 @@ wanted, requirements of the form "one of these things must change" (a set of
   action is needed, since moving either object, or what it stands on, may change them;
 - all parts wanted (and, forall; or, exists wanted false; ...): every part's
   requirements;
-- one part wanted (or, exists; and, forall wanted false; ...): one requirement, the
-  union of each part's smallest (whichever part a solution makes true, it meets it);
+- one part wanted (or, exists; and, forall wanted false; ...): each part's
+  requirements thinned to pairwise disjoint ones, and the j-th of every part joined
+  into one, for as many j as the poorest part has (whichever part a solution makes
+  true, it meets each joined one with a distinct action);
 - `forn` and the pair quantifiers: some action, when their truth is wrong.
 
 Requirements with no thing in common need distinct actions, so the size of a family of
@@ -23,6 +25,8 @@ pairwise disjoint requirements (picked greedily, smallest first) is a lower boun
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from verigraph.graph.formula import Atom, Formula, Imply, Junction, Not, Pairs, Quantified
 from verigraph.graph.formula_eval import Facts, holds_in
 
@@ -31,11 +35,27 @@ Need = tuple[bool, list[frozenset[Thing]], bool]  # truth, requirements, some ac
 PLACE_RELATIONS = ("on", "in", "under")  # the source's placement: only moving it changes
 
 
-def formula_bound(formula: Formula, facts: Facts) -> int:
-    """Actions the formula needs at least, from the state `facts` describe."""
-    truth, needs, some = _Bound(facts).need(formula, {}, True)
+# What else a state atom needs (object, state key, truth wanted) -> more requirements,
+# e.g. a heat source turned on before `cooked` (verigraph.solver.table_search).
+StateNeeds = Callable[[str, str, bool], list[frozenset[Thing]]]
+
+
+def formula_bound(formula: Formula, facts: Facts, closed: frozenset[str] = frozenset(),
+                  state_needs: StateNeeds | None = None, *, additive: bool = False) -> int:
+    """Actions the formula needs at least, from the state `facts` describe. `closed`:
+    the closed openable containers (an object moving into or out of one needs it
+    opened first: an action on the container's `open` state, apart from the move).
+    `state_needs`: the other requirements of changing a state (each must be met by an
+    action other than the one that changes the state).
+
+    `additive`: the number of distinct requirements instead, not a lower bound (shared
+    actions are counted once per requirement) but a sharper guide for a search that
+    does not promise optimal plans (weighted A*)."""
+    truth, needs, some = _Bound(facts, closed, state_needs).need(formula, {}, True)
     if truth:
         return 0
+    if additive:
+        return max(len(set(needs)), 1)
     taken: set[Thing] = set()
     count = 0
     for need in sorted(needs, key=len):
@@ -55,12 +75,34 @@ def _one(truth: bool, parts: list[Need]) -> Need:
     has one; else only that some action is needed."""
     if not parts or any(not part[1] for part in parts):
         return truth, [], True
-    return truth, [frozenset().union(*(min(part[1], key=len) for part in parts))], True
+    # Each part's requirements thinned to pairwise disjoint ones (a solution meeting the
+    # part meets each with its own action); the j-th of every part, joined, is met
+    # whichever part is made true, and the joined sets stay pairwise met by distinct
+    # actions. So as many requirements as the poorest part has: one part alone keeps
+    # all of its own.
+    families = [_disjoint(part[1]) for part in parts]
+    depth = min(len(family) for family in families)
+    return truth, [frozenset().union(*(family[j] for family in families))
+                   for j in range(depth)], True
+
+
+def _disjoint(needs: list[frozenset[Thing]]) -> list[frozenset[Thing]]:
+    """Pairwise disjoint requirements, picked greedily, smallest first."""
+    taken: set[Thing] = set()
+    kept = []
+    for need in sorted(needs, key=len):
+        if taken.isdisjoint(need):
+            taken |= need
+            kept.append(need)
+    return kept
 
 
 class _Bound:
-    def __init__(self, facts: Facts) -> None:
+    def __init__(self, facts: Facts, closed: frozenset[str] = frozenset(),
+                 state_needs: StateNeeds | None = None) -> None:
         self.facts = facts
+        self.closed = closed
+        self.state_needs = state_needs
 
     def need(self, node: Formula, env: dict[str, str], want: bool) -> Need:
         """(truth now, requirements to reach `want`, some action needed)."""
@@ -108,4 +150,12 @@ class _Bound:
             return truth, [], False
         if len(terms) == 2 and node.relation not in PLACE_RELATIONS:
             return truth, [], True
-        return truth, [frozenset({thing})], True
+        needs = [frozenset({thing})]
+        if len(terms) == 1 and self.state_needs is not None:
+            needs.extend(self.state_needs(terms[0], node.relation, want))
+        if len(terms) == 2 and self.closed:  # a closed container on the way in or out
+            boxes = {t for r, t in self.facts.placed.get(terms[0], ()) if r == "in"}
+            if want and node.relation == "in":
+                boxes.add(terms[1])
+            needs.extend(frozenset({("open", box)}) for box in boxes & self.closed)
+        return truth, needs, True

@@ -92,7 +92,7 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
     if state.contacts or any(o.props.sides for o in state.objects.values()):
         return _solve_tangram(state, goal_model, budget)
     if needs_table_search(state, goal_model):
-        return _solve_table(state, goal_model, budget)
+        return _solve_table(state, goal_model, budget, anytime)
     problem = SearchProblem(state)
     wanted = goal_codes(problem, goal_model.graph) if goal_model.graph is not None else {}
     h_graph = misplaced_heuristic(problem, wanted)
@@ -253,14 +253,31 @@ def _astar(problem: SearchProblem, h: Callable[[Codes], int], is_goal: Callable[
     return False, []
 
 
-def _solve_table(state: WorldState, goal: Goal, budget: SearchBudget) -> SolveResult:
-    """A household world: optimal A* over the action table (anytime or not: it is the
-    one search, and its plan is optimal)."""
+def _solve_table(state: WorldState, goal: Goal, budget: SearchBudget,
+                 anytime: bool = False) -> SolveResult:
+    """A household world: optimal A* over the action table; anytime: weighted A*
+    (w = 3) first, a plan sooner whose length is not proven optimal, then A* with what
+    budget is left (its bound kept if it stops)."""
+    proof = {"floor": 0}
+    first: list[AnyAction] | None = None
     try:
-        found, plan = table_astar(state, goal, budget)
+        if anytime:
+            found, plan = table_astar(state, goal, budget, weight=3.0)
+            if not found:
+                return SolveResult(reachable=False, status="unreachable",
+                                   expanded=budget.expansions,
+                                   reason="no sequence of valid actions reaches the goal "
+                                          f"(all {budget.expansions} reachable states "
+                                          "searched)")
+            first = plan
+        found, plan = table_astar(state, goal, budget, proof=proof)
     except SearchBudgetSpent as exc:
+        if first is not None:
+            return SolveResult(reachable=True, plan=first, expanded=budget.expansions,
+                               optimal=len(first) <= proof["floor"],
+                               lower_bound=proof["floor"])
         return SolveResult(reachable=None, status="budget_exhausted", reason=str(exc),
-                           expanded=budget.expansions)
+                           expanded=budget.expansions, lower_bound=proof["floor"])
     if found:
         return SolveResult(reachable=True, plan=plan, expanded=budget.expansions,
                            optimal=True, lower_bound=len(plan))

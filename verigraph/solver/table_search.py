@@ -22,8 +22,11 @@ from collections.abc import Iterator
 from typing import Any
 
 from verigraph.actions.model import AnyAction, MoveAction, StateAction
+from verigraph.actions.processes import process_needs
 from verigraph.actions.schemas import SCHEMAS, ActionSchema
-from verigraph.graph.dictionary import PLACEMENT_RELATIONS, SUPPORT_RELATIONS
+from verigraph.graph.dictionary import PLACEMENT_RELATIONS, STATE_ROLES, SUPPORT_RELATIONS
+from verigraph.graph.formula import Atom, Formula, Imply, Junction, Not, parse_formula
+from verigraph.graph.formula_eval import facts_of
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.state import WorldState
 from verigraph.solver.budget import SearchBudget
@@ -42,6 +45,8 @@ def needs_table_search(state: WorldState, goal: Goal) -> bool:
     """
     if state.openable:
         return True
+    if goal.formula is not None and _formula_needs_table(parse_formula(goal.formula)):
+        return True
     if goal.graph is not None and (
             any(n.state for n in goal.graph.nodes)
             or any(e.relation in PLACEMENT_RELATIONS and e.relation not in SUPPORT_RELATIONS
@@ -55,21 +60,43 @@ def needs_table_search(state: WorldState, goal: Goal) -> bool:
     return False
 
 
+def _formula_needs_table(formula: Formula) -> bool:
+    """A formula that asks for a state (`open`, `cooked`, ...) or an `under`/`nextto`
+    placement: only the table's actions reach it."""
+    stack: list[Formula] = [formula]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, Atom):
+            if node.relation not in (*SUPPORT_RELATIONS, "inroom"):
+                return True
+        elif isinstance(node, Not):
+            stack.append(node.body)
+        elif isinstance(node, Junction):
+            stack.extend(node.parts)
+        elif isinstance(node, Imply):
+            stack.extend((node.condition, node.then))
+        else:  # a quantifier
+            stack.append(node.body)
+    return False
+
+
 class TableProblem:
     """A household scene as search states: each movable object's placement and each
     state-bearing object's states, with the goal as atoms."""
 
-    def __init__(self, state: WorldState, goal: Goal) -> None:
+    def __init__(self, state: WorldState, goal: Goal, *, additive: bool = False) -> None:
         self.start = state
+        self.additive = additive  # h from distinct requirements: a guide, not a bound
         objects = state.objects
         self.movable = sorted(o for o, info in objects.items() if info.props.movable)
         self.stateful = sorted(
             (o, key) for o, info in objects.items()
-            for key, role in (("open", "openable"), ("toggled_on", "toggleable"))
-            if getattr(info.props, role))
+            for key, role in STATE_ROLES.items() if getattr(info.props, role))
+        roles = {p.role for row in SCHEMAS.values() for p in row.parameters
+                 if p.role not in (None, "relation")}
         self.candidates: dict[str, list[str]] = {
-            role: sorted(o for o, info in objects.items() if getattr(info.props, role))
-            for role in ("movable", "openable", "toggleable")}
+            str(role): sorted(o for o, info in objects.items() if getattr(info.props, str(role)))
+            for role in roles}
         self.every = sorted(objects)
         self.placements: dict[str, tuple[str, str]] = {}
         self.states: dict[tuple[str, str], bool] = {}
@@ -81,6 +108,8 @@ class TableProblem:
             for n in goal.graph.nodes:
                 for key, value in n.state.items():
                     self.states[(n.id, key)] = value
+        # A formula goal: its admissible bound (verigraph.solver.formula_bound) joins.
+        self.formula = parse_formula(goal.formula) if goal.formula is not None else None
 
     def key(self, state: WorldState) -> Key:
         support = state.support
@@ -110,6 +139,14 @@ class TableProblem:
             elif wanted is False:
                 wrong += 2  # open it, close it again
             # wanted open: that atom counts the opening already
+        if self.formula is not None:
+            from verigraph.solver.formula_bound import formula_bound
+
+            closed = frozenset(o for o in openable if not state.state_value(o, "open"))
+            wrong = max(wrong, formula_bound(
+                self.formula, facts_of(state), closed,
+                lambda obj, key, want: process_needs(state, obj, key, want),
+                additive=self.additive))
         return wrong
 
     def world(self, key: Key) -> WorldState:
@@ -135,34 +172,64 @@ class TableProblem:
         return itertools.product(*pools)
 
     def successors(self, state: WorldState, budget: SearchBudget
-                   ) -> Iterator[tuple[AnyAction, WorldState]]:
+                   ) -> Iterator[tuple[ActionSchema, tuple[str, ...], Key, int]]:
+        """(row, arguments, key, bound) of each accepted action. Each is applied to
+        `state` in place, read, and undone (a copy per successor cost more than the
+        search did), so `state` is unchanged when the iteration ends."""
+        made = 0
         for row in SCHEMAS.values():
             for args in self._bindings(row, state):
                 if not row.accepted(state, *args):
                     continue
-                budget.check(memory=True)
-                nxt = state.copy()
-                row.apply(nxt, *args)
-                action: AnyAction = MoveAction(object=args[0], relation=args[1],
-                                               target=args[2]) if row.name == "move" \
-                    else StateAction(action=row.name, object=args[0])  # type: ignore[arg-type]
-                yield action, nxt
+                made += 1
+                if not made & 63:
+                    budget.check(memory=True)
+                before = row.apply(state, *args)
+                try:
+                    yield row, args, self.key(state), self.h(state)
+                finally:
+                    if row.name == "move":
+                        if before is None:  # it had no placement before
+                            state.support.pop(args[0])
+                            del state.carried[args[2]][args[0]]
+                        else:
+                            state.set_support(args[0], before[0], before[1])
+                    else:
+                        state.set_state(args[0], row.effect.key,  # type: ignore[union-attr]
+                                        before)
 
 
-def table_astar(state: WorldState, goal: Goal, budget: SearchBudget
-                ) -> tuple[bool, list[AnyAction]]:
-    """(found, plan): an optimal plan over the table's actions, every action one step."""
-    problem = TableProblem(state, goal)
+def _action(row: ActionSchema, args: tuple[str, ...]) -> AnyAction:
+    if row.name == "move":
+        return MoveAction(object=args[0], relation=args[1], target=args[2])
+    return StateAction(action=row.name, object=args[0])  # type: ignore[arg-type]
+
+
+def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: float = 1.0,
+                proof: dict[str, int] | None = None) -> tuple[bool, list[AnyAction]]:
+    """(found, plan): an optimal plan over the table's actions, every action one step.
+
+    With `weight` > 1, weighted A* (f = g + weight * h, h counting every distinct
+    requirement of the formula rather than a bound): a plan sooner, not proven optimal.
+    `proof["floor"]` is raised, for weight 1, to the smallest f still open (every plan
+    needs at least that many actions), so a search the budget stops keeps its bound."""
+    problem = TableProblem(state, goal, additive=weight > 1.0)
     counter = itertools.count()
     start_key = problem.key(state)
-    frontier: list[tuple[int, int, int, Key]] = [(problem.h(state), 0, next(counter), start_key)]
+    start_h = problem.h(state)
+    frontier: list[tuple[float, int, int, Key]] = [(weight * start_h, 0, next(counter),
+                                                    start_key)]
     parent: dict[Key, tuple[Key, AnyAction] | None] = {start_key: None}
     best_g = {start_key: 0}
+    if proof is not None:
+        proof["floor"] = max(proof.get("floor", 0), start_h)
     while frontier:
-        _, neg_g, _, key = heapq.heappop(frontier)
+        f, neg_g, _, key = heapq.heappop(frontier)
         g = -neg_g
         if g > best_g.get(key, g):
             continue
+        if proof is not None and weight == 1.0:
+            proof["floor"] = max(proof["floor"], int(f))
         current = problem.world(key)
         if problem.h(current) == 0 and check_goal(current, goal).satisfied:
             plan: list[AnyAction] = []
@@ -174,12 +241,11 @@ def table_astar(state: WorldState, goal: Goal, budget: SearchBudget
             return True, list(reversed(plan))
         budget.expansions += 1
         budget.check()
-        for action, nxt in problem.successors(current, budget):
-            nkey = problem.key(nxt)
+        for row, args, nkey, nh in problem.successors(current, budget):
             ng = g + 1
             if ng < best_g.get(nkey, ng + 1):
                 best_g[nkey] = ng
-                parent[nkey] = (key, action)
+                parent[nkey] = (key, _action(row, args))
                 # Ties broken towards deeper nodes: fewer expansions, still optimal.
-                heapq.heappush(frontier, (ng + problem.h(nxt), -ng, next(counter), nkey))
+                heapq.heappush(frontier, (ng + weight * nh, -ng, next(counter), nkey))
     return False, []
