@@ -44,8 +44,8 @@ def run(names: list[str], budget: float, jsonl: Path | None) -> list[dict[str, A
         try:
             record = run_activity(name, time_limit=budget).as_json()
         except Exception as exc:  # reported per activity: the table says what broke
-            record = {"activity": name, "status": "error",
-                      "reason": f"{type(exc).__name__}: {exc}"[:300]}
+            record = {"activity": name, "status": "error", "predicate_class": _class(name),
+                      "reason": f"{type(exc).__name__}: {exc}".replace("\n", " ")[:300]}
         record["wall_s"] = round(time.perf_counter() - start, 3)
         records.append(record)
         if out is not None:
@@ -55,6 +55,16 @@ def run(names: list[str], budget: float, jsonl: Path | None) -> list[dict[str, A
     if out is not None:
         out.close()
     return records
+
+
+def _class(name: str) -> str | None:
+    from verigraph.graph.bddl_problem import import_problem
+    from verigraph.tasks.behavior import activity_text
+
+    try:
+        return import_problem(activity_text(name), activity=name).predicate_class
+    except Exception:  # the record's reason says what failed
+        return None
 
 
 def _lengths(rows: list[dict[str, Any]]) -> str:

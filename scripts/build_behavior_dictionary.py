@@ -22,7 +22,8 @@ Roles from abilities (the knowledge base has no notion of a surface or of capaci
 - movable: every kind but a `sceneObject` (furniture, appliances, floors, walls);
 - surface: a `sceneObject` that is no wall, ceiling, door or window (tables, counters,
   shelves, floors, beds, chairs);
-- container: `fillable` or `openable`;
+- container: `fillable` or `openable`, or a heat or cold source that is no surface (a
+  toaster: what it heats goes in it);
 - openable, toggleable, cookable, heatable, freezable: the ability of that name;
   heat_source: `heatSource`; cold_source: `coldSource`;
 - capacity: unlimited on a fixed kind; 4 on a movable surface or container;
@@ -121,7 +122,8 @@ def build(generated: Path, definitions: Path) -> dict[str, object]:
         label = labels[synset]
         fixed = "sceneObject" in abilities
         surface = fixed and synset not in NOT_SURFACES
-        container = "fillable" in abilities or "openable" in abilities
+        container = "fillable" in abilities or "openable" in abilities or (
+            not surface and ("heatSource" in abilities or "coldSource" in abilities))
         entry: dict[str, object] = {}
         sense = _SENSE.match(synset)
         lemma = sense["lemma"] if sense else synset
