@@ -26,7 +26,7 @@ from verigraph.actions.processes import process_needs
 from verigraph.actions.schemas import SCHEMAS, ActionSchema
 from verigraph.graph.dictionary import PLACEMENT_RELATIONS, STATE_ROLES, SUPPORT_RELATIONS
 from verigraph.graph.formula import Atom, Formula, Imply, Junction, Not, parse_formula
-from verigraph.graph.formula_eval import facts_of
+from verigraph.graph.formula_eval import Facts, facts_of
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.state import WorldState
 from verigraph.solver.budget import SearchBudget
@@ -63,12 +63,17 @@ def needs_table_search(state: WorldState, goal: Goal) -> bool:
 def _formula_needs_table(formula: Formula) -> bool:
     """A formula that asks for a state (`open`, `cooked`, ...) or an `under`/`nextto`
     placement: only the table's actions reach it."""
+    return any(r not in (*SUPPORT_RELATIONS, "inroom") for r in _atom_relations(formula))
+
+
+def _atom_relations(formula: Formula) -> set[str]:
+    """The relations and state keys a formula's atoms read."""
+    found: set[str] = set()
     stack: list[Formula] = [formula]
     while stack:
         node = stack.pop()
         if isinstance(node, Atom):
-            if node.relation not in (*SUPPORT_RELATIONS, "inroom"):
-                return True
+            found.add(node.relation)
         elif isinstance(node, Not):
             stack.append(node.body)
         elif isinstance(node, Junction):
@@ -77,7 +82,7 @@ def _formula_needs_table(formula: Formula) -> bool:
             stack.extend((node.condition, node.then))
         else:  # a quantifier
             stack.append(node.body)
-    return False
+    return found
 
 
 class TableProblem:
@@ -110,6 +115,27 @@ class TableProblem:
                     self.states[(n.id, key)] = value
         # A formula goal: its admissible bound (verigraph.solver.formula_bound) joins.
         self.formula = parse_formula(goal.formula) if goal.formula is not None else None
+        # `under`/`nextto` moves only where the goal reads them or rooms: with a fixed
+        # surface of unlimited capacity, a parking move by them has an equally long
+        # replacement onto it (needs_table_search), so the plans stay optimal.
+        wanted = _atom_relations(self.formula) if self.formula is not None else set()
+        if goal.graph is not None:
+            wanted |= {e.relation for e in goal.graph.edges}
+        unlimited = any(objects[s].props.capacity is None for s in state.fixed_surfaces)
+        self.relations = [r for r in state.move_relations
+                          if r in SUPPORT_RELATIONS or r in wanted or not unlimited
+                          or "inroom" in wanted]
+        self._facts = facts_of(state) if self.formula is not None else None
+        self._bounds: dict[Key, int] = {}
+
+    def facts(self, state: WorldState) -> Facts:
+        """The formula's view of a search state, built from the placements directly."""
+        assert self._facts is not None
+        facts = self._facts.with_edges(
+            [*((r, o, t) for o, (r, t) in state.support.items()),
+             *(("inroom", o, r) for o, r in state.rooms.items())])
+        facts.states = state.states
+        return facts
 
     def key(self, state: WorldState) -> Key:
         support = state.support
@@ -144,7 +170,7 @@ class TableProblem:
 
             closed = frozenset(o for o in openable if not state.state_value(o, "open"))
             wrong = max(wrong, formula_bound(
-                self.formula, facts_of(state), closed,
+                self.formula, self.facts(state), closed,
                 lambda obj, key, want: process_needs(state, obj, key, want),
                 additive=self.additive))
         return wrong
@@ -164,7 +190,7 @@ class TableProblem:
         pools = []
         for p in row.parameters:
             if p.role == "relation":
-                pools.append(list(state.move_relations))
+                pools.append(self.relations)
             elif p.role is None:
                 pools.append(self.every)
             else:
@@ -186,7 +212,11 @@ class TableProblem:
                     budget.check(memory=True)
                 before = row.apply(state, *args)
                 try:
-                    yield row, args, self.key(state), self.h(state)
+                    key = self.key(state)
+                    bound = self._bounds.get(key)
+                    if bound is None:
+                        bound = self._bounds[key] = self.h(state)
+                    yield row, args, key, bound
                 finally:
                     if row.name == "move":
                         if before is None:  # it had no placement before
