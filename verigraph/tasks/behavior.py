@@ -12,6 +12,7 @@ import importlib.util
 import time
 from dataclasses import asdict, dataclass, field
 from functools import cache
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -123,6 +124,10 @@ def run_activity(name: str, *, time_limit: float = 10.0, tools: Any = None,
     seconds["import"] = time.perf_counter() - start
     outcome = ActivityOutcome(name, "solved", predicate_class=imported.predicate_class,
                               objects=len(imported.ids), seconds=seconds)
+    conflict = placement_conflict(imported.formula)
+    if conflict is not None:
+        outcome.status, outcome.reason = "unreachable", conflict
+        return outcome
     scene = graph.model_dump(mode="json", exclude_none=True)
     goal = imported.goal
     tools = tools or InProcessTools()
@@ -173,6 +178,38 @@ def run_activity(name: str, *, time_limit: float = 10.0, tools: Any = None,
     return outcome
 
 
+def placement_conflict(formula: str) -> str | None:
+    """Why a goal can never hold in VeriGraph's model, where a movable object has one
+    placement: its conjunction asks one object to be `on`/`in`/`under` two things, or
+    two objects that it also places by `on`/`in`/`under` to stand next to each other
+    (BEHAVIOR's geometry allows both at once). None when no such pair is asked."""
+    from verigraph.graph.formula import Atom, Junction, parse_formula
+
+    placed: dict[str, set[tuple[str, str]]] = {}
+    beside: list[tuple[str, str]] = []
+    stack = [parse_formula(formula)]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, Junction) and node.op == "and":
+            stack.extend(node.parts)
+        elif isinstance(node, Atom) and not any(t.startswith("?") for t in node.terms):
+            if node.relation in ("on", "in", "under"):
+                placed.setdefault(node.terms[0], set()).add((node.relation, node.terms[1]))
+            elif node.relation == "nextto":
+                beside.append((node.terms[0], node.terms[1]))
+    for obj, places in sorted(placed.items()):
+        if len(places) > 1:
+            shown = " and ".join(f"{r} {t}" for r, t in sorted(places))
+            return (f"the goal places {obj} {shown}; an object has one placement here "
+                    "(BEHAVIOR's geometry allows both)")
+    for a, b in beside:
+        if a in placed and b in placed:
+            return (f"the goal places {a} and {b} (on, in or under) and also next to each "
+                    "other; an object has one placement here, so nextto would replace one "
+                    "(BEHAVIOR's geometry allows both)")
+    return None
+
+
 def formula_holds(graph: dict[str, Any], formula: str) -> bool:
     """Whether the goal formula holds on a graph, by the formula evaluator itself."""
     from verigraph.graph.formula import parse_formula
@@ -190,21 +227,24 @@ def formula_holds(graph: dict[str, Any], formula: str) -> bool:
 TASK_SOLVE_SECONDS = 1.0
 
 
-def behavior_tasks(max_solve_s: float = TASK_SOLVE_SECONDS) -> list[Task]:
+def behavior_tasks(max_solve_s: float = TASK_SOLVE_SECONDS,
+                   names: Sequence[str] | None = None) -> list[Task]:
     """One task per activity that imports and that the reference solver solves optimally
     within `max_solve_s`: the scene, its goal formula, its class as the kind and the
     optimal plan length. Ids are `behavior/<activity>`; splits follow the content hash,
-    so each activity is wholly in train or in test."""
+    so each activity is wholly in train or in test. `names`: only these activities."""
     from verigraph.graph.bddl_problem import UnsupportedActivityError, import_problem
     from verigraph.graph.goal import Goal
     from verigraph.solver import solve
 
     tasks = []
-    for name in activities():
+    for name in names if names is not None else activities():
         try:
             imported = import_problem(activity_text(name), activity=name)
             graph = imported.scene_graph()
         except UnsupportedActivityError:
+            continue
+        if placement_conflict(imported.formula) is not None:
             continue
         result = solve(graph, Goal(formula=imported.formula), time_limit=max_solve_s)
         if not result.reachable or not result.optimal:
