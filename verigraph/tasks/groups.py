@@ -230,10 +230,12 @@ def tangram_tasks(n: int, seed: int, *, simulate: bool = False) -> GroupTasks:
 
 
 def _behavior_group(n: int) -> GroupTasks:
-    """BEHAVIOR-1K's activities the reference solver solves (verigraph.tasks.behavior)."""
+    """BEHAVIOR-1K's activities the reference solver solves (verigraph.tasks.behavior):
+    a fixed set, one task per activity, so `n` does not cut it."""
     from verigraph.tasks.behavior import behavior_tasks
 
-    return GroupTasks(group="behavior", tasks=behavior_tasks()[:n])
+    del n
+    return GroupTasks(group="behavior", tasks=behavior_tasks())
 
 
 def build_groups(groups: tuple[GroupName, ...], n: int, seed: int, *, ground_truth: bool,
