@@ -79,7 +79,7 @@ def process_needs(state: WorldState, obj: str, key: str, want: bool
     `("toggled_on", source)`), for an admissible bound: to cook, heat or freeze, the
     object (or what carries it) must come to rest on a working source, or the source
     under it be turned on; to cool or thaw, the reverse."""
-    for name, (k, value, _, role, needed) in PROCESSES.items():
+    for k, value, _, role, needed in PROCESSES.values():
         if k != key or value != want:
             continue
         if active_source_below(state, obj, role) != needed:

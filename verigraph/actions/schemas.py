@@ -298,6 +298,7 @@ def _state_row(name: str, key: str, value: bool) -> ActionSchema:
 def _process_row(name: str) -> ActionSchema:
     key, value, role, source, needed = p.PROCESSES[name]
     word = p.SOURCE_WORDS[source]
+    where: tuple[Precondition, ...]
     if needed:
         where = (
             Precondition(p.NO_SOURCE[source], f"source_below(state, obj, {source!r}) is not None",

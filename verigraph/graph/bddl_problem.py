@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Union
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 from verigraph.errors import VeriGraphError
 
@@ -51,7 +51,7 @@ FLOOR = "floor.n.01"
 MAX_TEXT = 262_144  # bytes of BDDL: the largest activity is about 12 KB
 MAX_DEPTH = 64
 
-Sexp = Union[str, list["Sexp"]]
+Sexp: TypeAlias = "str | list[Sexp]"
 _TOKEN = re.compile(r"[()]|[^\s()]+")
 _OBJECT = re.compile(r"^(?P<synset>.+)_(?P<n>\d+|\*)$")
 
@@ -321,7 +321,7 @@ def import_problem(text: str, *, activity: str | None = None) -> ImportedActivit
         elif args[0] not in placed:  # an object placed twice keeps its first placement
             placed[args[0]] = [(predicate, args[1])]
     roles: dict[str, set[str]] = {}
-    for obj, places in placed.items():
+    for places in placed.values():
         for predicate, target in places:
             if predicate in ("ontop", "inside"):
                 roles.setdefault(target, set()).add(
@@ -389,9 +389,8 @@ def _attrs(obj: str, synset: str, label: str, roles: dict[str, set[str]], furnit
 
     props = behavior_dictionary().objects.get(label)
     attrs: dict[str, Any] = {}
-    if props is None:  # a synset the knowledge base does not have: an open label
-        attrs["movable"] = not furniture
-    elif props.movable == furniture:
+    # a synset the knowledge base lacks (an open label), or a kind fixed the other way
+    if props is None or props.movable == furniture:
         attrs["movable"] = not furniture
     movable = not furniture
     wanted = (roles.get(obj, set()) | roles.get("type:" + synset, set())) - {"placed"}

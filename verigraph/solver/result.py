@@ -7,10 +7,10 @@ from typing import Literal
 from pydantic import BaseModel, Field
 
 from verigraph.actions.model import AnyAction
+from verigraph.graph.dictionary import PLACEMENT_RELATIONS, ROOM_RELATION
 from verigraph.graph.goal import Goal
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import check_well_formed
-from verigraph.graph.dictionary import PLACEMENT_RELATIONS, ROOM_RELATION
 
 
 class SolveResult(BaseModel):

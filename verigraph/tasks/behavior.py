@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import importlib.util
 import time
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from functools import cache
-from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 

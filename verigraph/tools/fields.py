@@ -17,8 +17,8 @@ from pydantic import AfterValidator, BeforeValidator, Field, WithJsonSchema
 from verigraph.actions.model import Action, AnyAction, DoneAction
 from verigraph.actions.parser import parse_text_plan
 from verigraph.errors import MalformedGraphError, PlanParseError
-from verigraph.graph.builtin_scenes import BUILTIN_GOALS, BUILTIN_SCENES
 from verigraph.graph.behavior import BEHAVIOR
+from verigraph.graph.builtin_scenes import BUILTIN_GOALS, BUILTIN_SCENES
 from verigraph.graph.dictionary import (
     BUILTIN_DICTIONARIES,
     Dictionary,
