@@ -44,9 +44,12 @@ Record = tuple[int, AnyAction, Any]
 
 @runtime_checkable
 class World(Protocol):
-    """Something that can carry out a validated action and report what it observes."""
+    """Something that can carry out a validated action and report what it observes.
 
-    def perform(self, action: MoveAction | StateAction | AlignAction) -> Violation | None:
+    A world that opens, closes and switches things has `perform_state(action)` too
+    (same contract as `perform`); any other is never asked to (the run refuses)."""
+
+    def perform(self, action: MoveAction | AlignAction) -> Violation | None:
         """Carry out an action that already passed the symbolic validator.
 
         Returns a Violation only when the world itself refuses before anything moves
@@ -153,7 +156,17 @@ def _perform(run: Run, world: World, action: AnyAction, step: int) -> Violation 
     mismatch (returned as `execution_failed`)."""
     assert run.state is not None and isinstance(action, MoveAction | StateAction | AlignAction)
     current = run.state
-    refused = world.perform(action)
+    if isinstance(action, StateAction):
+        perform_state = getattr(world, "perform_state", None)
+        if perform_state is None:
+            return Violation(
+                step=step, action=action.model_dump(), constraint="execution_failed",
+                message=f"this world cannot carry out {action.text()} (it has no doors or "
+                        "switches); nothing changed",
+                suggestion="run household actions on an episode with executor graph")
+        refused = perform_state(action)
+    else:
+        refused = world.perform(action)
     if refused is not None:
         refused.step = step
         return refused

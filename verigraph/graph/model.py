@@ -9,6 +9,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Annotated, Any
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema, field_validator
+from pydantic_core import PydanticCustomError
 
 from verigraph.graph.dictionary import STATE_ROLES, InlineDictionary, inline_or_name
 
@@ -33,10 +34,9 @@ class Node(BaseModel):
     attrs: dict[str, Any] = Field(default_factory=dict,
                                   description="colour; overrides (capacity, movable)")
     # Serialised only when set, so a scene without states dumps as it always did.
-    state: dict[str, bool] = Field(
+    state: Annotated[dict[str, bool], WithJsonSchema({"type": "object"})] = Field(
         default_factory=dict, exclude_if=lambda state: not state,
-        description="open (openable kinds), toggled_on (toggleable kinds); "
-                    "missing = closed, off")
+        description="open, toggled_on: true/false; missing = closed, off")
 
     @field_validator("state", mode="before")
     @classmethod
@@ -46,12 +46,14 @@ class Node(BaseModel):
             return value
         for key, on in value.items():
             if key not in STATE_ROLES:
-                raise ValueError(
-                    f"unknown state '{str(key)[:32]}' (fix: use "
-                    f"{' or '.join(STATE_ROLES)}, e.g. {{\"open\": false}})")
-            if not isinstance(on, bool):
-                raise ValueError(f"state '{key}' must be true or false, got "
-                                 f"{str(on)[:32]!r} (fix: write {{\"{key}\": true}})")
+                reason = (f"unknown state '{str(key)[:32]}' (fix: use "
+                          f"{' or '.join(STATE_ROLES)}, e.g. {{\"open\": false}})")
+            elif not isinstance(on, bool):
+                reason = (f"state '{key}' must be true or false, got {str(on)[:32]!r} "
+                          f"(fix: write {{\"{key}\": true}})")
+            else:
+                continue
+            raise PydanticCustomError("node_state", "{reason}", {"reason": reason})
         return value
 
 
@@ -101,6 +103,11 @@ class SceneGraph(BaseModel):
 
     def node_ids(self) -> list[str]:
         return [n.id for n in self.nodes]
+
+    def stateless_nodes(self) -> list[Node]:
+        """The nodes without their states: a goal built on a scene's nodes asks only for
+        the edges (and states) it lists, not for every state the scene has now."""
+        return [n.model_copy(update={"state": {}}) if n.state else n for n in self.nodes]
 
     def edge_keys(self) -> set[tuple[str, str, str, int | None, int | None]]:
         return {e.key() for e in self.edges}

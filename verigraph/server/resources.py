@@ -27,6 +27,11 @@ RELATION_MEANINGS = {
     "on": "source rests on target; target must be a surface",
     "in": "source is inside target; target must be a container",
     "touches": "tangram: side source_side of source lies against side target_side of target",
+    "under": "source stands under target, on what target stands on; target must be "
+             "furniture (a fixed surface); counts against no capacity",
+    "nextto": "source stands next to target, on what target stands on; target must not be "
+              "a room; counts against no capacity",
+    "inroom": "furniture (a fixed object) source stands in room target",
 }
 
 
@@ -67,7 +72,8 @@ def register_resources(server: MCPServer[Any], toolbox: Toolbox) -> None:
                     )(_constant(relations_json()))
     server.resource("verigraph://schema/action", name="action-schema",
                     title="Action JSON schema", mime_type=JSON,
-                    description="JSON schema of move, align and done actions"
+                    description="JSON schema of move, open, close, toggle_on, toggle_off, "
+                                "align and done actions"
                     )(_constant(_dump(without_openapi_keywords(ActionAdapter.json_schema()))))
     server.resource("verigraph://constraints", name="constraints", title="Constraints C",
                     mime_type=JSON, description="constraint ids used in violation feedback"

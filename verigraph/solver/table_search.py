@@ -229,6 +229,18 @@ class TableProblem:
                                         before)
 
 
+def valid_actions(state: WorldState) -> list[AnyAction]:
+    """Every action of the table the verifier accepts on `state` now (scene order)."""
+    problem = TableProblem(state, Goal(predicate="single_stack"))
+    problem.relations = list(state.move_relations)  # every relation, not the goal's
+    found = []
+    for row in SCHEMAS.values():
+        for args in problem._bindings(row, state):
+            if row.accepted(state, *args):
+                found.append(_action(row, args))
+    return found
+
+
 def _action(row: ActionSchema, args: tuple[str, ...]) -> AnyAction:
     if row.name == "move":
         return MoveAction(object=args[0], relation=args[1], target=args[2])

@@ -30,11 +30,15 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 
 SUITE_VERSION = "2"
-Family = Literal["blocks", "kitchen", "tangram", "behavior"]
+Family = Literal["blocks", "kitchen", "tangram", "household", "behavior"]
 FAMILIES: tuple[Family, ...] = get_args(Family)
-GroupName = Literal["stacking", "language", "ref_image_kitchen", "ref_image_blocks", "tangram",
-                    "behavior"]
-GROUPS: tuple[GroupName, ...] = get_args(GroupName)
+# The paper's five groups (the benchmark's default), and the household and BEHAVIOR-1K
+# groups beside them.
+PaperGroup = Literal["stacking", "language", "ref_image_kitchen", "ref_image_blocks",
+                     "tangram"]
+GroupName = PaperGroup | Literal["household", "behavior"]
+GROUPS: tuple[GroupName, ...] = get_args(PaperGroup)
+ALL_GROUPS: tuple[GroupName, ...] = (*GROUPS, "household", "behavior")
 
 RECORD_FIELDS = ("family", "group", "kind", "optimal_length", "objects", "show_goal_graph",
                  "instruction", "suite_version")
