@@ -87,6 +87,8 @@ def test_show_writes_the_formula_back_with_objects_filled_in() -> None:
 
 def test_text_starting_with_a_parenthesis_is_a_formula() -> None:
     assert looks_like_formula("  (on a b)") and not looks_like_formula("cup on plate")
+    assert looks_like_formula("; a comment\n  ; another\n(on a b)")
+    assert not looks_like_formula("; a comment only")
 
 
 @pytest.mark.parametrize(("text", "at", "words", "fix"), [
