@@ -41,8 +41,7 @@ class Goal(BaseModel):
     partial: bool = Field(default=False, description="only the listed edges must hold")
     predicate: Literal["single_stack"] | None = Field(
         default=None, description="single_stack: every movable object in one tower")
-    formula: str | None = Field(default=None, max_length=MAX_FORMULA_CHARS,
-                                description="BDDL formula")
+    formula: str | None = Field(default=None, max_length=MAX_FORMULA_CHARS)  # BDDL
     instruction: str | None = Field(default=None, description="the instruction it came from")
 
     @field_validator("formula")

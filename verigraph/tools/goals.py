@@ -122,8 +122,7 @@ class SetGoalInput(BaseModel):
     edges: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
                               description="goal edges as text")
     formula: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
-                                description="BDDL goal formula over kinds and ids, e.g. "
-                                            f"{FORMULA_EXAMPLE}")
+                                description=f"BDDL, e.g. {FORMULA_EXAMPLE}")
     partial: bool | None = Field(default=None, description="only the listed edges must "
                                  "hold (default: true for edges)")
     predicate: Literal["single_stack"] | None = Field(
