@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import functools
 import threading
+from types import SimpleNamespace
 from typing import Any
 
 import anyio
@@ -28,13 +29,14 @@ SAFETY_S = 60  # only so that a broken server fails instead of hanging
 
 
 class HeldStep:
-    """Wraps the plan checker's per-move check: the first move waits until cancelled."""
+    """Wraps the plan checker's per-move check (the move row's compiled preconditions):
+    the first move waits until cancelled."""
 
     def __init__(self) -> None:
         self.started = threading.Event()
         self.outcome: list[BaseException | str] = []
         self.finished = threading.Event()
-        self.real = execution.move_accepted
+        self.real = execution.MOVE.accepted
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
         if not self.started.is_set():
@@ -50,10 +52,15 @@ class HeldStep:
                 self.finished.set()
         return self.real(*args, **kwargs)
 
+    def row(self) -> SimpleNamespace:
+        """The move row with this check in place of its own."""
+        move = execution.MOVE
+        return SimpleNamespace(args=move.args, accepted=self, apply=move.apply)
+
 
 async def test_a_vanished_clients_call_is_cancelled(monkeypatch: pytest.MonkeyPatch) -> None:
     held = HeldStep()
-    monkeypatch.setattr(execution, "move_accepted", held)
+    monkeypatch.setattr(execution, "MOVE", held.row())
     options = HttpOptions(port=free_port())
     server = uvicorn.Server(uvicorn_config(build_server(Toolbox()), options))
     plan = "move(cup, on, desk)   \n" * 1000  # long enough to run as a heavy call
@@ -81,7 +88,7 @@ async def test_a_vanished_clients_call_is_cancelled(monkeypatch: pytest.MonkeyPa
 async def test_a_call_over_its_wall_clock_budget_gets_a_tool_error(
         monkeypatch: pytest.MonkeyPatch) -> None:
     held = HeldStep()
-    monkeypatch.setattr(execution, "move_accepted", held)
+    monkeypatch.setattr(execution, "MOVE", held.row())
     server = build_server(Toolbox(), heavy=HeavyLimits(budget=CallBudget(wall_s=0.2)))
     async with Client(server) as client:
         result = await client.call_tool("validate_plan", {

@@ -157,3 +157,75 @@ def test_the_bound_never_exceeds_the_true_distance(text: str) -> None:
         assert (bound == 0) is (distance == 0)
         assert facts_of(trial).edges == facts_at(codes).edges
     assert any(d > 0 for d in distances), distances  # the bound met real searches
+
+
+def household() -> SceneGraph:
+    """A kitchen: a closed fridge, a stove that is off, a sink, the milk, a pot and a lid
+    on the counter."""
+    nodes = [("kitchen", "kitchen", {}), ("counter", "counter", {}),
+             ("fridge", "fridge", {"open": False}), ("stove", "stove", {}), ("sink", "sink", {}),
+             ("milk", "milk", {}), ("pot", "pot", {}), ("lid", "lid", {})]
+    edges = [("counter", "inroom", "kitchen"), ("fridge", "inroom", "kitchen"),
+             ("stove", "inroom", "kitchen"), ("sink", "inroom", "kitchen"),
+             ("milk", "on", "counter"), ("pot", "on", "counter"), ("lid", "on", "counter")]
+    return SceneGraph.model_validate({
+        "nodes": [{"id": i, "label": label, **({"state": st} if st else {})}
+                  for i, label, st in nodes],
+        "edges": [{"source": s, "relation": r, "target": t} for s, r, t in edges],
+        "dictionary": "kitchen"})
+
+
+@pytest.mark.parametrize(("text", "plan"), [
+    ("(and (inside milk fridge) (not (open fridge)))",
+     ["open(fridge)", "move(milk, in, fridge)", "close(fridge)"]),
+    ("(exists (?s - stove) (and (toggled_on ?s) (ontop pot ?s)))",
+     ["move(pot, on, stove)", "toggle_on(stove)"]),
+    ("(nextto pot sink)", ["move(pot, nextto, sink)"]),
+    ("(inroom milk kitchen)", []),
+])
+def test_household_formulas_are_solved_over_the_action_table(text: str, plan: list[str]
+                                                             ) -> None:
+    result = solve(household(), Goal(formula=text))
+    assert result.reachable and result.optimal
+    assert sorted(a.text() for a in result.plan) == sorted(plan)
+    if text.startswith("(and"):
+        assert [a.text() for a in result.plan] == plan  # opened before, closed after
+    report = validate_plan(WorldState.from_graph(household()), result.plan or "done",
+                           Goal(formula=text))
+    assert report.valid and report.goal_diff is not None and report.goal_diff.satisfied
+
+
+@pytest.mark.parametrize("text", [
+    "(and (inside milk fridge) (not (open fridge)))",
+    "(or (toggled_on stove) (open fridge))",
+    "(not (exists (?x - pot) (ontop ?x counter)))",
+    "(imply (open fridge) (inside pot fridge))",
+    "(forall (?x - milk) (nextto ?x sink))",
+])
+def test_the_bound_is_admissible_over_the_action_table(text: str) -> None:
+    from verigraph.solver.table_search import TableProblem
+
+    formula = parse_formula(text)
+    goal = Goal(formula=text)
+    start = WorldState.from_graph(household())
+    problem = TableProblem(start, goal)
+    budget = SearchBudget(max_expansions=10**6, time_limit_s=30)
+    seen = {problem.key(start)}
+    layer = [start]
+    for depth in range(4):  # every state within 3 actions, with its true distance
+        for world in layer:  # the bound is 0 exactly where the formula holds
+            assert (formula_bound(formula, facts_of(world)) == 0) is \
+                holds(formula, facts_of(world))
+        goal_layer = [w for w in layer if holds(formula, facts_of(w))]
+        if goal_layer:
+            break
+        nxt = []
+        for world in layer:
+            for _, after in problem.successors(world, budget):
+                key = problem.key(after)
+                if key not in seen:
+                    seen.add(key)
+                    nxt.append(after)
+        layer = nxt
+    assert goal_layer, text
+    assert formula_bound(formula, facts_of(start)) <= depth

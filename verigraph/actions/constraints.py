@@ -1,10 +1,11 @@
-"""The constraints C: one small function per constraint id, checked in a fixed order.
+"""The constraints C: what each refusal says, and its fix.
 
-Each check looks only at the object, the target and their neighbours in the
-`WorldState` indexes, so validating an action costs O(degree + stack height).
-Execution stops at the first failing check; `validator.all_violations` runs them all,
-so a reader sees every reason at once. A Violation says what failed, why, and a concrete
-fix that covers every blocker.
+Whether a precondition holds is the `test` of its row in the action table
+(`verigraph.actions.schemas`); the `explain_*` functions here build the refusal when
+it does not: what failed, why, and a concrete fix that covers every blocker (a fix
+names a real action the verifier accepts). They look only at the object, the target
+and their neighbours in the `WorldState` indexes. The tangram `align` check lives here
+whole (`check_align`; see the table's docstring for why it is not a row).
 """
 
 from __future__ import annotations
@@ -13,11 +14,12 @@ import difflib
 from collections.abc import Callable
 
 from verigraph.actions.feedback import Violation
-from verigraph.actions.model import AlignAction, MoveAction
+from verigraph.actions.model import AlignAction, MoveAction, StateAction
+from verigraph.graph.dictionary import STATE_WORDS
 from verigraph.graph.state import WorldState
 
 
-def _violation(action: MoveAction | AlignAction, constraint: str, message: str,
+def _violation(action: MoveAction | AlignAction | StateAction, constraint: str, message: str,
                suggestion: str, blocking: list[str] | None = None) -> Violation:
     return Violation(action=action.model_dump(), constraint=constraint,  # type: ignore[arg-type]
                      message=message, blocking=blocking or [], suggestion=suggestion)
@@ -44,14 +46,14 @@ MAX_PLACE_CANDIDATES = 2000
 
 def _room(state: WorldState, place: str, planned: dict[str, int]) -> float:
     cap = state.objects[place].props.capacity
-    used = len(state.carried[place]) + planned.get(place, 0)
+    used = state.load(place) + planned.get(place, 0)
     return float("inf") if cap is None else cap - used
 
 
 def _load(state: WorldState, place: str, planned: dict[str, int]) -> str:
     """`2 of 3` (what the place carries of its capacity), or `2, no limit`."""
     cap = state.objects[place].props.capacity
-    used = len(state.carried[place]) + planned.get(place, 0)
+    used = state.load(place) + planned.get(place, 0)
     return f"{used} of {cap}" if cap is not None else f"{used}, no limit"
 
 
@@ -68,7 +70,8 @@ def _takes(state: WorldState, obj: str, place: str, exclude: set[str],
         return None  # place rests on obj
     for relation, kind in (("on", props.surface), ("in", props.container)):
         if kind and relation in state.move_relations and \
-                state.support.get(obj) != (relation, place):
+                state.support.get(obj) != (relation, place) and \
+                not (relation == "in" and _closed(state, place)):
             return relation
     return None
 
@@ -201,74 +204,61 @@ def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str]) -> st
     return f"move {who} somewhere else first{first}, e.g. {', '.join(hints)}{later}"
 
 
-# -- move ------------------------------------------------------------------------------------
-def check_known_objects(state: WorldState, a: MoveAction) -> Violation | None:
-    for role, name in (("object", a.object), ("target", a.target)):
-        if name not in state.objects:
-            near = _nearest_ids(state, name)
-            hint = f"did you mean {' or '.join(near)}?" if near else \
-                f"use an id from the scene: {', '.join(list(state.objects)[:8])}"
-            return _violation(a, "unknown_object",
-                              f"there is no object '{name}' in the scene ({role})", hint)
-    return None
+# -- move: the refusals of the move row's preconditions (verigraph.actions.schemas) ----------
+# Each is called only when its precondition's test failed, and says why and how to fix it.
+def explain_unknown_object(state: WorldState, a: MoveAction | StateAction) -> Violation:
+    names = (("object", a.object), ("target", a.target)) if isinstance(a, MoveAction) \
+        else (("object", a.object),)
+    role, name = next((r, n) for r, n in names if n not in state.objects)
+    near = _nearest_ids(state, name)
+    hint = f"did you mean {' or '.join(near)}?" if near else \
+        f"use an id from the scene: {', '.join(list(state.objects)[:8])}"
+    return _violation(a, "unknown_object",
+                      f"there is no object '{name}' in the scene ({role})", hint)
 
 
-def check_relation(state: WorldState, a: MoveAction) -> Violation | None:
-    if a.relation not in state.move_relations:
-        allowed = state.move_relations
-        fix = ("tangram pieces are placed with align(piece, side, target, target_side)"
-               if a.relation == "touches" else f"use one of: {', '.join(allowed)}")
-        return _violation(a, "unknown_relation",
-                          f"'{a.relation}' is not a relation move can create "
-                          f"(R = {', '.join(allowed) or 'none'})", fix)
-    return None
+def explain_relation(state: WorldState, a: MoveAction) -> Violation:
+    allowed = state.move_relations
+    fix = ("tangram pieces are placed with align(piece, side, target, target_side)"
+           if a.relation == "touches" else f"use one of: {', '.join(allowed)}")
+    return _violation(a, "unknown_relation",
+                      f"'{a.relation}' is not a relation move can create "
+                      f"(R = {', '.join(allowed) or 'none'})", fix)
 
 
-def check_same_object(state: WorldState, a: MoveAction) -> Violation | None:
-    if a.object == a.target:
-        return _violation(a, "same_object", f"cannot put {a.object} {a.relation} itself",
-                          f"choose a different target, e.g. {_place_hint(state, a.object, set())}")
-    return None
+def explain_same_object(state: WorldState, a: MoveAction) -> Violation:
+    return _violation(a, "same_object", f"cannot put {a.object} {a.relation} itself",
+                      f"choose a different target, e.g. {_place_hint(state, a.object, set())}")
 
 
-def check_movable(state: WorldState, a: MoveAction) -> Violation | None:
+def explain_movable(state: WorldState, a: MoveAction) -> Violation:
     info = state.objects[a.object]
-    if not info.props.movable:
-        return _violation(a, "not_movable", f"{a.object} ({info.label}) is fixed and cannot be "
-                          "moved", f"move objects onto {a.object} instead of moving it")
-    return None
+    return _violation(a, "not_movable", f"{a.object} ({info.label}) is fixed and cannot be "
+                      "moved", f"move objects onto {a.object} instead of moving it")
 
 
-def check_already_there(state: WorldState, a: MoveAction) -> Violation | None:
-    if state.support.get(a.object) == (a.relation, a.target):
-        return _violation(a, "already_there", f"{a.object} is already {a.relation} {a.target}",
-                          "drop this action; it changes nothing")
-    return None
+def explain_already_there(state: WorldState, a: MoveAction) -> Violation:
+    return _violation(a, "already_there", f"{a.object} is already {a.relation} {a.target}",
+                      "drop this action; it changes nothing")
 
 
-def check_cycle(state: WorldState, a: MoveAction) -> Violation | None:
-    if not state.carried[a.object]:
-        return None  # nothing rests on the object, so nothing below the target can be it
+def explain_cycle(state: WorldState, a: MoveAction) -> Violation:
     chain = state.supports_chain(a.target)
-    if a.object in chain:
-        above = chain[: chain.index(a.object)]
-        path = " on ".join([a.target, *above, a.object])
-        return _violation(
-            a, "would_create_cycle",
-            f"cannot put {a.object} {a.relation} {a.target}: {path}, so it would rest on itself",
-            f"first move {a.target} off {a.object}, e.g. "
-            f"{_place_hint(state, a.target, {a.object, *above})}", [a.target, *above])
-    return None
+    above = chain[: chain.index(a.object)]
+    path = " on ".join([a.target, *above, a.object])
+    return _violation(
+        a, "would_create_cycle",
+        f"cannot put {a.object} {a.relation} {a.target}: {path}, so it would rest on itself",
+        f"first move {a.target} off {a.object}, e.g. "
+        f"{_place_hint(state, a.target, {a.object, *above})}", [a.target, *above])
 
 
-def check_clear(state: WorldState, a: MoveAction) -> Violation | None:
+def explain_clear(state: WorldState, a: MoveAction) -> Violation:
     on_top = state.carried[a.object]
-    if on_top:
-        blockers = list(on_top)
-        what = ", ".join(f"{b} is {on_top[b]} {a.object}" for b in blockers)
-        return _violation(a, "object_not_clear", f"cannot move {a.object}: {what}",
-                          _clear_hint(state, blockers, {a.object}), blockers)
-    return None
+    blockers = list(on_top)
+    what = ", ".join(f"{b} is {on_top[b]} {a.object}" for b in blockers)
+    return _violation(a, "object_not_clear", f"cannot move {a.object}: {what}",
+                      _clear_hint(state, blockers, {a.object}), blockers)
 
 
 def _kind_fix(state: WorldState, a: MoveAction, other: str, takes_other: bool) -> str:
@@ -279,28 +269,59 @@ def _kind_fix(state: WorldState, a: MoveAction, other: str, takes_other: bool) -
         if state.support.get(a.object) == (other, a.target):
             return f"{a.object} is already {other} {a.target}; drop this action"
         cycle = bool(state.carried[a.object]) and a.object in state.supports_chain(a.target)
-        if state.has_room(a.target) and not cycle:
+        closed = other == "in" and _closed(state, a.target)
+        if state.has_room(a.target) and not cycle and not closed:
             return f"use move({a.object}, {other}, {a.target})"
     return f"choose {wanted}, e.g. {_place_hint(state, a.object, {a.target})}"
 
 
-def check_target_kind(state: WorldState, a: MoveAction) -> Violation | None:
+def explain_target_kind(state: WorldState, a: MoveAction) -> Violation:
     t = state.objects[a.target]
-    if a.relation == "on" and not t.props.surface:
+    if a.relation == "on":
         return _violation(a, "target_not_surface",
                           f"{a.target} ({t.label}) is not a surface, nothing can go on it",
                           _kind_fix(state, a, "in", t.props.container))
-    if a.relation == "in" and not t.props.container:
+    if a.relation == "in":
         return _violation(a, "target_not_container",
                           f"{a.target} ({t.label}) is not a container, nothing can go in it",
                           _kind_fix(state, a, "on", t.props.surface))
-    return None
+    if a.relation == "under":
+        furniture = [o for o in state.fixed_surfaces if o != a.object][:3]
+        return _violation(
+            a, "target_not_furniture",
+            f"{a.target} ({t.label}) is not furniture (a fixed surface), nothing stands "
+            "under it", f"use move({a.object}, under, {furniture[0]})" if furniture
+            else f"choose a place, e.g. {_place_hint(state, a.object, {a.target})}")
+    room = a.target
+    near = next((f for f, r in state.rooms.items() if r == room and f != a.object), None)
+    return _violation(
+        a, "target_is_room",
+        f"{room} is a room; an object is placed by furniture and is in the room its "
+        "furniture is in", f"use move({a.object}, nextto, {near})" if near else
+        f"choose furniture, e.g. {_place_hint(state, a.object, {room})}")
 
 
-def check_capacity(state: WorldState, a: MoveAction) -> Violation | None:
-    if state.has_room(a.target):
-        return None
-    carried = list(state.carried[a.target])
+def _closed(state: WorldState, obj: str) -> bool:
+    """An openable object that is closed now (no state: closed)."""
+    return obj in state.openable and not state.state_value(obj, "open")
+
+
+def explain_container_closed(state: WorldState, a: MoveAction) -> Violation:
+    below = state.support.get(a.object)
+    leaving = below is not None and below[0] == "in" and _closed(state, below[1])
+    box = below[1] if leaving and below is not None else a.target
+    label = state.objects[box].label
+    if leaving:
+        message = f"cannot take {a.object} out of {box} ({label}): {box} is closed"
+    else:
+        message = f"cannot put {a.object} in {box} ({label}): {box} is closed"
+    return _violation(a, "container_closed", message,
+                      f"open({box}) first, then {a.text()}", [box])
+
+
+def explain_capacity(state: WorldState, a: MoveAction) -> Violation:
+    held = state.carried[a.target]
+    carried = [o for o in held if held[o] in ("on", "in")]
     cap = state.objects[a.target].props.capacity
     exclude = {a.target, a.object}
     # The example moves a carried object that is clear and has somewhere to go.
@@ -317,13 +338,38 @@ def check_capacity(state: WorldState, a: MoveAction) -> Violation | None:
         carried)
 
 
-MOVE_CHECKS: tuple[Callable[[WorldState, MoveAction], Violation | None], ...] = (
-    check_known_objects, check_relation, check_same_object, check_movable, check_already_there,
-    check_cycle, check_clear, check_target_kind, check_capacity,
-)
-# Checks whose failure makes the later ones meaningless (or unsafe to run: they index the
-# object and the target); all_violations stops at them.
-GATE_CHECKS = frozenset({check_known_objects, check_relation, check_same_object})
+# -- open, close, toggle_on, toggle_off -----------------------------------------------------
+def role_explainer(name: str, role: str) -> Callable[[WorldState, StateAction], Violation]:
+    """The refusal of `open(plate)`: the object lacks the role, the fix names objects of
+    the scene that have it."""
+    def explain(state: WorldState, a: StateAction) -> Violation:
+        info = state.objects[a.object]
+        having = [o.id for o in state.objects.values() if getattr(o.props, role)][:3]
+        fix = (f"{name} only what is {role}, e.g. {name}({having[0]})"
+               + (f" ({', '.join(having)} are {role} here)" if len(having) > 1 else "")
+               if having else f"nothing in the scene is {role}; drop this action")
+        return _violation(a, f"not_{role}",  # type: ignore[arg-type]
+                          f"{a.object} ({info.label}) is not {role}", fix)
+    return explain
+
+
+_OPPOSITE = {"open": "close", "close": "open", "toggle_on": "toggle_off",
+             "toggle_off": "toggle_on"}
+
+
+def already_explainer(name: str, key: str, value: bool
+                      ) -> Callable[[WorldState, StateAction], Violation]:
+    """The refusal of `open(fridge)` on an open fridge (`already_open`)."""
+    word = STATE_WORDS[key][value]
+
+    def explain(state: WorldState, a: StateAction) -> Violation:
+        default = "" if key in state.states.get(a.object, {}) else \
+            f" (no state given: {STATE_WORDS[key][False]})"
+        return _violation(a, f"already_{word}",  # type: ignore[arg-type]
+                          f"{a.object} is already {word}{default}",
+                          f"drop this action; {_OPPOSITE[name]}({a.object}) would make it "
+                          f"{STATE_WORDS[key][not value]}")
+    return explain
 
 
 # -- align (tangram, symbolic part; geometry is checked by sim2d) ---------------------------

@@ -8,11 +8,12 @@ than predicted makes its observed graph the truth and reports `execution_failed`
 aligned piece that also lands against new neighbours is not a failure: those contacts
 are added to the prediction as observed (`new_contacts`).
 
-Accepted moves on the graph alone take a fused fast path (`move_accepted`: every move
-constraint's pass condition in one function, given the move's fields, which the loop
-reads once: a pydantic field read costs about three plain ones) and keep per step only
-a compact record (step, action, old support); anything else goes through the full
-constraint list, which also produces the feedback. `execute_until_violation` (the
+Every action of the action table (`verigraph.actions.schemas`) on the graph alone takes
+its row's fast path: the row's `accepted` (every precondition's test compiled into one
+function, given the action's fields, which the loop reads once: a pydantic field read
+costs about three plain ones), then the row's `apply`, keeping per step only a compact
+record (step, action, what the effect replaced); a refusal goes through the row's
+preconditions one by one, which also produces the feedback. `execute_until_violation` (the
 library's form, a model), `execute_in_world` (episodes and the simulator) and the plan
 validator (`verigraph.actions.report`) are views of the same run.
 """
@@ -26,16 +27,18 @@ from typing import Any, Protocol, runtime_checkable
 from pydantic import BaseModel, Field
 
 from verigraph.actions.feedback import Violation
-from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
-from verigraph.actions.validator import GraphEdit, apply_action, validate_action
+from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction, StateAction
+from verigraph.actions.schemas import MOVE, REFUSED, schema_of
+from verigraph.actions.validator import GraphEdit, apply_action, edit_from, validate_action
 from verigraph.budget import checkpoint
 from verigraph.graph.goal import diff
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 
-# (step, action, payload): payload is the old support (tuple or None) of an accepted move
-# on the fast path, a GraphEdit for other accepted actions, or the Violation of a
-# rejected one.
+# (step, action, payload): payload is what the row's effect replaced (a move's old
+# placement, tuple or None; a state action's old value) for an action of the table
+# applied on the fast path, a GraphEdit for other accepted actions, or the Violation of
+# a rejected one.
 Record = tuple[int, AnyAction, Any]
 
 
@@ -43,7 +46,7 @@ Record = tuple[int, AnyAction, Any]
 class World(Protocol):
     """Something that can carry out a validated action and report what it observes."""
 
-    def perform(self, action: MoveAction | AlignAction) -> Violation | None:
+    def perform(self, action: MoveAction | StateAction | AlignAction) -> Violation | None:
         """Carry out an action that already passed the symbolic validator.
 
         Returns a Violation only when the world itself refuses before anything moves
@@ -82,41 +85,15 @@ class Run:
 
     def edits(self) -> list[GraphEdit]:
         """The graph edit of every accepted action, in order."""
-        return [edit_of(action, payload) for _, action, payload in self.records
-                if not isinstance(payload, Violation)]
-
-
-def edit_of(action: AnyAction, payload: Any) -> GraphEdit:
-    """The GraphEdit an accepted step made (built here for fast-path moves)."""
-    if isinstance(payload, GraphEdit):
-        return payload
-    assert isinstance(action, MoveAction)
-    removed = [Edge(source=action.object, relation=payload[0], target=payload[1])] \
-        if payload is not None else []
-    return GraphEdit(removed=removed, added=[
-        Edge(source=action.object, relation=action.relation, target=action.target)])
-
-
-def move_accepted(state: WorldState, obj: str, relation: str, target: str) -> bool:
-    """True exactly when every check in MOVE_CHECKS passes for `move(obj, relation,
-    target)` (the common case, fused). It takes the move's fields, not the action: a read
-    of a pydantic model's field costs several times a plain one, so the run reads each
-    once and uses it for the check and the edit alike."""
-    objects = state.objects
-    info = objects.get(obj)
-    t = objects.get(target)
-    if info is None or t is None or obj == target or not info.props.movable:
-        return False
-    carried = state.carried
-    if relation not in state.move_relations or carried[obj]:
-        return False  # a carried object fails check_clear (or check_cycle) anyway
-    if state.support.get(obj) == (relation, target):
-        return False
-    props = t.props
-    if not (props.surface if relation == "on" else props.container):
-        return False
-    capacity = props.capacity
-    return capacity is None or len(carried[target]) < capacity
+        edits = []
+        for _, action, payload in self.records:
+            if isinstance(payload, GraphEdit):
+                edits.append(payload)
+            elif not isinstance(payload, Violation):  # a row's effect on the fast path
+                row = schema_of(action)
+                assert row is not None
+                edits.append(edit_from(row, row.args(action), payload))
+        return edits
 
 
 def run_actions(state: WorldState, actions: Sequence[AnyAction], *,
@@ -131,19 +108,18 @@ def run_actions(state: WorldState, actions: Sequence[AnyAction], *,
         raise ValueError("all_errors checks a plan on the graph; a world stops at a refusal")
     run = Run(state=state)
     records, violations = run.records, run.violations
-    support, carried = state.support, state.carried
+    move_step, refused = MOVE.step, REFUSED
     for index, action in enumerate(actions, start=first_step):
         if not index & 63:
             checkpoint()  # the server's per-call budget (and cancellation), cheap when unset
-        if world is None and type(action) is MoveAction:
-            obj, relation, target = action.object, action.relation, action.target
-            if move_accepted(state, obj, relation, target):
-                old = support.get(obj)
-                if old is not None:
-                    del carried[old[1]][obj]
-                support[obj] = (relation, target)
-                carried[target][obj] = relation
-                records.append((index, action, old))
+        if world is None:
+            if type(action) is MoveAction:
+                payload = move_step(state, action)
+            else:
+                row = schema_of(action)
+                payload = row.step(state, action) if row is not None else refused
+            if payload is not refused:
+                records.append((index, action, payload))
                 continue
         if isinstance(action, DoneAction):
             run.done = True
@@ -175,7 +151,7 @@ def _perform(run: Run, world: World, action: AnyAction, step: int) -> Violation 
     """Carry out one accepted action in the world, observe it, compare with the
     prediction; the run's state becomes the prediction, or the observation after a
     mismatch (returned as `execution_failed`)."""
-    assert run.state is not None and isinstance(action, MoveAction | AlignAction)
+    assert run.state is not None and isinstance(action, MoveAction | StateAction | AlignAction)
     current = run.state
     refused = world.perform(action)
     if refused is not None:

@@ -11,7 +11,9 @@ ConstraintId = Literal[
     "target_full", "target_not_surface", "target_not_container", "would_create_cycle",
     "already_there", "unknown_side", "side_occupied", "overlap", "execution_failed",
     "arm_refused", "no_room", "malformed_action", "hand_full", "not_held", "wrong_source",
-    "precondition_unsatisfied", "wrong_type",
+    "precondition_unsatisfied", "wrong_type", "container_closed", "target_not_furniture",
+    "target_is_room", "not_openable", "already_open", "already_closed", "not_toggleable",
+    "already_on", "already_off",
 ]
 
 CONSTRAINT_DESCRIPTIONS: dict[str, str] = {
@@ -41,6 +43,16 @@ CONSTRAINT_DESCRIPTIONS: dict[str, str] = {
                     "(pick-up of a block on a block, unstack from the wrong block)",
     "precondition_unsatisfied": "PDDL (STRIPS): a precondition of the action is false now",
     "wrong_type": "PDDL (STRIPS): an argument's type is not the parameter's type",
+    "container_closed": "nothing goes in or comes out of a closed openable container "
+                        "(no state given: closed); open it first",
+    "target_not_furniture": "`under` needs a target that is furniture (a fixed surface)",
+    "target_is_room": "`nextto` needs an object, not a room (furniture stands `inroom`)",
+    "not_openable": "open and close act only on openable objects",
+    "already_open": "the object is open already",
+    "already_closed": "the object is closed already (no state given: closed)",
+    "not_toggleable": "toggle_on and toggle_off act only on toggleable objects",
+    "already_on": "the object is on already",
+    "already_off": "the object is off already (no state given: off)",
 }
 
 

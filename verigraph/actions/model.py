@@ -1,4 +1,7 @@
-"""Actions an agent proposes: `move` (tabletop), `align` (tangram) and the end token `done`."""
+"""Actions an agent proposes: `move` (tabletop), the state changes `open`, `close`,
+`toggle_on`, `toggle_off` (household), `align` (tangram) and the end token `done`.
+
+What each action requires and does is its row in `verigraph.actions.schemas`."""
 
 from __future__ import annotations
 
@@ -16,11 +19,28 @@ class MoveAction(BaseModel):
 
     action: Literal["move"] = "move"
     object: str = Field(min_length=1, max_length=128, description="id of the object to move")
-    relation: str = Field(default="on", min_length=1, max_length=32, description="on or in")
+    relation: str = Field(default="on", min_length=1, max_length=32,
+                          description="on, in (household: under, nextto)")
     target: str = Field(min_length=1, max_length=128, description="id of the new support")
 
     def text(self) -> str:
         return f"move({self.object}, {self.relation}, {self.target})"
+
+
+StateActionName = Literal["open", "close", "toggle_on", "toggle_off"]
+
+
+class StateAction(BaseModel):
+    """`open(x)`, `close(x)`, `toggle_on(x)`, `toggle_off(x)`: change one state of x."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    action: StateActionName
+    object: str = Field(min_length=1, max_length=128,
+                        description="id of an openable (open, close) or toggleable object")
+
+    def text(self) -> str:
+        return f"{self.action}({self.object})"
 
 
 class AlignAction(BaseModel):
@@ -50,9 +70,11 @@ class DoneAction(BaseModel):
         return "done"
 
 
-Action = Annotated[MoveAction | AlignAction | DoneAction, Field(discriminator="action")]
-ActionAdapter: TypeAdapter[MoveAction | AlignAction | DoneAction] = TypeAdapter(Action)
-ActionListAdapter: TypeAdapter[list[MoveAction | AlignAction | DoneAction]] = TypeAdapter(
-    list[Action])
+Action = Annotated[MoveAction | StateAction | AlignAction | DoneAction,
+                   Field(discriminator="action")]
+ActionAdapter: TypeAdapter[MoveAction | StateAction | AlignAction | DoneAction] = \
+    TypeAdapter(Action)
+ActionListAdapter: TypeAdapter[list[MoveAction | StateAction | AlignAction | DoneAction]] = \
+    TypeAdapter(list[Action])
 
-AnyAction = MoveAction | AlignAction | DoneAction
+AnyAction = MoveAction | StateAction | AlignAction | DoneAction

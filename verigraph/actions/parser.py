@@ -4,6 +4,7 @@ Text, one action per line, `#` starts a comment, `done` ends the plan:
 
     move(cup, on, table)
     move(book, shelf)        # move(x, y) means move(x, on, y)
+    open(fridge)             # also close(x), toggle_on(x), toggle_off(x)
     align(small_triangle_1, 1, square, 3)
     done
 
@@ -15,7 +16,7 @@ from __future__ import annotations
 
 import json
 import re
-from typing import Any
+from typing import Any, get_args
 
 from pydantic import ValidationError
 
@@ -25,12 +26,16 @@ from verigraph.actions.model import (
     AnyAction,
     DoneAction,
     MoveAction,
+    StateAction,
+    StateActionName,
 )
 from verigraph.errors import PlanParseError
 
 MOVE_FORM = "move(object, relation, target) or move(object, target)"
 ALIGN_FORM = "align(piece, side, target_piece, target_side)"
-ANY_FORM = f"{MOVE_FORM}, {ALIGN_FORM} or done"
+STATE_NAMES: tuple[str, ...] = get_args(StateActionName)
+STATE_FORM = ", ".join(f"{name}(object)" for name in STATE_NAMES)
+ANY_FORM = f"{MOVE_FORM}, {STATE_FORM}, {ALIGN_FORM} or done"
 
 _CALL = re.compile(r"^(?P<name>[A-Za-z_]+)\s*(?:\((?P<args>.*)\))?\s*$")
 _NUMBERING = re.compile(r"^\s*(?:\d+[.)]|-|\*)\s+")
@@ -56,19 +61,26 @@ def parse_action_text(text: str, line: int = 1) -> AnyAction:
                                  column=offset + match.start("args") + 1, text=text,
                                  expected="done")
         return DoneAction()
-    if name not in ("move", "align"):
+    if name not in ("move", "align", *STATE_NAMES):
         raise PlanParseError(f"unknown action '{name}'", line=line, column=offset + 1,
                              text=text, expected=ANY_FORM)
+    form = MOVE_FORM if name == "move" else ALIGN_FORM if name == "align" else f"{name}(object)"
     if args_text is None:
         raise PlanParseError(f"'{name}' needs arguments in parentheses", line=line,
                              column=offset + len(match.group("name")) + 1, text=text,
-                             expected=MOVE_FORM if name == "move" else ALIGN_FORM)
+                             expected=form)
     args_start = offset + match.start("args")
     args, columns = _split_args(args_text, args_start)
     for arg, col in zip(args, columns, strict=True):
         if not arg:
             raise PlanParseError("empty argument", line=line, column=col + 1, text=text,
-                                 expected=MOVE_FORM if name == "move" else ALIGN_FORM)
+                                 expected=form)
+    if name in STATE_NAMES:
+        if len(args) != 1:
+            raise PlanParseError(f"{name} takes 1 argument, got {len(args)}", line=line,
+                                 column=args_start + 1, text=text, expected=form)
+        _check_name(args[0], columns[0], line, text, form)
+        return StateAction(action=name, object=args[0])  # type: ignore[arg-type]
     if name == "move":
         if len(args) == 2:
             args = [args[0], "on", args[1]]

@@ -20,7 +20,8 @@ from verigraph.actions.execution import Record, run_actions
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, MoveAction
 from verigraph.actions.parser import parse_plan
-from verigraph.actions.validator import GraphEdit
+from verigraph.actions.schemas import MOVE, Place, schema_of
+from verigraph.actions.validator import GraphEdit, StateChange
 from verigraph.budget import checkpoint
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
@@ -40,7 +41,7 @@ _set_extra = _SLOTS["__pydantic_extra__"].__set__
 _set_private = _SLOTS["__pydantic_private__"].__set__
 EDGE_FIELDS = frozenset({"source", "relation", "target"})
 STEP_FIELDS = frozenset({"step", "ok", "action", "text", "violation", "edit"})
-EDIT_FIELDS = frozenset({"removed", "added"})
+EDIT_FIELDS = frozenset({"removed", "added", "states"})
 
 
 def trusted(cls: type[M], values: dict[str, Any], fields_set: frozenset[str]) -> M:
@@ -89,7 +90,8 @@ class ValidationReport(BaseModel):
         lines = []
         for s in self.steps:
             if s.ok:
-                edit = f"   {s.edit.text()}" if s.edit and (s.edit.added or s.edit.removed) else ""
+                edit = f"   {s.edit.text()}" if s.edit and (
+                    s.edit.added or s.edit.removed or s.edit.states) else ""
                 lines.append(f"{s.step:>4} ok    {s.text}{edit}")
             else:
                 assert s.violation is not None
@@ -176,23 +178,26 @@ def _action_dict(action: AnyAction) -> dict[str, Any]:
 def _steps_from_records(records: list[Record]) -> list[Any]:
     """StepReports for the records (the edge where compact tuples become models).
 
-    Accepted moves, the bulk of any long plan, are built inline with `object.__new__`
-    and the setters of the model's own slots (what `model_construct` does, minus its
-    per-call bookkeeping). The caller pauses the garbage collector (`collector_paused`). One
-    fields-set object serves all instances of a class: StepReport's and GraphEdit's name
-    every field, so an assignment adds nothing to them, and Edge is frozen. Frozen, an
-    Edge is shared too: the edge a block leaves is the one the step that put it there
-    added (`placed`, valid while only accepted moves ran since; any other edit empties it).
+    An action of the table applied on the fast path left what its effect replaced; its
+    row's `changes` gives the edges it removed and added (and the states it changed), and
+    the models are built here with `object.__new__` and the setters of the model's own
+    slots (what `model_construct` does, minus its per-call bookkeeping). The caller
+    pauses the garbage collector (`collector_paused`). One fields-set object serves all
+    instances of a class: StepReport's and GraphEdit's name every field, so an
+    assignment adds nothing to them, and Edge is frozen. Frozen, an Edge is shared too:
+    the edge an object leaves is the one the step that put it there added (`placed`,
+    valid while only the table's actions ran since; any other edit empties it).
     """
     steps: list[Any] = []
     new = object.__new__
     values, fields_set, extra, private = _set_values, _set_fields_set, _set_extra, _set_private
     edge_set, edit_set, step_set = set(EDGE_FIELDS), set(EDIT_FIELDS), set(STEP_FIELDS)
-    placed: dict[str, Edge] = {}  # object -> the Edge of its current support
+    placed: dict[str, Edge] = {}  # object -> the Edge of its current placement
+    move = MOVE
     for index, action, payload in records:
         if not index & 63:
             checkpoint()  # the server's per-call budget and cancellation
-        if payload is not None and type(payload) is not tuple:  # not an accepted move
+        if type(payload) is GraphEdit or type(payload) is Violation:  # built already
             ok = isinstance(payload, GraphEdit)
             if ok:
                 placed.clear()
@@ -201,35 +206,48 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
                 "violation": None if ok else payload, "edit": payload if ok else None},
                 STEP_FIELDS))
             continue
-        obj, rel, target = action.object, action.relation, action.target  # type: ignore[union-attr]
-        added = new(Edge)
-        values(added, {"source": obj, "relation": rel, "target": target, "source_side": None,
-                       "target_side": None})
-        fields_set(added, edge_set)
-        extra(added, None)
-        private(added, None)
-        removed = []
-        if payload is not None:
-            old = placed.get(obj)
-            if old is None:
-                old = new(Edge)
-                values(old, {"source": obj, "relation": payload[0], "target": payload[1],
-                             "source_side": None, "target_side": None})
-                fields_set(old, edge_set)
-                extra(old, None)
-                private(old, None)
-            removed.append(old)
-        placed[obj] = added
+        row = move if type(action) is MoveAction else schema_of(action)
+        assert row is not None
+        changed: list[StateChange] | None = None
+        if type(row.effect) is Place:  # the placement edge `obj rel target` replaced
+            obj, rel, target = action.object, action.relation, action.target  # type: ignore[union-attr]
+            name = row.name
+            added = new(Edge)
+            values(added, {"source": obj, "relation": rel, "target": target,
+                           "source_side": None, "target_side": None})
+            fields_set(added, edge_set)
+            extra(added, None)
+            private(added, None)
+            removed = []
+            if payload is not None:
+                old = placed.get(obj)
+                if old is None:
+                    old = new(Edge)
+                    values(old, {"source": obj, "relation": payload[0], "target": payload[1],
+                                 "source_side": None, "target_side": None})
+                    fields_set(old, edge_set)
+                    extra(old, None)
+                    private(old, None)
+                removed.append(old)
+            placed[obj] = added
+            action_values = {"action": name, "object": obj, "relation": rel, "target": target}
+            text = f"{name}({obj}, {rel}, {target})"
+            added_edges = [added]
+        else:
+            args = row.args(action)
+            changed = [StateChange(object=o, key=k, before=b, after=a)
+                       for o, k, b, a in row.changes(args, payload)[2]]
+            removed, added_edges = [], []
+            action_values, text = row.action_dict(*args), row.text(*args)
         edit = new(GraphEdit)
-        values(edit, {"removed": removed, "added": [added]})
+        values(edit, {"removed": removed, "added": added_edges, "states": changed})
         fields_set(edit, edit_set)
         extra(edit, None)
         private(edit, None)
         step = new(StepReport)
         values(step, {
-            "step": index, "ok": True,
-            "action": {"action": "move", "object": obj, "relation": rel, "target": target},
-            "text": f"move({obj}, {rel}, {target})", "violation": None, "edit": edit})
+            "step": index, "ok": True, "action": action_values,
+            "text": text, "violation": None, "edit": edit})
         fields_set(step, step_set)
         extra(step, None)
         private(step, None)

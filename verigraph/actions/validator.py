@@ -1,35 +1,50 @@
 """Validation and execution semantics (docs/design.md section 6, the paper's Algorithm 1 core).
 
-`validate_action` checks one action against the constraints and changes nothing;
-`apply_action` is the graph edit of a valid action. Running a list of actions until
-the first violation is `verigraph.actions.execution`.
+`validate_action` checks one action against its row's preconditions in the action table
+(`verigraph.actions.schemas`) and changes nothing; `apply_action` is the row's effect
+as a graph edit. Running a list of actions until the first violation is
+`verigraph.actions.execution`. The tangram `align` action is checked and applied here
+outside the table (see the table's docstring).
 """
 
 from __future__ import annotations
 
+from typing import Any
+
 from pydantic import BaseModel, Field
 
-from verigraph.actions.constraints import (
-    GATE_CHECKS,
-    MOVE_CHECKS,
-    check_align,
-    check_capacity,
-)
+from verigraph.actions.constraints import check_align
 from verigraph.actions.feedback import Violation
-from verigraph.actions.model import AlignAction, AnyAction, MoveAction
+from verigraph.actions.model import AlignAction, AnyAction
+from verigraph.actions.schemas import ActionSchema, schema_of, state_change_text
 from verigraph.graph.model import Edge
 from verigraph.graph.state import WorldState
 
 
+class StateChange(BaseModel):
+    """One state an applied action changed: `fridge` `open` false -> true."""
+
+    object: str
+    key: str
+    before: bool
+    after: bool
+
+
 class GraphEdit(BaseModel):
-    """The edges an applied action removed and added."""
+    """The edges an applied action removed and added, and the states it changed."""
 
     removed: list[Edge] = Field(default_factory=list)
     added: list[Edge] = Field(default_factory=list)
+    # Set and written only when an action changed a state, so a move's edit dumps as
+    # before (and a long plan's report allocates nothing for it).
+    states: list[StateChange] | None = Field(default=None,
+                                             exclude_if=lambda states: not states)
 
     def text(self) -> str:
         parts = [f"-{e.sentence()}" for e in self.removed] + [f"+{e.sentence()}"
                                                                for e in self.added]
+        parts += [state_change_text((s.object, s.key, s.before, s.after))
+                  for s in self.states or ()]
         return ", ".join(parts)
 
 
@@ -37,19 +52,17 @@ def validate_action(state: WorldState, action: AnyAction, step: int | None = Non
                     ) -> Violation | None:
     """The first constraint `action` breaks on `state`, or None. Never mutates `state`."""
     violation: Violation | None = None
-    if isinstance(action, MoveAction):
-        for check in MOVE_CHECKS:
-            violation = check(state, action)
-            if violation is not None:
-                break
+    row = schema_of(action)
+    if row is not None:
+        args = row.args(action)
+        if not row.accepted(state, *args):
+            pre = next(p for p in row.preconditions if not p.holds(state, *args))
+            violation = pre.explain(state, action)
     elif isinstance(action, AlignAction):
         violation = check_align(state, action)
     if violation is not None and step is not None:
         violation.step = step
     return violation
-
-
-TARGET_KINDS = ("target_not_surface", "target_not_container")
 
 
 def all_violations(state: WorldState, action: AnyAction, step: int | None = None
@@ -58,35 +71,44 @@ def all_violations(state: WorldState, action: AnyAction, step: int | None = None
 
     Execution needs only the first; a reader fixing the action needs them all (a move of
     a covered board onto a pot breaks object_not_clear AND target_not_surface, and
-    clearing the board alone would not make it valid). The gate checks (unknown object or
-    relation, an object moved onto itself) make the others meaningless, so one of them
-    failing is reported alone.
+    clearing the board alone would not make it valid). A gate precondition (unknown
+    object or relation, an object moved onto itself) makes the others meaningless, so
+    its failure is reported alone.
     """
-    if not isinstance(action, MoveAction):
+    row = schema_of(action)
+    if row is None:
         first = validate_action(state, action, step)
         return [first] if first is not None else []
+    args = row.args(action)
     found: list[Violation] = []
-    for check in MOVE_CHECKS:
-        if check is check_capacity and found and found[-1].constraint in TARGET_KINDS:
+    for pre in row.preconditions:
+        if pre.skip_after and found and found[-1].constraint in pre.skip_after:
             continue  # a target that is not a surface (container) has no room to report
-        violation = check(state, action)
-        if violation is None:
+        if pre.holds(state, *args):
             continue
+        violation = pre.explain(state, action)
         violation.step = step
-        if check in GATE_CHECKS:
+        if pre.gate:
             return [violation]
         found.append(violation)
     return found
 
 
+def edit_from(row: ActionSchema, args: tuple[Any, ...], payload: Any) -> GraphEdit:
+    """The GraphEdit of an applied row: its `changes` as models."""
+    removed, added, states = row.changes(args, payload)
+    return GraphEdit(removed=[Edge(source=s, relation=r, target=t) for s, r, t in removed],
+                     added=[Edge(source=s, relation=r, target=t) for s, r, t in added],
+                     states=[StateChange(object=o, key=k, before=b, after=a)
+                             for o, k, b, a in states] or None)
+
+
 def apply_action(state: WorldState, action: AnyAction) -> GraphEdit:
     """Apply a validated action in place and return the edit (edges removed and added)."""
-    if isinstance(action, MoveAction):
-        old = state.support.get(action.object)
-        state.set_support(action.object, action.relation, action.target)
-        return GraphEdit(
-            removed=[Edge(source=action.object, relation=old[0], target=old[1])] if old else [],
-            added=[Edge(source=action.object, relation=action.relation, target=action.target)])
+    row = schema_of(action)
+    if row is not None:
+        args = row.args(action)
+        return edit_from(row, args, row.apply(state, *args))
     if isinstance(action, AlignAction):
         removed_contacts = state.detach_contacts(action.object)
         added = state.add_contact((action.object, action.side),

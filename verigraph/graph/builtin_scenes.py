@@ -50,12 +50,47 @@ def kitchen_pan() -> SceneGraph:
                    ("pot", "on", "stove"), ("spoon", "in", "pot"), ("lid", "on", "counter")])
 
 
+def kitchen_household() -> SceneGraph:
+    """A household: a kitchen (closed fridge, stove off, sink, closed cabinet, counter)
+    and a dining room (table), with food and dishes (docs/worlds.md, Household worlds)."""
+    graph = _graph(None, [
+        ("kitchen", "kitchen"), ("dining_room", "dining_room"), ("counter", "counter"),
+        ("fridge", "fridge"), ("stove", "stove"), ("sink", "sink"), ("cabinet", "cabinet"),
+        ("table", "table"), ("milk", "milk"), ("bread", "bread"), ("pot", "pot"),
+        ("plate", "plate"), ("cup", "cup"), ("bowl", "bowl")],
+        [("counter", "inroom", "kitchen"), ("fridge", "inroom", "kitchen"),
+         ("stove", "inroom", "kitchen"), ("sink", "inroom", "kitchen"),
+         ("cabinet", "inroom", "kitchen"), ("table", "inroom", "dining_room"),
+         ("milk", "on", "counter"), ("bread", "in", "cabinet"), ("pot", "in", "sink"),
+         ("bowl", "on", "counter"), ("plate", "on", "table"), ("cup", "on", "plate")])
+    states = {"fridge": {"open": False}, "stove": {"toggled_on": False},
+              "cabinet": {"open": False}}
+    for node in graph.nodes:
+        node.state = dict(states.get(node.id, {}))
+    return graph
+
+
+def kitchen_household_goal() -> Goal:
+    """The milk in the fridge, the fridge closed, the pot on the stove that is on."""
+    graph = _graph(None, [("milk", "milk"), ("fridge", "fridge"), ("pot", "pot"),
+                          ("stove", "stove")],
+                   [("milk", "in", "fridge"), ("pot", "on", "stove")])
+    for node in graph.nodes:
+        node.state = {"fridge": {"open": False}, "stove": {"toggled_on": True}}.get(
+            node.id, {})
+    return Goal(graph=graph, partial=True,
+                instruction="Put the milk in the fridge and close it; put the pot on the "
+                            "stove and turn the stove on.")
+
+
 BUILTIN_SCENES: dict[str, Callable[[], SceneGraph]] = {
     "cup_on_book": cup_on_book,
     "three_blocks": three_blocks,
     "kitchen_pan": kitchen_pan,
+    "kitchen_household": kitchen_household,
 }
 BUILTIN_GOALS: dict[str, Callable[[], Goal]] = {
     "cup_on_book": cup_on_book_goal,
     "three_blocks": lambda: Goal(predicate="single_stack", instruction="Stack all blocks."),
+    "kitchen_household": kitchen_household_goal,
 }

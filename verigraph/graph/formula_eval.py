@@ -139,9 +139,11 @@ class Facts:
 
 
 def facts_of(state: WorldState) -> Facts:
-    """A WorldState's facts: its labels, its edges (tangram contacts aside), states."""
+    """A WorldState's facts: its labels, its placements and furniture's rooms (tangram
+    contacts aside), its states; read as plain tuples, so a search can call it often."""
     labels = {o: info.label for o, info in state.objects.items()}
-    edges = [(e.relation, e.source, e.target) for e in state.edges() if e.relation != "touches"]
+    edges = [(r, o, t) for o, (r, t) in state.support.items()]
+    edges += [("inroom", o, r) for o, r in state.rooms.items()]
     states = {o: node_state(state, o) for o in state.states}
     rooms = [o for o, info in state.objects.items() if info.props.room]
     return Facts(labels, edges, states, state.dictionary.resolve,

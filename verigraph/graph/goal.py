@@ -1,7 +1,10 @@
 """Goals and the goal check: a graph to match (fully or partially), a named predicate, or
 a formula in BDDL's syntax (verigraph.graph.formula; evaluated by formula_eval).
 
-`diff` reports missing/extra nodes and edges. Tangram contacts are compared up to each
+`diff` reports missing/extra nodes and edges, and the states a goal node asks for that do
+not hold (`{"id": "fridge", "label": "fridge", "state": {"open": false}}`: the fridge
+must be closed; a goal node without a state asks for none, in a partial goal or an
+exact one). Tangram contacts are compared up to each
 piece's rotational symmetry (square: 4, parallelogram: 2), so a square turned by 90
 degrees still matches.
 """
@@ -15,7 +18,7 @@ from typing import Literal
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from verigraph.errors import GoalError
-from verigraph.graph.dictionary import ObjectProperties
+from verigraph.graph.dictionary import STATE_WORDS, ObjectProperties
 from verigraph.graph.formula import (
     FORMULA_EXAMPLE,
     MAX_FORMULA_CHARS,
@@ -95,11 +98,16 @@ class GraphDiff(BaseModel):
                                    description="current edges the goal does not have")
     predicate: str | None = None
     detail: str | None = None
+    # Written only when the goal lists states, so an edge goal's diff dumps as before.
+    missing_states: list[str] = Field(
+        default_factory=list, exclude_if=lambda states: not states,
+        description="goal states not holding, e.g. `fridge closed`, `stove on`")
     # A goal formula's findings: when the goal is not reached, every counterexample of
     # the formula (its failing part with the objects, and why; empty when the formula
     # holds); when it is reached, the witnesses of each exists. The first 1,000 are kept,
-    # the last item then saying "... and N more".
-    formula_detail: list[str] = Field(default_factory=list)
+    # the last item then saying "... and N more". Written only when there are some.
+    formula_detail: list[str] = Field(default_factory=list,
+                                      exclude_if=lambda detail: not detail)
 
     def formula_count(self) -> int:
         """How many counterexamples (or witnesses) `formula_detail` stands for."""
@@ -113,6 +121,8 @@ class GraphDiff(BaseModel):
         parts = []
         if self.missing_edges:
             parts.append("missing: " + "; ".join(self.missing_edges))
+        if self.missing_states:
+            parts.append("states not reached: " + "; ".join(self.missing_states))
         if self.extra_edges:
             parts.append("extra: " + "; ".join(self.extra_edges))
         if self.missing_nodes:
@@ -206,11 +216,16 @@ def diff(current: WorldState, goal_graph: SceneGraph, *, partial: bool = False) 
     _, missing_keys, extra_keys = best
     missing_nodes = sorted(goal_nodes - cur_nodes)
     extra_nodes = [] if partial else sorted(cur_nodes - goal_nodes)
+    missing_states = [f"{n.id} {STATE_WORDS[key][wanted]}" for n in goal_graph.nodes
+                      if n.state and n.id in current.objects
+                      for key, wanted in n.state.items()
+                      if current.state_value(n.id, key) != wanted]
     return GraphDiff(
-        satisfied=not (missing_keys or extra_keys or missing_nodes or extra_nodes),
+        satisfied=not (missing_keys or extra_keys or missing_nodes or extra_nodes
+                       or missing_states),
         missing_nodes=missing_nodes, extra_nodes=extra_nodes,
         missing_edges=sorted(_sentence(k) for k in missing_keys),
-        extra_edges=sorted(_sentence(k) for k in extra_keys))
+        extra_edges=sorted(_sentence(k) for k in extra_keys), missing_states=missing_states)
 
 
 def towers(state: WorldState) -> list[list[str]]:

@@ -49,7 +49,7 @@ class WorldState(SupportIndex):
     """
 
     __slots__ = ("dictionary", "move_relations", "objects", "contacts", "_fixed_surfaces",
-                 "states", "rooms", "_uncounted")
+                 "states", "rooms", "openable", "_uncounted")
 
     def __init__(self, dictionary: Dictionary) -> None:
         super().__init__()
@@ -67,6 +67,8 @@ class WorldState(SupportIndex):
         self.states: dict[str, dict[str, bool]] = {}
         # Furniture -> the room it stands in (never changes).
         self.rooms: dict[str, str] = {}
+        # The openable objects (never changes): nothing goes in or out while one is closed.
+        self.openable: frozenset[str] = frozenset()
 
     @classmethod
     def from_graph(cls, graph: SceneGraph, dictionary: Dictionary | str | None = None, *,
@@ -90,6 +92,7 @@ class WorldState(SupportIndex):
         carried: dict[str, dict[str, str]] = {node_id: {} for node_id in resolved}
         self.carried = carried
         self._fixed_surfaces = [i for i, (_, p) in resolved.items() if p.surface and not p.movable]
+        self.openable = frozenset(i for i, (_, p) in resolved.items() if p.openable)
         support = self.support
         for edge in graph.edges:
             relation = edge.relation
@@ -116,6 +119,7 @@ class WorldState(SupportIndex):
         other._uncounted = self._uncounted
         other.states = {k: dict(v) for k, v in self.states.items()}
         other.rooms = self.rooms
+        other.openable = self.openable
         return other
 
     # -- queries ---------------------------------------------------------------------------

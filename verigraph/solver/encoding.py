@@ -1,5 +1,10 @@
 """Integer encoding of a tabletop scene for fast search, and the admissible heuristics.
 
+It is the move row of the action table (`verigraph.actions.schemas`) compiled for
+on/in worlds without openable containers: a move is legal when the object is movable
+and clear, the target `fits` the relation and has room (what the row's preconditions
+say there); `table_search` searches worlds this cannot speak for.
+
 States are tuples of each movable object's support code (`target_index * 2 + relation`),
 so expanding a node is a few integer loops. Successors are generated lazily and the
 budget is checked inside the loop: one expansion of a 1,000-object scene has a million
@@ -12,6 +17,7 @@ import math
 from collections.abc import Callable, Iterator
 
 from verigraph.actions.model import MoveAction
+from verigraph.actions.schemas import fits
 from verigraph.graph.dictionary import SUPPORT_RELATIONS
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
@@ -31,8 +37,8 @@ class SearchProblem:
         props = [state.objects[o].props for o in self.ids]
         self.movable = [i for i, p in enumerate(props) if p.movable]
         self.slot = {i: k for k, i in enumerate(self.movable)}
-        self.surface = [p.surface for p in props]
-        self.container = [p.container for p in props]
+        # Which relation each object takes as a target: the move row's `fits`.
+        self.takes = [tuple(fits(p, relation) for relation in RELATIONS) for p in props]
         self.capacity = [math.inf if p.capacity is None else p.capacity for p in props]
         allowed = set(state.dictionary.relations)
         self.relations = [r for r in (0, 1) if RELATIONS[r] in allowed]
@@ -58,7 +64,7 @@ class SearchProblem:
         return load
 
     def accepts(self, j: int, r: int) -> bool:
-        return (r == 0 and self.surface[j]) or (r == 1 and self.container[j])
+        return self.takes[j][r]
 
     def successors(self, codes: Codes, budget: SearchBudget) -> Iterator[tuple[Codes, Move]]:
         load = self.loads(codes)

@@ -23,12 +23,46 @@ pairwise disjoint requirements (picked greedily, smallest first) is a lower boun
 
 from __future__ import annotations
 
-from verigraph.graph.formula import Atom, Formula, Imply, Junction, Not, Pairs, Quantified
+from verigraph.graph.formula import (
+    STATE_KEYS,
+    Atom,
+    Formula,
+    Imply,
+    Junction,
+    Not,
+    Pairs,
+    Quantified,
+    parse_formula,
+)
 from verigraph.graph.formula_eval import Facts, holds_in
+from verigraph.graph.goal import Goal
 
 Thing = tuple[str, str]
 Need = tuple[bool, list[frozenset[Thing]], bool]  # truth, requirements, some action needed
 PLACE_RELATIONS = ("on", "in", "under")  # the source's placement: only moving it changes
+
+
+def formula_needs_table(goal: Goal) -> bool:
+    """Whether a goal formula speaks of what only the action table's search can change:
+    a state (`open`, `toggled_on`) or an `under`/`nextto` placement (the encoded search
+    moves objects on and in only)."""
+    if goal.formula is None:
+        return False
+    stack: list[Formula] = [parse_formula(goal.formula)]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, Atom):
+            if node.relation in STATE_KEYS or node.relation in ("under", "nextto"):
+                return True
+        elif isinstance(node, Not):
+            stack.append(node.body)
+        elif isinstance(node, Junction):
+            stack.extend(node.parts)
+        elif isinstance(node, Imply):
+            stack.extend((node.condition, node.then))
+        else:
+            stack.append(node.body)
+    return False
 
 
 def formula_bound(formula: Formula, facts: Facts) -> int:

@@ -7,10 +7,10 @@ from typing import Literal
 from pydantic import BaseModel, Field
 
 from verigraph.actions.model import AnyAction
+from verigraph.graph.dictionary import PLACEMENT_RELATIONS, ROOM_RELATION
 from verigraph.graph.goal import Goal
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import check_well_formed
-from verigraph.solver.encoding import RELATIONS
 
 
 class SolveResult(BaseModel):
@@ -62,8 +62,15 @@ def static_reason(state: WorldState, goal: Goal) -> str | None:
     if problems:
         return f"the goal itself breaks a rule: {problems[0].message}"
     for e in g.edges:
-        if e.relation in RELATIONS and not state.objects[e.source].props.movable \
-                and state.support.get(e.source) != (e.relation, e.target):
+        if state.objects[e.source].props.movable:
+            continue
+        if e.relation == ROOM_RELATION:
+            holds = state.rooms.get(e.source) == e.target
+        elif e.relation in PLACEMENT_RELATIONS:
+            holds = state.support.get(e.source) == (e.relation, e.target)
+        else:
+            continue
+        if not holds:
             return f"{e.source} is fixed, so '{e.sentence()}' can never be made true"
     if not goal.partial:
         for o in state.objects.values():

@@ -2,7 +2,9 @@
 
 Every solve runs under a `SearchBudget` (wall clock, memory growth, expansions); running out
 is an answer (`status="budget_exhausted"` with the numbers), never a crash. Optimal
-mode is A* with the misplaced-objects bound (see `encoding`). Anytime mode first takes
+mode is A* with the misplaced-objects bound (see `encoding`); a household world (openable
+containers, states in the goal, `under`/`nextto`) is searched over the action table
+instead (`table_search`, optimal, every action one step). Anytime mode first takes
 the polynomial strategy's plan (`strategy`), then refines it with weighted A* (w = 2,
 then 1.5) and finally A* (w = 1), each pruned by the best length so far; the result
 carries the lower bound it proved: the heuristic at the start, raised to the smallest
@@ -41,8 +43,9 @@ from verigraph.solver.encoding import (
     misplaced_heuristic,
     stack_heuristic,
 )
-from verigraph.solver.formula_bound import formula_bound
+from verigraph.solver.formula_bound import formula_bound, formula_needs_table
 from verigraph.solver.result import SolveResult, static_reason
+from verigraph.solver.table_search import needs_table_search, table_astar
 
 __all__ = ["DEFAULT_MAX_EXPANSIONS", "SolveResult", "solve"]
 
@@ -88,6 +91,8 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
         return SolveResult(reachable=False, status="unreachable", reason=reason)
     if state.contacts or any(o.props.sides for o in state.objects.values()):
         return _solve_tangram(state, goal_model, budget)
+    if needs_table_search(state, goal_model) or formula_needs_table(goal_model):
+        return _solve_table(state, goal_model, budget)
     problem = SearchProblem(state)
     wanted = goal_codes(problem, goal_model.graph) if goal_model.graph is not None else {}
     h_graph = misplaced_heuristic(problem, wanted)
@@ -246,6 +251,22 @@ def _astar(problem: SearchProblem, h: Callable[[Codes], int], is_goal: Callable[
                 # Ties broken towards deeper nodes: fewer expansions, still optimal.
                 heapq.heappush(frontier, (ng + weight * hn, -ng, next(counter), nxt))
     return False, []
+
+
+def _solve_table(state: WorldState, goal: Goal, budget: SearchBudget) -> SolveResult:
+    """A household world: optimal A* over the action table (anytime or not: it is the
+    one search, and its plan is optimal)."""
+    try:
+        found, plan = table_astar(state, goal, budget)
+    except SearchBudgetSpent as exc:
+        return SolveResult(reachable=None, status="budget_exhausted", reason=str(exc),
+                           expanded=budget.expansions)
+    if found:
+        return SolveResult(reachable=True, plan=plan, expanded=budget.expansions,
+                           optimal=True, lower_bound=len(plan))
+    return SolveResult(reachable=False, status="unreachable", expanded=budget.expansions,
+                       reason="no sequence of valid actions reaches the goal "
+                              f"(all {budget.expansions} reachable states searched)")
 
 
 def _solve_tangram(state: WorldState, goal: Goal, budget: SearchBudget,

@@ -1,0 +1,157 @@
+"""The household world: states, the actions that change them, under/nextto/inroom, the
+action table every checker reads, and the solver over it."""
+
+from __future__ import annotations
+
+import pytest
+
+from verigraph.actions import MoveAction, validate_action, validate_plan
+from verigraph.actions.execution import execute_until_violation
+from verigraph.actions.model import StateAction
+from verigraph.actions.parser import parse_plan
+from verigraph.actions.schemas import SCHEMAS, table_constraints
+from verigraph.actions.validator import all_violations, apply_action
+from verigraph.errors import PlanParseError
+from verigraph.graph import Goal, SceneGraph, WorldState
+from verigraph.graph.builtin_scenes import kitchen_household, kitchen_household_goal
+from verigraph.graph.dictionary import load_dictionary
+from verigraph.graph.wellformed import check_well_formed
+from verigraph.solver import solve
+
+pytestmark = pytest.mark.fast
+
+
+def world() -> WorldState:
+    return WorldState.from_graph(kitchen_household())
+
+
+def first(state: WorldState, text: str) -> str | None:
+    violation = validate_action(state, parse_plan(text)[0])
+    return None if violation is None else violation.constraint
+
+
+@pytest.mark.parametrize("text,constraint", [
+    ("move(milk, in, fridge)", "container_closed"),
+    ("move(bread, on, counter)", "container_closed"),  # out of the closed cabinet
+    ("open(plate)", "not_openable"),
+    ("close(fridge)", "already_closed"),
+    ("toggle_on(cup)", "not_toggleable"),
+    ("toggle_off(stove)", "already_off"),
+    ("move(cup, under, plate)", "target_not_furniture"),
+    ("move(cup, nextto, kitchen)", "target_is_room"),
+    ("move(plate, nextto, sink)", "object_not_clear"),
+    ("open(ghost)", "unknown_object"),
+])
+def test_each_household_refusal_has_its_own_constraint(text: str, constraint: str) -> None:
+    assert first(world(), text) == constraint
+
+
+def test_every_refusal_names_a_fix_the_verifier_accepts() -> None:
+    state = world()
+    violation = validate_action(state, MoveAction(object="milk", relation="in",
+                                                  target="fridge"))
+    assert violation is not None and violation.suggestion.startswith("open(fridge) first")
+    assert validate_action(state, StateAction(action="open", object="fridge")) is None
+    plate = validate_action(state, StateAction(action="open", object="plate"))
+    assert plate is not None and "open(fridge)" in plate.suggestion
+    already = validate_action(state, StateAction(action="close", object="fridge"))
+    assert already is not None and "no state given" not in already.message  # it is set
+    nothing = WorldState.from_graph(SceneGraph.model_validate({
+        "nodes": [{"id": "c", "label": "cabinet"}], "edges": []}))
+    closed = validate_action(nothing, StateAction(action="close", object="c"))
+    assert closed is not None and "(no state given: closed)" in closed.message
+
+
+def test_open_then_in_then_close_and_the_edits_say_so() -> None:
+    report = validate_plan(kitchen_household(), "open(fridge)\nmove(milk, in, fridge)\n"
+                           "close(fridge)\ntoggle_on(stove)")
+    assert report.valid
+    texts = [s.edit.text() for s in report.steps if s.edit is not None]
+    assert texts == ["fridge: closed -> open", "-milk on counter, +milk in fridge",
+                     "fridge: open -> closed", "stove: off -> on"]
+    fridge = report.final_graph.node("fridge")
+    assert fridge is not None and fridge.state == {"open": False}
+    assert report.final_graph.node("stove").state == {"toggled_on": True}  # type: ignore[union-attr]
+    # A move's edit dumps as it always did (no `states` key).
+    assert "states" not in report.steps[1].edit.model_dump()  # type: ignore[union-attr]
+
+
+def test_under_and_nextto_carry_nothing_but_block_moving_their_reference() -> None:
+    state = world()
+    apply_action(state, MoveAction(object="bowl", relation="nextto", target="plate"))
+    assert state.load("plate") == 1 and state.has_room("table")
+    assert first(state, "move(plate, on, counter)") == "object_not_clear"
+    apply_action(state, MoveAction(object="milk", relation="under", target="table"))
+    assert state.load("table") == 1  # the plate only; the milk under it counts nothing
+    assert state.room_of("milk") == "dining_room" and state.room_of("bread") == "kitchen"
+
+
+def test_a_rejected_action_changes_nothing_and_full_reports_list_every_reason() -> None:
+    state = world()
+    before = state.to_graph()
+    found = all_violations(state, MoveAction(object="plate", relation="in", target="fridge"))
+    assert [v.constraint for v in found] == ["object_not_clear", "container_closed"]
+    result = execute_until_violation(parse_plan("move(milk, in, fridge)"), state)
+    assert result.violation is not None and state.to_graph() == before
+
+
+def test_graph_rules_for_states_rooms_and_placements() -> None:
+    graph = SceneGraph.model_validate({
+        "nodes": [{"id": "k", "label": "kitchen"}, {"id": "t", "label": "counter"},
+                  {"id": "f", "label": "fridge", "state": {"toggled_on": True}},
+                  {"id": "m", "label": "milk"}, {"id": "p", "label": "plate"},
+                  {"id": "b", "label": "box"}],
+        "edges": [{"source": "t", "relation": "inroom", "target": "k"},
+                  {"source": "m", "relation": "inroom", "target": "k"},
+                  {"source": "m", "relation": "on", "target": "t"},
+                  {"source": "p", "relation": "under", "target": "b"},
+                  {"source": "b", "relation": "nextto", "target": "k"}]})
+    rules = {p.rule for p in check_well_formed(graph, load_dictionary(None))}
+    assert rules == {"state_without_role", "inroom_not_furniture", "target_not_furniture",
+                     "target_is_room"}
+    with pytest.raises(ValueError, match="unknown state 'opened'"):
+        SceneGraph.model_validate({"nodes": [{"id": "f", "label": "fridge",
+                                              "state": {"opened": True}}], "edges": []})
+
+
+def test_a_scene_without_states_dumps_as_before() -> None:
+    graph = SceneGraph.model_validate({"nodes": [{"id": "t", "label": "table"}], "edges": []})
+    assert graph.model_dump() == {"nodes": [{"id": "t", "label": "table", "attrs": {}}],
+                                  "edges": [], "dictionary": None}
+
+
+def test_the_parser_reads_the_new_actions_and_refuses_bad_arity() -> None:
+    actions = parse_plan("open(fridge)\nmove(box, under, table)\ntoggle_off(lamp)")
+    assert [a.text() for a in actions] == ["open(fridge)", "move(box, under, table)",
+                                           "toggle_off(lamp)"]
+    with pytest.raises(PlanParseError, match="open takes 1 argument"):
+        parse_plan("open(fridge, now)")
+
+
+def test_the_table_has_a_row_per_action_and_each_precondition_an_id() -> None:
+    assert list(SCHEMAS) == ["move", "open", "close", "toggle_on", "toggle_off"]
+    assert "container_closed" in table_constraints(household=True)
+    assert "container_closed" not in table_constraints(household=False)
+    assert table_constraints(household=False)[:3] == ["unknown_object", "unknown_relation",
+                                                      "same_object"]
+
+
+def test_solve_is_optimal_over_the_table() -> None:
+    result = solve(kitchen_household(), kitchen_household_goal())
+    assert result.optimal and len(result.plan) == 5
+    texts = [a.text() for a in result.plan]
+    assert texts.index("open(fridge)") < texts.index("move(milk, in, fridge)") \
+        < texts.index("close(fridge)")
+    assert validate_plan(kitchen_household(), result.plan, kitchen_household_goal()).valid
+
+
+def test_a_state_goal_alone_and_an_unreachable_one() -> None:
+    goal = Goal.model_validate({"graph": {"nodes": [
+        {"id": "cabinet", "label": "cabinet", "state": {"open": True}}], "edges": []},
+        "partial": True})
+    result = solve(kitchen_household(), goal)
+    assert [a.text() for a in result.plan] == ["open(cabinet)"] and result.optimal
+    bad = Goal.model_validate({"graph": {"nodes": [
+        {"id": "plate", "label": "plate", "state": {"open": True}}], "edges": []},
+        "partial": True})
+    assert solve(kitchen_household(), bad).reachable is False

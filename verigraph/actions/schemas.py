@@ -1,0 +1,355 @@
+"""The action table: every tabletop and household action as one row of data.
+
+A row (`ActionSchema`) names the action, its parameters with what each must be, its
+preconditions in check order and its effect. A precondition is a constraint id, a
+`test` (a Python expression over the bound parameters that is true when the
+precondition holds) and an `explain` function that builds the refusal, message and
+fix, only when the test fails. The effect is `apply` (the graph edit, in place,
+returning what it replaced) and `changes` (that edit as removed and added edges and
+state changes). Everything that checks or applies an action reads this table: the
+validator (`validator.validate_action`, `all_violations`, `apply_action`), the
+execution loop (`execution.run_actions`, whose fast path is the row's `accepted`, the
+tests compiled into one function), the plan report, the solver's successors, the
+planner prompt's list of constraints, the tool descriptions and docs/worlds.md.
+
+Adding an action is adding a row (its model in `actions.model`, its parser form in
+`actions.parser`) and its tests.
+
+The tangram `align` action is not a row: its preconditions are about sides and
+contacts, its effect detaches every contact of the piece and adds one, and the
+contacts it really makes come from geometry (sim2d), so it keeps its own check
+(`constraints.check_align`) and edit (`validator.apply_action`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from operator import attrgetter
+from typing import Any
+
+from verigraph.actions import constraints as c
+from verigraph.actions.feedback import Violation
+from verigraph.actions.model import AnyAction, MoveAction, StateAction
+from verigraph.graph.dictionary import STATE_WORDS, SUPPORT_RELATIONS, state_value
+from verigraph.graph.state import WorldState
+
+# (removed edges, added edges, state changes): edges as (source, relation, target),
+# state changes as (object, key, before, after).
+Triple = tuple[str, str, str]
+StateChange = tuple[str, str, bool, bool]
+Changes = tuple[list[Triple], list[Triple], list[StateChange]]
+
+
+@dataclass(frozen=True, slots=True)
+class Parameter:
+    """One parameter: the action field it is read from, what it must be (in words), and
+    the role a binding needs (`movable`, `openable`, `toggleable`: an object property;
+    `relation`: one of the scene's placement relations; None: any object), from which a
+    search enumerates the candidates before the preconditions decide."""
+
+    name: str
+    needs: str
+    role: str | None = None
+
+
+@dataclass(frozen=True)
+class Precondition:
+    """One precondition: its constraint id, the test that holds when it is met, and the
+    refusal (`explain`) built when it is not. A `gate` failing makes the later tests
+    meaningless (they index the objects it checks), so a full report stops there."""
+
+    constraint: str
+    test: str
+    explain: Callable[[WorldState, Any], Violation]
+    gate: bool = False
+    # Other ids `explain` may report (one test, a refusal per kind of target).
+    also: tuple[str, ...] = ()
+    # Skipped in a full report after a refusal with one of these ids.
+    skip_after: frozenset[str] = frozenset()
+    holds: Callable[..., bool] = field(init=False, repr=False)
+
+    @property
+    def constraints(self) -> tuple[str, ...]:
+        return (self.constraint, *self.also)
+
+
+@dataclass(frozen=True, slots=True)
+class Place:
+    """Effect: the object's placement edge becomes `object relation target` (the row's
+    parameters, in that order); the step keeps the old placement."""
+
+    def text(self) -> str:
+        return "the object's placement edge becomes `object relation target`"
+
+
+@dataclass(frozen=True, slots=True)
+class SetState:
+    """Effect: the object's state `key` becomes `value`; the step keeps the old value."""
+
+    key: str
+    value: bool
+
+    def text(self) -> str:
+        return (f"the object's state {self.key} becomes {str(self.value).lower()} "
+                f"({STATE_WORDS[self.key][self.value]})")
+
+
+Effect = Place | SetState
+# The effects as statements over the bound parameters, returning what they replaced.
+# A placement is `SupportIndex.set_support` inlined: a call per step is measurable on
+# long plans.
+_PLACE_CODE = """
+old = support.get(obj)
+if old is not None:
+    del carried[old[1]][obj]
+support[obj] = (relation, target)
+carried[target][obj] = relation
+return old
+"""
+_STATE_CODE = """
+before = state.state_value(obj, {key!r})
+state.set_state(obj, {key!r}, {value})
+return before
+"""
+
+
+@dataclass(frozen=True)
+class ActionSchema:
+    """One row: an action's name, parameters, preconditions and effect."""
+
+    name: str
+    parameters: tuple[Parameter, ...]
+    preconditions: tuple[Precondition, ...]
+    effect: Effect
+    # True for rows that only household worlds use (shown where a scene has them).
+    household: bool = False
+    accepted: Callable[..., bool] = field(init=False, repr=False)
+    apply: Callable[..., Any] = field(init=False, repr=False)
+    step: Callable[[WorldState, Any], Any] = field(init=False, repr=False)
+    args: Callable[[Any], tuple[Any, ...]] = field(init=False, repr=False)
+    action_dict: Callable[..., dict[str, Any]] = field(init=False, repr=False)
+    text: Callable[..., str] = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        """Compile the row: each test alone (`holds`, for refusals), all of them at once
+        (`accepted`), the effect (`apply`), and `step`, which reads the action's fields,
+        tests and applies in one call (the execution loop's fast path)."""
+        names = [p.name for p in self.parameters]
+        variables = ", ".join(VARIABLES[n] for n in names)
+        prelude = ("objects = state.objects; carried = state.carried; "
+                   "support = state.support")
+        for pre in self.preconditions:
+            object.__setattr__(pre, "holds", _compile(
+                f"def holds(state, {variables}):\n    {prelude}\n    return {pre.test}\n",
+                "holds"))
+        body = " and ".join(f"({pre.test})" for pre in self.preconditions)
+        if isinstance(self.effect, Place):
+            assert names == ["object", "relation", "target"], "a placement's parameters"
+            code = _PLACE_CODE
+        else:
+            code = _STATE_CODE.format(key=self.effect.key, value=self.effect.value)
+        effect = "".join(f"    {line}\n" for line in code.strip().splitlines())
+        reads = "; ".join(f"{VARIABLES[n]} = action.{n}" for n in names)
+        sources = {
+            "accepted": f"def accepted(state, {variables}):\n    {prelude}\n"
+                        f"    return {body}\n",
+            "apply": f"def apply(state, {variables}):\n    {prelude}\n{effect}",
+            "step": f"def step(state, action):\n    {reads}\n    {prelude}\n"
+                    f"    if not ({body}):\n        return REFUSED\n{effect}",
+            "action_dict": f"def action_dict({variables}):\n    return {{'action': "
+                           f"{self.name!r}, "
+                           + ", ".join(f"{n!r}: {VARIABLES[n]}" for n in names) + "}\n",
+            "text": f"def text({variables}):\n    return f'{self.name}("
+                    + ", ".join(f"{{{VARIABLES[n]}}}" for n in names) + ")'\n",
+        }
+        for name, source in sources.items():
+            object.__setattr__(self, name, _compile(source, name))
+        getter = attrgetter(*names)
+        object.__setattr__(self, "args", getter if len(names) > 1
+                           else lambda action: (getter(action),))
+
+    def changes(self, args: tuple[Any, ...], payload: Any) -> Changes:
+        """The edit a step made, from its arguments and what its effect replaced."""
+        if isinstance(self.effect, Place):
+            obj = args[0]
+            return ([(obj, payload[0], payload[1])] if payload is not None else [],
+                    [args], [])  # type: ignore[list-item]
+        return [], [], [(args[0], self.effect.key, payload, self.effect.value)]
+
+    def form(self) -> str:
+        """`move(object, relation, target)`."""
+        return f"{self.name}({', '.join(p.name for p in self.parameters)})"
+
+
+# The variable a parameter is bound to in tests (`object` would shadow the builtin).
+VARIABLES = {"object": "obj", "relation": "relation", "target": "target"}
+
+
+def fits(props: Any, relation: str) -> bool:
+    """Whether a target with these properties takes an object by `relation`: `on` a
+    surface, `in` a container, `under` furniture (a fixed surface), `nextto` anything
+    but a room."""
+    if relation == "on":
+        return bool(props.surface)
+    if relation == "in":
+        return bool(props.container)
+    if relation == "under":
+        return bool(props.surface and not props.movable)
+    return not props.room
+
+
+def closed_passage(state: WorldState, obj: str, relation: str, target: str) -> str | None:
+    """The closed openable container `obj` would have to leave or enter, or None."""
+    below = state.support.get(obj)
+    if below is not None and below[0] == "in" and below[1] in state.openable and \
+            not state.state_value(below[1], "open"):
+        return below[1]
+    if relation == "in" and target in state.openable and \
+            not state.state_value(target, "open"):
+        return target
+    return None
+
+
+class _Refused:
+    """What a row's `step` returns for an action it refuses (its payloads may be None)."""
+
+    def __repr__(self) -> str:
+        return "REFUSED"
+
+
+REFUSED = _Refused()
+_NAMESPACE: dict[str, Any] = {"fits": fits, "closed_passage": closed_passage,
+                              "CARRYING": SUPPORT_RELATIONS, "REFUSED": REFUSED}
+
+
+def _compile(source: str, name: str) -> Callable[..., Any]:
+    """One function of a row, compiled from the row's data (tests and effect)."""
+    scope: dict[str, Any] = {}
+    exec(compile(source, f"<action table: {name}>", "exec"), _NAMESPACE, scope)  # noqa: S102
+    function: Callable[..., Any] = scope[name]
+    return function
+
+
+# -- move -------------------------------------------------------------------------------------
+MOVE = ActionSchema(
+    name="move",
+    parameters=(Parameter("object", "a movable object with nothing on, in, under or next "
+                                    "to it, not inside a closed container", "movable"),
+                Parameter("relation", "on, in (household: under, nextto)", "relation"),
+                Parameter("target", "on: a surface; in: an open container; under: "
+                                    "furniture; nextto: any object but a room; with room "
+                                    "for on and in")),
+    preconditions=(
+        Precondition("unknown_object", "obj in objects and target in objects",
+                     c.explain_unknown_object, gate=True),
+        Precondition("unknown_relation", "relation in state.move_relations",
+                     c.explain_relation, gate=True),
+        Precondition("same_object", "obj != target", c.explain_same_object, gate=True),
+        Precondition("not_movable", "objects[obj].props.movable", c.explain_movable),
+        Precondition("already_there", "support.get(obj) != (relation, target)",
+                     c.explain_already_there),
+        Precondition("would_create_cycle",
+                     "not carried[obj] or obj not in state.supports_chain(target)",
+                     c.explain_cycle),
+        Precondition("object_not_clear", "not carried[obj]", c.explain_clear),
+        Precondition("target_not_surface",
+                     "(props.surface if relation == 'on' else props.container if "
+                     "relation == 'in' else fits(props, relation)) if "
+                     "(props := objects[target].props) is not None else False",
+                     c.explain_target_kind,
+                     also=("target_not_container", "target_not_furniture", "target_is_room")),
+        Precondition("container_closed",
+                     "not state.openable or closed_passage(state, obj, relation, target) "
+                     "is None", c.explain_container_closed),
+        Precondition("target_full",
+                     "relation not in CARRYING or (cap := objects[target].props.capacity) "
+                     "is None or len(carried[target]) < cap or state.has_room(target)",
+                     c.explain_capacity,
+                     skip_after=frozenset({"target_not_surface", "target_not_container"})),
+    ),
+    effect=Place())
+
+
+# -- open, close, toggle_on, toggle_off ---------------------------------------------------------
+def _state_row(name: str, key: str, value: bool) -> ActionSchema:
+    role = "openable" if key == "open" else "toggleable"
+    word = STATE_WORDS[key][value]
+    wrong_role = f"not_{role}"
+    already = f"already_{word}"
+
+    return ActionSchema(
+        name=name,
+        parameters=(Parameter("object", f"{'an' if role[0] == 'o' else 'a'} {role} object "
+                                        f"that is not {word} already", role),),
+        preconditions=(
+            Precondition("unknown_object", "obj in objects", c.explain_unknown_object,
+                         gate=True),
+            Precondition(wrong_role, f"objects[obj].props.{role}",
+                         c.role_explainer(name, role)),
+            Precondition(already, f"state.state_value(obj, {key!r}) != {value}",
+                         c.already_explainer(name, key, value)),
+        ),
+        effect=SetState(key, value), household=True)
+
+
+SCHEMAS: dict[str, ActionSchema] = {row.name: row for row in (
+    MOVE,
+    _state_row("open", "open", True),
+    _state_row("close", "open", False),
+    _state_row("toggle_on", "toggled_on", True),
+    _state_row("toggle_off", "toggled_on", False),
+)}
+"""The action table, by action name."""
+
+
+def schema_of(action: AnyAction) -> ActionSchema | None:
+    """The row of an action (None for `align` and `done`, which are not rows)."""
+    if type(action) is MoveAction:
+        return MOVE
+    if type(action) is StateAction:
+        return SCHEMAS[action.action]
+    return None
+
+
+def table_constraints(*, household: bool) -> list[str]:
+    """Every constraint id of the table, in row and check order, once each; the
+    household rows' and tests' ids only with `household`."""
+    ids: dict[str, None] = {}
+    for row in SCHEMAS.values():
+        if row.household and not household:
+            continue
+        for pre in row.preconditions:
+            for cid in pre.constraints:
+                if household or cid not in HOUSEHOLD_CONSTRAINTS:
+                    ids.setdefault(cid)
+    return list(ids)
+
+
+# Constraints that only a household world (openables, under/nextto, rooms) can break.
+HOUSEHOLD_CONSTRAINTS = frozenset({
+    "container_closed", "target_not_furniture", "target_is_room", "not_openable",
+    "already_open", "already_closed", "not_toggleable", "already_on", "already_off"})
+
+
+def state_change_text(change: StateChange) -> str:
+    """`fridge: closed -> open`."""
+    obj, key, before, after = change
+    words = STATE_WORDS[key]
+    return f"{obj}: {words[before]} -> {words[after]}"
+
+
+def action_lines(*, household: bool) -> list[str]:
+    """One line per row: `move(object, relation, target): object: ...; target: ...`."""
+    lines = []
+    for row in SCHEMAS.values():
+        if row.household and not household:
+            continue
+        needs = "; ".join(f"{p.name}: {p.needs}" for p in row.parameters)
+        lines.append(f"{row.form()}: {needs}")
+    return lines
+
+
+__all__ = ["SCHEMAS", "ActionSchema", "Parameter", "Precondition", "action_lines",
+           "closed_passage", "fits", "schema_of", "state_change_text", "state_value",
+           "table_constraints"]
