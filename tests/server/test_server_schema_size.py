@@ -17,8 +17,11 @@ from verigraph.server import build_server
 
 pytestmark = pytest.mark.fast
 
-MAX_TOTAL_BYTES = 40_000
-MAX_CORE_BYTES = 15_000  # names + descriptions + input schemas
+# Raised from 40,000 and 15,000 with the household world (object states in every graph,
+# four more actions and the rules they follow, the state changes of an edit, a goal's
+# missing states).
+MAX_TOTAL_BYTES = 42_000
+MAX_CORE_BYTES = 15_800  # names + descriptions + input schemas
 
 
 def compact(data: Any) -> int:

@@ -273,10 +273,10 @@ async def test_resources_static_and_per_episode(client: Client) -> None:
     assert relations["by_dictionary"]["tangram"] == ["touches"]
     schema = await read("verigraph://schema/action")
     assert {m["$ref"].rsplit("/", 1)[-1] for m in schema["oneOf"]} == {
-        "MoveAction", "AlignAction", "DoneAction"}
+        "MoveAction", "StateAction", "AlignAction", "DoneAction"}
     assert "object_not_clear" in await read("verigraph://constraints")
     assert set(await read("verigraph://scenes")) == {"cup_on_book", "three_blocks",
-                                                      "kitchen_pan"}
+                                                      "kitchen_pan", "kitchen_household"}
     eid = await load(client)
     graph = await read(f"verigraph://episodes/{eid}/graph")
     assert {(e["source"], e["target"]) for e in graph["edges"]} == {("book", "desk"),

@@ -20,7 +20,7 @@ class MoveAction(BaseModel):
     action: Literal["move"] = "move"
     object: str = Field(min_length=1, max_length=128, description="id of the object to move")
     relation: str = Field(default="on", min_length=1, max_length=32,
-                          description="on, in (household: under, nextto)")
+                          description="on, in, under, nextto")
     target: str = Field(min_length=1, max_length=128, description="id of the new support")
 
     def text(self) -> str:

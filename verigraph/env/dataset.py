@@ -38,6 +38,7 @@ FAMILY_GROUPS: dict[Family, tuple[GroupName, ...]] = {
     "blocks": ("stacking", "language", "ref_image_blocks"),
     "kitchen": ("ref_image_kitchen",),
     "tangram": ("tangram",),
+    "household": ("household",),
 }
 DEFAULT_TEST_FRACTION = 0.2
 HASH_SPACE = 16 ** 12

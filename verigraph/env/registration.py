@@ -2,7 +2,8 @@
 
 `verigraph/blocks-v0` holds the stacking, language and reference-image block tasks,
 `verigraph/kitchen-v0` the kitchen rearrangements, `verigraph/tangram-v0` the tangram
-figures (docs/env.md). Keyword arguments of `make` reach `VeriGraphEnv` (split, k,
+figures, `verigraph/household-v0` the household tasks (doors, switches, food and
+dishes; docs/env.md). Keyword arguments of `make` reach `VeriGraphEnv` (split, k,
 threshold, rubric, tools, ...). Registering twice is harmless, so importing
 `verigraph.env` from several places is fine; `gymnasium.make("verigraph.env:verigraph/
 blocks-v0")` imports it on the way.

@@ -33,10 +33,9 @@ class Node(BaseModel):
     attrs: dict[str, Any] = Field(default_factory=dict,
                                   description="colour; overrides (capacity, movable)")
     # Serialised only when set, so a scene without states dumps as it always did.
-    state: dict[str, bool] = Field(
+    state: Annotated[dict[str, bool], WithJsonSchema({"type": "object"})] = Field(
         default_factory=dict, exclude_if=lambda state: not state,
-        description="open (openable kinds), toggled_on (toggleable kinds); "
-                    "missing = closed, off")
+        description="open, toggled_on: true/false; missing = closed, off")
 
     @field_validator("state", mode="before")
     @classmethod
@@ -101,6 +100,11 @@ class SceneGraph(BaseModel):
 
     def node_ids(self) -> list[str]:
         return [n.id for n in self.nodes]
+
+    def stateless_nodes(self) -> list[Node]:
+        """The nodes without their states: a goal built on a scene's nodes asks only for
+        the edges (and states) it lists, not for every state the scene has now."""
+        return [n.model_copy(update={"state": {}}) if n.state else n for n in self.nodes]
 
     def edge_keys(self) -> set[tuple[str, str, str, int | None, int | None]]:
         return {e.key() for e in self.edges}

@@ -218,7 +218,7 @@ def translate(instruction: str, graph: SceneGraph) -> Goal:
         raise TranslationError(why if clause in why else f"{why} (in '{clause}')")
     if not reading.edges:
         raise TranslationError("the instruction asks for nothing I can check")
-    return Goal(graph=SceneGraph(nodes=list(graph.nodes), edges=reading.edges,
+    return Goal(graph=SceneGraph(nodes=graph.stateless_nodes(), edges=reading.edges,
                                  dictionary=graph.dictionary),
                 partial=True, instruction=instruction)
 

@@ -67,8 +67,9 @@ def _action(index: int, item: Any) -> AnyAction:
         loc = [str(p) for p in err["loc"] if str(p) not in ("move", "align", "done")]
         where = ".".join([f"actions[{index}]", *loc])
         raise ParseFailure(f"{where}: {err['msg']} (got {_shown(json.dumps(item))}); each "
-                           "action is move {object, relation, target}, align {object, side, "
-                           "target, target_side} or done") from None
+                           "action is move {object, relation, target}, open/close/toggle_on/"
+                           "toggle_off {object}, align {object, side, target, target_side} "
+                           "or done") from None
 
 
 def parse_answer(text: str, *, truncated: bool = False) -> list[AnyAction]:
@@ -127,9 +128,9 @@ def parse_tool_input(data: Any) -> list[AnyAction]:
 def refused_action(data: dict[str, Any]) -> AnyAction | None:
     """The action a violation reports (its `model_dump`), or None if it is not one."""
     try:
-        if data.get("action") == "align":
-            return AlignAction.model_validate(data)
-        return MoveAction.model_validate(data)
+        if data.get("action") in (None, "move"):
+            return MoveAction.model_validate(data)
+        return ActionAdapter.validate_python(data)
     except ValueError:
         return None
 

@@ -43,9 +43,11 @@ def planner_prompt(mode: Mode, state: WorldState, goal: Goal | None, *, k: int |
     that only the instruction is shown, while the episode keeps the ground truth.
     """
     relations = state.dictionary.relations
+    household = pieces.is_household(state)
     return prompts.render(
         TEMPLATE[mode], relations=", ".join(relations), objects=pieces.objects_text(state),
         current_graph=pieces.graph_text(state), goal=pieces.goal_text(goal, instruction),
-        actions=pieces.actions_text(relations), constraints=pieces.constraints_text(relations),
+        actions=pieces.actions_text(relations, household),
+        constraints=pieces.constraints_text(relations, household),
         history=history_line(history), feedback=feedback_line(feedback, iteration),
         k=k if k is not None else "all", tool_hint="")

@@ -12,7 +12,14 @@ from collections.abc import Sequence
 from verigraph import prompts
 from verigraph.actions.feedback import CONSTRAINT_DESCRIPTIONS, Violation
 from verigraph.actions.model import AnyAction
-from verigraph.graph.dictionary import SUPPORT_RELATIONS, Dictionary
+from verigraph.actions.schemas import HOUSEHOLD_CONSTRAINTS, SCHEMAS
+from verigraph.graph.dictionary import (
+    PLACEMENT_RELATIONS,
+    STATE_WORDS,
+    SUPPORT_RELATIONS,
+    Dictionary,
+    state_text,
+)
 from verigraph.graph.goal import Goal
 from verigraph.graph.state import WorldState
 
@@ -26,11 +33,20 @@ def _is_tangram(relations: Sequence[str]) -> bool:
     return "touches" in relations and "on" not in relations
 
 
+def is_household(state: WorldState) -> bool:
+    """Whether the scene has what only household worlds have: openable or toggleable
+    objects, rooms, or an object under or next to another. Texts and prompts speak of
+    the household actions and rules only then (a tabletop reads as it always did)."""
+    return bool(state.openable or state.rooms or state.states) or any(
+        p.toggleable or p.room for p in (o.props for o in state.objects.values())) or any(
+        r not in SUPPORT_RELATIONS for r, _ in state.support.values())
+
+
 def objects_text(state: WorldState) -> str:
     lines = []
     for obj in state.objects.values():
         p = obj.props
-        kinds = ["movable" if p.movable else "fixed"]
+        kinds = ["room" if p.room else "movable" if p.movable else "fixed"]
         if p.surface:
             kinds.append("surface")
         if p.container:
@@ -39,6 +55,11 @@ def objects_text(state: WorldState) -> str:
             kinds.append(f"{p.sides} sides")
         if (p.surface or p.container) and p.capacity is not None:
             kinds.append(f"holds at most {p.capacity}")
+        states = state_text(p, state.states.get(obj.id, {}))
+        if states:
+            roles = [r for r, on in (("openable", p.openable), ("toggleable", p.toggleable))
+                     if on]
+            kinds.append(f"{' and '.join(roles)}, now {states}")
         lines.append(f"- {obj.id} ({obj.label}): {', '.join(kinds)}")
     return "\n".join(lines)
 
@@ -50,7 +71,23 @@ def graph_text(state: WorldState) -> str:
                 if o.props.movable and o.id not in state.support]
         if free:
             lines.append(f"- not resting on anything: {', '.join(free)}")
+    rooms = rooms_text(state)
+    if rooms:
+        lines.append(f"- {rooms}")
     return "\n".join(lines)
+
+
+def rooms_text(state: WorldState) -> str:
+    """`rooms: kitchen: cabinet, counter, fridge; dining_room: table`: the furniture of
+    each room (and what stands on, in, under or next to it goes with it); empty without
+    rooms."""
+    if not state.rooms:
+        return ""
+    by_room: dict[str, list[str]] = {}
+    for furniture, room in sorted(state.rooms.items()):
+        by_room.setdefault(room, []).append(furniture)
+    return "rooms: " + "; ".join(f"{room}: {', '.join(items)}"
+                                 for room, items in by_room.items())
 
 
 def goal_text(goal: Goal | None, instruction: str | None = None) -> str:
@@ -62,6 +99,8 @@ def goal_text(goal: Goal | None, instruction: str | None = None) -> str:
             "the final graph must have exactly these edges"
         lines.append(f"Goal graph ({kind}):")
         lines.extend(f"- {s}" for s in goal.graph.sentences())
+        lines.extend(f"- {n.id} {STATE_WORDS[key][value]}" for n in goal.graph.nodes
+                     for key, value in n.state.items())
     if goal is not None and goal.predicate == "single_stack":
         lines.append("All movable objects must end up in one single tower on a fixed object.")
     if goal is not None and goal.formula is not None:
@@ -71,23 +110,41 @@ def goal_text(goal: Goal | None, instruction: str | None = None) -> str:
     return "\n".join(lines) or "No goal was given; ask the user what the robot should achieve."
 
 
-def actions_text(relations: Sequence[str]) -> str:
+def actions_text(relations: Sequence[str], household: bool = False) -> str:
+    """The actions a planner may use; with `household`, every row of the action table
+    (move with under and nextto, open, close, toggle_on, toggle_off)."""
     if _is_tangram(relations):
         return ("- align(piece, side, target_piece, target_side): slide a piece so that one "
                 "of its sides touches a side of another piece (sides are numbered clockwise "
                 "from 0)\n- done: the end token, when the goal holds")
-    moves = [r for r in relations if r in SUPPORT_RELATIONS]
-    return (f"- move(object, relation, target) with relation in {{{', '.join(moves)}}}: pick "
-            "up the object (with nothing on or in it) and put it on or in the target\n"
-            "- move(object, target): short for move(object, on, target)\n"
-            "- done: the end token, when the goal holds")
+    if not household:
+        moves = [r for r in relations if r in SUPPORT_RELATIONS]
+        return (f"- move(object, relation, target) with relation in {{{', '.join(moves)}}}: "
+                "pick up the object (with nothing on or in it) and put it on or in the "
+                "target\n- move(object, target): short for move(object, on, target)\n"
+                "- done: the end token, when the goal holds")
+    moves = [r for r in relations if r in PLACEMENT_RELATIONS]
+    lines = [f"- move(object, relation, target) with relation in {{{', '.join(moves)}}}: "
+             "pick up the object (with nothing on, in, under or next to it, and not inside a "
+             "closed container) and put it on or in the target, under it (furniture) or "
+             "next to it", "- move(object, target): short for move(object, on, target)"]
+    for row in SCHEMAS.values():
+        if row.household:
+            lines.append(f"- {row.form()}: {row.effect.text()} (object: "
+                         f"{row.parameters[0].needs})")
+    lines.append("- done: the end token, when the goal holds")
+    return "\n".join(lines)
 
 
-def constraints_text(relations: Sequence[str]) -> str:
+def constraints_text(relations: Sequence[str], household: bool = False) -> str:
+    """The constraints C a planner must respect; the action table's household ones
+    only with `household`."""
     tangram = _is_tangram(relations)
     lines = []
     for cid, text in CONSTRAINT_DESCRIPTIONS.items():
         if cid in NOT_FOR_PLANNERS or cid in (TABLETOP_ONLY if tangram else TANGRAM_ONLY):
+            continue
+        if cid in HOUSEHOLD_CONSTRAINTS and not household:
             continue
         lines.append(f"- {cid}: {text}")
     return "\n".join(lines)
@@ -121,10 +178,12 @@ def fill_planner_prompt(name: str, state: WorldState, goal: Goal | None, *, k: i
                    episode_id: str | None = None) -> str:
     """The iterative or direct planner prompt for a state and goal."""
     relations = state.dictionary.relations
+    household = is_household(state)
     return prompts.render(
         name, relations=", ".join(relations), objects=objects_text(state),
         current_graph=graph_text(state), goal=goal_text(goal, instruction),
-        actions=actions_text(relations), constraints=constraints_text(relations),
+        actions=actions_text(relations, household),
+        constraints=constraints_text(relations, household),
         history=history_text(executed), feedback=feedback_text(violation, calls), k=k,
         tool_hint=tool_hint(episode_id))
 

@@ -145,10 +145,12 @@ def _without_repeats(schema: Any, seen: set[str]) -> Any:
     return _walk(schema, node)
 
 
-def _tag(definition: Schema) -> tuple[str, Any] | None:
-    """(property, value) when the object is told apart by one const property."""
-    consts = [(name, sub["const"]) for name, sub in definition.get("properties", {}).items()
-              if isinstance(sub, dict) and "const" in sub]
+def _tag(definition: Schema) -> tuple[str, list[Any]] | None:
+    """(property, values) when the object is told apart by one const property (or an
+    enum of them: `open`, `close`, ... are one kind of action)."""
+    consts = [(name, [sub["const"]] if "const" in sub else list(sub["enum"]))
+              for name, sub in definition.get("properties", {}).items()
+              if isinstance(sub, dict) and ("const" in sub or "enum" in sub)]
     return consts[0] if len(consts) == 1 else None
 
 
@@ -176,8 +178,8 @@ def _merge_tagged(schema: Schema) -> Schema:
                 for name, field in definition["properties"].items():
                     properties.setdefault(name, field)
             first = properties[prop]
-            properties[prop] = {"enum": [t[1] for t in tags if t], **{
-                k: v for k, v in first.items() if k not in ("const", "default")}}
+            properties[prop] = {"enum": [v for t in tags if t for v in t[1]], **{
+                k: v for k, v in first.items() if k not in ("const", "default", "enum")}}
             defaults = [d["properties"][prop].get("default") for _, d in tagged]
             if defaults[0] is not None:
                 properties[prop]["default"] = defaults[0]

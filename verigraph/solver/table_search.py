@@ -150,10 +150,24 @@ class TableProblem:
                 budget.check(memory=True)
                 nxt = state.copy()
                 row.apply(nxt, *args)
-                action: AnyAction = MoveAction(object=args[0], relation=args[1],
-                                               target=args[2]) if row.name == "move" \
-                    else StateAction(action=row.name, object=args[0])  # type: ignore[arg-type]
-                yield action, nxt
+                yield _action(row, args), nxt
+
+
+def valid_actions(state: WorldState) -> list[AnyAction]:
+    """Every action of the table the verifier accepts on `state` now (scene order)."""
+    problem = TableProblem(state, Goal(predicate="single_stack"))
+    found = []
+    for row in SCHEMAS.values():
+        for args in problem._bindings(row, state):
+            if row.accepted(state, *args):
+                found.append(_action(row, args))
+    return found
+
+
+def _action(row: ActionSchema, args: tuple[str, ...]) -> AnyAction:
+    if row.name == "move":
+        return MoveAction(object=args[0], relation=args[1], target=args[2])
+    return StateAction(action=row.name, object=args[0])  # type: ignore[arg-type]
 
 
 def table_astar(state: WorldState, goal: Goal, budget: SearchBudget

@@ -10,6 +10,9 @@
   first. Its graph comes from perceiving the image (`verigraph.perception`) unless
   `ground_truth=True` hands the planner the true goal graph.
 - `tangram` (suite_tangram.py): 2 to 5 pieces out of the target figure.
+- `household` (suite_household.py, not one of the paper's groups): the built-in kitchen
+  and dining room with doors to open and shut and a stove to switch; partial goals of
+  placements and states, worded as an instruction and shown as a graph.
 
 Every group's mean optimal plan length (reference solver) is at least 4; `suite_stats`
 reports it with its distribution. Episodes are fixed by (SUITE_VERSION, group, index,
@@ -32,7 +35,7 @@ from verigraph.errors import VeriGraphError
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.tasks import language, suite_blocks, suite_kitchen, suite_tangram
+from verigraph.tasks import language, suite_blocks, suite_household, suite_kitchen, suite_tangram
 from verigraph.tasks.suite_blocks import Drawn
 from verigraph.tasks.task import GROUPS, SUITE_VERSION, Family, GroupName, Task
 
@@ -229,6 +232,25 @@ def tangram_tasks(n: int, seed: int, *, simulate: bool = False) -> GroupTasks:
     return GroupTasks(group="tangram", tasks=tasks, note=note)
 
 
+def household_tasks(n: int, seed: int) -> GroupTasks:
+    tasks = []
+    for i in range(n):
+        target = suite_household.TARGETS[i % len(suite_household.TARGETS)]
+        for draw in range(MAX_DRAWS):
+            drawn = suite_household.household_task(_rng("household", seed, i, draw), target)
+            if drawn is None or drawn.goal.graph is None or \
+                    drawn.optimal_length < max(3, target - 1):
+                continue
+            set_goal = {"graph": _graph_json(drawn.goal.graph), "partial": True,
+                        "instruction": drawn.goal.instruction}
+            tasks.append(_task("household", i, drawn, _load(drawn.graph, False, draw),
+                               set_goal, "household"))
+            break
+    return GroupTasks(group="household", tasks=tasks,
+                      note="symbolic only: the 2D simulator does not draw household "
+                           "scenes")
+
+
 def build_groups(groups: tuple[GroupName, ...], n: int, seed: int, *, ground_truth: bool,
                  simulate: bool = False) -> list[GroupTasks]:
     """Every requested group's tasks (or why it is not run)."""
@@ -240,5 +262,6 @@ def build_groups(groups: tuple[GroupName, ...], n: int, seed: int, *, ground_tru
         "ref_image_blocks": lambda: reference_image_tasks(
             "blocks", n, seed, ground_truth=ground_truth, simulate=simulate),
         "tangram": lambda: tangram_tasks(n, seed, simulate=simulate),
+        "household": lambda: household_tasks(n, seed),
     }
     return [builders[g]() for g in groups]

@@ -30,10 +30,14 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 
 SUITE_VERSION = "2"
-Family = Literal["blocks", "kitchen", "tangram"]
+Family = Literal["blocks", "kitchen", "tangram", "household"]
 FAMILIES: tuple[Family, ...] = get_args(Family)
-GroupName = Literal["stacking", "language", "ref_image_kitchen", "ref_image_blocks", "tangram"]
-GROUPS: tuple[GroupName, ...] = get_args(GroupName)
+# The paper's five groups (the benchmark's default), and the household group beside them.
+PaperGroup = Literal["stacking", "language", "ref_image_kitchen", "ref_image_blocks",
+                     "tangram"]
+GroupName = PaperGroup | Literal["household"]
+GROUPS: tuple[GroupName, ...] = get_args(PaperGroup)
+ALL_GROUPS: tuple[GroupName, ...] = (*GROUPS, "household")
 
 RECORD_FIELDS = ("family", "group", "kind", "optimal_length", "objects", "show_goal_graph",
                  "instruction", "suite_version")

@@ -40,7 +40,8 @@ RequestId = Annotated[str, Field(
     examples=["c3f1e2a0-step-4"])]
 ActionText = Annotated[str, Field(
     min_length=1, max_length=2000,
-    description="move(cup, on, table), move(cup, table), "
+    description="move(cup, on, table), move(cup, table), move(box, under, table), "
+                "open(fridge), close(x), toggle_on(stove), toggle_off(x), "
                 "align(piece, side, target, target_side) or done")]
 ActionInput = Action | ActionText
 SceneId = Annotated[str, Field(min_length=1, max_length=64,

@@ -19,6 +19,7 @@ from typing import Annotated, Literal
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from verigraph.errors import GoalError
+from verigraph.graph.dictionary import STATE_ROLES, STATE_WORDS
 from verigraph.graph.formula import FORMULA_EXAMPLE, looks_like_formula, parse_formula
 from verigraph.graph.formula_eval import check_names, facts_of
 from verigraph.graph.goal import PREDICATES, Goal, GraphDiff, check_goal, goal_kind_problems
@@ -212,11 +213,16 @@ class _Reading:
 
 _EDGE_TEXT = re.compile(r"\s*(?:move\s*\()?\s*([\w.-]+)\s*,?\s+([a-z_]+)\s*,?\s+([\w.-]+)"
                         r"\s*\)?\s*")
+# A goal state: `fridge closed`, `stove on` (the words of STATE_WORDS).
+_STATE_TEXT = re.compile(r"\s*([\w.-]+)\s+(open|closed|on|off)\s*")
+_STATE_OF_WORD = {word: (key, value) for key, words in STATE_WORDS.items()
+                  for value, word in ((False, words[0]), (True, words[1]))}
 
 
 def goal_from_edges(text: str, state: WorldState | None, *, field: str = "edges",
                     partial: bool = True) -> Goal:
-    """`cup on table; spoon in pot` (or one per line, or move(...) forms) as a goal.
+    """`cup on table; spoon in pot` (or one per line, or move(...) forms) as a goal;
+    `fridge closed`, `stove on` ask for a state.
 
     The nodes come from the scene, so a goal names only what must hold. Partial (only
     these edges must hold) unless `partial` is False: then the listed edges are the
@@ -232,7 +238,21 @@ def goal_from_edges(text: str, state: WorldState | None, *, field: str = "edges"
     edges: list[Edge] = []
     problems: list[str] = []
     relations = state.move_relations
+    states: dict[str, dict[str, bool]] = {}
     for item in items:
+        wanted = _STATE_TEXT.fullmatch(item)
+        if wanted is not None:
+            obj, word = wanted.groups()
+            key, value = _STATE_OF_WORD[word]
+            role = STATE_ROLES[key]
+            info = state.objects.get(obj)
+            if info is None:
+                problems.append(f"'{item.strip()[:60]}': no object {obj} in the scene")
+            elif not getattr(info.props, role):
+                problems.append(f"'{item.strip()[:60]}': {obj} ({info.label}) is not {role}")
+            else:
+                states.setdefault(obj, {})[key] = value
+            continue
         m = _EDGE_TEXT.fullmatch(item)
         if m is None:
             problems.append(f"'{item.strip()[:60]}' is not 'source relation target'")
@@ -247,14 +267,16 @@ def goal_from_edges(text: str, state: WorldState | None, *, field: str = "edges"
                             f"{', '.join(relations)}")
         else:
             edges.append(Edge(source=source, relation=relation, target=target))
-    if problems or not edges:
+    if problems or not (edges or states):
         raise ToolArgumentError(
             "goal edges: " + ("; ".join(problems[:10]) or "no edge given"), field=field,
             value=text[:80], fix="write one 'source relation target' per item, separated by "
                                  f"';', with ids from the scene: "
                                  f"{', '.join(sorted(state.objects)[:20])}")
     graph = state.to_graph()
-    return Goal(graph=SceneGraph(nodes=graph.nodes, edges=edges, dictionary=graph.dictionary),
+    nodes = [n.model_copy(update={"state": states[n.id]}) if n.id in states else n
+             for n in graph.stateless_nodes()]
+    return Goal(graph=SceneGraph(nodes=nodes, edges=edges, dictionary=graph.dictionary),
                 partial=partial)
 
 
@@ -312,7 +334,7 @@ def _with_scene_nodes(graph: SceneGraph, state: WorldState, field: str) -> Scene
             fix="use ids from the scene: " + ", ".join(sorted(state.objects)[:20]))
     if not wanted:
         return graph
-    added = [n for n in state.to_graph().nodes if n.id in wanted]
+    added = [n for n in state.to_graph().stateless_nodes() if n.id in wanted]
     return graph.model_copy(update={"nodes": [*graph.nodes, *added]})
 
 
@@ -396,7 +418,7 @@ def _from_words(instruction: str, state: WorldState | None) -> _Reading:
     if not reading.edges:
         return _Reading(None, accepted=False, notes=notes)
     graph = state.to_graph()
-    goal = Goal(graph=SceneGraph(nodes=graph.nodes, edges=reading.edges,
+    goal = Goal(graph=SceneGraph(nodes=graph.stateless_nodes(), edges=reading.edges,
                                  dictionary=graph.dictionary),
                 partial=True, instruction=instruction)
     return _Reading(goal, accepted=False, notes=notes)

@@ -132,7 +132,8 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
                                   graphs=("graph", "goal"), images=("image",))),
     ToolSpec("set_goal", "Set the goal",
              "Set the goal: edges ('cup on table; spoon in pot'), a BDDL formula over kinds "
-             "('(forall (?c - cup) ...)'), a graph, a predicate or an image. Words alone: a "
+             "('(forall (?c - cup) ...)'), a graph (a node's state, e.g. {\"open\": false}, "
+             "is a goal too), a predicate or an image. Words alone: a "
              "proposal to confirm.",
              goals.SetGoalInput, goals.GoalOutput, goals.set_goal,
              read_only=False, idempotent=True,
@@ -144,7 +145,10 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              read_only=True, idempotent=True, viewer=True),
     ToolSpec("validate_action", "Check one action",
              "Check one action without executing it: every violated constraint with a fix, or "
-             "the edges it would change.",
+             "the edges it would change. A moved object must be clear (nothing on, in, under "
+             "or next to it) and not in a closed container; `in` needs an open container with "
+             "room, `on` a surface with room; open/close need an openable object (no state: "
+             "closed), toggle_on/off a toggleable one (no state: off).",
              acting.ValidateActionInput, acting.ActionCheck, acting.validate_action_tool,
              read_only=True, idempotent=True, episode_sized=False),
     ToolSpec("execute_actions", "Execute actions",

@@ -10,6 +10,8 @@ from __future__ import annotations
 from verigraph.errors import VeriGraphError
 from verigraph.graph.dictionary import (
     Dictionary,
+    ROOM_RELATION,
+    STATE_WORDS,
     InlineDictionary,
     ObjectProperties,
     load_dictionary,
@@ -99,12 +101,32 @@ def objects_line(graph: SceneGraph, dictionary: str | InlineDictionary | None = 
 
 
 def edges_line(graph: SceneGraph, prefix: str = "edges") -> str:
-    return f"{prefix}: " + ("; ".join(graph.sentences()) or "none")
+    """`edges: cup on table; ...`, then the states nodes have set (`; states: fridge
+    closed, stove on`)."""
+    states = [f"{n.id} {STATE_WORDS[k][v]}" for n in graph.nodes for k, v in n.state.items()]
+    return f"{prefix}: " + ("; ".join(graph.sentences()) or "none") + (
+        f"; states: {', '.join(states)}" if states else "")
+
+
+def rooms_line(graph: SceneGraph) -> str:
+    """`rooms: kitchen: counter, fridge, stove; dining_room: table` (the furniture of
+    each room, from its `inroom` edges); empty when the graph has no rooms."""
+    by_room: dict[str, list[str]] = {}
+    for e in graph.edges:
+        if e.relation == ROOM_RELATION:
+            by_room.setdefault(e.target, []).append(e.source)
+    if not by_room:
+        return ""
+    return "rooms: " + "; ".join(f"{room}: {', '.join(sorted(items))}"
+                                 for room, items in by_room.items())
 
 
 def graph_lines(graph: SceneGraph, dictionary: str | InlineDictionary | None = None) -> str:
-    """Two lines: every object with label and role, then every edge."""
-    return f"{objects_line(graph, dictionary)}\n{edges_line(graph)}"
+    """Two lines: every object with label and role (and state), then every edge; a
+    third with the furniture of each room when the graph has rooms."""
+    rooms = rooms_line(graph)
+    return f"{objects_line(graph, dictionary)}\n{edges_line(graph)}" + (
+        f"\n{rooms}" if rooms else "")
 
 
 def dictionary_line(name: str, user_labels: list[str], readings: list[str]) -> str:
@@ -141,7 +163,9 @@ def goal_line(goal: Goal | None) -> str | None:
         return None
     parts = []
     if goal.graph is not None:
-        parts.append("; ".join(goal.graph.sentences()) or "no edges")
+        states = [f"{n.id} {STATE_WORDS[k][v]}" for n in goal.graph.nodes
+                  for k, v in n.state.items()]
+        parts.append("; ".join([*goal.graph.sentences(), *states]) or "no edges")
     if goal.predicate:
         parts.append(goal.predicate)
     if goal.formula is not None:
