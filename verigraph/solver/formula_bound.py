@@ -16,9 +16,11 @@ wanted, requirements of the form "one of these things must change" (a set of
   union of each part's smallest (whichever part a solution makes true, it meets it);
 - `forn` and the pair quantifiers: some action, when their truth is wrong.
 
-Requirements with no thing in common need distinct actions, so the size of a family of
-pairwise disjoint requirements (picked greedily, smallest first) is a lower bound; it is
-0 exactly at the goal. Admissible, so A* over it stays optimal.
+An object that must move must first be clear, so whatever stands on, in, under or next
+to it (and so on up) must move too. Requirements with no thing in common need distinct
+actions, so the size of a family of pairwise disjoint requirements (picked greedily,
+smallest first) is a lower bound; it is 0 exactly at the goal. Admissible, so A* over it
+stays optimal.
 """
 
 from __future__ import annotations
@@ -70,6 +72,7 @@ def formula_bound(formula: Formula, facts: Facts) -> int:
     truth, needs, some = _Bound(facts).need(formula, {}, True)
     if truth:
         return 0
+    needs = [*needs, *_cleared_first(needs, facts)]
     taken: set[Thing] = set()
     count = 0
     for need in sorted(needs, key=len):
@@ -77,6 +80,27 @@ def formula_bound(formula: Formula, facts: Facts) -> int:
             taken |= need
             count += 1
     return max(count, 1 if some or needs else 0)
+
+
+def _cleared_first(needs: list[frozenset[Thing]], facts: Facts) -> list[frozenset[Thing]]:
+    """An object that must move must be clear first: whatever is placed on, in, under or
+    next to it, and so on up, must move too (once each, at least)."""
+    must_move = [next(iter(n))[1] for n in needs if len(n) == 1 and next(iter(n))[0] == "place"]
+    if not must_move:
+        return []
+    above: dict[str, list[str]] = {}
+    for source, places in facts.placed.items():
+        for relation, target in places:
+            if relation != "inroom":
+                above.setdefault(target, []).append(source)
+    found: set[str] = set()
+    stack = list(must_move)
+    while stack:
+        for other in above.get(stack.pop(), []):
+            if other not in found:
+                found.add(other)
+                stack.append(other)
+    return [frozenset({("place", o)}) for o in sorted(found)]
 
 
 def _every(truth: bool, parts: list[Need]) -> Need:
