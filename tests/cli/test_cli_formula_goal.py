@@ -60,3 +60,10 @@ def test_a_bad_formula_file_exits_2_naming_the_position(tmp_path: Path,
     assert main(["export-pddl", "--scene", SCENE, "--goal", GOAL_FILE, "--domain-out",
                  str(tmp_path / "d.pddl"), "--problem-out", str(tmp_path / "p.pddl")]) == 2
     assert "formula" in capsys.readouterr().err
+
+
+def test_a_formula_naming_what_the_scene_lacks_exits_2(capsys: pytest.CaptureFixture[str]
+                                                       ) -> None:
+    assert main(["solve", "--scene", SCENE, "--goal", "(ontop cupp desk)"]) == 2
+    err = capsys.readouterr().err
+    assert "object 'cupp' (did you mean cup?)" in err and "fix:" in err

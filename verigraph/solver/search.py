@@ -23,7 +23,7 @@ from collections.abc import Callable
 from verigraph.actions.model import AlignAction, AnyAction
 from verigraph.actions.validator import apply_action, validate_action
 from verigraph.graph.formula import parse_formula
-from verigraph.graph.formula_eval import Facts, facts_of, holds
+from verigraph.graph.formula_eval import Facts, check_names, facts_of, holds
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
@@ -84,6 +84,8 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
            anytime: bool) -> SolveResult:
     state = scene.copy() if isinstance(scene, WorldState) else WorldState.from_graph(scene)
     goal_model = Goal.parse(goal)
+    if goal_model.formula is not None:  # ids and kinds the scene lacks: bad input, said so
+        check_names(parse_formula(goal_model.formula), facts_of(state))
     if check_goal(state, goal_model).satisfied:
         return SolveResult(reachable=True, plan=[], optimal=True, lower_bound=0)
     reason = static_reason(state, goal_model)
