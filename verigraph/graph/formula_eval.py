@@ -80,6 +80,10 @@ class Facts:
         self.resolve = resolve
         self.edges: set[tuple[str, str, str]] = set()
         self.placed: dict[str, list[tuple[str, str]]] = {}
+        self._index(edges)
+
+    def _index(self, edges: Iterable[tuple[str, str, str]]) -> None:
+        """Each edge `(relation, source, target)`, and each source's placements."""
         for relation, source, target in edges:
             self.edges.add((relation, source, target))
             self.placed.setdefault(source, []).append((relation, target))
@@ -88,11 +92,8 @@ class Facts:
         """The same objects and states with other edges (a search state)."""
         other = Facts.__new__(Facts)
         other.by_kind, other.states, other.resolve = self.by_kind, self.states, self.resolve
-        other.edges = set()
-        other.placed = {}
-        for relation, source, target in edges:
-            other.edges.add((relation, source, target))
-            other.placed.setdefault(source, []).append((relation, target))
+        other.edges, other.placed = set(), {}
+        other._index(edges)
         return other
 
     def kind(self, word: str) -> str:
