@@ -4,7 +4,8 @@ objects), the bound admissible against breadth-first search, the plan verified."
 from __future__ import annotations
 
 import random
-from collections import deque
+from collections.abc import Callable, Hashable, Iterable
+from typing import TypeVar
 
 import pytest
 
@@ -21,6 +22,7 @@ from verigraph.solver.formula_bound import formula_bound
 from verigraph.solver.search import _facts_at
 
 pytestmark = pytest.mark.fast
+T = TypeVar("T")
 NO_CUP_ON_A_PLATE = "(forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))"
 A_LID_IN_EACH_POT = "(forall (?p - pot) (exists (?l - lid) (inside ?l ?p)))"
 BOTH = f"(and {NO_CUP_ON_A_PLATE} {A_LID_IN_EACH_POT})"
@@ -93,20 +95,22 @@ def test_an_unreachable_formula_is_said_unreachable() -> None:
     assert result.reachable is False and result.status == "unreachable"
 
 
-def _bfs_distance(problem: SearchProblem, goal_test: object, limit: int = 5) -> int | None:
-    budget = SearchBudget(max_expansions=10**6, time_limit_s=30)
-    seen = {problem.start}
-    queue = deque([(problem.start, 0)])
-    while queue:
-        codes, depth = queue.popleft()
-        if goal_test(codes):  # type: ignore[operator]
-            return depth
-        if depth == limit:
-            continue
-        for nxt, _ in problem.successors(codes, budget):
-            if nxt not in seen:
-                seen.add(nxt)
-                queue.append((nxt, depth + 1))
+def fewest_steps(start: T, successors: Callable[[T], Iterable[T]], key: Callable[[T], Hashable],
+                 reached: Callable[[T], bool], limit: int) -> int | None:
+    """Breadth first, layer by layer: the fewest steps from `start` to a state `reached`
+    accepts (None beyond `limit`); `reached` sees every state visited."""
+    seen = {key(start)}
+    layer = [start]
+    for steps in range(limit + 1):
+        if [s for s in layer if reached(s)]:  # every state of the layer is looked at
+            return steps
+        fresh = []
+        for state in layer:
+            for after in successors(state):
+                if key(after) not in seen:
+                    seen.add(key(after))
+                    fresh.append(after)
+        layer = fresh
     return None
 
 
@@ -142,7 +146,8 @@ def test_the_bound_never_exceeds_the_true_distance(text: str) -> None:
     distances = []
     for codes in starts:
         problem.start = codes
-        distance = _bfs_distance(problem, lambda c: holds(formula, facts_at(c)))
+        distance = fewest_steps(codes, lambda c: (n for n, _ in problem.successors(c, budget)),
+                                lambda c: c, lambda c: holds(formula, facts_at(c)), limit=5)
         bound = formula_bound(formula, facts_at(codes))
         if distance is None:
             continue
@@ -210,21 +215,14 @@ def test_the_bound_is_admissible_over_the_action_table(text: str) -> None:
     start = WorldState.from_graph(household())
     problem = TableProblem(start, goal)
     budget = SearchBudget(max_expansions=10**6, time_limit_s=30)
-    seen = {problem.key(start)}
-    layer, distance = [start], 0
-    while True:  # breadth first: `distance` is the fewest actions that reach the formula
-        for world in layer:  # the bound is 0 exactly where the formula holds
-            assert (formula_bound(formula, facts_of(world)) == 0) is \
-                holds(formula, facts_of(world))
-        if any(holds(formula, facts_of(w)) for w in layer):
-            break
-        assert distance < 3, text
-        nxt = []
-        for world in layer:
-            for _, after in problem.successors(world, budget):
-                key = problem.key(after)
-                if key not in seen:
-                    seen.add(key)
-                    nxt.append(after)
-        layer, distance = nxt, distance + 1
+
+    def reached(world: WorldState) -> bool:  # the bound is 0 exactly where the formula holds
+        truth = holds(formula, facts_of(world))
+        assert (formula_bound(formula, facts_of(world)) == 0) is truth
+        return truth
+
+    distance = fewest_steps(start, lambda w: (after for _, after in
+                                              problem.successors(w, budget)),
+                            problem.key, reached, limit=3)
+    assert distance is not None, text
     assert 0 < formula_bound(formula, facts_of(start)) <= distance

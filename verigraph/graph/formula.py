@@ -25,6 +25,7 @@ grammar needs no scene.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -364,25 +365,29 @@ def _param(param: Param) -> str:
     return f"{param.name} - {param.kind}"
 
 
-def constants(formula: Formula) -> tuple[set[str], set[str]]:
-    """The object ids and the kinds a formula names (for the check against a scene)."""
-    ids: set[str] = set()
-    kinds: set[str] = set()
+def parts(formula: Formula) -> Iterator[Formula]:
+    """Every part of a formula, itself included (iteratively: no recursion limit)."""
     stack: list[Formula] = [formula]
     while stack:
         node = stack.pop()
-        if isinstance(node, Atom):
-            ids.update(t for t in node.terms if not t.startswith("?"))
-        elif isinstance(node, Not):
+        yield node
+        if isinstance(node, Not | Quantified | Pairs):
             stack.append(node.body)
         elif isinstance(node, Junction):
             stack.extend(node.parts)
         elif isinstance(node, Imply):
             stack.extend((node.condition, node.then))
+
+
+def constants(formula: Formula) -> tuple[set[str], set[str]]:
+    """The object ids and the kinds a formula names (for the check against a scene)."""
+    ids: set[str] = set()
+    kinds: set[str] = set()
+    for node in parts(formula):
+        if isinstance(node, Atom):
+            ids.update(t for t in node.terms if not t.startswith("?"))
         elif isinstance(node, Quantified):
             kinds.add(node.param.kind)
-            stack.append(node.body)
-        else:
+        elif isinstance(node, Pairs):
             kinds.update((node.first.kind, node.second.kind))
-            stack.append(node.body)
     return ids, kinds

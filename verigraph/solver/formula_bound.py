@@ -36,6 +36,7 @@ from verigraph.graph.formula import (
     Quantified,
     parse_formula,
 )
+from verigraph.graph.formula import parts as every_part
 from verigraph.graph.formula_eval import Facts, holds_in
 from verigraph.graph.goal import Goal
 
@@ -50,21 +51,8 @@ def formula_needs_table(goal: Goal) -> bool:
     moves objects on and in only)."""
     if goal.formula is None:
         return False
-    stack: list[Formula] = [parse_formula(goal.formula)]
-    while stack:
-        node = stack.pop()
-        if isinstance(node, Atom):
-            if node.relation in STATE_KEYS or node.relation in ("under", "nextto"):
-                return True
-        elif isinstance(node, Not):
-            stack.append(node.body)
-        elif isinstance(node, Junction):
-            stack.extend(node.parts)
-        elif isinstance(node, Imply):
-            stack.extend((node.condition, node.then))
-        else:
-            stack.append(node.body)
-    return False
+    return any(isinstance(node, Atom) and node.relation in (*STATE_KEYS, "under", "nextto")
+               for node in every_part(parse_formula(goal.formula)))
 
 
 def formula_bound(formula: Formula, facts: Facts) -> int:
