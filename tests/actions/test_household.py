@@ -155,3 +155,31 @@ def test_a_state_goal_alone_and_an_unreachable_one() -> None:
         {"id": "plate", "label": "plate", "state": {"open": True}}], "edges": []},
         "partial": True})
     assert solve(kitchen_household(), bad).reachable is False
+
+
+def test_the_pddl_export_agrees_with_the_verifier_on_household_plans() -> None:
+    from verigraph.actions.pddl import validate_strips_dict
+    from verigraph.solver.pddl import domain_pddl, ground_plan, is_household, problem_pddl
+
+    state, goal = world(), kitchen_household_goal()
+    assert is_household(state, goal)
+    domain, problem = domain_pddl(True), problem_pddl(state, goal)
+    plans = {"solved": [a.text() for a in solve(kitchen_household(), goal).plan],
+             "no open": ["move(milk, in, fridge)", "move(pot, on, stove)",
+                         "toggle_on(stove)"],
+             "left open": ["open(fridge)", "move(milk, in, fridge)", "move(pot, on, stove)",
+                           "toggle_on(stove)"],
+             "twice on": ["toggle_on(stove)", "toggle_on(stove)"]}
+    for name, plan in plans.items():
+        actions = parse_plan("\n".join(plan))
+        ours = validate_plan(kitchen_household(), actions, goal).valid
+        grounded = "\n".join(f"({n} {' '.join(a)})" for n, a in ground_plan(state, actions))
+        theirs = validate_strips_dict(domain, problem, grounded)["valid"]
+        assert ours == theirs, name
+    assert domain_pddl(False) == domain_pddl()  # the tabletop domain as it was
+    with pytest.raises(Exception, match="under and nextto have no PDDL export"):
+        problem_pddl(state, Goal.model_validate({"graph": {
+            "nodes": [{"id": "milk", "label": "milk"}, {"id": "table", "label": "table"}],
+            "edges": [{"source": "milk", "relation": "under", "target": "table"}]},
+            "partial": True}))
+

@@ -348,7 +348,7 @@ def role_explainer(name: str, role: str) -> Callable[[WorldState, StateAction], 
         fix = (f"{name} only what is {role}, e.g. {name}({having[0]})"
                + (f" ({', '.join(having)} are {role} here)" if len(having) > 1 else "")
                if having else f"nothing in the scene is {role}; drop this action")
-        return _violation(a, f"not_{role}",  # type: ignore[arg-type]
+        return _violation(a, f"not_{role}",
                           f"{a.object} ({info.label}) is not {role}", fix)
     return explain
 
@@ -365,7 +365,7 @@ def already_explainer(name: str, key: str, value: bool
     def explain(state: WorldState, a: StateAction) -> Violation:
         default = "" if key in state.states.get(a.object, {}) else \
             f" (no state given: {STATE_WORDS[key][False]})"
-        return _violation(a, f"already_{word}",  # type: ignore[arg-type]
+        return _violation(a, f"already_{word}",
                           f"{a.object} is already {word}{default}",
                           f"drop this action; {_OPPOSITE[name]}({a.object}) would make it "
                           f"{STATE_WORDS[key][not value]}")

@@ -46,10 +46,10 @@ Record = tuple[int, AnyAction, Any]
 class World(Protocol):
     """Something that can carry out a validated action and report what it observes.
 
-    A world that opens, closes and switches things says so with a true attribute
-    `performs_states`; any other is never asked to (the run refuses the action)."""
+    A world that opens, closes and switches things has `perform_state(action)` too
+    (same contract as `perform`); any other is never asked to (the run refuses)."""
 
-    def perform(self, action: MoveAction | StateAction | AlignAction) -> Violation | None:
+    def perform(self, action: MoveAction | AlignAction) -> Violation | None:
         """Carry out an action that already passed the symbolic validator.
 
         Returns a Violation only when the world itself refuses before anything moves
@@ -156,13 +156,17 @@ def _perform(run: Run, world: World, action: AnyAction, step: int) -> Violation 
     mismatch (returned as `execution_failed`)."""
     assert run.state is not None and isinstance(action, MoveAction | StateAction | AlignAction)
     current = run.state
-    if isinstance(action, StateAction) and not getattr(world, "performs_states", False):
-        return Violation(
-            step=step, action=action.model_dump(), constraint="execution_failed",
-            message=f"this world cannot carry out {action.text()} (it has no doors or "
-                    "switches); nothing changed",
-            suggestion="run household actions on an episode with executor graph")
-    refused = world.perform(action)
+    if isinstance(action, StateAction):
+        perform_state = getattr(world, "perform_state", None)
+        if perform_state is None:
+            return Violation(
+                step=step, action=action.model_dump(), constraint="execution_failed",
+                message=f"this world cannot carry out {action.text()} (it has no doors or "
+                        "switches); nothing changed",
+                suggestion="run household actions on an episode with executor graph")
+        refused = perform_state(action)
+    else:
+        refused = world.perform(action)
     if refused is not None:
         refused.step = step
         return refused

@@ -174,7 +174,7 @@ class ActionSchema:
         if isinstance(self.effect, Place):
             obj = args[0]
             return ([(obj, payload[0], payload[1])] if payload is not None else [],
-                    [args], [])  # type: ignore[list-item]
+                    [args], [])
         return [], [], [(args[0], self.effect.key, payload, self.effect.value)]
 
     def form(self) -> str:

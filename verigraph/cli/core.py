@@ -91,7 +91,7 @@ def run_solve(args: argparse.Namespace) -> int:
 def run_export_pddl(args: argparse.Namespace) -> int:
     from verigraph.graph.io import load_scene
     from verigraph.graph.state import WorldState
-    from verigraph.solver.pddl import domain_pddl, problem_pddl
+    from verigraph.solver.pddl import domain_pddl, is_household, problem_pddl
 
     try:
         state = WorldState.from_graph(load_scene(args.scene))
@@ -99,7 +99,7 @@ def run_export_pddl(args: argparse.Namespace) -> int:
         problem = problem_pddl(state, goal)
     except VeriGraphError as exc:
         return emit_error(exc, False)
-    Path(args.domain_out).write_text(domain_pddl())
+    Path(args.domain_out).write_text(domain_pddl(is_household(state, goal)))
     Path(args.problem_out).write_text(problem)
     print(f"wrote {args.domain_out} and {args.problem_out}")
     return EXIT_OK

@@ -244,7 +244,7 @@ class WorldState(SupportIndex):
             states = self.states
             for node in nodes:
                 if node["id"] in states:
-                    node["state"] = states[node["id"]]  # type: ignore[index]
+                    node["state"] = states[node["id"]]
         edges: list[dict[str, str] | Edge] = [
             {"source": o, "relation": r, "target": t} for o, (r, t) in self.support.items()]
         edges += self._contact_edges()

@@ -16,7 +16,7 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from verigraph.actions.model import ActionAdapter, AlignAction, AnyAction, DoneAction, MoveAction
+from verigraph.actions.model import ActionAdapter, AnyAction, DoneAction, MoveAction
 from verigraph.actions.parser import parse_plan
 from verigraph.errors import PlanParseError
 

@@ -67,7 +67,8 @@ def register_resources(server: MCPServer[Any], toolbox: Toolbox) -> None:
                     )(_constant(relations_json()))
     server.resource("verigraph://schema/action", name="action-schema",
                     title="Action JSON schema", mime_type=JSON,
-                    description="JSON schema of move, open, close, toggle_on, toggle_off, align and done actions"
+                    description="JSON schema of move, open, close, toggle_on, toggle_off, "
+                                "align and done actions"
                     )(_constant(_dump(without_openapi_keywords(ActionAdapter.json_schema()))))
     server.resource("verigraph://constraints", name="constraints", title="Constraints C",
                     mime_type=JSON, description="constraint ids used in violation feedback"

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import random
 
-from verigraph.actions.model import AnyAction, StateAction
+from verigraph.actions.model import AnyAction, MoveAction, StateAction
 from verigraph.actions.validator import apply_action
 from verigraph.graph.builtin_scenes import kitchen_household
 from verigraph.graph.dictionary import STATE_WORDS
@@ -60,7 +60,7 @@ def household_task(rng: random.Random, target: int) -> Drawn | None:
     walked = _walk(state, rng, target + rng.randrange(MAX_WALK - target + 1))
     if not any(isinstance(a, StateAction) for a in walked):
         return None
-    moved = {a.object for a in walked if not isinstance(a, StateAction)}
+    moved = {a.object for a in walked if isinstance(a, MoveAction)}
     switched = {(a.object, "open" if a.action in ("open", "close") else "toggled_on")
                 for a in walked if isinstance(a, StateAction)}
     nodes, edges = {}, []

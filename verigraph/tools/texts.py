@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from verigraph.errors import VeriGraphError
 from verigraph.graph.dictionary import (
-    Dictionary,
     ROOM_RELATION,
     STATE_WORDS,
+    Dictionary,
     InlineDictionary,
     ObjectProperties,
     load_dictionary,

@@ -22,7 +22,7 @@ from typing import Any
 import cv2
 import numpy as np
 
-from verigraph.actions.model import AnyAction, DoneAction
+from verigraph.actions.model import AnyAction, DoneAction, StateAction
 from verigraph.errors import VeriGraphError
 from verigraph.sim2d.persist import world_from_state
 from verigraph.sim2d.render import encode_png, tabletop_boxes, tangram_boxes
@@ -73,8 +73,8 @@ def step_frames(initial_world: dict[str, Any], executed: Sequence[AnyAction],
     for index, ids in enumerate(outlined[:MAX_SIMULATED_STEPS]):
         if index < len(executed):
             action = executed[index]
-            if isinstance(action, DoneAction):
-                break
+            if isinstance(action, DoneAction | StateAction):
+                break  # a state change is not drawn (the 2D simulator has no doors)
             try:
                 refused = world.perform(action)
             except VeriGraphError:

@@ -243,6 +243,13 @@ def _assemble(title: str, source: Literal["plan", "episode"], state: WorldState,
             gone = {(e.source, e.relation, e.target) for e in removed}
             kept = [e for e in graph.edges if (e.source, e.relation, e.target) not in gone]
             graph = graph.model_copy(update={"edges": kept + added})
+            if step.edit is not None and step.edit.states:  # open, close, toggle_on/off
+                after: dict[str, dict[str, bool]] = {}
+                for change in step.edit.states:
+                    after.setdefault(change.object, {})[change.key] = change.after
+                graph = graph.model_copy(update={"nodes": [
+                    n.model_copy(update={"state": {**n.state, **after[n.id]}})
+                    if n.id in after else n for n in graph.nodes]})
         blocking = _outlined(step.violation, step.action) if step.violation else []
         verdict = f"refused: {step.violation.constraint}" if step.violation else "ok"
         render = (_picture(graph, colors, f"step {step.step}: {step.text} ({verdict})"[:90],
