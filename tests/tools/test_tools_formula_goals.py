@@ -177,3 +177,16 @@ def test_the_party_request_is_said_as_asked_and_solved_optimally() -> None:
     assert solved.expanded < 100  # the bound sees the bowl that must leave plate_c
     run = box.call("execute_actions", {"episode_id": eid, "actions": solved.plan})
     assert run.goal_satisfied is True
+
+
+def test_a_commented_formula_is_shown_on_one_line_as_read() -> None:
+    box = Toolbox()
+    eid = box.call("load_scene", {"graph": kitchen()}).episode_id
+    written = """; after dinner
+    (and (forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))  ; cups off plates
+         (forall (?p - pot) (exists (?l - lid) (inside ?l ?p))))        ; a lid per pot"""
+    out = box.call("set_goal", {"episode_id": eid, "edges": written})
+    assert out.goal is not None and out.goal.formula == written.strip()
+    assert f"goal: formula {BOTH}" in TOOLS["set_goal"].summary(out)
+    state = TOOLS["get_state"].summary(box.call("get_state", {"episode_id": eid}))
+    assert f"goal: formula {BOTH}" in state

@@ -52,7 +52,7 @@ def header_lines(trace: EpisodeTrace) -> list[str]:
         if trace.goal.predicate:
             lines.append(f"goal predicate: {trace.goal.predicate}")
         if trace.goal.formula is not None:
-            lines.append("goal formula: " + " ".join(trace.goal.formula.split()))
+            lines.append(f"goal formula: {trace.goal.formula_text()}")
     return lines
 
 

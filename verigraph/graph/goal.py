@@ -24,6 +24,7 @@ from verigraph.graph.formula import (
     MAX_FORMULA_CHARS,
     looks_like_formula,
     parse_formula,
+    show,
 )
 from verigraph.graph.formula_eval import MAX_LISTED, evaluate, facts_of
 from verigraph.graph.model import Edge, SceneGraph
@@ -56,6 +57,10 @@ class Goal(BaseModel):
             except GoalError as exc:
                 raise ValueError(f"{exc.message} (fix: {exc.fix})") from None
         return value
+
+    def formula_text(self) -> str | None:
+        """The formula on one line, as parsed (comments and spacing dropped)."""
+        return None if self.formula is None else show(parse_formula(self.formula))
 
     @model_validator(mode="after")
     def _needs_something(self) -> Goal:
