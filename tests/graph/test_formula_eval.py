@@ -240,6 +240,8 @@ def test_names_are_checked_against_the_scene_all_at_once() -> None:
         "cup_1?); kind 'cupz', known neither to the dictionary nor as a label of the scene "
         "(did you mean cup?)")
     assert err.value.fix is not None and "cup, plate, table" in err.value.fix
+    with pytest.raises(GoalError, match=r"object 'q' \(a \?variable must be bound"):
+        check_names(parse_formula("(forall (?c - cup) (ontop ?q table))"), f)
 
 
 def test_formulas_that_ground_too_large_are_refused() -> None:

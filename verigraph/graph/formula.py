@@ -14,7 +14,8 @@ is the type: `(forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))`).
     param    := ?var - kind
     atom     := (predicate term+)       term := ?var | object-id
 
-A whole `(:goal formula)` section is read as its formula. Predicates: `ontop`/`on`,
+A whole `(:goal formula)` section is read as its formula. As in BDDL, a `?name` that no
+quantifier binds names an object (`?cup.n.01_1` is the object `cup.n.01_1`). Predicates: `ontop`/`on`,
 `inside`/`in`, `under`, `nextto`, `inroom` (two terms), `open`, `toggled_on` (one).
 Parsing is one pass over the tokens, with the text's length, the nesting depth and the
 number of parts bounded; every error names the character position and the fix. Whether
@@ -319,15 +320,13 @@ class _Parser:
         terms = []
         while (token := self.peek()) is not None and token.text not in "()":
             self.i += 1
-            if token.text.startswith("?"):
-                if token.text not in scope:
-                    raise self.fail(token, f"{token.text} is not bound",
-                                    f"bind it with (forall ({token.text} - kind) ...) or "
-                                    "(exists ...), or name an object by its id")
-            elif not _ID.fullmatch(token.text):
+            word = token.text
+            if word.startswith("?") and word not in scope:
+                word = word[1:]  # BDDL's `?cup.n.01_1`: an unbound name is an object's id
+            if not word.startswith("?") and not _ID.fullmatch(word):
                 raise self.fail(token, f"'{token.text}' is not an object id or a variable",
                                 "name an object by its scene id, or a variable ?x")
-            terms.append(token.text)
+            terms.append(word)
         if self.peek() is None:
             self.take()  # raises: the formula ends with parentheses open
         if len(terms) != arity:

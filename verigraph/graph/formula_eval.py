@@ -188,7 +188,9 @@ def check_names(formula: Formula, facts: Facts) -> None:
     for obj in sorted(ids):
         if not facts.knows(obj):
             near = difflib.get_close_matches(obj, every[:400], n=1, cutoff=0.6)
-            problems.append(f"object '{obj}'" + (f" (did you mean {near[0]}?)" if near else ""))
+            problems.append(f"object '{obj}'" + (f" (did you mean {near[0]}?)" if near else
+                                                 " (a ?variable must be bound by forall "
+                                                 "or exists)"))
     for word in sorted(kinds):
         if facts.resolve(word) is None and kind_token(word) not in facts.by_kind:
             near = difflib.get_close_matches(kind_token(word), list(facts.by_kind), n=1,
