@@ -15,8 +15,9 @@ is the type: `(forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))`).
     atom     := (predicate term+)       term := ?var | object-id
 
 A whole `(:goal formula)` section is read as its formula. As in BDDL, a `?name` that no
-quantifier binds names an object (`?cup.n.01_1` is the object `cup.n.01_1`). Predicates: `ontop`/`on`,
-`inside`/`in`, `under`, `nextto`, `inroom` (two terms), `open`, `toggled_on` (one).
+quantifier binds names an object (`?cup.n.01_1` is the object `cup.n.01_1`).
+Predicates: `ontop`/`on`, `inside`/`in`, `under`, `nextto`, `inroom` (two terms),
+`open`, `toggled_on` (one).
 Parsing is one pass over the tokens, with the text's length, the nesting depth and the
 number of parts bounded; every error names the character position and the fix. Whether
 the ids and kinds exist is the evaluator's question (`formula_eval.check_names`): the
