@@ -8,9 +8,11 @@ import itertools
 import pytest
 
 from verigraph.errors import GoalError
+from verigraph.graph.dictionary import load_dictionary
 from verigraph.graph.formula import parse_formula
 from verigraph.graph.formula_eval import (
     MAX_GROUND,
+    MAX_KEPT,
     MAX_LISTED,
     Facts,
     check_names,
@@ -19,7 +21,7 @@ from verigraph.graph.formula_eval import (
     holds,
     node_state,
 )
-from verigraph.graph.goal import Goal, check_goal
+from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 
@@ -260,3 +262,16 @@ def test_goal_parse_reads_text_and_json_formulas() -> None:
         Goal.parse("(onn a b)")
     with pytest.raises(ValueError, match="character 2:"):
         Goal.model_validate({"formula": "(onn a b)"})
+
+
+def test_a_thousand_counterexamples_are_kept_and_every_one_counted() -> None:
+    cups = {f"cup_{i}": "cup" for i in range(1100)}
+    f = Facts({**cups, "table": "table"}, [("on", c, "table") for c in cups], {},
+              load_dictionary(None).resolve)
+    result = evaluate(parse_formula("(forall (?c - cup) (inside ?c table))"), f)
+    assert result.counterexample_count == 1100 and len(result.counterexamples) == MAX_KEPT
+    diff = GraphDiff(satisfied=False, formula_detail=result.kept())
+    assert diff.formula_detail[-1] == f"... and {1100 - MAX_KEPT} more"
+    assert diff.formula_count() == 1100
+    assert diff.summary().startswith("goal not reached: formula fails (1100 counterexamples)")
+    assert diff.summary().endswith(f"; ... and {1100 - MAX_LISTED} more")
