@@ -156,6 +156,15 @@ def test_a_satisfied_exists_names_its_witnesses() -> None:
     assert diff.summary() == "goal reached; " + "; ".join(result.witnesses)
 
 
+def test_a_failing_formula_still_names_the_witnesses_of_its_parts_that_hold() -> None:
+    edges = [("cup_1", "on", "plate_2"), ("cup_2", "on", "table")]
+    f = "(forall (?c - cup) (exists (?p - plate) (ontop ?c ?p)))"
+    result = evaluate(parse_formula(f), facts(edges))
+    assert not result.satisfied and result.counterexample_count == 1
+    assert result.witnesses == ["(exists (?p - plate) (ontop cup_1 ?p)) holds with ?p = plate_2"]
+    assert result.kept() == result.counterexamples  # a diff carries the counterexamples
+
+
 def test_negations_implications_and_counts_explain_themselves() -> None:
     edges = [("cup_1", "on", "plate_1"), ("cup_2", "on", "table")]
     cases = {

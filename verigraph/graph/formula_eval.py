@@ -20,7 +20,8 @@ nothing of how a `WorldState` stores them. Meanings:
 
 `evaluate` returns a `FormulaResult`: whether it holds, EVERY counterexample (each names
 the failing part with its objects filled in and why it fails), and the witnesses of each
-`exists` that holds. `check_names` is the check a goal passes before it is stored.
+`exists` that holds (in a formula that fails too, in its parts that hold).
+`check_names` is the check a goal passes before it is stored.
 """
 
 from __future__ import annotations
@@ -237,15 +238,18 @@ def holds_in(formula: Formula, facts: Facts, binding: dict[str, str]) -> bool:
 
 
 def evaluate(formula: Formula, facts: Facts) -> FormulaResult:
-    """Whether the formula holds, with every counterexample or its witnesses."""
+    """Whether the formula holds, every counterexample when it does not, and the
+    witnesses of each `exists` in the parts that hold."""
     ev = _Evaluator(facts)
+    witnesses = _Found()
+    ev.witnesses(formula, {}, witnesses)
     if ev.holds(formula, {}):
-        found = _Found()
-        ev.witnesses(formula, {}, found)
-        return FormulaResult(True, witnesses=found.items, witness_count=found.total)
-    found = _Found()
-    ev.failures(formula, {}, found)
-    return FormulaResult(False, counterexamples=found.items, counterexample_count=found.total)
+        return FormulaResult(True, witnesses=witnesses.items, witness_count=witnesses.total)
+    failures = _Found()
+    ev.failures(formula, {}, failures)
+    return FormulaResult(False, counterexamples=failures.items,
+                         counterexample_count=failures.total, witnesses=witnesses.items,
+                         witness_count=witnesses.total)
 
 
 @dataclass
@@ -457,7 +461,8 @@ class _Evaluator:
         found.add(f"{self.part(node, env)} fails: {self.why_false(node, env)}")
 
     def witnesses(self, node: Formula, env: dict[str, str], found: _Found) -> None:
-        """The witnesses of every `exists` in a part that holds."""
+        """The witnesses of every `exists` that holds, reached through the parts that hold
+        (of an `and` or a `forall` that fails too: its parts that hold)."""
         if isinstance(node, Junction):
             for p in node.parts:
                 if self.holds(p, env):
@@ -465,18 +470,20 @@ class _Evaluator:
                     if node.op == "or":
                         return
         elif isinstance(node, Imply):
-            if self.holds(node.condition, env):
+            if self.holds(node.condition, env) and self.holds(node.then, env):
                 self.witnesses(node.then, env, found)
         elif isinstance(node, Quantified):
             name = node.param.name
             if node.op == "exists":
                 objs = self.satisfying(node, env)
-                found.add(f"{self.part(node, env)} holds with {name} = "
-                          f"{_joined(objs, ', ')}")
+                if objs:
+                    found.add(f"{self.part(node, env)} holds with {name} = "
+                              f"{_joined(objs, ', ')}")
                 return
             if node.op == "forall":
                 for o in self.facts.objects_of(node.param.kind):
-                    self.witnesses(node.body, _bound(env, name, o), found)
+                    if self.holds(node.body, _bound(env, name, o)):
+                        self.witnesses(node.body, _bound(env, name, o), found)
 
 
 def _state_word(key: str, value: bool) -> str:
