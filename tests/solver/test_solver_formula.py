@@ -206,6 +206,7 @@ def test_household_formulas_are_solved_over_the_action_table(text: str, plan: li
     "(not (exists (?x - pot) (ontop ?x counter)))",
     "(imply (not (open fridge)) (inside pot fridge))",
     "(forall (?x - milk) (nextto ?x sink))",
+    "(and (inside milk fridge) (inside lid fridge))",
 ])
 def test_the_bound_is_admissible_over_the_action_table(text: str) -> None:
     from verigraph.solver.table_search import TableProblem
@@ -226,3 +227,10 @@ def test_the_bound_is_admissible_over_the_action_table(text: str) -> None:
                             problem.key, reached, limit=3)
     assert distance is not None, text
     assert 0 < formula_bound(formula, facts_of(start)) <= distance
+
+
+def test_the_bound_counts_the_opening_of_a_closed_container() -> None:
+    facts = facts_of(WorldState.from_graph(household()))
+    assert formula_bound(parse_formula("(inside milk fridge)"), facts) == 2  # open, move
+    assert formula_bound(parse_formula("(and (inside milk fridge) (inside lid fridge))"),
+                         facts) == 3  # one opening serves both

@@ -65,12 +65,13 @@ def node_state(state: WorldState, obj: str) -> Mapping[str, bool]:
 class Facts:
     """What a formula reads of a scene: kinds, edges by relation name, node states."""
 
-    __slots__ = ("by_kind", "edges", "placed", "states", "resolve")
+    __slots__ = ("by_kind", "edges", "placed", "states", "resolve", "openable")
 
     def __init__(self, labels: Mapping[str, str], edges: Iterable[tuple[str, str, str]],
                  states: Mapping[str, Mapping[str, bool]],
                  resolve: Callable[[str], str | None],
-                 groups: Mapping[str, list[str]] | None = None) -> None:
+                 groups: Mapping[str, list[str]] | None = None,
+                 openable: frozenset[str] = frozenset()) -> None:
         self.by_kind: dict[str, list[str]] = {}
         for obj, label in labels.items():
             self.by_kind.setdefault(label, []).append(obj)
@@ -79,6 +80,7 @@ class Facts:
             mine.extend(o for o in objs if o not in mine)
         self.states = states
         self.resolve = resolve
+        self.openable = openable  # nothing goes in or out of one while it is closed
         self.edges: set[tuple[str, str, str]] = set()
         self.placed: dict[str, list[tuple[str, str]]] = {}
         self._index(edges)
@@ -93,6 +95,7 @@ class Facts:
         """The same objects and states with other edges (a search state)."""
         other = Facts.__new__(Facts)
         other.by_kind, other.states, other.resolve = self.by_kind, self.states, self.resolve
+        other.openable = self.openable
         other.edges, other.placed = set(), {}
         other._index(edges)
         return other
@@ -131,6 +134,10 @@ class Facts:
     def flag(self, obj: str, key: str) -> bool:
         return bool(self.states.get(obj, {}).get(key, False))
 
+    def closed(self, obj: str) -> bool:
+        """An openable object that is closed (no state: closed)."""
+        return obj in self.openable and not self.flag(obj, "open")
+
     def where(self, obj: str) -> str:
         """`cup_1 is on table`, or that it rests on nothing."""
         places = self.placed.get(obj, [])
@@ -149,7 +156,7 @@ def facts_of(state: WorldState) -> Facts:
     states = {o: node_state(state, o) for o in state.states}
     rooms = [o for o, info in state.objects.items() if info.props.room]
     return Facts(labels, edges, states, state.dictionary.resolve,
-                 {"room": rooms} if rooms else None)
+                 {"room": rooms} if rooms else None, state.openable)
 
 
 @dataclass

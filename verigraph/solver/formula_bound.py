@@ -17,10 +17,11 @@ wanted, requirements of the form "one of these things must change" (a set of
 - `forn` and the pair quantifiers: some action, when their truth is wrong.
 
 An object that must move must first be clear, so whatever stands on, in, under or next
-to it (and so on up) must move too. Requirements with no thing in common need distinct
-actions, so the size of a family of pairwise disjoint requirements (picked greedily,
-smallest first) is a lower bound; it is 0 exactly at the goal. Admissible, so A* over it
-stays optimal.
+to it (and so on up) must move too; nothing goes into or comes out of a closed container,
+so one that must be entered or left must be opened. Requirements with no thing in
+common need distinct actions, so the size of a family of pairwise disjoint requirements
+(picked greedily, smallest first) is a lower bound; it is 0 exactly at the goal.
+Admissible, so A* over it stays optimal.
 """
 
 from __future__ import annotations
@@ -60,7 +61,7 @@ def formula_bound(formula: Formula, facts: Facts) -> int:
     truth, needs, some = _Bound(facts).need(formula, {}, True)
     if truth:
         return 0
-    needs = [*needs, *_cleared_first(needs, facts)]
+    needs = [*needs, *_made_free(needs, facts)]
     taken: set[Thing] = set()
     count = 0
     for need in sorted(needs, key=len):
@@ -70,9 +71,10 @@ def formula_bound(formula: Formula, facts: Facts) -> int:
     return max(count, 1 if some or needs else 0)
 
 
-def _cleared_first(needs: list[frozenset[Thing]], facts: Facts) -> list[frozenset[Thing]]:
+def _made_free(needs: list[frozenset[Thing]], facts: Facts) -> list[frozenset[Thing]]:
     """An object that must move must be clear first: whatever is placed on, in, under or
-    next to it, and so on up, must move too (once each, at least)."""
+    next to it, and so on up, must move too (once each, at least); and nothing comes out
+    of a closed container, so each closed one that holds a mover must be opened."""
     must_move = [next(iter(n))[1] for n in needs if len(n) == 1 and next(iter(n))[0] == "place"]
     if not must_move:
         return []
@@ -88,7 +90,10 @@ def _cleared_first(needs: list[frozenset[Thing]], facts: Facts) -> list[frozense
             if other not in found:
                 found.add(other)
                 stack.append(other)
-    return [frozenset({("place", o)}) for o in sorted(found)]
+    boxes = {t for o in (*must_move, *found) for r, t in facts.placed.get(o, [])
+             if r == "in" and facts.closed(t)}
+    return [*(frozenset({("place", o)}) for o in sorted(found)),
+            *(frozenset({("open", box)}) for box in sorted(boxes))]
 
 
 def _every(truth: bool, parts: list[Need]) -> Need:
@@ -154,4 +159,7 @@ class _Bound:
             return truth, [], False
         if len(terms) == 2 and node.relation not in PLACE_RELATIONS:
             return truth, [], True
+        if want and node.relation == "in" and self.facts.closed(terms[1]):
+            # nothing goes into a closed container: it must be opened too
+            return truth, [frozenset({thing}), frozenset({("open", terms[1])})], True
         return truth, [frozenset({thing})], True
