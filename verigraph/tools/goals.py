@@ -466,8 +466,9 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
                         formula=formula, instruction=params.instruction)
             check_goal_against(goal, episode.state, field="goal" if graph is None else "graph")
             if formula is not None and episode.state is None:
-                reading.notes.append("the formula's objects and kinds will be checked once "
-                                     "the scene graph is submitted")
+                reading.notes.append("no scene graph yet, so the formula's ids and kinds "
+                                     "are not checked: an id the submitted scene lacks "
+                                     "never holds")
             if params.graph is not None:  # a graph the client wrote (not edges or a photo)
                 readings = label_readings(params.graph, episode.state.dictionary
                                           if episode.state is not None else
