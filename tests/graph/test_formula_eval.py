@@ -11,6 +11,7 @@ from verigraph.errors import GoalError
 from verigraph.graph.dictionary import load_dictionary
 from verigraph.graph.formula import parse_formula
 from verigraph.graph.formula_eval import (
+    LINE_CHARS,
     MAX_GROUND,
     MAX_KEPT,
     MAX_LISTED,
@@ -284,3 +285,15 @@ def test_a_thousand_counterexamples_are_kept_and_every_one_counted() -> None:
     assert diff.formula_count() == 1100
     assert diff.summary().startswith("goal not reached: formula fails (1100 counterexamples)")
     assert diff.summary().endswith(f"; ... and {1100 - MAX_LISTED} more")
+
+
+def test_each_line_is_bounded() -> None:
+    cups = {f"cup_{i}": "cup" for i in range(40)}
+    f = Facts({**cups, "table": "table", "tray": "tray"},
+              [("on", c, "table") for c in cups], {}, load_dictionary(None).resolve)
+    text = "(exists (?c - cup) (or (inside ?c tray) (ontop ?c tray) (under ?c tray)))"
+    result = evaluate(parse_formula(text), f)
+    assert result.counterexample_count == 1
+    line = result.counterexamples[0]
+    assert len(line) == LINE_CHARS and line.endswith("...")
+    assert line.startswith(f"{text} fails: missing: no cup as ?c makes")

@@ -53,6 +53,7 @@ MAX_GROUND = 200_000  # ground instances a formula may expand to on one scene
 MAX_KEPT = 1_000  # counterexamples and witnesses kept (all are counted)
 MAX_LISTED = 10  # items joined into one sentence before "and N more"
 SHOWN_CHARS = 160  # a part is shown up to this many characters
+LINE_CHARS = 600  # a counterexample or witness, part and reason, up to this many
 _WORDS = {"on": "on", "in": "in", "under": "under", "nextto": "next to", "inroom": "in room"}
 
 
@@ -269,7 +270,8 @@ class _Found:
     def add(self, text: str) -> None:
         self.total += 1
         if len(self.items) < MAX_KEPT:
-            self.items.append(text)
+            self.items.append(text if len(text) <= LINE_CHARS
+                              else text[:LINE_CHARS - 3] + "...")
 
 
 def _joined(parts: list[str], sep: str = "; ") -> str:
