@@ -190,3 +190,15 @@ def test_a_commented_formula_is_shown_on_one_line_as_read() -> None:
     assert f"goal: formula {BOTH}" in TOOLS["set_goal"].summary(out)
     state = TOOLS["get_state"].summary(box.call("get_state", {"episode_id": eid}))
     assert f"goal: formula {BOTH}" in state
+
+
+def test_load_scene_takes_a_formula_goal_and_checks_its_names() -> None:
+    box = Toolbox()
+    out = box.call("load_scene", {"graph": kitchen(), "goal": {"formula": BOTH}})
+    state = box.call("get_state", {"episode_id": out.episode_id})
+    assert state.goal is not None and state.goal.formula == BOTH
+    assert state.goal_diff is not None and state.goal_diff.formula_count() == 4
+    with pytest.raises(VeriGraphError) as refused:
+        box.call("load_scene", {"graph": kitchen(),
+                                "goal": {"formula": "(forall (?b - bowll) (on ?b counter))"}})
+    assert refused.value.field == "goal.formula" and "kind 'bowll'" in refused.value.message
