@@ -8,9 +8,12 @@ import itertools
 import pytest
 
 from verigraph.errors import GoalError
+from verigraph.graph.dictionary import load_dictionary
 from verigraph.graph.formula import parse_formula
 from verigraph.graph.formula_eval import (
+    LINE_CHARS,
     MAX_GROUND,
+    MAX_KEPT,
     MAX_LISTED,
     Facts,
     check_names,
@@ -19,7 +22,7 @@ from verigraph.graph.formula_eval import (
     holds,
     node_state,
 )
-from verigraph.graph.goal import Goal, check_goal
+from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 
@@ -154,6 +157,15 @@ def test_a_satisfied_exists_names_its_witnesses() -> None:
     assert diff.summary() == "goal reached; " + "; ".join(result.witnesses)
 
 
+def test_a_failing_formula_still_names_the_witnesses_of_its_parts_that_hold() -> None:
+    edges = [("cup_1", "on", "plate_2"), ("cup_2", "on", "table")]
+    f = "(forall (?c - cup) (exists (?p - plate) (ontop ?c ?p)))"
+    result = evaluate(parse_formula(f), facts(edges))
+    assert not result.satisfied and result.counterexample_count == 1
+    assert result.witnesses == ["(exists (?p - plate) (ontop cup_1 ?p)) holds with ?p = plate_2"]
+    assert result.kept() == result.counterexamples  # a diff carries the counterexamples
+
+
 def test_negations_implications_and_counts_explain_themselves() -> None:
     edges = [("cup_1", "on", "plate_1"), ("cup_2", "on", "table")]
     cases = {
@@ -240,6 +252,8 @@ def test_names_are_checked_against_the_scene_all_at_once() -> None:
         "cup_1?); kind 'cupz', known neither to the dictionary nor as a label of the scene "
         "(did you mean cup?)")
     assert err.value.fix is not None and "cup, plate, table" in err.value.fix
+    with pytest.raises(GoalError, match=r"object 'q' \(a \?variable must be bound"):
+        check_names(parse_formula("(forall (?c - cup) (ontop ?q table))"), f)
 
 
 def test_formulas_that_ground_too_large_are_refused() -> None:
@@ -258,3 +272,28 @@ def test_goal_parse_reads_text_and_json_formulas() -> None:
         Goal.parse("(onn a b)")
     with pytest.raises(ValueError, match="character 2:"):
         Goal.model_validate({"formula": "(onn a b)"})
+
+
+def test_a_thousand_counterexamples_are_kept_and_every_one_counted() -> None:
+    cups = {f"cup_{i}": "cup" for i in range(1100)}
+    f = Facts({**cups, "table": "table"}, [("on", c, "table") for c in cups], {},
+              load_dictionary(None).resolve)
+    result = evaluate(parse_formula("(forall (?c - cup) (inside ?c table))"), f)
+    assert result.counterexample_count == 1100 and len(result.counterexamples) == MAX_KEPT
+    diff = GraphDiff(satisfied=False, formula_detail=result.kept())
+    assert diff.formula_detail[-1] == f"... and {1100 - MAX_KEPT} more"
+    assert diff.formula_count() == 1100
+    assert diff.summary().startswith("goal not reached: formula fails (1100 counterexamples)")
+    assert diff.summary().endswith(f"; ... and {1100 - MAX_LISTED} more")
+
+
+def test_each_line_is_bounded() -> None:
+    cups = {f"cup_{i}": "cup" for i in range(40)}
+    f = Facts({**cups, "table": "table", "tray": "tray"},
+              [("on", c, "table") for c in cups], {}, load_dictionary(None).resolve)
+    text = "(exists (?c - cup) (or (inside ?c tray) (ontop ?c tray) (under ?c tray)))"
+    result = evaluate(parse_formula(text), f)
+    assert result.counterexample_count == 1
+    line = result.counterexamples[0]
+    assert len(line) == LINE_CHARS and line.endswith("...")
+    assert line.startswith(f"{text} fails: missing: no cup as ?c makes")

@@ -75,6 +75,13 @@ def test_bddl_sections_synsets_and_comments() -> None:
     assert constants(f) == ({"table.n.02_1"}, {"cup"})
 
 
+def test_an_unbound_question_mark_name_is_an_object_as_in_bddl() -> None:
+    f = parse_formula("(forall (?boot.n.01 - boot.n.01) (ontop ?boot.n.01 ?floor.n.01_2))")
+    assert f == Quantified("forall", Param("?boot.n.01", "boot"),
+                           Atom("ontop", "on", ("?boot.n.01", "floor.n.01_2")))
+    assert constants(parse_formula("(on ?x b)")) == ({"x", "b"}, set())
+
+
 def test_show_writes_the_formula_back_with_objects_filled_in() -> None:
     f = parse_formula(NO_CUP_ON_A_PLATE)
     assert show(f) == NO_CUP_ON_A_PLATE
@@ -87,6 +94,8 @@ def test_show_writes_the_formula_back_with_objects_filled_in() -> None:
 
 def test_text_starting_with_a_parenthesis_is_a_formula() -> None:
     assert looks_like_formula("  (on a b)") and not looks_like_formula("cup on plate")
+    assert looks_like_formula("; a comment\n  ; another\n(on a b)")
+    assert not looks_like_formula("; a comment only")
 
 
 @pytest.mark.parametrize(("text", "at", "words", "fix"), [
@@ -98,7 +107,6 @@ def test_text_starting_with_a_parenthesis_is_a_formula() -> None:
     ("(sliced egg)", 2, "'sliced' is not a connective", "ontop"),
     ("(on a)", 2, "takes 2 term(s), got 1", "(on cup plate)"),
     ("(open a b)", 2, "takes 1 term(s), got 2", "(open fridge)"),
-    ("(on ?x b)", 5, "?x is not bound", "bind it with (forall (?x - kind)"),
     ("(forall (?c cup) (on ?c t))", 13, "expected '-', found 'cup'", "(?c - kind)"),
     ("(forall (c - cup) (on c t))", 10, "'c' is not a variable", "starts with '?'"),
     ("(forall (?c - cup) (exists (?c - plate) (on ?c t)))", 29, "already bound",
@@ -143,7 +151,7 @@ def test_hostile_inputs_fail_fast_with_a_structured_error(hostile: str) -> None:
     started = time.perf_counter()
     with pytest.raises(GoalError):
         parse_formula(hostile)
-    assert time.perf_counter() - started < 0.5
+    assert time.perf_counter() - started < 5  # milliseconds in fact; generous on a busy machine
 
 
 @pytest.mark.parametrize("text", [

@@ -4,7 +4,8 @@ objects), the bound admissible against breadth-first search, the plan verified."
 from __future__ import annotations
 
 import random
-from collections import deque
+from collections.abc import Callable, Hashable, Iterable
+from typing import TypeVar
 
 import pytest
 
@@ -21,6 +22,7 @@ from verigraph.solver.formula_bound import formula_bound
 from verigraph.solver.search import _facts_at
 
 pytestmark = pytest.mark.fast
+T = TypeVar("T")
 NO_CUP_ON_A_PLATE = "(forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))"
 A_LID_IN_EACH_POT = "(forall (?p - pot) (exists (?l - lid) (inside ?l ?p)))"
 BOTH = f"(and {NO_CUP_ON_A_PLATE} {A_LID_IN_EACH_POT})"
@@ -93,20 +95,22 @@ def test_an_unreachable_formula_is_said_unreachable() -> None:
     assert result.reachable is False and result.status == "unreachable"
 
 
-def _bfs_distance(problem: SearchProblem, goal_test: object, limit: int = 5) -> int | None:
-    budget = SearchBudget(max_expansions=10**6, time_limit_s=30)
-    seen = {problem.start}
-    queue = deque([(problem.start, 0)])
-    while queue:
-        codes, depth = queue.popleft()
-        if goal_test(codes):  # type: ignore[operator]
-            return depth
-        if depth == limit:
-            continue
-        for nxt, _ in problem.successors(codes, budget):
-            if nxt not in seen:
-                seen.add(nxt)
-                queue.append((nxt, depth + 1))
+def fewest_steps(start: T, successors: Callable[[T], Iterable[T]], key: Callable[[T], Hashable],
+                 reached: Callable[[T], bool], limit: int) -> int | None:
+    """Breadth first, layer by layer: the fewest steps from `start` to a state `reached`
+    accepts (None beyond `limit`); `reached` sees every state visited."""
+    seen = {key(start)}
+    layer = [start]
+    for steps in range(limit + 1):
+        if [s for s in layer if reached(s)]:  # every state of the layer is looked at
+            return steps
+        fresh = []
+        for state in layer:
+            for after in successors(state):
+                if key(after) not in seen:
+                    seen.add(key(after))
+                    fresh.append(after)
+        layer = fresh
     return None
 
 
@@ -142,7 +146,8 @@ def test_the_bound_never_exceeds_the_true_distance(text: str) -> None:
     distances = []
     for codes in starts:
         problem.start = codes
-        distance = _bfs_distance(problem, lambda c: holds(formula, facts_at(c)))
+        distance = fewest_steps(codes, lambda c: (n for n, _ in problem.successors(c, budget)),
+                                lambda c: c, lambda c: holds(formula, facts_at(c)), limit=5)
         bound = formula_bound(formula, facts_at(codes))
         if distance is None:
             continue
@@ -157,3 +162,75 @@ def test_the_bound_never_exceeds_the_true_distance(text: str) -> None:
         assert (bound == 0) is (distance == 0)
         assert facts_of(trial).edges == facts_at(codes).edges
     assert any(d > 0 for d in distances), distances  # the bound met real searches
+
+
+def household() -> SceneGraph:
+    """A kitchen: a closed fridge, a stove that is off, a sink, the milk, a pot and a lid
+    on the counter."""
+    nodes = [("kitchen", "kitchen", {}), ("counter", "counter", {}),
+             ("fridge", "fridge", {"open": False}), ("stove", "stove", {}), ("sink", "sink", {}),
+             ("milk", "milk", {}), ("pot", "pot", {}), ("lid", "lid", {})]
+    edges = [("counter", "inroom", "kitchen"), ("fridge", "inroom", "kitchen"),
+             ("stove", "inroom", "kitchen"), ("sink", "inroom", "kitchen"),
+             ("milk", "on", "counter"), ("pot", "on", "counter"), ("lid", "on", "counter")]
+    return SceneGraph.model_validate({
+        "nodes": [{"id": i, "label": label, **({"state": st} if st else {})}
+                  for i, label, st in nodes],
+        "edges": [{"source": s, "relation": r, "target": t} for s, r, t in edges],
+        "dictionary": "kitchen"})
+
+
+@pytest.mark.parametrize(("text", "plan"), [
+    ("(and (inside milk fridge) (not (open fridge)))",
+     ["open(fridge)", "move(milk, in, fridge)", "close(fridge)"]),
+    ("(exists (?s - stove) (and (toggled_on ?s) (ontop pot ?s)))",
+     ["move(pot, on, stove)", "toggle_on(stove)"]),
+    ("(nextto pot sink)", ["move(pot, nextto, sink)"]),
+    ("(inroom milk kitchen)", []),
+])
+def test_household_formulas_are_solved_over_the_action_table(text: str, plan: list[str]
+                                                             ) -> None:
+    result = solve(household(), Goal(formula=text))
+    assert result.reachable and result.optimal
+    assert sorted(a.text() for a in result.plan) == sorted(plan)
+    if text.startswith("(and"):
+        assert [a.text() for a in result.plan] == plan  # opened before, closed after
+    report = validate_plan(WorldState.from_graph(household()), result.plan or "done",
+                           Goal(formula=text))
+    assert report.valid and report.goal_diff is not None and report.goal_diff.satisfied
+
+
+@pytest.mark.parametrize("text", [
+    "(and (inside milk fridge) (not (open fridge)))",
+    "(or (toggled_on stove) (open fridge))",
+    "(not (exists (?x - pot) (ontop ?x counter)))",
+    "(imply (not (open fridge)) (inside pot fridge))",
+    "(forall (?x - milk) (nextto ?x sink))",
+    "(and (inside milk fridge) (inside lid fridge))",
+])
+def test_the_bound_is_admissible_over_the_action_table(text: str) -> None:
+    from verigraph.solver.table_search import TableProblem, neighbours
+
+    formula = parse_formula(text)
+    goal = Goal(formula=text)
+    start = WorldState.from_graph(household())
+    problem = TableProblem(start, goal)
+    budget = SearchBudget(max_expansions=10**6, time_limit_s=30)
+
+    def reached(world: WorldState) -> bool:  # the bound is 0 exactly where the formula holds
+        truth = holds(formula, facts_of(world))
+        assert (formula_bound(formula, facts_of(world)) == 0) is truth
+        return truth
+
+    distance = fewest_steps(start, lambda w: (after for _, after in
+                                              neighbours(problem, w, budget)),
+                            problem.key, reached, limit=3)
+    assert distance is not None, text
+    assert 0 < formula_bound(formula, facts_of(start)) <= distance
+
+
+def test_the_bound_counts_the_opening_of_a_closed_container() -> None:
+    facts = facts_of(WorldState.from_graph(household()))
+    assert formula_bound(parse_formula("(inside milk fridge)"), facts) == 2  # open, move
+    assert formula_bound(parse_formula("(and (inside milk fridge) (inside lid fridge))"),
+                         facts) == 3  # one opening serves both

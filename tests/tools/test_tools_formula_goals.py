@@ -138,3 +138,67 @@ async def test_formula_goals_over_mcp(client: Client) -> None:
                                     "holds with ?l = lid_2")
     bad = await client.call_tool("set_goal", {"episode_id": eid, "formula": "(onn a b)"})
     assert bad.is_error and "character 2" in text(bad) and "ontop" in text(bad)
+
+
+def party() -> dict[str, Any]:
+    """After the party: plates to stack on the tray, cups on plates, spoons in cups."""
+    nodes = [("table", "table", {}), ("shelf", "shelf", {}), ("tray", "tray", {}),
+             ("plate_a", "plate", {"width": 10}), ("plate_b", "plate", {"width": 18}),
+             ("plate_c", "plate", {"width": 14}), ("cup_1", "cup", {}), ("cup_2", "cup", {}),
+             ("cup_3", "cup", {}), ("spoon_1", "spoon", {}), ("spoon_2", "spoon", {}),
+             ("bowl", "bowl", {})]
+    edges = [("tray", "on", "table"), ("plate_b", "on", "tray"), ("cup_2", "on", "plate_b"),
+             ("plate_a", "on", "shelf"), ("cup_1", "on", "plate_a"), ("spoon_1", "in", "cup_1"),
+             ("plate_c", "on", "table"), ("bowl", "on", "plate_c"), ("cup_3", "on", "table"),
+             ("spoon_2", "in", "cup_3")]
+    return {"nodes": [{"id": i, "label": label, "attrs": attrs} for i, label, attrs in nodes],
+            "edges": [{"source": s, "relation": r, "target": t} for s, r, t in edges],
+            "dictionary": "tableware"}
+
+
+def test_the_party_request_is_said_as_asked_and_solved_optimally() -> None:
+    """"No cup may stay on any plate, no spoon in any cup, the plates stacked on the tray
+    largest first": a model could only approximate this by naming a place for every cup
+    and spoon; as a formula it is the request itself."""
+    request = """(and (forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))
+                      (forall (?s - spoon) (not (exists (?c - cup) (inside ?s ?c))))
+                      (ontop plate_b tray) (ontop plate_c plate_b) (ontop plate_a plate_c))"""
+    box = Toolbox()
+    eid = box.call("load_scene", {"graph": party(), "k": 7}).episode_id
+    goal = box.call("set_goal", {"episode_id": eid, "formula": request})
+    assert goal.goal_diff is not None and goal.goal_diff.formula_count() == 6
+    text = TOOLS["set_goal"].summary(goal)
+    for failing in ("cup_1 is on plate_a", "cup_2 is on plate_b", "spoon_1 is in cup_1",
+                    "spoon_2 is in cup_3", "plate_c is not on plate_b (plate_c is on table)",
+                    "plate_a is not on plate_c (plate_a is on shelf)"):
+        assert failing in text, failing
+    solved = box.call("solve", {"episode_id": eid})
+    assert solved.optimal and solved.verified and solved.length == 7
+    assert solved.expanded < 100  # the bound sees the bowl that must leave plate_c
+    run = box.call("execute_actions", {"episode_id": eid, "actions": solved.plan})
+    assert run.goal_satisfied is True
+
+
+def test_a_commented_formula_is_shown_on_one_line_as_read() -> None:
+    box = Toolbox()
+    eid = box.call("load_scene", {"graph": kitchen()}).episode_id
+    written = """; after dinner
+    (and (forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))  ; cups off plates
+         (forall (?p - pot) (exists (?l - lid) (inside ?l ?p))))        ; a lid per pot"""
+    out = box.call("set_goal", {"episode_id": eid, "edges": written})
+    assert out.goal is not None and out.goal.formula == written.strip()
+    assert f"goal: formula {BOTH}" in TOOLS["set_goal"].summary(out)
+    state = TOOLS["get_state"].summary(box.call("get_state", {"episode_id": eid}))
+    assert f"goal: formula {BOTH}" in state
+
+
+def test_load_scene_takes_a_formula_goal_and_checks_its_names() -> None:
+    box = Toolbox()
+    out = box.call("load_scene", {"graph": kitchen(), "goal": {"formula": BOTH}})
+    state = box.call("get_state", {"episode_id": out.episode_id})
+    assert state.goal is not None and state.goal.formula == BOTH
+    assert state.goal_diff is not None and state.goal_diff.formula_count() == 4
+    with pytest.raises(VeriGraphError) as refused:
+        box.call("load_scene", {"graph": kitchen(),
+                                "goal": {"formula": "(forall (?b - bowll) (on ?b counter))"}})
+    assert refused.value.field == "goal.formula" and "kind 'bowll'" in refused.value.message

@@ -14,9 +14,10 @@ is the type: `(forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))`).
     param    := ?var - kind
     atom     := (predicate term+)       term := ?var | object-id
 
-A whole `(:goal formula)` section is read as its formula. Predicates: `ontop`/`on`,
-`inside`/`in`, `under`, `nextto`, `inroom` (two terms), `open`, `toggled_on`, and the
-thermal states `cooked`, `hot`, `frozen` (one).
+A whole `(:goal formula)` section is read as its formula. As in BDDL, a `?name` that no
+quantifier binds names an object (`?cup.n.01_1` is the object `cup.n.01_1`).
+Predicates: `ontop`/`on`, `inside`/`in`, `under`, `nextto`, `inroom` (two terms),
+`open`, `toggled_on`, and the thermal states `cooked`, `hot`, `frozen` (one).
 Parsing is one pass over the tokens, with the text's length, the nesting depth and the
 number of parts bounded; every error names the character position and the fix. Whether
 the ids and kinds exist is the evaluator's question (`formula_eval.check_names`): the
@@ -26,6 +27,7 @@ grammar needs no scene.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -122,9 +124,14 @@ class _Token:
     at: int  # character offset in the formula text
 
 
+_LEADING_COMMENTS = re.compile(r"(?:\s*;[^\n]*)*\s*")
+
+
 def looks_like_formula(text: str) -> bool:
-    """Goal text starting with `(` is a formula (edges text never does)."""
-    return text.lstrip().startswith("(")
+    """Goal text starting with `(` (after any `;` comment lines) is a formula; edges
+    text never does."""
+    skipped = _LEADING_COMMENTS.match(text)
+    return text[skipped.end() if skipped else 0:].startswith("(")
 
 
 @lru_cache(maxsize=128)
@@ -315,15 +322,13 @@ class _Parser:
         terms = []
         while (token := self.peek()) is not None and token.text not in "()":
             self.i += 1
-            if token.text.startswith("?"):
-                if token.text not in scope:
-                    raise self.fail(token, f"{token.text} is not bound",
-                                    f"bind it with (forall ({token.text} - kind) ...) or "
-                                    "(exists ...), or name an object by its id")
-            elif not _ID.fullmatch(token.text):
+            word = token.text
+            if word.startswith("?") and word not in scope:
+                word = word[1:]  # BDDL's `?cup.n.01_1`: an unbound name is an object's id
+            if not word.startswith("?") and not _ID.fullmatch(word):
                 raise self.fail(token, f"'{token.text}' is not an object id or a variable",
                                 "name an object by its scene id, or a variable ?x")
-            terms.append(token.text)
+            terms.append(word)
         if self.peek() is None:
             self.take()  # raises: the formula ends with parentheses open
         if len(terms) != arity:
@@ -361,25 +366,29 @@ def _param(param: Param) -> str:
     return f"{param.name} - {param.kind}"
 
 
-def constants(formula: Formula) -> tuple[set[str], set[str]]:
-    """The object ids and the kinds a formula names (for the check against a scene)."""
-    ids: set[str] = set()
-    kinds: set[str] = set()
+def parts(formula: Formula) -> Iterator[Formula]:
+    """Every part of a formula, itself included (iteratively: no recursion limit)."""
     stack: list[Formula] = [formula]
     while stack:
         node = stack.pop()
-        if isinstance(node, Atom):
-            ids.update(t for t in node.terms if not t.startswith("?"))
-        elif isinstance(node, Not):
+        yield node
+        if isinstance(node, Not | Quantified | Pairs):
             stack.append(node.body)
         elif isinstance(node, Junction):
             stack.extend(node.parts)
         elif isinstance(node, Imply):
             stack.extend((node.condition, node.then))
+
+
+def constants(formula: Formula) -> tuple[set[str], set[str]]:
+    """The object ids and the kinds a formula names (for the check against a scene)."""
+    ids: set[str] = set()
+    kinds: set[str] = set()
+    for node in parts(formula):
+        if isinstance(node, Atom):
+            ids.update(t for t in node.terms if not t.startswith("?"))
         elif isinstance(node, Quantified):
             kinds.add(node.param.kind)
-            stack.append(node.body)
-        else:
+        elif isinstance(node, Pairs):
             kinds.update((node.first.kind, node.second.kind))
-            stack.append(node.body)
     return ids, kinds

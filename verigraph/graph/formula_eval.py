@@ -20,7 +20,8 @@ nothing of how a `WorldState` stores them. Meanings:
 
 `evaluate` returns a `FormulaResult`: whether it holds, EVERY counterexample (each names
 the failing part with its objects filled in and why it fails), and the witnesses of each
-`exists` that holds. `check_names` is the check a goal passes before it is stored.
+`exists` that holds (in a formula that fails too, in its parts that hold).
+`check_names` is the check a goal passes before it is stored.
 """
 
 from __future__ import annotations
@@ -52,6 +53,7 @@ MAX_GROUND = 200_000  # ground instances a formula may expand to on one scene
 MAX_KEPT = 1_000  # counterexamples and witnesses kept (all are counted)
 MAX_LISTED = 10  # items joined into one sentence before "and N more"
 SHOWN_CHARS = 160  # a part is shown up to this many characters
+LINE_CHARS = 600  # a counterexample or witness, part and reason, up to this many
 _WORDS = {"on": "on", "in": "in", "under": "under", "nextto": "next to", "inroom": "in room"}
 
 
@@ -64,12 +66,13 @@ def node_state(state: WorldState, obj: str) -> Mapping[str, bool]:
 class Facts:
     """What a formula reads of a scene: kinds, edges by relation name, node states."""
 
-    __slots__ = ("by_kind", "edges", "placed", "states", "resolve")
+    __slots__ = ("by_kind", "edges", "placed", "states", "resolve", "openable")
 
     def __init__(self, labels: Mapping[str, str], edges: Iterable[tuple[str, str, str]],
                  states: Mapping[str, Mapping[str, bool]],
                  resolve: Callable[[str], str | None],
-                 groups: Mapping[str, list[str]] | None = None) -> None:
+                 groups: Mapping[str, list[str]] | None = None,
+                 openable: frozenset[str] = frozenset()) -> None:
         self.by_kind: dict[str, list[str]] = {}
         for obj, label in labels.items():
             self.by_kind.setdefault(label, []).append(obj)
@@ -78,8 +81,13 @@ class Facts:
             mine.extend(o for o in objs if o not in mine)
         self.states = states
         self.resolve = resolve
+        self.openable = openable  # nothing goes in or out of one while it is closed
         self.edges: set[tuple[str, str, str]] = set()
         self.placed: dict[str, list[tuple[str, str]]] = {}
+        self._index(edges)
+
+    def _index(self, edges: Iterable[tuple[str, str, str]]) -> None:
+        """Each edge `(relation, source, target)`, and each source's placements."""
         for relation, source, target in edges:
             self.edges.add((relation, source, target))
             self.placed.setdefault(source, []).append((relation, target))
@@ -88,11 +96,9 @@ class Facts:
         """The same objects and states with other edges (a search state)."""
         other = Facts.__new__(Facts)
         other.by_kind, other.states, other.resolve = self.by_kind, self.states, self.resolve
-        other.edges = set()
-        other.placed = {}
-        for relation, source, target in edges:
-            other.edges.add((relation, source, target))
-            other.placed.setdefault(source, []).append((relation, target))
+        other.openable = self.openable
+        other.edges, other.placed = set(), {}
+        other._index(edges)
         return other
 
     def kind(self, word: str) -> str:
@@ -129,6 +135,10 @@ class Facts:
     def flag(self, obj: str, key: str) -> bool:
         return bool(self.states.get(obj, {}).get(key, False))
 
+    def closed(self, obj: str) -> bool:
+        """An openable object that is closed (no state: closed)."""
+        return obj in self.openable and not self.flag(obj, "open")
+
     def where(self, obj: str) -> str:
         """`cup_1 is on table`, or that it rests on nothing."""
         places = self.placed.get(obj, [])
@@ -139,13 +149,15 @@ class Facts:
 
 
 def facts_of(state: WorldState) -> Facts:
-    """A WorldState's facts: its labels, its edges (tangram contacts aside), states."""
+    """A WorldState's facts: its labels, its placements and furniture's rooms (tangram
+    contacts aside), its states; read as plain tuples, so a search can call it often."""
     labels = {o: info.label for o, info in state.objects.items()}
-    edges = [(e.relation, e.source, e.target) for e in state.edges() if e.relation != "touches"]
+    edges = [(r, o, t) for o, (r, t) in state.support.items()]
+    edges += [("inroom", o, r) for o, r in state.rooms.items()]
     states = {o: node_state(state, o) for o in state.states}
     rooms = [o for o, info in state.objects.items() if info.props.room]
     return Facts(labels, edges, states, state.dictionary.resolve,
-                 {"room": rooms} if rooms else None)
+                 {"room": rooms} if rooms else None, state.openable)
 
 
 @dataclass
@@ -185,7 +197,9 @@ def check_names(formula: Formula, facts: Facts) -> None:
     for obj in sorted(ids):
         if not facts.knows(obj):
             near = difflib.get_close_matches(obj, every[:400], n=1, cutoff=0.6)
-            problems.append(f"object '{obj}'" + (f" (did you mean {near[0]}?)" if near else ""))
+            problems.append(f"object '{obj}'" + (f" (did you mean {near[0]}?)" if near else
+                                                 " (a ?variable must be bound by forall "
+                                                 "or exists)"))
     for word in sorted(kinds):
         if facts.resolve(word) is None and kind_token(word) not in facts.by_kind:
             near = difflib.get_close_matches(kind_token(word), list(facts.by_kind), n=1,
@@ -232,15 +246,18 @@ def holds_in(formula: Formula, facts: Facts, binding: dict[str, str]) -> bool:
 
 
 def evaluate(formula: Formula, facts: Facts) -> FormulaResult:
-    """Whether the formula holds, with every counterexample or its witnesses."""
+    """Whether the formula holds, every counterexample when it does not, and the
+    witnesses of each `exists` in the parts that hold."""
     ev = _Evaluator(facts)
+    witnesses = _Found()
+    ev.witnesses(formula, {}, witnesses)
     if ev.holds(formula, {}):
-        found = _Found()
-        ev.witnesses(formula, {}, found)
-        return FormulaResult(True, witnesses=found.items, witness_count=found.total)
-    found = _Found()
-    ev.failures(formula, {}, found)
-    return FormulaResult(False, counterexamples=found.items, counterexample_count=found.total)
+        return FormulaResult(True, witnesses=witnesses.items, witness_count=witnesses.total)
+    failures = _Found()
+    ev.failures(formula, {}, failures)
+    return FormulaResult(False, counterexamples=failures.items,
+                         counterexample_count=failures.total, witnesses=witnesses.items,
+                         witness_count=witnesses.total)
 
 
 @dataclass
@@ -253,7 +270,8 @@ class _Found:
     def add(self, text: str) -> None:
         self.total += 1
         if len(self.items) < MAX_KEPT:
-            self.items.append(text)
+            self.items.append(text if len(text) <= LINE_CHARS
+                              else text[:LINE_CHARS - 3] + "...")
 
 
 def _joined(parts: list[str], sep: str = "; ") -> str:
@@ -452,7 +470,8 @@ class _Evaluator:
         found.add(f"{self.part(node, env)} fails: {self.why_false(node, env)}")
 
     def witnesses(self, node: Formula, env: dict[str, str], found: _Found) -> None:
-        """The witnesses of every `exists` in a part that holds."""
+        """The witnesses of every `exists` that holds, reached through the parts that hold
+        (of an `and` or a `forall` that fails too: its parts that hold)."""
         if isinstance(node, Junction):
             for p in node.parts:
                 if self.holds(p, env):
@@ -460,18 +479,20 @@ class _Evaluator:
                     if node.op == "or":
                         return
         elif isinstance(node, Imply):
-            if self.holds(node.condition, env):
+            if self.holds(node.condition, env) and self.holds(node.then, env):
                 self.witnesses(node.then, env, found)
         elif isinstance(node, Quantified):
             name = node.param.name
             if node.op == "exists":
                 objs = self.satisfying(node, env)
-                found.add(f"{self.part(node, env)} holds with {name} = "
-                          f"{_joined(objs, ', ')}")
+                if objs:
+                    found.add(f"{self.part(node, env)} holds with {name} = "
+                              f"{_joined(objs, ', ')}")
                 return
             if node.op == "forall":
                 for o in self.facts.objects_of(node.param.kind):
-                    self.witnesses(node.body, _bound(env, name, o), found)
+                    if self.holds(node.body, _bound(env, name, o)):
+                        self.witnesses(node.body, _bound(env, name, o), found)
 
 
 def _state_word(key: str, value: bool) -> str:

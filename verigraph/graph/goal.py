@@ -24,6 +24,7 @@ from verigraph.graph.formula import (
     MAX_FORMULA_CHARS,
     looks_like_formula,
     parse_formula,
+    show,
 )
 from verigraph.graph.formula_eval import MAX_LISTED, evaluate, facts_of
 from verigraph.graph.model import Edge, SceneGraph
@@ -44,8 +45,7 @@ class Goal(BaseModel):
     partial: bool = Field(default=False, description="only the listed edges must hold")
     predicate: Literal["single_stack"] | None = Field(
         default=None, description="single_stack: every movable object in one tower")
-    formula: str | None = Field(default=None, max_length=MAX_FORMULA_CHARS,
-                                description="BDDL formula")
+    formula: str | None = Field(default=None, max_length=MAX_FORMULA_CHARS)  # BDDL
     instruction: str | None = Field(default=None, description="the instruction it came from")
 
     @field_validator("formula")
@@ -57,6 +57,10 @@ class Goal(BaseModel):
             except GoalError as exc:
                 raise ValueError(f"{exc.message} (fix: {exc.fix})") from None
         return value
+
+    def formula_text(self) -> str | None:
+        """The formula on one line, as parsed (comments and spacing dropped)."""
+        return None if self.formula is None else show(parse_formula(self.formula))
 
     @model_validator(mode="after")
     def _needs_something(self) -> Goal:
@@ -99,20 +103,20 @@ class GraphDiff(BaseModel):
                                    description="current edges the goal does not have")
     predicate: str | None = None
     detail: str | None = None
-    # A goal formula's findings: when the goal is not reached, every counterexample of
-    # the formula (its failing part with the objects, and why; empty when the formula
-    # holds); when it is reached, the witnesses of each exists. The first 1,000 are kept,
-    # the last item then saying "... and N more".
-    formula_detail: list[str] = Field(default_factory=list)
-
-    def formula_count(self) -> int:
-        """How many counterexamples (or witnesses) `formula_detail` stands for."""
-        return listed_count(self.formula_detail)
-
     # Written only when the goal lists states, so an edge goal's diff dumps as before.
     missing_states: list[str] = Field(
         default_factory=list, exclude_if=lambda states: not states,
         description="goal states not holding, e.g. `fridge closed`, `stove on`")
+    # A goal formula's findings: when the goal is not reached, every counterexample of
+    # the formula (its failing part with the objects, and why; empty when the formula
+    # holds); when it is reached, the witnesses of each exists. The first 1,000 are kept,
+    # the last item then saying "... and N more". Written only when there are some.
+    formula_detail: list[str] = Field(default_factory=list,
+                                      exclude_if=lambda detail: not detail)
+
+    def formula_count(self) -> int:
+        """How many counterexamples (or witnesses) `formula_detail` stands for."""
+        return listed_count(self.formula_detail)
 
     def summary(self) -> str:
         if self.satisfied:

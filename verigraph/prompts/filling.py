@@ -120,7 +120,7 @@ def goal_text(goal: Goal | None, instruction: str | None = None) -> str:
     if goal is not None and goal.formula is not None:
         lines.append("Goal formula (BDDL; kinds are labels, ?x variables, other names ids; "
                      "it must hold at the end):")
-        lines.append(" ".join(goal.formula.split()))
+        lines.append(goal.formula_text() or "")
     return "\n".join(lines) or "No goal was given; ask the user what the robot should achieve."
 
 

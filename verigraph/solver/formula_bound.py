@@ -18,42 +18,66 @@ wanted, requirements of the form "one of these things must change" (a set of
   true, it meets each joined one with a distinct action);
 - `forn` and the pair quantifiers: some action, when their truth is wrong.
 
-Requirements with no thing in common need distinct actions, so the size of a family of
-pairwise disjoint requirements (picked greedily, smallest first) is a lower bound; it is
-0 exactly at the goal. Admissible, so A* over it stays optimal.
+An object that must move must first be clear, so whatever stands on, in, under or next
+to it (and so on up) must move too; nothing goes into or comes out of a closed container,
+so one that must be entered or left must be opened. Requirements with no thing in
+common need distinct actions, so the size of a family of pairwise disjoint requirements
+(picked greedily, smallest first) is a lower bound; it is 0 exactly at the goal.
+Admissible, so A* over it stays optimal.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 
-from verigraph.graph.formula import Atom, Formula, Imply, Junction, Not, Pairs, Quantified
+from verigraph.graph.formula import (
+    STATE_KEYS,
+    Atom,
+    Formula,
+    Imply,
+    Junction,
+    Not,
+    Pairs,
+    Quantified,
+    parse_formula,
+)
+from verigraph.graph.formula import parts as every_part
 from verigraph.graph.formula_eval import Facts, holds_in
+from verigraph.graph.goal import Goal
 
 Thing = tuple[str, str]
 Need = tuple[bool, list[frozenset[Thing]], bool]  # truth, requirements, some action needed
 PLACE_RELATIONS = ("on", "in", "under")  # the source's placement: only moving it changes
 
 
+def formula_needs_table(goal: Goal) -> bool:
+    """Whether a goal formula speaks of what only the action table's search can change:
+    a state (`open`, `toggled_on`) or an `under`/`nextto` placement (the encoded search
+    moves objects on and in only)."""
+    if goal.formula is None:
+        return False
+    return any(isinstance(node, Atom) and node.relation in (*STATE_KEYS, "under", "nextto")
+               for node in every_part(parse_formula(goal.formula)))
+
+
 # What else a state atom needs (object, state key, truth wanted) -> more requirements,
-# e.g. a heat source turned on before `cooked` (verigraph.solver.table_search).
+# e.g. a heat source turned on before `cooked` (verigraph.actions.processes).
 StateNeeds = Callable[[str, str, bool], list[frozenset[Thing]]]
 
 
-def formula_bound(formula: Formula, facts: Facts, closed: frozenset[str] = frozenset(),
-                  state_needs: StateNeeds | None = None, *, additive: bool = False) -> int:
-    """Actions the formula needs at least, from the state `facts` describe. `closed`:
-    the closed openable containers (an object moving into or out of one needs it
-    opened first: an action on the container's `open` state, apart from the move).
-    `state_needs`: the other requirements of changing a state (each must be met by an
-    action other than the one that changes the state).
+def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None = None, *,
+                  additive: bool = False) -> int:
+    """Actions the formula needs at least, from the state `facts` describe.
+    `state_needs`: the other requirements of changing a state (each met by an action
+    other than the one that changes the state).
 
     `additive`: the number of distinct requirements instead, not a lower bound (shared
     actions are counted once per requirement) but a sharper guide for a search that
     does not promise optimal plans (weighted A*)."""
-    truth, needs, some = _Bound(facts, closed, state_needs).need(formula, {}, True)
+    truth, needs, some = _Bound(facts, state_needs).need(formula, {}, True)
     if truth:
         return 0
+    needs = [*needs, *_made_free(needs, facts)]
     if additive:
         return max(len(set(needs)), 1)
     taken: set[Thing] = set()
@@ -65,21 +89,43 @@ def formula_bound(formula: Formula, facts: Facts, closed: frozenset[str] = froze
     return max(count, 1 if some or needs else 0)
 
 
+def _made_free(needs: list[frozenset[Thing]], facts: Facts) -> list[frozenset[Thing]]:
+    """An object that must move must be clear first: whatever is placed on, in, under or
+    next to it, and so on up, must move too (once each, at least); and nothing comes out
+    of a closed container, so each closed one that holds a mover must be opened."""
+    must_move = [next(iter(n))[1] for n in needs if len(n) == 1 and next(iter(n))[0] == "place"]
+    if not must_move:
+        return []
+    above: dict[str, list[str]] = {}
+    for source, places in facts.placed.items():
+        for relation, target in places:
+            if relation != "inroom":
+                above.setdefault(target, []).append(source)
+    found: set[str] = set()
+    stack = list(must_move)
+    while stack:
+        for other in above.get(stack.pop(), []):
+            if other not in found:
+                found.add(other)
+                stack.append(other)
+    boxes = {t for o in (*must_move, *found) for r, t in facts.placed.get(o, [])
+             if r == "in" and facts.closed(t)}
+    return [*(frozenset({("place", o)}) for o in sorted(found)),
+            *(frozenset({("open", box)}) for box in sorted(boxes))]
+
+
 def _every(truth: bool, parts: list[Need]) -> Need:
     """All parts must reach the wanted truth: every part's requirements."""
     return truth, [n for part in parts for n in part[1]], any(part[2] for part in parts)
 
 
 def _one(truth: bool, parts: list[Need]) -> Need:
-    """One part must: the union of each part's smallest requirement, when every part
-    has one; else only that some action is needed."""
+    """One part must: when every part has requirements, each part's thinned to pairwise
+    disjoint ones, and the j-th of every part joined into one (met whichever part a
+    solution makes true, each by a distinct action), for as many j as the poorest part
+    has (one part alone keeps all of its own); else only that some action is needed."""
     if not parts or any(not part[1] for part in parts):
         return truth, [], True
-    # Each part's requirements thinned to pairwise disjoint ones (a solution meeting the
-    # part meets each with its own action); the j-th of every part, joined, is met
-    # whichever part is made true, and the joined sets stay pairwise met by distinct
-    # actions. So as many requirements as the poorest part has: one part alone keeps
-    # all of its own.
     families = [_disjoint(part[1]) for part in parts]
     depth = min(len(family) for family in families)
     return truth, [frozenset().union(*(family[j] for family in families))
@@ -98,10 +144,8 @@ def _disjoint(needs: list[frozenset[Thing]]) -> list[frozenset[Thing]]:
 
 
 class _Bound:
-    def __init__(self, facts: Facts, closed: frozenset[str] = frozenset(),
-                 state_needs: StateNeeds | None = None) -> None:
+    def __init__(self, facts: Facts, state_needs: StateNeeds | None = None) -> None:
         self.facts = facts
-        self.closed = closed
         self.state_needs = state_needs
 
     def need(self, node: Formula, env: dict[str, str], want: bool) -> Need:
@@ -150,12 +194,10 @@ class _Bound:
             return truth, [], False
         if len(terms) == 2 and node.relation not in PLACE_RELATIONS:
             return truth, [], True
-        needs = [frozenset({thing})]
         if len(terms) == 1 and self.state_needs is not None:
-            needs.extend(self.state_needs(terms[0], node.relation, want))
-        if len(terms) == 2 and self.closed:  # a closed container on the way in or out
-            boxes = {t for r, t in self.facts.placed.get(terms[0], ()) if r == "in"}
-            if want and node.relation == "in":
-                boxes.add(terms[1])
-            needs.extend(frozenset({("open", box)}) for box in boxes & self.closed)
-        return truth, needs, True
+            return truth, [frozenset({thing}),
+                           *self.state_needs(terms[0], node.relation, want)], True
+        if want and node.relation == "in" and self.facts.closed(terms[1]):
+            # nothing goes into a closed container: it must be opened too
+            return truth, [frozenset({thing}), frozenset({("open", terms[1])})], True
+        return truth, [frozenset({thing})], True

@@ -23,7 +23,7 @@ from collections.abc import Callable
 from verigraph.actions.model import AlignAction, AnyAction
 from verigraph.actions.validator import apply_action, validate_action
 from verigraph.graph.formula import parse_formula
-from verigraph.graph.formula_eval import Facts, facts_of, holds
+from verigraph.graph.formula_eval import Facts, check_names, facts_of, holds
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
@@ -43,7 +43,7 @@ from verigraph.solver.encoding import (
     misplaced_heuristic,
     stack_heuristic,
 )
-from verigraph.solver.formula_bound import formula_bound
+from verigraph.solver.formula_bound import formula_bound, formula_needs_table
 from verigraph.solver.result import SolveResult, static_reason
 from verigraph.solver.table_search import needs_table_search, table_astar
 
@@ -84,6 +84,8 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
            anytime: bool) -> SolveResult:
     state = scene.copy() if isinstance(scene, WorldState) else WorldState.from_graph(scene)
     goal_model = Goal.parse(goal)
+    if goal_model.formula is not None:  # ids and kinds the scene lacks: bad input, said so
+        check_names(parse_formula(goal_model.formula), facts_of(state))
     if check_goal(state, goal_model).satisfied:
         return SolveResult(reachable=True, plan=[], optimal=True, lower_bound=0)
     reason = static_reason(state, goal_model)
@@ -91,7 +93,7 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
         return SolveResult(reachable=False, status="unreachable", reason=reason)
     if state.contacts or any(o.props.sides for o in state.objects.values()):
         return _solve_tangram(state, goal_model, budget)
-    if needs_table_search(state, goal_model):
+    if needs_table_search(state, goal_model) or formula_needs_table(goal_model):
         return _solve_table(state, goal_model, budget, anytime)
     problem = SearchProblem(state)
     wanted = goal_codes(problem, goal_model.graph) if goal_model.graph is not None else {}

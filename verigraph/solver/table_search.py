@@ -30,6 +30,7 @@ from verigraph.graph.formula_eval import Facts, facts_of
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.state import WorldState
 from verigraph.solver.budget import SearchBudget
+from verigraph.solver.formula_bound import formula_bound
 
 Key = tuple[tuple[Any, ...], tuple[bool, ...]]
 
@@ -166,11 +167,8 @@ class TableProblem:
                 wrong += 2  # open it, close it again
             # wanted open: that atom counts the opening already
         if self.formula is not None:
-            from verigraph.solver.formula_bound import formula_bound
-
-            closed = frozenset(o for o in openable if not state.state_value(o, "open"))
             wrong = max(wrong, formula_bound(
-                self.formula, self.facts(state), closed,
+                self.formula, self.facts(state),
                 lambda obj, key, want: process_needs(state, obj, key, want),
                 additive=self.additive))
         return wrong
@@ -227,6 +225,16 @@ class TableProblem:
                     else:
                         state.set_state(args[0], row.effect.key,  # type: ignore[union-attr]
                                         before)
+
+
+def neighbours(problem: TableProblem, state: WorldState, budget: SearchBudget
+               ) -> Iterator[tuple[AnyAction, WorldState]]:
+    """Each accepted action with the world after it (a copy each: for checks and tests;
+    the search itself reads keys and bounds from `TableProblem.successors`)."""
+    for row, args, _, _ in list(problem.successors(state, budget)):
+        after = state.copy()
+        row.apply(after, *args)
+        yield _action(row, args), after
 
 
 def valid_actions(state: WorldState) -> list[AnyAction]:

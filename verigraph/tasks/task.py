@@ -137,9 +137,9 @@ class Task(BaseModel):
 
     @property
     def goal(self) -> Goal | None:
-        """The goal `set_goal` sets when it gives a graph (the language tasks' ground
-        truth); None for a goal given as an image."""
-        if not self.set_goal or "graph" not in self.set_goal:
+        """The goal `set_goal` sets when it gives a graph or a formula (the language
+        tasks' ground truth); None for a goal given as an image."""
+        if not self.set_goal or not {"graph", "formula"} & set(self.set_goal):
             return None
         return Goal.model_validate({k: v for k, v in self.set_goal.items()
                                     if k in Goal.model_fields})

@@ -19,6 +19,7 @@ from typing import Annotated, Literal
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from verigraph.errors import GoalError
+from verigraph.graph.dictionary import STATE_ROLES, STATE_WORDS
 from verigraph.graph.formula import FORMULA_EXAMPLE, looks_like_formula, parse_formula
 from verigraph.graph.formula_eval import check_names, facts_of
 from verigraph.graph.dictionary import STATE_ROLES, STATE_WORDS
@@ -123,8 +124,7 @@ class SetGoalInput(BaseModel):
     edges: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
                               description="goal edges as text")
     formula: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
-                                description="BDDL goal formula over kinds and ids, e.g. "
-                                            f"{FORMULA_EXAMPLE}")
+                                description=f"BDDL, e.g. {FORMULA_EXAMPLE}")
     partial: bool | None = Field(default=None, description="only the listed edges must "
                                  "hold (default: true for edges)")
     predicate: Literal["single_stack"] | None = Field(
@@ -467,8 +467,9 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
                         formula=formula, instruction=params.instruction)
             check_goal_against(goal, episode.state, field="goal" if graph is None else "graph")
             if formula is not None and episode.state is None:
-                reading.notes.append("the formula's objects and kinds will be checked once "
-                                     "the scene graph is submitted")
+                reading.notes.append("no scene graph yet, so the formula's ids and kinds "
+                                     "are not checked: an id the submitted scene lacks "
+                                     "never holds")
             if params.graph is not None:  # a graph the client wrote (not edges or a photo)
                 readings = label_readings(params.graph, episode.state.dictionary
                                           if episode.state is not None else

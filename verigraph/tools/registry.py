@@ -132,9 +132,9 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              heavy_when=HeavyWhen(given=("image", "generator", "bddl", "simulate", "executor"),
                                   graphs=("graph", "goal"), images=("image",))),
     ToolSpec("set_goal", "Set the goal",
-             "Set the goal: edges ('cup on table; spoon in pot'), a graph (a node's state, "
-             'e.g. {"open": false}, is a goal too), a predicate or an image. Words alone: a '
-             "proposal to confirm.",
+             "Set the goal: edges ('cup on table; spoon in pot'), a BDDL formula, a graph (a "
+             "node's state, e.g. {\"open\": false}, is a goal too), a predicate or an image. "
+             "Words alone: a proposal to confirm.",
              goals.SetGoalInput, goals.GoalOutput, goals.set_goal,
              read_only=False, idempotent=True,
              heavy_when=HeavyWhen(given=("image",), graphs=("graph",), images=("image",))),

@@ -168,8 +168,8 @@ def goal_line(goal: Goal | None) -> str | None:
         parts.append("; ".join([*goal.graph.sentences(), *states]) or "no edges")
     if goal.predicate:
         parts.append(goal.predicate)
-    if goal.formula is not None:
-        text = " ".join(goal.formula.split())
+    text = goal.formula_text()
+    if text is not None:
         parts.append("formula " + (text if len(text) <= MAX_FORMULA_SHOWN
                                    else text[:MAX_FORMULA_SHOWN - 3] + "..."))
     if not parts:
