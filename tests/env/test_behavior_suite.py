@@ -10,7 +10,7 @@ from optional import require
 
 gym = require("gymnasium", "pip install 'verigraph-mcp[env]'")
 
-from verigraph.env import VeriGraphEnv, check_disjoint, split_tasks  # noqa: E402
+from verigraph.env import check_disjoint, split_tasks  # noqa: E402
 from verigraph.env.dataset import suite_tasks  # noqa: E402
 from verigraph.graph.formula import parse_formula  # noqa: E402
 

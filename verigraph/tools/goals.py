@@ -22,7 +22,6 @@ from verigraph.errors import GoalError
 from verigraph.graph.dictionary import STATE_ROLES, STATE_WORDS
 from verigraph.graph.formula import FORMULA_EXAMPLE, looks_like_formula, parse_formula
 from verigraph.graph.formula_eval import check_names, facts_of
-from verigraph.graph.dictionary import STATE_ROLES, STATE_WORDS
 from verigraph.graph.goal import PREDICATES, Goal, GraphDiff, check_goal, goal_kind_problems
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
