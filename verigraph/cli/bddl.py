@@ -57,7 +57,8 @@ def run_import(args: argparse.Namespace) -> int:
         print(json.dumps(summary))
     else:
         print(f"imported {imported.activity} ({imported.predicate_class}): "
-              f"{summary['objects']} objects in {rooms} rooms, {len(graph.edges)} edges -> "
+              f"{summary['objects']} objects in {rooms} room{'s' if rooms != 1 else ''}, "
+              f"{len(graph.edges)} edges -> "
               f"{summary['scene']}, {summary['goal']}")
         print(f"goal: {imported.formula}")
     return EXIT_OK
