@@ -67,3 +67,19 @@ def test_a_formula_naming_what_the_scene_lacks_exits_2(capsys: pytest.CaptureFix
     assert main(["solve", "--scene", SCENE, "--goal", "(ontop cupp desk)"]) == 2
     err = capsys.readouterr().err
     assert "object 'cupp' (did you mean cup?)" in err and "fix:" in err
+
+
+def test_the_household_request_as_a_formula_is_solved_optimally(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    """The milk in the fridge, the fridge closed, the pot on a burner that is on, no cup
+    on any plate: checked, and solved in the fewest actions."""
+    scene = str(EXAMPLES / "kitchen_household.json")
+    goal = str(EXAMPLES / "kitchen_household_goal.bddl")
+    assert main(["solve", "--scene", scene, "--goal", goal, "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["optimal"] is True and len(result["plan"]) == 6
+    plan = [a["action"] + "(" + ", ".join(str(a[k]) for k in ("object", "relation", "target")
+                                          if k in a) + ")" for a in result["plan"]]
+    assert plan.index("open(fridge)") < plan.index("move(milk, in, fridge)") \
+        < plan.index("close(fridge)")
+    assert "move(cup, on, plate)" not in plan and "toggle_on(stove)" in plan

@@ -234,3 +234,5 @@ def test_the_bound_counts_the_opening_of_a_closed_container() -> None:
     assert formula_bound(parse_formula("(inside milk fridge)"), facts) == 2  # open, move
     assert formula_bound(parse_formula("(and (inside milk fridge) (inside lid fridge))"),
                          facts) == 3  # one opening serves both
+    assert formula_bound(parse_formula("(and (inside milk fridge) (not (open fridge)))"),
+                         facts) == 3  # open, move, close again

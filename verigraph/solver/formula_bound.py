@@ -18,6 +18,9 @@ wanted, requirements of the form "one of these things must change" (a set of
   true, it meets each joined one with a distinct action);
 - `forn` and the pair quantifiers: some action, when their truth is wrong.
 
+A container that must be opened and that the formula wants closed at the end (`(not
+(open x))` under `and`/`forall` alone) must be closed again: one more action.
+
 An object that must move must first be clear, so whatever stands on, in, under or next
 to it (and so on up) must move too; nothing goes into or comes out of a closed container,
 so one that must be entered or left must be opened. Requirements with no thing in
@@ -78,6 +81,10 @@ def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None
     if truth:
         return 0
     needs = [*needs, *_made_free(needs, facts)]
+    opened = {n for need in needs if len(need) == 1 for n in need if n[0] == "open"}
+    if opened:  # opened now, closed at the end: closed again, one more action each
+        closed = _closed_at_the_end(formula, facts)
+        needs += [frozenset({("close", c)}) for _, c in opened if c in closed]
     if additive:
         return max(len(set(needs)), 1)
     taken: set[Thing] = set()
@@ -87,6 +94,24 @@ def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None
             taken |= need
             count += 1
     return max(count, 1 if some or needs else 0)
+
+
+def _closed_at_the_end(formula: Formula, facts: Facts) -> set[str]:
+    """Objects every solution must leave closed: `(not (open x))` reached from the top
+    through `and` and `forall` alone (x an id, or each object of the forall's kind)."""
+    closed: set[str] = set()
+    stack: list[tuple[Formula, dict[str, str]]] = [(formula, {})]
+    while stack:
+        node, env = stack.pop()
+        if isinstance(node, Junction) and node.op == "and":
+            stack.extend((p, env) for p in node.parts)
+        elif isinstance(node, Quantified) and node.op == "forall":
+            stack.extend((node.body, {**env, node.param.name: o})
+                         for o in facts.objects_of(node.param.kind))
+        elif isinstance(node, Not) and isinstance(node.body, Atom) \
+                and node.body.relation == "open":
+            closed.add(env.get(node.body.terms[0], node.body.terms[0]))
+    return closed
 
 
 def _made_free(needs: list[frozenset[Thing]], facts: Facts) -> list[frozenset[Thing]]:
@@ -124,6 +149,8 @@ def _one(truth: bool, parts: list[Need]) -> Need:
     disjoint ones, and the j-th of every part joined into one (met whichever part a
     solution makes true, each by a distinct action), for as many j as the poorest part
     has (one part alone keeps all of its own); else only that some action is needed."""
+    if len(parts) == 1:  # the one way: all its requirements
+        return truth, parts[0][1], True
     if not parts or any(not part[1] for part in parts):
         return truth, [], True
     families = [_disjoint(part[1]) for part in parts]
