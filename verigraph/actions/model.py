@@ -27,17 +27,20 @@ class MoveAction(BaseModel):
         return f"move({self.object}, {self.relation}, {self.target})"
 
 
-StateActionName = Literal["open", "close", "toggle_on", "toggle_off"]
+StateActionName = Literal["open", "close", "toggle_on", "toggle_off", "cook", "heat", "freeze",
+                          "cool", "thaw"]
 
 
 class StateAction(BaseModel):
-    """`open(x)`, `close(x)`, `toggle_on(x)`, `toggle_off(x)`: change one state of x."""
+    """`open(x)`, `close(x)`, `toggle_on(x)`, `toggle_off(x)` and the physical processes
+    `cook(x)`, `heat(x)`, `freeze(x)`, `cool(x)`, `thaw(x)`: change one state of x."""
 
     model_config = ConfigDict(extra="forbid", frozen=True)
 
     action: StateActionName
     object: str = Field(min_length=1, max_length=128,
-                        description="id of an openable (open, close) or toggleable object")
+                        description="id of an openable (open, close), toggleable or "
+                                    "cookable/heatable/freezable object")
 
     def text(self) -> str:
         return f"{self.action}({self.object})"

@@ -29,6 +29,7 @@ from operator import attrgetter
 from typing import Any
 
 from verigraph.actions import constraints as c
+from verigraph.actions import processes as p
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, MoveAction, StateAction
 from verigraph.graph.dictionary import STATE_WORDS, SUPPORT_RELATIONS, state_value
@@ -232,7 +233,7 @@ class _Refused:
 
 REFUSED = _Refused()
 _NAMESPACE: dict[str, Any] = {"fits": fits, "closed_passage": closed_passage,
-                              "CARRYING": SUPPORT_RELATIONS, "REFUSED": REFUSED}
+                              "CARRYING": SUPPORT_RELATIONS, "REFUSED": REFUSED, **p.HELPERS}
 
 
 def _compile(source: str, name: str) -> Callable[..., Any]:
@@ -305,12 +306,44 @@ def _state_row(name: str, key: str, value: bool) -> ActionSchema:
         effect=SetState(key, value), household=True)
 
 
+# -- cook, heat, freeze, cool, thaw (physical processes: verigraph.actions.processes) ----------
+def _process_row(name: str) -> ActionSchema:
+    key, value, role, source, needed = p.PROCESSES[name]
+    word = p.SOURCE_WORDS[source]
+    where: tuple[Precondition, ...]
+    if needed:
+        where = (
+            Precondition(p.NO_SOURCE[source], f"source_below(state, obj, {source!r}) is not None",
+                         p.no_source_explainer(name), gate=True),
+            Precondition(p.SOURCE_OFF[source], f"active_source_below(state, obj, {source!r})",
+                         p.source_off_explainer(name)))
+        needs = f"a {role} object, not {STATE_WORDS[key][value]}, on or in a {word} that is on"
+    else:
+        where = (Precondition(p.STILL_AT_SOURCE[source],
+                              f"not active_source_below(state, obj, {source!r})",
+                              p.still_at_source_explainer(name)),)
+        needs = f"a {STATE_WORDS[key][True]} object, not on or in a {word} that is on"
+    return ActionSchema(
+        name=name, parameters=(Parameter("object", needs, role),),
+        preconditions=(
+            Precondition("unknown_object", "obj in objects", c.explain_unknown_object,
+                         gate=True),
+            Precondition(f"not_{role}", f"objects[obj].props.{role}",
+                         c.role_explainer(name, role), gate=True),
+            *(pre for pre in where if pre.gate),  # the table checks gates first
+            Precondition(p.ALREADY[name], f"state.state_value(obj, {key!r}) != {value}",
+                         p.already_explainer(name)),
+            *(pre for pre in where if not pre.gate)),
+        effect=SetState(key, value), household=True)
+
+
 SCHEMAS: dict[str, ActionSchema] = {row.name: row for row in (
     MOVE,
     _state_row("open", "open", True),
     _state_row("close", "open", False),
     _state_row("toggle_on", "toggled_on", True),
     _state_row("toggle_off", "toggled_on", False),
+    *(_process_row(name) for name in p.PROCESSES),
 )}
 """The action table, by action name."""
 
@@ -341,7 +374,9 @@ def table_constraints(*, household: bool) -> list[str]:
 # Constraints that only a household world (openables, under/nextto, rooms) can break.
 HOUSEHOLD_CONSTRAINTS = frozenset({
     "container_closed", "target_not_furniture", "target_is_room", "not_openable",
-    "already_open", "already_closed", "not_toggleable", "already_on", "already_off"})
+    "already_open", "already_closed", "not_toggleable", "already_on", "already_off",
+    *(f"not_{row[2]}" for row in p.PROCESSES.values()), *p.ALREADY.values(),
+    *p.NO_SOURCE.values(), *p.SOURCE_OFF.values(), *p.STILL_AT_SOURCE.values()})
 
 
 def state_change_text(change: StateChange) -> str:

@@ -51,6 +51,8 @@ def header_lines(trace: EpisodeTrace) -> list[str]:
             lines.append("goal: " + "; ".join(trace.goal.graph.sentences()))
         if trace.goal.predicate:
             lines.append(f"goal predicate: {trace.goal.predicate}")
+        if trace.goal.formula is not None:
+            lines.append(f"goal formula: {trace.goal.formula_text()}")
     return lines
 
 

@@ -68,11 +68,11 @@ StartHook = Callable[[EpisodeTrace], None]
 
 
 def _prompt_goal(goal: Goal | None, show_graph: bool) -> Goal | None:
-    if goal is None or show_graph or goal.graph is None:
+    if goal is None or show_graph or (goal.graph is None and goal.formula is None):
         return goal
     if goal.predicate is None:
         return None
-    return goal.model_copy(update={"graph": None})
+    return goal.model_copy(update={"graph": None, "formula": None})
 
 
 class EpisodeRun:

@@ -40,7 +40,7 @@ COMMANDS: dict[str, str] = {
     "render": "verigraph.cli.sim", "demo": "verigraph.cli.sim", "agent": "verigraph.cli.agent",
     "rollouts": "verigraph.cli.rollouts", "bench": "verigraph.cli.bench",
     "perceive": "verigraph.cli.perceive", "view": "verigraph.cli.view",
-    "arm": "verigraph.cli.arm",
+    "arm": "verigraph.cli.arm", "bddl": "verigraph.cli.bddl",
 }
 SUBCOMMAND_MODULES = tuple(dict.fromkeys(COMMANDS.values()))
 

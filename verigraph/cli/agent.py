@@ -33,8 +33,10 @@ def register(sub: Any) -> None:
                       help="built-in scene id (cup_on_book, three_blocks, kitchen_pan), a scene "
                            "file (.json/.yaml), or a generated scene FAMILY:SEED[:N] "
                            "(e.g. blocks:3, needs sim2d)")
-    task.add_argument("--goal", help="goal file (graph, {graph, partial} or {predicate}) or a "
-                                     "predicate name (single_stack); default: the scene's own")
+    task.add_argument("--goal", help="goal file (graph, {graph, partial}, {predicate}, "
+                                     "{formula} or a formula as text), a predicate name "
+                                     "(single_stack) or a formula '(forall ...)'; default: "
+                                     "the scene's own")
     task.add_argument("--instruction", help="the task in words, shown to the planner")
     task.add_argument("--hide-goal-graph", action="store_true",
                       help="show the planner only the instruction; the verifier still checks "
@@ -124,6 +126,8 @@ def _goal_spec(args: argparse.Namespace) -> dict[str, Any] | None:
     if args.goal:
         if args.goal in PREDICATES:
             goal["predicate"] = args.goal
+        elif args.goal.lstrip().startswith("("):  # a formula as text
+            goal["formula"] = args.goal.strip()
         elif Path(args.goal).is_file():
             g = load_goal(args.goal)
             if g.graph is not None:
@@ -131,10 +135,13 @@ def _goal_spec(args: argparse.Namespace) -> dict[str, Any] | None:
                 goal["partial"] = g.partial
             if g.predicate is not None:
                 goal["predicate"] = g.predicate
+            if g.formula is not None:
+                goal["formula"] = g.formula
             if g.instruction and not args.instruction:
                 goal["instruction"] = g.instruction
         else:
-            raise VeriGraphError(f"goal '{args.goal}' is neither a file nor a predicate",
+            raise VeriGraphError(f"goal '{args.goal}' is neither a file, a predicate nor a "
+                                 "formula",
                                  field="--goal", value=args.goal,
                                  fix=f"give a goal file or one of {', '.join(PREDICATES)}")
     if args.instruction:

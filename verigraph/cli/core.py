@@ -28,7 +28,9 @@ def register(sub: Any) -> None:
                                    "was found (the JSON reason says after how many "
                                    "expansions, seconds and MB).")
     s.add_argument("--scene", required=True)
-    s.add_argument("--goal", required=True, help="goal file, or a predicate name (single_stack)")
+    s.add_argument("--goal", required=True, help="goal file (a goal graph, {formula} or a BDDL "
+                   "formula as text), a predicate name (single_stack), or a formula "
+                   "'(forall ...)'")
     s.add_argument("--dictionary", metavar="NAME|FILE.json",
                    help="the scene's dictionary D: a built-in name, all, or a JSON file of "
                         "your own labels {extends, objects} (see docs/worlds.md)")

@@ -60,16 +60,17 @@ MAX_DICTIONARY_FILE_BYTES = 1024 * 1024
 
 
 def dictionary_argument(value: str) -> Any:
-    """`--dictionary NAME|FILE.json`: a built-in dictionary (or all), or a JSON file
-    holding a dictionary of the user's own, in the inline form a scene may carry
+    """`--dictionary NAME|FILE.json`: a built-in dictionary (or all, or behavior), or a
+    JSON file holding a dictionary of the user's own, in the inline form a scene may carry
     (`{"extends": "tableware", "objects": {"laptop": {"surface": true}}}`, docs/worlds.md).
     A file is fine here: the CLI runs on the user's machine (the MCP path stays inline).
     Errors name the option and the problem, never the file's content."""
     from pydantic import ValidationError
 
+    from verigraph.graph.behavior import BEHAVIOR
     from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, InlineDictionary
 
-    names = (*BUILTIN_DICTIONARIES, "all")
+    names = (*BUILTIN_DICTIONARIES, "all", BEHAVIOR)
     if value in names:
         return value
     path = Path(value)

@@ -41,7 +41,8 @@ def register(sub: Any) -> None:
                                    "(its goal applies unless --goal is given)")
     p.add_argument("--plan", help="plan file: text (one action per line) or JSON; with "
                                   "--domain: (op args) lines or PlanBench sentences")
-    p.add_argument("--goal", help="goal file: a scene graph, {graph, partial} or {predicate}")
+    p.add_argument("--goal", help="goal file: a scene graph, {graph, partial}, {predicate}, "
+                   "{formula} or a BDDL formula as text; or a formula '(forall ...)'")
     p.add_argument("--dictionary", metavar="NAME|FILE.json",
                    help="the scene's dictionary D: a built-in name, all, or a JSON file of "
                         "your own labels {extends, objects} (see docs/worlds.md)")
@@ -113,7 +114,7 @@ def load_goal_arg(goal: str) -> Any:
     from verigraph.graph.goal import PREDICATES, Goal
     from verigraph.graph.io import load_goal
 
-    if goal in PREDICATES:
+    if goal in PREDICATES or goal.lstrip().startswith("("):  # a predicate, a formula
         return Goal.parse(goal)
     return load_goal(goal)
 

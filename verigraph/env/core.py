@@ -109,10 +109,12 @@ def state_hash(graph: SceneGraph) -> str:
 
 
 def _prompt_goal(goal: Goal | None, show_graph: bool) -> Goal | None:
-    """The goal as the prompt may show it: without its graph for instruction tasks."""
-    if goal is None or show_graph or goal.graph is None:
+    """The goal as the prompt may show it: without its graph or formula for instruction
+    tasks."""
+    if goal is None or show_graph or (goal.graph is None and goal.formula is None):
         return goal
-    return goal.model_copy(update={"graph": None}) if goal.predicate is not None else None
+    return goal.model_copy(update={"graph": None, "formula": None}) \
+        if goal.predicate is not None else None
 
 
 class VeriGraphEnv(gym.Env[str, str]):

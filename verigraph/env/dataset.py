@@ -39,6 +39,7 @@ FAMILY_GROUPS: dict[Family, tuple[GroupName, ...]] = {
     "kitchen": ("ref_image_kitchen",),
     "tangram": ("tangram",),
     "household": ("household",),
+    "behavior": ("behavior",),
 }
 DEFAULT_TEST_FRACTION = 0.2
 HASH_SPACE = 16 ** 12

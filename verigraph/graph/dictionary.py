@@ -30,6 +30,7 @@ from pydantic import (
 from pydantic_core import PydanticCustomError
 
 from verigraph.errors import DictionaryError, InputFileError
+from verigraph.graph.behavior import BEHAVIOR, behavior_dictionary
 
 BUILTIN_DICTIONARIES = ("blocks", "kitchen", "tableware", "tangram", "household")
 # The paper's worlds: their union is what applies when a scene names no dictionary (or
@@ -52,6 +53,13 @@ HOUSEHOLD_RELATIONS = (*PLACEMENT_RELATIONS, ROOM_RELATION)
 # object is open or closed, a toggleable one on or off. A node without a state key has
 # its default (`state_value`): closed, off.
 STATE_ROLES = {"open": "openable", "toggled_on": "toggleable"}
+# Physical processes (BEHAVIOR's thermal states): a cookable object is raw or cooked, a
+# heatable one hot or not, a freezable one frozen or not; default false. They change by
+# the process actions (cook, heat, freeze, cool, thaw) on or in a heat or cold source.
+THERMAL_ROLES = {"cooked": "cookable", "hot": "heatable", "frozen": "freezable"}
+STATE_ROLES.update(THERMAL_ROLES)
+# Roles of the sources those actions need (a heat source must be on when toggleable).
+SOURCE_ROLES = ("heat_source", "cold_source")
 
 # Bounds of a dictionary given inline by a client: it is stored with the episode and
 # shown in texts and prompts, so it stays the size of a tabletop's vocabulary.
@@ -62,7 +70,7 @@ MAX_INLINE_BYTES = 32_768
 ROLE_KEYS = ("movable", "surface", "container")
 # Roles a kind may have beyond where things rest: a state it keeps (STATE_ROLES) and
 # whether it is a room (furniture stands `inroom` it).
-STATE_ROLE_KEYS = ("openable", "toggleable")
+STATE_ROLE_KEYS = ("openable", "toggleable", *THERMAL_ROLES.values(), *SOURCE_ROLES)
 # Bounds of every size the simulator, the renderer and perception build from, whichever
 # way it comes in (a built-in or inline dictionary, a dictionary file, a node's attrs):
 # widths and heights in the simulator's units (a built-in cup is 6 wide, a desk 60),
@@ -81,6 +89,8 @@ PROPERTY_BOUNDS = {
     "symmetry": f"an integer from 1 to {MAX_SYMMETRY} that divides sides",
     "movable": "true or false", "surface": "true or false", "container": "true or false",
     "openable": "true or false", "toggleable": "true or false", "room": "true or false",
+    "cookable": "true or false", "heatable": "true or false", "freezable": "true or false",
+    "heat_source": "true or false", "cold_source": "true or false",
     "color": "a colour name of at most 32 characters",
     "shape": "a shape name of at most 32 characters",
 }
@@ -104,6 +114,11 @@ class ObjectProperties(BaseModel):
     openable: bool = Field(default=False, description="open or closed (state `open`)")
     toggleable: bool = Field(default=False, description="on or off (state `toggled_on`)")
     room: bool = Field(default=False, description="a room: furniture stands `inroom` it")
+    cookable: bool = Field(default=False, description="raw or cooked (state `cooked`)")
+    heatable: bool = Field(default=False, description="hot or not (state `hot`)")
+    freezable: bool = Field(default=False, description="frozen or not (state `frozen`)")
+    heat_source: bool = Field(default=False, description="cooks and heats what is on or in it")
+    cold_source: bool = Field(default=False, description="freezes what is on or in it")
     # Descriptive properties used by the simulator, renderer and perception; bounded
     # here so that no way in (a dictionary or a node's attrs) reaches them unbounded.
     width: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
@@ -175,6 +190,9 @@ def _props_text(props: ObjectProperties) -> str:
         text += ", openable"
     if props.toggleable:
         text += ", toggleable"
+    for role in (*THERMAL_ROLES.values(), *SOURCE_ROLES):
+        if getattr(props, role):
+            text += f", {role.replace('_', ' ')}"
     return text
 
 
@@ -184,7 +202,9 @@ def state_value(state: dict[str, bool], key: str) -> bool:
     return state.get(key, False)
 
 
-STATE_WORDS = {"open": ("closed", "open"), "toggled_on": ("off", "on")}
+STATE_WORDS = {"open": ("closed", "open"), "toggled_on": ("off", "on"),
+               "cooked": ("raw", "cooked"), "hot": ("not hot", "hot"),
+               "frozen": ("not frozen", "frozen")}
 
 
 def state_text(props: ObjectProperties, state: dict[str, bool]) -> str:
@@ -236,6 +256,11 @@ class UserObject(BaseModel):
     openable: bool = Field(default=False, strict=True)
     toggleable: bool = Field(default=False, strict=True)
     room: bool = Field(default=False, strict=True)
+    cookable: bool = Field(default=False, strict=True)
+    heatable: bool = Field(default=False, strict=True)
+    freezable: bool = Field(default=False, strict=True)
+    heat_source: bool = Field(default=False, strict=True)
+    cold_source: bool = Field(default=False, strict=True)
     width: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
     height: float | None = Field(default=None, ge=MIN_SIZE, le=MAX_SIZE, allow_inf_nan=False)
     color: str | None = Field(default=None, max_length=32)
@@ -274,7 +299,7 @@ class InlineDictionary(BaseModel):
                              pattern=r"^[A-Za-z0-9][\w\-]*$", strict=True,
                              description="shown in texts; default: <extends>+yours")
     extends: str | None = Field(default=None, max_length=32, strict=True,
-                                description=f"{', '.join(BUILTIN_DICTIONARIES)} or all")
+                                description=f"{', '.join(BUILTIN_DICTIONARIES)}, all or behavior")
     objects: dict[LabelName, UserObject] = Field(min_length=1)
 
     @model_validator(mode="before")
@@ -300,9 +325,10 @@ class InlineDictionary(BaseModel):
     @field_validator("extends")
     @classmethod
     def _known_base(cls, value: str | None) -> str | None:
-        if value is not None and value not in (*BUILTIN_DICTIONARIES, "all"):
+        if value is not None and value not in (*BUILTIN_DICTIONARIES, "all", BEHAVIOR):
             raise ValueError(f"no built-in dictionary '{value[:32]}' to extend (fix: use one "
-                             f"of {', '.join(BUILTIN_DICTIONARIES)}, all, or leave extends out)")
+                             f"of {', '.join(BUILTIN_DICTIONARIES)}, all, {BEHAVIOR}, or leave "
+                             "extends out)")
         return value
 
     @model_validator(mode="after")
@@ -364,7 +390,8 @@ class InlineDictionary(BaseModel):
 
 
 def _same_kind(a: ObjectProperties, b: ObjectProperties) -> bool:
-    keys = ("movable", "surface", "container", "capacity", "openable", "toggleable", "room")
+    keys = ("movable", "surface", "container", "capacity", "openable", "toggleable", "room",
+            *THERMAL_ROLES.values(), *SOURCE_ROLES)
     return all(getattr(a, k) == getattr(b, k) for k in keys)
 
 
@@ -551,7 +578,7 @@ class Dictionary(BaseModel):
         """`your label`, or the dictionary a label comes from (`kitchen dictionary`)."""
         if canonical in self.user_labels:
             return "your label"
-        if self.name in BUILTIN_DICTIONARIES:
+        if self.name in (*BUILTIN_DICTIONARIES, BEHAVIOR):
             return f"{self.name} dictionary"
         homes = _homes(lambda d: canonical in d.objects)
         return f"{' and '.join(homes) or self.name} dictionary"
@@ -681,11 +708,15 @@ def load_dictionary(spec: str | Path | Dictionary | InlineDictionary | None) -> 
         return builtin_dictionary(spec)
     if isinstance(spec, str) and spec == "all":
         return union_dictionary()
+    if isinstance(spec, str) and spec == BEHAVIOR:  # read on first use (3,299 kinds)
+        behavior: Dictionary = behavior_dictionary()
+        return behavior
     path = Path(spec)
     if not path.is_file():
         raise DictionaryError(f"dictionary '{spec}' is neither built in nor a file",
                               field="dictionary", value=str(spec),
-                              fix=f"use one of {', '.join(BUILTIN_DICTIONARIES)} or a file path")
+                              fix=f"use one of {', '.join(BUILTIN_DICTIONARIES)}, all, "
+                                  f"{BEHAVIOR} or a file path")
     try:
         data = yaml.safe_load(path.read_text())
         return Dictionary.model_validate(data)

@@ -1,4 +1,5 @@
-"""Goals and the goal check: a graph to match (fully or partially) or a named predicate.
+"""Goals and the goal check: a graph to match (fully or partially), a named predicate, or
+a formula in BDDL's syntax (verigraph.graph.formula; evaluated by formula_eval).
 
 `diff` reports missing/extra nodes and edges, and the states a goal node asks for that do
 not hold (`{"id": "fridge", "label": "fridge", "state": {"open": false}}`: the fridge
@@ -11,12 +12,21 @@ degrees still matches.
 from __future__ import annotations
 
 import itertools
+import re
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from verigraph.errors import GoalError
 from verigraph.graph.dictionary import STATE_WORDS, ObjectProperties
+from verigraph.graph.formula import (
+    FORMULA_EXAMPLE,
+    MAX_FORMULA_CHARS,
+    looks_like_formula,
+    parse_formula,
+    show,
+)
+from verigraph.graph.formula_eval import MAX_LISTED, evaluate, facts_of
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import KIND_KEYS, GraphProblem, resolve_properties
@@ -26,7 +36,8 @@ EdgeKey = tuple[str, str, str, int | None, int | None]
 
 
 class Goal(BaseModel):
-    """What the planner must reach: a goal graph, a predicate, or both."""
+    """What the planner must reach: a goal graph, a predicate, a formula, or several
+    (all must hold)."""
 
     model_config = ConfigDict(extra="forbid")
 
@@ -34,17 +45,33 @@ class Goal(BaseModel):
     partial: bool = Field(default=False, description="only the listed edges must hold")
     predicate: Literal["single_stack"] | None = Field(
         default=None, description="single_stack: every movable object in one tower")
+    formula: str | None = Field(default=None, max_length=MAX_FORMULA_CHARS)  # BDDL
     instruction: str | None = Field(default=None, description="the instruction it came from")
+
+    @field_validator("formula")
+    @classmethod
+    def _parses(cls, value: str | None) -> str | None:
+        if value is not None:
+            try:
+                parse_formula(value)
+            except GoalError as exc:
+                raise ValueError(f"{exc.message} (fix: {exc.fix})") from None
+        return value
+
+    def formula_text(self) -> str | None:
+        """The formula on one line, as parsed (comments and spacing dropped)."""
+        return None if self.formula is None else show(parse_formula(self.formula))
 
     @model_validator(mode="after")
     def _needs_something(self) -> Goal:
-        if self.graph is None and self.predicate is None:
-            raise ValueError("a goal needs a 'graph' or a 'predicate'")
+        if self.graph is None and self.predicate is None and self.formula is None:
+            raise ValueError("a goal needs a 'graph', a 'predicate' or a 'formula'")
         return self
 
     @classmethod
     def parse(cls, data: object) -> Goal:
-        """Accept a Goal object, or a bare scene graph (an exact goal)."""
+        """Accept a Goal object, a bare scene graph (an exact goal), a predicate's name or
+        a formula's text (text starting with `(`)."""
         if isinstance(data, Goal):
             return data
         if isinstance(data, SceneGraph):
@@ -54,10 +81,14 @@ class Goal(BaseModel):
             graph = {k: v for k, v in data.items() if k != "partial"}
             return cls(graph=SceneGraph.model_validate(graph), partial=partial)
         if isinstance(data, str):
+            if looks_like_formula(data):
+                parse_formula(data)  # its GoalError names the position and the fix
+                return cls(formula=data)
             if data in PREDICATES:
                 return cls(predicate=data)  # type: ignore[arg-type]
             raise GoalError(f"unknown goal predicate '{data}'", field="goal", value=data,
-                            fix=f"use one of {', '.join(PREDICATES)} or a goal graph")
+                            fix=f"use one of {', '.join(PREDICATES)}, a goal graph or a "
+                                f"formula such as {FORMULA_EXAMPLE}")
         return cls.model_validate(data)
 
 
@@ -76,9 +107,21 @@ class GraphDiff(BaseModel):
     missing_states: list[str] = Field(
         default_factory=list, exclude_if=lambda states: not states,
         description="goal states not holding, e.g. `fridge closed`, `stove on`")
+    # A goal formula's findings: when the goal is not reached, every counterexample of
+    # the formula (its failing part with the objects, and why; empty when the formula
+    # holds); when it is reached, the witnesses of each exists. The first 1,000 are kept,
+    # the last item then saying "... and N more". Written only when there are some.
+    formula_detail: list[str] = Field(default_factory=list,
+                                      exclude_if=lambda detail: not detail)
+
+    def formula_count(self) -> int:
+        """How many counterexamples (or witnesses) `formula_detail` stands for."""
+        return listed_count(self.formula_detail)
 
     def summary(self) -> str:
-        if self.satisfied:  # a reached goal's detail is a note (a PDDL plan's total cost)
+        if self.satisfied:  # a reached goal's note: its witnesses, or a PDDL plan's cost
+            if self.formula_detail:
+                return "goal reached; " + "; ".join(shortened(self.formula_detail))
             return f"goal reached ({self.detail})" if self.detail else "goal reached"
         parts = []
         if self.missing_edges:
@@ -93,7 +136,33 @@ class GraphDiff(BaseModel):
             parts.append("extra objects: " + ", ".join(self.extra_nodes))
         if self.detail:
             parts.append(self.detail)
+        if self.formula_detail:
+            n = self.formula_count()
+            parts.append(f"formula fails ({n} counterexample{'s' if n != 1 else ''}): "
+                         + "; ".join(shortened(self.formula_detail)))
         return "goal not reached: " + " | ".join(parts)
+
+
+_MORE = re.compile(r"\.\.\. and (\d+) more")
+
+
+def listed_count(lines: list[str]) -> int:
+    """The items a kept list stands for (its last item may say "... and N more")."""
+    m = _MORE.fullmatch(lines[-1]) if lines else None
+    return len(lines) - 1 + int(m.group(1)) if m else len(lines)
+
+
+def shortened(lines: list[str], limit: int = MAX_LISTED) -> list[str]:
+    """The first `limit` items of a kept list, then "... and N more" for the rest."""
+    total = listed_count(lines)
+    shown = [line for line in lines[:limit] if not _MORE.fullmatch(line)]
+    return shown + ([f"... and {total - len(shown)} more"] if total > len(shown) else [])
+
+
+def check_formula(state: WorldState, formula: str) -> GraphDiff:
+    """The goal formula evaluated on the state, as a GraphDiff."""
+    result = evaluate(parse_formula(formula), facts_of(state))
+    return GraphDiff(satisfied=result.satisfied, formula_detail=result.kept())
 
 
 def _sentence(key: EdgeKey) -> str:
@@ -198,10 +267,19 @@ def check_goal(state: WorldState, goal: Goal) -> GraphDiff:
     if goal.predicate == "single_stack":
         pred = single_stack(state)
         if result is None:
-            return pred
-        result = result.model_copy(update={
-            "satisfied": result.satisfied and pred.satisfied, "predicate": "single_stack",
-            "detail": pred.detail})
+            result = pred
+        else:
+            result = result.model_copy(update={
+                "satisfied": result.satisfied and pred.satisfied, "predicate": "single_stack",
+                "detail": pred.detail})
+    if goal.formula is not None:
+        holds = check_formula(state, goal.formula)
+        if result is None:
+            return holds
+        satisfied = result.satisfied and holds.satisfied
+        # witnesses only for a goal reached, counterexamples only for a formula that fails
+        detail = holds.formula_detail if satisfied or not holds.satisfied else []
+        result = result.model_copy(update={"satisfied": satisfied, "formula_detail": detail})
     assert result is not None
     return result
 

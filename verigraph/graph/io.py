@@ -11,6 +11,7 @@ from pydantic import ValidationError
 
 from verigraph.errors import InputFileError
 from verigraph.graph.bulk import collector_paused, graph_items
+from verigraph.graph.formula import looks_like_formula
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 
@@ -19,6 +20,12 @@ MAX_FILE_BYTES = 64 * 1024 * 1024
 
 def read_structured(path: str | Path, *, what: str) -> Any:
     """Decode a JSON or YAML file (chosen by suffix; YAML also reads JSON)."""
+    text = read_text(path, what=what)
+    return decode_structured(text, what=what, json_only=Path(path).suffix.lower() == ".json")
+
+
+def read_text(path: str | Path, *, what: str) -> str:
+    """A JSON or YAML file's text, with errors that name the fix."""
     p = Path(path)
     if not p.is_file():
         raise InputFileError(f"{what} file '{p}' does not exist", field=what, value=str(p),
@@ -31,7 +38,7 @@ def read_structured(path: str | Path, *, what: str) -> Any:
     except UnicodeDecodeError:
         raise InputFileError(f"{what} file is not UTF-8 text", field=what, value=str(p),
                              fix="save it as UTF-8 JSON or YAML") from None
-    return decode_structured(text, what=what, json_only=p.suffix.lower() == ".json")
+    return text
 
 
 def decode_structured(text: str, *, what: str, json_only: bool = False) -> Any:
@@ -93,8 +100,9 @@ def goal_from_data(data: Any) -> Goal:
     try:
         return Goal.parse(data)
     except ValidationError as exc:
-        raise _pydantic_error(exc, "goal", '{"predicate": "single_stack"} or a scene graph, '
-                              'optionally with "partial": true') from None
+        raise _pydantic_error(exc, "goal", '{"predicate": "single_stack"}, {"formula": '
+                              '"(forall ...)"} or a scene graph, optionally with "partial": '
+                              'true') from None
 
 
 def load_scene(path: str | Path) -> SceneGraph:
@@ -103,8 +111,14 @@ def load_scene(path: str | Path) -> SceneGraph:
 
 
 def load_goal(path: str | Path) -> Goal:
-    """Read a goal file: a scene graph, `{"graph": ..., "partial": true}` or a predicate."""
-    return goal_from_data(read_structured(path, what="goal"))
+    """Read a goal file: a scene graph, `{"graph": ..., "partial": true}`, a predicate,
+    `{"formula": "(forall ...)"}`, or a formula as the whole text (a `.bddl` file's
+    `(:goal ...)` section too)."""
+    text = read_text(path, what="goal")
+    if looks_like_formula(text):
+        return Goal.parse(text.strip())
+    return goal_from_data(decode_structured(text, what="goal",
+                                            json_only=Path(path).suffix.lower() == ".json"))
 
 
 def save_graph(graph: SceneGraph, path: str | Path) -> None:

@@ -28,7 +28,8 @@ from verigraph.planning.models import Feedback, FeedbackMode, PlannerReply
 
 
 def goal_distance(graph: SceneGraph, goal: Goal | None) -> int | None:
-    """Edges still wrong (or objects outside the tower), or None without a checkable goal."""
+    """Edges still wrong (objects outside the tower, counterexamples of the formula), or
+    None without a checkable goal."""
     if goal is None:
         return None
     state = WorldState.from_graph(graph)
@@ -36,7 +37,8 @@ def goal_distance(graph: SceneGraph, goal: Goal | None) -> int | None:
     if diff.satisfied:
         return 0
     distance = len(diff.missing_edges) + len(diff.extra_edges) + len(diff.missing_nodes) \
-        + len(diff.extra_nodes)
+        + len(diff.extra_nodes) \
+        + diff.formula_count()
     if goal.predicate == "single_stack":
         movable = sum(o.props.movable for o in state.objects.values())
         tallest = max((len(t) for t in towers(state)), default=0)

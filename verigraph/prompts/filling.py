@@ -118,6 +118,10 @@ def goal_text(goal: Goal | None, instruction: str | None = None) -> str:
                      for key, value in n.state.items())
     if goal is not None and goal.predicate == "single_stack":
         lines.append("All movable objects must end up in one single tower on a fixed object.")
+    if goal is not None and goal.formula is not None:
+        lines.append("Goal formula (BDDL; kinds are labels, ?x variables, other names ids; "
+                     "it must hold at the end):")
+        lines.append(goal.formula_text() or "")
     return "\n".join(lines) or "No goal was given; ask the user what the robot should achieve."
 
 

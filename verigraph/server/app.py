@@ -22,7 +22,8 @@ VeriGraph checks robot manipulation plans against a scene graph before anything 
 Edges read `source relation target` ("cup on book": the book carries the cup).
 1. load_scene (scene_id, graph or image) returns an episode_id; pass it to every call.
    set_goal, validate_plan, check_goal and solve take goal edges as text ("cup on
-   table; spoon in pot"), the nodes taken from the scene.
+   table; spoon in pot"), the nodes taken from the scene, or a BDDL formula over kinds
+   ("(forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))": no cup on a plate).
 2. Propose at most k actions at a time (move(object, relation, target), align(...),
    done). validate_action checks one without changing anything; execute_actions runs
    them until the first violation and returns feedback with a concrete fix.

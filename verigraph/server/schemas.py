@@ -38,7 +38,9 @@ _OUTPUT_KEPT = ("type", "properties", "items", "$defs", "$ref", "anyOf", "oneOf"
                 "allOf", "const", "enum", "additionalProperties", "prefixItems")
 NULL: Schema = {"type": "null"}
 _INNER = "x-type-description"  # working mark only, never published
-MAX_OUTPUT_ENUM = 4
+# Longer enums (constraint ids) are dropped from outputs; the action tags of a state
+# action (open ... thaw: 9) stay, or a move would also match StateAction's shape.
+MAX_OUTPUT_ENUM = 9
 
 
 def _walk(schema: Any, node: Any) -> Any:

@@ -51,8 +51,8 @@ def _state_actions() -> list[str]:
     actions = []
     for row in SCHEMAS.values():
         effect = row.effect
-        if not isinstance(effect, SetState):
-            continue
+        if not isinstance(effect, SetState) or effect.key not in STATE_PREDICATES:
+            continue  # moves, and the physical processes (not exported)
         role = "openable" if effect.key == "open" else "toggleable"
         before, after = (STATE_PREDICATES[effect.key][not effect.value],
                          STATE_PREDICATES[effect.key][effect.value])
@@ -134,12 +134,14 @@ def is_household(state: WorldState, goal: Goal | None = None) -> bool:
 
 
 def problem_pddl(state: WorldState, goal: Goal, name: str = "scene") -> str:
-    """The problem for a tabletop or household scene and a goal graph (predicates cannot
-    be exported); pair it with `domain_pddl(is_household(state, goal))`."""
-    if goal.graph is None:
-        raise GoalError(f"the goal predicate '{goal.predicate}' has no STRIPS form",
-                        field="goal", value=goal.predicate,
-                        fix="give a goal graph (scene JSON) instead of a predicate")
+    """The problem for a tabletop or household scene and a goal graph (predicates and
+    formulas cannot be exported); pair it with `domain_pddl(is_household(state, goal))`."""
+    if goal.graph is None or goal.formula is not None:
+        what = (f"predicate '{goal.predicate}'" if goal.predicate is not None
+                else "formula (quantifiers and negation)")
+        raise GoalError(f"the goal {what} has no STRIPS form", field="goal",
+                        value=goal.predicate or goal.formula,
+                        fix="give a goal graph (scene JSON) instead")
     if state.contacts or any(o.props.sides for o in state.objects.values()):
         raise VeriGraphError("tangram scenes have no PDDL export", field="scene",
                              fix="export tabletop scenes (on/in relations) only")

@@ -23,6 +23,8 @@ from collections.abc import Callable
 
 from verigraph.actions.model import AlignAction, AnyAction
 from verigraph.actions.validator import apply_action, validate_action
+from verigraph.graph.formula import parse_formula
+from verigraph.graph.formula_eval import Facts, check_names, facts_of, holds
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
@@ -42,6 +44,7 @@ from verigraph.solver.encoding import (
     misplaced_heuristic,
     stack_heuristic,
 )
+from verigraph.solver.formula_bound import formula_bound, formula_needs_table
 from verigraph.solver.result import SolveResult, static_reason
 from verigraph.solver.table_search import needs_table_search, table_astar
 from verigraph.solver.tangram import tangram_plan
@@ -83,6 +86,8 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
            anytime: bool) -> SolveResult:
     state = scene.copy() if isinstance(scene, WorldState) else WorldState.from_graph(scene)
     goal_model = Goal.parse(goal)
+    if goal_model.formula is not None:  # ids and kinds the scene lacks: bad input, said so
+        check_names(parse_formula(goal_model.formula), facts_of(state))
     if check_goal(state, goal_model).satisfied:
         return SolveResult(reachable=True, plan=[], optimal=True, lower_bound=0)
     reason = static_reason(state, goal_model)
@@ -90,21 +95,32 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
         return SolveResult(reachable=False, status="unreachable", reason=reason)
     if state.contacts or any(o.props.sides for o in state.objects.values()):
         return _solve_tangram(state, goal_model, budget)
-    if needs_table_search(state, goal_model):
-        return _solve_table(state, goal_model, budget)
+    if needs_table_search(state, goal_model) or formula_needs_table(goal_model):
+        return _solve_table(state, goal_model, budget, anytime)
     problem = SearchProblem(state)
     wanted = goal_codes(problem, goal_model.graph) if goal_model.graph is not None else {}
     h_graph = misplaced_heuristic(problem, wanted)
     h_stack = stack_heuristic(problem) if goal_model.predicate == "single_stack" else None
+    formula = parse_formula(goal_model.formula) if goal_model.formula is not None else None
+    facts_at = _facts_at(problem, state) if formula is not None else None
+    rest = goal_model.model_copy(update={"formula": None})
+    rest_checked = rest.graph is not None or rest.predicate is not None
 
     def h(codes: Codes) -> int:
         value = h_graph(codes) if wanted else 0
-        return max(value, h_stack(codes)) if h_stack else value
+        if h_stack:
+            value = max(value, h_stack(codes))
+        if formula is not None and facts_at is not None:
+            value = max(value, formula_bound(formula, facts_at(codes)))
+        return value
 
     def is_goal(codes: Codes) -> bool:
         if wanted and any(codes[k] != c for k, c in wanted.items()):
             return False
-        return _decoded_goal_check(problem, state, codes, goal_model)
+        if formula is not None and facts_at is not None \
+                and not holds(formula, facts_at(codes)):
+            return False
+        return not rest_checked or _decoded_goal_check(problem, state, codes, rest)
 
     if not anytime:
         proof = {"floor": h(problem.start)}
@@ -170,6 +186,21 @@ def _replay(problem: SearchProblem, moves: list[Move]) -> Codes:
     return tuple(codes)
 
 
+def _facts_at(problem: SearchProblem, state: WorldState) -> Callable[[Codes], Facts]:
+    """The facts of an encoded state for a goal formula: the start's objects, states and
+    the edges of fixed objects, with each movable object where the codes put it."""
+    base = facts_of(state)
+    moving = {problem.ids[i] for i in problem.movable}
+    kept = [edge for edge in base.edges if edge[1] not in moving]
+    ids, movable = problem.ids, problem.movable
+
+    def facts(codes: Codes) -> Facts:
+        return base.with_edges([*kept, *((RELATIONS[c & 1], ids[movable[k]], ids[c >> 1])
+                                         for k, c in enumerate(codes))])
+
+    return facts
+
+
 def _decoded_goal_check(problem: SearchProblem, state: WorldState, codes: Codes,
                         goal: Goal) -> bool:
     trial = state.copy()
@@ -226,14 +257,31 @@ def _astar(problem: SearchProblem, h: Callable[[Codes], int], is_goal: Callable[
     return False, []
 
 
-def _solve_table(state: WorldState, goal: Goal, budget: SearchBudget) -> SolveResult:
-    """A household world: optimal A* over the action table (anytime or not: it is the
-    one search, and its plan is optimal)."""
+def _solve_table(state: WorldState, goal: Goal, budget: SearchBudget,
+                 anytime: bool = False) -> SolveResult:
+    """A household world: optimal A* over the action table; anytime: weighted A*
+    (w = 3) first, a plan sooner whose length is not proven optimal, then A* with what
+    budget is left (its bound kept if it stops)."""
+    proof = {"floor": 0}
+    first: list[AnyAction] | None = None
     try:
-        found, plan = table_astar(state, goal, budget)
+        if anytime:
+            found, plan = table_astar(state, goal, budget, weight=3.0)
+            if not found:
+                return SolveResult(reachable=False, status="unreachable",
+                                   expanded=budget.expansions,
+                                   reason="no sequence of valid actions reaches the goal "
+                                          f"(all {budget.expansions} reachable states "
+                                          "searched)")
+            first = plan
+        found, plan = table_astar(state, goal, budget, proof=proof)
     except SearchBudgetSpent as exc:
+        if first is not None:
+            return SolveResult(reachable=True, plan=first, expanded=budget.expansions,
+                               optimal=len(first) <= proof["floor"],
+                               lower_bound=proof["floor"])
         return SolveResult(reachable=None, status="budget_exhausted", reason=str(exc),
-                           expanded=budget.expansions)
+                           expanded=budget.expansions, lower_bound=proof["floor"])
     if found:
         return SolveResult(reachable=True, plan=plan, expanded=budget.expansions,
                            optimal=True, lower_bound=len(plan))

@@ -22,11 +22,15 @@ from collections.abc import Iterator
 from typing import Any
 
 from verigraph.actions.model import AnyAction, MoveAction, StateAction
+from verigraph.actions.processes import process_needs
 from verigraph.actions.schemas import SCHEMAS, ActionSchema
-from verigraph.graph.dictionary import PLACEMENT_RELATIONS, SUPPORT_RELATIONS
+from verigraph.graph.dictionary import PLACEMENT_RELATIONS, STATE_ROLES, SUPPORT_RELATIONS
+from verigraph.graph.formula import Atom, Formula, Imply, Junction, Not, parse_formula
+from verigraph.graph.formula_eval import Facts, facts_of
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.state import WorldState
 from verigraph.solver.budget import SearchBudget
+from verigraph.solver.formula_bound import formula_bound
 
 Key = tuple[tuple[Any, ...], tuple[bool, ...]]
 
@@ -47,6 +51,8 @@ def needs_table_search(state: WorldState, goal: Goal) -> bool:
     """
     if state.openable:
         return True
+    if goal.formula is not None and _formula_needs_table(parse_formula(goal.formula)):
+        return True
     if goal.graph is not None and (
             any(n.state for n in goal.graph.nodes)
             or any(e.relation in PLACEMENT_RELATIONS and e.relation not in SUPPORT_RELATIONS
@@ -62,21 +68,48 @@ def needs_table_search(state: WorldState, goal: Goal) -> bool:
     return False
 
 
+def _formula_needs_table(formula: Formula) -> bool:
+    """A formula that asks for a state (`open`, `cooked`, ...) or an `under`/`nextto`
+    placement: only the table's actions reach it."""
+    return any(r not in (*SUPPORT_RELATIONS, "inroom") for r in _atom_relations(formula))
+
+
+def _atom_relations(formula: Formula) -> set[str]:
+    """The relations and state keys a formula's atoms read."""
+    found: set[str] = set()
+    stack: list[Formula] = [formula]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, Atom):
+            found.add(node.relation)
+        elif isinstance(node, Not):
+            stack.append(node.body)
+        elif isinstance(node, Junction):
+            stack.extend(node.parts)
+        elif isinstance(node, Imply):
+            stack.extend((node.condition, node.then))
+        else:  # a quantifier
+            stack.append(node.body)
+    return found
+
+
 class TableProblem:
     """A household scene as search states: each movable object's placement and each
     state-bearing object's states, with the goal as atoms."""
 
-    def __init__(self, state: WorldState, goal: Goal) -> None:
+    def __init__(self, state: WorldState, goal: Goal, *, additive: bool = False) -> None:
         self.start = state
+        self.additive = additive  # h from distinct requirements: a guide, not a bound
         objects = state.objects
         self.movable = sorted(o for o, info in objects.items() if info.props.movable)
         self.stateful = sorted(
             (o, key) for o, info in objects.items()
-            for key, role in (("open", "openable"), ("toggled_on", "toggleable"))
-            if getattr(info.props, role))
+            for key, role in STATE_ROLES.items() if getattr(info.props, role))
+        roles = {p.role for row in SCHEMAS.values() for p in row.parameters
+                 if p.role not in (None, "relation")}
         self.candidates: dict[str, list[str]] = {
-            role: sorted(o for o, info in objects.items() if getattr(info.props, role))
-            for role in ("movable", "openable", "toggleable")}
+            str(role): sorted(o for o, info in objects.items() if getattr(info.props, str(role)))
+            for role in roles}
         self.every = sorted(objects)
         self.placements: dict[str, tuple[str, str]] = {}
         self.states: dict[tuple[str, str], bool] = {}
@@ -88,6 +121,29 @@ class TableProblem:
             for n in goal.graph.nodes:
                 for key, value in n.state.items():
                     self.states[(n.id, key)] = value
+        # A formula goal: its admissible bound (verigraph.solver.formula_bound) joins.
+        self.formula = parse_formula(goal.formula) if goal.formula is not None else None
+        # `under`/`nextto` moves only where the goal reads them or rooms: with a fixed
+        # surface of unlimited capacity, a parking move by them has an equally long
+        # replacement onto it (needs_table_search), so the plans stay optimal.
+        wanted = _atom_relations(self.formula) if self.formula is not None else set()
+        if goal.graph is not None:
+            wanted |= {e.relation for e in goal.graph.edges}
+        unlimited = any(objects[s].props.capacity is None for s in state.fixed_surfaces)
+        self.relations = [r for r in state.move_relations
+                          if r in SUPPORT_RELATIONS or r in wanted or not unlimited
+                          or "inroom" in wanted]
+        self._facts = facts_of(state) if self.formula is not None else None
+        self._bounds: dict[Key, int] = {}
+
+    def facts(self, state: WorldState) -> Facts:
+        """The formula's view of a search state, built from the placements directly."""
+        assert self._facts is not None
+        facts = self._facts.with_edges(
+            [*((r, o, t) for o, (r, t) in state.support.items()),
+             *(("inroom", o, r) for o, r in state.rooms.items())])
+        facts.states = state.states
+        return facts
 
     def key(self, state: WorldState) -> Key:
         support = state.support
@@ -117,6 +173,11 @@ class TableProblem:
             elif wanted is False:
                 wrong += 2  # open it, close it again
             # wanted open: that atom counts the opening already
+        if self.formula is not None:
+            wrong = max(wrong, formula_bound(
+                self.formula, self.facts(state),
+                lambda obj, key, want: process_needs(state, obj, key, want),
+                additive=self.additive))
         return wrong
 
     def world(self, key: Key) -> WorldState:
@@ -134,7 +195,7 @@ class TableProblem:
         pools = []
         for p in row.parameters:
             if p.role == "relation":
-                pools.append(list(state.move_relations))
+                pools.append(self.relations)
             elif p.role is None:
                 pools.append(self.every)
             else:
@@ -142,20 +203,51 @@ class TableProblem:
         return itertools.product(*pools)
 
     def successors(self, state: WorldState, budget: SearchBudget
-                   ) -> Iterator[tuple[AnyAction, WorldState]]:
+                   ) -> Iterator[tuple[ActionSchema, tuple[str, ...], Key, int]]:
+        """(row, arguments, key, bound) of each accepted action. Each is applied to
+        `state` in place, read, and undone (a copy per successor cost more than the
+        search did), so `state` is unchanged when the iteration ends."""
+        made = 0
         for row in SCHEMAS.values():
             for args in self._bindings(row, state):
                 if not row.accepted(state, *args):
                     continue
-                budget.check(memory=True)
-                nxt = state.copy()
-                row.apply(nxt, *args)
-                yield _action(row, args), nxt
+                made += 1
+                if not made & 63:
+                    budget.check(memory=True)
+                before = row.apply(state, *args)
+                try:
+                    key = self.key(state)
+                    bound = self._bounds.get(key)
+                    if bound is None:
+                        bound = self._bounds[key] = self.h(state)
+                    yield row, args, key, bound
+                finally:
+                    if row.name == "move":
+                        if before is None:  # it had no placement before
+                            state.support.pop(args[0])
+                            del state.carried[args[2]][args[0]]
+                        else:
+                            state.set_support(args[0], before[0], before[1])
+                    else:
+                        state.set_state(args[0], row.effect.key,  # type: ignore[union-attr]
+                                        before)
+
+
+def neighbours(problem: TableProblem, state: WorldState, budget: SearchBudget
+               ) -> Iterator[tuple[AnyAction, WorldState]]:
+    """Each accepted action with the world after it (a copy each: for checks and tests;
+    the search itself reads keys and bounds from `TableProblem.successors`)."""
+    for row, args, _, _ in list(problem.successors(state, budget)):
+        after = state.copy()
+        row.apply(after, *args)
+        yield _action(row, args), after
 
 
 def valid_actions(state: WorldState) -> list[AnyAction]:
     """Every action of the table the verifier accepts on `state` now (scene order)."""
     problem = TableProblem(state, Goal(predicate="single_stack"))
+    problem.relations = list(state.move_relations)  # every relation, not the goal's
     found = []
     for row in SCHEMAS.values():
         for args in problem._bindings(row, state):
@@ -170,20 +262,31 @@ def _action(row: ActionSchema, args: tuple[str, ...]) -> AnyAction:
     return StateAction(action=row.name, object=args[0])  # type: ignore[arg-type]
 
 
-def table_astar(state: WorldState, goal: Goal, budget: SearchBudget
-                ) -> tuple[bool, list[AnyAction]]:
-    """(found, plan): an optimal plan over the table's actions, every action one step."""
-    problem = TableProblem(state, goal)
+def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: float = 1.0,
+                proof: dict[str, int] | None = None) -> tuple[bool, list[AnyAction]]:
+    """(found, plan): an optimal plan over the table's actions, every action one step.
+
+    With `weight` > 1, weighted A* (f = g + weight * h, h counting every distinct
+    requirement of the formula rather than a bound): a plan sooner, not proven optimal.
+    `proof["floor"]` is raised, for weight 1, to the smallest f still open (every plan
+    needs at least that many actions), so a search the budget stops keeps its bound."""
+    problem = TableProblem(state, goal, additive=weight > 1.0)
     counter = itertools.count()
     start_key = problem.key(state)
-    frontier: list[tuple[int, int, int, Key]] = [(problem.h(state), 0, next(counter), start_key)]
+    start_h = problem.h(state)
+    frontier: list[tuple[float, int, int, Key]] = [(weight * start_h, 0, next(counter),
+                                                    start_key)]
     parent: dict[Key, tuple[Key, AnyAction] | None] = {start_key: None}
     best_g = {start_key: 0}
+    if proof is not None:
+        proof["floor"] = max(proof.get("floor", 0), start_h)
     while frontier:
-        _, neg_g, _, key = heapq.heappop(frontier)
+        f, neg_g, _, key = heapq.heappop(frontier)
         g = -neg_g
         if g > best_g.get(key, g):
             continue
+        if proof is not None and weight == 1.0:
+            proof["floor"] = max(proof["floor"], int(f))
         current = problem.world(key)
         if problem.h(current) == 0 and check_goal(current, goal).satisfied:
             plan: list[AnyAction] = []
@@ -195,12 +298,11 @@ def table_astar(state: WorldState, goal: Goal, budget: SearchBudget
             return True, list(reversed(plan))
         budget.expansions += 1
         budget.check()
-        for action, nxt in problem.successors(current, budget):
-            nkey = problem.key(nxt)
+        for row, args, nkey, nh in problem.successors(current, budget):
             ng = g + 1
             if ng < best_g.get(nkey, ng + 1):
                 best_g[nkey] = ng
-                parent[nkey] = (key, action)
+                parent[nkey] = (key, _action(row, args))
                 # Ties broken towards deeper nodes: fewer expansions, still optimal.
-                heapq.heappush(frontier, (ng + problem.h(nxt), -ng, next(counter), nkey))
+                heapq.heappush(frontier, (ng + weight * nh, -ng, next(counter), nkey))
     return False, []

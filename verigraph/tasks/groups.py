@@ -251,6 +251,15 @@ def household_tasks(n: int, seed: int) -> GroupTasks:
                            "scenes")
 
 
+def _behavior_group(n: int) -> GroupTasks:
+    """BEHAVIOR-1K's activities the reference solver solves (verigraph.tasks.behavior):
+    a fixed set, one task per activity, so `n` does not cut it."""
+    from verigraph.tasks.behavior import behavior_tasks
+
+    del n
+    return GroupTasks(group="behavior", tasks=behavior_tasks())
+
+
 def build_groups(groups: tuple[GroupName, ...], n: int, seed: int, *, ground_truth: bool,
                  simulate: bool = False) -> list[GroupTasks]:
     """Every requested group's tasks (or why it is not run)."""
@@ -262,6 +271,7 @@ def build_groups(groups: tuple[GroupName, ...], n: int, seed: int, *, ground_tru
         "ref_image_blocks": lambda: reference_image_tasks(
             "blocks", n, seed, ground_truth=ground_truth, simulate=simulate),
         "tangram": lambda: tangram_tasks(n, seed, simulate=simulate),
+        "behavior": lambda: _behavior_group(n),
         "household": lambda: household_tasks(n, seed),
     }
     return [builders[g]() for g in groups]

@@ -30,14 +30,15 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 
 SUITE_VERSION = "2"
-Family = Literal["blocks", "kitchen", "tangram", "household"]
+Family = Literal["blocks", "kitchen", "tangram", "household", "behavior"]
 FAMILIES: tuple[Family, ...] = get_args(Family)
-# The paper's five groups (the benchmark's default), and the household group beside them.
+# The paper's five groups (the benchmark's default), and the household and BEHAVIOR-1K
+# groups beside them.
 PaperGroup = Literal["stacking", "language", "ref_image_kitchen", "ref_image_blocks",
                      "tangram"]
-GroupName = PaperGroup | Literal["household"]
+GroupName = PaperGroup | Literal["household", "behavior"]
 GROUPS: tuple[GroupName, ...] = get_args(PaperGroup)
-ALL_GROUPS: tuple[GroupName, ...] = (*GROUPS, "household")
+ALL_GROUPS: tuple[GroupName, ...] = (*GROUPS, "household", "behavior")
 
 RECORD_FIELDS = ("family", "group", "kind", "optimal_length", "objects", "show_goal_graph",
                  "instruction", "suite_version")
@@ -136,9 +137,9 @@ class Task(BaseModel):
 
     @property
     def goal(self) -> Goal | None:
-        """The goal `set_goal` sets when it gives a graph (the language tasks' ground
-        truth); None for a goal given as an image."""
-        if not self.set_goal or "graph" not in self.set_goal:
+        """The goal `set_goal` sets when it gives a graph or a formula (the language
+        tasks' ground truth); None for a goal given as an image."""
+        if not self.set_goal or not {"graph", "formula"} & set(self.set_goal):
             return None
         return Goal.model_validate({k: v for k, v in self.set_goal.items()
                                     if k in Goal.model_fields})

@@ -302,7 +302,7 @@ class CheckGoalInput(BaseModel):
 
     episode_id: EpisodeId
     goal: GoalArgument | None = Field(default=None, description="instead of the episode's; "
-                                                                "edges text too")
+                                                                "edges or formula text too")
 
 
 # The goal a result echoes is published as a plain object: its shape is the goal input's

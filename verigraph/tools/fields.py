@@ -17,6 +17,7 @@ from pydantic import AfterValidator, BeforeValidator, Field, WithJsonSchema
 from verigraph.actions.model import Action, AnyAction, DoneAction
 from verigraph.actions.parser import parse_text_plan
 from verigraph.errors import MalformedGraphError, PlanParseError
+from verigraph.graph.behavior import BEHAVIOR
 from verigraph.graph.builtin_scenes import BUILTIN_GOALS, BUILTIN_SCENES
 from verigraph.graph.dictionary import (
     BUILTIN_DICTIONARIES,
@@ -157,11 +158,11 @@ def dictionary_for(name: str | InlineDictionary | None, *, field: str = "diction
         return name.build()
     if name is None or name == "all":
         return load_dictionary(None)
-    if name not in BUILTIN_DICTIONARIES:
+    if name not in (*BUILTIN_DICTIONARIES, BEHAVIOR):
         raise ToolArgumentError(
             f"'{name[:64]}' is not a built-in dictionary", field=field, value=name[:64],
-            fix=f"use one of {', '.join(BUILTIN_DICTIONARIES)} or all (dictionary files "
-                "cannot be read through the tool interface)")
+            fix=f"use one of {', '.join(BUILTIN_DICTIONARIES)}, {BEHAVIOR} or all (dictionary "
+                "files cannot be read through the tool interface)")
     return load_dictionary(name)
 
 

@@ -1,7 +1,9 @@
 """Goals: the set_goal tool and the check every goal passes before it is stored.
 
 A goal graph must be well formed and name only objects of the scene; goal edges may be
-given as text (`cup on table; spoon in pot`), nodes taken from the episode; an image goal
+given as text (`cup on table; spoon in pot`), nodes taken from the episode; a goal formula
+(BDDL, text starting with `(`) must parse and name only the scene's objects and known
+kinds; an image goal
 is read by built-in perception and its objects matched to the episode's ids; words alone
 are translated by the rule-based translator into a proposal the client confirms. An
 invalid goal changes nothing, and neither does a proposal.
@@ -16,7 +18,10 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from verigraph.errors import GoalError
 from verigraph.graph.dictionary import STATE_ROLES, STATE_WORDS
+from verigraph.graph.formula import FORMULA_EXAMPLE, looks_like_formula, parse_formula
+from verigraph.graph.formula_eval import check_names, facts_of
 from verigraph.graph.goal import PREDICATES, Goal, GraphDiff, check_goal, goal_kind_problems
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
@@ -48,7 +53,10 @@ MAX_NEAR_CANDIDATES = 400
 
 
 def check_goal_against(goal: Goal, state: WorldState | None, *, field: str) -> None:
-    """A goal graph must be well formed and name only objects of the scene."""
+    """A goal graph must be well formed and name only objects of the scene; a formula
+    must name only the scene's objects and known kinds."""
+    if goal.formula is not None and state is not None:
+        check_formula_against(goal.formula, state, field=f"{field}.formula")
     if goal.graph is None:
         return
     dictionary = state.dictionary if state is not None else dictionary_for(goal.graph.dictionary)
@@ -82,6 +90,29 @@ def check_goal_against(goal: Goal, state: WorldState | None, *, field: str) -> N
                 "require only the listed edges")
 
 
+def check_formula_against(text: str, state: WorldState, *, field: str) -> None:
+    """The formula parses and names only the scene's objects and known kinds."""
+    try:
+        check_names(parse_formula(text), facts_of(state))
+    except GoalError as exc:
+        raise ToolArgumentError(exc.message, field=field, value=exc.value,
+                                fix=exc.fix) from None
+
+
+def goal_from_formula(text: str, state: WorldState | None, *, field: str = "formula",
+                      partial: bool = True) -> Goal:
+    """A formula's text as a goal, checked against the scene when there is one."""
+    try:
+        parse_formula(text.strip())
+    except GoalError as exc:
+        raise ToolArgumentError(exc.message, field=field, value=exc.value,
+                                fix=exc.fix) from None
+    goal = Goal(formula=text.strip(), partial=partial)
+    if state is not None:
+        check_formula_against(goal.formula or "", state, field=field)
+    return goal
+
+
 class SetGoalInput(BaseModel):
     """A goal graph, a predicate, a reference image, or just an instruction."""
 
@@ -91,6 +122,8 @@ class SetGoalInput(BaseModel):
     graph: BoundedGraph | None = Field(default=None, description="goal scene graph")
     edges: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
                               description="goal edges as text")
+    formula: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
+                                description=f"BDDL, e.g. {FORMULA_EXAMPLE}")
     partial: bool | None = Field(default=None, description="only the listed edges must "
                                  "hold (default: true for edges)")
     predicate: Literal["single_stack"] | None = Field(
@@ -102,11 +135,12 @@ class SetGoalInput(BaseModel):
 
     @model_validator(mode="after")
     def _something(self) -> SetGoalInput:
-        if not any(v is not None for v in (self.graph, self.edges, self.predicate, self.image,
-                                           self.instruction)):
-            raise ValueError("give a goal: graph, edges, predicate, image or instruction")
-        if sum(v is not None for v in (self.graph, self.edges, self.image)) > 1:
-            raise ValueError("give only one of graph, edges and image")
+        if not any(v is not None for v in (self.graph, self.edges, self.formula,
+                                           self.predicate, self.image, self.instruction)):
+            raise ValueError("give a goal: graph, edges, formula, predicate, image or "
+                             "instruction")
+        if sum(v is not None for v in (self.graph, self.edges, self.formula, self.image)) > 1:
+            raise ValueError("give only one of graph, edges, formula and image")
         return self
 
 
@@ -254,14 +288,15 @@ GoalText = Annotated[str, Field(min_length=1, max_length=MAX_GOAL_EDGES_CHARS)]
 # A stateless tool's goal: a goal object, or its edges as text (partial, nodes from the
 # scene) or a predicate's name.
 GoalArgument = BoundedGoal | GoalText
-GOAL_ARGUMENT_HELP = "edges text 'cup on table; spoon in pot' (partial) or {graph, partial}, " \
-                     "nodes from the scene"
+GOAL_ARGUMENT_HELP = "edges text 'cup on table; spoon in pot' (partial), a formula " \
+                     "'(forall ...)' or {graph, partial}, nodes from the scene"
 
 
 def resolve_goal(goal: Goal | str, state: WorldState, *, field: str = "goal") -> Goal:
     """A stateless tool's goal, checked against the scene it is checked on.
 
-    Text is goal edges (as set_goal's `edges`) or a predicate's name. A goal graph may
+    Text is goal edges (as set_goal's `edges`), a formula (text starting with `(`) or a
+    predicate's name. A goal graph may
     leave out its nodes: every id its edges name is taken from the scene, so the node
     list is never repeated. Edges naming ids the scene lacks are all reported at once,
     sources and targets alike, with the closest ids.
@@ -270,6 +305,8 @@ def resolve_goal(goal: Goal | str, state: WorldState, *, field: str = "goal") ->
         name = goal.strip()
         if name in PREDICATES:
             return Goal(predicate=name)  # type: ignore[arg-type]
+        if looks_like_formula(name):
+            return goal_from_formula(name, state, field=field)
         return goal_from_edges(goal, state, field=field)
     if goal.graph is not None:
         goal = goal.model_copy(update={"graph": _with_scene_nodes(goal.graph, state, field)})
@@ -429,15 +466,24 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
             graph = reading.goal.graph
         goal: Goal | None = None
         partial = bool(params.partial) or (reading.goal is not None and reading.goal.partial)
-        if params.edges is not None:
+        formula, formula_field = params.formula, "formula"
+        if params.edges is not None and looks_like_formula(params.edges):
+            formula, formula_field = params.edges, "edges"
+        elif params.edges is not None:
             edges_goal = goal_from_edges(params.edges, episode.state,
                                          partial=params.partial is not False)
             graph, partial = edges_goal.graph, edges_goal.partial
+        if formula is not None:
+            formula = goal_from_formula(formula, episode.state, field=formula_field).formula
         readings: list[str] = []
-        if graph is not None or params.predicate is not None:
+        if graph is not None or params.predicate is not None or formula is not None:
             goal = Goal(graph=graph, partial=partial, predicate=params.predicate,
-                        instruction=params.instruction)
+                        formula=formula, instruction=params.instruction)
             check_goal_against(goal, episode.state, field="goal" if graph is None else "graph")
+            if formula is not None and episode.state is None:
+                reading.notes.append("no scene graph yet, so the formula's ids and kinds "
+                                     "are not checked: an id the submitted scene lacks "
+                                     "never holds")
             if params.graph is not None:  # a graph the client wrote (not edges or a photo)
                 readings = label_readings(params.graph, episode.state.dictionary
                                           if episode.state is not None else

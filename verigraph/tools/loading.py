@@ -12,6 +12,8 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from verigraph.graph.bddl_problem import MAX_TEXT as MAX_BDDL_CHARS
+from verigraph.graph.bddl_problem import import_problem
 from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, InlineDictionary
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
@@ -60,7 +62,7 @@ class GeneratorSpec(BaseModel):
 
 
 class LoadSceneInput(BaseModel):
-    """Start an episode from exactly one of: scene_id, graph, image, generator."""
+    """Start an episode from exactly one of: scene_id, graph, image, generator, bddl."""
 
     model_config = ConfigDict(extra="forbid")
 
@@ -71,6 +73,9 @@ class LoadSceneInput(BaseModel):
                                    "submit_scene_graph)")
     generator: GeneratorSpec | None = Field(default=None,
                                             description="generate a scene with sim2d")
+    bddl: str | None = Field(
+        default=None, min_length=1, max_length=MAX_BDDL_CHARS,
+        description="BEHAVIOR-1K problem text (BDDL): its scene and goal formula")
     dictionary: DictionaryName | None = Field(
         default=None, description=f"for image/graph: {', '.join(BUILTIN_DICTIONARIES)}, "
                                   "all or yours {extends, objects: {label: {surface, "
@@ -90,10 +95,10 @@ class LoadSceneInput(BaseModel):
 
     @model_validator(mode="after")
     def _one_source(self) -> LoadSceneInput:
-        given = [n for n in ("scene_id", "graph", "image", "generator")
+        given = [n for n in ("scene_id", "graph", "image", "generator", "bddl")
                  if getattr(self, n) is not None]
         if len(given) != 1:
-            raise ValueError("give exactly one of scene_id, graph, image, generator "
+            raise ValueError("give exactly one of scene_id, graph, image, generator, bddl "
                              f"(got {', '.join(given) or 'none'})")
         return self
 
@@ -129,6 +134,10 @@ def _read_source(params: LoadSceneInput, executor: str) -> _Source:
         return _Source(f"scene_id:{params.scene_id}", graph, goal)
     if params.graph is not None:
         return _Source("graph", params.graph)
+    if params.bddl is not None:  # refused whole (naming the predicate) or loaded whole
+        imported = import_problem(params.bddl)
+        return _Source(f"bddl:{imported.activity}", imported.scene_graph(),
+                       Goal(formula=imported.formula))
     if params.generator is not None:
         spec = params.generator
         generated = generate_scene(spec.family, spec.seed, spec.n_objects)

@@ -123,17 +123,18 @@ class ToolSpec:
 
 TOOL_SPECS: tuple[ToolSpec, ...] = (
     ToolSpec("load_scene", "Start an episode",
-             "Start an episode (scene_id, graph, image or sim2d generator): episode_id, "
-             "executors, robot or none. Node attrs (movable, surface, container, capacity, "
-             'width), e.g. {"container":true}, beat built-in defaults, give your label a role.',
+             "Start an episode (scene_id, graph, image, sim2d generator or BDDL problem): "
+             "episode_id, executors, robot or none. Node attrs (movable, surface, container, "
+             'capacity, width), e.g. {"container":true}, beat built-in defaults, give your '
+             "label a role.",
              loading.LoadSceneInput, summaries.EpisodeState, loading.load_scene_tool,
              read_only=False, open_world=True, opens_world=True,
-             heavy_when=HeavyWhen(given=("image", "generator", "simulate", "executor"),
+             heavy_when=HeavyWhen(given=("image", "generator", "bddl", "simulate", "executor"),
                                   graphs=("graph", "goal"), images=("image",))),
     ToolSpec("set_goal", "Set the goal",
-             "Set the goal: edges ('cup on table; spoon in pot'), a graph (a node's state, "
-             'e.g. {"open": false}, is a goal too), a predicate or an image. Words alone: a '
-             "proposal to confirm.",
+             "Set the goal: edges ('cup on table; spoon in pot'), a BDDL formula, a graph (a "
+             "node's state, e.g. {\"open\": false}, is a goal too), a predicate or an image. "
+             "Words alone: a proposal to confirm.",
              goals.SetGoalInput, goals.GoalOutput, goals.set_goal,
              read_only=False, idempotent=True,
              heavy_when=HeavyWhen(given=("image",), graphs=("graph",), images=("image",))),

@@ -104,9 +104,12 @@ def render_scene(ctx: ToolContext, params: RenderSceneInput) -> ImageResult:
         elif params.view == "goal":
             goal = episode.goal
             if goal is None or goal.graph is None:
-                raise ToolArgumentError("this episode has no goal graph to draw", field="view",
-                                        value="goal", fix="call set_goal with a graph first, "
-                                                          "or use view=current")
+                what = " (a formula says what must hold, not one graph)" \
+                    if goal is not None and goal.formula is not None else ""
+                raise ToolArgumentError(f"this episode has no goal graph to draw{what}",
+                                        field="view", value="goal",
+                                        fix="call set_goal with a graph first, or use "
+                                            "view=current")
             colors = _colors(episode.state) if episode.state is not None else {}
             image = draw_graph(goal.graph, params.width, params.height,
                                title="goal graph (drawing)", colors=colors)

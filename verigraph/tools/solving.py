@@ -37,7 +37,7 @@ class SolveInput(BaseModel):
     scene_id: SceneId | None = Field(default=None, description="a built-in scene")
     graph: BoundedGraph | None = Field(default=None, description="plan from this graph")
     goal: GoalArgument | None = Field(default=None, description="default: the episode's "
-                                      "or scene's; edges text too")
+                                      "or scene's; edges or formula text too")
     max_expansions: int = Field(default=200_000, ge=1, le=2_000_000,
                                 description="max nodes expanded")
     time_limit: float = Field(default=5.0, gt=0, le=600,

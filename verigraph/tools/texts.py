@@ -195,13 +195,17 @@ def properties_line(graph: SceneGraph, *more: SceneGraph | None) -> str:
     return applied_line(graph, _dictionary(graph.dictionary), *more)
 
 
+MAX_FORMULA_SHOWN = 600  # characters of a goal formula a text shows
+
+
 def goal_edges_text(goal: Goal) -> str:
     """A goal graph's edges as set_goal's `edges` text takes them back."""
     return "; ".join(goal.graph.sentences()) if goal.graph is not None else ""
 
 
 def goal_line(goal: Goal | None) -> str | None:
-    """`goal (partial): cup on table` or `goal: single_stack`; None without a goal."""
+    """`goal (partial): cup on table`, `goal: single_stack` or `goal: formula (forall
+    ...)`; None without a goal."""
     if goal is None:
         return None
     parts = []
@@ -211,6 +215,11 @@ def goal_line(goal: Goal | None) -> str | None:
         parts.append("; ".join([*goal.graph.sentences(), *states]) or "no edges")
     if goal.predicate:
         parts.append(goal.predicate)
+    text = goal.formula_text()
+    if text is not None:
+        parts.append("formula " + (text if len(text) <= MAX_FORMULA_SHOWN
+                                   else text[:MAX_FORMULA_SHOWN - 3] + "..."))
     if not parts:
         return None
-    return f"goal{' (partial)' if goal.partial else ''}: " + "; ".join(parts)
+    partial = " (partial)" if goal.partial and goal.graph is not None else ""
+    return f"goal{partial}: " + "; ".join(parts)

@@ -15,6 +15,7 @@ from pydantic import ValidationError
 
 from verigraph.errors import InputFileError, VeriGraphError
 from verigraph.graph.builtin_scenes import BUILTIN_SCENES
+from verigraph.graph.formula import looks_like_formula
 from verigraph.graph.goal import PREDICATES, Goal
 from verigraph.graph.io import decode_structured, goal_from_data, scene_from_data
 from verigraph.graph.model import SceneGraph
@@ -55,7 +56,8 @@ def plan_input(scene: Any, plan: Any, goal: Any = "") -> ValidatePlanInput:
     else:
         arguments["graph"] = scene_from_data(decode_structured(scene_text, what="scene"))
     if goal_text:
-        arguments["goal"] = (Goal.parse(goal_text) if goal_text in PREDICATES
+        arguments["goal"] = (Goal.parse(goal_text)  # a predicate's name or a formula
+                             if goal_text in PREDICATES or looks_like_formula(goal_text)
                              else goal_from_data(decode_structured(goal_text, what="goal")))
     try:
         return ValidatePlanInput.model_validate(arguments)

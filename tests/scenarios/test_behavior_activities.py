@@ -1,0 +1,56 @@
+"""BEHAVIOR-1K's activities from the installed `bddl` (the `household` extra): every one
+imported or refused naming a predicate, and a handful of each class through the whole
+path (import, solve, validate, execute on the graph executor, goal checked there).
+The full table is `verigraph bench behavior` (benchmarks/results/behavior.md)."""
+
+from __future__ import annotations
+
+from collections import Counter
+
+import pytest
+
+pytest.importorskip("bddl", reason="the household extra (bddl) is not installed")
+
+from verigraph.graph.bddl_problem import (  # noqa: E402
+    SUPPORTED,
+    UnsupportedActivityError,
+    import_problem,
+)
+from verigraph.tasks.behavior import activities, activity_text, run_activity  # noqa: E402
+
+
+def test_every_activity_is_imported_or_refused_naming_a_predicate() -> None:
+    names = activities()
+    assert len(names) == 1016
+    classes: Counter[str] = Counter()
+    refused: Counter[str] = Counter()
+    for name in names:
+        try:
+            imported = import_problem(activity_text(name), activity=name)
+        except UnsupportedActivityError as exc:
+            assert exc.predicate and exc.predicate not in SUPPORTED
+            assert name in exc.message and f"'{exc.predicate}'" in exc.message
+            refused[exc.predicate] += 1
+            continue
+        imported.scene_graph()  # well formed, never half-loaded
+        classes[imported.predicate_class] += 1
+    assert classes == {"spatial": 160, "household": 71, "thermal": 31}
+    assert sum(refused.values()) == 754
+
+
+@pytest.mark.parametrize("activity, length", [
+    ("bringing_newspaper_in", 1),               # spatial
+    ("bringing_glass_to_recycling", 3),         # spatial
+    ("turn_off_a_normal_school_calculator", 1),  # household: toggle_off
+    ("make_toast", 6),                          # thermal: open, move in, toggle_on, cook
+    ("thaw_frozen_fish", 4),                    # thermal: out of the freezer, thaw
+])
+def test_an_activity_is_solved_validated_and_executed(activity: str, length: int) -> None:
+    outcome = run_activity(activity, time_limit=20)
+    assert outcome.status == "solved", outcome.reason
+    assert outcome.optimal and len(outcome.plan) == length
+
+
+def test_a_refused_activity_names_its_predicate() -> None:
+    outcome = run_activity("adding_chemicals_to_pool")
+    assert (outcome.status, outcome.predicate) == ("refused", "filled")

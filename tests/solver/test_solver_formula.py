@@ -1,0 +1,238 @@
+"""solve over goal formulas: optimal over the formula (not over one naming of its
+objects), the bound admissible against breadth-first search, the plan verified."""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Callable, Hashable, Iterable
+from typing import TypeVar
+
+import pytest
+
+from verigraph.actions.report import validate_plan
+from verigraph.graph.formula import parse_formula
+from verigraph.graph.formula_eval import facts_of, holds
+from verigraph.graph.goal import Goal
+from verigraph.graph.model import SceneGraph
+from verigraph.graph.state import WorldState
+from verigraph.solver import solve
+from verigraph.solver.budget import SearchBudget
+from verigraph.solver.encoding import RELATIONS, SearchProblem
+from verigraph.solver.formula_bound import formula_bound
+from verigraph.solver.search import _facts_at
+
+pytestmark = pytest.mark.fast
+T = TypeVar("T")
+NO_CUP_ON_A_PLATE = "(forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))"
+A_LID_IN_EACH_POT = "(forall (?p - pot) (exists (?l - lid) (inside ?l ?p)))"
+BOTH = f"(and {NO_CUP_ON_A_PLATE} {A_LID_IN_EACH_POT})"
+
+
+def kitchen(cups: int) -> SceneGraph:
+    """`cups` cups on plates (two to a plate), two one-lid pots, lid_2 in pot_1, lid_1 on
+    the counter: naming lid_1 for pot_1 and lid_2 for pot_2 costs one move more than the
+    goal "a lid in each pot" needs."""
+    plates = (cups + 1) // 2
+    nodes = [("counter", "counter", {}), ("pot_1", "pot", {"capacity": 1}),
+             ("pot_2", "pot", {"capacity": 1}), ("lid_1", "lid", {}), ("lid_2", "lid", {})]
+    nodes += [(f"plate_{i}", "plate", {}) for i in range(1, plates + 1)]
+    nodes += [(f"cup_{i}", "cup", {}) for i in range(1, cups + 1)]
+    edges = [("pot_1", "on", "counter"), ("pot_2", "on", "counter"), ("lid_2", "in", "pot_1"),
+             ("lid_1", "on", "counter")]
+    edges += [(f"plate_{i}", "on", "counter") for i in range(1, plates + 1)]
+    edges += [(f"cup_{i}", "on", f"plate_{(i + 1) // 2}") for i in range(1, cups + 1)]
+    return SceneGraph.model_validate({
+        "nodes": [{"id": i, "label": label, "attrs": attrs} for i, label, attrs in nodes],
+        "edges": [{"source": s, "relation": r, "target": t} for s, r, t in edges]})
+
+
+def named_one_by_one(cups: int) -> Goal:
+    """The same wish with every object named: lid_1 in pot_1, lid_2 in pot_2, each cup on
+    the counter."""
+    graph = kitchen(cups)
+    edges = [{"source": "lid_1", "relation": "in", "target": "pot_1"},
+             {"source": "lid_2", "relation": "in", "target": "pot_2"}]
+    edges += [{"source": f"cup_{i}", "relation": "on", "target": "counter"}
+              for i in range(1, cups + 1)]
+    return Goal(graph=SceneGraph.model_validate({"nodes": graph.model_dump()["nodes"],
+                                                 "edges": edges}), partial=True)
+
+
+def test_the_formula_is_solved_in_fewer_moves_than_naming_objects_one_by_one() -> None:
+    scene = kitchen(9)
+    named = solve(scene, named_one_by_one(9))
+    assert named.optimal and len(named.plan) == 11
+    result = solve(scene, Goal(formula=BOTH))
+    assert result.reachable and result.optimal and len(result.plan) == 10
+    assert "move(lid_1, in, pot_2)" in [a.text() for a in result.plan]  # the lid swap
+    report = validate_plan(WorldState.from_graph(scene), result.plan, Goal(formula=BOTH))
+    assert report.valid and report.goal_diff is not None and report.goal_diff.satisfied
+
+
+def test_anytime_says_optimal_only_when_the_bound_proves_it() -> None:
+    result = solve(kitchen(5), Goal(formula=BOTH), anytime=True)
+    assert result.reachable and len(result.plan) == 6 and result.optimal
+    assert result.lower_bound == 6
+    stopped = solve(kitchen(9), Goal(formula=BOTH), max_expansions=3)
+    assert stopped.reachable is None and not stopped.optimal
+    assert stopped.lower_bound is not None and stopped.lower_bound <= 10
+
+
+def test_a_formula_and_a_goal_graph_must_both_hold() -> None:
+    scene = kitchen(3)
+    goal = Goal(formula=A_LID_IN_EACH_POT, graph=SceneGraph.model_validate({
+        "nodes": [{"id": "cup_1", "label": "cup"}, {"id": "counter", "label": "counter"}],
+        "edges": [{"source": "cup_1", "relation": "on", "target": "counter"}]}), partial=True)
+    result = solve(scene, goal)
+    assert result.optimal and sorted(a.text() for a in result.plan) == [
+        "move(cup_1, on, counter)", "move(lid_1, in, pot_2)"]
+
+
+def test_an_unreachable_formula_is_said_unreachable() -> None:
+    # no pot can hold a cup and a lid at once (capacity 1), and both are demanded in pot_1
+    goal = Goal(formula="(and (inside lid_1 pot_1) (inside cup_1 pot_1))")
+    result = solve(kitchen(1), goal)
+    assert result.reachable is False and result.status == "unreachable"
+
+
+def fewest_steps(start: T, successors: Callable[[T], Iterable[T]], key: Callable[[T], Hashable],
+                 reached: Callable[[T], bool], limit: int) -> int | None:
+    """Breadth first, layer by layer: the fewest steps from `start` to a state `reached`
+    accepts (None beyond `limit`); `reached` sees every state visited."""
+    seen = {key(start)}
+    layer = [start]
+    for steps in range(limit + 1):
+        if [s for s in layer if reached(s)]:  # every state of the layer is looked at
+            return steps
+        fresh = []
+        for state in layer:
+            for after in successors(state):
+                if key(after) not in seen:
+                    seen.add(key(after))
+                    fresh.append(after)
+        layer = fresh
+    return None
+
+
+FORMULAS = [
+    NO_CUP_ON_A_PLATE,
+    A_LID_IN_EACH_POT,
+    BOTH,
+    "(forall (?c - cup) (exists (?p - plate) (ontop ?c ?p)))",
+    "(or (inside lid_1 pot_2) (not (exists (?c - cup) (ontop ?c plate_1))))",
+    "(imply (inside lid_2 pot_1) (ontop cup_1 lid_1))",
+    "(forn (1) (?c - cup) (ontop ?c counter))",
+    "(forpairs (?l - lid) (?p - pot) (inside ?l ?p))",
+    "(not (forall (?l - lid) (ontop ?l counter)))",
+    "(and (ontop pot_1 plate_1) (not (ontop cup_2 plate_1)))",
+    "(exists (?c - cup) (and (inside ?c pot_2) (inside lid_1 ?c)))",
+]
+
+
+@pytest.mark.parametrize("text", FORMULAS)
+def test_the_bound_never_exceeds_the_true_distance(text: str) -> None:
+    formula = parse_formula(text)
+    rng = random.Random(text)
+    state = WorldState.from_graph(kitchen(2))
+    problem = SearchProblem(state)
+    facts_at = _facts_at(problem, state)
+    budget = SearchBudget()
+    starts = [problem.start]
+    for _ in range(6):  # random walks from the scene give other start states
+        codes = problem.start
+        for _ in range(rng.randrange(1, 4)):
+            codes = rng.choice([n for n, _ in problem.successors(codes, budget)])
+        starts.append(codes)
+    distances = []
+    for codes in starts:
+        problem.start = codes
+        distance = fewest_steps(codes, lambda c: (n for n, _ in problem.successors(c, budget)),
+                                lambda c: c, lambda c: holds(formula, facts_at(c)), limit=5)
+        bound = formula_bound(formula, facts_at(codes))
+        if distance is None:
+            continue
+        distances.append(distance)
+        assert bound <= distance, (codes, bound, distance)
+        trial = state.copy()
+        for k, i in enumerate(problem.movable):
+            trial.set_support(problem.ids[i], RELATIONS[codes[k] & 1],
+                              problem.ids[codes[k] >> 1])
+        result = solve(trial, Goal(formula=text))
+        assert result.optimal and len(result.plan) == distance, (text, codes)
+        assert (bound == 0) is (distance == 0)
+        assert facts_of(trial).edges == facts_at(codes).edges
+    assert any(d > 0 for d in distances), distances  # the bound met real searches
+
+
+def household() -> SceneGraph:
+    """A kitchen: a closed fridge, a stove that is off, a sink, the milk, a pot and a lid
+    on the counter."""
+    nodes = [("kitchen", "kitchen", {}), ("counter", "counter", {}),
+             ("fridge", "fridge", {"open": False}), ("stove", "stove", {}), ("sink", "sink", {}),
+             ("milk", "milk", {}), ("pot", "pot", {}), ("lid", "lid", {})]
+    edges = [("counter", "inroom", "kitchen"), ("fridge", "inroom", "kitchen"),
+             ("stove", "inroom", "kitchen"), ("sink", "inroom", "kitchen"),
+             ("milk", "on", "counter"), ("pot", "on", "counter"), ("lid", "on", "counter")]
+    return SceneGraph.model_validate({
+        "nodes": [{"id": i, "label": label, **({"state": st} if st else {})}
+                  for i, label, st in nodes],
+        "edges": [{"source": s, "relation": r, "target": t} for s, r, t in edges],
+        "dictionary": "kitchen"})
+
+
+@pytest.mark.parametrize(("text", "plan"), [
+    ("(and (inside milk fridge) (not (open fridge)))",
+     ["open(fridge)", "move(milk, in, fridge)", "close(fridge)"]),
+    ("(exists (?s - stove) (and (toggled_on ?s) (ontop pot ?s)))",
+     ["move(pot, on, stove)", "toggle_on(stove)"]),
+    ("(nextto pot sink)", ["move(pot, nextto, sink)"]),
+    ("(inroom milk kitchen)", []),
+])
+def test_household_formulas_are_solved_over_the_action_table(text: str, plan: list[str]
+                                                             ) -> None:
+    result = solve(household(), Goal(formula=text))
+    assert result.reachable and result.optimal
+    assert sorted(a.text() for a in result.plan) == sorted(plan)
+    if text.startswith("(and"):
+        assert [a.text() for a in result.plan] == plan  # opened before, closed after
+    report = validate_plan(WorldState.from_graph(household()), result.plan or "done",
+                           Goal(formula=text))
+    assert report.valid and report.goal_diff is not None and report.goal_diff.satisfied
+
+
+@pytest.mark.parametrize("text", [
+    "(and (inside milk fridge) (not (open fridge)))",
+    "(or (toggled_on stove) (open fridge))",
+    "(not (exists (?x - pot) (ontop ?x counter)))",
+    "(imply (not (open fridge)) (inside pot fridge))",
+    "(forall (?x - milk) (nextto ?x sink))",
+    "(and (inside milk fridge) (inside lid fridge))",
+])
+def test_the_bound_is_admissible_over_the_action_table(text: str) -> None:
+    from verigraph.solver.table_search import TableProblem, neighbours
+
+    formula = parse_formula(text)
+    goal = Goal(formula=text)
+    start = WorldState.from_graph(household())
+    problem = TableProblem(start, goal)
+    budget = SearchBudget(max_expansions=10**6, time_limit_s=30)
+
+    def reached(world: WorldState) -> bool:  # the bound is 0 exactly where the formula holds
+        truth = holds(formula, facts_of(world))
+        assert (formula_bound(formula, facts_of(world)) == 0) is truth
+        return truth
+
+    distance = fewest_steps(start, lambda w: (after for _, after in
+                                              neighbours(problem, w, budget)),
+                            problem.key, reached, limit=3)
+    assert distance is not None, text
+    assert 0 < formula_bound(formula, facts_of(start)) <= distance
+
+
+def test_the_bound_counts_the_opening_of_a_closed_container() -> None:
+    facts = facts_of(WorldState.from_graph(household()))
+    assert formula_bound(parse_formula("(inside milk fridge)"), facts) == 2  # open, move
+    assert formula_bound(parse_formula("(and (inside milk fridge) (inside lid fridge))"),
+                         facts) == 3  # one opening serves both
+    assert formula_bound(parse_formula("(and (inside milk fridge) (not (open fridge)))"),
+                         facts) == 3  # open, move, close again
