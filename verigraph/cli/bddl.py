@@ -14,7 +14,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-EXIT_OK = 0
+from verigraph.cli.exits import EXIT_OK
 
 
 def register(sub: Any) -> None:
