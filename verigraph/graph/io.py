@@ -9,7 +9,7 @@ from typing import Any
 import yaml
 from pydantic import ValidationError
 
-from verigraph.errors import GoalError, InputFileError
+from verigraph.errors import InputFileError
 from verigraph.graph.bulk import collector_paused, graph_items
 from verigraph.graph.formula import looks_like_formula
 from verigraph.graph.goal import Goal
@@ -103,8 +103,6 @@ def goal_from_data(data: Any) -> Goal:
         raise _pydantic_error(exc, "goal", '{"predicate": "single_stack"}, {"formula": '
                               '"(forall ...)"} or a scene graph, optionally with "partial": '
                               'true') from None
-    except GoalError:
-        raise
 
 
 def load_scene(path: str | Path) -> SceneGraph:
