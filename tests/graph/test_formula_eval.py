@@ -201,7 +201,7 @@ def household() -> WorldState:
         "nodes": [{"id": i, "label": label, **({"state": st} if st else {})}
                   for i, label, st in nodes],
         "edges": [{"source": s, "relation": r, "target": t} for s, r, t in edges],
-        "dictionary": "kitchen"}))
+        "dictionary": "household"}))
 
 
 def test_states_read_through_one_accessor_and_default_to_false() -> None:

@@ -177,7 +177,7 @@ def household() -> SceneGraph:
         "nodes": [{"id": i, "label": label, **({"state": st} if st else {})}
                   for i, label, st in nodes],
         "edges": [{"source": s, "relation": r, "target": t} for s, r, t in edges],
-        "dictionary": "kitchen"})
+        "dictionary": "household"})
 
 
 @pytest.mark.parametrize(("text", "plan"), [

@@ -119,10 +119,11 @@ class GraphDiff(BaseModel):
         return listed_count(self.formula_detail)
 
     def summary(self) -> str:
-        if self.satisfied:  # a reached goal's note: its witnesses, or a PDDL plan's cost
+        if self.satisfied:  # a reached goal's detail is a note (a PDDL plan's total cost)
+            head = f"goal reached ({self.detail})" if self.detail else "goal reached"
             if self.formula_detail:
-                return "goal reached; " + "; ".join(shortened(self.formula_detail))
-            return f"goal reached ({self.detail})" if self.detail else "goal reached"
+                return f"{head}; " + "; ".join(shortened(self.formula_detail))
+            return head
         parts = []
         if self.missing_edges:
             parts.append("missing: " + "; ".join(self.missing_edges))
