@@ -185,3 +185,25 @@ def test_the_pddl_export_agrees_with_the_verifier_on_household_plans() -> None:
             "edges": [{"source": "milk", "relation": "under", "target": "table"}]},
             "partial": True}))
 
+
+
+def test_a_closed_container_holds_what_rests_on_what_is_in_it() -> None:
+    """Bacon on a tray in a closed fridge stays until the fridge is opened, and nothing
+    is put on that tray meanwhile; open, both moves are valid."""
+    graph = SceneGraph.model_validate({
+        "nodes": [{"id": "fridge", "label": "fridge"}, {"id": "counter", "label": "counter"},
+                  {"id": "tray", "label": "plate"}, {"id": "bacon", "label": "cheese"},
+                  {"id": "bread", "label": "bread"}],
+        "edges": [{"source": "tray", "relation": "in", "target": "fridge"},
+                  {"source": "bacon", "relation": "on", "target": "tray"},
+                  {"source": "bread", "relation": "on", "target": "counter"}],
+        "dictionary": "household"})
+    state = WorldState.from_graph(graph)
+    out = validate_action(state, parse_plan("move(bacon, on, counter)")[0])
+    assert out is not None and out.constraint == "container_closed"
+    assert out.message.startswith("cannot take bacon out of fridge")
+    assert out.suggestion.startswith("open(fridge) first")
+    onto = validate_action(state, parse_plan("move(bread, nextto, bacon)")[0])
+    assert onto is not None and onto.constraint == "container_closed"
+    assert onto.message.startswith("cannot reach bacon in fridge")
+    assert validate_plan(graph, parse_plan("open(fridge)\nmove(bacon, on, counter)")).valid

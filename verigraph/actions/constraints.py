@@ -306,17 +306,50 @@ def _closed(state: WorldState, obj: str) -> bool:
     return obj in state.openable and not state.state_value(obj, "open")
 
 
+def closed_passage(state: WorldState, obj: str, relation: str, target: str) -> str | None:
+    """The closed openable container `obj` would have to leave or enter, or None: one
+    that holds the object, or the target, directly or through what carries them (bacon
+    on a tray in a closed fridge stays there until the fridge is opened), or the target
+    itself when the object goes `in` it."""
+    if relation == "in" and target in state.openable and \
+            not state.state_value(target, "open"):
+        return target
+    for start in (obj, target):
+        seen = {start}
+        below = state.support.get(start)
+        while below is not None and below[1] not in seen:
+            if below[0] == "in" and below[1] in state.openable and \
+                    not state.state_value(below[1], "open"):
+                return below[1]
+            seen.add(below[1])
+            below = state.support.get(below[1])
+    return None
+
+
 def explain_container_closed(state: WorldState, a: MoveAction) -> Violation:
-    below = state.support.get(a.object)
-    leaving = below is not None and below[0] == "in" and _closed(state, below[1])
-    box = below[1] if leaving and below is not None else a.target
+    box = closed_passage(state, a.object, a.relation, a.target)
+    assert box is not None  # the precondition failed on it
     label = state.objects[box].label
-    if leaving:
+    if a.relation == "in" and box == a.target:
+        message = f"cannot put {a.object} in {box} ({label}): {box} is closed"
+    elif _inside(state, a.object, box):
         message = f"cannot take {a.object} out of {box} ({label}): {box} is closed"
     else:
-        message = f"cannot put {a.object} in {box} ({label}): {box} is closed"
+        message = f"cannot reach {a.target} in {box} ({label}): {box} is closed"
     return _violation(a, "container_closed", message,
                       f"open({box}) first, then {a.text()}", [box])
+
+
+def _inside(state: WorldState, obj: str, box: str) -> bool:
+    """Whether `obj` rests in `box`, directly or through what carries it."""
+    seen = {obj}
+    below = state.support.get(obj)
+    while below is not None and below[1] not in seen:
+        if below[1] == box:
+            return True
+        seen.add(below[1])
+        below = state.support.get(below[1])
+    return False
 
 
 def explain_capacity(state: WorldState, a: MoveAction) -> Violation:

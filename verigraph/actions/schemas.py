@@ -30,6 +30,7 @@ from typing import Any
 
 from verigraph.actions import constraints as c
 from verigraph.actions import processes as p
+from verigraph.actions.constraints import closed_passage
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, MoveAction, StateAction
 from verigraph.graph.dictionary import STATE_WORDS, SUPPORT_RELATIONS, state_value
@@ -210,18 +211,6 @@ def fits(props: Any, relation: str) -> bool:
     if relation == "under":
         return bool(props.surface and not props.movable)
     return not props.room
-
-
-def closed_passage(state: WorldState, obj: str, relation: str, target: str) -> str | None:
-    """The closed openable container `obj` would have to leave or enter, or None."""
-    below = state.support.get(obj)
-    if below is not None and below[0] == "in" and below[1] in state.openable and \
-            not state.state_value(below[1], "open"):
-        return below[1]
-    if relation == "in" and target in state.openable and \
-            not state.state_value(target, "open"):
-        return target
-    return None
 
 
 class _Refused:
