@@ -41,6 +41,25 @@ COLORS: dict[str, BGR] = {
     "maroon": (30, 30, 120),
     "beige": (190, 220, 235),
 }
+# Household kinds (docs/worlds.md, Household worlds) draw in colours of their own, kept
+# out of COLORS: perception's tabletop catalogue is built from COLORS, so a kitchen,
+# blocks or tableware render reads exactly as before; `perception.relate.household`
+# reads these separately.
+HOUSEHOLD_COLORS: dict[str, BGR] = {
+    "ivory": (200, 236, 240),
+    "oak": (60, 120, 170),
+    "charcoal": (70, 60, 55),
+    "chrome": (215, 185, 160),
+    "cardboard": (90, 150, 190),
+    "amber": (20, 150, 230),
+    "cream": (180, 230, 245),
+    "wheat": (120, 200, 230),
+    "gold": (0, 180, 220),
+}
+# A door of an openable container, and the lit element of a toggleable object that is
+# on (an object that is off shows no element: it looks as it always did).
+DOOR: BGR = (150, 60, 220)
+LIT: BGR = (0, 240, 255)
 FALLBACK: BGR = (120, 120, 120)
 BLOCK_COLORS = ("red", "blue", "green", "yellow", "purple", "orange", "cyan", "pink", "lime",
                 "magenta", "olive", "maroon")
@@ -69,4 +88,5 @@ def bgr(name: str | None) -> BGR:
     """BGR triple for a colour name (case and spaces ignored), or the fallback grey."""
     if not name:
         return FALLBACK
-    return COLORS.get(name.strip().lower().replace(" ", ""), FALLBACK)
+    key = name.strip().lower().replace(" ", "")
+    return COLORS.get(key) or HOUSEHOLD_COLORS.get(key, FALLBACK)

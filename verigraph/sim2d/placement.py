@@ -34,6 +34,7 @@ MAX_GRID_POINTS = 4096
 SIDE_NORMAL = 0.5
 FOOTING_PROBE = 0.25
 MIN_FOOTING = 2.0
+HOUSEHOLD_SIDE_GAP = 0.4  # wider than readback.NEXT_GAP
 
 
 @dataclass(frozen=True, slots=True)
@@ -254,6 +255,11 @@ def _accept(scene: TabletopScene, thing: Thing, pose: BodyPose, relation: str, t
         sup = direct_support(scene, thing, contacts)
         if sup.supporter is None or sup.span is None:
             return False
+        if scene.household:
+            own = scene.things[sup.supporter].body
+            if any(abs(c.ny) < SIDE_NORMAL and c.other is not own for c in
+                   physics.probe_contacts(scene.space, thing.body, HOUSEHOLD_SIDE_GAP)):
+                return False  # so close to a neighbour that it would read as next to it
         # The footing: everything within a small drop under the object, since it will
         # tilt that little onto a second rim or edge before coming to rest.
         footing = direct_support(scene, thing, physics.probe_contacts(

@@ -26,6 +26,7 @@ from verigraph.graph.dictionary import builtin_dictionary
 from verigraph.graph.model import Node
 from verigraph.sim2d import palette, physics
 from verigraph.sim2d.bodies import FURNITURE_TOP
+from verigraph.sim2d.household import LAMP_RADIUS, Household, lamp_centre
 from verigraph.sim2d.scene import TabletopScene
 
 SHIFT = 4
@@ -50,6 +51,9 @@ class TabletopPicture(Protocol):
 
     @property
     def nodes(self) -> Sequence[Node]: ...
+
+    @property
+    def household(self) -> Household: ...
 
 
 class TangramPicture(Protocol):
@@ -157,6 +161,7 @@ def render_tabletop(world: TabletopPicture, width: int | None = None, height: in
             continue
         color = palette.object_color(t.id, colors.get(t.id), t.props.color)
         _draw_polys(img, cam, physics.world_polygons(t.body), color)
+    _draw_household(img, cam, world)
     if labels:
         for t in things:
             if t.body.space is None:
@@ -171,6 +176,25 @@ def render_tabletop(world: TabletopPicture, width: int | None = None, height: in
                 y -= 4
             _label(img, t.id, (x, y))
     return img
+
+
+def _draw_household(img: np.ndarray, cam: _Camera, world: TabletopPicture) -> None:
+    """Doors (closed across the opening, open upright beside it) and the lit element of
+    everything that is switched on; nothing for what is off."""
+    house = world.household
+    for door in house.doors.values():
+        _draw_polys(img, cam, physics.world_polygons(door.body), palette.DOOR)
+    for obj, on in house.switches.items():
+        thing = world.scene.things.get(obj)
+        if not on or thing is None or thing.body.space is None:
+            continue
+        x, y = lamp_centre(thing)
+        centre = cam.points([(x, y)])[0]
+        radius = int(round(LAMP_RADIUS * cam.s * SCALE))
+        cv2.circle(img, (int(centre[0]), int(centre[1])), radius, palette.OUTLINE, 3,
+                   cv2.LINE_8, SHIFT)
+        cv2.circle(img, (int(centre[0]), int(centre[1])), radius, palette.LIT, -1,
+                   cv2.LINE_8, SHIFT)
 
 
 def tabletop_boxes(world: TabletopPicture, width: int | None = None, height: int | None = None

@@ -61,6 +61,8 @@ class TabletopScene:
         self.floor = physics.add_floor(self.space)
         self.things: dict[str, Thing] = {}
         self.by_body: dict[pymunk.Body, str] = {}
+        # A household scene also reads `under` and `nextto` from where things stand.
+        self.household = False
 
     def add(self, thing: Thing, *, in_space: bool = True) -> None:
         self.things[thing.id] = thing
