@@ -39,13 +39,29 @@ def _room_needed(props: ObjectProperties, movable_widths: list[float]) -> float:
     return ROOM_SLACK * (sum(widest) + (k + 1) * FIXED_GAP)
 
 
+def furniture_width(state: WorldState, obj: ObjectInfo) -> float:
+    """Width of a piece of furniture standing on the floor: its own, or wide enough for
+    what it may have to carry (the furniture standing on it included)."""
+    widths = [float(o.props.width or 6.0) for o in state.objects.values() if o.props.movable]
+    carried_fixed = sum(float(state.objects[c].props.width or 10.0) + FIXED_GAP
+                        for c in state.carried[obj.id] if not state.objects[c].props.movable)
+    return max(float(obj.props.width or 40.0),
+               _room_needed(obj.props, widths) + carried_fixed)
+
+
+def furniture_gap(state: WorldState) -> float:
+    """The floor between two pieces of household furniture: room for the widest
+    movable object next to the left one."""
+    widest = max((float(o.props.width or 6.0) for o in state.objects.values()
+                  if o.props.movable), default=0.0)
+    return max(FURNITURE_GAP, widest + 2 * FIXED_GAP)
+
+
 def build_tabletop(graph: SceneGraph, seed: int = 0) -> TabletopWorld:
     """A TabletopWorld whose observed graph equals `graph` (raises SimError otherwise)."""
     state = WorldState.from_graph(graph)
     scene = TabletopScene()
     scene.household = is_household(graph, {o.id: o.props for o in state.objects.values()})
-    widths = {o.id: float(o.props.width or 6.0) for o in state.objects.values()
-              if o.props.movable}
     fixed = [o for o in state.objects.values() if not o.props.movable and not o.props.room]
     household = Household() if scene.household else None
     depth = 0.0
@@ -55,8 +71,7 @@ def build_tabletop(graph: SceneGraph, seed: int = 0) -> TabletopWorld:
         heights = [float(o.props.height or 4.0) for o in state.objects.values()
                    if o.props.movable]
         depth = sum(heights) + 1.0  # a closed door never meets what a bin holds
-    gap = FURNITURE_GAP if household is None else max(
-        FURNITURE_GAP, max(widths.values(), default=0.0) + 2 * FIXED_GAP)
+    gap = FURNITURE_GAP if household is None else furniture_gap(state)
     for obj in fixed:
         if obj.id in state.support and state.objects[state.support[obj.id][1]].props.movable:
             raise SimError(f"fixed object '{obj.id}' cannot stand on movable "
@@ -68,10 +83,7 @@ def build_tabletop(graph: SceneGraph, seed: int = 0) -> TabletopWorld:
     for obj in fixed:
         if obj.id in state.support:
             continue
-        carried_fixed = sum(float(state.objects[c].props.width or 10.0) + FIXED_GAP
-                            for c in state.carried[obj.id] if not state.objects[c].props.movable)
-        width = max(float(obj.props.width or 40.0),
-                    _room_needed(obj.props, list(widths.values())) + carried_fixed)
+        width = furniture_width(state, obj)
         spec = furniture_spec(obj.label, obj.props, width, legs=scene.household,
                               depth=depth if obj.props.openable else None)
         body = physics.make_body(spec, BodyPose(cursor + width / 2, 0.0), fixed=True)

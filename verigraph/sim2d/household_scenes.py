@@ -1,0 +1,61 @@
+"""Random household scenes and every valid household action, for the agreement checks.
+
+`household_scene(seed)` draws a kitchen and a dining room (counter, stove, sink, fridge,
+cabinet, table, each in its room), food and dishes on the counter and the table, and
+random door and switch states; `valid_actions(state)` lists every action of the table
+(moves over every placement relation, open, close, toggle_on, toggle_off) the
+validator accepts, in a stable order.
+"""
+
+from __future__ import annotations
+
+import random
+
+from verigraph.actions.model import AnyAction, MoveAction, StateAction
+from verigraph.actions.schemas import SCHEMAS
+from verigraph.actions.validator import validate_action
+from verigraph.graph.model import Edge, Node, SceneGraph
+from verigraph.graph.state import WorldState
+from verigraph.sim2d.layout import build_tabletop
+from verigraph.sim2d.tabletop import TabletopWorld
+
+ROOMS = {"counter": "kitchen", "stove": "kitchen", "sink": "kitchen", "fridge": "kitchen",
+         "cabinet": "kitchen", "table": "dining_room"}
+ITEMS = ("milk", "bread", "cheese", "butter", "pot", "pan", "plate", "cup", "bowl", "lid",
+         "spoon", "kettle", "lamp")
+STATES = {"fridge": "open", "cabinet": "open", "stove": "toggled_on", "sink": "toggled_on"}
+
+
+def household_scene(seed: int, n_objects: int | None = None
+                    ) -> tuple[SceneGraph, TabletopWorld]:
+    """A random household graph (all built-in dictionaries) and its simulated world."""
+    rng = random.Random(f"household:{seed}")
+    n = n_objects if n_objects is not None else rng.randint(4, 7)
+    labels = rng.sample(ITEMS, min(n, len(ITEMS)))
+    nodes = [Node(id="kitchen", label="kitchen"), Node(id="dining_room", label="dining_room")]
+    nodes += [Node(id=f, label=f) for f in ROOMS]
+    nodes += [Node(id=lab, label=lab) for lab in labels]
+    for node in nodes:
+        key = STATES.get(node.id) or ("toggled_on" if node.id == "lamp" else None)
+        if key is not None and rng.random() < 0.5:
+            node.state = {key: rng.random() < 0.5}
+    edges = [Edge(source=f, relation="inroom", target=room) for f, room in ROOMS.items()]
+    edges += [Edge(source=lab, relation="on", target=rng.choice(["counter", "table"]))
+              for lab in labels]
+    graph = SceneGraph(nodes=nodes, edges=edges)
+    return graph, build_tabletop(graph, seed)
+
+
+def valid_actions(state: WorldState) -> list[AnyAction]:
+    """Every action of the table the validator accepts in `state`, in a stable order."""
+    actions: list[AnyAction] = []
+    ids = sorted(state.objects)
+    for obj in ids:
+        if state.objects[obj].props.movable:
+            for target in ids:
+                for relation in state.move_relations:
+                    actions.append(MoveAction(object=obj, relation=relation, target=target))
+        for name in SCHEMAS:
+            if name != "move":
+                actions.append(StateAction(action=name, object=obj))  # type: ignore[arg-type]
+    return [a for a in actions if validate_action(state, a) is None]
