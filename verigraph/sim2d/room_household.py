@@ -9,11 +9,13 @@
   something that does (the furniture's top is in the way);
 - `under f`: the object is lower than f's underside and fits between f's legs beside
   what already stands there (each with a gap);
-- `nextto y`: nothing is next to y yet (the place at y's right side is free), and y's
-  base, down its `nextto` chain, is furniture standing on the floor (the row beside it
-  fits in the gap to the next piece), a fixed surface (its load fits in half its
-  width) or the floor under furniture (as for `under`); not in a container, not on a
-  movable object, not beside furniture standing on other furniture.
+- nothing is lowered `on` or `in` something that stands next to something (it could
+  lean on the neighbour);
+- `nextto y`: nothing is next to y yet (the place at y's right side is free), y carries
+  nothing (its load may reach over its side), and y's base, down its `nextto` chain,
+  is furniture standing on the floor (the row beside it fits in the gap to the next
+  piece) or a fixed surface (its load fits in half its width); not under furniture
+  (things there stand apart), not in a container, not on a movable object.
 """
 
 from __future__ import annotations
@@ -111,6 +113,11 @@ def household_room_violation(state: WorldState, action: AnyAction) -> Violation 
             return _fail(action, f"{target} stands under {base[1]}: nothing can be lowered "
                          f"{rel} it", [target], f"move {target} out from under {base[1]} "
                          "first")
+        below = state.support.get(target)
+        if below is not None and below[0] == "nextto":
+            return _fail(action, f"{target} stands right next to {below[1]}: what goes {rel} "
+                         f"it could lean on {below[1]}", [below[1]],
+                         f"move {target} away from {below[1]} first")
         info = state.objects[target]
         if rel == "in" and info.props.movable:
             cavity = movable_spec(info.label, info.props).cavity
@@ -131,6 +138,11 @@ def household_room_violation(state: WorldState, action: AnyAction) -> Violation 
         return _fail(action, f"{taken[0]} already stands next to {target} (on its right "
                      "side, the side the simulator uses)", taken,
                      f"move {taken[0]} away first, or put {obj} next to {taken[0]}")
+    load = [o for o, r in state.carried[target].items() if r in ("on", "in")]
+    if load:
+        return _fail(action, f"{target} carries {', '.join(sorted(load))}, which may reach "
+                     "over its side", sorted(load), f"move {sorted(load)[0]} off {target} "
+                     "first")
     kind, base = _base(state, target)
     assert base is not None
     if kind == "floor":
@@ -143,7 +155,9 @@ def household_room_violation(state: WorldState, action: AnyAction) -> Violation 
                          "piece of furniture", row, "choose another place")
         return None
     if kind == "under":
-        return _under_room(state, action, base, width)
+        return _fail(action, f"{target} stands under {base}: things under furniture stand "
+                     "apart, not next to each other", [target], f"put {obj} under {base} "
+                     "instead")
     if kind == "on" and not state.objects[base].props.movable:
         return _surface_violation(state, action, base)
     return _fail(action, f"{target} is {kind} {base}: the simulator puts things next to "
