@@ -255,6 +255,8 @@ def _accept(scene: TabletopScene, thing: Thing, pose: BodyPose, relation: str, t
         sup = direct_support(scene, thing, contacts)
         if sup.supporter is None or sup.span is None:
             return False
+        if scene.household and sup.supporter != target:
+            return False  # resting on a neighbour inside a bin would pin it down
         if scene.household:
             own = scene.things[sup.supporter].body
             if any(abs(c.ny) < SIDE_NORMAL and c.other is not own for c in

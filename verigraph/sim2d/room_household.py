@@ -4,7 +4,8 @@
 (sim2d.household, sim2d.beside) cannot do, conservatively, from sizes alone:
 - `open`, `close`, `toggle_on`, `toggle_off`: always room (a bin is deeper than
   everything in the scene stacked, so a door never closes on what it holds);
-- nothing goes `in` a container exactly as wide as its opening (it wedges);
+- nothing goes `in` a movable container about as wide as its opening, or wider with
+  a foot narrower than it (a plate over a pan): it wedges;
 - nothing is lowered `on` or `in` something that stands under furniture, or next to
   something that does (the furniture's top is in the way);
 - `under f`: the object is lower than f's underside and fits between f's legs beside
@@ -26,7 +27,7 @@ from verigraph.graph.state import WorldState
 from verigraph.sim2d.bodies import furniture_spec, movable_spec, under_span
 from verigraph.sim2d.layout import furniture_gap, furniture_width
 from verigraph.sim2d.placement import DROP_GAP, FIXED_GAP
-from verigraph.sim2d.room import room_violation
+from verigraph.sim2d.room import base_width, room_violation
 
 UNDER_GAP = FIXED_GAP + 0.3
 HEADROOM = 0.3
@@ -121,9 +122,12 @@ def household_room_violation(state: WorldState, action: AnyAction) -> Violation 
         info = state.objects[target]
         if rel == "in" and info.props.movable:
             cavity = movable_spec(info.label, info.props).cavity
-            if cavity is not None and abs(cavity[1] - cavity[0] - _width(state, obj)) < SNUG:
-                return _fail(action, f"{obj} is as wide as the opening of {target}: it would "
-                             "wedge or drop in unevenly", [target], "choose another container")
+            opening = cavity[1] - cavity[0] if cavity is not None else 0.0
+            if cavity is not None and (abs(opening - _width(state, obj)) < SNUG or (
+                    _width(state, obj) > opening > base_width(state, obj))):
+                return _fail(action, f"{obj} is about as wide as the opening of {target}: it "
+                             "would wedge or drop in unevenly", [target],
+                             "choose another container")
         capacity = state.objects[target].props.capacity
         if rel == "on" and not state.objects[target].props.movable and capacity is not None:
             crowded = _surface_violation(state, action, target)
