@@ -11,12 +11,14 @@ from __future__ import annotations
 
 import random
 
+from verigraph.actions.execution import execute_in_world
 from verigraph.actions.model import AnyAction, MoveAction, StateAction
 from verigraph.actions.schemas import SCHEMAS
 from verigraph.actions.validator import validate_action
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.sim2d.layout import build_tabletop
+from verigraph.sim2d.room_household import household_room_violation
 from verigraph.sim2d.tabletop import TabletopWorld
 
 ROOMS = {"counter": "kitchen", "stove": "kitchen", "sink": "kitchen", "fridge": "kitchen",
@@ -59,3 +61,43 @@ def valid_actions(state: WorldState) -> list[AnyAction]:
             if name != "move":
                 actions.append(StateAction(action=name, object=obj))  # type: ignore[arg-type]
     return [a for a in actions if validate_action(state, a) is None]
+
+
+def household_agreement(n: int, first_seed: int = 0, per_scene: int = 15
+                        ) -> tuple[int, int, list[str]]:
+    """(executed, refused, failures) over `n` random valid household actions.
+
+    Actions are drawn uniformly from `valid_actions` on `household_scene`s (seeds from
+    `first_seed`, `per_scene` draws each). One the room check
+    (`room_household.household_room_violation`) refuses is counted as refused and not
+    run; every other one goes through `execute_in_world`, must be carried out, and the
+    observed graph (placements, rooms and states) must equal the prediction. A failure
+    names the scene, the step and what differed.
+    """
+    executed = refused = 0
+    failures: list[str] = []
+    seed = first_seed
+    while executed + refused < n:
+        graph, world = household_scene(seed)
+        state = WorldState.from_graph(graph)
+        rng = random.Random(seed)
+        for step in range(per_scene):
+            if executed + refused >= n:
+                break
+            action = rng.choice(valid_actions(state))
+            if household_room_violation(state, action) is not None:
+                refused += 1
+                continue
+            _, _, violation, _, new_state = execute_in_world(state, [action], world)
+            where = f"household:{seed} step {step} {action.text()}"
+            seen = world.observe()
+            if violation is not None:
+                failures.append(f"{where}: {violation.constraint}: {violation.message}")
+                state = WorldState.from_graph(seen, state.dictionary, partial=True)
+                continue
+            executed += 1
+            state = new_state
+            if seen != new_state.to_graph().canonical():
+                failures.append(f"{where}: observed {seen.sentences()}")
+        seed += 1
+    return executed, refused, failures
