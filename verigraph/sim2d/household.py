@@ -87,6 +87,7 @@ class Household:
         door = make_door(thing, open_)
         self.doors[thing.id] = door
         physics.add_body(scene.space, door.body)
+        scene.fixtures.append(door.body)
 
     def set_open(self, obj: str, open_: bool) -> None:
         door = self.doors[obj]

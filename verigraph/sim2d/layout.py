@@ -114,6 +114,9 @@ def build_tabletop(graph: SceneGraph, seed: int = 0) -> TabletopWorld:
     if household is not None:
         _fit_out(scene, state, household, graph)
     _place_movables(scene, state, random.Random(seed))
+    if household is not None:  # doors stood open while things were put in
+        for obj in household.doors:
+            household.set_open(obj, state.state_value(obj, "open"))
     supports, _ = read_supports(scene)
     want = {o: st for o, st in state.support.items()}
     if supports != want:
@@ -155,12 +158,12 @@ def _by_room(fixed: list[ObjectInfo], state: WorldState) -> list[ObjectInfo]:
 
 def _fit_out(scene: TabletopScene, state: WorldState, household: Household,
              graph: SceneGraph) -> None:
-    """Doors on openable containers and switches on toggleable objects, as the graph's
-    states say; which state keys each node was given."""
+    """Doors on openable containers (open until the objects are in) and switches on
+    toggleable objects as the graph's states say; which state keys each node was given."""
     for obj in state.objects.values():
         thing = scene.things.get(obj.id)
         if obj.props.openable and thing is not None:
-            household.add_door(scene, thing, state.state_value(obj.id, "open"))
+            household.add_door(scene, thing, True)
         if obj.props.toggleable:
             household.switches[obj.id] = state.state_value(obj.id, "toggled_on")
     household.given = {n.id: set(n.state) for n in graph.nodes if n.state}

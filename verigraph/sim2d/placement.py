@@ -127,8 +127,8 @@ class _Terrain:
 
     def __init__(self, scene: TabletopScene, skip: str) -> None:
         self.polys: list[tuple[float, float, list[tuple[float, float]]]] = []
-        bodies = [scene.floor] + [t.body for t in scene.things.values()
-                                  if t.id != skip and t.body.space is not None]
+        bodies = [scene.floor, *scene.fixtures] + [
+            t.body for t in scene.things.values() if t.id != skip and t.body.space is not None]
         for body in bodies:
             for poly in physics.world_polygons(body):
                 xs = [p[0] for p in poly]

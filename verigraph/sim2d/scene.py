@@ -63,6 +63,8 @@ class TabletopScene:
         self.by_body: dict[pymunk.Body, str] = {}
         # A household scene also reads `under` and `nextto` from where things stand.
         self.household = False
+        # Bodies that are no objects of the graph but stop things (household doors).
+        self.fixtures: list[pymunk.Body] = []
 
     def add(self, thing: Thing, *, in_space: bool = True) -> None:
         self.things[thing.id] = thing
