@@ -42,6 +42,7 @@ from verigraph.perception.label.catalogue import models_by_colour
 from verigraph.perception.label.labelling import ColourShapeLabeller, Labeller, Shape, shape_error
 from verigraph.perception.relate.confidence import edge_name, graph_confidence, upright_doubts
 from verigraph.perception.relate.graphing import assign_ids, tabletop_graph
+from verigraph.perception.relate.household import read_household
 from verigraph.perception.relate.occluded import (
     HIDDEN_REASON,
     blocked_views,
@@ -101,6 +102,8 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
     else:
         result = _perceive_tabletop(bgr, d, config, labeller, level < SOFT,
                                     restored is not None)
+    if result.view == "tabletop":
+        _add_household(result, bgr, d)
     if blurred is not None:
         result.warnings.insert(0, blurred)
     if restored is not None:
@@ -114,6 +117,22 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
     for w in result.warnings:
         log.warning("perception: %s", w)
     return result
+
+
+def _add_household(result: PerceptionResult, bgr: np.ndarray, d: Dictionary) -> None:
+    """Household furniture, doors and switches (`relate.household`): new nodes, states
+    with their confidences, doubts and a note. A render with none of them is unchanged."""
+    reading = read_household(bgr, d, result.objects, result.scale)
+    if not reading.found:
+        return
+    result.graph.nodes.extend(reading.nodes)
+    result.objects.extend(reading.objects)
+    for node in result.graph.nodes:
+        if node.id in reading.states:
+            node.state = {**node.state, **reading.states[node.id]}
+    result.confidence.update(reading.confidence)
+    result.uncertain.extend(reading.uncertain)
+    result.warnings.extend(reading.warnings)
 
 
 def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,

@@ -1,7 +1,7 @@
 """Household parts of a tabletop world: doors, switches and rooms.
 
 - **Doors.** An openable fixed container (fridge, cabinet, oven, ...) is a bin with a
-  door: a static pymunk body as wide as the bin and as thick as its walls, hinged at
+  door: a static pymunk body as wide as the bin and `DOOR_THICKNESS` thick, hinged at
   the right rim. Closed, it lies across the opening, so nothing can be lowered in or
   taken out (the placement search rests on the door, which is no object, and finds no
   place); open, it stands upright beside the right wall. `open`/`close` turn it about
@@ -27,8 +27,10 @@ from verigraph.sim2d.physics import BodyPose
 from verigraph.sim2d.scene import TabletopScene, Thing
 
 HOUSEHOLD_RELATIONS = ("under", "nextto", "inroom")
+LAMP_HEIGHT = FURNITURE_TOP - 4.5  # above the foot of furniture: on its left leg
 OPEN_ANGLE = -math.pi / 2  # turned clockwise about the hinge: upright, outside the bin
-LAMP_RADIUS = 1.2
+LAMP_RADIUS = 2.0  # world units: 6 px across even in a wide household render
+DOOR_THICKNESS = 2.0  # thick enough to show its colour inside the outline at 3 px/unit
 
 
 def is_household(graph: SceneGraph, props: dict[str, object]) -> bool:
@@ -63,7 +65,7 @@ def make_door(thing: Thing, open_: bool) -> Door:
     assert cavity is not None
     left, _, right, _ = thing.bounds()
     width = right - left
-    thick = max(thing.spec.wall, 0.5)
+    thick = DOOR_THICKNESS
     body = pymunk.Body(body_type=pymunk.Body.STATIC)
     shape = pymunk.Poly(body, [(-width, 0.0), (0.0, 0.0), (0.0, thick), (-width, thick)])
     shape.friction = physics.FRICTION
@@ -150,5 +152,5 @@ def lamp_centre(thing: Thing) -> tuple[float, float]:
     left leg of furniture, at the top of a movable object."""
     left, bottom, right, top = thing.bounds()
     if thing.fixed:
-        return left + 2.0, bottom + FURNITURE_TOP - 4.5
+        return left + 2.0, bottom + LAMP_HEIGHT
     return (left + right) / 2, top - LAMP_RADIUS - 0.4

@@ -21,12 +21,13 @@ from typing import Protocol
 
 import cv2
 import numpy as np
+import pymunk
 
 from verigraph.graph.dictionary import builtin_dictionary
 from verigraph.graph.model import Node
 from verigraph.sim2d import palette, physics
 from verigraph.sim2d.bodies import FURNITURE_TOP
-from verigraph.sim2d.household import LAMP_RADIUS, Household, lamp_centre
+from verigraph.sim2d.household import LAMP_RADIUS, Door, Household, lamp_centre
 from verigraph.sim2d.scene import TabletopScene
 
 SHIFT = 4
@@ -127,12 +128,19 @@ def _label(img: np.ndarray, text: str, at: tuple[int, int]) -> None:
     cv2.putText(img, text, at, cv2.FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv2.LINE_AA)
 
 
+def _door_points(door: Door) -> list[tuple[float, float]]:
+    return [tuple(v) for shape in door.body.shapes if isinstance(shape, pymunk.Poly)
+            for v in shape.get_vertices()]
+
+
 def tabletop_view(world: TabletopPicture) -> View:
     """Furniture extent with headroom for stacks; grows if something stands higher."""
     things = [t for t in world.scene.things.values() if t.body.space is not None]
     fixed = [t.bounds() for t in things if t.fixed] or [t.bounds() for t in things] \
         or [(0.0, 0.0, 40.0, FURNITURE_TOP)]
-    top = max([b[3] for b in (t.bounds() for t in things)] + [FURNITURE_TOP])
+    doors = [max(door.body.local_to_world(p).y for p in _door_points(door))
+             for door in world.household.doors.values()]  # an open door stands up
+    top = max([b[3] for b in (t.bounds() for t in things)] + [FURNITURE_TOP] + doors)
     x0 = min(b[0] for b in fixed) - MARGIN
     x1 = max(b[2] for b in fixed) + MARGIN
     y1 = max(top + MARGIN, FURNITURE_TOP + HEADROOM)
