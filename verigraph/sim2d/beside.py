@@ -65,7 +65,7 @@ def _nextto_pose(scene: TabletopScene, obj: str, target: str
     lo, hi = _local_x(scene, obj)
     _, bottom, right, _ = tgt.bounds()
     pose = BodyPose(right + TOUCH - lo, bottom + DROP_GAP)
-    new_left, new_right = right + TOUCH, right + TOUCH + (hi - lo)
+    new_right = right + TOUCH + (hi - lo)
     same = [o for o, d in direct.items() if o != obj and o != target and
             (d.supporter, d.on_floor) == (base.supporter, base.on_floor)]
     ahead = [o for o in same if scene.things[o].bounds()[0] >= right - 0.05]

@@ -115,8 +115,8 @@ def build_tabletop(graph: SceneGraph, seed: int = 0) -> TabletopWorld:
         _fit_out(scene, state, household, graph)
     _place_movables(scene, state, random.Random(seed))
     if household is not None:  # doors stood open while things were put in
-        for obj in household.doors:
-            household.set_open(obj, state.state_value(obj, "open"))
+        for owner in household.doors:
+            household.set_open(owner, state.state_value(owner, "open"))
     supports, _ = read_supports(scene)
     want = {o: st for o, st in state.support.items()}
     if supports != want:

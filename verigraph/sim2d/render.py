@@ -129,8 +129,8 @@ def _label(img: np.ndarray, text: str, at: tuple[int, int]) -> None:
 
 
 def _door_points(door: Door) -> list[tuple[float, float]]:
-    return [tuple(v) for shape in door.body.shapes if isinstance(shape, pymunk.Poly)
-            for v in shape.get_vertices()]
+    return [(float(v.x), float(v.y)) for shape in door.body.shapes
+            if isinstance(shape, pymunk.Poly) for v in shape.get_vertices()]
 
 
 def tabletop_view(world: TabletopPicture) -> View:

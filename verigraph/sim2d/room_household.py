@@ -43,7 +43,7 @@ def _fail(action: MoveAction, message: str, blocking: list[str], suggestion: str
                      blocking=blocking, suggestion=suggestion)
 
 
-def _base(state: WorldState, obj: str) -> tuple[str, str | None]:
+def _base(state: WorldState, obj: str) -> tuple[str, str]:
     """Down `obj`'s nextto chain: (relation, target) of the first other placement, or
     ("floor", furniture) for a chain that starts at furniture."""
     current = obj
@@ -58,7 +58,8 @@ def _base(state: WorldState, obj: str) -> tuple[str, str | None]:
 
 def _row(state: WorldState, start: str) -> list[str]:
     """The objects in `start`'s nextto chain to its right (`start` excluded)."""
-    out, current = [], start
+    out: list[str] = []
+    current = start
     while True:
         nxt = [o for o, rel in state.carried[current].items() if rel == "nextto"]
         if not nxt:
@@ -109,10 +110,10 @@ def household_room_violation(state: WorldState, action: AnyAction) -> Violation 
         return None
     obj, rel, target = action.object, action.relation, action.target
     if rel in ("on", "in"):
-        base = _base(state, target)
-        if base[0] == "under":
-            return _fail(action, f"{target} stands under {base[1]}: nothing can be lowered "
-                         f"{rel} it", [target], f"move {target} out from under {base[1]} "
+        chain = _base(state, target)
+        if chain[0] == "under":
+            return _fail(action, f"{target} stands under {chain[1]}: nothing can be lowered "
+                         f"{rel} it", [target], f"move {target} out from under {chain[1]} "
                          "first")
         below = state.support.get(target)
         if below is not None and below[0] == "nextto":
@@ -148,7 +149,6 @@ def household_room_violation(state: WorldState, action: AnyAction) -> Violation 
                      "over its side", sorted(load), f"move {sorted(load)[0]} off {target} "
                      "first")
     kind, base = _base(state, target)
-    assert base is not None
     if kind == "floor":
         if state.objects[base].props.movable:
             return _fail(action, f"{base} stands on nothing", [base], "choose another place")

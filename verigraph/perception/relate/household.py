@@ -4,7 +4,8 @@ sim2d draws household furniture (fridge, cabinet, sink, ...) in colours of their
 (`palette.HOUSEHOLD_COLORS`, far from the tabletop palette), a door of an openable
 container in `palette.DOOR` hinged at its right rim (closed: lying across the
 opening; open: standing upright beside it) and the lit element of a toggleable object
-that is on in `palette.LIT` (on its left leg, `LAMP_HEIGHT` units above its foot). This reads them back:
+that is on in `palette.LIT` (on its left leg, `LAMP_HEIGHT` units above its
+foot). This reads them back:
 
 - furniture: connected areas of a household colour (a colour two kinds share is read
   as the first kind and marked unsure);
