@@ -12,9 +12,9 @@ foot). This reads them back:
 - a door: the `DOOR` area at the furniture's hinge corner; lying flat (at least twice
   as wide as tall) is closed, upright open; shorter than 80% of the furniture's width
   means partly hidden, shorter than half or neither flat nor upright is unsure;
-- a switch: the share of `LIT` pixels in the lamp's disc; at least half is on, none
-  with the object's own colour showing there is off; anything else (a partly hidden
-  or washed-out lamp) is unsure.
+- a switch: lit pixels around the lamp (a window twice its size) against the lamp's
+  area; at least half is on, none with the object's own colour showing in the lamp's
+  disc is off; anything else (a partly hidden or washed-out lamp) is unsure.
 
 Every reading has a confidence, written under `object.key` (`fridge.open`,
 `stove.toggled_on`); below `CONFIDENT` it is listed as uncertain with the reason, so
@@ -42,7 +42,6 @@ MIN_FURNITURE_UNITS = 6.0  # a piece of furniture covers at least 6 square units
 DOOR_SHOWN = 0.8
 DOOR_HALF = 0.5
 LIT_ON = 0.5
-LIT_OFF = 0.08
 OWN_SHOWN = 0.3
 SURE, PARTLY, UNSURE, UNSEEN = 0.95, 0.7, 0.35, 0.2
 
@@ -226,13 +225,16 @@ def _read_switch(reading: HouseholdReading, obj: str, box: Box, lab: np.ndarray,
     ys, xs = np.ogrid[:h, :w]
     disc = (xs - cx) ** 2 + (ys - cy) ** 2 <= r * r
     area = max(1.0, math.pi * r * r)
-    share = float(np.count_nonzero(lit & disc)) / area
+    # Lit pixels are counted in a window twice the lamp's size (a box read off pixels
+    # may sit a few pixels off the body), own colour in the lamp's disc.
+    near = (np.abs(xs - cx) <= 2 * r) & (np.abs(ys - cy) <= 2 * r)
+    share = float(np.count_nonzero(lit & near)) / area
     mine = float(np.count_nonzero(_mask(lab, own) & disc)) / area
     if share >= LIT_ON:
         reading.note(obj, "toggled_on", True, SURE, "lit")
-    elif share <= LIT_OFF and mine >= OWN_SHOWN:
+    elif share == 0.0 and mine >= OWN_SHOWN:
         reading.note(obj, "toggled_on", False, SURE, "not lit")
-    elif share > LIT_OFF:
+    elif share > 0.0:
         reading.note(obj, "toggled_on", True, UNSURE,
                      f"its lamp is only {share:.0%} lit (part hidden, or washed out)")
     else:
