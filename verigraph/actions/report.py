@@ -21,7 +21,7 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, MoveAction
 from verigraph.actions.parser import parse_plan
 from verigraph.actions.schemas import MOVE, Place, schema_of
-from verigraph.actions.validator import GraphEdit, StateChange
+from verigraph.actions.validator import GraphEdit, edit_from
 from verigraph.budget import checkpoint
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
@@ -30,6 +30,7 @@ from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import label_readings, readings_line
 
+assert isinstance(MOVE.effect, Place)  # the fast path below builds a placement's edit
 M = TypeVar("M", bound=BaseModel)
 # Setters of the four slots every pydantic model instance fills (`BaseModel.__slots__`:
 # the field values, the fields set, extras, private attributes), called on the slot
@@ -179,9 +180,10 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
     """StepReports for the records (the edge where compact tuples become models).
 
     An action of the table applied on the fast path left what its effect replaced; its
-    row's `changes` gives the edges it removed and added (and the states it changed), and
-    the models are built here with `object.__new__` and the setters of the model's own
-    slots (what `model_construct` does, minus its per-call bookkeeping). The caller
+    row gives the edit (`validator.edit_from`). Accepted moves, the bulk of any long plan,
+    are built inline (the move row's effect replaces the object's placement edge) with
+    `object.__new__` and the setters of the model's own slots (what `model_construct`
+    does, minus its per-call bookkeeping). The caller
     pauses the garbage collector (`collector_paused`). One fields-set object serves all
     instances of a class: StepReport's and GraphEdit's name every field, so an
     assignment adds nothing to them, and Edge is frozen. Frozen, an Edge is shared too:
@@ -193,12 +195,13 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
     values, fields_set, extra, private = _set_values, _set_fields_set, _set_extra, _set_private
     edge_set, edit_set, step_set = set(EDGE_FIELDS), set(EDIT_FIELDS), set(STEP_FIELDS)
     placed: dict[str, Edge] = {}  # object -> the Edge of its current placement
-    move = MOVE
+    move_type, built_edit, refused, name = MoveAction, GraphEdit, Violation, MOVE.name
     for index, action, payload in records:
         if not index & 63:
             checkpoint()  # the server's per-call budget and cancellation
-        if type(payload) is GraphEdit or type(payload) is Violation:  # built already
-            ok = isinstance(payload, GraphEdit)
+        kind = type(payload)
+        if kind is built_edit or kind is refused:  # built already
+            ok = kind is built_edit
             if ok:
                 placed.clear()
             steps.append(trusted(StepReport, {
@@ -206,48 +209,45 @@ def _steps_from_records(records: list[Record]) -> list[Any]:
                 "violation": None if ok else payload, "edit": payload if ok else None},
                 STEP_FIELDS))
             continue
-        row = move if type(action) is MoveAction else schema_of(action)
-        assert row is not None
-        changed: list[StateChange] | None = None
-        if type(row.effect) is Place:  # the placement edge `obj rel target` replaced
-            obj, rel, target = action.object, action.relation, action.target  # type: ignore[union-attr]
-            name = row.name
-            added = new(Edge)
-            values(added, {"source": obj, "relation": rel, "target": target,
-                           "source_side": None, "target_side": None})
-            fields_set(added, edge_set)
-            extra(added, None)
-            private(added, None)
-            removed = []
-            if payload is not None:
-                old = placed.get(obj)
-                if old is None:
-                    old = new(Edge)
-                    values(old, {"source": obj, "relation": payload[0], "target": payload[1],
-                                 "source_side": None, "target_side": None})
-                    fields_set(old, edge_set)
-                    extra(old, None)
-                    private(old, None)
-                removed.append(old)
-            placed[obj] = added
-            action_values = {"action": name, "object": obj, "relation": rel, "target": target}
-            text = f"{name}({obj}, {rel}, {target})"
-            added_edges = [added]
-        else:
+        if type(action) is not move_type:  # a state row: its edit as models
+            row = schema_of(action)
+            assert row is not None
             args = row.args(action)
-            changed = [StateChange(object=o, key=k, before=b, after=a)
-                       for o, k, b, a in row.changes(args, payload)[2]]
-            removed, added_edges = [], []
-            action_values, text = row.action_dict(*args), row.text(*args)
+            steps.append(trusted(StepReport, {
+                "step": index, "ok": True, "action": row.action_dict(*args),
+                "text": row.text(*args), "violation": None,
+                "edit": edit_from(row, args, payload)}, STEP_FIELDS))
+            continue
+        # The move row, the bulk of any long plan: its placement edge replaced.
+        obj, rel, target = action.object, action.relation, action.target
+        added = new(Edge)
+        values(added, {"source": obj, "relation": rel, "target": target,
+                       "source_side": None, "target_side": None})
+        fields_set(added, edge_set)
+        extra(added, None)
+        private(added, None)
+        removed = []
+        if payload is not None:
+            old = placed.get(obj)
+            if old is None:
+                old = new(Edge)
+                values(old, {"source": obj, "relation": payload[0], "target": payload[1],
+                             "source_side": None, "target_side": None})
+                fields_set(old, edge_set)
+                extra(old, None)
+                private(old, None)
+            removed.append(old)
+        placed[obj] = added
         edit = new(GraphEdit)
-        values(edit, {"removed": removed, "added": added_edges, "states": changed})
+        values(edit, {"removed": removed, "added": [added], "states": None})
         fields_set(edit, edit_set)
         extra(edit, None)
         private(edit, None)
         step = new(StepReport)
         values(step, {
-            "step": index, "ok": True, "action": action_values,
-            "text": text, "violation": None, "edit": edit})
+            "step": index, "ok": True,
+            "action": {"action": name, "object": obj, "relation": rel, "target": target},
+            "text": f"{name}({obj}, {rel}, {target})", "violation": None, "edit": edit})
         fields_set(step, step_set)
         extra(step, None)
         private(step, None)

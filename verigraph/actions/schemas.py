@@ -96,11 +96,11 @@ class SetState:
 
 
 Effect = Place | SetState
-# The effects as statements over the bound parameters, returning what they replaced.
+# The effects as statements over the bound parameters (a placement's row binds `old`,
+# the object's placement now), returning what they replaced.
 # A placement is `SupportIndex.set_support` inlined: a call per step is measurable on
 # long plans.
 _PLACE_CODE = """
-old = support.get(obj)
 if old is not None:
     del carried[old[1]][obj]
 support[obj] = (relation, target)
@@ -122,6 +122,12 @@ class ActionSchema:
     parameters: tuple[Parameter, ...]
     preconditions: tuple[Precondition, ...]
     effect: Effect
+    # Names the tests after the gates (and the effect) may use, each `name = expression`
+    # over the parameters, computed once after the gates hold (they may index objects).
+    bindings: tuple[str, ...] = ()
+    # The names the gate tests bind (`:=`), as statements, for the functions that run
+    # without the gates (a single later test, the effect alone).
+    gate_bindings: tuple[str, ...] = ()
     # True for rows that only household worlds use (shown where a scene has them).
     household: bool = False
     accepted: Callable[..., bool] = field(init=False, repr=False)
@@ -139,11 +145,15 @@ class ActionSchema:
         variables = ", ".join(VARIABLES[n] for n in names)
         prelude = ("objects = state.objects; carried = state.carried; "
                    "support = state.support")
+        bound = "".join(f"    {b}\n" for b in self.bindings)
+        rebound = "".join(f"    {b}\n" for b in self.gate_bindings) + bound
         for pre in self.preconditions:
             object.__setattr__(pre, "holds", _compile(
-                f"def holds(state, {variables}):\n    {prelude}\n    return {pre.test}\n",
-                "holds"))
-        body = " and ".join(f"({pre.test})" for pre in self.preconditions)
+                f"def holds(state, {variables}):\n    {prelude}\n"
+                f"{'' if pre.gate else rebound}    return {pre.test}\n", "holds"))
+        gates = " and ".join(f"({p.test})" for p in self.preconditions if p.gate) or "True"
+        rest = " and ".join(f"({p.test})" for p in self.preconditions if not p.gate) or "True"
+        assert all(p.gate for p in self.preconditions[:sum(p.gate for p in self.preconditions)])
         if isinstance(self.effect, Place):
             assert names == ["object", "relation", "target"], "a placement's parameters"
             code = _PLACE_CODE
@@ -153,10 +163,12 @@ class ActionSchema:
         reads = "; ".join(f"{VARIABLES[n]} = action.{n}" for n in names)
         sources = {
             "accepted": f"def accepted(state, {variables}):\n    {prelude}\n"
-                        f"    return {body}\n",
-            "apply": f"def apply(state, {variables}):\n    {prelude}\n{effect}",
+                        f"    if not ({gates}):\n        return False\n{bound}"
+                        f"    return {rest}\n",
+            "apply": f"def apply(state, {variables}):\n    {prelude}\n{rebound}{effect}",
             "step": f"def step(state, action):\n    {reads}\n    {prelude}\n"
-                    f"    if not ({body}):\n        return REFUSED\n{effect}",
+                    f"    if not ({gates}):\n        return REFUSED\n{bound}"
+                    f"    if not ({rest}):\n        return REFUSED\n{effect}",
             "action_dict": f"def action_dict({variables}):\n    return {{'action': "
                            f"{self.name!r}, "
                            + ", ".join(f"{n!r}: {VARIABLES[n]}" for n in names) + "}\n",
@@ -241,34 +253,34 @@ MOVE = ActionSchema(
                                     "furniture; nextto: any object but a room; with room "
                                     "for on and in")),
     preconditions=(
-        Precondition("unknown_object", "obj in objects and target in objects",
+        Precondition("unknown_object", "(info := objects.get(obj)) is not None and "
+                     "(about := objects.get(target)) is not None",
                      c.explain_unknown_object, gate=True),
         Precondition("unknown_relation", "relation in state.move_relations",
                      c.explain_relation, gate=True),
         Precondition("same_object", "obj != target", c.explain_same_object, gate=True),
-        Precondition("not_movable", "objects[obj].props.movable", c.explain_movable),
-        Precondition("already_there", "support.get(obj) != (relation, target)",
-                     c.explain_already_there),
+        Precondition("not_movable", "info.props.movable", c.explain_movable),
+        Precondition("already_there", "old != (relation, target)", c.explain_already_there),
         Precondition("would_create_cycle",
-                     "not carried[obj] or obj not in state.supports_chain(target)",
-                     c.explain_cycle),
-        Precondition("object_not_clear", "not carried[obj]", c.explain_clear),
+                     "not held or obj not in state.supports_chain(target)", c.explain_cycle),
+        Precondition("object_not_clear", "not held", c.explain_clear),
         Precondition("target_not_surface",
-                     "(props.surface if relation == 'on' else props.container if "
-                     "relation == 'in' else fits(props, relation)) if "
-                     "(props := objects[target].props) is not None else False",
+                     "props.surface if relation == 'on' else props.container if "
+                     "relation == 'in' else fits(props, relation)",
                      c.explain_target_kind,
                      also=("target_not_container", "target_not_furniture", "target_is_room")),
         Precondition("container_closed",
                      "not state.openable or closed_passage(state, obj, relation, target) "
                      "is None", c.explain_container_closed),
         Precondition("target_full",
-                     "relation not in CARRYING or (cap := objects[target].props.capacity) "
-                     "is None or len(carried[target]) < cap or state.has_room(target)",
+                     "relation not in CARRYING or (cap := props.capacity) is None "
+                     "or len(carried[target]) < cap or state.has_room(target)",
                      c.explain_capacity,
                      skip_after=frozenset({"target_not_surface", "target_not_container"})),
     ),
-    effect=Place())
+    effect=Place(),
+    bindings=("old = support.get(obj)", "held = carried[obj]", "props = about.props"),
+    gate_bindings=("info = objects[obj]", "about = objects[target]"))
 
 
 # -- open, close, toggle_on, toggle_off ---------------------------------------------------------

@@ -9,6 +9,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Annotated, Any
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema, field_validator
+from pydantic_core import PydanticCustomError
 
 from verigraph.graph.dictionary import STATE_ROLES, InlineDictionary, inline_or_name
 
@@ -45,12 +46,14 @@ class Node(BaseModel):
             return value
         for key, on in value.items():
             if key not in STATE_ROLES:
-                raise ValueError(
-                    f"unknown state '{str(key)[:32]}' (fix: use "
-                    f"{' or '.join(STATE_ROLES)}, e.g. {{\"open\": false}})")
-            if not isinstance(on, bool):
-                raise ValueError(f"state '{key}' must be true or false, got "
-                                 f"{str(on)[:32]!r} (fix: write {{\"{key}\": true}})")
+                reason = (f"unknown state '{str(key)[:32]}' (fix: use "
+                          f"{' or '.join(STATE_ROLES)}, e.g. {{\"open\": false}})")
+            elif not isinstance(on, bool):
+                reason = (f"state '{key}' must be true or false, got {str(on)[:32]!r} "
+                          f"(fix: write {{\"{key}\": true}})")
+            else:
+                continue
+            raise PydanticCustomError("node_state", "{reason}", {"reason": reason})
         return value
 
 

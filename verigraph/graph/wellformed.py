@@ -294,7 +294,7 @@ def _looks_like(label: str, dictionary: Dictionary) -> str | None:
 
 MAX_APPLIED = 12
 # The properties that make a kind (what constraints read), as opposed to how it looks.
-KIND_KEYS = ("movable", "surface", "container", "capacity")
+KIND_KEYS = ("movable", "surface", "container", "capacity", "openable", "toggleable", "room")
 
 
 def applied_properties(graph: SceneGraph | None, dictionary: Dictionary,

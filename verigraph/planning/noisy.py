@@ -31,6 +31,7 @@ from typing import Literal, get_args
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction
+from verigraph.graph.dictionary import SUPPORT_RELATIONS
 from verigraph.graph.state import WorldState
 from verigraph.planning.goal_reader import GoalReader
 from verigraph.planning.models import PlannerReply, PlannerRequest
@@ -170,7 +171,8 @@ def make_mistake(kind: MistakeKind, state: WorldState, planned: AnyAction,
         if loaded:
             return MoveAction(object=rng.choice(loaded), relation=planned.relation,
                               target=planned.target)
-    relations = state.move_relations or ("on",)
+    # Tabletop mistakes: on and in only, so a kitchen's noise is what it always was.
+    relations = [r for r in state.move_relations if r in SUPPORT_RELATIONS] or ("on",)
     return MoveAction(object=rng.choice(_movable(state) or objects),
                       relation=rng.choice(relations), target=rng.choice(objects))
 

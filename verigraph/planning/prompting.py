@@ -42,7 +42,7 @@ def planner_prompt(mode: Mode, state: WorldState, goal: Goal | None, *, k: int |
     `goal` is what the planner may see: for instruction tasks the caller passes None so
     that only the instruction is shown, while the episode keeps the ground truth.
     """
-    relations = state.dictionary.relations
+    relations = pieces.prompt_relations(state)
     household = pieces.is_household(state)
     return prompts.render(
         TEMPLATE[mode], relations=", ".join(relations), objects=pieces.objects_text(state),

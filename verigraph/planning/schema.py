@@ -11,9 +11,11 @@ from __future__ import annotations
 
 from typing import Any
 
-from verigraph.graph.dictionary import SUPPORT_RELATIONS
+from verigraph.actions.schemas import SCHEMAS
+from verigraph.graph.dictionary import PLACEMENT_RELATIONS, SUPPORT_RELATIONS
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.prompts.filling import is_household
 
 SCHEMA_NAME = "verigraph_actions"
 
@@ -29,19 +31,23 @@ def _names(ids: list[str]) -> dict[str, Any]:
 
 def action_schema(graph: SceneGraph | None = None, *, constrain_ids: bool = True
                   ) -> dict[str, Any]:
-    """Schema of one answer; tangram scenes get `align`, tabletop scenes `move`.
+    """Schema of one answer; tangram scenes get `align`, tabletop scenes `move`, household
+    scenes also `under`/`nextto` and the state actions of the action table.
 
     Without a graph both action kinds are allowed and names are free strings.
     """
     ids: list[str] = []
     tangram = tabletop = True
+    household = False
     relations = ["on", "in"]
     if graph is not None:
         state = WorldState.from_graph(graph)
         ids = sorted(state.objects) if constrain_ids else []
         tangram = any(o.props.sides for o in state.objects.values())
         tabletop = not tangram
-        relations = [r for r in state.dictionary.relations if r in SUPPORT_RELATIONS] or relations
+        household = tabletop and is_household(state)
+        kinds = PLACEMENT_RELATIONS if household else SUPPORT_RELATIONS
+        relations = [r for r in state.dictionary.relations if r in kinds] or relations
     variants: list[dict[str, Any]] = []
     if tabletop:
         variants.append(_object({
@@ -49,6 +55,11 @@ def action_schema(graph: SceneGraph | None = None, *, constrain_ids: bool = True
             "object": _names(ids),
             "relation": {"type": "string", "enum": relations},
             "target": _names(ids)}))
+    if household:
+        variants.append(_object({
+            "action": {"type": "string",
+                       "enum": [name for name, row in SCHEMAS.items() if row.household]},
+            "object": _names(ids)}))
     if tangram:
         variants.append(_object({
             "action": {"type": "string", "enum": ["align"]},

@@ -14,6 +14,7 @@ from verigraph.actions.feedback import CONSTRAINT_DESCRIPTIONS, Violation
 from verigraph.actions.model import AnyAction
 from verigraph.actions.schemas import HOUSEHOLD_CONSTRAINTS, SCHEMAS
 from verigraph.graph.dictionary import (
+    HOUSEHOLD_RELATIONS,
     PLACEMENT_RELATIONS,
     STATE_WORDS,
     SUPPORT_RELATIONS,
@@ -34,15 +35,28 @@ def _is_tangram(relations: Sequence[str]) -> bool:
 
 
 def is_household(state: WorldState) -> bool:
-    """Whether the scene has what only household worlds have: openable or toggleable
-    objects, rooms, or an object under or next to another. Texts and prompts speak of
-    the household actions and rules only then (a tabletop reads as it always did)."""
+    """Whether the scene has what only household worlds have: openable objects, rooms,
+    object states given, or an object under or next to another. Prompts speak of the
+    household actions and rules only then, so a kitchen tabletop (whose stove could be
+    switched) reads as it always did; the actions are accepted everywhere all the same."""
     return bool(state.openable or state.rooms or state.states) or any(
-        p.toggleable or p.room for p in (o.props for o in state.objects.values())) or any(
+        o.props.room for o in state.objects.values()) or any(
         r not in SUPPORT_RELATIONS for r, _ in state.support.values())
 
 
+def prompt_relations(state: WorldState) -> tuple[str, ...]:
+    """The relations a prompt names: the dictionary's R, without the household ones
+    (`under`, `nextto`, `inroom`) unless the scene is a household (`is_household`)."""
+    relations = state.dictionary.relations
+    if is_household(state):
+        return relations
+    return tuple(r for r in relations if r in SUPPORT_RELATIONS or r not in HOUSEHOLD_RELATIONS)
+
+
 def objects_text(state: WorldState) -> str:
+    """One line per object with its role; in a household, its states too (`openable,
+    now closed (default)`)."""
+    household = is_household(state)
     lines = []
     for obj in state.objects.values():
         p = obj.props
@@ -55,7 +69,7 @@ def objects_text(state: WorldState) -> str:
             kinds.append(f"{p.sides} sides")
         if (p.surface or p.container) and p.capacity is not None:
             kinds.append(f"holds at most {p.capacity}")
-        states = state_text(p, state.states.get(obj.id, {}))
+        states = state_text(p, state.states.get(obj.id, {})) if household else ""
         if states:
             roles = [r for r, on in (("openable", p.openable), ("toggleable", p.toggleable))
                      if on]
@@ -173,7 +187,7 @@ def fill_planner_prompt(name: str, state: WorldState, goal: Goal | None, *, k: i
                    calls: int = 0, instruction: str | None = None,
                    episode_id: str | None = None) -> str:
     """The iterative or direct planner prompt for a state and goal."""
-    relations = state.dictionary.relations
+    relations = prompt_relations(state)
     household = is_household(state)
     return prompts.render(
         name, relations=", ".join(relations), objects=objects_text(state),

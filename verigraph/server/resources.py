@@ -27,6 +27,11 @@ RELATION_MEANINGS = {
     "on": "source rests on target; target must be a surface",
     "in": "source is inside target; target must be a container",
     "touches": "tangram: side source_side of source lies against side target_side of target",
+    "under": "source stands under target, on what target stands on; target must be "
+             "furniture (a fixed surface); counts against no capacity",
+    "nextto": "source stands next to target, on what target stands on; target must not be "
+              "a room; counts against no capacity",
+    "inroom": "furniture (a fixed object) source stands in room target",
 }
 
 
