@@ -133,7 +133,8 @@ def read_household(image: np.ndarray, dictionary: Dictionary,
     if scale <= 0:
         return reading
     lit = _mask(lab, palette.LIT)
-    doors = _areas(_mask(lab, palette.DOOR), max(4, int(scale * scale / 4)))
+    lamps = _areas(lit, max(4, int((LAMP_RADIUS * scale) ** 2 / 4)))
+    doors = _areas(_mask(lab, palette.DOOR), max(4, int((DOOR_THICKNESS * scale) ** 2)))
     taken = {o.id for o in objects}
     pieces: list[tuple[str, Box, palette.BGR]] = []
     for colour, labels in kinds.items():
@@ -151,7 +152,7 @@ def read_household(image: np.ndarray, dictionary: Dictionary,
                     reason=f"{colour} is the colour of {' and '.join(labels)}: read as "
                            f"{label}"))
             pieces.append((node_id, box, bgr))
-    if not pieces and not doors and not lit.any():
+    if not pieces and not doors and not lamps:
         return reading  # nothing household in view: the reading stays as it was
     for node_id, box, bgr in pieces:
         props = dictionary.objects[reading.objects[[o.id for o in reading.objects]
@@ -161,7 +162,8 @@ def read_household(image: np.ndarray, dictionary: Dictionary,
         if props.toggleable:
             _read_switch(reading, node_id, box, lab, lit, bgr, scale)
     for obj in toggleable:
-        _read_switch(reading, obj.id, obj.box, lab, lit, palette.bgr(obj.colour), scale)
+        _read_switch(reading, obj.id, obj.box, lab, lit, palette.bgr(obj.colour), scale,
+                     off_too=bool(pieces or doors))
     if pieces:
         reading.warnings.append(
             f"household furniture seen ({', '.join(sorted(n.id for n in reading.nodes))}): "
@@ -215,8 +217,11 @@ def _read_door(reading: HouseholdReading, obj: str, box: Box,
 
 
 def _read_switch(reading: HouseholdReading, obj: str, box: Box, lab: np.ndarray,
-                 lit: np.ndarray, own: palette.BGR, scale: float) -> None:
-    """The share of lit pixels in the lamp's disc (on the left leg, see sim2d.household)."""
+                 lit: np.ndarray, own: palette.BGR, scale: float, *,
+                 off_too: bool = True) -> None:
+    """The share of lit pixels around the lamp (on the left leg, see sim2d.household).
+    Without `off_too` (a tabletop with no household furniture, where off is the
+    default) only a lamp that is lit, or partly lit, is reported."""
     x0, _, _, y1 = box
     cx = x0 + 2.0 * scale
     cy = y1 - LAMP_HEIGHT * scale
@@ -230,6 +235,8 @@ def _read_switch(reading: HouseholdReading, obj: str, box: Box, lab: np.ndarray,
     near = (np.abs(xs - cx) <= 2 * r) & (np.abs(ys - cy) <= 2 * r)
     share = float(np.count_nonzero(lit & near)) / area
     mine = float(np.count_nonzero(_mask(lab, own) & disc)) / area
+    if share == 0.0 and not off_too:
+        return
     if share >= LIT_ON:
         reading.note(obj, "toggled_on", True, SURE, "lit")
     elif share == 0.0 and mine >= OWN_SHOWN:
