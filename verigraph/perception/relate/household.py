@@ -12,9 +12,9 @@ foot). This reads them back:
 - a door: the `DOOR` area at the furniture's hinge corner; lying flat (at least twice
   as wide as tall) is closed, upright open; shorter than 80% of the furniture's width
   means partly hidden, shorter than half or neither flat nor upright is unsure;
-- a switch: lit pixels around the lamp (a window twice its size) against the lamp's
-  area; at least half is on, none with the object's own colour showing in the lamp's
-  disc is off; anything else (a partly hidden or washed-out lamp) is unsure.
+- a switch: lit pixels over the object's box against the lamp's area; at least half
+  is on, none with the object's own colour showing in the lamp's disc is off;
+  anything else (a partly hidden or washed-out lamp) is unsure.
 
 Every reading has a confidence, written under `object.key` (`fridge.open`,
 `stove.toggled_on`); below `CONFIDENT` it is listed as uncertain with the reason, so
@@ -44,6 +44,7 @@ DOOR_HALF = 0.5
 LIT_ON = 0.5
 OWN_SHOWN = 0.3
 SURE, PARTLY, UNSURE, UNSEEN = 0.95, 0.7, 0.35, 0.2
+SCALE_AGREEMENT = 0.15
 
 Box = tuple[int, int, int, int]
 
@@ -129,7 +130,11 @@ def read_household(image: np.ndarray, dictionary: Dictionary,
     if not kinds and not toggleable:
         return reading
     lab = _lab(image)
-    scale = floor_scale(image) or scale
+    floor = floor_scale(image)
+    # The floor band gives the scale unless the picture is cropped or turned (then the
+    # detected objects' sizes disagree, and they win).
+    if floor > 0 and (scale <= 0 or abs(floor / scale - 1.0) <= SCALE_AGREEMENT):
+        scale = floor
     if scale <= 0:
         return reading
     lit = _mask(lab, palette.LIT)
@@ -184,11 +189,11 @@ def _read_door(reading: HouseholdReading, obj: str, box: Box,
                doors: list[tuple[Box, int]], scale: float) -> None:
     """The door at the furniture's hinge (top-right corner): flat closed, upright open."""
     x0, y0, x1, _ = box
-    reach = 3
+    reach = max(4.0, 0.03 * (x1 - x0))
     # Closed or open, a door ends at the hinge: its bottom on the rim, its right end at
     # the furniture's right side (or one door's thickness past it).
-    near = [d for d, _ in doors if abs(d[3] - y0) <= reach + 1
-            and x1 - reach <= d[2] <= x1 + reach + DOOR_THICKNESS * scale]
+    near = [d for d, _ in doors if abs(d[3] - y0) <= reach
+            and -reach <= d[2] - x1 <= reach + min(d[2] - d[0], d[3] - d[1])]
     if not near:
         reading.note(obj, "open", None, UNSEEN,
                      "no door is seen at its hinge (hidden, or out of the picture): open or "
@@ -230,9 +235,10 @@ def _read_switch(reading: HouseholdReading, obj: str, box: Box, lab: np.ndarray,
     ys, xs = np.ogrid[:h, :w]
     disc = (xs - cx) ** 2 + (ys - cy) ** 2 <= r * r
     area = max(1.0, math.pi * r * r)
-    # Lit pixels are counted in a window twice the lamp's size (a box read off pixels
-    # may sit a few pixels off the body), own colour in the lamp's disc.
-    near = (np.abs(xs - cx) <= 2 * r) & (np.abs(ys - cy) <= 2 * r)
+    # Lit pixels are counted over the object's box (a box read off pixels, or a scale,
+    # may be a little off), its own colour in the lamp's disc.
+    bx0, by0, bx1, by1 = box
+    near = (xs >= bx0 - r) & (xs < bx1 + r) & (ys >= by0 - r) & (ys < by1 + r)
     share = float(np.count_nonzero(lit & near)) / area
     mine = float(np.count_nonzero(_mask(lab, own) & disc)) / area
     if share == 0.0 and not off_too:
