@@ -64,6 +64,7 @@ log = logging.getLogger("verigraph.perception")
 
 DEFAULT_CONFIG = PerceptionConfig()
 DEFAULT_LABELLER = ColourShapeLabeller()
+UNKNOWN_COLOURS = "have colours no dictionary object is drawn in"
 UNION = "all"  # load_dictionary(None): the built-ins together; the family is inferred
 FAMILY_MARGIN = 0.03
 ILL_FORMED_PENALTY = 0.05
@@ -123,6 +124,17 @@ def _add_household(result: PerceptionResult, bgr: np.ndarray, d: Dictionary) -> 
     """Household furniture, doors and switches (`relate.household`): new nodes, states
     with their confidences, doubts and a note. A render with none of them is unchanged."""
     reading = read_household(bgr, d, result.objects, result.scale)
+    if reading.found or any(UNKNOWN_COLOURS in w for w in result.warnings):
+        # Colours off the renderer's (white balance, gamma, a tint): read the picture
+        # again after a tone map fitted to the palette and household colours together.
+        colours = [*palette.COLORS.values(), *palette.HOUSEHOLD_COLORS.values(),
+                   palette.DOOR, palette.LIT]
+        photo = correct_colours(bgr, colours, palette.BACKGROUND,
+                                [palette.BACKGROUND, palette.FLOOR])
+        if photo.image is not bgr:
+            again = read_household(photo.image, d, result.objects, result.scale)
+            if again.sure > reading.sure:
+                reading = again
     if not reading.found:
         return
     result.graph.nodes.extend(reading.nodes)

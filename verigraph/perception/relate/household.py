@@ -62,6 +62,11 @@ class HouseholdReading:
     warnings: list[str] = field(default_factory=list)
 
     @property
+    def sure(self) -> int:
+        """How many readings are sure (what a second reading must beat)."""
+        return sum(c >= CONFIDENT for c in self.confidence.values())
+
+    @property
     def found(self) -> bool:
         return bool(self.nodes or self.states or self.uncertain)
 
