@@ -13,8 +13,9 @@ foot). This reads them back:
   as wide as tall) is closed, upright open; shorter than 80% of the furniture's width
   means partly hidden, shorter than half or neither flat nor upright is unsure;
 - a switch: lit pixels over the object's box against the lamp's area; at least half
-  is on, none with the object's own colour showing in the lamp's disc is off;
-  anything else (a partly hidden or washed-out lamp) is unsure.
+  is on; none, with the object's own colour showing in the lamp's disc and nothing
+  but it, its outline, the wall or the floor, is off; anything else (a partly hidden,
+  washed-out or recoloured lamp) is unsure.
 
 Every reading has a confidence, written under `object.key` (`fridge.open`,
 `stove.toggled_on`); below `CONFIDENT` it is listed as uncertain with the reason, so
@@ -43,6 +44,7 @@ DOOR_SHOWN = 0.8
 DOOR_HALF = 0.5
 LIT_ON = 0.5
 OWN_SHOWN = 0.3
+OTHER_SHOWN = 0.15
 SURE, PARTLY, UNSURE, UNSEEN = 0.95, 0.7, 0.35, 0.2
 SCALE_AGREEMENT = 0.15
 
@@ -246,15 +248,24 @@ def _read_switch(reading: HouseholdReading, obj: str, box: Box, lab: np.ndarray,
     near = (xs >= bx0 - r) & (xs < bx1 + r) & (ys >= by0 - r) & (ys < by1 + r)
     share = float(np.count_nonzero(lit & near)) / area
     mine = float(np.count_nonzero(_mask(lab, own) & disc)) / area
+    # Off needs the disc to show only the object, its outline, the wall or the floor:
+    # a lit lamp whose colour is off (a hue shift) shows as something else there.
+    scenery = _mask(lab, own) | _mask(lab, palette.OUTLINE) | _mask(lab, palette.BACKGROUND) \
+        | _mask(lab, palette.FLOOR)
+    other = float(np.count_nonzero(disc & ~scenery)) / area
     if share == 0.0 and not off_too:
         return
     if share >= LIT_ON:
         reading.note(obj, "toggled_on", True, SURE, "lit")
-    elif share == 0.0 and mine >= OWN_SHOWN:
+    elif share == 0.0 and mine >= OWN_SHOWN and other <= OTHER_SHOWN:
         reading.note(obj, "toggled_on", False, SURE, "not lit")
     elif share > 0.0:
         reading.note(obj, "toggled_on", True, UNSURE,
                      f"its lamp is only {share:.0%} lit (part hidden, or washed out)")
+    elif other > OTHER_SHOWN:
+        reading.note(obj, "toggled_on", None, UNSEEN,
+                     f"{other:.0%} of where its lamp is shows a colour of neither the object "
+                     "nor the scenery: on or off cannot be read")
     else:
         reading.note(obj, "toggled_on", None, UNSEEN,
                      "its lamp is not seen (hidden): on or off cannot be read")
