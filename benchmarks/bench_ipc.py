@@ -50,8 +50,8 @@ from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from verigraph.actions.pddl import validate_pddl_dict
 from verigraph.errors import VeriGraphError
+from verigraph.pddl import validate_pddl_dict
 
 DATA = Path(__file__).parent / "data" / "ipc"
 OUT = Path(__file__).parent / "results" / "ipc.md"
@@ -442,8 +442,8 @@ def warm_up(cases: list[Case]) -> None:
     """Load both engines' code before timing (a one-off import, not a per-plan cost):
     one untimed check of a blocks-world case and of another, then the domain caches are
     emptied so the timed runs read each domain again."""
-    from verigraph.actions.blocksworld.domain import cached_domain
-    from verigraph.actions.pddl.simulate import cached_strips_domain
+    from verigraph.pddl.blocksworld.domain import cached_domain
+    from verigraph.pddl.simulate import cached_strips_domain
 
     for want_blocks in (True, False):
         for c in cases:

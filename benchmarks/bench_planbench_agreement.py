@@ -31,9 +31,9 @@ sys.path.insert(0, str(Path(__file__).parent))
 from bench_validate import find_val  # noqa: E402
 from common import write_table  # noqa: E402
 
-from verigraph.actions.pddl import read_domain, read_problem, validate_pddl_dict  # noqa: E402
-from verigraph.actions.pddl.model import Domain, Problem  # noqa: E402
-from verigraph.actions.pddl.simulate import complete_binding  # noqa: E402
+from verigraph.pddl import read_domain, read_problem, validate_pddl_dict  # noqa: E402
+from verigraph.pddl.model import Domain, Problem  # noqa: E402
+from verigraph.pddl.simulate import complete_binding  # noqa: E402
 
 DOMAINS = {"Mystery Blocksworld": "blocksworld/mystery", "depots": "depots",
            "logistics": "logistics"}

@@ -17,7 +17,11 @@
   mutations, as bench_ipc.py makes them): the slowest in-process check (an invalid
   plan's explanation included), and `--batch` over all of them against VAL run once per
   case;
-* CLI start-up on a small plan (blocks world, STRIPS logistics, `verigraph-val`).
+* CLI start-up on a small plan (blocks world, STRIPS logistics, `verigraph-val`);
+* `--grounding`: the STRIPS engine's three ways to run a plan on the same plans (the fast
+  run with generated grounding functions, the fast run with the literal-by-literal
+  closures only, the step-by-step run only), reports compared byte for byte; appended to
+  the results file as its own section (a full run rewrites the file: run it after).
 
 VAL: `--val PATH`, else $VERIGRAPH_VAL, else ~/.cache/verigraph/val/Validate when it
 exists (docs/validator.md says how to build it: VAL's parser must be compiled with a
@@ -45,14 +49,14 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).parent))
 
 from blocks_problems import DOMAIN_FILE, problem  # noqa: E402
-from common import median_time, write_table  # noqa: E402
+from common import RESULTS, machine, median_time, write_table  # noqa: E402
 
 from verigraph.actions import MoveAction, parse_plan, validate_plan  # noqa: E402
-from verigraph.actions.blocksworld import validate_blocks_dict  # noqa: E402
 from verigraph.actions.execution import run_actions  # noqa: E402
-from verigraph.actions.pddl import validate_strips_dict  # noqa: E402
-from verigraph.actions.pddl.simulate import cached_strips_problem  # noqa: E402
 from verigraph.graph import Edge, Node, SceneGraph, WorldState  # noqa: E402
+from verigraph.pddl import validate_strips_dict  # noqa: E402
+from verigraph.pddl.blocksworld import validate_blocks_dict  # noqa: E402
+from verigraph.pddl.simulate import cached_strips_problem  # noqa: E402
 
 N_OBJECTS, N_ACTIONS = 1000, 10_000
 EXAMPLES = Path(__file__).parent.parent / "examples" / "scenes"
@@ -208,9 +212,15 @@ def main() -> None:
     parser.add_argument("--batch-items", type=int, default=2000)
     parser.add_argument("--ipc-only", action="store_true",
                         help="only the IPC rows (printed, no results file)")
+    parser.add_argument("--grounding", action="store_true",
+                        help="only the STRIPS engine's grounding paths compared (about "
+                             "half a minute), appended to the results file")
     args = parser.parse_args()
     work = Path(tempfile.mkdtemp(prefix="bench_validate_"))
     py = [sys.executable, "-m", "verigraph"]
+    if args.grounding:
+        grounding_rows()
+        return
     if args.ipc_only:
         ipc_long_rows(args, work, find_val(args.val), [])
         ipc_plan_rows(args, work, find_val(args.val), [])
@@ -532,7 +542,7 @@ def ipc_long_rows(args: argparse.Namespace, work: Path, val: str | None,
                   rows: list[list[str]]) -> None:
     """Long plans of IPC domains: `validate_pddl_dict` in process (the report built)
     against VAL's whole process on the same files; best-of-N CPU on both sides."""
-    from verigraph.actions.pddl import validate_pddl_dict
+    from verigraph.pddl import validate_pddl_dict
 
     cases: list[tuple[str, Path, str, list[str]]] = []
     problem_text, plan = gripper_walk(20, 100_000)
@@ -585,7 +595,7 @@ def ipc_plan_rows(args: argparse.Namespace, work: Path, val: str | None,
     (the long ones) apart, and the lowest named."""
     from bench_ipc import load_cases
 
-    from verigraph.actions.pddl import validate_pddl_dict
+    from verigraph.pddl import validate_pddl_dict
 
     if not val:
         return
@@ -628,8 +638,8 @@ def ipc_corpus_rows(args: argparse.Namespace, work: Path, py: list[str], val: st
     check, and `--batch` over all of them against VAL once per case."""
     from bench_ipc import batch_items, load_cases
 
-    from verigraph.actions.pddl import validate_pddl_dict
     from verigraph.errors import VeriGraphError
+    from verigraph.pddl import validate_pddl_dict
 
     cases = load_cases(quick=False)
     texts: dict[Path, str] = {}
@@ -677,6 +687,120 @@ def ipc_corpus_rows(args: argparse.Namespace, work: Path, py: list[str], val: st
         rows.append([f"VAL Validate, one process per IPC case ({n} cases)",
                      f"{val_seconds * 1000:.0f}", f"{n / val_seconds:,.0f}",
                      f"{n / val_cpu_total:,.0f}", "-", "1.0x", "1.0x"])
+
+
+
+# ---------------------------------------------------------------- grounding paths
+
+GROUNDING_TITLE = "## The STRIPS engine's grounding paths"
+
+
+def grounding_rows() -> None:
+    """The STRIPS engine's three ways to run a plan, on the same plans: the fast run with
+    the generated grounding functions (what the engine does), the fast run with the
+    literal-by-literal closures only, and the step-by-step run alone (`simulate(...,
+    try_fast=False)`). Each report is compared byte for byte with the engine's; best CPU
+    of 5 after a warm-up, the problem read in every run (`_cold`), the domain kept (as a
+    batch or a server keeps it, with its generated functions). Appended to the results
+    file, replacing an earlier such section."""
+    import importlib
+
+    from bench_ipc import load_cases
+
+    from verigraph.agent.evaluation.markdown import table
+    from verigraph.errors import VeriGraphError
+    from verigraph.pddl.plans import parse_strips_plan
+
+    simulate = importlib.import_module("verigraph.pddl.simulate")
+    generated = simulate.Generated
+
+    class Closures:  # what `_Compiled` gets instead of a generated function: none
+        function = None
+
+        def __init__(self, *args: object) -> None:
+            pass
+
+        def counted(self) -> None:
+            return None
+
+    def fast(d: str, p: str, t: str) -> dict:  # type: ignore[type-arg]
+        return simulate.validate_strips_dict(d, p, t)
+
+    def stepwise(d: str, p: str, t: str) -> dict:  # type: ignore[type-arg]
+        domain = simulate.cached_strips_domain(d)
+        problem = simulate.cached_strips_problem(d, p)
+        return simulate.simulate(domain, problem, parse_strips_plan(t, domain), try_fast=False)
+
+    scene = big_scene()
+    problem_text, hand = as_pddl(scene, valid_random_walk(scene, N_ACTIONS))
+    plans = [("blocks, 1,000 blocks, 20,000 hand actions (almost every step a new ground "
+              "action)", DOMAIN_FILE.read_text(), problem_text, "\n".join(hand))]
+    problem_text, walk = gripper_walk(20, 20_000)
+    plans.append(("gripper (IPC 1998), 20 balls, 20,000 steps", GRIPPER_DOMAIN.read_text(),
+                  problem_text, "\n".join(walk) + "\n"))
+    problem_text, walk = visitall_walk(20, 20_000)
+    plans.append(("visitall (IPC 2011), 20 x 20 grid, 20,000 steps",
+                  (IPC / "visitall" / "domain.pddl").read_text(), problem_text,
+                  "\n".join(walk) + "\n"))
+    problem_text, walk = gripper_walk(20, 20_000)
+    plans.append(("gripper, 20,000 steps, then a failing step (explained)",
+                  GRIPPER_DOMAIN.read_text(), problem_text,
+                  "\n".join(walk + [walk[0]] * 2) + "\n"))
+    corpus = [(c.domain_file.read_text(), c.problem_file.read_text(), c.plan)
+              for c in load_cases(quick=True)]
+    paths = [("fast run, generated grounding (the engine)", fast, generated),
+             ("fast run, closures only", fast, Closures),
+             ("step-by-step run only", stepwise, generated)]
+    rows = []
+    for name, d, p, t in plans:
+        base = ""
+        for label, run, kind in paths:
+            simulate.Generated = kind
+            simulate.cached_strips_domain.cache_clear()  # no function of another path
+            report = json.dumps(run(d, p, t), sort_keys=True, default=list)
+            base = base or report
+            cpu = _in_process_cpu(lambda run=run, d=d, p=p, t=t: run(d, p, t), 5, before=_cold)
+            steps = t.count("\n") + 1
+            rows.append([name, label, f"{cpu * 1000:.1f}", f"{steps / cpu:,.0f}",
+                         "yes" if report == base else "NO"])
+            print(rows[-1], flush=True)
+    base_reports: list[str] = []
+    for label, run, kind in paths:
+        simulate.Generated = kind
+        simulate.cached_strips_domain.cache_clear()
+        reports, total = [], 0.0
+        for d, p, t in corpus:
+            _cold()
+            start = time.process_time()
+            try:
+                reports.append(json.dumps(run(d, p, t), sort_keys=True, default=list))
+            except VeriGraphError as exc:
+                reports.append(json.dumps(exc.to_dict(), default=str))
+            total += time.process_time() - start
+        base_reports = base_reports or reports
+        rows.append([f"IPC corpus, {len(corpus)} cases (quick: each domain's first plan "
+                     "and 4 mutations), one pass", label, f"{total * 1000:.1f}", "-",
+                     "yes" if reports == base_reports else "NO"])
+        print(rows[-1], flush=True)
+    simulate.Generated = generated
+    simulate.cached_strips_domain.cache_clear()
+    load = os.getloadavg()[0]
+    lines = [GROUNDING_TITLE, "", f"Machine: {machine()}  ",
+             f"Date: {time.strftime('%Y-%m-%d')}", "",
+             *table(["plan", "path", "ms CPU", "steps/s (CPU)", "same report"], rows), "",
+             "`python benchmarks/bench_validate.py --grounding`. Best CPU of 5 after a "
+             "warm-up; the problem read in every run, the domain (and its generated "
+             "grounding functions) kept. The step-by-step run gives the same reports but is "
+             "needed only where the fast run cannot go (all_errors, derived predicates, the "
+             "explanation after a failing step); the generated functions pay where a plan "
+             f"grounds many distinct actions. Load average at the end: {load:.1f} on "
+             f"{os.cpu_count()} cores."]
+    path = RESULTS / "validate.md"
+    text = path.read_text("utf-8") if path.exists() else ""
+    if GROUNDING_TITLE in text:
+        text = text[:text.index(GROUNDING_TITLE)].rstrip("\n") + "\n"
+    path.write_text(text + "\n" + "\n".join(lines) + "\n", "utf-8")
+    print("\n".join(lines))
 
 
 if __name__ == "__main__":

@@ -6,7 +6,9 @@
 #                                          no service, no server subprocess, no training
 #                                          (under two minutes on two cores)
 #   scripts/test.sh --slow [PYTEST ARGS]   also builds llama.cpp (7-25 min on a new
-#                                          machine, cached after) and runs the slow tests
+#                                          machine, cached after) and the OpenEnv 0.10 and
+#                                          verifiers environments (2-3 min each), and runs
+#                                          the slow tests
 # Every run prints the 25 slowest tests (--durations=25).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,6 +31,11 @@ bash scripts/install_interop.sh
 if [ "$MODE" = slow ]; then
   # The real local LLM (llama.cpp + Gemma 3 270M) for the llm-local planner tests.
   bash scripts/install_llm.sh
+  # OpenEnv 0.10 and verifiers 0.4 in their own environments (each pins an mcp that
+  # cannot sit beside VeriGraph's; over two minutes each): tests/env/test_openenv_current.py
+  # and tests/env/test_verifiers_taskset.py.
+  bash scripts/install_openenv.sh
+  bash scripts/install_verifiers.sh
   .venv/bin/pytest --durations=25 "$@"
 else
   .venv/bin/pytest -m "not slow" --durations=25 "$@"

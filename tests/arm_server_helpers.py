@@ -16,10 +16,10 @@ from typing import Any
 
 from mcp.client.context import ClientRequestContext
 from mcp.types import ElicitRequestParams, ElicitResult
+from xarm_standin import XArmAPIStandIn
 
 from verigraph.arm import ArmWorld, ObjectLocation, open_arm_world, parse_arm_config, scoped_confirm
 from verigraph.arm.drivers.xarm import XArmDriver
-from verigraph.arm.testing.xarm_standin import XArmAPIStandIn
 from verigraph.graph.model import SceneGraph
 from verigraph.tools import Toolbox, ToolConfig
 from verigraph.tools.executors import ArmSetup

@@ -55,3 +55,9 @@ def shown(entry: dict[str, Any]) -> str:
 def refused(entry: dict[str, Any]) -> bool:
     """Whether the recorded call was a tool error."""
     return bool(entry.get("is_error", shown(entry).startswith("Error executing tool")))
+
+
+# The third set: a garage cabinet in words, ADL and costed PDDL plans, a simulated run, a
+# colleague's plan to repair, a catalogue photo, a party table, a storage puzzle, a
+# tangram from a picture and a stove that holds two.
+THIRD_SET = TRIALS / "round3"

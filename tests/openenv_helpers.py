@@ -18,9 +18,15 @@ from verigraph.tasks.task import Task
 @contextmanager
 def serving(tasks: Sequence[Task], **options: Any) -> Iterator[str]:
     """`create_openenv_app(tasks=tasks, **options)` served on a loopback port; its URL."""
+    with serving_app(create_openenv_app(tasks=list(tasks), **options)) as url:
+        yield url
+
+
+@contextmanager
+def serving_app(app: Any) -> Iterator[str]:
+    """An ASGI app under uvicorn on a loopback port, in a thread; its URL."""
     port = free_port()
-    server = uvicorn.Server(uvicorn.Config(create_openenv_app(tasks=list(tasks), **options),
-                                           host="127.0.0.1", port=port,
+    server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=port,
                                            log_level="critical"))
     thread = threading.Thread(target=server.run, daemon=True)
     thread.start()

@@ -8,6 +8,12 @@ process has grown by more than its memory budget since the call started, or once
 the caller has been cancelled (the client went away, or the server is stopping).
 The checks are rate-limited, so a checkpoint in a hot loop costs a clock read.
 
+The command line has a budget too (`command_line_budget`): each check of `verigraph
+validate` (a plan, each `--batch` item) and each plan of `verigraph val` may use
+`--cpu-seconds` (or $VERIGRAPH_CPU_SECONDS; default `DEFAULT_CLI_CPU_S`, 0: none) of the
+CPU of its thread, and no wall-clock or memory limit: a busy machine does not make a
+check fail, and a file the command reads may legitimately need gigabytes.
+
 Code that never reaches a checkpoint is stopped all the same: a watchdog thread looks
 at every running budget every WATCH_EVERY_S and interrupts a call that is over its
 wall clock by more than WATCH_GRACE_S, or over its memory budget, with an exception
@@ -21,6 +27,7 @@ the checkpoints: only the call's own thread can ask whether its caller has gone.
 from __future__ import annotations
 
 import ctypes
+import math
 import os
 import threading
 import time
@@ -39,6 +46,8 @@ WATCH_GRACE_S = 0.25  # a checkpoint gets this long to stop an overrun call itse
 LANDING_S = 1.0  # how long a sent interrupt is given to land before it is withdrawn
 DEFAULT_WALL_S = 30.0  # `verigraph serve --tool-seconds`
 DEFAULT_MEMORY_MIB = 512.0  # `verigraph serve --tool-mib`
+DEFAULT_CLI_CPU_S = 60.0  # `verigraph validate --cpu-seconds`, $VERIGRAPH_CPU_SECONDS
+CPU_SECONDS_ENV = "VERIGRAPH_CPU_SECONDS"
 
 
 class BudgetExceeded(VeriGraphError):
@@ -47,10 +56,35 @@ class BudgetExceeded(VeriGraphError):
 
 @dataclass(frozen=True)
 class CallBudget:
-    """Limits of one call: seconds of wall clock and MiB of process growth."""
+    """Limits of one call: seconds of wall clock, MiB of process growth and, when set,
+    seconds of its thread's CPU (the command line's budget)."""
 
     wall_s: float = DEFAULT_WALL_S
     memory_mib: float = DEFAULT_MEMORY_MIB
+    cpu_s: float | None = None
+
+
+def command_line_budget(seconds: float | None) -> CallBudget | None:
+    """The budget of one command-line check: `seconds` of CPU (the `--cpu-seconds` flag;
+    None: $VERIGRAPH_CPU_SECONDS, else DEFAULT_CLI_CPU_S), no wall-clock or memory limit
+    (module docstring); None for 0, no limit."""
+    if seconds is None:
+        given = os.environ.get(CPU_SECONDS_ENV)
+        if given is None:
+            seconds = DEFAULT_CLI_CPU_S
+        else:
+            try:
+                seconds = float(given)
+            except ValueError:
+                seconds = math.nan
+            if not (math.isfinite(seconds) and seconds >= 0):
+                raise VeriGraphError(f"${CPU_SECONDS_ENV} is '{given[:40]}', not a number of "
+                                     "seconds", field=CPU_SECONDS_ENV, value=given[:40],
+                                     fix=f"set {CPU_SECONDS_ENV} to seconds of CPU per "
+                                         "check, such as 60 (0: no limit), or unset it")
+    if seconds == 0:
+        return None
+    return CallBudget(wall_s=math.inf, memory_mib=math.inf, cpu_s=seconds)
 
 
 def rss_bytes() -> int:
@@ -73,12 +107,38 @@ class _Meter:
         self.name = name
         self.cancelled = cancelled
         self.start = time.monotonic()
-        self.rss0 = rss_bytes()
+        self.rss0 = rss_bytes() if math.isfinite(budget.memory_mib) else 0
         self.next_check = self.start + CHECK_EVERY_S
         self.thread = threading.get_ident()
+        # the CPU clock of the call's thread, which the watchdog reads too (Linux; where
+        # a thread's clock cannot be had, only the call's own checkpoints read its CPU)
+        self.cpu_clock: int | None = None
+        if budget.cpu_s is not None:
+            try:
+                self.cpu_clock = time.pthread_getcpuclockid(self.thread)
+            except (AttributeError, OSError):
+                self.cpu_clock = None
+        self.cpu0 = 0.0
+        self.cpu0 = self.cpu_used(mine=True) or 0.0
         self.done = False  # set when the call leaves `within`; the watchdog then lets go
         self.overrun: BudgetExceeded | None = None  # set when the watchdog interrupts it
         self.landed = False  # set when that interrupt has been raised in the call's thread
+
+    def cpu_used(self, mine: bool = False) -> float | None:
+        """The CPU seconds of the call's thread (since `cpu0` once set); `mine`: asked in
+        that thread. None where it cannot be read from this thread."""
+        if self.budget.cpu_s is None:
+            return None
+        if self.cpu_clock is not None:
+            try:
+                used = time.clock_gettime(self.cpu_clock)
+            except OSError:  # the thread has ended
+                return None
+        elif mine:
+            used = time.thread_time()
+        else:
+            return None
+        return used - self.cpu0
 
     def check(self) -> None:
         now = time.monotonic()
@@ -92,19 +152,31 @@ class _Meter:
                 raise BudgetExceeded(f"{self.name} was cancelled (the client went away or "
                                      "the server is stopping)", field=self.name, value=None,
                                      fix="send the request again if you still need it") from None
-        problem = self.over(now)
+        problem = self.over(now, mine=True)
         if problem is not None:
             raise problem
 
-    def over(self, now: float, grace_s: float = 0.0) -> BudgetExceeded | None:
-        """The error for a call over its budget (wall clock with `grace_s` more), else
-        None."""
+    def over(self, now: float, grace_s: float = 0.0, mine: bool = False
+             ) -> BudgetExceeded | None:
+        """The error for a call over its budget (wall clock or CPU with `grace_s` more),
+        else None; `mine`: asked in the call's thread."""
+        cpu = self.cpu_used(mine)
+        if cpu is not None and self.budget.cpu_s is not None \
+                and cpu > self.budget.cpu_s + grace_s:
+            return BudgetExceeded(
+                f"{self.name} used more than its {self.budget.cpu_s:g} s of CPU",
+                field=self.name, value=round(cpu, 2),
+                fix="make the input smaller (fewer objects, bindings or steps), or give "
+                    f"each check more CPU time (verigraph validate --cpu-seconds S, or "
+                    f"{CPU_SECONDS_ENV}=S; 0: no limit)")
         if now - self.start > self.budget.wall_s + grace_s:
             return BudgetExceeded(
                 f"{self.name} ran longer than its {self.budget.wall_s:g} s budget",
                 field=self.name, value=round(now - self.start, 2),
                 fix="make the request smaller (fewer objects or actions), or ask the operator "
                     "for a larger budget (verigraph serve --tool-seconds)")
+        if not math.isfinite(self.budget.memory_mib):
+            return None
         grown = (rss_bytes() - self.rss0) / (1024 * 1024)
         if grown > self.budget.memory_mib:
             return BudgetExceeded(

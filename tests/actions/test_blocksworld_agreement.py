@@ -16,7 +16,7 @@ from unified_planning.io import PDDLReader
 from unified_planning.shortcuts import get_environment
 
 from blocksworld_corpus import DATA, MUTATIONS, domain_text, generate
-from verigraph.actions.blocksworld import validate_pddl_plan
+from verigraph.actions.pddl import validate_pddl_plan
 from verigraph.errors import PlanParseError
 
 get_environment().credits_stream = None

@@ -9,11 +9,8 @@ import sys
 import pytest
 
 from blocksworld_corpus import DATA
-from verigraph.actions.blocksworld import (
-    UnsupportedDomainError,
-    recognise_domain,
-    validate_pddl_plan,
-)
+from verigraph.actions.blocksworld import validate_pddl_plan
+from verigraph.pddl.blocksworld import UnsupportedDomainError, recognise_domain
 
 pytestmark = pytest.mark.fast
 
@@ -46,6 +43,21 @@ def test_anything_outside_the_family_is_unsupported(edit, fragment):
     with pytest.raises(UnsupportedDomainError, match="unsupported domain") as err:
         recognise_domain(edit(PLANBENCH))
     assert fragment in str(err.value)
+
+
+def test_the_documented_library_paths_give_the_engines_reports():
+    """docs/validator.md names `verigraph.actions.pddl.validate_pddl_dict` and
+    `verigraph.actions.blocksworld.validate_pddl_plan`: they are the `pddl` package's
+    engine and its report as the model."""
+    from verigraph.actions import pddl as boundary
+    from verigraph.pddl import validate_pddl_dict
+
+    plan = "(unstack d c)\n(put-down d)\n(pick-up c)"
+    data = boundary.validate_pddl_dict(PLANBENCH, PROBLEM, plan)
+    assert data == validate_pddl_dict(PLANBENCH, PROBLEM, plan) and data["engine"] == "blocksworld"
+    report = validate_pddl_plan(PLANBENCH, PROBLEM, plan)
+    assert report.plan_valid and not report.goal_reached
+    assert report.model_dump()["steps"] == boundary.as_validation_report(data).model_dump()["steps"]
 
 
 def test_planbench_sentences_and_sexpr_lines_give_the_same_report():
@@ -146,7 +158,7 @@ def test_cli_html_is_for_scene_plans_only():
 def test_the_ascii_line_pattern_reads_every_ascii_line_as_the_unicode_one():
     """The fast run reads ASCII plans with the name class written as byte ranges; on
     every ASCII character, in every position of a line, it agrees with the Unicode one."""
-    from verigraph.actions.blocksworld.plans import _PLAIN_ASCII_LINE, _PLAIN_LINE
+    from verigraph.pddl.blocksworld.plans import _PLAIN_ASCII_LINE, _PLAIN_LINE
 
     for code in range(128):
         c = chr(code)

@@ -57,7 +57,7 @@ def test_every_refusal_names_a_fix_the_verifier_accepts() -> None:
     already = validate_action(state, StateAction(action="close", object="fridge"))
     assert already is not None and "no state given" not in already.message  # it is set
     nothing = WorldState.from_graph(SceneGraph.model_validate({
-        "nodes": [{"id": "c", "label": "cabinet"}], "edges": []}))
+        "nodes": [{"id": "c", "label": "cabinet"}], "edges": [], "dictionary": "household"}))
     closed = validate_action(nothing, StateAction(action="close", object="c"))
     assert closed is not None and "(no state given: closed)" in closed.message
 
@@ -105,8 +105,9 @@ def test_graph_rules_for_states_rooms_and_placements() -> None:
                   {"source": "m", "relation": "inroom", "target": "k"},
                   {"source": "m", "relation": "on", "target": "t"},
                   {"source": "p", "relation": "under", "target": "b"},
-                  {"source": "b", "relation": "nextto", "target": "k"}]})
-    rules = {p.rule for p in check_well_formed(graph, load_dictionary(None))}
+                  {"source": "b", "relation": "nextto", "target": "k"}],
+        "dictionary": "household"})
+    rules = {p.rule for p in check_well_formed(graph, load_dictionary("household"))}
     assert rules == {"state_without_role", "inroom_not_furniture", "target_not_furniture",
                      "target_is_room"}
     with pytest.raises(ValueError, match="unknown state 'opened'"):

@@ -28,8 +28,8 @@ from pddl_corpus import (
     random_walk,
     rename,
 )
-from verigraph.actions.pddl import validate_pddl_dict
 from verigraph.errors import PlanParseError
+from verigraph.pddl import validate_pddl_dict
 
 DOMAINS = {"logistics": ("logistics_domain.pddl", "logistics-strips"),
            "logistics_typed": ("logistics_typed_domain.pddl", "logistics-typed"),

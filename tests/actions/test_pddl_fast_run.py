@@ -16,9 +16,9 @@ from pathlib import Path
 
 import pytest
 
-from verigraph.actions.pddl import read_domain, read_problem, validate_strips_dict
-from verigraph.actions.pddl.plans import line_reader, parse_strips_plan
-from verigraph.actions.pddl.simulate import cached_strips_problem, simulate
+from verigraph.pddl import read_domain, read_problem, validate_strips_dict
+from verigraph.pddl.plans import line_reader, parse_strips_plan
+from verigraph.pddl.simulate import cached_strips_problem, simulate
 
 pytestmark = pytest.mark.fast
 
@@ -162,7 +162,7 @@ def test_a_plan_that_leaves_too_many_ground_actions_behind_empties_the_cache(mon
                " (ball b1) (at b1 rooma)) (:goal (and (at b1 roomb))))")
     plan = "(pick b1 rooma left)\n(move rooma roomb)\n(drop b1 roomb left)"
     cached_strips_problem.cache_clear()
-    module = importlib.import_module("verigraph.actions.pddl.simulate")  # not the function
+    module = importlib.import_module("verigraph.pddl.simulate")  # not the function
     monkeypatch.setattr(module, "MAX_GROUNDED", 3)
     assert validate_strips_dict(GRIPPER, problem, plan)["valid"]
     assert len(cached_strips_problem(GRIPPER, problem).grounded) == 3

@@ -13,14 +13,14 @@ from pathlib import Path
 
 import pytest
 
-from verigraph.actions.pddl import read_domain, read_problem, validate_strips_dict
-from verigraph.actions.pddl.fastground import UNUSUAL, ground_function
-from verigraph.actions.pddl.plans import Step
-from verigraph.actions.pddl.simulate import cached_strips_domain, cached_strips_problem
+from verigraph.pddl import read_domain, read_problem, validate_strips_dict
+from verigraph.pddl.fastground import UNUSUAL, ground_function
+from verigraph.pddl.plans import Step
+from verigraph.pddl.simulate import cached_strips_domain, cached_strips_problem
 
 pytestmark = pytest.mark.fast
-simulate = importlib.import_module("verigraph.actions.pddl.simulate")  # not the function
-fastground = importlib.import_module("verigraph.actions.pddl.fastground")
+simulate = importlib.import_module("verigraph.pddl.simulate")  # not the function
+fastground = importlib.import_module("verigraph.pddl.fastground")
 IPC = Path(__file__).parents[2] / "benchmarks" / "data" / "ipc"
 
 DOMAIN = """(define (domain shop) (:requirements :typing :equality :negative-preconditions

@@ -12,15 +12,15 @@ from mcp import Client
 from mcp_helpers import in_process_client, structured, text  # noqa: F401 - the client fixture
 
 from pddl_corpus import PDDL_DATA
-from verigraph.actions.blocksworld.sexpr import MAX_DEPTH, PddlSyntaxError
-from verigraph.actions.pddl import (
+from verigraph.errors import PlanParseError
+from verigraph.pddl import (
     PddlInputError,
     UnsupportedRequirementError,
     planbench_verdict,
     report_text,
     validate_pddl_dict,
 )
-from verigraph.errors import PlanParseError
+from verigraph.pddl.syntax import MAX_DEPTH, PddlSyntaxError
 
 MYSTERY = (PDDL_DATA / "mystery_domain.pddl").read_text()
 MYSTERY_PROBLEM = (PDDL_DATA / "mystery_instance.pddl").read_text()  # b craves c; goal c craves b

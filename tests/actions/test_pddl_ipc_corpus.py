@@ -13,8 +13,8 @@ from types import ModuleType
 
 import pytest
 
-from verigraph.actions.pddl import validate_pddl_dict
 from verigraph.errors import VeriGraphError
+from verigraph.pddl import validate_pddl_dict
 
 BENCH = Path(__file__).parent.parent.parent / "benchmarks" / "bench_ipc.py"
 

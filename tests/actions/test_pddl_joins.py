@@ -14,12 +14,12 @@ from pathlib import Path
 
 import pytest
 
-from verigraph.actions.pddl import read_domain, read_problem
-from verigraph.actions.pddl.axioms import Derivation, derive
-from verigraph.actions.pddl.joins import Index
-from verigraph.actions.pddl.model import Domain, GroundAtom, Problem
-from verigraph.actions.pddl.plans import Step, parse_strips_plan
-from verigraph.actions.pddl.simulate import _adl_step
+from verigraph.pddl import read_domain, read_problem
+from verigraph.pddl.axioms import Derivation, derive
+from verigraph.pddl.joins import Index
+from verigraph.pddl.model import Domain, GroundAtom, Problem
+from verigraph.pddl.plans import Step, parse_strips_plan
+from verigraph.pddl.simulate import _adl_step
 
 pytestmark = pytest.mark.fast
 

@@ -11,19 +11,19 @@ from pathlib import Path
 
 import pytest
 
-from verigraph.actions.blocksworld.sexpr import PddlSyntaxError, parse_sexpr
-from verigraph.actions.pddl import (
+from verigraph.actions.pddl import as_validation_report
+from verigraph.budget import BudgetExceeded, CallBudget, run_within
+from verigraph.errors import VeriGraphError
+from verigraph.pddl import (
     PddlInputError,
     UnsupportedRequirementError,
-    as_validation_report,
     explain,
     read_domain,
     read_problem,
     report_text,
     validate_pddl_dict,
 )
-from verigraph.budget import BudgetExceeded, CallBudget, run_within
-from verigraph.errors import VeriGraphError
+from verigraph.pddl.syntax import PddlSyntaxError, parse_sexpr
 
 pytestmark = pytest.mark.fast
 
@@ -123,7 +123,7 @@ def test_a_wrong_atom_among_many_is_named_first_in_file_order(where, bad, named)
     """Initial and goal atoms are checked a predicate at a time; one that fails is named
     as the atom-by-atom check names it, the first wrong one in the file's order."""
     many = " ".join(f"(in-city l{k} c0)" for k in range(50))
-    objects = " ".join(f"l{k}" for k in range(50))
+    objects = " ".join(f"l{k}" for k in range(1, 50))
     problem = LOG_PROBLEM.replace("l0 - location", f"l0 {objects} - location", 1)
     problem = problem.replace("(in-city l0 c0)", f"(in-city l0 c0) {many}", 1)
     problem = problem.replace(where, f"{bad} {where} (at t0 zz2)", 1)
@@ -488,3 +488,51 @@ def test_a_value_given_twice_keeps_the_last():
                                    "(= (distance x y) 5)")
     report = validate_pddl_dict(COSTS, problem, "(drive t x y)")
     assert report["total_cost"] == 5
+
+
+# -- 11. a name declared twice ----------------------------------------------------------------
+
+TYPED = """(define (domain dup) (:requirements :typing :adl)
+ (:types t u) (:constants k - t)
+ (:predicates (p ?x - t) (q ?y - u))
+ (:action a :parameters (?x - t) :precondition (p ?x) :effect (not (p ?x))))"""
+TYPED_PROBLEM = """(define (problem dup) (:domain dup) (:objects OBJECTS)
+ (:init (p a)) (:goal (and)))"""
+
+
+@pytest.mark.parametrize(("domain", "objects", "field", "name", "said"), [
+    (TYPED, "a - t a - u", "problem", "a", "object a is declared twice"),
+    (TYPED, "a a - t", "problem", "a", "object a is declared twice"),
+    (TYPED, "b - u a - t b - u", "problem", "b", "object b is declared twice"),
+    (TYPED, "a - t k - t", "problem", "k", "k is declared twice"),
+    (TYPED.replace("(:constants k - t)", "(:constants k - t k - u)"), "a - t", "domain", "k",
+     "constant k is declared twice"),
+    (TYPED.replace("(:types t u)", "(:types t u v - t v - u)"), "a - t", "domain", "v",
+     "type v is declared twice (as t and as u)"),
+    (TYPED.replace("(q ?y - u))", "(q ?y - u) (p ?z - u))"), "a - t", "domain", "p",
+     "predicate p is declared twice"),
+    (TYPED.replace(":parameters (?x - t)", ":parameters (?x ?x - t)"), "a - t", "domain",
+     "?x", "?x is declared twice"),
+    (TYPED.replace(":precondition (p ?x)", ":precondition (forall (?y ?y - t) (p ?y))"),
+     "a - t", "domain", "?y", "?y is declared twice"),
+    (TYPED.replace("(:action a", "(:action a :parameters () :effect (and))\n (:action a"),
+     "a - t", "domain", "a", "action a is defined twice"),
+])
+def test_a_name_declared_twice_is_refused_by_name(domain: str, objects: str, field: str,
+                                                  name: str, said: str):
+    """The later declaration never silently wins (nor does an error then blame a type)."""
+    with pytest.raises(PddlInputError) as caught:
+        validate_pddl_dict(domain, TYPED_PROBLEM.replace("OBJECTS", objects), "(a a)")
+    error = caught.value
+    assert said in error.message and error.field == field and error.value == name
+    assert error.fix and name in error.fix
+
+
+def test_an_object_declared_twice_is_refused_in_a_blocks_world_problem_too():
+    domain = (PDDL_DATA / "mystery_domain.pddl").read_text()
+    problem = MYSTERY_PROBLEM.replace("(:objects", "(:objects a")
+    assert problem != MYSTERY_PROBLEM
+    for engine in ("auto", "blocksworld", "strips"):
+        with pytest.raises(VeriGraphError, match="a is declared twice") as caught:
+            validate_pddl_dict(domain, problem, "(attack a)", engine=engine)
+        assert caught.value.value == "a" and caught.value.fix

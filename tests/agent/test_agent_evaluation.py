@@ -105,7 +105,7 @@ def test_progress_bar_reports_on_a_pipe() -> None:
 
 def test_a_failing_llm_planner_is_counted_and_the_bench_goes_on(
         monkeypatch: pytest.MonkeyPatch) -> None:
-    from verigraph.planning.testing import RecordedResponse, RecordedResponseServerForTests
+    from planning_doubles import RecordedResponse, RecordedResponseServerForTests
 
     groups = build_groups(("stacking",), 3, 0, ground_truth=True)
     refusal = RecordedResponse({"error": {"message": "invalid key"}}, status=401)

@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 
 import pytest
+from planning_doubles import ScriptedPlannerForTests as Scripted
 
 from verigraph.actions import DoneAction, MoveAction
 from verigraph.agent import LoopConfig, run_episode
@@ -18,7 +19,6 @@ from verigraph.planning.models import EpisodeTrace
 from verigraph.planning.noisy import NoisyPlanner
 from verigraph.planning.oracle import OraclePlanner
 from verigraph.planning.parsing import split_proposal
-from verigraph.planning.testing import ScriptedPlannerForTests as Scripted
 from verigraph.tasks import EpisodeSpec
 
 pytestmark = pytest.mark.fast

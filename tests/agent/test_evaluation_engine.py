@@ -1,5 +1,5 @@
 """The evaluation engine, serial path: results dataset, resume after a kill, failures,
-retries on 429, the limiter, the report and its figures."""
+retries on 429, the report and its figures (the limiter alone: tests/jobs)."""
 
 from __future__ import annotations
 
@@ -14,6 +14,12 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from planning_doubles import RecordedResponse as R
+from planning_doubles import (
+    RecordedResponseServerForTests,
+    ScriptedPlannerForTests,
+    chat_completion,
+)
 
 from verigraph.agent.evaluation import Setting
 from verigraph.agent.evaluation.engine import RunOptions, run_jobs
@@ -25,14 +31,8 @@ from verigraph.agent.evaluation.worker import EngineConfig, PlannerPool, run_job
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.jobs.limiter import BackendLimits, Gate, RateLimiter
+from verigraph.jobs.limiter import BackendLimits, Gate
 from verigraph.planning.factory import PlannerOptions
-from verigraph.planning.testing import RecordedResponse as R
-from verigraph.planning.testing import (
-    RecordedResponseServerForTests,
-    ScriptedPlannerForTests,
-    chat_completion,
-)
 from verigraph.planning.tool_calls import InProcessTools
 from verigraph.solver import solve
 from verigraph.tasks import build_groups
@@ -172,32 +172,6 @@ def test_planner_failures_are_outcomes_and_the_run_goes_on() -> None:
     result = run_job(job_for(tasks[0], Setting(planner="openai"), "suite"), tasks[0],
                      InProcessTools(), pool)
     assert not result.success and "model client crashed" in (result.error or "")
-
-
-def test_limiter_grants_at_most_n_per_window_and_respects_concurrency() -> None:
-    now = [0.0]
-    limiter = RateLimiter(default=BackendLimits(requests=3, window_s=10, concurrency=2),
-                          clock=lambda: now[0])
-    assert limiter.try_acquire("a") == 0 and limiter.try_acquire("a") == 0
-    assert limiter.try_acquire("a") > 0  # two in flight
-    limiter.release("a")
-    assert limiter.try_acquire("a") == 0  # third in the window
-    limiter.release("a")
-    limiter.release("a")
-    assert limiter.try_acquire("a") == pytest.approx(10.0)  # window full: wait for it
-    assert limiter.try_acquire("b") == 0  # budgets are per backend
-    now[0] = 10.0
-    assert limiter.try_acquire("a") == 0
-    assert limiter.granted() == {"a": 4, "b": 1}
-    waits: list[float] = []
-
-    def sleep(s: float) -> None:
-        waits.append(s)
-        now[0] += s
-
-    with Gate(limiter, sleep=sleep).slot("a"), Gate(limiter, sleep=sleep).slot("b"):
-        pass
-    assert waits == [] and limiter.granted()["a"] == 5
 
 
 def _png_size(path: Path) -> tuple[int, int]:

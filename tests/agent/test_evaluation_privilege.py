@@ -7,6 +7,12 @@ import json
 from typing import Any
 
 import pytest
+from planning_doubles import RecordedResponse as R
+from planning_doubles import (
+    RecordedResponseServerForTests,
+    anthropic_tool_use,
+    chat_completion,
+)
 
 from verigraph.agent import LoopConfig, run_episode
 from verigraph.agent.evaluation.guard import GuardedPlanner, RetryPolicy
@@ -16,12 +22,6 @@ from verigraph.planning import InProcessTools
 from verigraph.planning.factory import PlannerOptions, make_planner
 from verigraph.planning.models import PlannerReply, PlannerRequest
 from verigraph.planning.planner import Planner, is_privileged
-from verigraph.planning.testing import RecordedResponse as R
-from verigraph.planning.testing import (
-    RecordedResponseServerForTests,
-    anthropic_tool_use,
-    chat_completion,
-)
 from verigraph.tasks import build_groups
 
 pytest.importorskip("verigraph.sim2d.generator", reason="sim2d not installed")

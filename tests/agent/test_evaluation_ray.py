@@ -11,6 +11,8 @@ from collections import deque
 from typing import Any
 
 import pytest
+from planning_doubles import RecordedResponse as R
+from planning_doubles import RecordedResponseServerForTests, chat_completion
 
 from verigraph.agent.evaluation import Setting
 from verigraph.agent.evaluation.engine import RunOptions, run_jobs
@@ -23,8 +25,6 @@ from verigraph.jobs.limiter import BackendLimits
 from verigraph.jobs.ray_runner import QUEUE_PER_SLOT
 from verigraph.jobs.workers import WorkerFactory
 from verigraph.planning.factory import PlannerOptions
-from verigraph.planning.testing import RecordedResponse as R
-from verigraph.planning.testing import RecordedResponseServerForTests, chat_completion
 from verigraph.tasks import build_groups
 from verigraph.tasks.task import Task
 

@@ -14,12 +14,12 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from arm_deps import require
 from arm_server_helpers import BlockCellStandIn, User, loose_blocks, xarm_toolbox
 from mcp import Client
 from mcp_helpers import structured
 
 from verigraph.arm.audit import verify_audit_file
-from verigraph.arm.testing.deps import require
 from verigraph.cli import main as cli_main
 from verigraph.server import build_server
 

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import anyio
 import pytest
+from arm_deps import require
 from arm_server_helpers import LAYOUT, BlockCellStandIn, User, loose_blocks, xarm_toolbox
 from mcp import Client
 from mcp.client.context import ClientRequestContext
@@ -23,7 +24,6 @@ from verigraph.actions.execution import execute_in_world
 from verigraph.actions.model import MoveAction
 from verigraph.arm import ConfirmationRequest, LayoutLocator, open_arm_world, parse_arm_config
 from verigraph.arm.drivers.xarm import XArmDriver
-from verigraph.arm.testing.deps import require
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.server import build_server

@@ -21,13 +21,13 @@ from typing import Any
 import anyio
 import anyio.to_thread
 import pytest
+from arm_deps import require
 from arm_server_helpers import BlockCellStandIn, User, loose_blocks, xarm_toolbox
 from mcp import Client, StdioServerParameters
 from mcp.shared.exceptions import MCPError
 from mcp_helpers import structured
 
 from verigraph.arm import ArmWorld, PyBulletOptions, parse_arm_config
-from verigraph.arm.testing.deps import require
 from verigraph.server import build_server
 from verigraph.tools import Toolbox, ToolConfig
 from verigraph.tools.executors import ArmSetup

@@ -7,8 +7,7 @@ import json
 from pathlib import Path
 
 import pytest
-
-from verigraph.arm.testing.deps import require
+from arm_deps import require
 
 require("pybullet")
 

@@ -16,10 +16,11 @@ from pathlib import Path
 import anyio
 import anyio.to_thread
 import pytest
-
-from verigraph.arm.testing.deps import require
+from arm_deps import require
 
 require("xarm")
+
+from xarm_standin import XArmAPIStandIn  # noqa: E402
 
 from verigraph.actions.execution import execute_in_world  # noqa: E402
 from verigraph.actions.feedback import Violation  # noqa: E402
@@ -46,7 +47,6 @@ from verigraph.arm import (  # noqa: E402
 )
 from verigraph.arm.drivers.xarm import XArmDriver  # noqa: E402
 from verigraph.arm.planning import plan_motion  # noqa: E402
-from verigraph.arm.testing.xarm_standin import XArmAPIStandIn  # noqa: E402
 from verigraph.graph.model import Edge, Node, SceneGraph  # noqa: E402
 from verigraph.graph.state import WorldState  # noqa: E402
 

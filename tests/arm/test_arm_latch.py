@@ -9,11 +9,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from arm_deps import require
 from arm_server_helpers import BlockCellStandIn, User, loose_blocks, xarm_toolbox
 from mcp import Client
 from mcp_helpers import structured, text
 
-from verigraph.arm.testing.deps import require
 from verigraph.server import build_server
 
 require("xarm")

@@ -13,9 +13,8 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from arm_deps import require
 from panda_helpers import arm_moving
-
-from verigraph.arm.testing.deps import require
 
 pb = require("pybullet")
 

@@ -14,8 +14,7 @@ import sys
 from pathlib import Path
 
 import pytest
-
-from verigraph.arm.testing.deps import require
+from arm_deps import require
 
 require("pybullet")
 

@@ -16,12 +16,13 @@ from collections.abc import Iterator
 from typing import Any
 
 import pytest
-
-from verigraph.arm.testing.deps import require
+from arm_deps import require
 
 require("roslibpy")
 require("websockets")
 require("pybullet")
+
+from loopback_rosbridge import LoopbackRosbridgeServerForTests  # noqa: E402
 
 from verigraph.actions.execution import execute_in_world  # noqa: E402
 from verigraph.actions.model import MoveAction  # noqa: E402
@@ -35,7 +36,6 @@ from verigraph.arm import (  # noqa: E402
 )
 from verigraph.arm.sim.camera import PyBulletCameraLocator  # noqa: E402
 from verigraph.arm.sim.panda_scene import PandaScene  # noqa: E402
-from verigraph.arm.testing.loopback_rosbridge import LoopbackRosbridgeServerForTests  # noqa: E402
 from verigraph.graph.model import Edge, Node, SceneGraph  # noqa: E402
 from verigraph.graph.state import WorldState  # noqa: E402
 

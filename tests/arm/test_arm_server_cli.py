@@ -7,12 +7,12 @@ import json
 from pathlib import Path
 
 import pytest
+from arm_deps import require
 from arm_server_helpers import LAYOUT
 from mcp import Client, StdioServerParameters
 from mcp_helpers import REPO, structured, verigraph_command
 
 from verigraph.arm import load_arm_config
-from verigraph.arm.testing.deps import require
 from verigraph.cli import main
 
 require("pybullet")

@@ -13,13 +13,13 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from arm_deps import require
 from arm_server_helpers import BlockCellStandIn, User, loose_blocks, xarm_toolbox
 from mcp import Client
 from mcp.types import CallToolResult
 from mcp_helpers import structured, text
 
 from verigraph.arm import ConfirmationRequest, Pose, PreApproved, confirm_scope
-from verigraph.arm.testing.deps import require
 from verigraph.server import build_server
 from verigraph.tools import Toolbox
 from verigraph.tools.acting import ExecutionOutput

@@ -16,13 +16,13 @@ from typing import Any
 
 import httpx2
 import pytest
+from arm_deps import require
 from arm_server_helpers import BlockCellStandIn, User, loose_blocks, xarm_toolbox
 from mcp import Client
 from mcp.client.streamable_http import streamable_http_client
 from mcp.types import CallToolResult
 from mcp_helpers import free_port, http_in_thread, structured, text
 
-from verigraph.arm.testing.deps import require
 from verigraph.server.http import HttpOptions
 from verigraph.tools import Toolbox
 

@@ -9,8 +9,7 @@ from pathlib import Path
 
 import cv2
 import pytest
-
-from verigraph.arm.testing.deps import require
+from arm_deps import require
 
 require("pybullet")
 

@@ -19,13 +19,13 @@ import anyio.to_thread
 import cv2
 import numpy as np
 import pytest
+from arm_deps import require
 from arm_server_helpers import BLOCKS, loose_blocks
 from mcp import Client
 from mcp_helpers import decode_png, structured, text
 from panda_helpers import arm_moving
 
 from verigraph.arm import ArmWorld, CameraView, PyBulletOptions, load_arm_config, parse_arm_config
-from verigraph.arm.testing.deps import require
 from verigraph.cli import main as cli_main
 from verigraph.server import build_server
 from verigraph.tools import Toolbox, ToolConfig

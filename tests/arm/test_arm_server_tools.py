@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from arm_deps import require
 from arm_server_helpers import LAYOUT, BlockCellStandIn, loose_blocks, xarm_toolbox
 from mcp import Client
 from mcp.client.context import ClientRequestContext
@@ -24,7 +25,6 @@ from mcp.types import CallToolResult, ElicitRequestParams, ElicitResult
 from mcp_helpers import png_b64, structured, text
 
 from verigraph.arm import parse_arm_config
-from verigraph.arm.testing.deps import require
 from verigraph.errors import VeriGraphError
 from verigraph.server import build_server
 from verigraph.tools import TOOL_SPECS, Toolbox, ToolConfig
@@ -355,3 +355,27 @@ async def test_an_image_episode_gets_its_arm_with_its_scene_graph(
     assert submitted["adopted"] and submitted["scene_check"]["matches"]
     status = await call(client, "arm_status", episode_id=eid)
     assert status["connected"] and status["mode"] == "real"
+
+
+async def test_which_calls_the_arm_s_scope_takes(tmp_path: Path) -> None:
+    """On a server with an arm: a new episode and an id the store does not have (the tool
+    reports it) are the arm's; an episode on the graph alone is not."""
+    from pydantic import BaseModel
+
+    from verigraph.server.heavy import HeavyCalls
+    from verigraph.server.tools import ToolCalls
+
+    class Call(BaseModel):
+        episode_id: str | None = None
+
+    h = Harness(tmp_path, mode="dry-run")
+    calls = ToolCalls(h.box, HeavyCalls())
+    async with Client(build_server(h.box), elicitation_callback=h.approve) as client:
+        on_graph = (await call(client, "load_scene", graph=loose_blocks(),
+                               executor="graph"))["episode_id"]
+        on_arm = await load(client, loose_blocks())
+        assert not calls.arm_involved(Call(episode_id=on_graph))
+        assert calls.arm_involved(Call(episode_id=on_arm))
+        assert calls.arm_involved(Call(episode_id="ep_no_such_episode"))
+        assert calls.arm_involved(Call())
+    assert not ToolCalls(Toolbox(), HeavyCalls()).arm_involved(Call(episode_id=on_arm))

@@ -12,12 +12,12 @@ from pathlib import Path
 
 import anyio
 import pytest
+from arm_deps import require
 from arm_server_helpers import BlockCellStandIn, User, loose_blocks, xarm_toolbox
 from mcp import Client
 from mcp_helpers import structured
 
 from verigraph.arm import ArmWorld
-from verigraph.arm.testing.deps import require
 from verigraph.server import build_server
 from verigraph.server.heavy import HeavyLimits
 

@@ -80,7 +80,8 @@ def test_a_pddl_check_loads_no_other_stack(command):
     assert status == 0
     assert loaded(modules, OTHER_STACKS) == []
     cli = [m for m in modules if m.startswith("verigraph.cli")]
-    assert cli == sorted({"verigraph.cli", COMMANDS[command]} | {"verigraph.cli.validating"})
+    assert cli == sorted({"verigraph.cli", COMMANDS[command]}
+                         | {"verigraph.cli.validating", "verigraph.cli.exits"})
 
 
 def test_a_strips_check_loads_no_pydantic_and_no_scene_graph(tmp_path):
@@ -101,5 +102,19 @@ def test_a_blocks_world_check_loads_no_pydantic_and_no_scene_graph(command):
             if command == "validate" else ["val", *BLOCKS])
     status, modules = modules_after(args)
     assert status == 0
-    assert "verigraph.actions.blocksworld.validate" in modules  # the native engine judged it
+    assert "verigraph.pddl.blocksworld.validate" in modules  # the native engine judged it
     assert loaded(modules, OTHER_STACKS + SCENE_STACK) == []
+
+
+def test_the_exit_table_names_every_status_and_no_command_module_defines_its_own() -> None:
+    from verigraph.cli import exits
+    from verigraph.errors import MissingTokenError, ServerUnreachableError, TokenRejectedError
+
+    names = [n for n in vars(exits) if n.startswith("EXIT_") or n == "MAX_FAILED_STATUS"]
+    table = exits.__doc__ or ""
+    assert names and all(f" {n} " in table for n in names), names
+    for error in (ServerUnreachableError, MissingTokenError, TokenRejectedError):
+        assert error.__name__ in table and str(error.exit_code) in table
+    for module in sorted(set(SUBCOMMAND_MODULES) | {"verigraph.cli"}):
+        source = Path(importlib.import_module(module).__file__ or "").read_text()
+        assert "\nEXIT_" not in source and "\nMAX_FAILED_STATUS" not in source, module

@@ -17,7 +17,7 @@ pytestmark = pytest.mark.fast
 
 def test_every_extra_installs_from_the_distribution() -> None:
     project = tomllib.loads((Path(__file__).parents[2] / "pyproject.toml").read_text())
-    assert set(EXTRAS) == {"arm", "clip", "env", "llm", "scale"}
+    assert set(EXTRAS) == {"arm", "clip", "env", "llm", "pddl", "scale"}
     assert set(EXTRAS) <= set(project["project"]["optional-dependencies"])
     for name, extra in EXTRAS.items():
         assert extra.name == name and extra.modules

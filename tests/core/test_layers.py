@@ -18,18 +18,19 @@ pytestmark = pytest.mark.fast
 ROOT = Path(__file__).resolve().parents[2]
 PACKAGE = ROOT / "verigraph"
 DOC = ROOT / "docs" / "architecture.md"
-ROW = re.compile(r"^\|\s*(\d+)\s*\|([^|]*)\|")
+ROW = re.compile(r"^\|\s*(\d+(?:\.\d+)?)\s*\|([^|]*)\|")
 
 
-def layer_table() -> dict[str, int]:
-    """Package name -> layer, from the rows `| n | `a`, `b` | ... |` of the doc."""
-    layers: dict[str, int] = {}
+def layer_table() -> dict[str, float]:
+    """Package name -> layer, from the rows `| n | `a`, `b` | ... |` of the doc (a layer
+    may be written 2.5, to place a package between two others without renumbering)."""
+    layers: dict[str, float] = {}
     for line in DOC.read_text("utf-8").splitlines():
         match = ROW.match(line)
         if match:
             for name in re.findall(r"`([^`]+)`", match.group(2)):
                 assert name not in layers, f"{name} is listed twice in {DOC.name}"
-                layers[name] = int(match.group(1))
+                layers[name] = float(match.group(1))
     return layers
 
 
@@ -69,7 +70,7 @@ def imported_modules(tree: ast.AST, module: str, is_package: bool) -> list[tuple
             if name == "verigraph" or name.startswith("verigraph.")]
 
 
-def violations(source: str, module: str, layers: dict[str, int], *,
+def violations(source: str, module: str, layers: dict[str, float], *,
                is_package: bool = False) -> list[str]:
     """Every import in `source` (the text of `module`) that breaks the layer rule."""
     own = package_of(module)

@@ -36,10 +36,27 @@ def test_unreadable_actions_are_malformed_steps_and_the_counter_stays_true() -> 
         assert info["step"] == env.steps == number and info["tau"] == number
         assert "write it as" in (info["feedback"] or "")
     assert "nests too deeply" in env.step(DEEP)[4]["feedback"]
-    assert "number too long" in env.step(LONG_NUMBER)[4]["feedback"]
+    # a number too long to read (4,301 digits) does not fit the 4,096-character space
+    assert "more than the 4,096 an action may hold" in env.step(LONG_NUMBER)[4]["feedback"]
     # the episode goes on: a readable action is still executed
     _, _, _, _, info = env.step("move(no_such_object, on, table)")
     assert info["verdict"] == "violation" and info["step"] == len(answers) + 3
+    env.close()
+
+
+def test_an_action_past_the_action_space_is_refused_unread() -> None:
+    """20 KB of `move` + spaces took 2.2 s to parse; the action space holds 4,096
+    characters, so a longer answer is a malformed step naming the limit, at once."""
+    env = VeriGraphEnv(tasks=build_tasks("blocks", 1), rubric={"refusal": 0.25})
+    env.reset(options={"task": 0})
+    assert env.action_space.max_length == 4096
+    for answer in ("move" + " " * 20_000 + "x", "move(a, on, b)\n" * 300, "x" * 4097):
+        _, reward, terminated, _, info = env.step(answer)
+        assert info["verdict"] == "malformed" and reward == -0.25 and not terminated
+        assert f"the answer is {len(answer):,} characters, more than the 4,096" in info["feedback"]
+    _, _, _, _, info = env.step("move" + " " * 4000 + "x")  # inside the space: read
+    assert info["verdict"] == "malformed" and "could not read the answer" in info["feedback"]
+    assert env.steps == 4
     env.close()
 
 

@@ -20,6 +20,7 @@ from optional import require
 require("gymnasium", "pip install 'verigraph-mcp[env]'")
 require("openenv", "pip install 'verigraph-mcp[env]'")
 
+from env_doubles import ScriptedPlannerEndpointForTests  # noqa: E402
 from openenv.core.generic_client import GenericEnvClient  # noqa: E402
 from openenv.core.harness import SessionMCPBridge  # noqa: E402
 from openenv_helpers import serving  # noqa: E402
@@ -33,7 +34,6 @@ from verigraph.env.openenv_adapter import (  # noqa: E402
 )
 from verigraph.env.openenv_server import RemoteSessionFactory  # noqa: E402
 from verigraph.env.rollout import REFUSED_ACTION, RolloutJob, make_policy, run_rollout  # noqa: E402
-from verigraph.env.testing import ScriptedPlannerEndpointForTests  # noqa: E402
 from verigraph.errors import VeriGraphError  # noqa: E402
 
 

@@ -4,6 +4,7 @@ idle expiry (OpenEnv's own session limits), and 4xx answers on stateless HTTP.""
 from __future__ import annotations
 
 import time
+from typing import Any
 
 import httpx
 import pytest
@@ -165,3 +166,90 @@ def test_bad_server_settings_are_clear_errors() -> None:
     with pytest.raises(VeriGraphError) as err:  # refused before anything listens
         serve_openenv("0.0.0.0", free_port(), tasks=TASKS)
     assert err.value.field == "host" and "token" in (err.value.fix or "")
+
+
+def create_session(url: str, token: str) -> dict[str, Any]:
+    answer: dict[str, Any] = httpx.post(f"{url}/mcp", json=CREATE, headers={
+        "Authorization": f"Bearer {token}"}).json()
+    return answer
+
+
+def test_one_caller_holding_its_share_leaves_the_others_served() -> None:
+    with serving(TASKS, token=["holder-a", "client-b"]) as url:  # 64 sessions, 16 each
+        answers = [create_session(url, "holder-a") for _ in range(DEFAULT_MAX_SESSIONS)]
+        held = [a["result"]["session_id"] for a in answers if "result" in a]
+        assert len(held) == DEFAULT_MAX_SESSIONS // 4
+        refusal = answers[-1]["error"]["message"]
+        assert "share" in refusal and "sessions_per_caller" in refusal
+        assert "other callers are not affected" in refusal
+        with TokenEnvClient(url, "client-b").sync() as client:  # served as if A were not
+            assert client.reset(task=TASKS[0].task_id).observation["task_id"] == \
+                TASKS[0].task_id
+        mine = create_session(url, "client-b")["result"]["session_id"]
+        # a session belongs to its caller: A can neither close nor use B's
+        for method, params in (("openenv/session/close", {"session_id": mine}),
+                               ("tools/list", {"session_id": mine})):
+            foreign = httpx.post(f"{url}/mcp", headers={"Authorization": "Bearer holder-a"},
+                                 json={**CREATE, "method": method, "params": params}).json()
+            assert foreign["error"]["message"] == f"Unknown session_id: {mine}"
+        closed = httpx.post(f"{url}/mcp", headers={"Authorization": "Bearer client-b"},
+                            json={**CREATE, "method": "openenv/session/close",
+                                  "params": {"session_id": mine}}).json()
+        assert closed["result"] == {"session_id": mine, "closed": True}
+        # A closes one of its own and may open one again
+        own = httpx.post(f"{url}/mcp", headers={"Authorization": "Bearer holder-a"},
+                         json={**CREATE, "method": "openenv/session/close",
+                               "params": {"session_id": held[0]}}).json()
+        assert own["result"]["closed"] is True
+        assert "result" in create_session(url, "holder-a")
+        assert "error" in create_session(url, "holder-a")
+
+
+def test_a_full_server_gives_the_idlest_session_to_a_newcomer() -> None:
+    with serving(TASKS, token=["holder-a", "client-b"], max_sessions=2,
+                 sessions_per_caller=2, reclaim_after=0.2) as url:
+        first, second = TokenEnvClient(url, "holder-a").sync(), \
+            TokenEnvClient(url, "holder-a").sync()
+        try:
+            first.connect()
+            first.reset(task=TASKS[0].task_id)
+            second.connect()
+            second.reset(task=TASKS[1].task_id)  # the server is full, `first` the idlest
+            deadline = time.monotonic() + 30
+            while True:  # once `first` has been idle for reclaim_after, B gets its slot
+                answer = create_session(url, "client-b")
+                if "result" in answer:
+                    break
+                assert "capacity" in answer["error"]["message"]
+                assert time.monotonic() < deadline, "no idle session was reclaimed"
+                second.state()  # keeps `second` the most recently active
+                time.sleep(0.05)
+            with pytest.raises(RuntimeError, match="session has ended"):
+                first.step({"actions": REFUSED_ACTION})
+            assert second.step({"actions": REFUSED_ACTION}).observation["verdict"] == \
+                "violation"
+        finally:
+            first.close()
+            second.close()
+
+
+def test_share_settings_are_checked() -> None:
+    for options, field in (({"sessions_per_caller": 0}, "sessions_per_caller"),
+                           ({"sessions_per_caller": 65}, "sessions_per_caller"),
+                           ({"reclaim_after": 0}, "reclaim_after")):
+        with pytest.raises(VeriGraphError) as err:
+            create_openenv_app(tasks=TASKS, **options)
+        assert err.value.field == field
+
+
+def test_bodies_are_bounded_before_openenv_reads_them() -> None:
+    with serving(TASKS) as url:
+        big = httpx.post(f"{url}/reset", content=b"{" + b" " * (17 << 20) + b"}",
+                         headers={"Content-Type": "application/json"}, timeout=60)
+        assert big.status_code == 413 and big.json()["detail"]["field"] == "body"
+        chunked = httpx.post(f"{url}/mcp", timeout=60,  # no Content-Length: counted
+                             content=iter([b"{" + b" " * (1 << 20), b"}"]))
+        assert chunked.status_code == 413
+        deep = httpx.post(f"{url}/mcp", content=b"[" * 500_000, timeout=60)
+        assert deep.status_code == 200 and deep.json()["error"]["code"] == -32700
+        assert httpx.post(f"{url}/reset", json={"task": 0}).status_code == 200

@@ -18,7 +18,7 @@ from verigraph.perception import perceive_image, score_graph
 from verigraph.perception.detect.colors import brightest
 from verigraph.perception.detect.occlusion import _outline, find_occluders
 from verigraph.perception.detect.regions import Region
-from verigraph.perception.detect.tangram import outline
+from verigraph.perception.detect.tangram import piece_outline
 from verigraph.perception.robustness import SHAKE_AND_OCCLUDERS, SUITE
 from verigraph.sim2d import degrade_ops as ops
 from verigraph.sim2d import palette
@@ -151,8 +151,8 @@ def test_a_piece_cut_to_a_sliver_is_no_shape_and_no_traceback() -> None:
     """What a band leaves of a tangram piece can be a line of pixels, whose hull has
     fewer corners than the piece: it is no outline (the piece is reported, not fitted)."""
     sliver = Region(5, 10, 10, np.ones((1, 30), bool))
-    assert outline(sliver, 4) is None
-    assert outline(Region(5, 10, 10, np.ones((20, 20), bool)), 4) is not None
+    assert piece_outline(sliver, 4) is None
+    assert piece_outline(Region(5, 10, 10, np.ones((20, 20), bool)), 4) is not None
 
 
 @pytest.mark.parametrize("level", ["3% horizontal", "6% vertical", "3% tilted 30 deg"])

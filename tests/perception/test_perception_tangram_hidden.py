@@ -11,7 +11,7 @@ from verigraph.graph.dictionary import builtin_dictionary
 from verigraph.perception import perceive_image, score_graph
 from verigraph.perception.detect import colors
 from verigraph.perception.detect.regions import Region, colour_fragments
-from verigraph.perception.detect.tangram import outline, piece_models
+from verigraph.perception.detect.tangram import piece_models, piece_outline
 from verigraph.perception.detect.tangram_hidden import complete_piece
 from verigraph.perception.robustness import BAR_SEED, bar_spec, draw_bar
 from verigraph.sim2d.generator import generate_scene
@@ -65,7 +65,7 @@ def _outline_corners(mask: np.ndarray, label: str) -> np.ndarray:
     ys, xs = np.nonzero(mask)
     region = Region(5, int(xs.min()), int(ys.min()),
                     mask[ys.min():ys.max() + 1, xs.min():xs.max() + 1])
-    poly = outline(region, len(piece_model(label)))
+    poly = piece_outline(region, len(piece_model(label)))
     assert poly is not None
     return poly
 

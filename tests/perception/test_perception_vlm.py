@@ -1,6 +1,6 @@
 """The VLM path over real HTTP on loopback, against recorded responses.
 
-`RecordedResponseServerForTests` (verigraph.planning.testing) replays chat-completions
+`RecordedResponseServerForTests` (tests/planning_doubles.py) replays chat-completions
 bodies. `RECORDED_LLAMA_CPP_*` were recorded once from a real server: llama-cpp-python
 0.3.36 serving Gemma 3 270M (text-only, so it was sent the prompt without the image),
 with response_format json_object_schema and this module's graph schema (max 6 nodes and
@@ -18,14 +18,14 @@ from pathlib import Path
 import cv2
 import numpy as np
 import pytest
+from planning_doubles import RecordedResponse as R
+from planning_doubles import RecordedResponseServerForTests, chat_completion
 
 from verigraph.cli import main
 from verigraph.graph.dictionary import builtin_dictionary
 from verigraph.llm.formats import response_format_field
 from verigraph.perception.label.vlm import VlmClient, VlmConfig, VlmError, graph_schema
 from verigraph.perception.metrics import score_graph
-from verigraph.planning.testing import RecordedResponse as R
-from verigraph.planning.testing import RecordedResponseServerForTests, chat_completion
 from verigraph.sim2d.generator import generate_scene
 
 RECORDED_LLAMA_CPP_ANSWER = json.loads(

@@ -112,5 +112,5 @@ async def test_the_tool_descriptions_say_which_executors_move_something(
     """A client that shows no server instructions still tells the model where actions run."""
     tools = {t.name: t.description or "" for t in (await client.list_tools()).tools}
     assert "graph, sim2d: nothing physical moves" in tools["execute_actions"]
-    assert "an arm only if the server has one, see arm_status" in tools["execute_actions"]
-    assert "No arm: says which executor reaches one, if any." in tools["arm_status"]
+    # whether a robot is there is said by load_scene (its answer names the executors)
+    assert "executors, robot or none" in tools["load_scene"]

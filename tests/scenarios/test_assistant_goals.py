@@ -94,11 +94,11 @@ async def test_bad_goal_edges_are_refused_naming_each_problem_and_change_nothing
     eid = await load(client, start("check_plan"))
     await client.call_tool("set_goal", {"episode_id": eid, "edges": "knife on counter"})
     bad = await client.call_tool("set_goal", {"episode_id": eid,
-                                              "edges": "spoon in pott; knife beside counter; x"})
+                                              "edges": "spoon in pott; knife under counter; x"})
     said = text(bad)
     assert bad.is_error and "edges" in said
     assert "no object pott in the scene" in said
-    assert "relation 'beside' is not one of on, in, under, nextto" in said
+    assert "relation 'under' is not one of on, in" in said
     assert "'x' is not 'source relation target'" in said
     state = await client.call_tool("get_state", {"episode_id": eid})
     assert "goal (partial): knife on counter" in text(state)

@@ -161,14 +161,11 @@ async def test_box_is_no_longer_silently_a_block() -> None:
     async with Client(build_server(Toolbox())) as c:
         graph = {"nodes": [{"id": "table", "label": "table"}, {"id": "box", "label": "box"}],
                  "edges": [{"source": "box", "relation": "on", "target": "table"}]}
-        blocks = await c.call_tool("load_scene", {"graph": {**graph, "dictionary": "blocks"}})
-        assert blocks.is_error and "`box`" in text(blocks)
-        kitchen = await c.call_tool("load_scene", {"graph": graph})  # the kitchen's box
-        assert "box (box: movable container, capacity 2, openable; closed (default))" in text(
-            kitchen)
+        refused = await c.call_tool("load_scene", {"graph": graph})
+        assert refused.is_error and "'box'" in text(refused)
         graph["nodes"][1]["attrs"] = {"container": True, "capacity": 4}
         loaded = await c.call_tool("load_scene", {"graph": graph})
-        assert "box (box: movable container, capacity 4, openable" in text(loaded)
+        assert "box (box: your label, movable container, capacity 4)" in text(loaded)
 
 
 def test_no_builtin_word_names_two_kinds() -> None:
@@ -181,7 +178,7 @@ def test_no_builtin_word_names_two_kinds() -> None:
                 meanings.setdefault(canonical_token(word), set()).add(label)
     assert {w: k for w, k in meanings.items() if len(k) > 1} == {}
     assert union_dictionary().ambiguous == {}
-    assert union_dictionary().resolve("box") == "box"  # a container, never a block
+    assert union_dictionary().resolve("box") is None
 
 
 def test_a_word_two_dictionaries_mean_differently_is_refused_with_the_choices() -> None:

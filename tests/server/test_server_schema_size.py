@@ -19,9 +19,10 @@ pytestmark = pytest.mark.fast
 
 # Raised from 40,000 and 15,000 with the household world (object states in every graph,
 # four more actions and the rules they follow, the state changes of an edit, a goal's
-# missing states).
-MAX_TOTAL_BYTES = 42_000
-MAX_CORE_BYTES = 15_800  # names + descriptions + input schemas
+# missing states) and the descriptions that state the rules of a move, the attrs keys, the
+# executors and the PDDL planner (a model meets them otherwise only by failing).
+MAX_TOTAL_BYTES = 42_500
+MAX_CORE_BYTES = 16_000  # names + descriptions + input schemas
 
 
 def compact(data: Any) -> int:

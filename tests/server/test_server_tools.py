@@ -254,7 +254,8 @@ async def test_resources_static_and_per_episode(client: Client) -> None:
     uris = [str(r.uri) for r in (await client.list_resources()).resources]
     assert uris == ["verigraph://dictionaries/blocks", "verigraph://dictionaries/kitchen",
                     "verigraph://dictionaries/tableware", "verigraph://dictionaries/tangram",
-                    "verigraph://dictionaries/all", "verigraph://relations",
+                    "verigraph://dictionaries/household", "verigraph://dictionaries/all",
+                    "verigraph://relations",
                     "verigraph://schema/action", "verigraph://constraints",
                     "verigraph://scenes"]
     templates = [t.uri_template for t in (await client.list_resource_templates())
@@ -271,6 +272,10 @@ async def test_resources_static_and_per_episode(client: Client) -> None:
     assert blocks["objects"]["block"]["capacity"] == 1 and blocks["relations"] == ["on"]
     relations = await read("verigraph://relations")
     assert relations["by_dictionary"]["tangram"] == ["touches"]
+    assert relations["by_dictionary"]["kitchen"] == ["on", "in"]
+    assert relations["all"] == ["on", "in", "touches"]
+    household = await read("verigraph://dictionaries/household")
+    assert household["objects"]["fridge"]["openable"] and "inroom" in household["relations"]
     schema = await read("verigraph://schema/action")
     assert {m["$ref"].rsplit("/", 1)[-1] for m in schema["oneOf"]} == {
         "MoveAction", "StateAction", "AlignAction", "DoneAction"}

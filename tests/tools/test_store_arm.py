@@ -5,9 +5,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from arm_deps import require
+
 from verigraph.arm import ArmWorld
 from verigraph.arm.config import parse_arm_config
-from verigraph.arm.testing.deps import require
 from verigraph.tools import Toolbox, ToolConfig
 from verigraph.tools.executors import ArmSetup
 

@@ -25,6 +25,8 @@ def test_list_show_and_purge(tmp_path: Path) -> None:
 
     listed = json.loads(episodes("list", "--store", url, "--json").stdout)
     assert {e["id"]: e["version"] for e in listed} == {kept: 2, other: 1}
+    assert {e["owner"] for e in listed} == {"local"}  # in-process calls: the local caller
+    assert "caller local" in episodes("list", "--store", url).stdout
     shown = episodes("show", kept, "--store", url)
     assert shown.returncode == 0
     assert "executed: move(cup, on, desk)" in shown.stdout and "cup on desk" in shown.stdout

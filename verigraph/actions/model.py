@@ -50,8 +50,8 @@ class AlignAction(BaseModel):
 
     action: Literal["align"] = "align"
     object: str = Field(min_length=1, max_length=128, description="tangram piece to move")
-    side: int = Field(description="side index of the moved piece (clockwise from its "
-                                  "canonical vertex)")
+    side: int = Field(description="moved piece's side, clockwise from the right angle "
+                                  "(acute vertex)")
     target: str = Field(min_length=1, max_length=128, description="piece that stays")
     target_side: int = Field(description="side index on the target piece")
 

@@ -29,6 +29,7 @@ from verigraph.actions.model import (
     StateAction,
     StateActionName,
 )
+from verigraph.budget import checkpoint
 from verigraph.errors import PlanParseError
 
 MOVE_FORM = "move(object, relation, target) or move(object, target)"
@@ -37,9 +38,12 @@ STATE_NAMES: tuple[str, ...] = get_args(StateActionName)
 STATE_FORM = ", ".join(f"{name}(object)" for name in STATE_NAMES)
 ANY_FORM = f"{MOVE_FORM}, {STATE_FORM}, {ALIGN_FORM} or done"
 
-_CALL = re.compile(r"^(?P<name>[A-Za-z_]+)\s*(?:\((?P<args>.*)\))?\s*$")
-_NUMBERING = re.compile(r"^\s*(?:\d+[.)]|-|\*)\s+")
-_NAME = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.\-]*$")
+# Possessive quantifiers (`*+`, `++`, `?+`): a run that may not be given back cannot be
+# tried at every split against the next run (`move` + 30,000 spaces + `x` took seconds
+# while holding the interpreter); each pattern reads its text in linear time.
+_CALL = re.compile(r"^(?P<name>[A-Za-z_]++)\s*+(?:\((?P<args>.*)\))?+\s*+$")
+_NUMBERING = re.compile(r"^\s*+(?:\d++[.)]|-|\*)\s+")
+_NAME = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.\-]*+$")
 MAX_NAME = 128
 
 
@@ -128,8 +132,8 @@ def _check_name(arg: str, col: int, line: int, text: str, expected: str) -> None
 MAX_REPORTED_ERRORS = 10  # bad lines named in one error; a garbage file stops there
 _ID = r"[A-Za-z0-9_][A-Za-z0-9_.\-]{0,127}"  # _NAME, at most MAX_NAME characters
 _PLAIN_MOVE = re.compile(  # `move(a, on, b)` or `move(a, b)`: what planners write most
-    rf"^[ \t]*(?i:move)[ \t]*\([ \t]*({_ID})[ \t]*,[ \t]*"
-    rf"(?:([A-Za-z0-9_][A-Za-z0-9_.\-]{{0,31}})[ \t]*,[ \t]*)?({_ID})[ \t]*\)[ \t]*$",
+    rf"^[ \t]*+(?i:move)[ \t]*+\([ \t]*+({_ID})[ \t]*+,[ \t]*+"
+    rf"(?:([A-Za-z0-9_][A-Za-z0-9_.\-]{{0,31}}+)[ \t]*+,[ \t]*+)?({_ID})[ \t]*+\)[ \t]*+$",
     re.MULTILINE)
 
 
@@ -156,6 +160,7 @@ def parse_text_plan(text: str) -> list[AnyAction]:
     errors: list[PlanParseError] = []
     done_line = 0
     for number, raw in enumerate(text.splitlines(), start=1):
+        checkpoint()  # a long plan stops at its call's budget (a clock read when not due)
         if not raw.split("#", 1)[0].strip():
             continue
         if done_line:
@@ -223,6 +228,13 @@ def parse_plan(plan: str | list[Any] | dict[str, Any], *, allow_empty: bool = Fa
                                      column=exc.colno, text=plan.splitlines()[exc.lineno - 1]
                                      if plan.splitlines() else "", expected="a JSON list of "
                                      "actions") from None
+            except (RecursionError, ValueError) as exc:
+                # valid JSON Python will not hold: nesting past the recursion limit, or an
+                # integer past int_max_str_digits (4,300 digits)
+                why = "nests too deeply" if isinstance(exc, RecursionError) \
+                    else "holds a number too long to read"
+                raise PlanParseError(f"the JSON plan {why}", line=1, column=1,
+                                     text=plan[:80], expected="a JSON list of actions") from None
             actions = parse_json_plan(decoded)
         else:
             actions = parse_text_plan(plan)

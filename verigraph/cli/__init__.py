@@ -26,6 +26,7 @@ import sys
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any, TextIO, cast
 
+from verigraph.cli.exits import EXIT_BAD_INPUT, EXIT_INTERRUPTED
 from verigraph.errors import VeriGraphError
 
 # Each command -> the module whose `register(subparsers)` defines it, in the order of the
@@ -42,8 +43,6 @@ COMMANDS: dict[str, str] = {
     "arm": "verigraph.cli.arm",
 }
 SUBCOMMAND_MODULES = tuple(dict.fromkeys(COMMANDS.values()))
-
-EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
 
 
 class PipeSafeStream:
@@ -141,7 +140,7 @@ def _dispatch(argv: list[str]) -> int:
         print(f"error: {exc}", file=sys.stderr)
         return int(getattr(exc, "exit_code", EXIT_BAD_INPUT))
     except KeyboardInterrupt:
-        return 130
+        return EXIT_INTERRUPTED
     return code
 
 

@@ -15,6 +15,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from verigraph.cli.exits import EXIT_NEGATIVE, EXIT_OK, EXIT_PLANNER_FAILED
 from verigraph.cli.scenes import scene_argument
 from verigraph.errors import VeriGraphError
 
@@ -231,5 +232,5 @@ def run_agent(args: argparse.Namespace) -> int:
         if not args.quiet:
             out.write(f"trace written to {args.trace}\n")
     if trace.planner_error:
-        return 3
-    return 0 if trace.success else 1
+        return EXIT_PLANNER_FAILED
+    return EXIT_OK if trace.success else EXIT_NEGATIVE

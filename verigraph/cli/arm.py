@@ -14,9 +14,8 @@ from typing import Any
 
 from verigraph.arm import load_arm_config
 from verigraph.arm.operator import operator_reset, verify_audit_file
+from verigraph.cli.exits import EXIT_NEGATIVE, EXIT_OK
 from verigraph.errors import VeriGraphError
-
-EXIT_OK, EXIT_NEGATIVE = 0, 1
 
 
 def register(sub: Any) -> None:

@@ -12,8 +12,12 @@ lines. Exit 0 when every item is valid, 1 when any is invalid or failed, 2 when 
 file itself cannot be read.
 
 Every output line is strict JSON whatever the input line held: a line nested too deep,
-an integer too long to read, `NaN`/`Infinity` or an id that is not a short string or a
-64-bit integer gets an error line (id `"line N"`) and the batch goes on. PDDL items may
+an integer too long to read, `NaN`/`Infinity`, a line that is not UTF-8, or an id that is
+not a short string or a 64-bit integer gets an error line (id `"line N"`) and the batch
+goes on. The file is read a line at a time, so memory stays bounded whatever its size (a
+FIFO or an endless generator works): a line over MAX_LINE_BYTES gets an error line and
+the rest of it is read and dropped in chunks; a line still unended after
+MAX_SKIPPED_BYTES (`/dev/zero`) gets an error line and stops the batch (exit 2). PDDL items may
 name `"engine"` (auto, blocksworld, strips; default `--engine`); `--planbench` adds
 PlanBench task 3's verdict to every PDDL item's report.
 """
@@ -22,22 +26,19 @@ from __future__ import annotations
 
 import json
 import sys
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Any
+from typing import IO, Any
 
-from verigraph.cli.validating import (
-    EXIT_BAD_INPUT,
-    EXIT_NEGATIVE,
-    EXIT_OK,
-    pddl_report,
-    scene_report,
-)
+from verigraph.cli.exits import EXIT_BAD_INPUT, EXIT_NEGATIVE, EXIT_OK
+from verigraph.cli.validating import pddl_item_report, scene_report
 from verigraph.errors import InputFileError, VeriGraphError
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused
 
 PDDL_KEYS = ("domain", "problem", "plan")
 SCENE_KEYS = ("scene", "plan")
-MAX_LINE_CHARS = 1 << 20  # an item is a few paths; a longer line is refused unread
+MAX_LINE_BYTES = 1 << 20  # an item is a few paths; a longer line is refused unread
+MAX_SKIPPED_BYTES = 64 << 20  # an over-long line read (and dropped) this far stops the batch
 MAX_ID_CHARS = 200
 INT64 = 1 << 63
 
@@ -46,12 +47,55 @@ def _reject_constant(name: str) -> Any:
     raise ValueError(f"{name} is not a JSON number")
 
 
+class _Stop(InputFileError):
+    """A line that does not end within MAX_SKIPPED_BYTES: the batch stops after its error."""
+
+
+def _lines(stream: IO[bytes]) -> Iterator[tuple[int, str | InputFileError]]:
+    """(line number, text) per line of `stream`, or an error for a line that is too long
+    or not UTF-8; at most MAX_LINE_BYTES + 1 bytes of the file are held at once."""
+    number = 0
+    while raw := stream.readline(MAX_LINE_BYTES + 1):
+        number += 1
+        if len(raw) > MAX_LINE_BYTES and not raw.endswith(b"\n"):
+            fix = (f"keep batch lines under {MAX_LINE_BYTES:,} bytes (an item names files; "
+                   "it does not hold them)")
+            read = len(raw)
+            while not raw.endswith(b"\n"):  # the rest of the line, dropped a chunk at a time
+                raw = stream.readline(MAX_LINE_BYTES)
+                read += len(raw)
+                if not raw:
+                    break
+                if read > MAX_SKIPPED_BYTES:
+                    yield number, _Stop(f"line {number} runs past {MAX_SKIPPED_BYTES:,} bytes "
+                                        "without a line end; the batch stops here",
+                                        field="item", value=None, fix=fix)
+                    return
+            yield number, InputFileError(f"line {number} is {read:,} bytes long, more than "
+                                         f"{MAX_LINE_BYTES:,}", field="item", value=None, fix=fix)
+            continue
+        try:
+            yield number, raw.decode("utf-8").rstrip("\r\n")
+        except UnicodeDecodeError as exc:
+            yield number, InputFileError(f"line {number} is not UTF-8 text (byte {exc.start})",
+                                         field="item", value=None,
+                                         fix="write the batch file as UTF-8 JSON lines")
+
+
+def _count_lines(batch: Path) -> int | None:
+    """Lines of a regular file (for the progress bar), read in chunks; None otherwise."""
+    if not batch.is_file():
+        return None
+    count, last = 0, b"\n"
+    with batch.open("rb") as stream:
+        while chunk := stream.read(1 << 20):
+            count += chunk.count(b"\n")
+            last = chunk[-1:]
+    return count + (last != b"\n")
+
+
 def _read_item(line: str, number: int) -> Any:
     """The JSON value of one line, or InputFileError saying why it is not one."""
-    if len(line) > MAX_LINE_CHARS:
-        raise InputFileError(f"line {number} is {len(line):,} characters long", field="item",
-                             value=None, fix=f"keep batch lines under {MAX_LINE_CHARS:,} "
-                             "characters (an item names files; it does not hold them)")
     try:
         return json.loads(line, parse_constant=_reject_constant)
     except json.JSONDecodeError as exc:
@@ -117,7 +161,7 @@ def _item_report(item: Any, base: Path, cache: dict[str, str], planbench: bool,
         if engine not in ("auto", "blocksworld", "strips"):
             raise InputFileError("'engine' is auto, blocksworld or strips", field="engine",
                                  value=str(engine)[:80], fix='drop "engine" or give "auto"')
-        return pddl_report(path("domain"), path("problem"), path("plan"), cache,
+        return pddl_item_report(path("domain"), path("problem"), path("plan"), cache,
                            engine=str(engine), planbench=planbench)
     if "scene" in item:
         goal = path("goal") if item.get("goal") is not None else None
@@ -132,29 +176,50 @@ def _item_report(item: Any, base: Path, cache: dict[str, str], planbench: bool,
 def run_batch(batch: Path, *, progress: bool = True, planbench: bool = False,
               engine: str = "auto") -> int:
     try:
-        lines = batch.read_text(encoding="utf-8").splitlines()
-    except (OSError, UnicodeDecodeError) as exc:
+        stream = batch.open("rb")
+        total = _count_lines(batch) if progress else None
+    except OSError as exc:
         print(f"error: batch: cannot read '{batch}': {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT
     base = batch.parent
-    cache: dict[str, str] = {}
-    all_valid = True
-    out = sys.stdout
     bar = None
     if progress:
         from tqdm import tqdm
 
-        bar = tqdm(total=len(lines), unit="plan", file=sys.stderr, mininterval=0.5)
-    for number, line in enumerate(lines, start=1):
+        bar = tqdm(total=total, unit="plan", file=sys.stderr, mininterval=0.5)
+    try:
+        all_valid, stopped = _run_lines(stream, base, planbench, engine, bar)
+    except OSError as exc:  # the file stopped being readable part way (a device error)
+        print(f"error: batch: cannot read '{batch}' on: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    finally:
+        stream.close()
+        if bar is not None:
+            bar.close()
+    if stopped:
+        return EXIT_BAD_INPUT
+    return EXIT_OK if all_valid else EXIT_NEGATIVE
+
+
+def _run_lines(stream: IO[bytes], base: Path, planbench: bool, engine: str,
+               bar: Any) -> tuple[bool, bool]:
+    """Each line's report or error line to stdout; (every item valid, stopped early)."""
+    cache: dict[str, str] = {}
+    all_valid = True
+    stopped = False
+    out = sys.stdout
+    for number, line in _lines(stream):
         if bar is not None:
             bar.update(1)
-        if not line.strip():
+        if isinstance(line, str) and not line.strip():
             continue
         item_id: Any = f"line {number}"
         try:
-            # an item's report is acyclic: the cyclic collector waits until it is written
-            # and dropped (one young collection per item, not one per 700 objects)
+            # an item's report is acyclic: the cyclic collector waits until it is
+            # written and dropped (one young collection per item, not one per 700 objects)
             with collector_paused(LARGE_GRAPH_ITEMS):
+                if isinstance(line, InputFileError):
+                    raise line
                 item = _read_item(line, number)
                 item_id = _item_id(item, number)
                 report = _item_report(item, base, cache, planbench, engine)
@@ -164,7 +229,6 @@ def run_batch(batch: Path, *, progress: bool = True, planbench: bool = False,
                 del report
         except Exception as exc:  # noqa: BLE001 - one item never ends the batch
             all_valid = False
+            stopped = isinstance(exc, _Stop)
             out.write(_error_line(item_id, exc) + "\n")
-    if bar is not None:
-        bar.close()
-    return EXIT_OK if all_valid else EXIT_NEGATIVE
+    return all_valid, stopped

@@ -22,6 +22,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from verigraph.cli.exits import EXIT_OK
 from verigraph.errors import VeriGraphError
 from verigraph.extras import require
 
@@ -245,7 +246,7 @@ def plan_report(argv: Sequence[str]) -> str:
 
 def run_plan_command(argv: Sequence[str]) -> int:
     print(plan_report(argv))
-    return 0
+    return EXIT_OK
 
 
 # -- bench report -------------------------------------------------------------------------
@@ -279,7 +280,7 @@ def run_report(argv: list[str]) -> int:
 
         for path in write_plots(records, args.plot):
             print(f"wrote {path}", file=sys.stderr)
-    return 0
+    return EXIT_OK
 
 
 def run_bench(args: argparse.Namespace) -> int:
@@ -300,5 +301,5 @@ def run_bench(args: argparse.Namespace) -> int:
     try:
         runpy.run_path(str(script), run_name="__main__")
     except SystemExit as exc:
-        return int(exc.code or 0)
-    return 0
+        return int(exc.code or EXIT_OK)
+    return EXIT_OK

@@ -11,15 +11,14 @@ import json
 from pathlib import Path
 from typing import Any
 
-from verigraph.cli.validating import EXIT_NEGATIVE, EXIT_OK, emit_error, load_goal_arg
+from verigraph.cli.exits import EXIT_BUDGET, EXIT_NEGATIVE, EXIT_OK
+from verigraph.cli.validating import emit_error, load_goal_arg
 from verigraph.errors import VeriGraphError
 from verigraph.solver.budget import (
     DEFAULT_MAX_EXPANSIONS,
     DEFAULT_MEMORY_LIMIT_MB,
     DEFAULT_TIME_LIMIT_S,
 )
-
-EXIT_BUDGET = 3
 
 
 def register(sub: Any) -> None:

@@ -8,6 +8,7 @@ import time
 from datetime import UTC, datetime
 from typing import Any
 
+from verigraph.cli.exits import EXIT_OK
 from verigraph.errors import VeriGraphError
 from verigraph.tools.records import action_texts
 from verigraph.tools.store import DEFAULT_IDLE_TIMEOUT_S
@@ -55,12 +56,13 @@ def _run(args: argparse.Namespace, backend: Backend) -> int:
         entries = backend.entries(now, idle)
         if args.json:
             print(json.dumps([e.__dict__ for e in entries]))
-            return 0
+            return EXIT_OK
         print(f"{len(entries)} episode(s) in {redacted(backend.url)}")
         for e in entries:
             print(f"{e.id}  v{e.version}  created {_when(e.created_at)}  "
-                  f"used {_when(e.last_used)}  {e.size} bytes")
-        return 0
+                  f"used {_when(e.last_used)}  {e.size} bytes  "
+                  f"caller {e.owner or '(none)'}")
+        return EXIT_OK
     if args.action == "show":
         if args.episode_id is None:
             raise VeriGraphError("show needs an episode id", field="episode_id", value=None,
@@ -73,18 +75,18 @@ def _run(args: argparse.Namespace, backend: Backend) -> int:
         record = decode_record(text)  # a damaged record: one message, exit 2
         if args.json:
             print(record.model_dump_json())
-            return 0
+            return EXIT_OK
         state = record.state.sentences() if record.state is not None else ["(no graph yet)"]
         print(f"{record.id} v{record.version} ({record.source}, executor {record.executor})")
         print(f"k={record.k} t={record.t} tau={record.tau} calls={record.calls} "
               f"done={record.done}")
         print("graph: " + "; ".join(state))
         print("executed: " + (", ".join(action_texts(record)) or "nothing"))
-        return 0
+        return EXIT_OK
     if args.episode_id is not None:
         gone = [args.episode_id] if backend.delete(args.episode_id) else []
     else:
         gone = backend.sweep(now, -1.0 if args.all else idle)
     print(f"purged {len(gone)} episode(s)")
-    return 0
+    return EXIT_OK
 

@@ -12,7 +12,8 @@ import json
 import sys
 from typing import Any
 
-EXIT_OK = 0
+from verigraph.cli.exits import EXIT_OK
+
 FAMILIES = ("all", "blocks", "kitchen", "tableware", "tangram")
 
 

@@ -22,6 +22,7 @@ import sys
 from collections import Counter
 from typing import Any, get_args
 
+from verigraph.cli.exits import EXIT_OK
 from verigraph.errors import VeriGraphError
 
 # verigraph.env's PolicyName and FAMILIES, written out so that building the parser does
@@ -104,7 +105,7 @@ def run_rollouts_command(args: argparse.Namespace) -> int:
                "errors": dict(errors), "trajectories": args.trajectories}
     if args.json:
         print(json.dumps(summary))
-        return 0
+        return EXIT_OK
     print(f"{summary['rollouts']} rollouts of {summary['tasks']} tasks ({args.policy}, "
           f"{args.samples} per task): pass@1 {rates['pass@1']:.3f}, "
           f"pass^{args.samples} {rates['pass^k']:.3f}, mean return "
@@ -114,4 +115,4 @@ def run_rollouts_command(args: argparse.Namespace) -> int:
               file=sys.stderr)
     if args.trajectories:
         print(f"trajectories: {args.trajectories} (rerun the same command to resume)")
-    return 0
+    return EXIT_OK

@@ -11,6 +11,7 @@ from typing import Any
 
 import anyio
 
+from verigraph.cli.exits import EXIT_OK
 from verigraph.errors import VeriGraphError
 
 TOKEN_ENV = "VERIGRAPH_TOKEN"
@@ -60,6 +61,13 @@ def register(sub: Any) -> None:
                                    "(default 1; the rest wait; --per-client is its old name)")
     p.add_argument("--max-episodes", type=int, default=256,
                    help="open episodes kept at once (default 256)")
+    p.add_argument("--episodes-per-caller", type=int, default=None, metavar="N",
+                   help="open episodes one caller may hold (its token, else its address; "
+                        "default: a quarter of --max-episodes over HTTP, all of them over "
+                        "stdio, whose one peer is the only caller)")
+    p.add_argument("--reclaim-idle", type=float, default=600.0, metavar="S",
+                   help="when the store is full, a new episode replaces the least recently "
+                        "used one unused for this many seconds (default 600)")
     p.add_argument("--max-arm-episodes", type=int, default=8,
                    help="arm episodes open at once (default 8; each holds an arm world "
                         "until end_episode)")
@@ -126,6 +134,7 @@ def run_serve(args: argparse.Namespace) -> int:
                                    "--idle-timeout",
                              value=None, fix="use --max-episodes >= 1, --max-arm-episodes >= 0, "
                                              "0 < --max-body-mib <= 1024 and --idle-timeout > 0")
+    share = episodes_per_caller(args)
     executor, arm = server_executor(args.executor, args.arm_config)
     if arm is not None:
         from verigraph.arm.shutdown import install_stop_on_signals
@@ -138,7 +147,8 @@ def run_serve(args: argparse.Namespace) -> int:
     logging.getLogger("verigraph.server").info("episodes are kept in %s", redacted(store))
     config = ToolConfig(max_episodes=args.max_episodes, enable_solve=not args.disable_solve,
                         executor=executor, arm=arm, max_arm_worlds=args.max_arm_episodes,
-                        store=store, idle_timeout_s=args.idle_timeout)
+                        store=store, idle_timeout_s=args.idle_timeout,
+                        episodes_per_caller=share, reclaim_idle_s=args.reclaim_idle)
     numbers = (args.header_timeout, args.body_timeout, args.keep_alive, args.tool_seconds,
                args.tool_mib, args.heavy_workers, args.per_connection, args.stream_idle,
                args.streams_per_client)
@@ -167,7 +177,7 @@ def run_serve(args: argparse.Namespace) -> int:
         server = build_server(config=config, log_level=args.log_level, heavy=heavy)
         keep_loop_responsive()
         anyio.run(run_stdio, server, max_bytes)
-        return 0
+        return EXIT_OK
     from verigraph.server.http import HttpOptions, serve_http
     from verigraph.server.http.workers import listening_socket, run_workers
 
@@ -191,7 +201,27 @@ def run_serve(args: argparse.Namespace) -> int:
     if args.workers > 1:  # each process builds its own server after the fork
         return run_workers(args.workers, listening_socket(options.host, options.port), serve)
     serve()
-    return 0
+    return EXIT_OK
+
+
+def episodes_per_caller(args: argparse.Namespace) -> int | None:
+    """One caller's share of the store: --episodes-per-caller, else a quarter of it over
+    HTTP and all of it over stdio (None)."""
+    from verigraph.tools.store import default_share
+
+    if not args.reclaim_idle > 0:
+        raise VeriGraphError("--reclaim-idle must be a positive number of seconds",
+                             field="--reclaim-idle", value=args.reclaim_idle,
+                             fix="use e.g. --reclaim-idle 600")
+    share = args.episodes_per_caller
+    if share is None:
+        return default_share(args.max_episodes) if args.transport == "http" else None
+    if not 1 <= share <= args.max_episodes:
+        raise VeriGraphError(
+            f"--episodes-per-caller {share} is not between 1 and --max-episodes "
+            f"({args.max_episodes})", field="--episodes-per-caller", value=share,
+            fix="give a share between 1 and --max-episodes")
+    return share
 
 
 def check_workers(transport: str, store: str, arm: Any) -> None:

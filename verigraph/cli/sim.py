@@ -15,9 +15,9 @@ from typing import Any
 import cv2
 import numpy as np
 
+from verigraph.cli.exits import EXIT_NEGATIVE, EXIT_OK
 from verigraph.errors import InputFileError, VeriGraphError
 
-EXIT_OK, EXIT_NEGATIVE = 0, 1
 GENERATED = re.compile(r"^(?P<family>[a-z_]+):(?P<seed>\d+)(?::(?P<n>\d+))?$")
 DEMO_SCENES = ("cup_on_book", "kitchen_pan")
 
@@ -99,7 +99,7 @@ def write_png(path: Path, image: np.ndarray) -> None:
                              fix="give a writable path ending in .png")
 
 
-def check_size(width: int | None, height: int | None) -> None:
+def check_render_size(width: int | None, height: int | None) -> None:
     """Each side given must be 16..4000 pixels (a side left out follows the scene)."""
     for name, value in (("width", width), ("height", height)):
         if value is not None and not 16 <= value <= 4000:
@@ -110,7 +110,7 @@ def check_size(width: int | None, height: int | None) -> None:
 def run_render(args: argparse.Namespace) -> int:
     from verigraph.sim2d import Degradation, degrade
 
-    check_size(args.width, args.height)
+    check_render_size(args.width, args.height)
     world = load_world(args.scene, args.seed, goal=args.goal)
     image = world.render(args.width, args.height, labels=args.labels)
     spec = Degradation(noise=args.noise, blur=args.blur, lighting=args.lighting,
@@ -126,8 +126,8 @@ def run_render(args: argparse.Namespace) -> int:
 
 # -- demo -----------------------------------------------------------------------------------
 def run_demo(args: argparse.Namespace) -> int:
-    from verigraph.sim2d.demo import run
+    from verigraph.sim2d.demo import play_demo
 
-    check_size(args.width, args.height)
-    return EXIT_OK if run(args.scene, Path(args.out), args.width, args.height) else \
+    check_render_size(args.width, args.height)
+    return EXIT_OK if play_demo(args.scene, Path(args.out), args.width, args.height) else \
         EXIT_NEGATIVE

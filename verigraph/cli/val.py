@@ -32,7 +32,9 @@ as failed too (`Bad plan file!` and the reason), and so is a plan the validator 
 fails on (VAL's `Error occurred in validation attempt:` and `Queries (validator
 failed):`; the next plan is still checked). VAL's other switches (robustness,
 LaTeX, `-c`/`-e` continuing past a failure, `-g`, `-m`, `-L`, ...) are refused by name.
-The `time N` of the trace and the advice is the step's number. See docs/validator.md.
+The `time N` of the trace and the advice is the step's number. Each plan may use
+$VERIGRAPH_CPU_SECONDS of CPU (default 60, verigraph.budget.command_line_budget); a
+plan over it is one the validator failed on. See docs/validator.md.
 """
 
 from __future__ import annotations
@@ -42,10 +44,10 @@ import sys
 from dataclasses import dataclass, field
 from typing import Any
 
+from verigraph.budget import CPU_SECONDS_ENV, BudgetExceeded, command_line_budget
+from verigraph.cli.exits import EXIT_FATAL, EXIT_OK, MAX_FAILED_STATUS
 from verigraph.errors import InputFileError, VeriGraphError
 
-EXIT_FATAL = 255  # VAL's exit(-1): the domain, problem or arguments cannot be used
-MAX_FAILED_STATUS = 254  # a count of failed plans never wraps to 0 nor reads as 255
 UNSUPPORTED = {
     "r": "robustness analysis", "j": "robustness analysis of events", "g": "graphplan length",
     "c": "continuing past an unsatisfied precondition", "e": "the full error report and "
@@ -66,6 +68,7 @@ Options:
     -h         -- Print this message.
 Multiple plan file arguments can be appended for checking.
 Exit status: 0 every plan valid, N plans not valid (at most 254), 255 unusable input.
+Each plan may use $VERIGRAPH_CPU_SECONDS of CPU (default 60; 0: no limit).
 """
 
 
@@ -284,14 +287,19 @@ def run(argv: list[str]) -> int:
         return EXIT_FATAL
     if opts.help or not opts.files:
         print(USAGE, end="")
-        return 0
+        return EXIT_OK
+    try:  # each plan's CPU budget, refused here when $VERIGRAPH_CPU_SECONDS is no number
+        command_line_budget(None)
+    except VeriGraphError as exc:
+        return _fatal(f"Bad {CPU_SECONDS_ENV}!", exc)
     try:
         domain_text = _read(opts.files[0], "domain")
         if len(opts.files) == 1:  # VAL: a domain alone is checked, and that is all
-            from verigraph.actions.pddl.reader import read_domain
+            from verigraph.cli.validating import within_cpu_budget
+            from verigraph.pddl.reader import read_domain
 
-            read_domain(domain_text)
-            return 0
+            within_cpu_budget(lambda: read_domain(domain_text), "val")
+            return EXIT_OK
         problem_text = _read(opts.files[1], "problem")
     except VeriGraphError as exc:
         return _input_failure(exc)
@@ -325,15 +333,21 @@ class _Checker:
         self.fatal = 0
 
     def validate(self, plan_text: str) -> dict[str, Any]:
-        from verigraph.actions.pddl.validate import validate_pddl_dict
+        from verigraph.cli.validating import within_cpu_budget
+        from verigraph.pddl.validate import validate_pddl_dict
+
+        def check(engine: str) -> dict[str, Any]:
+            return within_cpu_budget(lambda: validate_pddl_dict(
+                self.domain_text, self.problem_text, plan_text, engine=engine), "val")
 
         try:
-            data = validate_pddl_dict(self.domain_text, self.problem_text, plan_text,
-                                      engine=self.engine)
+            data = check(self.engine)
+        except BudgetExceeded:
+            raise
         except VeriGraphError:
             if self.engine == "auto":
                 raise
-            data = validate_pddl_dict(self.domain_text, self.problem_text, plan_text)
+            data = check("auto")
         self.inputs_checked = True
         return data
 
@@ -357,6 +371,10 @@ class _Checker:
             return [*head, "Bad plan file!", *([f"    why: {exc}"] if opts.silent < 2 else [])]
         try:
             data = self.validate(plan_text)
+        except BudgetExceeded as exc:  # VAL's "validator failed": the next plan goes on
+            self.queries.append(name)
+            return [*head, *([] if opts.silent > 1 else [
+                f"Error occurred in validation attempt:\n  {exc}"])]
         except VeriGraphError as exc:
             if not _is_plan_error(exc):
                 self.fatal = _input_failure(exc)

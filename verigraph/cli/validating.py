@@ -15,14 +15,18 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
+from collections.abc import Callable
+from contextvars import ContextVar
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
+from verigraph.cli.exits import EXIT_BAD_INPUT, EXIT_NEGATIVE, EXIT_OK
 from verigraph.errors import InputFileError, VeriGraphError
 
-EXIT_OK, EXIT_NEGATIVE, EXIT_BAD_INPUT = 0, 1, 2
 MAX_PLAN_BYTES = 64 * 1024 * 1024
+T = TypeVar("T")
 
 
 def register(sub: Any) -> None:
@@ -57,9 +61,37 @@ def register(sub: Any) -> None:
     p.add_argument("--all-errors", action="store_true",
                    help="continue past violations (skipping failed actions) to list all")
     p.add_argument("--no-progress", action="store_true", help="batch: no progress bar")
+    p.add_argument("--cpu-seconds", type=_seconds, default=None, metavar="S",
+                   help="CPU seconds each check may use (the plan; each --batch item); "
+                        "default $VERIGRAPH_CPU_SECONDS, else 60; 0: no limit")
     p.add_argument("--html", metavar="FILE", help="also write a self-contained HTML report "
                    "with a drawing per step (scene plans; see docs/viewer.md)")
     p.set_defaults(handler=run_validate)
+
+
+def _seconds(text: str) -> float:
+    """`--cpu-seconds`: a finite number >= 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value >= 0):
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds >= 0")
+    return value
+
+
+# `--cpu-seconds` of this run (None: $VERIGRAPH_CPU_SECONDS, else the default); read by
+# every check, also each item of a batch
+_CPU_SECONDS: ContextVar[float | None] = ContextVar("verigraph_cpu_seconds", default=None)
+
+
+def within_cpu_budget(fn: Callable[[], T], name: str = "validate") -> T:
+    """`fn()` (one check) within the command line's CPU budget
+    (verigraph.budget.command_line_budget): BudgetExceeded beyond it."""
+    from verigraph.budget import command_line_budget, run_within
+
+    budget = command_line_budget(_CPU_SECONDS.get())
+    return fn() if budget is None else run_within(budget, name, fn)
 
 
 def read_text_file(path: str | Path, field: str, limit: int = MAX_PLAN_BYTES) -> str:
@@ -116,18 +148,18 @@ def _cached_text(path: str | Path, field: str, cache: dict[str, str] | None) -> 
     return text
 
 
-def pddl_report(domain: str | Path, problem: str | Path, plan: str | Path,
+def pddl_item_report(domain: str | Path, problem: str | Path, plan: str | Path,
                 cache: dict[str, str] | None = None, *, engine: str = "auto",
                 planbench: bool = False, all_errors: bool = False) -> dict[str, Any]:
     """The JSON-ready report for a PDDL item (domain and problem texts cached per path
     in a batch)."""
-    from verigraph.actions.pddl.text import planbench_verdict
-    from verigraph.actions.pddl.validate import validate_pddl_dict
+    from verigraph.pddl.text import planbench_verdict
+    from verigraph.pddl.validate import validate_pddl_dict
 
-    data = validate_pddl_dict(_cached_text(domain, "domain", cache),
-                              _cached_text(problem, "problem", cache),
-                              read_text_file(plan, "plan"), engine=engine,
-                              all_errors=all_errors)
+    texts = (_cached_text(domain, "domain", cache), _cached_text(problem, "problem", cache),
+             read_text_file(plan, "plan"))
+    data = within_cpu_budget(lambda: validate_pddl_dict(*texts, engine=engine,
+                                                        all_errors=all_errors))
     if planbench:
         data["planbench"] = planbench_verdict(data)
     return data
@@ -147,8 +179,9 @@ def scene_report(scene: str | Path, plan: str | Path, goal: str | Path | None,
     from verigraph.actions.report import validate_plan
 
     graph, goal_value = scene_and_goal(scene, goal)
-    return validate_plan(graph, read_text_file(plan, "plan"), goal_value,
-                         all_errors=all_errors)
+    text = read_text_file(plan, "plan")
+    return within_cpu_budget(lambda: validate_plan(graph, text, goal_value,
+                                                   all_errors=all_errors))
 
 
 def write_html_report(path: str, graph: Any, plan_text: str, goal: Any,
@@ -167,6 +200,7 @@ def _usage_error(message: str, fix: str) -> VeriGraphError:
 
 
 def run_validate(args: argparse.Namespace) -> int:
+    _CPU_SECONDS.set(args.cpu_seconds)
     try:
         if args.batch:
             if args.scene or args.domain or args.plan or args.dictionary:
@@ -183,12 +217,12 @@ def run_validate(args: argparse.Namespace) -> int:
             if args.html or args.dictionary:
                 raise _usage_error("--html and --dictionary apply to scene plans only",
                                    "drop --html and --dictionary for a PDDL plan")
-            data = pddl_report(args.domain, args.problem, args.plan, engine=args.engine,
+            data = pddl_item_report(args.domain, args.problem, args.plan, engine=args.engine,
                                planbench=args.planbench, all_errors=args.all_errors)
             if args.json:
                 print(json.dumps(data))
             else:
-                from verigraph.actions.pddl.text import report_text
+                from verigraph.pddl.text import report_text
 
                 print(data["planbench"]["message"] if args.planbench else report_text(data))
             return EXIT_OK if data["valid"] else EXIT_NEGATIVE
@@ -207,7 +241,8 @@ def run_validate(args: argparse.Namespace) -> int:
 
                 graph = with_dictionary(graph, args.dictionary)
             plan_text = read_text_file(args.plan, "plan")
-            report = validate_plan(graph, plan_text, goal, all_errors=args.all_errors)
+            report = within_cpu_budget(lambda: validate_plan(graph, plan_text, goal,
+                                                             all_errors=args.all_errors))
             if args.html:
                 write_html_report(args.html, graph, plan_text, goal, args.all_errors)
             if args.json:

@@ -8,6 +8,8 @@ import secrets
 import socket
 from typing import Any
 
+from verigraph.cli.exits import EXIT_OK
+
 TOKEN_ENV = "VERIGRAPH_TOKEN"
 
 
@@ -47,4 +49,4 @@ def run_view(args: argparse.Namespace) -> int:
     config = uvicorn.Config(app, log_level="warning", access_log=False, lifespan="off")
     print(f"VeriGraph viewer: http://127.0.0.1:{port}/#token={token}", flush=True)
     anyio.run(uvicorn.Server(config).serve, [sock])
-    return 0
+    return EXIT_OK

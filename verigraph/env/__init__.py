@@ -8,7 +8,7 @@
 (True, 0)
 >>> env.close()
 
-Needs the `env` extra (`pip install 'verigraph-mcp[env]'`): gymnasium, and openenv-core
+Needs the `env` extra (`pip install 'verigraph-mcp[env]'`): gymnasium, and openenv
 for the OpenEnv adapter (verigraph.env.openenv_adapter).
 """
 
@@ -25,12 +25,15 @@ from verigraph.env.dataset import (  # noqa: E402
     split_tasks,
     write_jsonl,
 )
+from verigraph.env.procedural import ProceduralEnv, register_procedural_envs  # noqa: E402
 from verigraph.env.registration import ENV_IDS, register_envs  # noqa: E402
 from verigraph.env.rubric import Rubric, StepOutcome, score  # noqa: E402
 from verigraph.tasks.task import FAMILIES, Task  # noqa: E402
 
 register_envs()
+register_procedural_envs()
 
-__all__ = ["ENV_IDS", "FAMILIES", "Rubric", "StepOutcome", "Task", "VeriGraphEnv",
-           "build_tasks", "check_disjoint", "read_jsonl", "register_envs", "score",
+__all__ = ["ENV_IDS", "FAMILIES", "ProceduralEnv", "Rubric", "StepOutcome", "Task", "VeriGraphEnv",
+           "build_tasks", "check_disjoint", "read_jsonl", "register_envs",
+           "register_procedural_envs", "score",
            "select", "split_tasks", "state_hash", "write_jsonl"]

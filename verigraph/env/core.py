@@ -59,7 +59,7 @@ from verigraph.planning.models import (
     PlannerReply,
     PlannerRequest,
 )
-from verigraph.planning.parsing import ParseFailure, parse_answer, split_proposal
+from verigraph.planning.parsing import EXPECTED, ParseFailure, parse_answer, split_proposal
 from verigraph.planning.progress import (
     goal_distance,
     malformed_feedback,
@@ -80,6 +80,16 @@ MAX_OBSERVATION = 32_768
 MAX_ACTION = 4_096
 RESET_OPTIONS = frozenset({"task"})
 CUT = "\n[... cut to the observation limit]\n"
+
+
+def _within_action_space(text: str) -> str:
+    """`text` if the action space holds it; else ParseFailure naming the limit, before a
+    character of it is read (a longer reply is outside the space, so it is a malformed
+    step, and no parser spends time on it)."""
+    if len(text) > MAX_ACTION:
+        raise ParseFailure(f"the answer is {len(text):,} characters, more than the {MAX_ACTION:,} "
+                           f"an action may hold; write it as {EXPECTED}")
+    return text
 
 
 def fit_text(text: str, limit: int = MAX_OBSERVATION) -> str:
@@ -272,8 +282,9 @@ class VeriGraphEnv(gym.Env[str, str]):
         out: dict[str, Any] = {}
         ended = False
         feedback: Feedback | None = None
+        text = action if isinstance(action, str) else str(action)
         try:
-            parsed = parse_answer(action if isinstance(action, str) else str(action))
+            parsed = parse_answer(_within_action_space(text))
             moves, done, dropped = split_proposal(parsed, self.k)
             error = None
         except ParseFailure as exc:

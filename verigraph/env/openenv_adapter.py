@@ -1,4 +1,4 @@
-"""The environment in OpenEnv (openenv-core): sessions, a tool, and its collect runner.
+"""The environment in OpenEnv (`openenv` 0.4.1): sessions, a tool, and its collect runner.
 
 OpenEnv keeps two boundaries. The agent sees only MCP-style tools; the training
 infrastructure creates a session per rollout, and the reward stays inside the

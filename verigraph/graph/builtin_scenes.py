@@ -52,8 +52,9 @@ def kitchen_pan() -> SceneGraph:
 
 def kitchen_household() -> SceneGraph:
     """A household: a kitchen (closed fridge, stove off, sink, closed cabinet, counter)
-    and a dining room (table), with food and dishes (docs/worlds.md, Household worlds)."""
-    graph = _graph(None, [
+    and a dining room (table), with food and dishes, in the household dictionary
+    (docs/worlds.md, Household worlds)."""
+    graph = _graph("household", [
         ("kitchen", "kitchen"), ("dining_room", "dining_room"), ("counter", "counter"),
         ("fridge", "fridge"), ("stove", "stove"), ("sink", "sink"), ("cabinet", "cabinet"),
         ("table", "table"), ("milk", "milk"), ("bread", "bread"), ("pot", "pot"),
@@ -72,7 +73,7 @@ def kitchen_household() -> SceneGraph:
 
 def kitchen_household_goal() -> Goal:
     """The milk in the fridge, the fridge closed, the pot on the stove that is on."""
-    graph = _graph(None, [("milk", "milk"), ("fridge", "fridge"), ("pot", "pot"),
+    graph = _graph("household", [("milk", "milk"), ("fridge", "fridge"), ("pot", "pot"),
                           ("stove", "stove")],
                    [("milk", "in", "fridge"), ("pot", "on", "stove")])
     for node in graph.nodes:

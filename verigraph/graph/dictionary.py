@@ -10,6 +10,7 @@ import difflib
 import json
 import re
 from collections import OrderedDict
+from collections.abc import Callable
 from functools import cache
 from importlib import resources
 from pathlib import Path
@@ -30,7 +31,11 @@ from pydantic_core import PydanticCustomError
 
 from verigraph.errors import DictionaryError, InputFileError
 
-BUILTIN_DICTIONARIES = ("blocks", "kitchen", "tableware", "tangram")
+BUILTIN_DICTIONARIES = ("blocks", "kitchen", "tableware", "tangram", "household")
+# The paper's worlds: their union is what applies when a scene names no dictionary (or
+# "all"). `household` is not among them: its states and relations apply only to a scene
+# that names it, so a scene without a dictionary reads and solves as it always did.
+UNION_DICTIONARIES = ("blocks", "kitchen", "tableware", "tangram")
 # The relations by which one object rests on or in another (tangram's `touches` is not one):
 # they carry the object, so they count against the target's capacity.
 SUPPORT_RELATIONS = ("on", "in")
@@ -41,7 +46,7 @@ PLACEMENT_RELATIONS = ("on", "in", "under", "nextto")
 # Furniture (a fixed object) in a room; not a placement of a movable object, whose room
 # is the room of the furniture its placements lead down to.
 ROOM_RELATION = "inroom"
-# The relations of a household world (the kitchen dictionary's R).
+# The relations of a household world (the household dictionary's R).
 HOUSEHOLD_RELATIONS = (*PLACEMENT_RELATIONS, ROOM_RELATION)
 # Object states and the role a kind needs to have one (BEHAVIOR's names): an openable
 # object is open or closed, a toggleable one on or off. A node without a state key has
@@ -365,13 +370,17 @@ def _same_kind(a: ObjectProperties, b: ObjectProperties) -> bool:
 
 @cache
 def _builtin_words() -> dict[str, tuple[tuple[str, str, ObjectProperties], ...]]:
-    """Every built-in word (name or synonym) -> (dictionary, canonical name, properties)."""
+    """Every built-in word (name or synonym) -> (dictionary, canonical name, properties);
+    a kind the household takes unchanged from the paper's worlds is theirs only."""
     words: dict[str, list[tuple[str, str, ObjectProperties]]] = {}
-    for name in BUILTIN_DICTIONARIES:
+    for name in (*UNION_DICTIONARIES, *(n for n in BUILTIN_DICTIONARIES
+                                        if n not in UNION_DICTIONARIES)):
         d = builtin_dictionary(name)
         for canonical, props in d.objects.items():
             for word in (canonical, *props.synonyms):
-                words.setdefault(canonical_token(word), []).append((name, canonical, props))
+                homes = words.setdefault(canonical_token(word), [])
+                if not any(c == canonical and p == props for _, c, p in homes):
+                    homes.append((name, canonical, props))
     return {k: tuple(v) for k, v in words.items()}
 
 
@@ -544,7 +553,7 @@ class Dictionary(BaseModel):
             return "your label"
         if self.name in BUILTIN_DICTIONARIES:
             return f"{self.name} dictionary"
-        homes = [n for n in BUILTIN_DICTIONARIES if canonical in builtin_dictionary(n).objects]
+        homes = _homes(lambda d: canonical in d.objects)
         return f"{' and '.join(homes) or self.name} dictionary"
 
     def with_open_labels(self, labels: dict[str, ObjectProperties]) -> Dictionary:
@@ -626,19 +635,37 @@ def merge_dictionaries(name: str, parts: list[Dictionary]) -> Dictionary:
 
 @cache
 def builtin_dictionary(name: str) -> Dictionary:
-    """One of the dictionaries shipped in `verigraph/graph/data`."""
+    """One of the dictionaries shipped in `verigraph/graph/data`.
+
+    A file may start from other built-ins (`extends: [kitchen, tableware]`): their
+    merge, then the file's `relations` (if given) and its `objects`, each entry either a
+    new kind or properties that change the base's kind of that name
+    (`stove: {toggleable: true}`). So a dictionary that adds to another repeats nothing.
+    """
     if name not in BUILTIN_DICTIONARIES:
         raise DictionaryError(f"no built-in dictionary named '{name}'", field="dictionary",
                               value=name, fix=f"use one of {', '.join(BUILTIN_DICTIONARIES)} "
                               "or a path to a YAML/JSON dictionary file")
     text = resources.files("verigraph.graph").joinpath("data", f"{name}.yaml").read_text()
-    return Dictionary.model_validate(yaml.safe_load(text))
+    data: dict[str, Any] = yaml.safe_load(text)
+    bases: list[str] = data.pop("extends", [])
+    if not bases:
+        return Dictionary.model_validate(data)
+    base = merge_dictionaries(name, [builtin_dictionary(b) for b in bases])
+    own = {label: ObjectProperties.model_validate(
+               {**base.objects[label].model_dump(), **entry} if label in base.objects
+               else entry)
+           for label, entry in data.get("objects", {}).items()}
+    part = Dictionary(name=name, relations=tuple(data.get("relations", base.relations)),
+                      objects=own)
+    return merge_dictionaries(name, [part, base])
 
 
 @cache
 def union_dictionary() -> Dictionary:
-    """All built-in dictionaries merged: what applies when a scene names none."""
-    return merge_dictionaries("all", [builtin_dictionary(n) for n in BUILTIN_DICTIONARIES])
+    """The paper's worlds merged (UNION_DICTIONARIES): what applies when a scene names
+    none or names "all"."""
+    return merge_dictionaries("all", [builtin_dictionary(n) for n in UNION_DICTIONARIES])
 
 
 def load_dictionary(spec: str | Path | Dictionary | InlineDictionary | None) -> Dictionary:
@@ -668,10 +695,18 @@ def load_dictionary(spec: str | Path | Dictionary | InlineDictionary | None) -> 
                              "'objects: {name: {movable: ..., surface: ...}}'") from None
 
 
+def _homes(knows: Callable[[Dictionary], bool]) -> list[str]:
+    """The paper's worlds that know a word; only when none does, the other built-ins
+    that do (`pan` is the kitchen's, though the household extends the kitchen)."""
+    homes = [name for name in UNION_DICTIONARIES if knows(builtin_dictionary(name))]
+    return homes or [name for name in BUILTIN_DICTIONARIES
+                     if name not in UNION_DICTIONARIES and knows(builtin_dictionary(name))]
+
+
 def builtin_homes(label: str) -> list[str]:
-    """The built-in dictionaries that know `label` (by name, synonym or `_2` suffix)."""
-    return [name for name in BUILTIN_DICTIONARIES
-            if builtin_dictionary(name).resolve(label) is not None]
+    """The built-in dictionaries that know `label` (by name, synonym or `_2` suffix):
+    the paper's worlds that do, or else the household if it does."""
+    return _homes(lambda d: d.resolve(label) is not None)
 
 
 def _quoted(labels: list[str]) -> str:
@@ -705,6 +740,9 @@ def wrong_dictionary_advice(labels: list[str], chosen: str, every_label: list[st
     home_dictionary = builtin_dictionary(home)
     if len(groups) == 1 and all(home_dictionary.resolve(x) is not None for x in every_label):
         verb = "is" if len(known) == 1 else "are"
+        if home not in UNION_DICTIONARIES:  # the household: only by its name
+            return (f"{_quoted(known)} {verb} in the {home} dictionary; use it",
+                    f'set "dictionary": "{home}"', list(elsewhere))
         return (f"{_quoted(known)} {verb} in the {home} dictionary; use it, or omit "
                 "`dictionary` to use all built-ins",
                 f'set "dictionary": "{home}" or leave it out', list(elsewhere))

@@ -78,8 +78,8 @@ class GraphDiff(BaseModel):
         description="goal states not holding, e.g. `fridge closed`, `stove on`")
 
     def summary(self) -> str:
-        if self.satisfied:
-            return "goal reached"
+        if self.satisfied:  # a reached goal's detail is a note (a PDDL plan's total cost)
+            return f"goal reached ({self.detail})" if self.detail else "goal reached"
         parts = []
         if self.missing_edges:
             parts.append("missing: " + "; ".join(self.missing_edges))

@@ -9,7 +9,7 @@ from typing import Any
 import yaml
 from pydantic import ValidationError
 
-from verigraph.errors import GoalError, InputFileError
+from verigraph.errors import InputFileError
 from verigraph.graph.bulk import collector_paused, graph_items
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
@@ -95,8 +95,6 @@ def goal_from_data(data: Any) -> Goal:
     except ValidationError as exc:
         raise _pydantic_error(exc, "goal", '{"predicate": "single_stack"} or a scene graph, '
                               'optionally with "partial": true') from None
-    except GoalError:
-        raise
 
 
 def load_scene(path: str | Path) -> SceneGraph:

@@ -173,14 +173,6 @@ class WorldState(SupportIndex):
             current = self.support.get(current[1])
         return chain
 
-    def free_place_for(self, obj: str, exclude: set[str] | frozenset[str] = frozenset()
-                       ) -> str | None:
-        """A fixed surface with room for `obj`, used in suggestions (O(fixed surfaces))."""
-        for surface in self._fixed_surfaces:
-            if surface != obj and surface not in exclude and self.has_room(surface):
-                return surface
-        return None
-
     def side_count(self, obj: str) -> int | None:
         return self.objects[obj].props.sides
 

@@ -2,7 +2,7 @@
 
 `support` maps an object to its one support edge, `(relation, target)`; `carried` maps
 every object to what it carries (`{obj: relation}`). `graph.state.WorldState` (the scene
-graph's world) and `actions.blocksworld.problem.BlocksState` (the blocks-world engine's
+graph's world) and `pddl.blocksworld.problem.BlocksState` (the blocks-world engine's
 plain-data world) both extend it, so an edit moves an object the same way in each. This
 module imports nothing, so the blocks-world engine can use it without the scene-graph
 models (docs/validator.md, Start-up).

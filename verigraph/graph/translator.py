@@ -44,7 +44,10 @@ IN_WORDS = r"(?:into|inside|in)"
 PLACE = rf"(?:{ON_WORDS}|{IN_WORDS})"
 VERB = r"(?:put|move|place|set|stack)"
 SHOULD = r"(?:should be|should end up|should sit|belongs?)"
-NAME = r"(?:the )?[a-z0-9_][a-z0-9_ ]*?"
+NAME = r"(?:the )?[a-z0-9_][a-z0-9_ ,]*?"  # commas: a list ("the pot, the pan and the kettle")
+# "the board on the counter with the knife on it": the second object's place is the first.
+WITH_IT = re.compile(rf"(.+?) ({PLACE}) (.+?) with (.+?) ({PLACE}) it")
+MAX_CLAUSE = 400  # characters of one clause; a spoken clause is a small fraction of it
 
 
 class TranslationError(ValueError):
@@ -58,6 +61,9 @@ class Reading:
     edges: list[Edge] = field(default_factory=list)
     understood: list[str] = field(default_factory=list)
     not_understood: list[tuple[str, str]] = field(default_factory=list)  # (clause, why)
+    # Edges read but left out of `edges` because the scene cannot hold them all at once
+    # (more objects on a place than its capacity): (edge sentence, why). Never silent.
+    unplaced: list[tuple[str, str]] = field(default_factory=list)
 
 
 def _np_regex() -> str:
@@ -127,6 +133,9 @@ Wanted = list[tuple[str, str, str]]  # (object, relation, target)
 
 
 def _clause(clause: str, state: WorldState) -> Wanted:
+    if len(clause) > MAX_CLAUSE:  # each place word is tried against the rest: quadratic
+        raise TranslationError(f"a clause is at most {MAX_CLAUSE} characters; this one has "
+                               f"{len(clause)}")
     np = _np_regex()
     tower = re.fullmatch(rf"build a tower of the {_C}, {_C} and {_C} blocks with the \1 one at "
                          r"the bottom(?: and the \3 one on top)?", clause)
@@ -167,7 +176,38 @@ def _clause(clause: str, state: WorldState) -> Wanted:
 
 
 def _clauses(text: str) -> list[str]:
-    return [c.strip() for c in re.split(r",? then |; |\. ", text) if c.strip()]
+    return [c.strip() for c in re.split(r",? then |; |\. |: ", text) if c.strip()]
+
+
+def _comma_parts(clause: str) -> list[str]:
+    """A clause's comma-separated parts, a list item without a place of its own kept with
+    the part after it ("the pot, the pan and the kettle on the stove" stays whole), a
+    leading "and" dropped, and "A on B with C on it" read as "A on B" and "C on A"."""
+    parts: list[str] = []
+    waiting = ""
+    for raw in clause.split(", "):
+        part = re.sub(r"^(?:and|then) ", "", raw.strip()) if not waiting else raw.strip()
+        if not part:
+            continue
+        part = f"{waiting}, {part}" if waiting else part
+        if re.search(rf"\b{PLACE} ", part) is None:
+            waiting = part
+            continue
+        waiting = ""
+        parts.extend(_with_it(part))
+    if waiting:
+        parts.append(waiting)
+    return parts
+
+
+def _with_it(part: str) -> list[str]:
+    # WITH_IT's three open groups are cubic in the text: a part past a clause's length is
+    # left whole (and refused by name as one clause).
+    m = WITH_IT.fullmatch(part) if len(part) <= MAX_CLAUSE else None
+    if m is None:
+        return [part]
+    subject = re.sub(rf"^{VERB} ", "", m.group(1))
+    return [f"{m.group(1)} {m.group(2)} {m.group(3)}", f"{m.group(4)} {m.group(5)} {subject}"]
 
 
 def _read_clause(clause: str, state: WorldState) -> list[tuple[str, Wanted | str]]:
@@ -175,8 +215,8 @@ def _read_clause(clause: str, state: WorldState) -> list[tuple[str, Wanted | str
     try:
         return [(clause, _clause(clause, state))]
     except TranslationError as exc:
-        parts = [p.strip() for p in clause.split(", ") if p.strip()]
-        if len(parts) < 2:
+        parts = _comma_parts(clause)
+        if len(parts) < 2 and parts == [clause]:
             return [(clause, str(exc))]
         read: list[tuple[str, Wanted | str]] = []
         for part in parts:
@@ -189,12 +229,40 @@ def _read_clause(clause: str, state: WorldState) -> list[tuple[str, Wanted | str
         return read
 
 
+def _over_capacity(wanted: dict[str, tuple[str, str]], state: WorldState
+                   ) -> list[tuple[str, str]]:
+    """The wanted edges a place cannot take (more objects than its capacity), in the
+    order they were asked for after the first `capacity` ones; removed from `wanted`."""
+    by_target: dict[str, list[str]] = {}
+    for obj, (_, target) in wanted.items():
+        by_target.setdefault(target, []).append(obj)
+    unplaced = []
+    for target, objs in by_target.items():
+        info = state.objects.get(target)
+        capacity = info.props.capacity if info is not None else None
+        if capacity is None or len(objs) <= capacity:
+            continue
+        label = info.label if info is not None else target
+        for obj in objs[capacity:]:
+            relation = wanted.pop(obj)[0]
+            unplaced.append((
+                f"{obj} {relation} {target}",
+                f"{target} holds {capacity} (what the scene says a {label} holds; a built-in "
+                "default unless the scene's attrs gave it) and the words put "
+                f"{len(objs)} objects there ({', '.join(objs)}): ask the user which to leave "
+                "out, or whether the real one holds more"))
+    return unplaced
+
+
 def read_instruction(instruction: str, graph: SceneGraph) -> Reading:
     """Every clause the grammar reads (with its goal edges) and every one it does not."""
     state = WorldState.from_graph(graph)
-    text = instruction.strip().lower().rstrip(".")
-    text = re.sub(r"\s+leave everything else as it is$", "", text).rstrip(".")
+    # Single spaces: the patterns below then read each run of spaces once, not once per
+    # space (a long run of spaces was quadratic).
+    text = " ".join(instruction.lower().split()).rstrip(".")
+    text = re.sub(r" leave everything else as it is$", "", text).rstrip(".")
     text = re.sub(r"\s*\([^)]*\)", lambda m: ". " + m.group(0).strip()[1:-1] + ". ", text)
+    text = re.sub(rf" (?:lying|sitting|standing|resting)(?= {PLACE} )", "", text)
     wanted: dict[str, tuple[str, str]] = {}
     reading = Reading()
     for clause in _clauses(text):
@@ -205,6 +273,7 @@ def read_instruction(instruction: str, graph: SceneGraph) -> Reading:
             reading.understood.append(part)
             for obj, relation, target in result:
                 wanted[obj] = (relation, target)
+    reading.unplaced = _over_capacity(wanted, state)
     reading.edges = [Edge(source=o, relation=r, target=t)
                      for o, (r, t) in sorted(wanted.items())]
     return reading
@@ -216,6 +285,9 @@ def translate(instruction: str, graph: SceneGraph) -> Goal:
     if reading.not_understood:
         clause, why = reading.not_understood[0]
         raise TranslationError(why if clause in why else f"{why} (in '{clause}')")
+    if reading.unplaced:
+        edge, why = reading.unplaced[0]
+        raise TranslationError(f"cannot place '{edge}': {why}")
     if not reading.edges:
         raise TranslationError("the instruction asks for nothing I can check")
     return Goal(graph=SceneGraph(nodes=graph.stateless_nodes(), edges=reading.edges,

@@ -29,6 +29,7 @@ from verigraph.graph.dictionary import (
     SUPPORT_RELATIONS,
     Dictionary,
     ObjectProperties,
+    builtin_dictionary,
     canonical_token,
     kind_token,
     open_label_properties,
@@ -121,9 +122,21 @@ def _state_problems(node: Node, index: int, label: str, props: ObjectProperties
                 rule="state_without_role", node=node.id, field=f"nodes[{index}].state.{key}",
                 message=f"node '{node.id}' ({label}) has state '{key}', but a {label} is not "
                         f"{role}",
-                fix=f"remove '{key}' from its state, or declare the role in its attrs: "
-                    f'{{"{role}": true}}'))
+                fix=_state_fix(label, key, role)))
     return problems
+
+
+def _state_fix(label: str, key: str, role: str) -> str:
+    """Name the household dictionary when it gives `label` the role (a stove in the
+    kitchen dictionary or in a scene that names none); else declare the role."""
+    household = builtin_dictionary("household")
+    kind = household.resolve(label)
+    if kind is not None and getattr(household.objects[kind], role):
+        return (f'name the household dictionary ("dictionary": "household"), whose {kind} '
+                f"is {role}; or remove '{key}' from its state, or declare the role in its "
+                f'attrs: {{"{role}": true}}')
+    return f"remove '{key}' from its state, or declare the role in its attrs: " \
+           f'{{"{role}": true}}'
 
 
 class _GraphRoles:
@@ -272,12 +285,37 @@ def label_readings(graph: SceneGraph | None, dictionary: Dictionary,
     for written in (graph, *more):
         for node in written.nodes if written is not None else ():
             if node.label not in readings:
-                readings[node.label] = dictionary.reading(node.label) or _looks_like(
-                    node.label, dictionary)
+                readings[node.label] = _synonym_with_attrs(node, dictionary) or \
+                    dictionary.reading(node.label) or _looks_like(node.label, dictionary)
     found = [text for text in readings.values() if text]
     if len(found) > MAX_READINGS:
         found = [*found[:MAX_READINGS], f"... and {len(found) - MAX_READINGS} more"]
     return found
+
+
+def _synonym_with_attrs(node: Node, dictionary: Dictionary) -> str | None:
+    """A label that is a built-in's synonym, on a node whose attrs declare a role: said
+    plainly, since the node is then that built-in kind with the attrs on top (the
+    built-in's other properties stay), not a kind of the client's own.
+
+    `rack read as shelf (synonym, kitchen and tableware dictionary): rack is the built-in
+    shelf with your attrs on top (container, capacity), so it is a fixed surface
+    container, capacity 3; for a kind of your own, use a label no dictionary knows`."""
+    reading = dictionary.reading(node.label)
+    canonical = dictionary.resolve(node.label)
+    if reading is None or canonical is None or "(synonym" not in reading or \
+            canonical in dictionary.user_labels:
+        return None
+    keys = [k for k in KIND_KEYS if k in node.attrs]
+    if not keys:
+        return None
+    try:
+        props = dictionary.objects[canonical].overridden(node.attrs)
+    except DictionaryError:
+        return None
+    return (f"{reading}: {node.label} is the built-in {canonical} with your attrs on top "
+            f"({', '.join(keys)}), so it is a {properties_text(props)}; for a kind of your "
+            f"own, use a label no dictionary knows (e.g. my_{canonical_token(node.label)})")
 
 
 def _looks_like(label: str, dictionary: Dictionary) -> str | None:
@@ -293,6 +331,10 @@ def _looks_like(label: str, dictionary: Dictionary) -> str | None:
 
 
 MAX_APPLIED = 12
+# What a built-in property is: an assumption about a kind, not a fact about the user's
+# object; the user decides, and a node's attrs win over it.
+DEFAULTS_NOTE = ("These are built-in defaults, assumed: confirm them with the user; a "
+                 "node's attrs win over them")
 # The properties that make a kind (what constraints read), as opposed to how it looks.
 KIND_KEYS = ("movable", "surface", "container", "capacity", "openable", "toggleable", "room")
 
@@ -340,7 +382,8 @@ def applied_line(graph: SceneGraph | None, dictionary: Dictionary,
     written = next((g for g in (graph, *more) if g is not None), None)
     named = ("all built-ins, none named" if written is None or written.dictionary is None
              else dictionary.name)
-    return f"built-in properties applied (dictionary: {named}): " + "; ".join(entries)
+    note = f". {DEFAULTS_NOTE}" if any("capacity" in e for e in entries) else ""
+    return f"built-in properties applied (dictionary: {named}): " + "; ".join(entries) + note
 
 
 def readings_line(readings: list[str]) -> str:
@@ -543,8 +586,19 @@ def _node_problems(resolved: dict[str, tuple[str, ObjectProperties]], below: dic
                 rule="over_capacity", node=node_id, field="edges",
                 message=f"'{node_id}' carries {carried[node_id]} objects but its capacity is "
                         f"{props.capacity}",
-                fix=f"move objects off '{node_id}' or raise attrs.capacity"))
+                fix=_over_capacity_fix(node_id, label, props.capacity)))
     return problems
+
+
+def _over_capacity_fix(node_id: str, label: str, capacity: int) -> str:
+    """Keep within the capacity; never change the model of the world to fit a request.
+
+    A capacity is the user's (attrs) or a built-in default; either way only the user
+    can say the real object holds more, so the fix asks them instead of editing it."""
+    return (f"keep at most {capacity} object(s) on or in '{node_id}' (ask the user which to "
+            f"leave out); {capacity} is what the scene says a {label} holds: a built-in "
+            "default unless its attrs gave it, so only the user can say the real one "
+            "holds more (never raise a capacity just to make a goal fit)")
 
 
 def _check_sides(edge: Edge, where: str, resolved: dict[str, tuple[str, ObjectProperties]]

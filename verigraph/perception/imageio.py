@@ -52,23 +52,60 @@ def _truncated(fmt: str) -> ImageInputError:
                            fix="send the complete file; re-export it if it was cut off")
 
 
+# Frame headers libjpeg reads (SOF0-3, 5-7, 9-11, 13-15); C4 (DHT), C8 (JPG) and CC (DAC)
+# share the range but are not frames.
+_SOF = frozenset({*range(0xC0, 0xD0)} - {0xC4, 0xC8, 0xCC})
+_STANDALONE = frozenset({0x01, *range(0xD0, 0xD8)})  # TEM and RST0-7: no length word
+# Scans a JPEG may have: encoders write about 10 (progressive) or 1. libjpeg runs every
+# scan over the whole image, so 2,000 repeated scans in a 52 KB file cost 7 s of CPU in
+# one call nothing can interrupt; FF DA (a scan) never occurs inside coded data.
+MAX_JPEG_SCANS = 100
+
+
 def _jpeg_size(data: bytes) -> tuple[int, int]:
+    """The frame size libjpeg will decode, read as libjpeg reads the markers
+    (jdmarker.c `next_marker`, `read_markers`): bytes up to an 0xFF are skipped, then fill
+    0xFF bytes; FF 00 is stuffed data, not a marker; TEM and RSTn stand alone; every
+    other marker has a length word, and a length under 2 skips nothing more (libjpeg
+    reads on right after it). The first SOFn on that walk is the frame; an SOI, EOI or
+    SOS before it means libjpeg finds no frame there, so the file is refused. Reading
+    any other way (a TEM with a length, a length under 2 taken as is, FF 00 as a marker)
+    lets a file show this walk a small frame hidden in a segment libjpeg skips while
+    libjpeg decodes a huge one."""
+    n = len(data)
     i = 2
-    while i + 4 <= len(data):
-        if data[i] != 0xFF:
+    while True:
+        i = data.find(b"\xff", i)
+        if i < 0:
+            break
+        while i < n and data[i] == 0xFF:
             i += 1
+        if i >= n:
+            break
+        marker = data[i]
+        i += 1
+        if marker == 0x00 or marker in _STANDALONE:
             continue
-        marker = data[i + 1]
-        if marker in (0xD8, 0x01) or 0xD0 <= marker <= 0xD7 or marker == 0xFF:
-            i += 1 if marker == 0xFF else 2
-            continue
-        length = struct.unpack(">H", data[i + 2:i + 4])[0]
-        if 0xC0 <= marker <= 0xCF and marker not in (0xC4, 0xC8, 0xCC):
-            if i + 9 > len(data):
+        if marker in _SOF:
+            if i + 7 > n:
                 break
-            h, w = struct.unpack(">HH", data[i + 5:i + 9])
+            h, w = struct.unpack(">HH", data[i + 3:i + 7])
+            scans = data.count(b"\xff\xda", i)
+            if scans > MAX_JPEG_SCANS:
+                raise ImageInputError(
+                    f"the JPEG has {scans} scans, more than the {MAX_JPEG_SCANS} perception "
+                    "decodes (each scan is a pass over the whole image)", field="image",
+                    value=scans, fix="re-encode it (any encoder writes at most a few dozen)")
             return w, h
-        i += 2 + length
+        if marker in (0xD8, 0xD9, 0xDA):
+            name = {0xD8: "a second start of image", 0xD9: "the end of the image",
+                    0xDA: "the scan"}[marker]
+            raise ImageInputError(f"the JPEG has {name} before its frame header",
+                                  field="image", value=f"marker FF{marker:02X} at byte {i - 2}",
+                                  fix="re-export the image and send it again")
+        if i + 2 > n:
+            break
+        i += max(struct.unpack(">H", data[i:i + 2])[0], 2)
     raise _truncated("JPEG")
 
 
@@ -122,7 +159,10 @@ def decode_image(data: bytes, limits: ImageLimits | None = None) -> np.ndarray:
     fmt, width, height = image_size(data)
     check_size(width, height, limits)
     _check_complete(fmt, data)
-    image = cv2.imdecode(np.frombuffer(data, dtype=np.uint8), cv2.IMREAD_COLOR)
+    try:
+        image = cv2.imdecode(np.frombuffer(data, dtype=np.uint8), cv2.IMREAD_COLOR)
+    except cv2.error:  # a check of OpenCV's own refused the file
+        image = None
     if image is None or image.size == 0:
         raise ImageInputError(f"the {fmt.upper()} data is corrupt and cannot be decoded",
                               field="image", value=data[:8].hex(),

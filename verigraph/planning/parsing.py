@@ -20,7 +20,9 @@ from verigraph.actions.model import ActionAdapter, AnyAction, DoneAction, MoveAc
 from verigraph.actions.parser import parse_plan
 from verigraph.errors import PlanParseError
 
-_FENCE = re.compile(r"```(?:json|JSON)?\s*(?P<body>.*?)```", re.DOTALL)
+# `\s*+` possessive: the spaces after an opening fence are read once, not again by the
+# lazy body at each split (an unclosed fence then a long run of spaces was quadratic).
+_FENCE = re.compile(r"```(?:json|JSON)?\s*+(?P<body>.*?)```", re.DOTALL)
 EXPECTED = ('{"actions": [{"action": "move", "object": "cup", "relation": "on", '
             '"target": "table"}, {"action": "done"}]}')
 MAX_SHOWN = 160

@@ -1,68 +1,17 @@
-"""Fewest align actions back to a tangram figure, by a goal-directed breadth-first search.
-
-The reference solver searches every align action and stops at depth 2; figures with two
-or three pieces out need more. An align detaches the moved piece's contacts and adds one,
-so a useful align always creates a missing goal contact; searching only those (in either
-direction) keeps the branching at twice the number of missing contacts, and breadth
-first keeps the plan shortest among such plans.
-"""
+"""Fewest align actions back to a tangram figure: the reference solver's goal-directed
+breadth-first search (`verigraph.solver.tangram`), which the oracle planner and the
+tangram suite use as the solve tool does."""
 
 from __future__ import annotations
 
-from verigraph.actions.model import AlignAction
-from verigraph.actions.validator import apply_action, validate_action
-from verigraph.graph.goal import Goal, check_goal
-from verigraph.graph.state import WorldState
+from verigraph.solver.tangram import (
+    MAX_DEPTH,
+    MAX_NODES,
+    Contacts,
+    contact_key,
+    missing_contacts,
+    tangram_plan,
+)
 
-MAX_DEPTH = 6
-MAX_NODES = 20_000
-
-
-Contacts = frozenset[tuple[tuple[str, int], tuple[tuple[str, int], ...]]]
-
-
-def contact_key(state: WorldState) -> Contacts:
-    """The contacts of a state as a hashable value (each side's partners, in order)."""
-    return frozenset((side, tuple(others)) for side, others in state.contacts.items())
-
-
-def missing_contacts(state: WorldState, goal: Goal) -> list[AlignAction]:
-    """Aligns that would create a goal contact that does not hold now (both directions)."""
-    assert goal.graph is not None
-    out = []
-    for edge in goal.graph.edges:
-        if edge.relation != "touches":
-            continue
-        a, sa, b, sb = edge.source, edge.source_side or 0, edge.target, edge.target_side or 0
-        if (b, sb) in state.contacts.get((a, sa), []):
-            continue
-        out += [AlignAction(object=a, side=sa, target=b, target_side=sb),
-                AlignAction(object=b, side=sb, target=a, target_side=sa)]
-    return out
-
-
-def tangram_plan(state: WorldState, goal: Goal) -> list[AlignAction] | None:
-    """A shortest goal-directed align plan, or None when none is found within the limits."""
-    if check_goal(state, goal).satisfied:
-        return []
-    layer: list[tuple[WorldState, list[AlignAction]]] = [(state, [])]
-    seen = {contact_key(state)}
-    for _ in range(MAX_DEPTH):
-        nxt: list[tuple[WorldState, list[AlignAction]]] = []
-        for current, plan in layer:
-            for action in missing_contacts(current, goal):
-                if validate_action(current, action) is not None:
-                    continue
-                trial = current.copy()
-                apply_action(trial, action)
-                key = contact_key(trial)
-                if key in seen:
-                    continue
-                seen.add(key)
-                if check_goal(trial, goal).satisfied:
-                    return [*plan, action]
-                nxt.append((trial, [*plan, action]))
-                if len(seen) > MAX_NODES:
-                    return None
-        layer = nxt
-    return None
+__all__ = ["MAX_DEPTH", "MAX_NODES", "Contacts", "contact_key", "missing_contacts",
+           "tangram_plan"]

@@ -37,8 +37,9 @@ def _is_tangram(relations: Sequence[str]) -> bool:
 def is_household(state: WorldState) -> bool:
     """Whether the scene has what only household worlds have: openable objects, rooms,
     object states given, or an object under or next to another. Prompts speak of the
-    household actions and rules only then, so a kitchen tabletop (whose stove could be
-    switched) reads as it always did; the actions are accepted everywhere all the same."""
+    household actions and rules only then, so a tabletop in the household dictionary
+    (whose stove could be switched) reads as a kitchen one; the actions are accepted
+    everywhere all the same."""
     return bool(state.openable or state.rooms or state.states) or any(
         o.props.room for o in state.objects.values()) or any(
         r not in SUPPORT_RELATIONS for r, _ in state.support.values())

@@ -8,6 +8,7 @@ from mcp.server.mcpserver import MCPServer
 
 from verigraph import __version__
 from verigraph.server.apps import UI_META, AppsGate, episode_apps
+from verigraph.server.callers import CallerScope
 from verigraph.server.heavy import HeavyCalls, HeavyLimits
 from verigraph.server.prompts import PromptGate, register_prompts
 from verigraph.server.resources import register_resources
@@ -62,7 +63,7 @@ def build_server(toolbox: Toolbox | None = None, *, config: ToolConfig | None = 
         "verigraph", title="VeriGraph", version=__version__,
         instructions=INSTRUCTIONS + executors_instruction(toolbox.context.config),
         description="Scene-graph verifier for LLM robot planning",
-        middleware=[calls, AppsGate(), PromptGate()], log_level=log_level,
+        middleware=[CallerScope(), calls, AppsGate(), PromptGate()], log_level=log_level,
         extensions=[episode_apps(app_only)], tools=tools, subscriptions=False)
     register_resources(server, toolbox)
     register_prompts(server, toolbox)

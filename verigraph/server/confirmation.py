@@ -30,7 +30,7 @@ closures they refer to once annotations are strings.
 import inspect
 import threading
 import time
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
 from dataclasses import dataclass, field
 from typing import Annotated, Any, Literal
@@ -50,7 +50,6 @@ from pydantic import BaseModel, Field
 from verigraph.arm import ArmWorld, PreApproved, confirm_scope
 from verigraph.arm.audit import audit_scope
 from verigraph.errors import VeriGraphError
-from verigraph.server.tools import request_arguments
 from verigraph.tools.arm import ArmQuestion
 from verigraph.tools.registry import Confirmation, Toolbox, ToolSpec
 
@@ -95,12 +94,15 @@ def _confirmation(spec: ToolSpec) -> Confirmation:
     return spec.confirmation
 
 
-def resolver_parameters(spec: ToolSpec, toolbox: Toolbox) -> list[inspect.Parameter]:
+def resolver_parameters(spec: ToolSpec, toolbox: Toolbox,
+                        request_arguments: Callable[[ToolSpec, Context], BaseModel]
+                        ) -> list[inspect.Parameter]:
     """Two keyword parameters the SDK fills by running resolvers before the tool runs.
 
     The preview reads the call's input as the server checked it (verigraph.server.tools
-    step 1) from the request; input that does not check previews nothing, so nothing
-    real may move.
+    step 1) from the request with `request_arguments` (the caller's, so that this module
+    needs nothing of the tool-call path that enters it); input that does not check
+    previews nothing, so nothing real may move.
     """
     previewer = _confirmation(spec).preview
 

@@ -21,6 +21,7 @@ from verigraph.server.rpc_errors import (
     INVALID_REQUEST,
     PARSE_ERROR,
     error_message,
+    id_problem,
     valid_id,
 )
 
@@ -105,6 +106,9 @@ def screen(text: str, exc: Exception) -> list[JSONRPCError]:
     if not valid_id(request_id):
         return [error_reply(None, INVALID_REQUEST, "Invalid Request: the id must be a string "
                             f"or an integer, got {json.dumps(request_id)[:40]}")]
+    too_long = id_problem(request_id)
+    if too_long is not None:  # refused for its id, which is not echoed
+        return [error_reply(None, INVALID_REQUEST, too_long)]
     if message.get("jsonrpc") != "2.0" or not isinstance(message.get("method"), str):
         if "result" in message or "error" in message:
             return []  # a malformed response to one of our requests: nothing to answer

@@ -28,7 +28,7 @@ KEEP_OF_OVERSIZED = 1 << 16  # bytes of a too-large message kept to find its id
 PARSE_OFF_LOOP = 1 << 16  # lines longer than this are validated on a worker thread
 
 
-async def read_lines(fd: int, limit: int) -> AsyncIterator[tuple[bytes, int]]:
+async def read_bounded_lines(fd: int, limit: int) -> AsyncIterator[tuple[bytes, int]]:
     """(line, size) for each line of `fd`; lines above `limit` bytes come back cut to
     their first KEEP_OF_OVERSIZED bytes with their full size, never held whole."""
     buffer = bytearray()
@@ -82,7 +82,7 @@ class ScreenedInput:
                 return
 
     async def __aiter__(self) -> AsyncIterator[str]:
-        async for raw, size in read_lines(self.fd, self.limit):
+        async for raw, size in read_bounded_lines(self.fd, self.limit):
             text = raw.decode("utf-8", errors="replace")
             if not text.strip():
                 continue

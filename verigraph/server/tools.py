@@ -39,6 +39,7 @@ from verigraph.errors import VeriGraphError
 from verigraph.server.heavy import HeavyCalls
 from verigraph.server.schemas import compact_input_schema, compact_output_schema
 from verigraph.server.table import SERVER_TOOL_SPECS, SERVER_TOOLS
+from verigraph.tools.errors import UnknownEpisodeError
 from verigraph.tools.images import png_base64
 from verigraph.tools.registry import BIG_GRAPH_ITEMS, Toolbox, ToolSpec, parse_arguments
 from verigraph.tools.scenes import ImageResult
@@ -224,7 +225,7 @@ class ToolCalls:
             return True  # a new episode, or the server's arm itself
         try:
             executor = self.toolbox.context.store.peek(episode_id).executor
-        except Exception:
+        except UnknownEpisodeError:
             return True  # the tool reports it, in the arm's scope as before
         return executor.startswith("arm")
 
@@ -316,7 +317,7 @@ def tool_function(spec: ToolSpec, calls: ToolCalls) -> Callable[..., Any]:
     if confirmed:
         from verigraph.server.confirmation import resolver_parameters
 
-        extra += resolver_parameters(spec, calls.toolbox)
+        extra += resolver_parameters(spec, calls.toolbox, request_arguments)
     # The SDK finds the context and the resolvers with typing.get_type_hints, which reads
     # __annotations__.
     call.__annotations__ = {p.name: p.annotation for p in extra}

@@ -75,7 +75,7 @@ class Degradation:
 
 def _background(image: np.ndarray) -> Colour:
     """The background colour the render was drawn on (side-view wall or tangram table)."""
-    counts = [int(np.count_nonzero((image == np.array(c, dtype=np.uint8)).all(axis=2)))
+    counts = [cv2.countNonZero(cv2.inRange(image, np.array(c, np.uint8), np.array(c, np.uint8)))
               for c in (palette.BACKGROUND, palette.TANGRAM_BACKGROUND)]
     return palette.BACKGROUND if counts[0] >= counts[1] else palette.TANGRAM_BACKGROUND
 
@@ -105,7 +105,7 @@ def degrade(image: np.ndarray, spec: Degradation, seed: int = 0) -> np.ndarray:
     if spec.lighting > 0:
         out = _lighting(out, spec.lighting, rng)
     if spec.crop > 0:
-        out = ops.crop(out, spec.crop, keep, rng)
+        out = ops.crop_randomly(out, spec.crop, keep, rng)
     if spec.rotation:
         out = ops.rotate(out, spec.rotation, 1.0)
     if spec.scale != 1.0:

@@ -65,19 +65,21 @@ def rescale(image: np.ndarray, factor: float) -> np.ndarray:
 
 def content_box(image: np.ndarray, background: list[tuple[int, int, int]]
                 ) -> tuple[int, int, int, int]:
-    """(x0, y0, x1, y1) around every pixel unlike all the background colours."""
-    img = image.astype(np.int32)
-    busy = np.ones(image.shape[:2], dtype=bool)
-    for colour in background:
-        busy &= np.abs(img - np.array(colour)).max(axis=2) > 12
-    rows, cols = np.flatnonzero(busy.any(axis=1)), np.flatnonzero(busy.any(axis=0))
+    """(x0, y0, x1, y1) around every pixel of a BGR uint8 image unlike all the background
+    colours (unlike: some channel differs by more than 12). In uint8 with OpenCV, a
+    channel at a time: the robustness sweeps call it on every picture they degrade."""
     h, w = image.shape[:2]
+    busy = np.ones((h, w), dtype=bool)
+    for colour in background:
+        diff = cv2.absdiff(image, np.full_like(image, colour))
+        busy &= np.maximum(np.maximum(diff[..., 0], diff[..., 1]), diff[..., 2]) > 12
+    rows, cols = np.flatnonzero(busy.any(axis=1)), np.flatnonzero(busy.any(axis=0))
     if len(rows) == 0:
         return 0, 0, w, h
     return int(cols[0]), int(rows[0]), int(cols[-1]) + 1, int(rows[-1]) + 1
 
 
-def crop(image: np.ndarray, fraction: float, keep: tuple[int, int, int, int],
+def crop_randomly(image: np.ndarray, fraction: float, keep: tuple[int, int, int, int],
          rng: np.random.Generator) -> np.ndarray:
     """Up to `fraction` of each side cut off at random, never into the `keep` box."""
     h, w = image.shape[:2]

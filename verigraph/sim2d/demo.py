@@ -78,7 +78,7 @@ def _save(out: Path, name: str, image: np.ndarray) -> Path:
     return path
 
 
-def run(scene: str, out: Path, width: int | None = None, height: int | None = None
+def play_demo(scene: str, out: Path, width: int | None = None, height: int | None = None
         ) -> bool:
     """Run the demo; True when the goal holds in the simulator at the end."""
     task = TASKS[scene]

@@ -155,6 +155,12 @@ class TangramWorld(SimWorld):
                            value=action.target, fix="choose another piece")
 
 
+# Where a group is put together before it is moved to its place in the row: away from
+# the groups already in the row and the pieces still waiting, so a group's contacts are
+# checked against its own pieces only (a loose piece set down first never blocks it).
+BUILD_Y = -10_000.0
+
+
 def build_tangram(graph: SceneGraph) -> TangramWorld:
     """Lay out a tangram graph so that exactly its contacts hold.
 
@@ -189,7 +195,7 @@ def build_tangram(graph: SceneGraph) -> TangramWorld:
         shift = offset - min(xs)
         for p in group:
             pose = world.pose(p)
-            world.set_pose(p, TPose(pose.x + shift, pose.y, pose.theta))
+            world.set_pose(p, TPose(pose.x + shift, pose.y - BUILD_Y, pose.theta))
         offset += max(xs) - min(xs) + SEPARATION
     observed = {frozenset({(e.source, e.source_side or 0), (e.target, e.target_side or 0)})
                 for e in world.observe().edges}
@@ -204,7 +210,7 @@ def build_tangram(graph: SceneGraph) -> TangramWorld:
 def _place_group(world: TangramWorld, root: str,
                  neighbours: dict[str, list[tuple[int, str, int]]], placed_ids: list[str],
                  wanted: dict[frozenset[tuple[str, int]], None]) -> list[str]:
-    world.set_pose(root, TPose(0.0, 0.0, 0.0))
+    world.set_pose(root, TPose(0.0, BUILD_Y, 0.0))
     placed_ids.append(root)
     group = [root]
     queue: deque[str] = deque([root])

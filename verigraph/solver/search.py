@@ -10,7 +10,8 @@ then 1.5) and finally A* (w = 1), each pruned by the best length so far; the res
 carries the lower bound it proved: the heuristic at the start, raised to the smallest
 f-value A* left open when it stopped. A search the budget stops before any plan is found
 still returns that bound (`lower_bound`: every plan needs at least that many moves).
-Tangram goals are solved by breadth-first search.
+Tangram goals are solved by breadth-first search: goal-directed first (`solver.tangram`),
+then over every align to depth 2.
 """
 
 from __future__ import annotations
@@ -43,6 +44,7 @@ from verigraph.solver.encoding import (
 )
 from verigraph.solver.result import SolveResult, static_reason
 from verigraph.solver.table_search import needs_table_search, table_astar
+from verigraph.solver.tangram import tangram_plan
 
 __all__ = ["DEFAULT_MAX_EXPANSIONS", "SolveResult", "solve"]
 
@@ -242,7 +244,21 @@ def _solve_table(state: WorldState, goal: Goal, budget: SearchBudget) -> SolveRe
 
 def _solve_tangram(state: WorldState, goal: Goal, budget: SearchBudget,
                    max_depth: int = 2) -> SolveResult:
-    """Breadth-first search over symbolic align actions (depth-limited)."""
+    """Goal-directed breadth-first search first (`solver.tangram`: only aligns that make
+    a missing goal contact, to any depth the budget allows); optimal when its plan is
+    as long as the goal contacts missing (each align adds one). Otherwise breadth-first
+    search over every align to depth 2, which also finds plans that first move a piece
+    out of the way."""
+    def step() -> None:
+        budget.expansions += 1
+        budget.check()
+
+    bound = len(check_goal(state, goal).missing_edges)
+    if goal.graph is not None:
+        aligns = tangram_plan(state, goal, step=step)
+        if aligns is not None:
+            return SolveResult(reachable=True, plan=list(aligns), expanded=budget.expansions,
+                               optimal=len(aligns) <= bound, lower_bound=bound or None)
     pieces = [o.id for o in state.objects.values() if o.props.sides and o.props.movable]
     layer: list[tuple[WorldState, list[AnyAction]]] = [(state, [])]
     for _ in range(max_depth):
@@ -254,8 +270,7 @@ def _solve_tangram(state: WorldState, goal: Goal, budget: SearchBudget,
                         action = AlignAction(object=p, side=s, target=q, target_side=t)
                         if validate_action(current, action) is not None:
                             continue
-                        budget.expansions += 1
-                        budget.check()
+                        step()
                         trial = current.copy()
                         apply_action(trial, action)
                         if check_goal(trial, goal).satisfied:  # breadth first: shortest
@@ -265,5 +280,5 @@ def _solve_tangram(state: WorldState, goal: Goal, budget: SearchBudget,
                         next_layer.append((trial, [*plan, action]))
         layer = next_layer
     return SolveResult(reachable=None, status="budget_exhausted", expanded=budget.expansions,
-                       reason=f"no sequence of at most {max_depth} align actions reaches the "
-                              "goal")
+                       reason=f"no goal-directed align plan, and no sequence of at most "
+                              f"{max_depth} align actions, reaches the goal")

@@ -36,9 +36,14 @@ def needs_table_search(state: WorldState, goal: Goal) -> bool:
 
     It could when the scene has openable objects (a closed one bars `in`), the goal
     asks for a state or an `under`/`nextto` placement, the scene has such a placement,
-    or the scene's relations allow `under`/`nextto` and there is no fixed surface of
-    unlimited capacity (then those placements may be the only free places; with one,
-    any such parking move has an equally long replacement onto it, so on/in suffice).
+    or the scene is a household one (a node with a state or a toggleable kind) whose
+    relations allow `under`/`nextto` and that has no fixed surface of unlimited capacity
+    (then those placements may be the only free places; with one, any such parking move
+    has an equally long replacement onto it, so on/in suffice). A scene of movable
+    objects on surfaces and in containers, with a goal of the same, is a rearrangement
+    on `on`/`in` whatever else its dictionary allows: the encoded search solves it (a
+    storage puzzle's capacities are not circumvented by parking objects next to each
+    other, and the search stays the fast one).
     """
     if state.openable:
         return True
@@ -49,7 +54,9 @@ def needs_table_search(state: WorldState, goal: Goal) -> bool:
         return True
     if any(r not in SUPPORT_RELATIONS for r, _ in state.support.values()):
         return True
-    if len(state.move_relations) > len(
+    household = bool(state.states) or any(info.props.toggleable
+                                           for info in state.objects.values())
+    if household and len(state.move_relations) > len(
             [r for r in state.move_relations if r in SUPPORT_RELATIONS]):
         return not any(state.objects[s].props.capacity is None for s in state.fixed_surfaces)
     return False

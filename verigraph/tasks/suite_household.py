@@ -1,5 +1,7 @@
 """Household episodes: the built-in kitchen and dining room, with states to change.
 
+Scenes and goals name the household dictionary (docs/worlds.md, "Household worlds").
+
 The start is `kitchen_household` after a short random walk of valid actions of the
 action table (doors opened or shut, the stove switched, food and dishes moved); the
 goal is where a further walk ends, stated as a partial goal: the placement of every
@@ -72,7 +74,7 @@ def household_task(rng: random.Random, target: int) -> Drawn | None:
     for obj, key in sorted(switched):
         node = nodes.setdefault(obj, Node(id=obj, label=state.objects[obj].label))
         node.state[key] = state.state_value(obj, key)
-    goal_graph = SceneGraph(nodes=list(nodes.values()), edges=edges)
+    goal_graph = SceneGraph(nodes=list(nodes.values()), edges=edges, dictionary="household")
     goal = Goal(graph=goal_graph, partial=True, instruction=instruction(goal_graph))
     start_graph = start.to_graph()
     result = solve(start_graph, goal, max_expansions=SOLVER_BUDGET)

@@ -17,6 +17,7 @@ two things.
 from verigraph.tools.context import ToolConfig, ToolContext
 from verigraph.tools.errors import (
     EpisodeLimitError,
+    EpisodeShareError,
     EpisodeStateError,
     FeatureUnavailableError,
     InvalidArgumentsError,
@@ -25,10 +26,12 @@ from verigraph.tools.errors import (
 )
 from verigraph.tools.registry import TOOL_SPECS, TOOLS, Toolbox, ToolSpec
 from verigraph.tools.scenes import ImageResult
-from verigraph.tools.store import EpisodeStore, LiveEpisode, TraceEntry
+from verigraph.tools.store import EpisodeStore, LiveEpisode, TraceEntry, calling_as
 
 __all__ = [
-    "TOOLS", "TOOL_SPECS", "LiveEpisode", "EpisodeLimitError", "EpisodeStateError", "EpisodeStore",
+    "TOOLS", "TOOL_SPECS", "LiveEpisode", "EpisodeLimitError", "EpisodeShareError",
+    "EpisodeStateError", "EpisodeStore",
     "FeatureUnavailableError", "ImageResult", "InvalidArgumentsError", "ToolArgumentError",
     "ToolConfig", "ToolContext", "ToolSpec", "Toolbox", "TraceEntry", "UnknownEpisodeError",
+    "calling_as",
 ]

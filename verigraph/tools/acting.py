@@ -8,22 +8,31 @@ a copy and committed at the end, so bad input leaves the episode exactly as it w
 
 from __future__ import annotations
 
-from typing import Annotated
+from typing import Annotated, Any
 
-from pydantic import BaseModel, ConfigDict, Field, WithJsonSchema, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    WithJsonSchema,
+    field_validator,
+    model_validator,
+)
 
 from verigraph.actions.execution import execute_in_world
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.actions.parser import parse_plan
-from verigraph.actions.pddl.conversion import as_validation_report
-from verigraph.actions.pddl.validate import validate_pddl_dict
+from verigraph.actions.pddl import as_validation_report
 from verigraph.actions.report import ValidationReport, validate_plan
 from verigraph.actions.validator import GraphEdit, all_violations, apply_action
 from verigraph.errors import PlanParseError, VeriGraphError
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
+from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import label_readings, readings_line
+from verigraph.pddl.text import plain_summary
+from verigraph.pddl.validate import validate_pddl_dict
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import EpisodeStateError, ToolArgumentError
 from verigraph.tools.executors import arm_mode_of
@@ -126,12 +135,20 @@ class ExecuteActionsInput(BaseModel):
     episode_id: EpisodeId
     actions: list[ActionInput] = Field(
         min_length=1, max_length=MAX_ACTIONS_PER_CALL,
-        description="JSON or text (an item may hold several lines)")
+        description="JSON or text (lines)")
+    whole_plan: bool = Field(
+        default=False, description="over k (to 50): checked first; no real arm")
     request_id: RequestId | None = Field(
         default=None, description="retry key: a repeat returns the first result")
     expected_calls: int | None = Field(
         default=None, ge=0, description="run only after this many "
                                         "execute_actions calls")
+
+    @field_validator("actions", mode="before")
+    @classmethod
+    def _text_plan(cls, value: Any) -> Any:
+        """A plan given as one text (one action per line) is that text's actions."""
+        return [value] if isinstance(value, str) else value
 
 
 class ExecutionOutput(BaseModel):
@@ -169,7 +186,44 @@ class ExecutionOutput(BaseModel):
         elif self.done:
             parts.append("end token received: call end_episode for the verdict")
         where = [f"executor: {self.runs_on}"] if self.runs_on else []
+        observed = observed_text(self.runs_on.split(" ")[0], len(self.executed),
+                                 self.violation) if self.runs_on else None
+        where += [observed] if observed else []
         return "\n".join(["; ".join(parts), *where, edges_line(self.graph, "graph now")])
+
+
+def _check_whole_plan(state: WorldState, actions: list[AnyAction], arm_mode: str | None
+                      ) -> None:
+    """A whole plan runs in one call only if every step is valid on the current graph
+    (checked before anything runs); a real arm keeps its k per call, each asked for."""
+    if arm_mode == "real":
+        raise ToolArgumentError(
+            "whole_plan is not available on a real arm: the user approves each call of at "
+            "most k actions", field="whole_plan", value=True,
+            fix="send at most k actions per call")
+    report = validate_plan(state, actions)
+    if not report.valid:
+        first = report.violations[0]
+        raise ToolArgumentError(
+            f"whole_plan: the plan is not valid from the current graph, nothing was run: "
+            f"step {first.step} {first.text(with_step=False)}", field="actions",
+            value=first.step, fix="correct the plan (validate_plan with this episode_id "
+            "shows every step) and send it again")
+
+
+def observed_text(executor: str, executed: int, violation: Violation | None) -> str | None:
+    """For an episode with a world (sim2d, an arm): whether what it observed after each
+    action matched what the plan predicted, said every time (the graph alone: None)."""
+    if executor == "graph":
+        return None
+    world = "the 2D simulator" if executor == "sim2d" else f"the arm ({executor})"
+    if violation is not None and violation.constraint == "execution_failed":
+        return (f"observed != predicted: {world} did not end as planned (see stopped); "
+                "the graph below is what it observed")
+    if not executed:
+        return f"observed = predicted: nothing ran in {world}, nothing changed"
+    return (f"observed = predicted: after each of the {executed} action(s) {world}'s "
+            "observed graph matched the plan's prediction")
 
 
 def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionOutput:
@@ -198,12 +252,15 @@ def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionO
                 field="episode_id", value=episode.id,
                 fix="call end_episode for the verdict, then load_scene to try again")
         moves = count_moves(actions)
-        if moves > episode.k:
+        if moves > episode.k and params.whole_plan:
+            _check_whole_plan(state, actions, arm_mode_of(episode.world))
+        elif moves > episode.k:
             raise ToolArgumentError(
                 f"{moves} actions given but this episode allows at most k={episode.k} per call",
                 field="actions", value=moves,
                 fix=f"send the first {episode.k} actions now and the rest after seeing the "
-                    "result (or load the scene with a larger k)")
+                    "result, or the whole plan with whole_plan=true (checked first, then "
+                    "run step by step)")
         if len(episode.executed) + moves > ctx.config.max_actions_per_episode:
             raise EpisodeStateError(
                 "this episode reached the maximum number of executed actions "
@@ -342,7 +399,7 @@ def validate_plan_tool(ctx: ToolContext, params: ValidatePlanInput) -> Validatio
     """Per-step report for a plan; nothing is stored or modified. Its `label_readings`
     say how the graphs the client wrote were read, as load_scene reports them."""
     if params.pddl is not None:
-        return _validate_pddl(params.pddl, str(params.plan), all_errors=params.all_errors)
+        return pddl_report(params.pddl, str(params.plan), all_errors=params.all_errors)
     actions = _plan_actions(params.plan)
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
                                    graph=params.graph, goal=None)
@@ -360,7 +417,7 @@ SHOWN_FIRST_STEPS = 20
 SHOWN_MAX_FAILURES = 50
 
 
-def _validate_pddl(pddl: dict[str, str], plan: str, *, all_errors: bool = False
+def pddl_report(pddl: dict[str, str], plan: str, *, all_errors: bool = False
                    ) -> ValidationReport:
     try:
         data = validate_pddl_dict(pddl["domain"], pddl["problem"], plan, all_errors=all_errors)
@@ -368,12 +425,41 @@ def _validate_pddl(pddl: dict[str, str], plan: str, *, all_errors: bool = False
             raise ToolArgumentError(f"the plan has more than {MAX_PLAN_ACTIONS} actions",
                                     field="plan", value=None,
                                     fix="use verigraph validate --batch for longer plans")
-        return as_validation_report(data)
+        report = as_validation_report(data)
+        _summarise_failures(report, data)
+        return report
     except VeriGraphError as exc:
         field = exc.field if exc.field in ("domain", "problem") else exc.field or "plan"
         raise ToolArgumentError(exc.message, field=f"pddl.{field}" if field in (
             "domain", "problem") else field, value=exc.value if isinstance(
             exc.value, int | None) else str(exc.value)[:120], fix=exc.fix) from None
+
+
+# A PDDL failure whose raw text is longer than this gets a plain line before it.
+PLAIN_FROM_CHARS = 160
+
+
+def _summarise_failures(report: ValidationReport, data: dict[str, Any]) -> None:
+    """Put a plain one-line summary (`in short: ...`) before each long PDDL failure, so
+    a reader gets what failed for which object before the raw formulas."""
+    unsatisfied = {v["step"]: v.get("unsatisfied") or [] for v in data["violations"]}
+    found = [report.violations, [s.violation for s in report.steps if s.violation]]
+    for violation in (v for group in found for v in group):
+        parts = unsatisfied.get(violation.step)
+        if parts and len(violation.message) > PLAIN_FROM_CHARS and \
+                not violation.message.startswith("in short: "):
+            action = next((s.text for s in report.steps if s.step == violation.step), "it")
+            violation.message = (f"in short: {plain_summary(action, parts)}. In full: "
+                                 + violation.message)
+
+
+def _cost_text(detail: str) -> str:
+    """`total cost 216` -> `plan cost 216 (the sum of its actions' costs, the domain's
+    total-cost)`: the figure a costed domain's user asks for, said in the verdict."""
+    if detail.startswith("total cost "):
+        return (f"plan cost {detail.removeprefix('total cost ')} (the sum of its actions' "
+                "costs, the domain's total-cost)")
+    return detail
 
 
 def report_summary(report: ValidationReport) -> str:
@@ -388,7 +474,11 @@ def report_summary(report: ValidationReport) -> str:
     if report.violations:
         head += f", {len(report.violations)} violation(s)"
     if report.goal_diff is not None:
-        head += f"; {report.goal_diff.summary()}"
+        if report.goal_diff.satisfied and report.goal_diff.detail:  # a PDDL plan's cost,
+            # said once, in words (the diff's own summary carries it as a bare note)
+            head += f"; goal reached; {_cost_text(report.goal_diff.detail)}"
+        else:
+            head += f"; {report.goal_diff.summary()}"
     lines = [head + " (a check only, nothing was executed)"]
     hidden_ok = hidden_failed = 0
     failures = 0

@@ -14,6 +14,7 @@ from verigraph.tools.records import WorldExtras
 from verigraph.tools.store import (
     DEFAULT_IDLE_TIMEOUT_S,
     DEFAULT_MAX_EPISODES,
+    DEFAULT_RECLAIM_IDLE_S,
     EpisodeStore,
     LiveEpisode,
 )
@@ -28,9 +29,13 @@ class ToolConfig:
     `executor` is where load_scene episodes run unless the call picks another; `arm`
     is the server's arm (from --arm-config), used by `arm:<driver>` episodes. `store`
     is where episodes live (see `tools.stores`): memory unless the host picks a durable one.
+    `episodes_per_caller` is one caller's share of `max_episodes` (None: all of it, for
+    a host with one caller); a full store replaces episodes idle `reclaim_idle_s`.
     """
 
     max_episodes: int = DEFAULT_MAX_EPISODES
+    episodes_per_caller: int | None = None
+    reclaim_idle_s: float = DEFAULT_RECLAIM_IDLE_S
     idle_timeout_s: float = DEFAULT_IDLE_TIMEOUT_S
     enable_solve: bool = True
     max_actions_per_episode: int = 10_000
@@ -51,7 +56,9 @@ class ToolContext:
     def __post_init__(self) -> None:
         self.arms = ArmCells(self.config.max_arm_worlds)
         self.store = open_store(self.config.store, self.config.max_episodes,
-                                self.config.idle_timeout_s, on_drop=self._drop)
+                                self.config.idle_timeout_s, on_drop=self._drop,
+                                share=self.config.episodes_per_caller,
+                                reclaim_after=self.config.reclaim_idle_s)
         if isinstance(self.store, DurableStore):
             self.store.revive = self._revive
 

@@ -25,6 +25,7 @@ NAMED_COLORS: dict[str, tuple[int, int, int]] = {  # BGR
     "purple": (160, 70, 140), "pink": (180, 150, 240), "brown": (50, 90, 140),
     "walnut": (45, 75, 110), "tan": (120, 170, 210), "cyan": (210, 200, 60),
 }
+SIDE_LABEL_AT = 0.3  # a side number's place along a touches line, from its own piece
 EDGE_COLORS = {"on": (70, 70, 70), "in": (180, 100, 30), "touches": (60, 150, 60)}
 HIGHLIGHT_COLOR = (0, 140, 255)  # BGR orange: edges the step added
 OUTLINE_COLOR = (30, 30, 220)  # BGR red: objects that block a refused step
@@ -136,15 +137,19 @@ def _draw_edge(image: np.ndarray, src: tuple[int, int], dst: tuple[int, int], re
     color = HIGHLIGHT_COLOR if highlighted else EDGE_COLORS.get(relation, (120, 60, 160))
     thickness = 4 if highlighted else 2
     if relation == "touches":
+        # Each piece's side number at that piece's end of the line, so no reader has to
+        # guess which number belongs to which piece.
         cv2.line(image, src, dst, color, thickness, cv2.LINE_AA)
-        text = f"{source_side}-{target_side}"
-    else:
-        start = (src[0], src[1] + box_h // 2)
-        end = (dst[0], dst[1] - box_h // 2)
-        cv2.arrowedLine(image, start, end, color, thickness, cv2.LINE_AA, tipLength=0.12)
-        text = relation
+        for near, far, side in ((src, dst, source_side), (dst, src, target_side)):
+            at = (int(near[0] + SIDE_LABEL_AT * (far[0] - near[0])) + 4,
+                  int(near[1] + SIDE_LABEL_AT * (far[1] - near[1])))
+            cv2.putText(image, f"side {side or 0}", at, FONT, 0.42, color, 1, cv2.LINE_AA)
+        return
+    start = (src[0], src[1] + box_h // 2)
+    end = (dst[0], dst[1] - box_h // 2)
+    cv2.arrowedLine(image, start, end, color, thickness, cv2.LINE_AA, tipLength=0.12)
     mid = ((src[0] + dst[0]) // 2 + 4, (src[1] + dst[1]) // 2)
-    cv2.putText(image, text, mid, FONT, 0.42, color, 1, cv2.LINE_AA)
+    cv2.putText(image, relation, mid, FONT, 0.42, color, 1, cv2.LINE_AA)
 
 
 def _draw_node(image: np.ndarray, center: tuple[int, int], box_w: int, box_h: int,
@@ -177,6 +182,7 @@ def render_caption(view: str, *, simulated: bool, photo: bool) -> str:
         return f"the 2D simulator's picture of {what}"
     if photo:
         return "the photo the episode was loaded from (it does not change as actions run)"
-    return (f"a DIAGRAM of {what}'s graph (boxes and support edges), not a picture: this "
+    return (f"a DIAGRAM of {what}'s graph (boxes and support edges; a touches line shows "
+            "each piece's side number at that piece's end), not a picture: this "
             "episode has no simulator; load the scene with simulate=true for the simulator's "
             "picture")

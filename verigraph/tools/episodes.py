@@ -14,10 +14,11 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
+from verigraph.graph.translator import read_instruction
 from verigraph.tools.context import ToolContext
-from verigraph.tools.executors import arm_mode_of
+from verigraph.tools.executors import arm_mode_of, executors_text
 from verigraph.tools.fields import EpisodeId
-from verigraph.tools.store import TraceEntry
+from verigraph.tools.store import LiveEpisode, TraceEntry
 from verigraph.tools.summaries import EpisodeState, describe_episode
 from verigraph.tools.texts import edges_line, runs_on
 
@@ -33,12 +34,17 @@ class EpisodeRef(BaseModel):
 
 def get_state(ctx: ToolContext, params: EpisodeRef) -> EpisodeState:
     with ctx.store.use(params.episode_id) as episode:
-        return describe_episode(episode)
+        out = describe_episode(episode)
+    out.executors = executors_text(ctx.config.executor, ctx.config.arm)
+    return out
 
 
 # -- end_episode ----------------------------------------------------------------------------
-Verdict = Literal["goal_reached", "goal_not_reached", "threshold_reached", "no_goal",
-                  "no_scene"]
+Verdict = Literal["goal_reached", "partial", "goal_not_reached", "threshold_reached",
+                  "no_goal", "no_scene"]
+# The episode's first instruction (load_scene's): the request its verdict is read
+# against, kept in `extras` since later set_goal instructions replace `instruction`.
+ASKED = "asked"
 
 
 class EpisodeVerdict(BaseModel):
@@ -58,8 +64,41 @@ class EpisodeVerdict(BaseModel):
     threshold_reached: bool
     trace: list[TraceEntry]
     runs_on: str | None = Field(default=None, description="the episode's executor")
+    asked_missing: list[str] = Field(
+        default_factory=list, description="what the episode's first instruction asked "
+        "for that does not hold at the end (with why, when it could not be placed)")
+
+    def observed(self) -> str | None:
+        """A simulator or arm episode: whether every action ended as predicted."""
+        if self.runs_on is None or self.runs_on.startswith("graph"):
+            return None
+        differed = [t.call for t in self.trace
+                    if t.violation is not None and t.violation.constraint == "execution_failed"]
+        if differed:
+            return ("observed != predicted in call(s) " + ", ".join(map(str, differed))
+                    + " (execution_failed): the final graph is what the world observed")
+        return (f"observed = predicted: each of the {self.steps} action(s) ended where the "
+                "plan said")
 
     def summary(self) -> str:
+        text = self._verdict_text()
+        observed = self.observed()
+        if observed is None:
+            return text
+        lines = text.split("\n")
+        return "\n".join([*lines[:2], observed, *lines[2:]])
+
+    def _verdict_text(self) -> str:
+        if self.verdict == "partial":
+            text = ("PARTIAL: the goal set was reached, but it is narrower than the request "
+                    "the episode was loaded with; not done: " + "; ".join(self.asked_missing)
+                    + f"; {self.steps} action(s) in {self.calls} call(s); episode "
+                    f"{self.episode_id} closed")
+            if self.runs_on is not None:
+                text += f"\nexecutor: {self.runs_on}"
+            if self.final_graph is not None:
+                text += "\n" + edges_line(self.final_graph, "final graph")
+            return text
         text = {"goal_reached": "SUCCESS: goal reached",
                 "goal_not_reached": "FAILURE: goal not reached",
                 "threshold_reached": f"FAILURE: stopped after tau={self.tau} failed calls",
@@ -81,12 +120,14 @@ def end_episode(ctx: ToolContext, params: EpisodeRef) -> EpisodeVerdict:
         state = episode.state
         diff = check_goal(state, episode.goal) if state is not None and episode.goal else None
         verdict: Verdict
+        asked_missing: list[str] = []
         if state is None:
             verdict = "no_scene"
         elif diff is None:
             verdict = "no_goal"
         elif diff.satisfied:
-            verdict = "goal_reached"
+            asked_missing = _asked_missing(episode)
+            verdict = "partial" if asked_missing else "goal_reached"
         elif episode.threshold_reached:
             verdict = "threshold_reached"
         else:
@@ -97,6 +138,26 @@ def end_episode(ctx: ToolContext, params: EpisodeRef) -> EpisodeVerdict:
             goal_diff=diff, executed=[a.text() for a in episode.executed],
             steps=len(episode.executed), calls=episode.calls, tau=episode.tau, t=episode.t,
             threshold_reached=episode.threshold_reached, trace=list(episode.trace),
-            runs_on=runs_on(episode.executor, arm_mode_of(episode.world)))
+            runs_on=runs_on(episode.executor, arm_mode_of(episode.world)),
+            asked_missing=asked_missing)
         ctx.store.remove(episode.id)
         return result
+
+
+def _asked_missing(episode: LiveEpisode) -> list[str]:
+    """What the episode's first instruction asked for (as the translator reads it on the
+    scene as loaded) that the final graph does not have, each with why it could not be
+    placed when the words asked for more than the scene holds. A goal that was narrowed
+    (part of the request refused or left out) thus never ends as plain SUCCESS."""
+    asked = episode.extras.get(ASKED)
+    if not isinstance(asked, str) or episode.initial_graph is None or episode.state is None:
+        return []
+    reading = read_instruction(asked, episode.initial_graph)
+    support = episode.state.support
+    missing = [e.sentence() for e in reading.edges
+               if support.get(e.source) != (e.relation, e.target)]
+    for sentence, why in reading.unplaced:
+        obj, relation, target = sentence.split(" ", 2)
+        if support.get(obj) != (relation, target):
+            missing.append(f"{sentence} (asked, but {why})")
+    return missing

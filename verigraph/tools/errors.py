@@ -27,6 +27,10 @@ class EpisodeLimitError(VeriGraphError):
     """The store already holds its maximum number of open episodes."""
 
 
+class EpisodeShareError(EpisodeLimitError):
+    """The caller already holds its share of the store's episodes (others may open more)."""
+
+
 class EpisodeStateError(VeriGraphError):
     """A call that the episode's current phase does not allow (e.g. executing after t)."""
 

@@ -83,6 +83,19 @@ def enabled_executors(default: str, arm: ArmSetup | None) -> str:
                      for n, what in names.items())
 
 
+def executors_text(default: str, arm: ArmSetup | None) -> str:
+    """`executors on this server: graph (verified only, default), sim2d (simulated); no
+    robot connected: ...`: said when a scene loads, so whether a robot is there is never
+    learnt by a refused call."""
+    text = f"executors on this server: {enabled_executors(default, arm)}"
+    if arm is None:
+        return (text + "; no robot connected: no executor here moves a real robot (a plan "
+                "runs on the graph or in the simulator only)")
+    if arm.config.mode != "real":
+        return text + f"; {arm.executor} is an arm in {arm.config.mode} mode: no real robot moves"
+    return text + f"; {arm.executor} reaches a real robot (arm_status: its connection)"
+
+
 def check_executor(name: str, *, field: str = "executor", enabled: str | None = None) -> str:
     """`graph`, `sim2d` or a known `arm:<driver>`; anything else names the choices
     (`enabled`: the server's own, see enabled_executors)."""

@@ -177,10 +177,14 @@ class _Reading:
     notes: list[str] = field(default_factory=list)
 
 
-_EDGE_TEXT = re.compile(r"\s*(?:move\s*\()?\s*([\w.-]+)\s*,?\s+([a-z_]+)\s*,?\s+([\w.-]+)"
-                        r"\s*\)?\s*")
+# `source relation target`, words apart by spaces or a comma and spaces, `move(...)` around
+# them allowed. Possessive runs (`*+`, `++`) and a separator read one way: each run of
+# spaces is read once (the backtracking form was quadratic in a long run of spaces).
+_SEP = r"(?:\s*+,\s++|\s++)"
+_EDGE_TEXT = re.compile(rf"\s*+(?:move\s*+\()?+\s*+([\w.-]++){_SEP}([a-z_]++){_SEP}([\w.-]++)"
+                        r"\s*+\)?+\s*+")
 # A goal state: `fridge closed`, `stove on` (the words of STATE_WORDS).
-_STATE_TEXT = re.compile(r"\s*([\w.-]+)\s+(open|closed|on|off)\s*")
+_STATE_TEXT = re.compile(r"\s*+([\w.-]++)\s++(open|closed|on|off)\s*+")
 _STATE_OF_WORD = {word: (key, value) for key, words in STATE_WORDS.items()
                   for value, word in ((False, words[0]), (True, words[1]))}
 
@@ -344,10 +348,14 @@ def _match_perceived(seen: Perceived, state: WorldState | None) -> _Reading:
             ambiguous.append(node.id)
         rename[node.id] = match
         shown[node.id] = f"{node.id} -> {match} {conf:.2f}{how}"
-    nodes = [n.model_copy(update={"id": rename.get(n.id, n.id)}) for n in graph.nodes]
-    edges = [e.model_copy(update={"source": rename.get(e.source, e.source),
-                                  "target": rename.get(e.target, e.target)})
-             for e in graph.edges]
+    # A photo object the scene lacks is left out with its edges, named, and the rest is
+    # proposed as a partial goal (never a refusal of the whole photo).
+    unmatched = [n.id for n in graph.nodes if n.id not in rename]
+    nodes = [n.model_copy(update={"id": rename[n.id]}) for n in graph.nodes if n.id in rename]
+    edges = [e.model_copy(update={"source": rename[e.source], "target": rename[e.target]})
+             for e in graph.edges if e.source in rename and e.target in rename]
+    dropped = [e.sentence() for e in graph.edges
+               if e.source not in rename or e.target not in rename]
     matched = graph.model_copy(update={"nodes": nodes, "edges": edges})
     listed = [shown[n.id] for n in graph.nodes if n.id in shown]
     more = f"; ... and {len(listed) - MAX_LISTED_MATCHES} more" \
@@ -367,7 +375,12 @@ def _match_perceived(seen: Perceived, state: WorldState | None) -> _Reading:
     if ambiguous:
         notes.append("look-alike objects make the match a guess, so this goal is only "
                      "proposed: confirm or correct it with edges")
-    return _Reading(Goal(graph=matched), accepted=not ambiguous, notes=notes)
+    if unmatched:
+        notes.append(f"not in the scene, left out: {', '.join(unmatched)} (with "
+                     f"{'; '.join(dropped) or 'no edges'}); the rest is only proposed, as a "
+                     "partial goal: confirm it with edges, and tell the user what was left out")
+    return _Reading(Goal(graph=matched, partial=bool(unmatched)),
+                    accepted=not ambiguous and not unmatched, notes=notes)
 
 
 def _from_words(instruction: str, state: WorldState | None) -> _Reading:
@@ -378,6 +391,8 @@ def _from_words(instruction: str, state: WorldState | None) -> _Reading:
     reading = read_instruction(instruction, state.to_graph())
     notes = [f"understood: '{c}'" for c in reading.understood]
     notes += [f"not understood: '{c}' ({why})" for c, why in reading.not_understood]
+    notes += [f"cannot place: '{e}' ({why}); the proposal leaves it out, so accepting it "
+              "narrows the request: tell the user" for e, why in reading.unplaced]
     if not reading.edges:
         return _Reading(None, accepted=False, notes=notes)
     graph = state.to_graph()
@@ -413,7 +428,7 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
             assert reading.goal is not None
             graph = reading.goal.graph
         goal: Goal | None = None
-        partial = bool(params.partial)
+        partial = bool(params.partial) or (reading.goal is not None and reading.goal.partial)
         if params.edges is not None:
             edges_goal = goal_from_edges(params.edges, episode.state,
                                          partial=params.partial is not False)

@@ -15,11 +15,13 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
+from verigraph.perception.imageio import ImageInputError, image_size
 from verigraph.sim2d.render import encode_png
 from verigraph.tools.errors import ToolArgumentError
 
 MAX_IMAGE_BYTES = 12 * 1024 * 1024
 MAX_IMAGE_PIXELS = 16_000_000  # e.g. 4000 x 4000; 48 MB once decoded
+MAX_IMAGE_SIDE = 16_384  # as perception's ImageLimits; OpenCV itself throws past 2**20
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 JPEG_MAGIC = b"\xff\xd8\xff"
 _DATA_URL = re.compile(r"^data:image/[A-Za-z0-9.+-]+;base64,", re.IGNORECASE)
@@ -44,49 +46,24 @@ def decode_base64_image(text: str, *, field: str = "image") -> np.ndarray:
     if not raw.startswith((PNG_MAGIC, JPEG_MAGIC)):
         raise ToolArgumentError("the bytes are not a PNG or JPEG file", field=field,
                                 value=raw[:8].hex(), fix=_FIX)
-    size = _probe_size(raw)
-    if size is None:
-        raise ToolArgumentError("the image header is damaged (no size found)", field=field,
-                                value=raw[:8].hex(), fix=_FIX)
-    if size[0] * size[1] > MAX_IMAGE_PIXELS:
-        raise ToolArgumentError(f"image is {size[0]}x{size[1]} pixels, too large to decode",
-                                field=field, value=f"{size[0]}x{size[1]}",
-                                fix="downscale it below 16 megapixels (1024 px is plenty)")
-    image = cv2.imdecode(np.frombuffer(raw, dtype=np.uint8), cv2.IMREAD_COLOR)
+    try:  # the size OpenCV's decoder will allocate, read from the header as it reads it
+        _, width, height = image_size(raw)
+    except ImageInputError as exc:
+        raise ToolArgumentError(f"the image header is damaged: {exc.message}", field=field,
+                                value=raw[:8].hex(), fix=_FIX) from None
+    if width * height > MAX_IMAGE_PIXELS or max(width, height) > MAX_IMAGE_SIDE:
+        raise ToolArgumentError(f"image is {width}x{height} pixels, too large to decode",
+                                field=field, value=f"{width}x{height}",
+                                fix=f"downscale it below 16 megapixels and {MAX_IMAGE_SIDE} px "
+                                    "a side (1024 px is plenty)")
+    try:
+        image = cv2.imdecode(np.frombuffer(raw, dtype=np.uint8), cv2.IMREAD_COLOR)
+    except cv2.error:  # a check of OpenCV's own refused the file
+        image = None
     if image is None or image.size == 0:
         raise ToolArgumentError("the bytes are not a PNG or JPEG image OpenCV can decode",
                                 field=field, value=raw[:8].hex(), fix=_FIX)
     return image
-
-
-def _probe_size(raw: bytes) -> tuple[int, int] | None:
-    """Width and height from the PNG or JPEG header, read before decoding anything.
-
-    A few bytes can declare a gigapixel image; checking the header first is the guard
-    against such decompression bombs.
-    """
-    if raw.startswith(PNG_MAGIC):
-        if len(raw) < 24:
-            return None
-        return int.from_bytes(raw[16:20], "big"), int.from_bytes(raw[20:24], "big")
-    pos = 2
-    while pos + 4 <= len(raw):  # JPEG: walk the segments up to the first SOF marker
-        if raw[pos] != 0xFF:
-            return None
-        marker = raw[pos + 1]
-        if marker == 0xFF:
-            pos += 1
-            continue
-        length = int.from_bytes(raw[pos + 2:pos + 4], "big")
-        if 0xC0 <= marker <= 0xCF and marker not in (0xC4, 0xC8, 0xCC):
-            if pos + 9 > len(raw):
-                return None
-            height = int.from_bytes(raw[pos + 5:pos + 7], "big")
-            width = int.from_bytes(raw[pos + 7:pos + 9], "big")
-            return width, height
-        pos += 2 + length
-    return None
-
 
 
 MAX_PHOTO_SIDE = 1600  # photos are sent back at most this large (vision models downscale anyway)

@@ -20,6 +20,7 @@ from verigraph.graph.wellformed import label_readings
 from verigraph.sim2d import SimWorld, generate_scene, world_for_graph
 from verigraph.sim2d.persist import world_state
 from verigraph.tools.context import ToolContext
+from verigraph.tools.episodes import ASKED
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.executors import (
     EXECUTOR_HELP,
@@ -27,6 +28,7 @@ from verigraph.tools.executors import (
     arm_setup_for,
     check_executor,
     enabled_executors,
+    executors_text,
 )
 from verigraph.tools.fields import (
     BoundedGoal,
@@ -181,7 +183,8 @@ def load_scene_tool(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
                        scene_check=scene_check,
                        initial_graph=state.to_graph() if state is not None else None,
                        initial_world=world_state(world) if isinstance(world, SimWorld)
-                       else None)
+                       else None,
+                       extras={ASKED: params.instruction} if params.instruction else {})
 
     try:
         out = describe_episode(ctx.store.add(make))
@@ -190,6 +193,7 @@ def load_scene_tool(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
         raise
     if state is not None and source.graph is not None:
         out.label_readings = label_readings(source.graph, state.dictionary)
+    out.executors = executors_text(ctx.config.executor, ctx.config.arm)
     return out
 
 

@@ -123,9 +123,9 @@ class ToolSpec:
 
 TOOL_SPECS: tuple[ToolSpec, ...] = (
     ToolSpec("load_scene", "Start an episode",
-             "Start an episode (scene_id, graph, image or sim2d generator); returns the "
-             "episode_id. Your own label: its role in the node's attrs, e.g. "
-             '{"id":"tin","label":"tin","attrs":{"container":true,"capacity":3}}.',
+             "Start an episode (scene_id, graph, image or sim2d generator): episode_id, "
+             "executors, robot or none. Node attrs (movable, surface, container, capacity, "
+             'width), e.g. {"container":true}, beat built-in defaults, give your label a role.',
              loading.LoadSceneInput, summaries.EpisodeState, loading.load_scene_tool,
              read_only=False, open_world=True, opens_world=True,
              heavy_when=HeavyWhen(given=("image", "generator", "simulate", "executor"),
@@ -152,9 +152,10 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              read_only=True, idempotent=True, episode_sized=False),
     ToolSpec("execute_actions", "Execute actions",
              "Execute up to k actions (done not counted) until the first violation; the valid "
-             "prefix stays. Returns graph, feedback with a fix, tau, goal check, executor "
-             "(graph, sim2d: nothing physical moves; an arm only if the server has one, see "
-             "arm_status; a real arm asks the user first). End with done.",
+             "prefix stays. move(x, on|in, y): x movable, clear (nothing on/in it); y a "
+             "surface/container with room. Returns graph, feedback with a fix, "
+             "tau, goal check, executor (graph, sim2d: nothing physical moves; a real arm "
+             "asks first). End with done.",
              acting.ExecuteActionsInput, acting.ExecutionOutput, acting.execute_actions,
              read_only=False, destructive=True, open_world=True, viewer=True, moves_arm=True,
              confirmation=Confirmation(arm.preview_execute,
@@ -183,7 +184,7 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              read_only=True, idempotent=True, placement="heavy", viewer=True),
     ToolSpec("solve", "Reference plan",
              "A reference plan by search, re-checked by the validator: optimal, else its "
-             "proven lower bound.",
+             "proven lower bound; pddl: cost-optimal if proven.",
              solving.SolveInput, solving.SolveOutput, solving.solve_tool,
              read_only=True, idempotent=True, placement="heavy",
              heavy_when=HeavyWhen(graphs=("graph", "goal"))),
@@ -204,7 +205,7 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              read_only=False, destructive=True),
     ToolSpec("arm_status", "Arm status",
              "The arm: driver, mode, connection, latched stop and why, busy, pose, last "
-             "outcome. Answers mid-motion. No arm: says which executor reaches one, if any.",
+             "outcome. Answers mid-motion.",
              arm.ArmRef, arm.ArmStatusOutput, arm.arm_status,
              read_only=True, idempotent=True, open_world=True, placement="thread"),
     ToolSpec("arm_stop", "Stop the arm",

@@ -12,6 +12,8 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 from verigraph.actions.model import Action, AnyAction
 from verigraph.actions.report import validate_plan
 from verigraph.solver import solve as search_plan
+from verigraph.solver.pddl_planner import plan_pddl
+from verigraph.tools.acting import MAX_PDDL_CHARS, PDDL_KEYS, pddl_report
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import FeatureUnavailableError, ToolArgumentError
 from verigraph.tools.executors import arm_mode_of
@@ -43,10 +45,20 @@ class SolveInput(BaseModel):
     memory_limit_mb: float = Field(default=200, gt=0, le=16_384,
                                    description="MiB of growth")
     anytime: bool = Field(default=False, description="fast plan, then refined")
+    pddl: dict[str, str] | None = Field(
+        default=None, description="{domain, problem}")
 
     @model_validator(mode="after")
     def _one_scene(self) -> SolveInput:
         given = [n for n in ("episode_id", "scene_id", "graph") if getattr(self, n) is not None]
+        if self.pddl is not None:
+            if sorted(self.pddl) != sorted(PDDL_KEYS):
+                raise ValueError("pddl holds exactly 'domain' and 'problem' (PDDL texts)")
+            if any(len(t) > MAX_PDDL_CHARS for t in self.pddl.values()):
+                raise ValueError(f"a pddl text is longer than {MAX_PDDL_CHARS} characters")
+            if given or self.goal is not None:
+                raise ValueError("with pddl, give no scene or goal (the goal is in the problem)")
+            return self
         if len(given) != 1:
             raise ValueError("give exactly one of episode_id, scene_id, graph "
                              f"(got {', '.join(given) or 'none'})")
@@ -67,9 +79,18 @@ class SolveOutput(BaseModel):
     lower_bound: int | None = Field(default=None, description="no plan is shorter than this")
     runs_on: str | None = Field(default=None, description="the episode's executor")
     assumed: str | None = Field(default=None, description="built-in properties applied")
+    cost: float | None = Field(default=None, description="a PDDL plan's total cost")
+    planner: str | None = Field(default=None, description="a PDDL plan: the search that "
+                                                          "found it")
 
     def optimality(self) -> str:
         """`optimal (no plan has fewer moves)`, or the proven bound when it is not shown."""
+        if self.planner is not None:
+            cost = f"plan cost {self.cost:g}, " if self.cost is not None else ""
+            if self.optimal:
+                return (f"{cost}cost-optimal ({self.planner} proved that no plan costs less; "
+                        "without action costs: has fewer actions)")
+            return f"{cost}satisficing ({self.planner}; not proven optimal)"
         if self.optimal:
             return "optimal (no plan has fewer moves)"
         if self.lower_bound is not None:
@@ -105,6 +126,8 @@ def solve_tool(ctx: ToolContext, params: SolveInput) -> SolveOutput:
         raise FeatureUnavailableError("solve is disabled on this server", field="solve",
                                       value=None, fix="plan with validate_action and "
                                                       "execute_actions feedback instead")
+    if params.pddl is not None:
+        return _solve_pddl(params.pddl, params.time_limit)
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
                                    graph=params.graph, goal=None)
     if params.goal is not None:
@@ -133,3 +156,20 @@ def _episode_executor(ctx: ToolContext, episode_id: str | None) -> str | None:
         return None
     with ctx.store.use(episode_id) as episode:
         return runs_on(episode.executor, arm_mode_of(episode.world))
+
+
+def _solve_pddl(pddl: dict[str, str], time_limit: float) -> SolveOutput:
+    """Fast Downward's plan for a PDDL domain and problem, re-checked by the PDDL
+    validator (which also gives its cost)."""
+    found = plan_pddl(pddl["domain"], pddl["problem"], time_limit=time_limit)
+    if found.plan is None:
+        return SolveOutput(reachable=False if found.unsolvable else None, plan=[], actions=[],
+                           length=0, reason=found.reason, verified=False,
+                           planner=found.planner)
+    report = pddl_report(pddl, "\n".join(found.plan) or "", all_errors=False)
+    detail = report.goal_diff.detail if report.goal_diff is not None else None
+    cost = float(detail.removeprefix("total cost ")) if detail and \
+        detail.startswith("total cost ") else None
+    return SolveOutput(reachable=True, plan=found.plan, actions=[], length=len(found.plan),
+                       reason=found.reason, verified=report.valid, optimal=found.optimal,
+                       planner=found.planner, cost=cost)

@@ -1,10 +1,17 @@
 """Episodes: the state behind an `episode_id`, kept in a bounded, thread-safe store.
 
 The MCP protocol has no sessions, so every stateful tool names its episode. Ids come
-from `secrets.token_urlsafe` (unguessable: holding the id is the only way in), the store
-holds at most `max_episodes` (idle ones are evicted first, then a clear error), and
-each episode has its own lock so concurrent HTTP requests on one episode serialise
-while other episodes proceed.
+from `secrets.token_urlsafe` (unguessable), and each episode belongs to the caller that
+opened it (docs/architecture.md: over HTTP its token, else its address; over stdio the
+one peer, `local` like in-process calls): another caller's id answers exactly as an unknown one
+does, so an id that leaks reads or ends nothing.
+
+Shares (docs/server.md, "Episodes per caller"): the store holds at most `max_episodes`,
+and one caller at most `share` of them (a caller over its share is refused by name, the
+others are unaffected). When the store is full, expired episodes go first, then the
+least recently used one idle for `reclaim_after` seconds or more, whoever owns it; only
+then is a new episode refused. Each episode has its own lock so concurrent HTTP
+requests on one episode serialise while other episodes proceed.
 """
 
 from __future__ import annotations
@@ -28,7 +35,12 @@ from verigraph.graph.dictionary import InlineDictionary
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.tools.errors import EpisodeLimitError, EpisodeStateError, UnknownEpisodeError
+from verigraph.tools.errors import (
+    EpisodeLimitError,
+    EpisodeShareError,
+    EpisodeStateError,
+    UnknownEpisodeError,
+)
 from verigraph.tools.executors import SceneCheck
 from verigraph.tools.images import KeptImage
 
@@ -36,9 +48,36 @@ DEFAULT_K = 3
 DEFAULT_T = 5
 DEFAULT_MAX_EPISODES = 256
 DEFAULT_IDLE_TIMEOUT_S = 3600.0
+DEFAULT_RECLAIM_IDLE_S = 600.0  # a full store replaces episodes idle this long
+LOCAL_CALLER = "local"  # in-process tool calls (CLI, environment, tests) and stdio's peer
 
 # Set while a tool runs on an event loop thread (see `non_blocking`).
 _NON_BLOCKING: ContextVar[bool] = ContextVar("verigraph_non_blocking", default=False)
+# Who the running call comes from (see `calling_as`); copied into worker threads.
+_CALLER: ContextVar[str] = ContextVar("verigraph_caller", default=LOCAL_CALLER)
+
+
+@contextmanager
+def calling_as(caller: str) -> Iterator[None]:
+    """Within this block the store acts for `caller`: new episodes are its own, counted
+    in its share, and only its own episodes are found. The server sets it per request."""
+    if not caller:
+        raise ValueError("a caller needs a name")
+    token = _CALLER.set(caller)
+    try:
+        yield
+    finally:
+        _CALLER.reset(token)
+
+
+def current_caller() -> str:
+    return _CALLER.get()
+
+
+def default_share(max_episodes: int) -> int:
+    """A quarter of the store (at least one): four busy callers fill it, a fifth finds
+    room once one of them ends or idles an episode."""
+    return max(1, max_episodes // 4)
 
 
 class WouldBlock(Exception):  # noqa: N818 - a signal, not an error
@@ -138,6 +177,7 @@ class LiveEpisode:
     requests: RequestRecords = field(default_factory=RequestRecords)
     extras: dict[str, Any] = field(default_factory=dict)  # small JSON records, persisted
     initial_world: dict[str, Any] | None = None  # sim2d world as loaded (JSON): for replays
+    owner: str = ""  # the caller that opened it ("": stored before episodes had owners)
     lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
     last_used: float = 0.0
 
@@ -176,6 +216,12 @@ class LiveEpisode:
         return self.state
 
 
+def owned(owner: str) -> bool:
+    """Whether the current caller may use an episode of `owner` (its own; one stored
+    before episodes had owners is anyone's who holds its id, as it was then)."""
+    return owner in ("", _CALLER.get())
+
+
 def new_episode_id() -> str:
     """128 random bits, URL-safe: usable in resource URIs and impossible to guess."""
     return "ep_" + secrets.token_urlsafe(16)
@@ -191,11 +237,19 @@ class EpisodeStore:
     def __init__(self, max_episodes: int = DEFAULT_MAX_EPISODES,
                  idle_timeout: float = DEFAULT_IDLE_TIMEOUT_S,
                  clock: Callable[[], float] = time.monotonic,
-                 on_drop: Callable[[LiveEpisode], None] | None = None) -> None:
+                 on_drop: Callable[[LiveEpisode], None] | None = None,
+                 share: int | None = None,
+                 reclaim_after: float = DEFAULT_RECLAIM_IDLE_S) -> None:
         if max_episodes < 1:
             raise ValueError("max_episodes must be at least 1")
+        if share is not None and not 1 <= share <= max_episodes:
+            raise ValueError("share must be between 1 and max_episodes")
+        if not reclaim_after > 0:
+            raise ValueError("reclaim_after must be positive")
         self.max_episodes = max_episodes
+        self.share = max_episodes if share is None else share  # None: one caller, all of it
         self.idle_timeout = idle_timeout
+        self.reclaim_after = reclaim_after
         self._clock = clock
         self._on_drop = on_drop  # releases what an ended or evicted episode holds (an arm)
         self._episodes: dict[str, LiveEpisode] = {}
@@ -209,34 +263,80 @@ class EpisodeStore:
         with self._lock:
             return list(self._episodes)
 
+    def share_error(self, caller: str, held: int) -> EpisodeShareError:
+        """The refusal of a caller holding its share: names the share and every way out."""
+        return EpisodeShareError(
+            f"this caller ({caller}) already holds {held} open episode(s), its share of "
+            f"the server's {self.max_episodes} (--episodes-per-caller {self.share}); other "
+            "callers are not affected", field="load_scene", value=held,
+            fix="call end_episode on episodes you no longer need, wait until idle ones are "
+                f"dropped ({self.idle_timeout:.0f} s unused), or start the server with a "
+                "larger --episodes-per-caller")
+
+    def full_error(self, held: int) -> EpisodeLimitError:
+        return EpisodeLimitError(
+            f"the server already holds {self.max_episodes} open episodes, none of them idle "
+            f"for {self.reclaim_after:.0f} s (which a new episode would replace)",
+            field="load_scene", value=held,
+            fix="call end_episode on episodes you no longer need (idle episodes are "
+                f"dropped after {self.idle_timeout:.0f} s), or start the server with a "
+                "larger --max-episodes")
+
     def add(self, make: Callable[[str], LiveEpisode]) -> LiveEpisode:
-        """Insert the episode `make(new_id)` builds; evicts idle episodes when full."""
-        if len(self) >= self.max_episodes:
-            self.evict_idle()
-        with self._lock:
-            if len(self._episodes) >= self.max_episodes:
-                raise EpisodeLimitError(
-                    f"the server already holds {self.max_episodes} open episodes",
-                    field="load_scene", value=len(self._episodes),
-                    fix="call end_episode on episodes you no longer need (idle episodes are "
-                        f"dropped after {self.idle_timeout:.0f} s), or start the server with a "
-                        "larger --max-episodes")
-            episode_id = new_episode_id()
-            while episode_id in self._episodes:  # pragma: no cover - 2**-128
+        """Insert the episode `make(new_id)` builds, owned by the current caller.
+
+        Refused when the caller holds its share; when the store is full, expired
+        episodes are dropped and then the least recently used one idle for
+        `reclaim_after` seconds (see the module docstring), else refused."""
+        caller = current_caller()
+        now = self._clock()
+        dropped: list[LiveEpisode] = []
+        try:
+            with self._lock:
+                dropped = self._drop_expired(now)
+                held = sum(1 for ep in self._episodes.values() if ep.owner == caller)
+                if held >= self.share < self.max_episodes:  # one share of all: "full"
+                    raise self.share_error(caller, held)
+                if len(self._episodes) >= self.max_episodes:
+                    dropped += self._reclaim(now)
+                if len(self._episodes) >= self.max_episodes:
+                    raise self.full_error(held)
                 episode_id = new_episode_id()
-            episode = make(episode_id)
-            episode.last_used = self._clock()
-            self._episodes[episode_id] = episode
-            return episode
+                while episode_id in self._episodes:  # pragma: no cover - 2**-128
+                    episode_id = new_episode_id()
+                episode = make(episode_id)
+                episode.owner = caller
+                episode.last_used = now
+                self._episodes[episode_id] = episode
+                return episode
+        finally:
+            for ep in dropped:
+                self._dropped(ep)
+
+    def _drop_expired(self, now: float) -> list[LiveEpisode]:
+        """Forget the episodes idle longer than idle_timeout (the store's lock is held;
+        the caller releases what they hold)."""
+        gone = [ep for ep in self._episodes.values()
+                if now - ep.last_used > self.idle_timeout and not ep.lock.locked()]
+        for ep in gone:
+            del self._episodes[ep.id]
+        return gone
+
+    def _reclaim(self, now: float) -> list[LiveEpisode]:
+        """Forget the least recently used episode idle for `reclaim_after` or more, if
+        there is one (the store's lock is held)."""
+        idle = [ep for ep in self._episodes.values()
+                if now - ep.last_used >= self.reclaim_after and not ep.lock.locked()]
+        if not idle:
+            return []
+        oldest = min(idle, key=lambda ep: ep.last_used)
+        del self._episodes[oldest.id]
+        return [oldest]
 
     def evict_idle(self) -> None:
         """Drop episodes unused for longer than idle_timeout (and release their arms)."""
-        now = self._clock()
         with self._lock:
-            stale = [ep for ep in self._episodes.values()
-                     if now - ep.last_used > self.idle_timeout and not ep.lock.locked()]
-            for ep in stale:
-                del self._episodes[ep.id]
+            stale = self._drop_expired(self._clock())
         for ep in stale:
             self._dropped(ep)
 
@@ -249,8 +349,8 @@ class EpisodeStore:
             raise UnknownEpisodeError(repr(episode_id))
         with self._lock:
             episode = self._episodes.get(episode_id)
-        if episode is None:
-            raise UnknownEpisodeError(episode_id)
+        if episode is None or not owned(episode.owner):
+            raise UnknownEpisodeError(episode_id)  # another caller's: as if there were none
         return episode
 
     def peek(self, episode_id: str) -> LiveEpisode:

@@ -7,7 +7,7 @@ builds the episode store's contract on top.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Literal, Protocol
 from urllib.parse import urlsplit
 
 
@@ -21,6 +21,30 @@ class StoredEpisode:
     updated_at: float
     last_used: float
     size: int
+    owner: str = ""  # the caller that opened it ("": stored before episodes had owners)
+
+
+@dataclass(frozen=True)
+class Admission:
+    """What `Backend.create` did: `created`, or refused because the owner holds its
+    `share` or the store is full; `held` is the owner's live episodes before it, and
+    `reclaimed` the idle episode dropped to make room (if one was)."""
+
+    outcome: Literal["created", "share", "full"]
+    held: int
+    reclaimed: str | None = None
+
+
+@dataclass(frozen=True)
+class Limits:
+    """The store's shape for `Backend.create` (see tools.store): `cap` live episodes in
+    all, `share` per owner, expired after `idle` s unused, reclaimable (the least
+    recently used first) after `reclaim_after` s unused when the store is full."""
+
+    cap: int
+    share: int
+    idle: float
+    reclaim_after: float
 
 
 class Backend(Protocol):
@@ -28,9 +52,11 @@ class Backend(Protocol):
 
     url: str
 
-    def create(self, episode_id: str, record: str, now: float, cap: int, idle: float
-               ) -> bool:
-        """Insert version 1 unless `cap` live episodes exist (expired ones are dropped)."""
+    def create(self, episode_id: str, owner: str, record: str, now: float, limits: Limits
+               ) -> Admission:
+        """Insert version 1 for `owner` within `limits`: expired episodes are dropped
+        first; an owner holding its share is refused; a full store drops its least
+        recently used episode idle for `reclaim_after`, else refuses."""
 
     def check(self, episode_id: str, now: float, idle: float) -> int | None:
         """The live version (refreshing the idle timer), or None when gone/expired."""

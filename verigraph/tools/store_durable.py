@@ -25,7 +25,6 @@ from typing import Any
 from pydantic import ValidationError
 
 from verigraph.tools.errors import (
-    EpisodeLimitError,
     StaleEpisodeError,
     StoreError,
     UnknownEpisodeError,
@@ -42,12 +41,15 @@ from verigraph.tools.store import (
     _NON_BLOCKING,
     DEFAULT_IDLE_TIMEOUT_S,
     DEFAULT_MAX_EPISODES,
+    DEFAULT_RECLAIM_IDLE_S,
     EpisodeStore,
     LiveEpisode,
     WouldBlock,
+    current_caller,
     new_episode_id,
+    owned,
 )
-from verigraph.tools.store_backend import Backend
+from verigraph.tools.store_backend import Backend, Limits
 
 Revive = Callable[[LiveEpisode], None]
 
@@ -97,8 +99,10 @@ class DurableStore(EpisodeStore):
     def __init__(self, backend: Backend, max_episodes: int = DEFAULT_MAX_EPISODES,
                  idle_timeout: float = DEFAULT_IDLE_TIMEOUT_S,
                  clock: Callable[[], float] = time.time,
-                 on_drop: Callable[[LiveEpisode], None] | None = None) -> None:
-        super().__init__(max_episodes, idle_timeout, clock, on_drop)
+                 on_drop: Callable[[LiveEpisode], None] | None = None,
+                 share: int | None = None,
+                 reclaim_after: float = DEFAULT_RECLAIM_IDLE_S) -> None:
+        super().__init__(max_episodes, idle_timeout, clock, on_drop, share, reclaim_after)
         self.backend = backend
         self.revive: Revive | None = None  # reconnects an arm episode's driver on load
         self._versions: dict[str, int] = {}
@@ -114,17 +118,20 @@ class DurableStore(EpisodeStore):
         if _NON_BLOCKING.get():
             raise WouldBlock("load_scene")
         now = self._clock()
+        caller = current_caller()
         episode = make(new_episode_id())
+        episode.owner = caller
         episode.last_used = now
         record = to_record(episode, version=1, created_at=now, updated_at=now)
-        if not self.backend.create(episode.id, record.model_dump_json(), now,
-                                   self.max_episodes, self.idle_timeout):
-            raise EpisodeLimitError(
-                f"the store already holds {self.max_episodes} open episodes",
-                field="load_scene", value=self.max_episodes,
-                fix="call end_episode on episodes you no longer need (idle episodes are "
-                    f"dropped after {self.idle_timeout:.0f} s), or start the server with a "
-                    "larger --max-episodes")
+        admission = self.backend.create(
+            episode.id, caller, record.model_dump_json(), now,
+            Limits(self.max_episodes, self.share, self.idle_timeout, self.reclaim_after))
+        if admission.outcome == "share":
+            raise self.share_error(caller, admission.held)
+        if admission.outcome == "full":
+            raise self.full_error(admission.held)
+        if admission.reclaimed is not None:
+            self._forget(admission.reclaimed)  # a cached copy here: release its arm
         with self._lock:
             self._episodes[episode.id] = episode
             self._versions[episode.id] = 1
@@ -156,12 +163,16 @@ class DurableStore(EpisodeStore):
         with self._lock:
             cached = self._episodes.get(episode_id)
         if cached is not None:
+            if not owned(cached.owner):
+                raise UnknownEpisodeError(episode_id)  # another caller's: as if none
             return cached
         text = self.backend.load(episode_id, self._clock(), self.idle_timeout)
         if text is None:
             raise UnknownEpisodeError(episode_id)
         record = decode_record(text)
         episode = from_record(record)
+        if not owned(episode.owner):  # refused before an arm is reconnected for it
+            raise UnknownEpisodeError(episode_id)
         if self.revive is not None:
             self.revive(episode)
         with self._lock:
@@ -172,6 +183,8 @@ class DurableStore(EpisodeStore):
                 self._created[episode_id] = record.created_at
                 return episode
         self._dropped(episode)  # another thread loaded it first
+        if not owned(cached.owner):
+            raise UnknownEpisodeError(episode_id)
         return cached
 
     def _refresh(self, episode: LiveEpisode, now: float) -> int:

@@ -22,7 +22,7 @@ from contextlib import contextmanager, suppress
 from pathlib import Path
 
 from verigraph.tools.errors import StoreError
-from verigraph.tools.store_backend import StoredEpisode
+from verigraph.tools.store_backend import Admission, Limits, StoredEpisode
 
 # Refresh an episode's last-used time at most this often, so a read is not a write.
 TOUCH_EVERY_S = 5.0
@@ -37,7 +37,17 @@ CREATE TABLE IF NOT EXISTS episodes (
     record TEXT NOT NULL
 );
 CREATE INDEX IF NOT EXISTS episodes_last_used ON episodes(last_used);
+CREATE TABLE IF NOT EXISTS episode_owners (
+    id TEXT PRIMARY KEY,
+    owner TEXT NOT NULL
+);
+CREATE INDEX IF NOT EXISTS episode_owners_owner ON episode_owners(owner);
 """
+# Owners have a table of their own, so the episodes table keeps its shape: a server of an
+# earlier version on the same file (a rolling upgrade) still writes its rows, which own
+# nothing. An owner row whose episode is gone (ended, expired, or deleted by such a
+# server) is dropped before owners are counted.
+_DROP_ORPHANS = "DELETE FROM episode_owners WHERE id NOT IN (SELECT id FROM episodes)"
 
 
 def create_private_file(path: Path) -> None:
@@ -144,21 +154,38 @@ class SqliteBackend:
             cache[str(self.path)] = connection
         return connection
 
-    def create(self, episode_id: str, record: str, now: float, cap: int, idle: float
-               ) -> bool:
+    def create(self, episode_id: str, owner: str, record: str, now: float, limits: Limits
+               ) -> Admission:
         with self._guard("the new episode"):
             db = self._connection()
             db.execute("BEGIN IMMEDIATE")
             try:
-                db.execute("DELETE FROM episodes WHERE last_used < ?", (now - idle,))
-                (count,) = db.execute("SELECT count(*) FROM episodes").fetchone()
-                if count >= cap:
+                db.execute("DELETE FROM episodes WHERE last_used < ?", (now - limits.idle,))
+                db.execute(_DROP_ORPHANS)
+                (held,) = db.execute("SELECT count(*) FROM episode_owners WHERE owner = ?",
+                                     (owner,)).fetchone()
+                if held >= limits.share < limits.cap:
                     db.execute("COMMIT")
-                    return False
-                db.execute("INSERT INTO episodes VALUES (?, 1, ?, ?, ?, ?)",
+                    return Admission("share", held)
+                (count,) = db.execute("SELECT count(*) FROM episodes").fetchone()
+                reclaimed = None
+                if count >= limits.cap:
+                    row = db.execute("SELECT id FROM episodes WHERE last_used <= ? "
+                                     "ORDER BY last_used LIMIT 1",
+                                     (now - limits.reclaim_after,)).fetchone()
+                    if row is None:
+                        db.execute("COMMIT")
+                        return Admission("full", held)
+                    reclaimed = str(row[0])
+                    db.execute("DELETE FROM episodes WHERE id = ?", (reclaimed,))
+                    db.execute("DELETE FROM episode_owners WHERE id = ?", (reclaimed,))
+                db.execute("INSERT INTO episodes (id, version, created_at, updated_at, "
+                           "last_used, record) VALUES (?, 1, ?, ?, ?, ?)",
                            (episode_id, now, now, now, record))
+                db.execute("INSERT INTO episode_owners (id, owner) VALUES (?, ?)",
+                           (episode_id, owner))
                 db.execute("COMMIT")
-                return True
+                return Admission("created", held, reclaimed)
             except BaseException:
                 if db.in_transaction:  # SQLite may have rolled back already (disk full)
                     db.execute("ROLLBACK")
@@ -195,22 +222,25 @@ class SqliteBackend:
 
     def delete(self, episode_id: str) -> bool:
         with self._guard("ending the episode"):
-            cursor = self._connection().execute("DELETE FROM episodes WHERE id = ?",
-                                                (episode_id,))
+            db = self._connection()
+            cursor = db.execute("DELETE FROM episodes WHERE id = ?", (episode_id,))
+            db.execute("DELETE FROM episode_owners WHERE id = ?", (episode_id,))
         return cursor.rowcount == 1
 
     def sweep(self, now: float, idle: float) -> list[str]:
         with self._guard("dropping idle episodes"):
-            rows = self._connection().execute(
-                "DELETE FROM episodes WHERE last_used < ? RETURNING id",
-                (now - idle,)).fetchall()
+            db = self._connection()
+            rows = db.execute("DELETE FROM episodes WHERE last_used < ? RETURNING id",
+                              (now - idle,)).fetchall()
+            db.execute(_DROP_ORPHANS)
         return [str(r[0]) for r in rows]
 
     def entries(self, now: float, idle: float) -> list[StoredEpisode]:
         with self._guard("listing the episodes"):
             rows = self._connection().execute(
-                "SELECT id, version, created_at, updated_at, last_used, length(record) "
-                "FROM episodes WHERE last_used >= ? ORDER BY created_at",
+                "SELECT e.id, version, created_at, updated_at, last_used, length(record), "
+                "coalesce(o.owner, '') FROM episodes e LEFT JOIN episode_owners o "
+                "ON o.id = e.id WHERE last_used >= ? ORDER BY created_at",
                 (now - idle,)).fetchall()
         return [StoredEpisode(*row) for row in rows]
 

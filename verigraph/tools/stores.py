@@ -17,6 +17,7 @@ from verigraph.tools.errors import StoreError
 from verigraph.tools.store import (
     DEFAULT_IDLE_TIMEOUT_S,
     DEFAULT_MAX_EPISODES,
+    DEFAULT_RECLAIM_IDLE_S,
     EpisodeStore,
     LiveEpisode,
 )
@@ -52,10 +53,15 @@ def open_backend(url: str) -> Backend:
 
 def open_store(url: str, max_episodes: int = DEFAULT_MAX_EPISODES,
                idle_timeout: float = DEFAULT_IDLE_TIMEOUT_S,
-               on_drop: Callable[[LiveEpisode], None] | None = None) -> EpisodeStore:
+               on_drop: Callable[[LiveEpisode], None] | None = None,
+               share: int | None = None,
+               reclaim_after: float = DEFAULT_RECLAIM_IDLE_S) -> EpisodeStore:
+    """The store `url` names; `share` episodes per caller (None: the whole store)."""
     if url in ("memory://", "memory"):
-        return EpisodeStore(max_episodes, idle_timeout, on_drop=on_drop)
-    return DurableStore(open_backend(url), max_episodes, idle_timeout, on_drop=on_drop)
+        return EpisodeStore(max_episodes, idle_timeout, on_drop=on_drop, share=share,
+                            reclaim_after=reclaim_after)
+    return DurableStore(open_backend(url), max_episodes, idle_timeout, on_drop=on_drop,
+                        share=share, reclaim_after=reclaim_after)
 
 
 __all__ = ["STORE_HELP", "default_store_url", "open_backend", "open_store", "redacted"]

@@ -16,7 +16,14 @@ from verigraph.graph.model import SceneGraph
 from verigraph.tools.executors import SceneCheck
 from verigraph.tools.fields import dictionary_for
 from verigraph.tools.store import LiveEpisode
-from verigraph.tools.texts import dictionary_line, executor_line, goal_line, graph_lines
+from verigraph.tools.texts import (
+    defaults_line,
+    dictionary_line,
+    executor_line,
+    goal_line,
+    graph_lines,
+    sides_line,
+)
 
 
 class EpisodeState(BaseModel):
@@ -53,6 +60,8 @@ class EpisodeState(BaseModel):
     relations: list[str]
     last_violation: Violation | None = Field(default=None,
                                              description="feedback of the last failed call")
+    executors: str | None = Field(default=None, description="load_scene: the executors this "
+                                  "server runs, and whether any reaches a robot")
 
     def summary(self) -> str:
         executor = executor_line(self.executor, self.arm_mode)
@@ -65,7 +74,9 @@ class EpisodeState(BaseModel):
                 "actions per execute_actions call (done not counted)")
         if self.scene_check is not None and not self.scene_check.matches:
             text += f"; {self.scene_check.summary()}"
-        lines = [text, executor, graph_lines(self.graph, self.dictionary),
+        lines = [text, executor, self.executors, graph_lines(self.graph, self.dictionary),
+                 defaults_line(self.graph, self.dictionary),
+                 sides_line(self.graph, self.dictionary),
                  dictionary_line(self.dictionary, self.user_labels, self.label_readings),
                  goal_line(self.goal)]
         if self.last_violation is not None:

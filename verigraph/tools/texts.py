@@ -92,11 +92,19 @@ def _your_label(node: Node, dictionary: Dictionary) -> bool:
     return label in dictionary.user_labels
 
 
+def _sizes(node: Node) -> str:
+    """`, width 18` for the sizes a node's attrs give (the user's numbers, shown)."""
+    return "".join(f", {key} {node.attrs[key]:g}" for key in ("width", "height")
+                   if isinstance(node.attrs.get(key), int | float)
+                   and not isinstance(node.attrs.get(key), bool))
+
+
 def objects_line(graph: SceneGraph, dictionary: str | InlineDictionary | None = None) -> str:
-    """`objects: table (table: fixed surface); cup_2 (mug: movable container, capacity 1)`"""
+    """`objects: table (table: fixed surface); cup_2 (mug: movable container, capacity 1)`,
+    with the sizes a node's attrs give (`plate_b (plate: ..., width 18)`)."""
     d = _dictionary(graph.dictionary or dictionary)
     parts = [f"{n.id} ({n.label}: {'your label, ' if _your_label(n, d) else ''}"
-             f"{_role_and_state(n, _properties(n, d))})" for n in graph.nodes]
+             f"{_role_and_state(n, _properties(n, d))}{_sizes(n)})" for n in graph.nodes]
     return "objects: " + ("; ".join(parts) or "none")
 
 
@@ -138,6 +146,45 @@ def dictionary_line(name: str, user_labels: list[str], readings: list[str]) -> s
     if readings:
         text += "\n" + readings_line(readings)
     return text
+
+
+MAX_DEFAULTS = 12
+
+
+def defaults_line(graph: SceneGraph, dictionary: str | InlineDictionary | None = None) -> str:
+    """The capacities taken from a built-in dictionary, not from the client: `assumed
+    (built-in defaults; confirm with the user, a node's attrs win): stove holds 2, shelf
+    3`; empty when every capacity is the client's own. A default is said to be one, so
+    nobody takes the kitchen stove's 2 for a fact about this kitchen."""
+    d = _dictionary(graph.dictionary or dictionary)
+    found: dict[str, None] = {}
+    for node in graph.nodes:
+        label = d.resolve(node.label)
+        if label is None or label in d.user_labels or "capacity" in node.attrs:
+            continue
+        props = _properties(node, d)
+        if props is not None and (props.surface or props.container) and \
+                props.capacity is not None:
+            found.setdefault(f"{label} holds {props.capacity}")
+    if not found:
+        return ""
+    shown = list(found)[:MAX_DEFAULTS] + ([f"... and {len(found) - MAX_DEFAULTS} more"]
+                                          if len(found) > MAX_DEFAULTS else [])
+    return ("assumed (built-in defaults, not told by the user: confirm them with the user; a "
+            "node's attrs.capacity wins): " + ", ".join(shown))
+
+
+SIDES_TEXT = ("sides: numbered clockwise (seen from above) from vertex 0, side i from vertex "
+              "i to i+1; vertex 0 is a triangle's right angle (sides 0 and 2 the legs, 1 "
+              "the hypotenuse), the parallelogram's acute vertex that starts a long side (0 "
+              "and 2 long, 1 and 3 short); a square's sides are alike")
+
+
+def sides_line(graph: SceneGraph, dictionary: str | InlineDictionary | None = None) -> str:
+    """How tangram sides are numbered, when the graph has pieces; empty otherwise."""
+    d = _dictionary(graph.dictionary or dictionary)
+    pieces = any((p := _properties(n, d)) is not None and p.sides for n in graph.nodes)
+    return SIDES_TEXT if pieces else ""
 
 
 def properties_line(graph: SceneGraph, *more: SceneGraph | None) -> str:

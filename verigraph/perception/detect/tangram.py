@@ -95,7 +95,7 @@ def _largest_per_colour(fragments: list[Region]) -> dict[int, Region]:
     return best
 
 
-def outline(region: Region, sides: int) -> np.ndarray | None:
+def piece_outline(region: Region, sides: int) -> np.ndarray | None:
     """Convex polygon with `sides` corners around a region, in pixel coordinates."""
     pts = region.points().astype(np.float32)
     if len(pts) < sides:
@@ -161,7 +161,7 @@ def perceive_tangram(image: np.ndarray, dictionary: Dictionary, config: Percepti
             found.append((model, poly))
     scale = _scale(found)
     if scale <= 0 and pending:  # every piece is cut: what shows of them gives the scale
-        shown = [(model, outline(region, len(piece_model(model.label))))
+        shown = [(model, piece_outline(region, len(piece_model(model.label))))
                  for model, region in pending]
         scale = _scale([(model, poly) for model, poly in shown if poly is not None])
     placed: dict[str, PlacedPiece] = {}
@@ -292,7 +292,7 @@ def _outline_of(region: Region, model: ObjectModel, colour: str, warnings: list[
     """The polygon a piece's region outlines (None when it does not look like the
     piece, with a warning), and whether the region is no piece at all (too small, or
     not solid)."""
-    poly = outline(region, len(piece_model(model.label)))
+    poly = piece_outline(region, len(piece_model(model.label)))
     if poly is None:
         warnings.append(f"the {colour} region does not look like a {model.label}")
         return None, False

@@ -121,7 +121,7 @@ def _apart(a: np.ndarray, b: np.ndarray) -> float:
 
 def _hull(mask: np.ndarray) -> np.ndarray | None:
     """Convex hull of a mask's pixel centres, shape (n, 2), in the frame where pixel i
-    spans i to i + 1 (as `tangram.outline` gives corners), with a negative signed area
+    spans i to i + 1 (as `tangram.piece_outline` gives corners), with a negative signed area
     in these (y-down) coordinates: clockwise as OpenCV counts with y up."""
     ys, xs = np.nonzero(mask)
     if len(xs) < 3:

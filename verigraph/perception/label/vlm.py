@@ -37,7 +37,10 @@ from verigraph.perception.result import PerceptionResult
 from verigraph.prompts.filling import scene_graph_prompt
 
 SCHEMA_NAME = "scene_graph"
-_FENCE = re.compile(r"^```(?:json)?\s*|\s*```$", re.MULTILINE)
+# A closing fence's spaces are matched from where their run starts (`(?<!\s)`), read once
+# (`*+`): tried at every space of a long run, the pattern was quadratic. The last branch is
+# a closing fence right after an opening one (which took the spaces between).
+_FENCE = re.compile(r"^```(?:json)?\s*+|(?<!\s)\s*+```$|```$", re.MULTILINE)
 
 
 class VlmError(VeriGraphError):

@@ -44,7 +44,7 @@ def label_map(shape: tuple[int, int], detections: Sequence[Detection],
     return out
 
 
-def direct_support(index: int, detections: Sequence[Detection], labels: np.ndarray,
+def support_in_image(index: int, detections: Sequence[Detection], labels: np.ndarray,
                    gap: int) -> DirectSupport:
     """Scan down from every bottom pixel of the object for the first other thing.
 
@@ -138,12 +138,12 @@ def infer_supports(detections: Sequence[Detection], labels: np.ndarray, *, gap: 
     """(relation, supporter id) for every detection that rests on or in another
     (detection ids must be assigned; `scale` is pixels per world unit)."""
     index = {d.id: i for i, d in enumerate(detections)}
-    direct = [direct_support(i, detections, labels, gap) for i in range(len(detections))]
+    direct = [support_in_image(i, detections, labels, gap) for i in range(len(detections))]
     for i, d in enumerate(direct):
         # Everything in a settled scene rests on something: when blur or JPEG widen
         # the dark band under an object beyond the gap, look a little further.
         if d.supporter is None and not d.on_floor:
-            direct[i] = direct_support(i, detections, labels, WIDE_GAP_FACTOR * gap)
+            direct[i] = support_in_image(i, detections, labels, WIDE_GAP_FACTOR * gap)
     # The simulator's cavity floor tolerance in pixels, plus one for the outline.
     cavities = Cavities(detections, CAVITY_FLOOR_TOLERANCE * scale + 1.0)
     centres = [d.region.centroid() for d in detections]

@@ -7,13 +7,14 @@ DNS-rebinding protection. A refusal is a JSON-RPC error (`rpc_response`, the HTT
 of verigraph.server.rpc_errors) that says what to do.
 
 Who a caller is, for the budgets kept per caller (event streams, large bodies waiting
-for the checking process): the token it presents when the server was given several
-(`--token` repeated: one per caller, the standard API-key arrangement), else the address
-it connects from. With a single shared token every holder presents the same header, so
-the token cannot tell them apart and the address is all there is; callers on one host
-then count as one, which is why a server shared by local callers gives each its own
-token. BearerTokenAuth writes the matched token's number into the ASGI scope (never the
-token itself); the inner layers read it with `caller_of`.
+for the checking process, episodes): the token it presents when the server was given
+several (`--token` repeated: one per caller, the standard API-key arrangement), else the
+address it connects from. With a single shared token every holder presents the same
+header, so the token cannot tell them apart and the address is all there is; callers on
+one host then count as one, which is why a server shared by local callers gives each its
+own token. BearerTokenAuth writes the matched token's caller (a fingerprint, never the
+token itself, see verigraph.server.callers) into the ASGI scope; the inner layers read
+it with `caller_of`.
 
 Host and Origin are parsed per RFC 9110, not matched as text. A Host header is
 `uri-host [":" port]` (RFC 9110 section 7.2, RFC 3986 section 3.2.2): the name is
@@ -27,7 +28,6 @@ port), never by prefix.
 
 from __future__ import annotations
 
-import hmac
 import json
 import logging
 import re
@@ -40,9 +40,11 @@ from starlette.responses import Response
 from starlette.types import ASGIApp, Receive, Scope, Send
 
 from verigraph import __version__
+from verigraph.server.callers import CALLER_KEY, Refusal, TokenGate, caller_of
 from verigraph.server.rpc_errors import FORBIDDEN, INVALID_REQUEST, error_bytes
 
-CALLER_KEY = "verigraph.caller"
+__all__ = ["CALLER_KEY", "BearerTokenAuth", "HealthCheck", "HostCheck", "HostPolicy",
+           "caller_of", "rpc_response"]
 log = logging.getLogger("verigraph.server")
 
 
@@ -52,15 +54,6 @@ def rpc_response(status: int, message: str, *, code: int = INVALID_REQUEST,
     """An HTTP `status` answer whose body is a JSON-RPC error saying what to do."""
     return Response(error_bytes(message, code=code, request_id=request_id, data=data),
                     status_code=status, media_type="application/json", headers=headers)
-
-
-def caller_of(scope: Scope) -> str:
-    """`token 2` (its own token, of several), else `address 127.0.0.1`."""
-    named = scope.get(CALLER_KEY)
-    if isinstance(named, str):
-        return named
-    peer = scope.get("client")
-    return f"address {peer[0] if peer else 'unknown'}"
 
 
 HEALTH_PATH = "/healthz"
@@ -94,7 +87,7 @@ class BearerTokenAuth:
     """403 unless the request carries `Authorization: Bearer <token>` with one of the
     server's tokens (constant-time checks, every token compared).
 
-    With several tokens, the one matched tells the client apart (its number goes into
+    With several tokens, the one matched tells the client apart (its caller goes into
     the scope for the per-caller budgets, see caller_of); with one, every holder is alike.
 
     The token is a pre-shared secret, not OAuth. MCP clients that know OAuth (the MCP
@@ -106,28 +99,25 @@ class BearerTokenAuth:
 
     def __init__(self, app: ASGIApp, tokens: tuple[str, ...]) -> None:
         self.app = app
-        self.expected = [f"Bearer {token}".encode() for token in tokens]
+        self.gate = TokenGate(tokens)
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] == "http":
-            given = Headers(scope=scope).get("authorization", "").encode()
-            matches = [hmac.compare_digest(given, expected) for expected in self.expected]
-            if not any(matches):
-                await _refusal(given)(scope, receive, send)
+            refusal = self.gate.check(scope)
+            if refusal is not None:
+                await _refusal(refusal)(scope, receive, send)
                 return
-            if len(self.expected) > 1:
-                scope[CALLER_KEY] = f"token {matches.index(True) + 1}"
         await self.app(scope, receive, send)
 
 
-def _refusal(given: bytes) -> Response:
-    if not given.strip():
-        reason, message = "missing_token", (
+def _refusal(reason: Refusal) -> Response:
+    if reason == "missing_token":
+        message = (
             "Forbidden: no token was sent; this VeriGraph server needs the header "
             "'Authorization: Bearer <token>' with the token it was started with "
             "(--token or VERIGRAPH_TOKEN)")
     else:
-        reason, message = "wrong_token", (
+        message = (
             "Forbidden: the token sent does not match; send 'Authorization: Bearer <token>' "
             "with the token this VeriGraph server was started with (--token or "
             "VERIGRAPH_TOKEN)")

@@ -61,7 +61,7 @@ from verigraph.budget import DEFAULT_MEMORY_MIB
 from verigraph.errors import VeriGraphError
 from verigraph.server.http.workers import PR_SET_PDEATHSIG
 from verigraph.server.jsonrpc_screen import top_level_id
-from verigraph.server.rpc_errors import INVALID_REQUEST, PARSE_ERROR
+from verigraph.server.rpc_errors import INVALID_REQUEST, PARSE_ERROR, id_problem
 from verigraph.server.table import SERVER_TOOLS
 from verigraph.tools.registry import parse_arguments
 
@@ -84,13 +84,34 @@ class Prepared:
     reason: str | None = None  # ... and, for a refusal a client may react to, its reason
 
 
-def _refusal(message: Any, size: int) -> Prepared:
+def _refusal(message: Any, size: int, threshold: int) -> Prepared:
     method = message.get("method") if isinstance(message, dict) else None
     request_id = message.get("id") if isinstance(message, dict) else None
+    too_long = id_problem(request_id)
+    if too_long is not None:  # answered with a null id: it cannot be echoed
+        return Prepared(refusal=too_long, status=400)
+    request_id = request_id if isinstance(request_id, str | int) else None
+    params = message.get("params") if isinstance(message, dict) else None
+    if method == "tools/call" and isinstance(params, dict) \
+            and not isinstance(params.get("arguments"), dict | None):
+        return Prepared(refusal=f"Request too large for 'tools/call' ({size} bytes): its "
+                                "params.arguments must be an object of name: value",
+                        request_id=request_id)
+    if method == "tools/call" and isinstance(params, dict):
+        # the arguments may be large; what else made it so is named, with its size
+        parts = {f"params.{key}": value for key, value in params.items()
+                 if key != "arguments"}
+        parts |= {key: value for key, value in message.items() if key != "params"}
+        largest = max(parts, key=lambda key: len(json.dumps(parts[key])))
+        return Prepared(refusal=(
+            f"Request too large for 'tools/call' ({size} bytes): its field {largest} is "
+            f"{len(json.dumps(parts[largest]))} bytes as JSON; only a tools/call's "
+            "arguments (an object) may be this large, everything else at most "
+            f"{threshold} bytes in all; send a shorter {largest}"), request_id=request_id)
     what = repr(method) if isinstance(method, str) else "a message that is no single request"
     return Prepared(refusal=f"Request too large for {what} ({size} bytes): only tools/call "
                             "arguments may be this large; send a smaller request",
-                    request_id=request_id if isinstance(request_id, str | int) else None)
+                    request_id=request_id)
 
 
 def _parse_error(body: bytes) -> Prepared:
@@ -124,13 +145,15 @@ def _prepare(body: bytes, threshold: int) -> Prepared:
         message = json.loads(body)
     except (ValueError, RecursionError):
         return _parse_error(body)
+    if isinstance(message, dict) and id_problem(message.get("id")) is not None:
+        return _refusal(message, len(body), threshold)
     params = message.get("params") if isinstance(message, dict) else None
     if not (isinstance(params, dict) and message.get("method") == "tools/call"
             and isinstance(params.get("arguments"), dict)):
-        return _refusal(message, len(body))
+        return _refusal(message, len(body), threshold)
     envelope = json.dumps({**message, "params": {**params, "arguments": {}}}).encode()
     if len(envelope) > threshold:
-        return _refusal(message, len(body))
+        return _refusal(message, len(body), threshold)
     spec = SERVER_TOOLS.get(params.get("name"))  # type: ignore[arg-type]
     if spec is None:
         return Prepared(envelope)  # the SDK answers that there is no such tool

@@ -1,0 +1,189 @@
+"""One entry point for PDDL plans: the native blocks world when the domain is one, else STRIPS.
+
+Every domain is first read by the STRIPS reader (cached per text), which refuses by name
+anything it cannot read or judge (a misspelt keyword, an unsupported requirement, an
+undeclared name), whichever engine then judges the plan, so no engine can skip a part of
+a domain silently. `validate_pddl_dict` then tries the blocks-world recogniser (any
+names: recognition is by structure) because its hand model is several times faster; a
+domain or problem it refuses (another domain, or a blocks-world problem whose initial
+state no scene can hold) goes to the general STRIPS simulator, which judges it by PDDL's
+own semantics. An invalid blocks-world plan is then also explained by the STRIPS
+simulator, so both engines report the same fields: the unsatisfied preconditions with the
+step that last made each false, and the actions that would achieve an unmet goal. A
+blocks-world plan with a line that is no action of the domain, and any invalid plan
+checked with `all_errors=True`, is judged by the STRIPS simulator (each line of PlanBench
+text read as the blocks world reads it), which makes such lines failing steps and goes on
+after a failure. The report says which engine judged it (`engine`).
+"""
+
+from __future__ import annotations
+
+import re
+from functools import lru_cache
+from typing import Any
+
+from verigraph.errors import PlanParseError, VeriGraphError
+from verigraph.pddl.blocksworld.domain import UnsupportedDomainError, cached_domain
+from verigraph.pddl.reader import PROBLEM_SECTIONS, SUPPORTED_REQUIREMENTS
+from verigraph.pddl.simulate import (
+    cached_strips_domain,
+    cached_strips_problem,
+    total_value,
+    validate_strips_dict,
+)
+from verigraph.pddl.syntax import COMMENT, ascii_names
+
+ENGINES = ("auto", "blocksworld", "strips")
+_SECTION = re.compile(r"\(\s*(:[^\s()]+)")
+_REQUIREMENTS = re.compile(r"\(\s*:requirements\b([^()]*)\)")
+_STRAY = re.compile(r"\)\s*[^\s()]+\s*\(")  # a bare word between two lists
+_VALUE = re.compile(r"\(\s*=")  # `(= (total-cost) 0)`: its number is checked
+
+
+def _check_problem(problem_text: str, domain_text: str) -> None:
+    """What the blocks-world reader would pass over (an unknown section, a requirement
+    that is no supported keyword, a stray word between sections) is refused by the STRIPS
+    reader, by name. A few regex scans; the full read runs only when one finds something."""
+    text = COMMENT.sub("", problem_text) if ";" in problem_text else problem_text
+    text = text.lower()
+    suspicious = any(k not in PROBLEM_SECTIONS for k in _SECTION.findall(text)) \
+        or _STRAY.search(text) is not None or _VALUE.search(text) is not None
+    if not suspicious and ":requirements" in text:
+        found = _REQUIREMENTS.findall(text)
+        suspicious = not found or any(r not in SUPPORTED_REQUIREMENTS
+                                      for items in found for r in items.split())
+    if suspicious:
+        cached_strips_problem(domain_text, problem_text)
+
+
+def _add_total_cost(data: dict[str, Any], domain_text: str, problem_text: str) -> None:
+    """A blocks-world report's `total_cost`, as the STRIPS engine gives it: the initial
+    `(= (total-cost) N)` plus the cost of every applied step (a blocks world's costs are
+    numbers: its only function is total-cost)."""
+    domain = cached_strips_domain(domain_text)
+    has_costs = any(s.cost for s in domain.schemas.values()) or bool(domain.functions)
+    if not has_costs and "total-cost" not in problem_text.lower():
+        return
+    problem = cached_strips_problem(domain_text, problem_text)
+    if not has_costs and problem.initial_cost is None:
+        return
+    total = problem.initial_cost or 0.0
+    for step in data["steps"]:
+        if step["ok"]:
+            schema = domain.schemas[step["action"]["action"]]
+            total += sum(c for c in schema.cost if isinstance(c, float))
+    data["total_cost"] = total_value(total)
+
+
+def validate_pddl_dict(domain_text: str, problem_text: str, plan_text: str, *,
+                       engine: str = "auto", all_errors: bool = False) -> dict[str, Any]:
+    """The JSON-ready report for any supported PDDL domain (see the module docstring)."""
+    if engine not in ENGINES:
+        raise VeriGraphError(f"unknown engine '{engine}'", field="engine", value=engine,
+                             fix=f"use one of {', '.join(ENGINES)}")
+    cached_strips_domain(domain_text)  # refuses what no engine may skip (module docstring)
+    if engine == "auto" and not _blocks_world(domain_text):
+        engine = "strips"  # the blocks engine (and the scene-graph stack) is not loaded
+    if engine != "strips":
+        data = _judge_blocks(domain_text, problem_text, plan_text, engine, all_errors)
+        if data is not None:
+            return data
+    return validate_strips_dict(domain_text, problem_text, plan_text, all_errors=all_errors)
+
+
+def _judge_blocks(domain_text: str, problem_text: str, plan_text: str, engine: str,
+                  all_errors: bool) -> dict[str, Any] | None:
+    """The report when the blocks world takes the domain and problem, explained by the
+    STRIPS simulator where the plan fails; None when it takes neither (the STRIPS
+    simulator then judges the plan as written; with engine="blocksworld" the refusal is
+    raised instead).
+
+    A plan line the blocks world cannot read is judged by the STRIPS simulator, which
+    makes it a failing step; a name that is not ASCII is bad input in every engine, so
+    that refusal (`ascii_names`, the first thing either engine's plan reader does) is
+    raised as it is.
+    """
+    from verigraph.pddl.blocksworld.validate import validate_blocks_dict
+
+    _check_problem(problem_text, domain_text)
+    try:
+        data = validate_blocks_dict(domain_text, problem_text, plan_text)
+    except UnsupportedDomainError:
+        if engine == "blocksworld":
+            raise
+        return None
+    except PlanParseError:
+        if not plan_text.isascii():
+            ascii_names(plan_text)
+        return validate_strips_dict(domain_text, problem_text,
+                                    _canonical(domain_text, problem_text, plan_text),
+                                    all_errors=all_errors)
+    except VeriGraphError:  # PDDL the recogniser does not take (either types, ...)
+        if engine == "blocksworld":
+            raise
+        return None
+    data = {"engine": "blocksworld", **data}
+    _add_total_cost(data, domain_text, problem_text)
+    if not data["valid"]:
+        if all_errors and data["violations"]:
+            return validate_strips_dict(domain_text, problem_text,
+                                        _canonical(domain_text, problem_text, plan_text),
+                                        all_errors=True)
+        _explain(data, domain_text, problem_text, plan_text)
+    return data
+
+
+@lru_cache(maxsize=64)
+def _blocks_world(domain_text: str) -> bool:
+    """Whether the domain is a blocks world up to renaming, answered once per text (a
+    batch of another domain asks for every item; a refusal is not cached below). A
+    domain whose predicates or actions cannot be the family's (one binary predicate, at
+    most three unary and one nullary, three or four actions) is not read again."""
+    domain = cached_strips_domain(domain_text)
+    arities = [len(signature) for signature in domain.predicates.values()]
+    if len(domain.schemas) not in (3, 4) or max(arities, default=0) > 2 \
+            or arities.count(2) != 1 or arities.count(1) > 3 or arities.count(0) > 1:
+        return False
+    try:
+        cached_domain(domain_text)
+    except VeriGraphError:  # another domain, or PDDL the recogniser does not take
+        return False
+    return True
+
+
+def _canonical(domain_text: str, problem_text: str, plan_text: str) -> str:
+    """The plan with each line the blocks world can read as `(op args)`, the others as
+    written (the STRIPS reader makes them failing steps); one output line per input line."""
+    from verigraph.pddl.blocksworld.plans import parse_blocks_plan
+    from verigraph.pddl.blocksworld.problem import read_blocks_problem
+
+    domain = cached_domain(domain_text)
+    declared = set(read_blocks_problem(problem_text, domain).blocks)
+    out = []
+    for line in plan_text.splitlines():
+        try:
+            steps = parse_blocks_plan(line, domain, declared)
+        except PlanParseError:
+            out.append(line)
+            continue
+        out.append(steps[0].text if steps else line)
+    return "\n".join(out)
+
+
+def _explain(data: dict[str, Any], domain_text: str, problem_text: str, plan_text: str) -> None:
+    """Add the STRIPS explanation (unsatisfied literals, achievers) to a blocks report."""
+    from verigraph.pddl.blocksworld.plans import parse_blocks_plan
+    from verigraph.pddl.blocksworld.problem import read_blocks_problem
+
+    try:
+        domain = cached_domain(domain_text)
+        declared = set(read_blocks_problem(problem_text, domain).blocks)
+        canonical = "\n".join(s.text for s in parse_blocks_plan(plan_text, domain, declared))
+        strips = validate_strips_dict(domain_text, problem_text, canonical)
+    except VeriGraphError:
+        return
+    if data["violations"] and strips["violations"] \
+            and strips["violations"][0]["step"] == data["violations"][0]["step"]:
+        data["violations"][0]["unsatisfied"] = strips["violations"][0]["unsatisfied"]
+    if not data["violations"] and not strips["violations"]:
+        data["unmet_goals"] = strips["unmet_goals"]
