@@ -42,7 +42,7 @@ from verigraph.perception.label.catalogue import models_by_colour
 from verigraph.perception.label.labelling import ColourShapeLabeller, Labeller, Shape, shape_error
 from verigraph.perception.relate.confidence import edge_name, graph_confidence, upright_doubts
 from verigraph.perception.relate.graphing import assign_ids, tabletop_graph
-from verigraph.perception.relate.household import read_household
+from verigraph.perception.relate.household import household_kinds, read_household
 from verigraph.perception.relate.occluded import (
     HIDDEN_REASON,
     blocked_views,
@@ -65,7 +65,8 @@ log = logging.getLogger("verigraph.perception")
 DEFAULT_CONFIG = PerceptionConfig()
 DEFAULT_LABELLER = ColourShapeLabeller()
 UNKNOWN_COLOURS = "have colours no dictionary object is drawn in"
-UNION = "all"  # load_dictionary(None): the built-ins together; the family is inferred
+UNION = "all"
+HOUSEHOLD = "household"  # load_dictionary(None): the built-ins together; the family is inferred
 FAMILY_MARGIN = 0.03
 ILL_FORMED_PENALTY = 0.05
 SHAPE_PENALTY = 0.1  # per unit of mean shape error: a red block is no mug by its outline
@@ -123,6 +124,10 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
 def _add_household(result: PerceptionResult, bgr: np.ndarray, d: Dictionary) -> None:
     """Household furniture, doors and switches (`relate.household`): new nodes, states
     with their confidences, doubts and a note. A render with none of them is unchanged."""
+    if d.name == UNION:  # the union of the tabletop families: a household is told by
+        d = builtin_dictionary(HOUSEHOLD)  # its own colours, doors and lamps
+    elif not household_kinds(d):
+        return
     reading = read_household(bgr, d, result.objects, result.scale)
     if reading.found or any(UNKNOWN_COLOURS in w for w in result.warnings):
         # Colours off the renderer's (white balance, gamma, a tint): read the picture
@@ -137,6 +142,11 @@ def _add_household(result: PerceptionResult, bgr: np.ndarray, d: Dictionary) -> 
                 reading = again
     if not reading.found:
         return
+    if reading.nodes and result.family != HOUSEHOLD:
+        result.family = HOUSEHOLD
+        result.graph.dictionary = HOUSEHOLD
+        result.family_reason = ("household: household furniture is seen (" + ", ".join(
+            sorted(n.id for n in reading.nodes)) + ")")
     result.graph.nodes.extend(reading.nodes)
     result.objects.extend(reading.objects)
     for node in result.graph.nodes:

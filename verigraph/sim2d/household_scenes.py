@@ -30,7 +30,7 @@ STATES = {"fridge": "open", "cabinet": "open", "stove": "toggled_on", "sink": "t
 
 def household_scene(seed: int, n_objects: int | None = None
                     ) -> tuple[SceneGraph, TabletopWorld]:
-    """A random household graph (all built-in dictionaries) and its simulated world."""
+    """A random household graph (household dictionary) and its simulated world."""
     rng = random.Random(f"household:{seed}")
     n = n_objects if n_objects is not None else rng.randint(4, 7)
     labels = rng.sample(ITEMS, min(n, len(ITEMS)))
@@ -44,7 +44,7 @@ def household_scene(seed: int, n_objects: int | None = None
     edges = [Edge(source=f, relation="inroom", target=room) for f, room in ROOMS.items()]
     edges += [Edge(source=lab, relation="on", target=rng.choice(["counter", "table"]))
               for lab in labels]
-    graph = SceneGraph(nodes=nodes, edges=edges)
+    graph = SceneGraph(nodes=nodes, edges=edges, dictionary="household")
     return graph, build_tabletop(graph, seed)
 
 

@@ -117,7 +117,7 @@ def floor_scale(image: np.ndarray) -> float:
     return rows / FLOOR_UNITS
 
 
-def _kinds(dictionary: Dictionary) -> dict[str, list[str]]:
+def household_kinds(dictionary: Dictionary) -> dict[str, list[str]]:
     """Household colour -> the fixed kinds drawn in it (dictionary order)."""
     out: dict[str, list[str]] = {}
     for label, props in dictionary.objects.items():
@@ -131,7 +131,7 @@ def read_household(image: np.ndarray, dictionary: Dictionary,
                    objects: list[DetectedObject], scale: float = 0.0) -> HouseholdReading:
     """Household furniture, doors and switches in a side view (see the module doc)."""
     reading = HouseholdReading()
-    kinds = _kinds(dictionary)
+    kinds = household_kinds(dictionary)
     toggleable = [o for o in objects if (p := dictionary.objects.get(o.label)) is not None
                   and p.toggleable]
     if not kinds and not toggleable:
