@@ -37,7 +37,9 @@ def _scenery(family: str) -> list[tuple[int, int, int]]:
 
 def _object_colours(family: str) -> list[tuple[int, int, int]]:
     names = {p.color for p in builtin_dictionary(family).objects.values() if p.color}
-    return [palette.COLORS[c] for c in names | set(palette.BLOCK_COLORS)]
+    # Household kinds draw outside the palette (palette.HOUSEHOLD_COLORS): the tabletop
+    # pipeline's object colours are the palette's only.
+    return [palette.COLORS[c] for c in names | set(palette.BLOCK_COLORS) if c in palette.COLORS]
 
 
 @pytest.mark.parametrize("family", FAMILIES)

@@ -12,7 +12,7 @@ import re
 import unicodedata
 from typing import Any
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, field_validator
 
 from verigraph.errors import DictionaryError
 from verigraph.graph.dictionary import (
@@ -42,6 +42,13 @@ class SubmittedNode(BaseModel):
     id: str = Field(min_length=1, max_length=128)
     label: str = Field(min_length=1, max_length=128)
     attrs: dict[str, Any] = Field(default_factory=dict)
+    # Household states (open, toggled_on), checked as on a Node; dumped only when set.
+    state: dict[str, bool] = Field(default_factory=dict, exclude_if=lambda state: not state)
+
+    @field_validator("state", mode="before")
+    @classmethod
+    def _known_states(cls, value: Any) -> Any:
+        return Node._known_states(value)
 
 
 class SubmittedEdge(BaseModel):
@@ -112,7 +119,8 @@ def normalise_graph(graph: SubmittedGraph, dictionary: Dictionary
                                   reading=dictionary.reading(raw.label)
                                   or f"{raw.label} read as {label} (case and spacing, your "
                                      "label)"))
-        nodes.append(Node.model_construct(id=node_id, label=label, attrs=dict(raw.attrs)))
+        nodes.append(Node.model_construct(id=node_id, label=label, attrs=dict(raw.attrs),
+                                          state=dict(raw.state)))
     by_label: dict[str, list[str]] = {}
     for node in nodes:
         by_label.setdefault(node.label, []).append(node.id)

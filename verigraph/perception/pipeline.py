@@ -42,6 +42,7 @@ from verigraph.perception.label.catalogue import models_by_colour
 from verigraph.perception.label.labelling import ColourShapeLabeller, Labeller, Shape, shape_error
 from verigraph.perception.relate.confidence import edge_name, graph_confidence, upright_doubts
 from verigraph.perception.relate.graphing import assign_ids, tabletop_graph
+from verigraph.perception.relate.household import household_kinds, read_household
 from verigraph.perception.relate.occluded import (
     HIDDEN_REASON,
     blocked_views,
@@ -63,7 +64,9 @@ log = logging.getLogger("verigraph.perception")
 
 DEFAULT_CONFIG = PerceptionConfig()
 DEFAULT_LABELLER = ColourShapeLabeller()
-UNION = "all"  # load_dictionary(None): the built-ins together; the family is inferred
+UNKNOWN_COLOURS = "have colours no dictionary object is drawn in"
+UNION = "all"
+HOUSEHOLD = "household"  # load_dictionary(None): the built-ins together; the family is inferred
 FAMILY_MARGIN = 0.03
 ILL_FORMED_PENALTY = 0.05
 SHAPE_PENALTY = 0.1  # per unit of mean shape error: a red block is no mug by its outline
@@ -101,6 +104,8 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
     else:
         result = _perceive_tabletop(bgr, d, config, labeller, level < SOFT,
                                     restored is not None)
+    if result.view == "tabletop":
+        _add_household(result, bgr, d)
     if blurred is not None:
         result.warnings.insert(0, blurred)
     if restored is not None:
@@ -114,6 +119,42 @@ def perceive_image(image: Any, *, dictionary: Dictionary | str | None = None,
     for w in result.warnings:
         log.warning("perception: %s", w)
     return result
+
+
+def _add_household(result: PerceptionResult, bgr: np.ndarray, d: Dictionary) -> None:
+    """Household furniture, doors and switches (`relate.household`): new nodes, states
+    with their confidences, doubts and a note. A render with none of them is unchanged."""
+    if d.name == UNION:  # the union of the tabletop families: a household is told by
+        d = builtin_dictionary(HOUSEHOLD)  # its own colours, doors and lamps
+    elif not household_kinds(d):
+        return
+    reading = read_household(bgr, d, result.objects, result.scale)
+    if reading.found or any(UNKNOWN_COLOURS in w for w in result.warnings):
+        # Colours off the renderer's (white balance, gamma, a tint): read the picture
+        # again after a tone map fitted to the palette and household colours together.
+        colours = [*palette.COLORS.values(), *palette.HOUSEHOLD_COLORS.values(),
+                   palette.DOOR, palette.LIT]
+        photo = correct_colours(bgr, colours, palette.BACKGROUND,
+                                [palette.BACKGROUND, palette.FLOOR])
+        if photo.image is not bgr:
+            again = read_household(photo.image, d, result.objects, result.scale)
+            if again.sure > reading.sure:
+                reading = again
+    if not reading.found:
+        return
+    if reading.nodes and result.family != HOUSEHOLD:
+        result.family = HOUSEHOLD
+        result.graph.dictionary = HOUSEHOLD
+        result.family_reason = ("household: household furniture is seen (" + ", ".join(
+            sorted(n.id for n in reading.nodes)) + ")")
+    result.graph.nodes.extend(reading.nodes)
+    result.objects.extend(reading.objects)
+    for node in result.graph.nodes:
+        if node.id in reading.states:
+            node.state = {**node.state, **reading.states[node.id]}
+    result.confidence.update(reading.confidence)
+    result.uncertain.extend(reading.uncertain)
+    result.warnings.extend(reading.warnings)
 
 
 def _perceive_tabletop(bgr: np.ndarray, d: Dictionary, config: PerceptionConfig,

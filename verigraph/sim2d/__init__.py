@@ -36,13 +36,6 @@ def world_for_graph(graph: SceneGraph, seed: int = 0) -> SimWorld:
     if is_tangram(graph):
         from verigraph.sim2d.tangram import build_tangram
         return build_tangram(graph)
-    household = next((e.sentence() for e in graph.edges
-                      if e.relation in ("under", "nextto", "inroom")), None) or next(
-        (f"{n.id} has state {n.state}" for n in graph.nodes if n.state), None)
-    if household is not None:  # doors, switches and rooms are not drawn yet
-        raise SimError("the 2D simulator does not carry out household scenes (rooms, "
-                       f"under, nextto, object states): {household}", field="simulate",
-                       value=True, fix="load the scene with executor graph (simulate=false)")
     from verigraph.sim2d.layout import build_tabletop
     return build_tabletop(graph, seed)
 

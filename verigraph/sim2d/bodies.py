@@ -121,11 +121,14 @@ def movable_spec(label: str, props: ObjectProperties) -> BodySpec:
     return BodySpec(label=label, kind="box", width=w, height=h, parts=(part,), top=h)
 
 
-def furniture_spec(label: str, props: ObjectProperties, width: float) -> BodySpec:
+def furniture_spec(label: str, props: ObjectProperties, width: float, *,
+                   legs: bool = False, depth: float | None = None) -> BodySpec:
     """Fixed furniture standing on the floor, carrying things at `FURNITURE_TOP`.
 
     Tables and desks stand on legs, counters and stoves on a cabinet, a shelf on a
     post; a fixed container is a bin on legs and a fixed non-surface is a plain block.
+    In a household every surface stands on two legs (`legs`), so that things fit
+    `under` it, and a bin is at least `depth` deep (so a door closes over what it holds).
     """
     h = float(props.height or DEFAULT_FURNITURE_SIZE[1])
     top = FURNITURE_TOP
@@ -137,14 +140,17 @@ def furniture_spec(label: str, props: ObjectProperties, width: float) -> BodySpe
     parts: tuple[Polygon, ...]
     if props.container:
         t = wall_thickness(width)
-        bin_h = max(h, 6.0)
+        bin_h = max(h, 6.0, depth or 0.0)
         parts = (_box(-half, top - t, half, top), _box(-half, top, -half + t, top + bin_h),
                  _box(half - t, top, half, top + bin_h), _box(-half + 1, 0, -half + 3, top - t),
                  _box(half - 3, 0, half - 1, top - t))
         return BodySpec(label=label, kind="furniture", width=width, height=top + bin_h,
                         parts=parts, top=top + bin_h,
                         cavity=(-(half - t), half - t, top, top + bin_h), wall=t)
-    if label in ("counter", "stove"):
+    if legs:
+        parts = (slab, _box(-half + 1.0, 0.0, -half + 3.0, top - h),
+                 _box(half - 3.0, 0.0, half - 1.0, top - h))
+    elif label in ("counter", "stove"):
         parts = (slab, _box(-half + 1.0, 0.0, half - 1.0, top - h))
     elif label == "shelf":
         parts = (slab, _box(-1.5, 0.0, 1.5, top - h), _box(-5.0, 0.0, 5.0, 1.0))
@@ -157,3 +163,17 @@ def furniture_spec(label: str, props: ObjectProperties, width: float) -> BodySpe
                  _box(half - 3.0, 0.0, half - 1.0, top - h))
     return BodySpec(label=label, kind="furniture", width=width, height=top, parts=parts,
                     top=top)
+
+
+def under_span(spec: BodySpec, props: ObjectProperties) -> tuple[float, float, float] | None:
+    """(x0, x1, ceiling) in the local frame: the free floor between a surface's legs and
+    the underside of its top, or None if nothing fits under it (a cabinet base)."""
+    if spec.kind != "furniture" or not props.surface or props.container:
+        return None
+    legs = [p for p in spec.parts[1:] if p[0][1] == 0.0]
+    if len(legs) != 2:
+        return None
+    x0 = max(x for x, _ in legs[0])
+    x1 = min(x for x, _ in legs[1])
+    ceiling = spec.top - float(props.height or DEFAULT_FURNITURE_SIZE[1])
+    return (x0, x1, ceiling) if x1 - x0 > 1.0 else None

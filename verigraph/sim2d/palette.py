@@ -41,6 +41,28 @@ COLORS: dict[str, BGR] = {
     "maroon": (30, 30, 120),
     "beige": (190, 220, 235),
 }
+# Household kinds (docs/worlds.md, Household worlds) draw in colours of their own, kept
+# out of COLORS: perception's tabletop catalogue is built from COLORS, so a kitchen,
+# blocks or tableware render reads exactly as before; `perception.relate.household`
+# reads these separately.
+HOUSEHOLD_COLORS: dict[str, BGR] = {
+    "ivory": (195, 255, 135),
+    "oak": (0, 60, 45),
+    "charcoal": (75, 15, 105),
+    "chrome": (255, 180, 45),
+    "cardboard": (120, 135, 255),
+    "amber": (15, 90, 255),
+    "cream": (120, 180, 135),
+    "wheat": (120, 225, 150),
+    "gold": (0, 255, 240),
+}
+# A door of an openable container, and the lit element of a toggleable object that is
+# on (an object that is off shows no element: it looks as it always did). These and
+# the household colours were picked greedily, each as far (CIELAB) from the palette,
+# the wall, the floor, the outline and each other as a shade near its name allows
+# (door and lit at least 36 units from everything, the fixed kinds' 35).
+DOOR: BGR = (120, 0, 255)
+LIT: BGR = (150, 255, 240)
 FALLBACK: BGR = (120, 120, 120)
 BLOCK_COLORS = ("red", "blue", "green", "yellow", "purple", "orange", "cyan", "pink", "lime",
                 "magenta", "olive", "maroon")
@@ -69,4 +91,5 @@ def bgr(name: str | None) -> BGR:
     """BGR triple for a colour name (case and spaces ignored), or the fallback grey."""
     if not name:
         return FALLBACK
-    return COLORS.get(name.strip().lower().replace(" ", ""), FALLBACK)
+    key = name.strip().lower().replace(" ", "")
+    return COLORS.get(key) or HOUSEHOLD_COLORS.get(key, FALLBACK)

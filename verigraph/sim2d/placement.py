@@ -34,6 +34,7 @@ MAX_GRID_POINTS = 4096
 SIDE_NORMAL = 0.5
 FOOTING_PROBE = 0.25
 MIN_FOOTING = 2.0
+HOUSEHOLD_SIDE_GAP = 0.4  # wider than readback.NEXT_GAP
 
 
 @dataclass(frozen=True, slots=True)
@@ -126,8 +127,8 @@ class _Terrain:
 
     def __init__(self, scene: TabletopScene, skip: str) -> None:
         self.polys: list[tuple[float, float, list[tuple[float, float]]]] = []
-        bodies = [scene.floor] + [t.body for t in scene.things.values()
-                                  if t.id != skip and t.body.space is not None]
+        bodies = [scene.floor, *scene.fixtures] + [
+            t.body for t in scene.things.values() if t.id != skip and t.body.space is not None]
         for body in bodies:
             for poly in physics.world_polygons(body):
                 xs = [p[0] for p in poly]
@@ -254,6 +255,13 @@ def _accept(scene: TabletopScene, thing: Thing, pose: BodyPose, relation: str, t
         sup = direct_support(scene, thing, contacts)
         if sup.supporter is None or sup.span is None:
             return False
+        if scene.household and sup.supporter != target:
+            return False  # resting on a neighbour inside a bin would pin it down
+        if scene.household:
+            own = scene.things[sup.supporter].body
+            if any(abs(c.ny) < SIDE_NORMAL and c.other is not own for c in
+                   physics.probe_contacts(scene.space, thing.body, HOUSEHOLD_SIDE_GAP)):
+                return False  # so close to a neighbour that it would read as next to it
         # The footing: everything within a small drop under the object, since it will
         # tilt that little onto a second rim or edge before coming to rest.
         footing = direct_support(scene, thing, physics.probe_contacts(

@@ -27,7 +27,7 @@ from verigraph.sim2d.placement import (
     mass_centre,
     subtree_of,
 )
-from verigraph.sim2d.readback import DirectSupport, read_supports
+from verigraph.sim2d.readback import NEXT_GAP, DirectSupport, read_supports
 from verigraph.sim2d.scene import Snapshot, TabletopScene
 
 CANDIDATES = 3
@@ -84,7 +84,10 @@ def _try_slides(scene: TabletopScene, obj: str, relation: str, target: str,
         if moved != supports:
             return None
         for ids, _ in slides:
-            if not _balanced(scene, moved_direct, ids):
+            # A household row slid as one group: each of its stacks must stay balanced.
+            parts = [tuple(subtree_of(moved_direct, o)) for o in ids
+                     if moved_direct[o].supporter not in ids] if scene.household else [ids]
+            if not all(_balanced(scene, moved_direct, part) for part in parts):
                 return None
         found = find_placements(scene, obj, relation, target, moved, moved_direct, limit=1)
         return Plan(found[0], slides) if found else None
@@ -126,6 +129,18 @@ def _loads(direct: dict[str, DirectSupport], target: str, obj: str) -> list[tupl
     """What rests on `target`: one group (an object and all it carries) per object."""
     children = [o for o, sup in direct.items() if sup.supporter == target and o != obj]
     return [tuple(subtree_of(direct, c)) for c in children]
+
+
+def _rows(scene: TabletopScene, groups: list[tuple[str, ...]]) -> list[tuple[str, ...]]:
+    """Groups standing next to each other (a household `nextto` row) as one group, so
+    that sliding keeps them together."""
+    out: list[tuple[str, ...]] = []
+    for ids in sorted(groups, key=lambda g: _extent(scene, g)[0]):
+        if out and _extent(scene, ids)[0] - _extent(scene, out[-1])[1] <= NEXT_GAP:
+            out[-1] = out[-1] + ids
+        else:
+            out.append(ids)
+    return out
 
 
 def _extent(scene: TabletopScene, ids: tuple[str, ...]) -> tuple[float, float]:
@@ -170,6 +185,8 @@ def _slide_plans(scene: TabletopScene, obj: str, relation: str, target: str,
     furniture, also push its neighbours there aside so that the object may overhang."""
     tgt = scene.things[target]
     loads = _loads(direct, target, obj)
+    if scene.household:
+        loads = _rows(scene, loads)
     left, _, right, _ = tgt.bounds()
     own: list[tuple[Slide, ...]] = []
     if relation == "on" and loads:
@@ -206,6 +223,8 @@ def _nudges(scene: TabletopScene, direct: dict[str, DirectSupport], furniture: s
     from them, or push everything else to the furniture's edges."""
     left, _, right, _ = scene.things[furniture].bounds()
     groups = [g for g in _loads(direct, furniture, obj) if target not in g]
+    if scene.household:
+        groups = _rows(scene, groups)
     centre = sum(_extent(scene, tuple(subtree_of(direct, target)))) / 2
     before = [g for g in groups if sum(_extent(scene, g)) / 2 < centre]
     after = [g for g in groups if sum(_extent(scene, g)) / 2 >= centre]

@@ -17,11 +17,13 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
+from verigraph.sim2d.bodies import under_span
 from verigraph.sim2d.physics import Contact, probe_contacts
 from verigraph.sim2d.scene import TabletopScene, Thing
 
 SUPPORT_NORMAL = 0.5
 CAVITY_FLOOR_TOLERANCE = 0.5
+NEXT_GAP = 0.2  # an object at most this far right of another on the same base is next to it
 
 
 @dataclass(frozen=True, slots=True)
@@ -166,4 +168,47 @@ def read_supports(scene: TabletopScene) -> tuple[dict[str, tuple[str, str]],
     supports = resolve_supports(
         direct, lambda obj, sup: relation_to(scene, scene.things[obj], scene.things[sup]),
         holder)
+    if scene.household:
+        supports.update(beside(scene, direct))
     return supports, direct
+
+
+def beside(scene: TabletopScene, direct: Mapping[str, DirectSupport]
+           ) -> dict[str, tuple[str, str]]:
+    """Household placements read from where things stand: a movable object whose left
+    side is within `NEXT_GAP` of the right side of another thing resting on the same
+    base (the same supporter, or both the floor) is `nextto` it; one standing on the
+    floor between a surface's legs, below its top, is `under` it."""
+    out: dict[str, tuple[str, str]] = {}
+    things = [scene.things[obj] for obj in direct]
+    for t in things:
+        base = direct[t.id]
+        if t.fixed or (base.supporter is None and not base.on_floor):
+            continue
+        left, bottom, right, top = t.bounds()
+        best: tuple[float, str] | None = None
+        for other in things:
+            o_base = direct[other.id]
+            if other is t or (o_base.supporter, o_base.on_floor) != (base.supporter,
+                                                                     base.on_floor):
+                continue
+            _, o_bottom, o_right, o_top = other.bounds()
+            gap = left - o_right
+            if -0.05 <= gap <= NEXT_GAP and min(top, o_top) > max(bottom, o_bottom) and (
+                    best is None or gap < best[0]):
+                best = (gap, other.id)
+        if best is not None:
+            out[t.id] = ("nextto", best[1])
+            continue
+        if not base.on_floor:
+            continue
+        centre = (left + right) / 2
+        for f in things:
+            span = under_span(f.spec, f.props) if f.fixed else None
+            if span is None:
+                continue
+            x, y = float(f.body.position.x), float(f.body.position.y)
+            if x + span[0] <= centre <= x + span[1] and top <= y + span[2] + 0.05:
+                out[t.id] = ("under", f.id)
+                break
+    return out

@@ -21,11 +21,13 @@ from typing import Protocol
 
 import cv2
 import numpy as np
+import pymunk
 
 from verigraph.graph.dictionary import builtin_dictionary
 from verigraph.graph.model import Node
 from verigraph.sim2d import palette, physics
 from verigraph.sim2d.bodies import FURNITURE_TOP
+from verigraph.sim2d.household import LAMP_RADIUS, Door, Household, lamp_centre
 from verigraph.sim2d.scene import TabletopScene
 
 SHIFT = 4
@@ -50,6 +52,9 @@ class TabletopPicture(Protocol):
 
     @property
     def nodes(self) -> Sequence[Node]: ...
+
+    @property
+    def household(self) -> Household: ...
 
 
 class TangramPicture(Protocol):
@@ -123,12 +128,19 @@ def _label(img: np.ndarray, text: str, at: tuple[int, int]) -> None:
     cv2.putText(img, text, at, cv2.FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv2.LINE_AA)
 
 
+def _door_points(door: Door) -> list[tuple[float, float]]:
+    return [(float(v.x), float(v.y)) for shape in door.body.shapes
+            if isinstance(shape, pymunk.Poly) for v in shape.get_vertices()]
+
+
 def tabletop_view(world: TabletopPicture) -> View:
     """Furniture extent with headroom for stacks; grows if something stands higher."""
     things = [t for t in world.scene.things.values() if t.body.space is not None]
     fixed = [t.bounds() for t in things if t.fixed] or [t.bounds() for t in things] \
         or [(0.0, 0.0, 40.0, FURNITURE_TOP)]
-    top = max([b[3] for b in (t.bounds() for t in things)] + [FURNITURE_TOP])
+    doors = [max(door.body.local_to_world(p).y for p in _door_points(door))
+             for door in world.household.doors.values()]  # an open door stands up
+    top = max([b[3] for b in (t.bounds() for t in things)] + [FURNITURE_TOP] + doors)
     x0 = min(b[0] for b in fixed) - MARGIN
     x1 = max(b[2] for b in fixed) + MARGIN
     y1 = max(top + MARGIN, FURNITURE_TOP + HEADROOM)
@@ -157,6 +169,7 @@ def render_tabletop(world: TabletopPicture, width: int | None = None, height: in
             continue
         color = palette.object_color(t.id, colors.get(t.id), t.props.color)
         _draw_polys(img, cam, physics.world_polygons(t.body), color)
+    _draw_household(img, cam, world)
     if labels:
         for t in things:
             if t.body.space is None:
@@ -171,6 +184,25 @@ def render_tabletop(world: TabletopPicture, width: int | None = None, height: in
                 y -= 4
             _label(img, t.id, (x, y))
     return img
+
+
+def _draw_household(img: np.ndarray, cam: _Camera, world: TabletopPicture) -> None:
+    """Doors (closed across the opening, open upright beside it) and the lit element of
+    everything that is switched on; nothing for what is off."""
+    house = world.household
+    for door in house.doors.values():
+        _draw_polys(img, cam, physics.world_polygons(door.body), palette.DOOR)
+    for obj, on in house.switches.items():
+        thing = world.scene.things.get(obj)
+        if not on or thing is None or thing.body.space is None:
+            continue
+        x, y = lamp_centre(thing)
+        centre = cam.points([(x, y)])[0]
+        radius = int(round(LAMP_RADIUS * cam.s * SCALE))
+        cv2.circle(img, (int(centre[0]), int(centre[1])), radius, palette.OUTLINE, 3,
+                   cv2.LINE_8, SHIFT)
+        cv2.circle(img, (int(centre[0]), int(centre[1])), radius, palette.LIT, -1,
+                   cv2.LINE_8, SHIFT)
 
 
 def tabletop_boxes(world: TabletopPicture, width: int | None = None, height: int | None = None

@@ -61,7 +61,7 @@ def _crowded(state: WorldState, support: str) -> bool:
     return False
 
 
-def _base_width(state: WorldState, obj: str) -> float:
+def base_width(state: WorldState, obj: str) -> float:
     """Width of what the object stands on (a plate's foot is narrower than its top)."""
     info = state.objects[obj]
     spec = movable_spec(info.label, info.props)
@@ -80,7 +80,7 @@ def _balances(state: WorldState, obj: str) -> bool:
     if below is not None and state.objects[below[1]].props.movable and (
             below[0] == "in" or _width(state, below[1]) < _width(state, obj)):
         return True
-    return _base_width(state, obj) < 0.9 * _width(state, obj) or _crowded(state, obj)
+    return base_width(state, obj) < 0.9 * _width(state, obj) or _crowded(state, obj)
 
 
 def _above(state: WorldState, obj: str) -> set[str]:

@@ -61,6 +61,10 @@ class TabletopScene:
         self.floor = physics.add_floor(self.space)
         self.things: dict[str, Thing] = {}
         self.by_body: dict[pymunk.Body, str] = {}
+        # A household scene also reads `under` and `nextto` from where things stand.
+        self.household = False
+        # Bodies that are no objects of the graph but stop things (household doors).
+        self.fixtures: list[pymunk.Body] = []
 
     def add(self, thing: Thing, *, in_space: bool = True) -> None:
         self.things[thing.id] = thing

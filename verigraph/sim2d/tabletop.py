@@ -17,12 +17,14 @@ import math
 import numpy as np
 
 from verigraph.actions.feedback import Violation
-from verigraph.actions.model import AlignAction, MoveAction
+from verigraph.actions.model import AlignAction, MoveAction, StateAction
 from verigraph.graph.dictionary import Dictionary, InlineDictionary
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.sim2d import physics
+from verigraph.sim2d.beside import BESIDE, place_beside
 from verigraph.sim2d.carry import carry_over
 from verigraph.sim2d.errors import SimError
+from verigraph.sim2d.household import Household
 from verigraph.sim2d.putdown import put_down, turned
 from verigraph.sim2d.readback import read_supports
 from verigraph.sim2d.render import render_tabletop
@@ -38,19 +40,62 @@ class TabletopWorld(SimWorld):
     kind: WorldKind = "tabletop"
 
     def __init__(self, scene: TabletopScene, nodes: list[Node], dictionary: Dictionary,
-                 dictionary_name: str | InlineDictionary | None) -> None:
+                 dictionary_name: str | InlineDictionary | None,
+                 household: Household | None = None) -> None:
         self.scene = scene
         self.nodes = [n.model_copy(deep=True) for n in nodes]
         self.dictionary = dictionary
         self.dictionary_name = dictionary_name
+        # Doors, switches and rooms; a plain tabletop has switches only (a stove).
+        self.household = household if household is not None else Household(switches={
+            t.id: False for t in scene.things.values() if t.props.toggleable})
 
     # -- World protocol --------------------------------------------------------------------
     def observe(self) -> SceneGraph:
         supports, _ = read_supports(self.scene)
         edges = [Edge(source=obj, relation=rel, target=target)
                  for obj, (rel, target) in supports.items()]
-        return SceneGraph(nodes=[n.model_copy(deep=True) for n in self.nodes], edges=edges,
+        edges += self.household.room_edges(self.scene)
+        states = self.household.states(self.scene)
+        nodes = [n.model_copy(deep=True) for n in self.nodes]
+        for node in nodes:
+            node.state = states.get(node.id, {})
+        return SceneGraph(nodes=nodes, edges=edges,
                           dictionary=self.dictionary_name).canonical()
+
+    def perform_state(self, action: StateAction) -> Violation | None:
+        """Open or close a door, or flip a switch (the validator has checked the roles
+        and the current state). A door that would close on something sticking out of
+        its container is refused before anything moves."""
+        obj = action.object
+        if obj not in self.scene.things:
+            raise SimError(f"there is no object '{obj}' in the simulated scene",
+                           field="object", value=obj,
+                           fix=f"use one of {', '.join(self.scene.things)}")
+        house = self.household
+        if action.action in ("open", "close"):
+            if obj not in house.doors:
+                return Violation(action=action.model_dump(), constraint="not_openable",
+                                 message=f"{obj} has no door in the simulator",
+                                 suggestion=f"do not {action.action} {obj}")
+            if action.action == "close":
+                blocking = house.blocking_door(self.scene, obj)
+                if blocking:
+                    return Violation(
+                        action=action.model_dump(), constraint="no_room",
+                        message=f"the door of {obj} would hit {', '.join(blocking)}, which "
+                                "sticks out over its rim; nothing was moved",
+                        blocking=blocking, suggestion=f"take {blocking[0]} out of {obj} first")
+            house.set_open(obj, action.action == "open")
+            house.given.setdefault(obj, set()).add("open")
+            return None
+        if obj not in house.switches:
+            return Violation(action=action.model_dump(), constraint="not_toggleable",
+                             message=f"{obj} has no switch in the simulator",
+                             suggestion=f"do not {action.action} {obj}")
+        house.switches[obj] = action.action == "toggle_on"
+        house.given.setdefault(obj, set()).add("toggled_on")
+        return None
 
     def perform(self, action: MoveAction | AlignAction) -> Violation | None:
         if not isinstance(action, MoveAction):
@@ -103,7 +148,9 @@ class TabletopWorld(SimWorld):
             body = physics.make_body(t.spec, physics.pose_of(t.body), fixed=t.fixed)
             scene.add(Thing(t.id, t.label, t.props, t.spec, body, t.fixed),
                       in_space=t.body.space is not None)
-        return TabletopWorld(scene, self.nodes, self.dictionary, self.dictionary_name)
+        scene.household = self.scene.household
+        return TabletopWorld(scene, self.nodes, self.dictionary, self.dictionary_name,
+                             self.household.copy_into(scene))
 
     # -- internals ---------------------------------------------------------------------------
     def _check_ids(self, action: MoveAction) -> None:
@@ -129,8 +176,12 @@ class TabletopWorld(SimWorld):
             if moved:  # something leant on the object: lifting it would upset that
                 scene.restore(before)
                 return self._refusal(action, held, "disturbs", moved)
-        outcome = put_down(scene, action.object, action.relation, action.target,
-                           verify=verified)
+        if action.relation in BESIDE:
+            outcome = place_beside(scene, action.object, action.relation, action.target,
+                                   verify=verified)
+        else:
+            outcome = put_down(scene, action.object, action.relation, action.target,
+                               verify=verified)
         if outcome in ("no_room", "unstable"):
             scene.restore(before)
             return self._refusal(action, read_supports(scene)[0], outcome)
