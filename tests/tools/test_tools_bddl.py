@@ -4,8 +4,8 @@ formula, or is refused whole naming the predicate; nothing is stored on a refusa
 from __future__ import annotations
 
 import pytest
+from bddl_problems import DISHES, FILLED
 
-from tests.graph.test_bddl_import import DISHES, FILLED
 from verigraph.errors import VeriGraphError
 from verigraph.tools import Toolbox
 
