@@ -130,13 +130,20 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
         except SearchBudgetSpent as exc:  # no plan, but the bound A* proved holds
             return SolveResult(reachable=None, status="budget_exhausted", reason=str(exc),
                                expanded=budget.expansions, lower_bound=proof["floor"])
-        if found:
-            return SolveResult(reachable=True, plan=plan, expanded=budget.expansions,
-                               optimal=True, lower_bound=len(plan))
-        return SolveResult(reachable=False, status="unreachable", expanded=budget.expansions,
-                           reason="no sequence of valid moves reaches the goal "
-                                  f"(all {budget.expansions} reachable states searched)")
+        return _searched(found, plan, budget, "moves")
     return _anytime(problem, wanted, h, is_goal, budget)
+
+
+def _searched(found: bool, plan: list[AnyAction], budget: SearchBudget, what: str
+              ) -> SolveResult:
+    """A search that ran to its end: the optimal plan, or unreachable (every reachable
+    state searched)."""
+    if found:
+        return SolveResult(reachable=True, plan=plan, expanded=budget.expansions,
+                           optimal=True, lower_bound=len(plan))
+    return SolveResult(reachable=False, status="unreachable", expanded=budget.expansions,
+                       reason=f"no sequence of valid {what} reaches the goal "
+                              f"(all {budget.expansions} reachable states searched)")
 
 
 def _anytime(problem: SearchProblem, wanted: dict[int, int], h: Callable[[Codes], int],
@@ -268,11 +275,7 @@ def _solve_table(state: WorldState, goal: Goal, budget: SearchBudget,
         if anytime:
             found, plan = table_astar(state, goal, budget, weight=3.0)
             if not found:
-                return SolveResult(reachable=False, status="unreachable",
-                                   expanded=budget.expansions,
-                                   reason="no sequence of valid actions reaches the goal "
-                                          f"(all {budget.expansions} reachable states "
-                                          "searched)")
+                return _searched(found, plan, budget, "actions")
             first = plan
         found, plan = table_astar(state, goal, budget, proof=proof)
     except SearchBudgetSpent as exc:
@@ -282,12 +285,7 @@ def _solve_table(state: WorldState, goal: Goal, budget: SearchBudget,
                                lower_bound=proof["floor"])
         return SolveResult(reachable=None, status="budget_exhausted", reason=str(exc),
                            expanded=budget.expansions, lower_bound=proof["floor"])
-    if found:
-        return SolveResult(reachable=True, plan=plan, expanded=budget.expansions,
-                           optimal=True, lower_bound=len(plan))
-    return SolveResult(reachable=False, status="unreachable", expanded=budget.expansions,
-                       reason="no sequence of valid actions reaches the goal "
-                              f"(all {budget.expansions} reachable states searched)")
+    return _searched(found, plan, budget, "actions")
 
 
 def _solve_tangram(state: WorldState, goal: Goal, budget: SearchBudget,
