@@ -81,3 +81,10 @@ def test_the_placements_a_goal_asks_for():
                            "(forall (?c - cup) (ontop ?c desk)) "
                            "(imply (ontop fork desk) (inside mug bowl)))")
     assert wanted_placements(formula) == {("cup", "on", "plate"), ("mug", "in", "bowl")}
+
+
+def test_the_other_target_offered_is_the_goals_when_it_takes_the_object():
+    wanted = frozenset({("cup", "on", "plate"), ("mug", "on", "plate"), ("book", "in", "bowl")})
+    v = validate_action(full_plate(), move("book", "on", "plate"), wanted=wanted)
+    assert v is not None and v.suggestion == "the goal keeps mug and cup there: choose " \
+        "another target, e.g. move(book, in, bowl) (where the goal wants it)"

@@ -167,9 +167,10 @@ def _move_text(obj: str, found: tuple[str, str, str]) -> str:
     return f"move({obj}, {relation}, {place})" + (f" ({why})" if why else "")
 
 
-def _place_hint(state: WorldState, obj: str, exclude: set[str]) -> str:
+def _place_hint(state: WorldState, obj: str, exclude: set[str], *,
+                wanted: Wanted = NO_GOAL) -> str:
     """`move(cup, on, desk)`, or a place with the reason it was chosen."""
-    found = _free_place(state, obj, exclude)
+    found = _free_place(state, obj, exclude, wanted=wanted)
     return _move_text(obj, found) if found else _no_place(state, obj, exclude)
 
 
@@ -398,7 +399,7 @@ def explain_capacity(state: WorldState, a: MoveAction, *,
             a, "target_full", message,
             f"the goal keeps {_names(kept[:MAX_NAMED_BLOCKERS])}"
             f"{' and more' if len(kept) > MAX_NAMED_BLOCKERS else ''} there: choose another "
-            f"target, e.g. {_place_hint(state, a.object, exclude)}", carried)
+            f"target, e.g. {_place_hint(state, a.object, exclude, wanted=wanted)}", carried)
     # The example moves a carried object that is clear and has somewhere to go (with a
     # goal: toward where the goal wants it, if any such move is valid).
     movers = [o for o in free[:MAX_PLACE_CANDIDATES] if state.is_clear(o)]
