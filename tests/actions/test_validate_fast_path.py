@@ -13,6 +13,7 @@ from verigraph.actions import MoveAction, validate_plan
 from verigraph.actions.schemas import MOVE
 from verigraph.actions.validator import apply_action, validate_action
 from verigraph.graph import Goal, WorldState
+from verigraph.graph.goal import wanted_placements
 
 pytestmark = pytest.mark.fast
 
@@ -43,11 +44,12 @@ def test_report_from_records_matches_step_by_step_edits():
         start = random_blocks(5, case)
         ids = [n.id for n in start.nodes]
         plan = [MoveAction(object=rng.choice(ids), target=rng.choice(ids)) for _ in range(6)]
-        report = validate_plan(start, plan, Goal(graph=random_blocks(5, case + 1)),
-                               all_errors=True)
+        goal = Goal(graph=random_blocks(5, case + 1))
+        report = validate_plan(start, plan, goal, all_errors=True)
         state = WorldState.from_graph(start)
         for step, action in zip(report.steps, plan, strict=True):
-            violation = validate_action(state, action, step.step)
+            violation = validate_action(state, action, step.step,
+                                        wanted=wanted_placements(goal))  # fixes serve the goal
             assert step.ok == (violation is None)
             if violation is None:
                 edit = apply_action(state, action)

@@ -254,3 +254,16 @@ def test_the_recorded_files_are_the_ones_the_transcripts_name() -> None:
         for entry in transcript(THIRD_SET / task):
             for mark in re.findall(r"@(?:json|png|text):\./([\w.]+)", str(entry["args"])):
                 assert (THIRD_SET / task / mark).is_file(), (task, mark)
+
+
+async def test_the_lab_fixes_serve_the_goal() -> None:
+    async with Client(build_server(Toolbox())) as client:
+        results = await run_recorded(client, "t05_lab", calls=1)
+    said = said_by(results, "validate_plan")
+    full = next(line for line in said.splitlines() if "[target_full] fridge" in line)
+    assert "move(bottle, on, bench)" not in full and "move(tube_b" not in full
+    assert "(tube_f elsewhere; the goal keeps bottle and tube_b there)" in full
+    assert "e.g. move(tube_f, in, tube_rack) (where the goal wants it)" in full
+    blocked = next(line for line in said.splitlines() if "[object_not_clear]" in line)
+    assert "move(tube_e, in, tube_rack) (where the goal wants it)" in blocked
+    assert "move(tube_e, on, bench)" not in blocked

@@ -18,6 +18,13 @@ from verigraph.actions.model import AlignAction, MoveAction, StateAction
 from verigraph.graph.dictionary import STATE_WORDS
 from verigraph.graph.state import WorldState
 
+# The (object, relation, place) edges a known goal asks for (`graph.goal.wanted_placements`).
+# With them a fix keeps the goal edges that hold (it moves an object the goal does not
+# keep where it is) and puts a blocker where the goal wants it when that move is valid;
+# empty (no goal), every fix is the goal-blind one.
+Wanted = frozenset[tuple[str, str, str]]
+NO_GOAL: Wanted = frozenset()
+
 
 def _violation(action: MoveAction | AlignAction | StateAction, constraint: str, message: str,
                suggestion: str, blocking: list[str] | None = None) -> Violation:
@@ -58,9 +65,10 @@ def _load(state: WorldState, place: str, planned: dict[str, int]) -> str:
 
 
 def _takes(state: WorldState, obj: str, place: str, exclude: set[str],
-           planned: dict[str, int]) -> str | None:
-    """The relation by which `obj` can go to `place` now (`on` first), or None: the move
-    must pass every check (not itself, not where it is, no cycle, room, kind, R)."""
+           planned: dict[str, int], relations: tuple[str, ...] = ("on", "in")) -> str | None:
+    """The relation of `relations` by which `obj` can go to `place` now (`on` first), or
+    None: the move must pass every check (not itself, not where it is, no cycle, room,
+    kind, R)."""
     if place == obj or place in exclude or _room(state, place, planned) <= 0:
         return None
     props = state.objects[place].props
@@ -69,23 +77,43 @@ def _takes(state: WorldState, obj: str, place: str, exclude: set[str],
     if state.carried[obj] and obj in state.supports_chain(place):
         return None  # place rests on obj
     for relation, kind in (("on", props.surface), ("in", props.container)):
-        if kind and relation in state.move_relations and \
+        if kind and relation in relations and relation in state.move_relations and \
                 state.support.get(obj) != (relation, place) and \
                 not (relation == "in" and _closed(state, place)):
             return relation
     return None
 
 
+def _goal_place(state: WorldState, obj: str, exclude: set[str], planned: dict[str, int],
+                wanted: Wanted) -> tuple[str, str, str] | None:
+    """(relation, place, why) for a valid move of `obj` to where the goal wants it."""
+    for source, relation, place in sorted(wanted):
+        if source == obj and place in state.objects and relation in ("on", "in") and \
+                _takes(state, obj, place, exclude, planned, (relation,)) == relation:
+            return relation, place, "where the goal wants it"
+    return None
+
+
+def _pinned(state: WorldState, obj: str, wanted: Wanted) -> bool:
+    """Whether the goal keeps `obj` where it is (its placement is a goal edge)."""
+    where = state.support.get(obj)
+    return where is not None and (obj, *where) in wanted
+
+
 def _free_place(state: WorldState, obj: str, exclude: set[str],
-                planned: dict[str, int] | None = None) -> tuple[str, str, str] | None:
+                planned: dict[str, int] | None = None, *,
+                wanted: Wanted = NO_GOAL) -> tuple[str, str, str] | None:
     """(relation, place, why) for a move of `obj` the verifier accepts now, or None.
 
-    A fixed surface with room comes first (it never moves and takes anything; `why` is
-    then empty); else a fixed container, else a movable surface or container, the one
-    with the most room first, and `why` says what it carries and that no fixed surface
-    has room. `planned` counts objects earlier hints already put on a place.
+    Where the goal wants `obj` comes first, when that move is valid. Then a fixed surface
+    with room (it never moves and takes anything; `why` is then empty); else a fixed
+    container, else a movable surface or container, the one with the most room first, and
+    `why` says what it carries and that no fixed surface has room. `planned` counts
+    objects earlier hints already put on a place.
     """
     planned = planned or {}
+    if wanted and (toward := _goal_place(state, obj, exclude, planned, wanted)):
+        return toward
     for surface in state.fixed_surfaces:
         if _takes(state, obj, surface, exclude, planned) == "on":
             return "on", surface, ""
@@ -139,9 +167,10 @@ def _move_text(obj: str, found: tuple[str, str, str]) -> str:
     return f"move({obj}, {relation}, {place})" + (f" ({why})" if why else "")
 
 
-def _place_hint(state: WorldState, obj: str, exclude: set[str]) -> str:
+def _place_hint(state: WorldState, obj: str, exclude: set[str], *,
+                wanted: Wanted = NO_GOAL) -> str:
     """`move(cup, on, desk)`, or a place with the reason it was chosen."""
-    found = _free_place(state, obj, exclude)
+    found = _free_place(state, obj, exclude, wanted=wanted)
     return _move_text(obj, found) if found else _no_place(state, obj, exclude)
 
 
@@ -171,7 +200,8 @@ def _unstack_order(state: WorldState, blockers: list[str]) -> list[str]:
     return order
 
 
-def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str]) -> str:
+def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str], *,
+                wanted: Wanted = NO_GOAL) -> str:
     """`move knife, spoon and lid somewhere else first, e.g. move(knife, on, counter), ...`
 
     Every blocker gets its own move, after the moves of what rests on it, and the places
@@ -185,7 +215,7 @@ def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str]) -> st
     planned: dict[str, int] = {}
     hints = []
     for obj in shown:
-        found = _free_place(state, obj, moving, planned)
+        found = _free_place(state, obj, moving, planned, wanted=wanted)
         if found is None:
             hints.append(_no_place(state, obj, moving))
             continue
@@ -253,12 +283,12 @@ def explain_cycle(state: WorldState, a: MoveAction) -> Violation:
         f"{_place_hint(state, a.target, {a.object, *above})}", [a.target, *above])
 
 
-def explain_clear(state: WorldState, a: MoveAction) -> Violation:
+def explain_clear(state: WorldState, a: MoveAction, *, wanted: Wanted = NO_GOAL) -> Violation:
     on_top = state.carried[a.object]
     blockers = list(on_top)
     what = ", ".join(f"{b} is {on_top[b]} {a.object}" for b in blockers)
     return _violation(a, "object_not_clear", f"cannot move {a.object}: {what}",
-                      _clear_hint(state, blockers, {a.object}), blockers)
+                      _clear_hint(state, blockers, {a.object}, wanted=wanted), blockers)
 
 
 def _kind_fix(state: WorldState, a: MoveAction, other: str, takes_other: bool) -> str:
@@ -352,21 +382,39 @@ def _inside(state: WorldState, obj: str, box: str) -> bool:
     return False
 
 
-def explain_capacity(state: WorldState, a: MoveAction) -> Violation:
+def explain_capacity(state: WorldState, a: MoveAction, *,
+                     wanted: Wanted = NO_GOAL) -> Violation:
+    """With a goal, the fix moves only what the goal does not keep on the target, where
+    the goal wants it first; when the goal keeps every one there, another target."""
     held = state.carried[a.target]
     carried = [o for o in held if held[o] in ("on", "in")]
     cap = state.objects[a.target].props.capacity
+    message = f"{a.target} already carries {len(carried)} object(s) " \
+              f"({', '.join(carried)}), its capacity is {cap}"
     exclude = {a.target, a.object}
-    # The example moves a carried object that is clear and has somewhere to go.
-    hint = next((_move_text(o, found) for o in carried[:MAX_PLACE_CANDIDATES]
-                 if state.is_clear(o) and (found := _free_place(state, o, exclude))),
-                None) or _no_place(state, carried[0], exclude)
+    kept = [o for o in carried if _pinned(state, o, wanted)]
+    free = [o for o in carried if o not in kept]
+    if not free:
+        return _violation(
+            a, "target_full", message,
+            f"the goal keeps {_names(kept[:MAX_NAMED_BLOCKERS])}"
+            f"{' and more' if len(kept) > MAX_NAMED_BLOCKERS else ''} there: choose another "
+            f"target, e.g. {_place_hint(state, a.object, exclude, wanted=wanted)}", carried)
+    # The example moves a carried object that is clear and has somewhere to go (with a
+    # goal: toward where the goal wants it, if any such move is valid).
+    movers = [o for o in free[:MAX_PLACE_CANDIDATES] if state.is_clear(o)]
+    hint = next((_move_text(o, found) for o in movers
+                 if (found := _goal_place(state, o, exclude, {}, wanted))), None) \
+        if wanted else None
+    hint = hint or next((_move_text(o, found) for o in movers
+                         if (found := _free_place(state, o, exclude))),
+                        None) or _no_place(state, free[0], exclude)
+    keeps = f"; the goal keeps {_names(kept[:MAX_NAMED_BLOCKERS])} there" if kept else ""
     return _violation(
-        a, "target_full",
-        f"{a.target} already carries {len(carried)} object(s) ({', '.join(carried)}), "
-        f"its capacity is {cap}",
-        f"make room on {a.target} first (any one of {_names(carried[:MAX_NAMED_BLOCKERS])}"
-        f"{' or more' if len(carried) > MAX_NAMED_BLOCKERS else ''} elsewhere), e.g. "
+        a, "target_full", message,
+        f"make room on {a.target} first ({'any one of ' if len(free) > 1 or not kept else ''}"
+        f"{_names(free[:MAX_NAMED_BLOCKERS])}"
+        f"{' or more' if len(free) > MAX_NAMED_BLOCKERS else ''} elsewhere{keeps}), e.g. "
         f"{hint}, or choose another target",
         carried)
 

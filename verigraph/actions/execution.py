@@ -26,6 +26,7 @@ from typing import Any, Protocol, runtime_checkable
 
 from pydantic import BaseModel, Field
 
+from verigraph.actions.constraints import NO_GOAL, Wanted
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction, StateAction
 from verigraph.actions.schemas import MOVE, REFUSED, schema_of
@@ -101,11 +102,12 @@ class Run:
 
 def run_actions(state: WorldState, actions: Sequence[AnyAction], *,
                 world: World | None = None, all_errors: bool = False,
-                first_step: int = 1) -> Run:
+                first_step: int = 1, wanted: Wanted = NO_GOAL) -> Run:
     """Validate and apply `actions` on `state` in place until a violation or `done`.
 
     With `all_errors` a refused action is skipped and checking goes on (like VAL's -c),
     to list every problem; a world never runs past a refusal, so the two do not mix.
+    `wanted`: the goal's placements, which rank a refusal's fix (`validate_action`).
     """
     if world is not None and all_errors:
         raise ValueError("all_errors checks a plan on the graph; a world stops at a refusal")
@@ -127,7 +129,7 @@ def run_actions(state: WorldState, actions: Sequence[AnyAction], *,
         if isinstance(action, DoneAction):
             run.done = True
             return run
-        violation = validate_action(state, action, index)
+        violation = validate_action(state, action, index, wanted=wanted)
         if violation is None and world is not None:
             violation = _perform(run, world, action, index)
             assert run.state is not None
@@ -219,7 +221,7 @@ def execute_until_violation(actions: Sequence[AnyAction], graph: SceneGraph | Wo
 
 
 def execute_in_world(state: WorldState, actions: Sequence[AnyAction], world: World | None, *,
-                     first_step: int = 1
+                     first_step: int = 1, wanted: Wanted = NO_GOAL
                      ) -> tuple[list[AnyAction], list[GraphEdit], Violation | None, bool,
                                 WorldState]:
     """`run_actions` on a copy of `state`, with or without a world.
@@ -227,7 +229,8 @@ def execute_in_world(state: WorldState, actions: Sequence[AnyAction], world: Wor
     Returns (executed, edits, violation, done, new_state). `state` is not modified; the
     returned state is the predicted graph, or the observed graph after a mismatch.
     """
-    run = run_actions(state.copy(), actions, world=world, first_step=first_step)
+    run = run_actions(state.copy(), actions, world=world, first_step=first_step,
+                      wanted=wanted)
     assert run.state is not None
     return (run.executed(), run.edits(), run.violations[0] if run.violations else None,
             run.done, run.state)

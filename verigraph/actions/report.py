@@ -16,6 +16,7 @@ from typing import Any, TypeVar
 
 from pydantic import BaseModel, Field
 
+from verigraph.actions.constraints import NO_GOAL
 from verigraph.actions.execution import Record, run_actions
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, MoveAction
@@ -24,7 +25,7 @@ from verigraph.actions.schemas import MOVE, Place, schema_of
 from verigraph.actions.validator import GraphEdit, edit_from
 from verigraph.budget import checkpoint
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
-from verigraph.graph.goal import Goal, GraphDiff, check_goal
+from verigraph.graph.goal import Goal, GraphDiff, check_goal, wanted_placements
 from verigraph.graph.io import goal_from_data, scene_from_data
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
@@ -146,7 +147,8 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
     with collector_paused(size):  # a long plan creates many acyclic objects
         actions: list[AnyAction] = (list(plan) if isinstance(plan, list) and _is_parsed(plan)
                                     else parse_plan(plan, allow_empty=True))
-        run = run_actions(state, actions, all_errors=all_errors)
+        run = run_actions(state, actions, all_errors=all_errors, wanted=NO_GOAL
+                          if goal_model is None else wanted_placements(goal_model))
         records, violations, done, not_checked = (run.records, run.violations, run.done,
                                                   run.not_checked)
         goal_diff = check_goal(state, goal_model) if goal_model is not None else None

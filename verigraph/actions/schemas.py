@@ -69,6 +69,8 @@ class Precondition:
     also: tuple[str, ...] = ()
     # Skipped in a full report after a refusal with one of these ids.
     skip_after: frozenset[str] = frozenset()
+    # `explain` takes the goal's wanted placements (`wanted=`) to rank its fix by them.
+    goal_aware: bool = False
     holds: Callable[..., bool] = field(init=False, repr=False)
 
     @property
@@ -253,7 +255,7 @@ MOVE = ActionSchema(
         Precondition("already_there", "old != (relation, target)", c.explain_already_there),
         Precondition("would_create_cycle",
                      "not held or obj not in state.supports_chain(target)", c.explain_cycle),
-        Precondition("object_not_clear", "not held", c.explain_clear),
+        Precondition("object_not_clear", "not held", c.explain_clear, goal_aware=True),
         Precondition("target_not_surface",
                      "props.surface if relation == 'on' else props.container if "
                      "relation == 'in' else fits(props, relation)",
@@ -265,7 +267,7 @@ MOVE = ActionSchema(
         Precondition("target_full",
                      "relation not in CARRYING or (cap := props.capacity) is None "
                      "or len(carried[target]) < cap or state.has_room(target)",
-                     c.explain_capacity,
+                     c.explain_capacity, goal_aware=True,
                      skip_after=frozenset({"target_not_surface", "target_not_container"})),
     ),
     effect=Place(),

@@ -13,10 +13,10 @@ from typing import Any
 
 from pydantic import BaseModel, Field
 
-from verigraph.actions.constraints import check_align
+from verigraph.actions.constraints import NO_GOAL, Wanted, check_align
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AlignAction, AnyAction
-from verigraph.actions.schemas import ActionSchema, schema_of, state_change_text
+from verigraph.actions.schemas import ActionSchema, Precondition, schema_of, state_change_text
 from verigraph.graph.model import Edge
 from verigraph.graph.state import WorldState
 
@@ -48,16 +48,27 @@ class GraphEdit(BaseModel):
         return ", ".join(parts)
 
 
-def validate_action(state: WorldState, action: AnyAction, step: int | None = None
-                    ) -> Violation | None:
-    """The first constraint `action` breaks on `state`, or None. Never mutates `state`."""
+def _refusal(pre: Precondition, state: WorldState, action: AnyAction, wanted: Wanted
+             ) -> Violation:
+    """The refusal of a failed precondition, its fix ranked by the goal when one is known."""
+    if wanted and pre.goal_aware:
+        return pre.explain(state, action, wanted=wanted)  # type: ignore[call-arg]
+    return pre.explain(state, action)
+
+
+def validate_action(state: WorldState, action: AnyAction, step: int | None = None, *,
+                    wanted: Wanted = NO_GOAL) -> Violation | None:
+    """The first constraint `action` breaks on `state`, or None. Never mutates `state`.
+
+    `wanted`: the goal's placements (`graph.goal.wanted_placements`), which rank the fix
+    (it keeps goal edges that hold, and moves a blocker toward the goal)."""
     violation: Violation | None = None
     row = schema_of(action)
     if row is not None:
         args = row.args(action)
         if not row.accepted(state, *args):
             pre = next(p for p in row.preconditions if not p.holds(state, *args))
-            violation = pre.explain(state, action)
+            violation = _refusal(pre, state, action, wanted)
     elif isinstance(action, AlignAction):
         violation = check_align(state, action)
     if violation is not None and step is not None:
@@ -65,19 +76,19 @@ def validate_action(state: WorldState, action: AnyAction, step: int | None = Non
     return violation
 
 
-def all_violations(state: WorldState, action: AnyAction, step: int | None = None
-                   ) -> list[Violation]:
+def all_violations(state: WorldState, action: AnyAction, step: int | None = None, *,
+                   wanted: Wanted = NO_GOAL) -> list[Violation]:
     """Every constraint `action` breaks on `state`, in check order. Never mutates `state`.
 
     Execution needs only the first; a reader fixing the action needs them all (a move of
     a covered board onto a pot breaks object_not_clear AND target_not_surface, and
     clearing the board alone would not make it valid). A gate precondition (unknown
     object or relation, an object moved onto itself) makes the others meaningless, so
-    its failure is reported alone.
+    its failure is reported alone. `wanted` as for `validate_action`.
     """
     row = schema_of(action)
     if row is None:
-        first = validate_action(state, action, step)
+        first = validate_action(state, action, step, wanted=wanted)
         return [first] if first is not None else []
     args = row.args(action)
     found: list[Violation] = []
@@ -86,7 +97,7 @@ def all_violations(state: WorldState, action: AnyAction, step: int | None = None
             continue  # a target that is not a surface (container) has no room to report
         if pre.holds(state, *args):
             continue
-        violation = pre.explain(state, action)
+        violation = _refusal(pre, state, action, wanted)
         violation.step = step
         if pre.gate:
             return [violation]

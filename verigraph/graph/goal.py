@@ -22,6 +22,12 @@ from verigraph.graph.dictionary import STATE_WORDS, ObjectProperties
 from verigraph.graph.formula import (
     FORMULA_EXAMPLE,
     MAX_FORMULA_CHARS,
+    Atom,
+    Formula,
+    Imply,
+    Junction,
+    Pairs,
+    Quantified,
     looks_like_formula,
     parse_formula,
     show,
@@ -334,3 +340,29 @@ def goal_kind_problems(graph: SceneGraph, state: WorldState) -> list[GraphProble
 
 def _json_word(value: object) -> str:
     return "null" if value is None else str(value).lower()
+
+
+Placement = tuple[str, str, str]
+
+
+def wanted_placements(goal: Goal) -> frozenset[Placement]:
+    """The (object, relation, place) edges a goal asks for: a goal graph's edges, and a
+    formula's positive atoms of two object ids (`(inside tube_e tube_rack)`; an atom with
+    a variable, under a `not` or in an `imply`'s condition asks for no one placement).
+    Fixes use them to keep goal edges that hold and to suggest moves toward the goal."""
+    wanted = {(e.source, e.relation, e.target) for e in goal.graph.edges} \
+        if goal.graph is not None else set()
+    if goal.formula is not None:
+        stack: list[Formula] = [parse_formula(goal.formula)]
+        while stack:
+            node = stack.pop()
+            if isinstance(node, Atom):
+                if len(node.terms) == 2 and not any(t.startswith("?") for t in node.terms):
+                    wanted.add((node.terms[0], node.relation, node.terms[1]))
+            elif isinstance(node, Junction):
+                stack.extend(node.parts)
+            elif isinstance(node, Quantified | Pairs):
+                stack.append(node.body)
+            elif isinstance(node, Imply):
+                stack.append(node.then)
+    return frozenset(wanted)

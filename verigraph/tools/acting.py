@@ -19,6 +19,7 @@ from pydantic import (
     model_validator,
 )
 
+from verigraph.actions.constraints import NO_GOAL
 from verigraph.actions.execution import execute_in_world
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, DoneAction
@@ -27,7 +28,7 @@ from verigraph.actions.pddl import as_validation_report
 from verigraph.actions.report import ValidationReport, validate_plan
 from verigraph.actions.validator import GraphEdit, all_violations, apply_action
 from verigraph.errors import PlanParseError, VeriGraphError
-from verigraph.graph.goal import Goal, GraphDiff, check_goal
+from verigraph.graph.goal import Goal, GraphDiff, check_goal, wanted_placements
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import label_readings, readings_line
@@ -115,7 +116,8 @@ def validate_action_tool(ctx: ToolContext, params: ValidateActionInput) -> Actio
         where = runs_on(episode.executor, arm_mode_of(episode.world))
         if isinstance(action, DoneAction):
             return ActionCheck(ok=True, action="done", runs_on=where)
-        found = all_violations(state, action)
+        found = all_violations(state, action, wanted=wanted_placements(episode.goal)
+                               if episode.goal else NO_GOAL)
         if found:
             return ActionCheck(ok=False, action=action.text(), violation=found[0],
                                violations=found, runs_on=where)
@@ -267,7 +269,8 @@ def execute_actions(ctx: ToolContext, params: ExecuteActionsInput) -> ExecutionO
                 f"({ctx.config.max_actions_per_episode})", field="actions", value=moves,
                 fix="call end_episode and start a new episode")
         executed, edits, violation, done, new_state = execute_in_world(
-            state, actions, episode.world, first_step=len(episode.executed) + 1)
+            state, actions, episode.world, first_step=len(episode.executed) + 1,
+            wanted=wanted_placements(episode.goal) if episode.goal else NO_GOAL)
         tau = episode.tau + 1 if violation is not None else 0
         diff = check_goal(new_state, episode.goal) if episode.goal else None
         episode.calls += 1
