@@ -24,7 +24,7 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.actions.parser import parse_plan
 from verigraph.actions.pddl import as_validation_report
-from verigraph.actions.report import ValidationReport, validate_plan
+from verigraph.actions.report import ValidationReport, check_plan, validate_plan
 from verigraph.actions.validator import GraphEdit, all_violations, apply_action
 from verigraph.errors import PlanParseError, VeriGraphError
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
@@ -402,13 +402,13 @@ def validate_plan_tool(ctx: ToolContext, params: ValidatePlanInput) -> Validatio
         return pddl_report(params.pddl, str(params.plan), all_errors=params.all_errors)
     actions = _plan_actions(params.plan)
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
-                                   graph=params.graph, goal=None)
+                                   graph=params.graph, goal=None,
+                                   own_goal=params.goal is not None)
     if params.goal is not None:
         goal = resolve_goal(params.goal, state)
-    report = validate_plan(state, actions, goal, all_errors=params.all_errors)
     written = params.goal.graph if isinstance(params.goal, Goal) else None
-    report.label_readings = label_readings(params.graph, state.dictionary, written)
-    return report
+    return check_plan(state, actions, goal, all_errors=params.all_errors,
+                      readings=label_readings(params.graph, state.dictionary, written))
 
 
 # The text of a plan report shows the first steps and every failure (up to a bound)

@@ -217,18 +217,21 @@ def _with_dictionary(graph: SceneGraph, name: str | InlineDictionary | None) -> 
 
 
 def stateless_source(ctx: ToolContext, *, episode_id: str | None, scene_id: str | None,
-                     graph: SceneGraph | None, goal: Goal | None
+                     graph: SceneGraph | None, goal: Goal | None, own_goal: bool = False
                      ) -> tuple[WorldState, Goal | None]:
-    """The state (a copy) and goal named by a stateless tool's source arguments.
+    """The state (a copy, the caller's own) and goal named by a stateless tool's source
+    arguments.
 
     Exactly one of episode_id, scene_id and graph is set (the input models check it);
-    an explicit goal wins over the episode's or the built-in scene's.
+    an explicit goal wins over the episode's or the built-in scene's. `own_goal`: the
+    caller has a goal of its own still to read against the state, so no other is looked
+    up (nor a built-in one built).
     """
     if episode_id is not None:
         with ctx.store.use(episode_id) as episode:
-            return episode.require_state().copy(), goal or episode.goal
+            return episode.require_state().copy(), None if own_goal else goal or episode.goal
     if scene_id is not None:
-        scene, builtin_goal = builtin_scene(scene_id)
+        scene, builtin_goal = builtin_scene(scene_id, with_goal=not own_goal and goal is None)
         return state_from_graph(scene), goal or builtin_goal
     assert graph is not None
     return state_from_graph(graph), goal
