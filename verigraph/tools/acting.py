@@ -407,8 +407,9 @@ def validate_plan_tool(ctx: ToolContext, params: ValidatePlanInput) -> Validatio
     if params.goal is not None:
         goal = resolve_goal(params.goal, state)
     written = params.goal.graph if isinstance(params.goal, Goal) else None
-    return check_plan(state, actions, goal, all_errors=params.all_errors,
-                      readings=label_readings(params.graph, state.dictionary, written))
+    readings = [] if params.graph is None and written is None else label_readings(
+        params.graph, state.dictionary, written)  # the graphs the client wrote, if any
+    return check_plan(state, actions, goal, all_errors=params.all_errors, readings=readings)
 
 
 # The text of a plan report shows the first steps and every failure (up to a bound)
