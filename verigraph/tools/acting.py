@@ -509,4 +509,4 @@ def report_summary(report: ValidationReport) -> str:
         lines.append(readings_line(report.label_readings))
     if report.final_graph.nodes:  # what the check assumed about each built-in kind
         lines.append(properties_line(report.final_graph))
-    return "\n".join(line for line in lines if line)
+    return "\n".join(filter(None, lines))  # the lines that say something
