@@ -244,4 +244,5 @@ class WorldState(SupportIndex):
         edges += [{"source": o, "relation": ROOM_RELATION, "target": r}
                   for o, r in self.rooms.items()]
         return SceneGraph.model_validate({"nodes": nodes, "edges": edges,
-                                          "dictionary": self.dictionary.reference()}).canonical()
+                                          "dictionary": self.dictionary.reference()}
+                                         ).sorted_in_place()
