@@ -58,6 +58,46 @@ async def test_a_small_call_on_a_graph_episode_runs_in_one_server_module_and_no_
     assert len(seen) <= 17, sorted(seen)  # 16, and the caller's module
 
 
+async def modules_switched(client: Client, name: str, arguments: dict[str, Any]
+                           ) -> tuple[set[str], int]:
+    """The verigraph modules one call runs in, and how often it switches between them
+    (a function entered in another module than the one entered last)."""
+    entered: list[str] = []
+
+    def profile(frame: FrameType, event: str, arg: Any) -> None:
+        if event == "call":
+            module = frame.f_globals.get("__name__") or ""
+            if module.startswith("verigraph") and (not entered or entered[-1] != module):
+                entered.append(module)
+
+    sys.setprofile(profile)
+    threading.setprofile(profile)  # type: ignore[arg-type]
+    try:
+        structured(await client.call_tool(name, arguments))
+    finally:
+        sys.setprofile(None)
+        threading.setprofile(None)  # type: ignore[arg-type]
+    return set(entered), max(len(entered) - 1, 0)
+
+
+@pytest.mark.anyio
+async def test_a_small_plan_check_reads_its_scene_goal_and_plan_once() -> None:
+    """validate_plan on a built-in scene with a goal as edge text: the scene is not
+    rebuilt nor checked again (a built-in's state is indexed once), no built-in goal is
+    built beside the one given, and the path stays short (20 modules and 44 switches
+    here, in process; the aim is 14 and 40)."""
+    arguments = {"scene_id": "cup_on_book", "goal": "book on shelf",
+                 "plan": "move(cup, on, desk)\nmove(book, on, shelf)"}
+    async with Client(build_server(Toolbox())) as client:
+        await client.call_tool("validate_plan", arguments)  # warm-up
+        seen, switches = await modules_switched(client, "validate_plan", arguments)
+    again = {"verigraph.graph.builtin_scenes", "verigraph.graph.cycles",
+             "verigraph.graph.support", "verigraph.graph.io"}
+    assert not seen & again, sorted(seen & again)
+    assert len(seen) <= 20, sorted(seen)
+    assert switches <= 46, switches
+
+
 def test_a_stdio_server_imports_nothing_of_the_http_wing() -> None:
     code = ("import sys\n"
             "from verigraph.server import build_server\n"

@@ -142,16 +142,30 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
     goal_model = None if goal is None else goal_from_data(goal)
     readings = label_readings(written, state.dictionary,
                               goal_model.graph if goal_model is not None else None)
-    size = len(plan) if isinstance(plan, list) else plan.count("\n") + 1 \
-        if isinstance(plan, str) else 0
+    if isinstance(plan, list) and _is_parsed(plan):
+        actions: list[AnyAction] = list(plan)
+    else:
+        size = len(plan) if isinstance(plan, list) else plan.count("\n") + 1 \
+            if isinstance(plan, str) else 0
+        with collector_paused(size):  # a long plan's text makes many acyclic objects
+            actions = parse_plan(plan, allow_empty=True)
+    return check_plan(state, actions, goal_model, all_errors=all_errors, readings=readings)
+
+
+def check_plan(state: WorldState, actions: list[AnyAction], goal: Goal | None = None, *,
+               all_errors: bool = False, readings: list[str] | None = None
+               ) -> ValidationReport:
+    """The report for parsed actions run on `state`, which the run edits (the caller's
+    own copy, taken once), with a parsed goal: the core of `validate_plan` that the tool
+    calls with what it has already read, so nothing is copied, parsed or read twice.
+    `readings`: how the labels of the graphs the caller wrote were read."""
+    size = len(actions)
     with collector_paused(size):  # a long plan creates many acyclic objects
-        actions: list[AnyAction] = (list(plan) if isinstance(plan, list) and _is_parsed(plan)
-                                    else parse_plan(plan, allow_empty=True))
         run = run_actions(state, actions, all_errors=all_errors, wanted=NO_GOAL
-                          if goal_model is None else wanted_placements(goal_model))
+                          if goal is None else wanted_placements(goal))
         records, violations, done, not_checked = (run.records, run.violations, run.done,
                                                   run.not_checked)
-        goal_diff = check_goal(state, goal_model) if goal_model is not None else None
+        goal_diff = check_goal(state, goal) if goal is not None else None
         plan_valid = not violations
         goal_reached = None if goal_diff is None else goal_diff.satisfied
         steps = _steps_from_records(records)
@@ -162,7 +176,7 @@ def validate_plan(scene: SceneGraph | dict[str, Any] | WorldState,
         valid=plan_valid and goal_reached is not False, plan_valid=plan_valid,
         goal_reached=goal_reached, steps=steps, violations=violations,
         not_checked=not_checked, done=done, goal_diff=goal_diff, final_graph=final_graph,
-        label_readings=readings)
+        label_readings=readings or [])
 
 
 def _is_parsed(plan: object) -> bool:

@@ -20,7 +20,7 @@ from __future__ import annotations
 import gc
 import threading
 from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import AbstractContextManager, contextmanager, nullcontext
 
 LARGE_GRAPH_ITEMS = 2_000
 
@@ -29,13 +29,18 @@ _depth = 0
 _resume = False
 
 
+_UNPAUSED: AbstractContextManager[None] = nullcontext()  # reusable: it holds nothing
+
+
+def collector_paused(items: int = LARGE_GRAPH_ITEMS) -> AbstractContextManager[None]:
+    """Pause the cyclic collector while building `items` graph items (if that many);
+    fewer leave it as it is."""
+    return _paused() if items >= LARGE_GRAPH_ITEMS else _UNPAUSED
+
+
 @contextmanager
-def collector_paused(items: int = LARGE_GRAPH_ITEMS) -> Iterator[None]:
-    """Pause the cyclic collector while building `items` graph items (if that many)."""
+def _paused() -> Iterator[None]:
     global _depth, _resume
-    if items < LARGE_GRAPH_ITEMS:
-        yield
-        return
     with _lock:
         if _depth == 0:
             _resume = gc.isenabled()

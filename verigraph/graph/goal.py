@@ -210,8 +210,8 @@ def _rotate(side: int | None, k: int, order: int, n_sides: int) -> int | None:
 def diff(current: WorldState, goal_graph: SceneGraph, *, partial: bool = False) -> GraphDiff:
     """Missing and extra nodes and edges between the current state and a goal graph."""
     cur_nodes = set(current.objects)
+    cur_keys = set(map(Edge.key, current.edges()))
     goal_nodes = set(goal_graph.node_ids())
-    cur_keys = {e.key() for e in current.edges()}
     goal_keys = goal_graph.edge_keys()
     symmetry = {o.id: (o.props.symmetry, o.props.sides or 1) for o in current.objects.values()
                 if o.props.symmetry > 1 and o.props.sides}

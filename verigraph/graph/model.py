@@ -6,6 +6,7 @@ supports or contains the source. Tangram contacts carry the side index on each p
 
 from __future__ import annotations
 
+import operator
 from typing import TYPE_CHECKING, Annotated, Any
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema, field_validator
@@ -81,6 +82,9 @@ class Edge(BaseModel):
         return (self.source, self.relation, self.target, self.source_side, self.target_side)
 
 
+_node_order = operator.attrgetter("id")  # the sort key of a graph's nodes
+
+
 def _edge_order(e: Edge) -> tuple[str, str, str, str, str]:
     """The sort key of `SceneGraph.canonical`: the edge's key, a missing side as ''."""
     source, relation, target, source_side, target_side = e.key()
@@ -117,9 +121,16 @@ class SceneGraph(BaseModel):
 
     def canonical(self) -> SceneGraph:
         """Same graph with nodes and edges in a stable order: equal scenes dump equally."""
-        return SceneGraph(nodes=sorted(self.nodes, key=lambda n: n.id),
+        return SceneGraph(nodes=sorted(self.nodes, key=_node_order),
                           edges=sorted(self.edges, key=_edge_order),
                           dictionary=self.dictionary)
+
+    def sorted_in_place(self) -> SceneGraph:
+        """This graph, its lists put in `canonical`'s order: for a graph just built that
+        no one else holds yet, the same result without building and checking a second."""
+        self.nodes.sort(key=_node_order)
+        self.edges.sort(key=_edge_order)
+        return self
 
     def to_networkx(self) -> nx.DiGraph:
         """Directed graph with node attributes `label`, `attrs` and edge attribute `relation`.

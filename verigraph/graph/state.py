@@ -74,7 +74,8 @@ class WorldState(SupportIndex):
     def from_graph(cls, graph: SceneGraph, dictionary: Dictionary | str | None = None, *,
                    partial: bool = False) -> WorldState:
         """Check the graph and index it; raises MalformedGraphError listing every problem."""
-        d = load_dictionary(dictionary if dictionary is not None else graph.dictionary)
+        d = dictionary if isinstance(dictionary, Dictionary) else load_dictionary(
+            dictionary if dictionary is not None else graph.dictionary)  # loaded once
         with collector_paused(len(graph.nodes) + len(graph.edges)):
             problems, resolved = check_and_resolve(graph, d, partial=partial)
             if problems:
@@ -243,4 +244,5 @@ class WorldState(SupportIndex):
         edges += [{"source": o, "relation": ROOM_RELATION, "target": r}
                   for o, r in self.rooms.items()]
         return SceneGraph.model_validate({"nodes": nodes, "edges": edges,
-                                          "dictionary": self.dictionary.reference()}).canonical()
+                                          "dictionary": self.dictionary.reference()}
+                                         ).sorted_in_place()

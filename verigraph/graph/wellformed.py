@@ -354,7 +354,7 @@ def applied_properties(graph: SceneGraph | None, dictionary: Dictionary,
                 continue
             props = dictionary.objects[label]
             changed: list[str] = []
-            if any(k in node.attrs for k in KIND_KEYS):
+            if not node.attrs.keys().isdisjoint(KIND_KEYS):  # its attrs change its kind
                 try:
                     mine = props.overridden(node.attrs)
                 except DictionaryError:
@@ -379,11 +379,15 @@ def applied_line(graph: SceneGraph | None, dictionary: Dictionary,
     entries = applied_properties(graph, dictionary, *more)
     if not entries:
         return ""
-    written = next((g for g in (graph, *more) if g is not None), None)
+    written = graph
+    for written in (graph, *more):  # the first graph given
+        if written is not None:
+            break
     named = ("all built-ins, none named" if written is None or written.dictionary is None
              else dictionary.name)
-    note = f". {DEFAULTS_NOTE}" if any("capacity" in e for e in entries) else ""
-    return f"built-in properties applied (dictionary: {named}): " + "; ".join(entries) + note
+    text = "; ".join(entries)  # "capacity" within one entry is within the text, and back
+    note = f". {DEFAULTS_NOTE}" if "capacity" in text else ""
+    return f"built-in properties applied (dictionary: {named}): " + text + note
 
 
 def readings_line(readings: list[str]) -> str:

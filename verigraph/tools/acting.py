@@ -25,7 +25,7 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.actions.parser import parse_plan
 from verigraph.actions.pddl import as_validation_report
-from verigraph.actions.report import ValidationReport, validate_plan
+from verigraph.actions.report import ValidationReport, check_plan, validate_plan
 from verigraph.actions.validator import GraphEdit, all_violations, apply_action
 from verigraph.errors import PlanParseError, VeriGraphError
 from verigraph.graph.goal import Goal, GraphDiff, check_goal, wanted_placements
@@ -405,13 +405,14 @@ def validate_plan_tool(ctx: ToolContext, params: ValidatePlanInput) -> Validatio
         return pddl_report(params.pddl, str(params.plan), all_errors=params.all_errors)
     actions = _plan_actions(params.plan)
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
-                                   graph=params.graph, goal=None)
+                                   graph=params.graph, goal=None,
+                                   own_goal=params.goal is not None)
     if params.goal is not None:
         goal = resolve_goal(params.goal, state)
-    report = validate_plan(state, actions, goal, all_errors=params.all_errors)
     written = params.goal.graph if isinstance(params.goal, Goal) else None
-    report.label_readings = label_readings(params.graph, state.dictionary, written)
-    return report
+    readings = [] if params.graph is None and written is None else label_readings(
+        params.graph, state.dictionary, written)  # the graphs the client wrote, if any
+    return check_plan(state, actions, goal, all_errors=params.all_errors, readings=readings)
 
 
 # The text of a plan report shows the first steps and every failure (up to a bound)
@@ -511,4 +512,4 @@ def report_summary(report: ValidationReport) -> str:
         lines.append(readings_line(report.label_readings))
     if report.final_graph.nodes:  # what the check assumed about each built-in kind
         lines.append(properties_line(report.final_graph))
-    return "\n".join(line for line in lines if line)
+    return "\n".join(filter(None, lines))  # the lines that say something

@@ -166,13 +166,16 @@ def dictionary_for(name: str | InlineDictionary | None, *, field: str = "diction
     return load_dictionary(name)
 
 
-def builtin_scene(scene_id: str, *, field: str = "scene_id") -> tuple[SceneGraph, Goal | None]:
+def builtin_scene(scene_id: str, *, field: str = "scene_id", with_goal: bool = True
+                  ) -> tuple[SceneGraph, Goal | None]:
+    """A built-in scene and its goal (None without one, or when `with_goal` is False:
+    a caller with its own goal has no use for the built-in one)."""
     maker = BUILTIN_SCENES.get(scene_id)
     if maker is None:
         raise ToolArgumentError(f"no built-in scene '{scene_id[:64]}'", field=field,
                                 value=scene_id[:64],
                                 fix=f"use one of {', '.join(BUILTIN_SCENES)}, or pass a graph")
-    goal_maker = BUILTIN_GOALS.get(scene_id)
+    goal_maker = BUILTIN_GOALS.get(scene_id) if with_goal else None
     return maker(), goal_maker() if goal_maker else None
 
 

@@ -277,11 +277,13 @@ def goal_from_edges(text: str, state: WorldState | None, *, field: str = "edges"
             value=text[:80], fix="write one 'source relation target' per item, separated by "
                                  f"';', with ids from the scene: "
                                  f"{', '.join(sorted(state.objects)[:20])}")
-    graph = state.to_graph()
-    nodes = [n.model_copy(update={"state": states[n.id]}) if n.id in states else n
-             for n in graph.stateless_nodes()]
-    return Goal(graph=SceneGraph(nodes=nodes, edges=edges, dictionary=graph.dictionary),
-                partial=partial)
+    # The scene's nodes (as `state.to_graph().stateless_nodes()` has them, in id order),
+    # read off the state itself: the scene's edges are not needed.
+    nodes = [Node.model_validate({"id": o.id, "label": o.label, "attrs": o.attrs,
+                                  **({"state": states[o.id]} if o.id in states else {})})
+             for o in sorted(state.objects.values(), key=lambda o: o.id)]
+    return Goal(graph=SceneGraph(nodes=nodes, edges=edges,
+                                 dictionary=state.dictionary.reference()), partial=partial)
 
 
 GoalText = Annotated[str, Field(min_length=1, max_length=MAX_GOAL_EDGES_CHARS)]

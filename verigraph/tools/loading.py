@@ -7,6 +7,7 @@ the whole input is valid.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import Any
 
@@ -216,19 +217,30 @@ def _with_dictionary(graph: SceneGraph, name: str | InlineDictionary | None) -> 
     return graph.model_copy(update={"dictionary": name})
 
 
+@functools.cache
+def builtin_state(scene_id: str) -> WorldState:
+    """A built-in scene, checked and indexed once per process (built-in scenes are code,
+    never edited); a caller that changes it works on a copy. An unknown id raises
+    (and is not cached)."""
+    return state_from_graph(builtin_scene(scene_id, with_goal=False)[0])
+
+
 def stateless_source(ctx: ToolContext, *, episode_id: str | None, scene_id: str | None,
-                     graph: SceneGraph | None, goal: Goal | None
+                     graph: SceneGraph | None, goal: Goal | None, own_goal: bool = False
                      ) -> tuple[WorldState, Goal | None]:
-    """The state (a copy) and goal named by a stateless tool's source arguments.
+    """The state (a copy, the caller's own) and goal named by a stateless tool's source
+    arguments.
 
     Exactly one of episode_id, scene_id and graph is set (the input models check it);
-    an explicit goal wins over the episode's or the built-in scene's.
+    an explicit goal wins over the episode's or the built-in scene's. `own_goal`: the
+    caller has a goal of its own still to read against the state, so no other is looked
+    up (nor a built-in one built).
     """
     if episode_id is not None:
         with ctx.store.use(episode_id) as episode:
-            return episode.require_state().copy(), goal or episode.goal
+            return episode.require_state().copy(), None if own_goal else goal or episode.goal
     if scene_id is not None:
-        scene, builtin_goal = builtin_scene(scene_id)
-        return state_from_graph(scene), goal or builtin_goal
+        builtin_goal = None if own_goal or goal is not None else builtin_scene(scene_id)[1]
+        return builtin_state(scene_id).copy(), goal or builtin_goal
     assert graph is not None
     return state_from_graph(graph), goal

@@ -334,9 +334,11 @@ def parse_arguments(spec: ToolSpec, arguments: Mapping[str, Any] | None) -> Base
                                 value=type(arguments).__name__,
                                 fix="send the arguments as an object of name: value")
     parsed = _pre_parse(spec.input_model, arguments or {})
+    items = 0  # the objects validation builds, about
+    for value in parsed.values():
+        items += graph_items(value) + (len(value) if isinstance(value, list) else 0)
     try:
-        with collector_paused(sum(graph_items(v) + (len(v) if isinstance(v, list) else 0)
-                                  for v in parsed.values())):
+        with collector_paused(items):
             return spec.input_model.model_validate(parsed)
     except ValidationError as exc:
         raise argument_error(spec, exc) from None
