@@ -23,7 +23,9 @@ from verigraph.planning.iteration import (
     DEFAULT_K,
     DEFAULT_T,
     MAX_ACTIONS_PER_CALL,
+    execute_actions,
     prompt_goal,
+    read_state,
 )
 from verigraph.planning.models import (
     DonePolicy,
@@ -105,13 +107,10 @@ class EpisodeRun:
                 "perception is installed)", field="scene", value=self.episode_id,
                 fix="load a scene graph, a scene id or a generated scene, or describe the "
                     "image with get_scene_image + submit_scene_graph first")
-        self.graph = SceneGraph.model_validate(graph)
+        self.graph, self.goal_satisfied, self.goal_diff = read_state(state)
         self.goal = Goal.model_validate(state["goal"]) if state.get("goal") else None
         self.instruction = state.get("instruction")
         self.history = list(state.get("executed", []))
-        self.goal_satisfied = state.get("goal_satisfied")
-        diff = state.get("goal_diff")
-        self.goal_diff = GraphDiff.model_validate(diff) if diff else None
 
     def start(self) -> None:
         iterative = self.config.mode == "iterative"
@@ -129,14 +128,9 @@ class EpisodeRun:
         self.trace.instruction = self.instruction
 
     def execute(self, actions: list[AnyAction]) -> dict[str, Any]:
-        out = self.env.call("execute_actions", {
-            "episode_id": self.episode_id,
-            "actions": [a.model_dump(mode="json") for a in actions]})
-        self.graph = SceneGraph.model_validate(out["graph"])
+        out = execute_actions(self.env, self.episode_id, actions)
+        self.graph, self.goal_satisfied, self.goal_diff = read_state(out)
         self.history.extend(out["executed"])
-        self.goal_satisfied = out.get("goal_satisfied")
-        diff = out.get("goal_diff")
-        self.goal_diff = GraphDiff.model_validate(diff) if diff else None
         self.trace.actions_executed += len(out["executed"])
         return out
 

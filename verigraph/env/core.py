@@ -57,7 +57,9 @@ from verigraph.planning.iteration import (
     DEFAULT_T,
     MAX_ACTIONS_PER_CALL,
     Iteration,
+    execute_actions,
     prompt_goal,
+    read_state,
 )
 from verigraph.planning.models import (
     Feedback,
@@ -234,16 +236,11 @@ class VeriGraphEnv(gym.Env[str, str]):
                                  "a Task")
 
     def _absorb(self, state: dict[str, Any]) -> None:
-        self.graph = SceneGraph.model_validate(state["graph"])
-        self.goal_satisfied = state.get("goal_satisfied")
-        diff = state.get("goal_diff")
-        self.goal_diff = GraphDiff.model_validate(diff) if diff else None
+        self.graph, self.goal_satisfied, self.goal_diff = read_state(state)
         self._distance = goal_distance(self.graph, self.privileged_goal)
 
     def _execute(self, tools: ToolEnvironment, actions: list[AnyAction]) -> dict[str, Any]:
-        out = tools.call("execute_actions", {
-            "episode_id": self.episode_id,
-            "actions": [a.model_dump(mode="json") for a in actions]})
+        out = execute_actions(tools, self.episode_id, actions)
         self._absorb(out)
         self.history.extend(out["executed"])
         self.moves += len(out["executed"])

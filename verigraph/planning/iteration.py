@@ -26,23 +26,48 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.graph.goal import Goal, GraphDiff
+from verigraph.graph.model import SceneGraph
 from verigraph.planning.models import Feedback, IterationVerdict, PlannerReply, StopReason
 from verigraph.planning.parsing import split_proposal
 from verigraph.planning.progress import malformed_feedback, violation_feedback
+from verigraph.planning.tool_calls import ToolEnvironment
 from verigraph.tools.acting import MAX_ACTIONS_PER_CALL
 from verigraph.tools.store import DEFAULT_K, DEFAULT_T
 
 __all__ = ["DEFAULT_K", "DEFAULT_T", "MAX_ACTIONS_PER_CALL", "Execute", "GoalView",
-           "Iteration", "Outcome", "prompt_goal"]
+           "Iteration", "Outcome", "Reading", "execute_actions", "prompt_goal", "read_state"]
 
 Execute = Callable[[list[AnyAction]], Mapping[str, Any]]
 """Send actions to `execute_actions` and return its result (the caller absorbs it)."""
 GoalView = Callable[[], tuple["bool | None", "GraphDiff | None"]]
 """The caller's current (goal_satisfied, goal_diff)."""
+
+
+class Reading(NamedTuple):
+    """What a driver of the iteration keeps of a tool's answer (`load_scene`,
+    `get_state`, `execute_actions`): the graph and the goal check."""
+
+    graph: SceneGraph
+    goal_satisfied: bool | None
+    goal_diff: GraphDiff | None
+
+
+def read_state(state: Mapping[str, Any]) -> Reading:
+    """The graph and the goal check of a tool's answer, as models."""
+    diff = state.get("goal_diff")
+    return Reading(SceneGraph.model_validate(state["graph"]), state.get("goal_satisfied"),
+                   GraphDiff.model_validate(diff) if diff else None)
+
+
+def execute_actions(tools: ToolEnvironment, episode_id: str,
+                    actions: list[AnyAction]) -> dict[str, Any]:
+    """Call `execute_actions` with `actions` on the episode and return its answer."""
+    return tools.call("execute_actions", {
+        "episode_id": episode_id, "actions": [a.model_dump(mode="json") for a in actions]})
 
 
 def prompt_goal(goal: Goal | None, show_graph: bool) -> Goal | None:
