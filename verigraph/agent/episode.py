@@ -19,12 +19,21 @@ from verigraph.errors import VeriGraphError
 from verigraph.graph.goal import Goal, GraphDiff
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.planning.iteration import (
+    DEFAULT_K,
+    DEFAULT_T,
+    MAX_ACTIONS_PER_CALL,
+    execute_actions,
+    prompt_goal,
+    read_state,
+)
 from verigraph.planning.models import (
     DonePolicy,
     EpisodeTrace,
     Feedback,
     FeedbackMode,
     IterationRecord,
+    IterationVerdict,
     Mode,
     PlannerReply,
     PlannerRequest,
@@ -35,18 +44,17 @@ from verigraph.planning.prompting import planner_prompt
 from verigraph.planning.tool_calls import ToolEnvironment
 from verigraph.tasks.task import EpisodeSpec
 
-MAX_ACTIONS_PER_CALL = 50  # execute_actions' limit; direct plans are sent in such chunks
-
 
 class LoopConfig(BaseModel):
-    """Algorithm 1's knobs: k actions per iteration, threshold t, the end-token policy."""
+    """Algorithm 1's knobs: k actions per iteration, the error threshold t (`threshold`),
+    the end-token policy; k and t default to the server's (verigraph.planning.iteration)."""
 
     model_config = ConfigDict(extra="forbid")
 
     mode: Mode = "iterative"
-    k: int = Field(default=3, ge=1, le=MAX_ACTIONS_PER_CALL,
+    k: int = Field(default=DEFAULT_K, ge=1, le=MAX_ACTIONS_PER_CALL,
                    description="at most k actions per iteration")
-    threshold: int = Field(default=5, ge=1, le=100,
+    threshold: int = Field(default=DEFAULT_T, ge=1, le=100,
                            description="stop after t consecutive failed iterations")
     done_policy: DonePolicy = "verify"
     stop_on_goal: bool = Field(default=True,
@@ -65,14 +73,6 @@ class LoopConfig(BaseModel):
 
 IterationHook = Callable[[IterationRecord], None]
 StartHook = Callable[[EpisodeTrace], None]
-
-
-def _prompt_goal(goal: Goal | None, show_graph: bool) -> Goal | None:
-    if goal is None or show_graph or (goal.graph is None and goal.formula is None):
-        return goal
-    if goal.predicate is None:
-        return None
-    return goal.model_copy(update={"graph": None, "formula": None})
 
 
 class EpisodeRun:
@@ -107,13 +107,10 @@ class EpisodeRun:
                 "perception is installed)", field="scene", value=self.episode_id,
                 fix="load a scene graph, a scene id or a generated scene, or describe the "
                     "image with get_scene_image + submit_scene_graph first")
-        self.graph = SceneGraph.model_validate(graph)
+        self.graph, self.goal_satisfied, self.goal_diff = read_state(state)
         self.goal = Goal.model_validate(state["goal"]) if state.get("goal") else None
         self.instruction = state.get("instruction")
         self.history = list(state.get("executed", []))
-        self.goal_satisfied = state.get("goal_satisfied")
-        diff = state.get("goal_diff")
-        self.goal_diff = GraphDiff.model_validate(diff) if diff else None
 
     def start(self) -> None:
         iterative = self.config.mode == "iterative"
@@ -131,14 +128,9 @@ class EpisodeRun:
         self.trace.instruction = self.instruction
 
     def execute(self, actions: list[AnyAction]) -> dict[str, Any]:
-        out = self.env.call("execute_actions", {
-            "episode_id": self.episode_id,
-            "actions": [a.model_dump(mode="json") for a in actions]})
-        self.graph = SceneGraph.model_validate(out["graph"])
+        out = execute_actions(self.env, self.episode_id, actions)
+        self.graph, self.goal_satisfied, self.goal_diff = read_state(out)
         self.history.extend(out["executed"])
-        self.goal_satisfied = out.get("goal_satisfied")
-        diff = out.get("goal_diff")
-        self.goal_diff = GraphDiff.model_validate(diff) if diff else None
         self.trace.actions_executed += len(out["executed"])
         return out
 
@@ -157,7 +149,7 @@ class EpisodeRun:
     def ask(self, iteration: int, feedback: Feedback | None) -> tuple[PlannerReply, str]:
         assert self.graph is not None
         k = self.config.k if self.config.mode == "iterative" else None
-        shown_goal = _prompt_goal(self.goal, self.spec.show_goal_graph)
+        shown_goal = prompt_goal(self.goal, self.spec.show_goal_graph)
         shown_feedback = shape_feedback(feedback, self.config.feedback)
         privileged = is_privileged(self.planner)
         prompt = planner_prompt(
@@ -172,6 +164,15 @@ class EpisodeRun:
         reply = self.planner.propose(request)
         self.trace.llm_calls += reply.llm_calls
         return reply, prompt
+
+    def count(self, verdict: IterationVerdict) -> None:
+        """Add an iteration's failure, if it was one, to the trace's counters."""
+        if verdict == "malformed":
+            self.trace.malformed_outputs += 1
+        elif verdict == "violation":
+            self.trace.violations_caught += 1
+        elif verdict == "premature_done":
+            self.trace.premature_done += 1
 
     def planner_failed(self, iteration: int, exc: Exception, started: float) -> None:
         """End the episode on a planner exception: one record, the error in the trace."""

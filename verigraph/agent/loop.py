@@ -5,7 +5,9 @@ planner for at most k actions (or the end token), send them to `execute_actions`
 (execute-until-violation), and read back the new graph and the violation. tau counts
 consecutive failed iterations and is reset by a clean one; the episode stops when the
 planner's end token is accepted or when tau reaches the threshold t. `end_episode`
-gives the verdict.
+gives the verdict. One iteration (the verdict, tau, the end-token rule and the stops
+they call for) is verigraph.planning.iteration's `Iteration`, which the environment's
+`step` drives too; this module adds the planner call, the trace and the stops below.
 
 Stops besides t, each recorded as the trace's `stop_reason`:
 
@@ -37,13 +39,8 @@ import contextlib
 import time
 
 from verigraph.actions.model import DoneAction
-from verigraph.agent.episode import (
-    MAX_ACTIONS_PER_CALL,
-    EpisodeRun,
-    IterationHook,
-    LoopConfig,
-    StartHook,
-)
+from verigraph.agent.episode import EpisodeRun, IterationHook, LoopConfig, StartHook
+from verigraph.planning.iteration import MAX_ACTIONS_PER_CALL, Iteration
 from verigraph.planning.models import EpisodeTrace, Feedback, IterationRecord
 from verigraph.planning.parsing import split_proposal
 from verigraph.planning.planner import Planner
@@ -56,7 +53,8 @@ __all__ = ["MAX_ACTIONS_PER_CALL", "LoopConfig", "run_episode"]
 
 def _iterate(ep: EpisodeRun) -> None:
     config = ep.config
-    tau = 0
+    step = Iteration(config.k, config.threshold, verify_done=config.done_policy == "verify",
+                     stop_on_goal=config.stop_on_goal)
     feedback: Feedback | None = None
     meter = ProgressMeter(config.no_progress)
     meter.update(ep.distance())
@@ -67,59 +65,23 @@ def _iterate(ep: EpisodeRun) -> None:
         except Exception as exc:  # noqa: BLE001 (any planner failure ends only this episode)
             ep.planner_failed(iteration, exc, started)
             return
+        outcome = step.step(reply, ep.execute, lambda: (ep.goal_satisfied, ep.goal_diff))
+        feedback = outcome.feedback
+        ep.count(outcome.verdict)
         record = IterationRecord(
-            iteration=iteration, proposed=[a.text() for a in reply.actions], verdict="clean",
-            tau=tau, llm_calls=reply.llm_calls, raw_output=reply.raw, note=reply.note,
-            prompt=prompt if config.record_prompts else None)
-        moves, done, dropped = split_proposal(reply.actions, config.k)
-        record.dropped = [a.text() for a in dropped]
-        server_threshold = False
-        ended = False
-        if reply.error is not None or not (moves or done):
-            feedback = malformed_feedback(reply)
-            record.verdict = "malformed"
-            ep.trace.malformed_outputs += 1
-        else:
-            feedback = None
-            if moves:
-                out = ep.execute([*moves, *([DoneAction()] if done else [])])
-                record.executed = list(out["executed"])
-                record.server_tau = out.get("tau")
-                server_threshold = bool(out.get("threshold_reached"))
-                if out.get("violation"):
-                    feedback = violation_feedback(out)
-                    record.verdict = "violation"
-                    ep.trace.violations_caught += 1
-                ended = done and feedback is None
-            else:
-                ended = True
-            if ended:
-                if ep.goal_satisfied is False and config.done_policy == "verify":
-                    diff = ep.goal_diff.summary() if ep.goal_diff else "goal not reached"
-                    feedback = Feedback(
-                        kind="premature_done",
-                        text=f"[premature_done] you answered done, but {diff}. Keep planning "
-                             "towards the goal and answer done only once it holds.")
-                    record.verdict = "premature_done"
-                    ep.trace.premature_done += 1
-                    ended = False
-                else:
-                    record.verdict = "end_token"
-        tau = 0 if record.verdict in ("clean", "end_token") else tau + 1
-        record.tau = tau
-        record.feedback = feedback
-        record.goal_satisfied = ep.goal_satisfied
-        record.goal_distance = ep.distance()
+            iteration=iteration, proposed=[a.text() for a in reply.actions],
+            verdict=outcome.verdict, tau=outcome.tau, llm_calls=reply.llm_calls,
+            raw_output=reply.raw, note=reply.note,
+            prompt=prompt if config.record_prompts else None,
+            dropped=[a.text() for a in outcome.dropped], feedback=feedback,
+            goal_satisfied=ep.goal_satisfied, goal_distance=ep.distance())
+        if outcome.out:
+            record.executed = list(outcome.out["executed"])
+            record.server_tau = outcome.out.get("tau")
         record.seconds = time.perf_counter() - started
         ep.record(record)
-        if ended:
-            ep.trace.stop_reason = "end_token"
-            return
-        if config.stop_on_goal and ep.goal_satisfied:
-            ep.trace.stop_reason = "goal_reached"
-            return
-        if tau >= config.threshold or server_threshold:
-            ep.trace.stop_reason = "threshold"
+        if outcome.stop is not None:
+            ep.trace.stop_reason = outcome.stop
             return
         if meter.update(record.goal_distance):
             ep.trace.stop_reason = "no_progress"

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any, Literal, get_args
 
@@ -38,7 +38,7 @@ import gymnasium as gym
 from gymnasium import spaces
 from pydantic import ValidationError
 
-from verigraph.actions.model import AnyAction, DoneAction
+from verigraph.actions.model import AnyAction
 from verigraph.env.dataset import (
     DEFAULT_TEST_FRACTION,
     Split,
@@ -52,6 +52,15 @@ from verigraph.errors import VeriGraphError
 from verigraph.graph.goal import Goal, GraphDiff
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.planning.iteration import (
+    DEFAULT_K,
+    DEFAULT_T,
+    MAX_ACTIONS_PER_CALL,
+    Iteration,
+    execute_actions,
+    prompt_goal,
+    read_state,
+)
 from verigraph.planning.models import (
     Feedback,
     FeedbackMode,
@@ -59,13 +68,8 @@ from verigraph.planning.models import (
     PlannerReply,
     PlannerRequest,
 )
-from verigraph.planning.parsing import EXPECTED, ParseFailure, parse_answer, split_proposal
-from verigraph.planning.progress import (
-    goal_distance,
-    malformed_feedback,
-    shape_feedback,
-    violation_feedback,
-)
+from verigraph.planning.parsing import EXPECTED, ParseFailure, parse_answer
+from verigraph.planning.progress import goal_distance, shape_feedback
 from verigraph.planning.prompting import planner_prompt
 from verigraph.planning.tool_calls import InProcessTools, ToolEnvironment
 from verigraph.tasks.task import Task
@@ -108,15 +112,6 @@ def state_hash(graph: SceneGraph) -> str:
     return hashlib.sha256(blob.encode("utf-8")).hexdigest()[:16]
 
 
-def _prompt_goal(goal: Goal | None, show_graph: bool) -> Goal | None:
-    """The goal as the prompt may show it: without its graph or formula for instruction
-    tasks."""
-    if goal is None or show_graph or (goal.graph is None and goal.formula is None):
-        return goal
-    return goal.model_copy(update={"graph": None, "formula": None}) \
-        if goal.predicate is not None else None
-
-
 class VeriGraphEnv(gym.Env[str, str]):
     """Text-in, text-out planning episodes on VeriGraph tasks (module docstring)."""
 
@@ -125,12 +120,13 @@ class VeriGraphEnv(gym.Env[str, str]):
     def __init__(self, family: str = "blocks", *, split: Split = "train",
                  tasks: str | Path | Sequence[Task | dict[str, Any]] | None = None,
                  per_group: int | None = None, suite_seed: int = 0,
-                 test_fraction: float = DEFAULT_TEST_FRACTION, k: int = 3,
-                 threshold: int = 5, max_steps: int = 40, feedback: FeedbackMode = "full",
+                 test_fraction: float = DEFAULT_TEST_FRACTION, k: int = DEFAULT_K,
+                 threshold: int = DEFAULT_T, max_steps: int = 40, feedback: FeedbackMode = "full",
                  rubric: Rubric | dict[str, float] | None = None,
                  tools: ToolEnvironment | None = None,
                  render_mode: Literal["ansi"] | None = None) -> None:
-        for name, value, low, high in (("k", k, 1, 50), ("threshold", threshold, 1, 100),
+        for name, value, low, high in (("k", k, 1, MAX_ACTIONS_PER_CALL),
+                                       ("threshold", threshold, 1, 100),
                                        ("max_steps", max_steps, 1, 10_000)):
             if not low <= value <= high:
                 raise VeriGraphError(f"{name} must be between {low} and {high}", field=name,
@@ -186,7 +182,7 @@ class VeriGraphEnv(gym.Env[str, str]):
         self.goal_satisfied: bool | None = None
         self.goal_diff: GraphDiff | None = None
         self.steps = 0
-        self.tau = 0
+        self.iteration = Iteration(self.k, self.threshold)
         self.moves = 0
         self.distance_start: int | None = None
         self._distance: int | None = None
@@ -240,11 +236,20 @@ class VeriGraphEnv(gym.Env[str, str]):
                                  "a Task")
 
     def _absorb(self, state: dict[str, Any]) -> None:
-        self.graph = SceneGraph.model_validate(state["graph"])
-        self.goal_satisfied = state.get("goal_satisfied")
-        diff = state.get("goal_diff")
-        self.goal_diff = GraphDiff.model_validate(diff) if diff else None
+        self.graph, self.goal_satisfied, self.goal_diff = read_state(state)
         self._distance = goal_distance(self.graph, self.privileged_goal)
+
+    def _execute(self, tools: ToolEnvironment, actions: list[AnyAction]) -> dict[str, Any]:
+        out = execute_actions(tools, self.episode_id, actions)
+        self._absorb(out)
+        self.history.extend(out["executed"])
+        self.moves += len(out["executed"])
+        return out
+
+    @property
+    def tau(self) -> int:
+        """Consecutive failed steps (tau of Algorithm 1, verigraph.planning.iteration)."""
+        return self.iteration.tau
 
     # -- Gymnasium API ---------------------------------------------------------------------
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None
@@ -262,7 +267,7 @@ class VeriGraphEnv(gym.Env[str, str]):
             state = tools.call("get_state", {"episode_id": self.episode_id})
         self.privileged_goal = Goal.model_validate(state["goal"]) if state.get("goal") else None
         self._absorb(state)
-        self.shown_goal = _prompt_goal(self.privileged_goal, task.show_goal_graph)
+        self.shown_goal = prompt_goal(self.privileged_goal, task.show_goal_graph)
         self.instruction = state.get("instruction")
         self.history = list(state.get("executed", []))
         self.distance_start = self.distance()
@@ -280,60 +285,23 @@ class VeriGraphEnv(gym.Env[str, str]):
         step_number = self.steps + 1
         distance_before = self.distance()
         parsed: list[AnyAction] = []
-        dropped: list[AnyAction] = []
-        out: dict[str, Any] = {}
-        ended = False
-        feedback: Feedback | None = None
         text = action if isinstance(action, str) else str(action)
         try:
             parsed = parse_answer(_within_action_space(text))
-            moves, done, dropped = split_proposal(parsed, self.k)
             error = None
         except ParseFailure as exc:
-            moves, done, error = [], False, str(exc)
-        verdict: IterationVerdict
-        if error is not None or not (moves or done):
-            feedback = malformed_feedback(PlannerReply(actions=parsed, error=error))
-            verdict = "malformed"
-        else:
-            verdict = "clean"
-            if moves:
-                out = tools.call("execute_actions", {
-                    "episode_id": self.episode_id,
-                    "actions": [a.model_dump(mode="json")
-                                for a in [*moves, *([DoneAction()] if done else [])]]})
-                self._absorb(out)
-                self.history.extend(out["executed"])
-                self.moves += len(out["executed"])
-                if out.get("violation"):
-                    feedback = violation_feedback(out)
-                    verdict = "violation"
-                ended = done and feedback is None
-            else:
-                ended = True
-            if ended:
-                if self.goal_satisfied is False:
-                    diff = self.goal_diff.summary() if self.goal_diff else "goal not reached"
-                    feedback = Feedback(
-                        kind="premature_done",
-                        text=f"[premature_done] you answered done, but {diff}. Keep planning "
-                             "towards the goal and answer done only once it holds.")
-                    verdict = "premature_done"
-                    ended = False
-                else:
-                    verdict = "end_token"
+            error = str(exc)
+        outcome = self.iteration.step(PlannerReply(actions=parsed, error=error),
+                                      lambda actions: self._execute(tools, actions),
+                                      lambda: (self.goal_satisfied, self.goal_diff))
+        verdict, out, dropped = outcome.verdict, outcome.out, outcome.dropped
         self.steps = step_number
-        self.tau = 0 if verdict in ("clean", "end_token") else self.tau + 1
-        self.feedback = feedback
-        terminated = ended or bool(self.goal_satisfied)
-        truncated = not terminated and (self.tau >= self.threshold
-                                        or bool(out.get("threshold_reached"))
-                                        or self.steps >= self.max_steps)
-        if terminated:
-            self.stop_reason = "end_token" if ended else "goal_reached"
-        elif truncated:
-            self.stop_reason = "threshold" if self.tau >= self.threshold \
-                or out.get("threshold_reached") else "step_limit"
+        self.feedback = outcome.feedback
+        terminated = outcome.stop in ("end_token", "goal_reached")
+        truncated = outcome.stop == "threshold" or (not terminated
+                                                    and self.steps >= self.max_steps)
+        if terminated or truncated:
+            self.stop_reason = outcome.stop or "step_limit"
         success = terminated and self.goal_satisfied is not False
         distance_after = self.distance()
         reward, terms = score(self.rubric, StepOutcome(
@@ -404,7 +372,7 @@ class VeriGraphEnv(gym.Env[str, str]):
                               history=list(self.history), k=self.k, prompt=self.observation)
 
     def _info(self, *, verdict: IterationVerdict | None, reward_terms: dict[str, float],
-              out: dict[str, Any] | None = None, parsed: list[AnyAction] | None = None,
+              out: Mapping[str, Any] | None = None, parsed: list[AnyAction] | None = None,
               dropped: list[AnyAction] | None = None, success: bool | None = None
               ) -> dict[str, Any]:
         assert self.task is not None and self.graph is not None

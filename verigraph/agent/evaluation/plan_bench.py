@@ -36,6 +36,7 @@ from verigraph.agent.evaluation.tables import (
 )
 from verigraph.errors import VeriGraphError
 from verigraph.planning.factory import PLANNER_NAMES
+from verigraph.planning.iteration import DEFAULT_K, DEFAULT_T
 from verigraph.tasks.groups import (
     GROUPS,
     SUITE_VERSION,
@@ -59,8 +60,8 @@ class PlanConfig(BaseModel):
     groups: list[str] = Field(default_factory=lambda: [str(g) for g in GROUPS])
     planners: list[str] = Field(default_factory=lambda: list(DEFAULT_PLANNERS))
     noise: float = 0.3
-    k: int = 3
-    threshold: int = 5
+    k: int = DEFAULT_K
+    threshold: int = DEFAULT_T  # the error threshold t
     max_iterations: int = 30
     no_progress: int = 15
     ground_truth_graphs: bool = False

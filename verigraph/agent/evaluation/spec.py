@@ -17,6 +17,7 @@ from collections.abc import Iterable
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph import __version__
+from verigraph.planning.iteration import DEFAULT_K, DEFAULT_T
 from verigraph.planning.models import DonePolicy, FeedbackMode, Mode
 from verigraph.tasks.groups import GroupTasks
 from verigraph.tasks.task import SUITE_VERSION, GroupName, Task
@@ -29,8 +30,8 @@ class Setting(BaseModel):
 
     planner: str
     mode: Mode = "iterative"
-    k: int = 3
-    threshold: int = 5
+    k: int = DEFAULT_K
+    threshold: int = DEFAULT_T  # the error threshold t
     done_policy: DonePolicy = "verify"
     noise: float = 0.3
     max_iterations: int = 30
