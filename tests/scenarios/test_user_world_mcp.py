@@ -33,8 +33,8 @@ async def home_office_session(c: Client, scene: dict[str, Any], dictionary: str)
     loaded = await c.call_tool("load_scene", {"graph": scene})
     shown = text(loaded)
     ep = structured(loaded)["episode_id"]
-    assert "laptop (laptop: your label, movable surface, capacity 1)" in shown
-    assert "drawers (drawer_unit: your label, fixed container, capacity 2)" in shown
+    assert "laptop (laptop: your label, movable surface, capacity 1" in shown  # + sizes in attrs
+    assert "drawers (drawer_unit: your label, fixed container, capacity 2" in shown
     assert "Mug read as mug (case and spacing" in shown
     assert "notebook read as book (synonym, tableware dictionary)" in shown
     state = structured(loaded)

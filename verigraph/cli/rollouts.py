@@ -28,7 +28,7 @@ from verigraph.errors import VeriGraphError
 # verigraph.env's PolicyName and FAMILIES, written out so that building the parser does
 # not import the env extra (tests/cli/test_cli_rollouts.py checks they stay equal).
 POLICIES = ("oracle", "noisy", "greedy", "refuse")
-FAMILIES = ("blocks", "kitchen", "tangram", "behavior")
+FAMILIES = ("blocks", "kitchen", "tangram", "household", "behavior")
 
 
 def register(sub: Any) -> None:
