@@ -29,14 +29,14 @@ SAFETY_S = 60  # only so that a broken server fails instead of hanging
 
 
 class HeldStep:
-    """Wraps the plan checker's per-move check (the move row's compiled preconditions):
+    """Wraps the plan checker's per-move step (the move row's compiled check and edit):
     the first move waits until cancelled."""
 
     def __init__(self) -> None:
         self.started = threading.Event()
         self.outcome: list[BaseException | str] = []
         self.finished = threading.Event()
-        self.real = execution.MOVE.accepted
+        self.real = execution.MOVE.step
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
         if not self.started.is_set():
@@ -55,7 +55,8 @@ class HeldStep:
     def row(self) -> SimpleNamespace:
         """The move row with this check in place of its own."""
         move = execution.MOVE
-        return SimpleNamespace(args=move.args, accepted=self, apply=move.apply)
+        return SimpleNamespace(name=move.name, args=move.args, accepted=move.accepted,
+                               apply=move.apply, step=self)
 
 
 async def test_a_vanished_clients_call_is_cancelled(monkeypatch: pytest.MonkeyPatch) -> None:
