@@ -72,7 +72,8 @@ def test_inspector_calls_a_tool_over_stdio() -> None:
         "built-in properties applied (dictionary: tableware): book: movable surface, "
         "capacity 2 (tableware dictionary); cup: movable container, capacity 1 (tableware "
         "dictionary); desk: fixed surface, capacity unlimited (tableware dictionary); shelf: "
-        "fixed surface, capacity 3 (tableware dictionary)")
+        "fixed surface, capacity 3 (tableware dictionary). These are built-in defaults, "
+        "assumed: confirm them with the user; a node's attrs win over them")
 
 
 def test_inspector_sees_tool_errors_over_stdio() -> None:
