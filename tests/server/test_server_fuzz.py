@@ -102,7 +102,7 @@ FIELD_KINDS = {
     "view": "str", "k": "int", "t": "int", "seed": "int", "width": "int", "height": "int",
     "max_expansions": "int", "partial": "bool", "simulate": "bool", "all_errors": "bool",
     "executor": "str", "reason": "str", "request_id": "str", "expected_calls": "int",
-    "edges": "str", "pddl": "object",
+    "edges": "str", "pddl": "object", "formula": "str", "bddl": "str", "whole_plan": "bool",
     "time_limit": "int", "memory_limit_mb": "int", "anytime": "bool",
 }
 
