@@ -225,8 +225,8 @@ def _kitchen_goal_graph(state: WorldState, moved: list[str]) -> SceneGraph:
 
 # -- tangram ------------------------------------------------------------------------------
 def draw_tangram(rng: random.Random, cfg: LevelConfig) -> Generated | None:
-    from verigraph.planning.tangram_plan import tangram_plan
     from verigraph.sim2d.generator import generate_scene
+    from verigraph.tasks.suite_tangram import put_back_goal
 
     figure = generate_scene("tangram", rng.randrange(2**31), cfg.objects).goal.graph
     if figure is None:
@@ -261,13 +261,11 @@ def draw_tangram(rng: random.Random, cfg: LevelConfig) -> Generated | None:
         return None
     start = SceneGraph(nodes=list(figure.nodes), edges=kept + wrong,
                        dictionary=figure.dictionary)
-    words = ", ".join(out[::-1])
-    goal = Goal(graph=figure, instruction=f"Put {words} back into the figure: make every "
-                                          "contact of the target figure hold.")
-    plan = tangram_plan(WorldState.from_graph(start), goal)
-    if plan is None:
+    put_back = put_back_goal(figure, start, out)
+    if put_back is None:
         return None
-    return Generated(start, goal, len(plan), len(wrong), chained)
+    goal, length = put_back
+    return Generated(start, goal, length, len(wrong), chained)
 
 
 def _wrong_contacts(rng: random.Random, figure: SceneGraph, out: list[str], count: int

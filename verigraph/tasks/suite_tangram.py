@@ -47,13 +47,22 @@ def tangram_task(figure: SceneGraph, rng: random.Random, pieces_out: int) -> Dra
                        edges=[e for e in figure.edges
                               if e.source not in removed and e.target not in removed],
                        dictionary=figure.dictionary)
+    put_back = put_back_goal(figure, start, removed)
+    if put_back is None:
+        return None
+    goal, length = put_back
+    return Drawn(start, goal, f"{pieces_out}_pieces_out", length)
+
+
+def put_back_goal(figure: SceneGraph, start: SceneGraph, removed: list[str]
+                  ) -> tuple[Goal, int] | None:
+    """The goal of putting the `removed` pieces back into `figure` from `start`, and its
+    reference plan's length (None when the tangram search finds no plan)."""
     words = ", ".join(removed[::-1])
     goal = Goal(graph=figure, instruction=f"Put {words} back into the figure: make every "
                                           "contact of the target figure hold.")
     plan = tangram_plan(WorldState.from_graph(start), goal)
-    if plan is None:
-        return None
-    return Drawn(start, goal, f"{pieces_out}_pieces_out", len(plan))
+    return None if plan is None else (goal, len(plan))
 
 
 PIECES_OUT = (5, 3, 5, 2, 5, 4)  # 2-3 piece tasks and harder ones: mean 4 moves
