@@ -24,38 +24,8 @@ pytestmark = pytest.mark.fast
 
 async def modules_entered(client: Client, name: str, arguments: dict[str, Any]) -> set[str]:
     """The verigraph modules whose functions run during one call (all threads)."""
-    seen: set[str] = set()
-
-    def profile(frame: FrameType, event: str, arg: Any) -> None:
-        if event == "call":
-            module = frame.f_globals.get("__name__") or ""
-            if module.startswith("verigraph"):
-                seen.add(module)
-
-    sys.setprofile(profile)
-    threading.setprofile(profile)  # type: ignore[arg-type]
-    try:
-        structured(await client.call_tool(name, arguments))
-    finally:
-        sys.setprofile(None)
-        threading.setprofile(None)  # type: ignore[arg-type]
+    seen, _ = await modules_switched(client, name, arguments)
     return seen
-
-
-@pytest.mark.anyio
-async def test_a_small_call_on_a_graph_episode_runs_in_one_server_module_and_no_arm() -> None:
-    async with Client(build_server(Toolbox())) as client:
-        episode = structured(await client.call_tool("load_scene", {"scene_id": "cup_on_book"}))
-        arguments = {"episode_id": episode["episode_id"], "action": "move(cup, on, desk)"}
-        await client.call_tool("validate_action", arguments)  # warm-up
-        seen = await modules_entered(client, "validate_action", arguments)
-        executed = await modules_entered(client, "execute_actions", {
-            "episode_id": episode["episode_id"], "actions": ["move(book, on, shelf)"]})
-    assert not {m for m in seen | executed if m.startswith("verigraph.arm")}, seen | executed
-    # the call's path, and who it comes from (the caller its episode must belong to)
-    assert {m for m in seen if m.startswith("verigraph.server")} == {
-        "verigraph.server.tools", "verigraph.server.callers"}
-    assert len(seen) <= 17, sorted(seen)  # 16, and the caller's module
 
 
 async def modules_switched(client: Client, name: str, arguments: dict[str, Any]
