@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 from mcp import Client
 from mcp_helpers import in_process_client, structured, text  # noqa: F401 - the client fixture
+from roads import ROADS
 
 from verigraph.actions.pddl import as_validation_report
 from verigraph.cli import main as verigraph_main
@@ -23,14 +24,6 @@ from verigraph.pddl import (
 
 pytestmark = pytest.mark.fast
 
-ROADS = """(define (domain roads) (:requirements :typing :action-costs)
-  (:types place)
-  (:predicates (at ?p - place) (road ?a ?b - place))
-  (:functions (total-cost) - number (road-length ?a ?b - place) - number)
-  (:action drive :parameters (?a ?b - place)
-    :precondition (and (at ?a) (road ?a ?b))
-    :effect (and (not (at ?a)) (at ?b) (increase (total-cost) (road-length ?a ?b)))))
-"""
 TRIP = """(define (problem trip) (:domain roads) (:objects x y z - place)
   (:init (at x) (road x y) (road y z)
          (= (road-length x y) {xy}) (= (road-length y z) 5) {start})

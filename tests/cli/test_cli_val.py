@@ -13,6 +13,7 @@ import tomllib
 from pathlib import Path
 
 import pytest
+from roads import ROADS
 
 from verigraph.cli import val
 
@@ -158,14 +159,6 @@ def test_the_command_and_the_console_script(tmp_path, plans):
         assert "Plan Repair Advice:" in r.stdout and r.stderr == ""
 
 
-ROADS = """(define (domain roads) (:requirements :typing :action-costs)
-  (:types place)
-  (:predicates (at ?p - place) (road ?a ?b - place))
-  (:functions (total-cost) - number (road-length ?a ?b - place) - number)
-  (:action drive :parameters (?a ?b - place)
-    :precondition (and (at ?a) (road ?a ?b))
-    :effect (and (not (at ?a)) (at ?b) (increase (total-cost) (road-length ?a ?b)))))
-"""
 TRIP = """(define (problem trip) (:domain roads) (:objects x y z - place)
   (:init (at x) (road x y) (road y z) (road x z)
          (= (road-length x y) 3) (= (road-length y z) 4.5) (= (road-length x z) 10)
