@@ -341,18 +341,14 @@ def closed_passage(state: WorldState, obj: str, relation: str, target: str) -> s
     that holds the object, or the target, directly or through what carries them (bacon
     on a tray in a closed fridge stays there until the fridge is opened), or the target
     itself when the object goes `in` it."""
-    if relation == "in" and target in state.openable and \
-            not state.state_value(target, "open"):
+    if relation == "in" and _closed(state, target):
         return target
     for start in (obj, target):
-        seen = {start}
-        below = state.support.get(start)
-        while below is not None and below[1] not in seen:
-            if below[0] == "in" and below[1] in state.openable and \
-                    not state.state_value(below[1], "open"):
-                return below[1]
-            seen.add(below[1])
-            below = state.support.get(below[1])
+        held = start
+        for carrier in state.supports_chain(start):
+            if state.support[held][0] == "in" and _closed(state, carrier):
+                return carrier
+            held = carrier
     return None
 
 
@@ -362,24 +358,12 @@ def explain_container_closed(state: WorldState, a: MoveAction) -> Violation:
     label = state.objects[box].label
     if a.relation == "in" and box == a.target:
         message = f"cannot put {a.object} in {box} ({label}): {box} is closed"
-    elif _inside(state, a.object, box):
+    elif box in state.supports_chain(a.object):
         message = f"cannot take {a.object} out of {box} ({label}): {box} is closed"
     else:
         message = f"cannot reach {a.target} in {box} ({label}): {box} is closed"
     return _violation(a, "container_closed", message,
                       f"open({box}) first, then {a.text()}", [box])
-
-
-def _inside(state: WorldState, obj: str, box: str) -> bool:
-    """Whether `obj` rests in `box`, directly or through what carries it."""
-    seen = {obj}
-    below = state.support.get(obj)
-    while below is not None and below[1] not in seen:
-        if below[1] == box:
-            return True
-        seen.add(below[1])
-        below = state.support.get(below[1])
-    return False
 
 
 def explain_capacity(state: WorldState, a: MoveAction, *,
