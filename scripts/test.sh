@@ -34,8 +34,8 @@ if [ "$MODE" = slow ]; then
   # OpenEnv 0.10 and verifiers 0.4 in their own environments (each pins an mcp that
   # cannot sit beside VeriGraph's; over two minutes each): tests/env/test_openenv_current.py
   # and tests/env/test_verifiers_taskset.py.
-  bash scripts/install_openenv.sh
-  bash scripts/install_verifiers.sh
+  bash scripts/install_integration.sh openenv
+  bash scripts/install_integration.sh verifiers
   .venv/bin/pytest --durations=25 "$@"
 else
   .venv/bin/pytest -m "not slow" --durations=25 "$@"

@@ -20,7 +20,7 @@ def venv_python(name: str, variable: str) -> Path:
                                  "python"))
     if not python.exists():
         message = (f"no {name} environment at {python}; build it with "
-                   f"`bash scripts/install_{name}.sh`")
+                   f"`bash scripts/install_integration.sh {name}`")
         if in_ci():
             pytest.fail(message, pytrace=False)
         pytest.skip(message)

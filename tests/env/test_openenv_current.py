@@ -1,6 +1,6 @@
 """The current OpenEnv (openenv 0.10): the verigraph-openenv package's own server and
 client (OpenEnv's `create_app` and `EnvClient`, in the separate environment that
-scripts/install_openenv.sh builds) against VeriGraph's environment server, on loopback.
+scripts/install_integration.sh openenv builds) against VeriGraph's environment server, on loopback.
 
 VeriGraph's served environment (procedural blocks, level 1) runs in this process; the
 OpenEnv 0.10 server runs as a child in its own virtual environment and forwards every

@@ -1,5 +1,5 @@
 """The verifiers taskset (integrations/verifiers, in the separate environment that
-scripts/install_verifiers.sh builds): verifiers' own loader finds it by taskset id, its
+scripts/install_integration.sh verifiers builds): verifiers' own loader finds it by taskset id, its
 tasks are episodes of a real VeriGraph environment server on loopback, and verifiers'
 own evaluation (`vf-eval`, its chat harness in a subprocess runtime, its model proxy)
 plays them multi-turn against a model endpoint, the verifier's feedback coming back as
