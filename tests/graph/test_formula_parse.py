@@ -21,10 +21,10 @@ from verigraph.graph.formula import (
     Param,
     Quantified,
     constants,
-    looks_like_formula,
     parse_formula,
     show,
 )
+from verigraph.graph.goal import looks_like_formula
 
 pytestmark = pytest.mark.fast
 NO_CUP_ON_A_PLATE = "(forall (?c - cup) (not (exists (?p - plate) (ontop ?c ?p))))"

@@ -158,25 +158,30 @@ def check_plan(state: WorldState, actions: list[AnyAction], goal: Goal | None = 
     """The report for parsed actions run on `state`, which the run edits (the caller's
     own copy, taken once), with a parsed goal: the core of `validate_plan` that the tool
     calls with what it has already read, so nothing is copied, parsed or read twice.
-    `readings`: how the labels of the graphs the caller wrote were read."""
-    size = len(actions)
-    with collector_paused(size):  # a long plan creates many acyclic objects
-        run = run_actions(state, actions, all_errors=all_errors, wanted=NO_GOAL
-                          if goal is None else wanted_placements(goal))
-        records, violations, done, not_checked = (run.records, run.violations, run.done,
-                                                  run.not_checked)
-        goal_diff = check_goal(state, goal) if goal is not None else None
-        plan_valid = not violations
-        goal_reached = None if goal_diff is None else goal_diff.satisfied
-        steps = _steps_from_records(records)
-        final_graph = state.to_graph()
-        if size >= LARGE_GRAPH_ITEMS and gc.get_freeze_count() == 0:
+    `readings`: how the labels of the graphs the caller wrote were read. A long plan
+    creates many acyclic objects: its report is built with the cyclic collector paused,
+    and they are then promoted rather than scanned (see the module docstring)."""
+    if len(actions) < LARGE_GRAPH_ITEMS:
+        return _checked(state, actions, goal, all_errors, readings)
+    with collector_paused():
+        report = _checked(state, actions, goal, all_errors, readings)
+        if gc.get_freeze_count() == 0:
             promote_young_objects()  # see there: the report is acyclic
+    return report
+
+
+def _checked(state: WorldState, actions: list[AnyAction], goal: Goal | None,
+             all_errors: bool, readings: list[str] | None) -> ValidationReport:
+    run = run_actions(state, actions, all_errors=all_errors, wanted=NO_GOAL
+                      if goal is None else wanted_placements(goal))
+    goal_diff = check_goal(state, goal) if goal is not None else None
+    plan_valid = not run.violations
+    goal_reached = None if goal_diff is None else goal_diff.satisfied
     return ValidationReport.model_construct(
         valid=plan_valid and goal_reached is not False, plan_valid=plan_valid,
-        goal_reached=goal_reached, steps=steps, violations=violations,
-        not_checked=not_checked, done=done, goal_diff=goal_diff, final_graph=final_graph,
-        label_readings=readings or [])
+        goal_reached=goal_reached, steps=_steps_from_records(run.records),
+        violations=run.violations, not_checked=run.not_checked, done=run.done,
+        goal_diff=goal_diff, final_graph=state.to_graph(), label_readings=readings or [])
 
 
 def _is_parsed(plan: object) -> bool:

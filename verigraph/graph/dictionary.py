@@ -14,7 +14,7 @@ from collections.abc import Callable
 from functools import cache
 from importlib import resources
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import yaml
 from pydantic import (
@@ -31,6 +31,9 @@ from pydantic_core import PydanticCustomError
 
 from verigraph.errors import DictionaryError, InputFileError
 from verigraph.graph.behavior import BEHAVIOR, behavior_dictionary
+
+if TYPE_CHECKING:  # the graph model imports this module; a graph is only read here
+    from verigraph.graph.model import SceneGraph
 
 BUILTIN_DICTIONARIES = ("blocks", "kitchen", "tableware", "tangram", "household")
 # The paper's worlds: their union is what applies when a scene names no dictionary (or
@@ -71,6 +74,8 @@ ROLE_KEYS = ("movable", "surface", "container")
 # Roles a kind may have beyond where things rest: a state it keeps (STATE_ROLES) and
 # whether it is a room (furniture stands `inroom` it).
 STATE_ROLE_KEYS = ("openable", "toggleable", *THERMAL_ROLES.values(), *SOURCE_ROLES)
+# The properties that make a kind (what constraints read), as opposed to how it looks.
+KIND_KEYS = ("movable", "surface", "container", "capacity", "openable", "toggleable", "room")
 # Bounds of every size the simulator, the renderer and perception build from, whichever
 # way it comes in (a built-in or inline dictionary, a dictionary file, a node's attrs):
 # widths and heights in the simulator's units (a built-in cup is 6 wide, a desk 60),
@@ -726,6 +731,17 @@ def load_dictionary(spec: str | Path | Dictionary | InlineDictionary | None) -> 
                              "'objects: {name: {movable: ..., surface: ...}}'") from None
 
 
+def named_dictionary(reference: str | InlineDictionary | None) -> Dictionary:
+    """The dictionary a graph names (`SceneGraph.dictionary`), for a text about it: a
+    built-in, the client's inline one, the union for none or "all", and the union too
+    for a name that is not built in (a file's, a PDDL domain's): never a file read,
+    never an error."""
+    if isinstance(reference, str) and reference not in (*BUILTIN_DICTIONARIES, "all",
+                                                        BEHAVIOR):
+        return union_dictionary()
+    return load_dictionary(reference)
+
+
 def _homes(knows: Callable[[Dictionary], bool]) -> list[str]:
     """The paper's worlds that know a word; only when none does, the other built-ins
     that do (`pan` is the kitchen's, though the household extends the kitchen)."""
@@ -780,3 +796,65 @@ def wrong_dictionary_advice(labels: list[str], chosen: str, every_label: list[st
     parts = "; ".join(f"{_quoted(labels_)} in {name}" for name, labels_ in groups.items())
     return (f"these labels are not in the {chosen} dictionary ({parts}); omit `dictionary` "
             "to use all built-ins", "leave \"dictionary\" out", list(elsewhere))
+
+
+MAX_APPLIED = 12
+# What a built-in property is: an assumption about a kind, not a fact about the user's
+# object; the user decides, and a node's attrs win over it.
+DEFAULTS_NOTE = ("These are built-in defaults, assumed: confirm them with the user; a "
+                 "node's attrs win over them")
+
+
+def applied_properties(graph: SceneGraph | None, dictionary: Dictionary,
+                       *more: SceneGraph | None, limit: int = MAX_APPLIED) -> list[str]:
+    """The built-in properties a check applies to the graphs' nodes, once per kind:
+    `shelf: fixed surface, capacity 3 (tableware dictionary)`; a node whose attrs
+    change a role or capacity gets its own entry (`cup: movable container, capacity 2
+    (tableware dictionary; capacity from cup_2's attrs)`). The client's own labels are
+    left out (the client declared them). At most `limit` entries, then a count."""
+    entries: dict[str, None] = {}
+    for written in (graph, *more):
+        for node in written.nodes if written is not None else ():
+            label = dictionary.resolve(node.label)
+            if label is None or label in dictionary.user_labels:
+                continue
+            props = dictionary.objects[label]
+            changed: list[str] = []
+            if not node.attrs.keys().isdisjoint(KIND_KEYS):  # its attrs change its kind
+                try:
+                    mine = props.overridden(node.attrs)
+                except DictionaryError:
+                    mine = props
+                changed = [k for k in KIND_KEYS if getattr(mine, k) != getattr(props, k)]
+                props = mine
+            where = dictionary.home(label)
+            if changed:
+                where += f"; {', '.join(changed)} from {node.id}'s attrs"
+            entries.setdefault(f"{label}: {properties_text(props)} ({where})")
+    found = list(entries)
+    if len(found) > limit:
+        found = [*found[:limit], f"... and {len(found) - limit} more"]
+    return found
+
+
+def applied_line(graph: SceneGraph | None, *more: SceneGraph | None,
+                 dictionary: Dictionary | None = None) -> str:
+    """`built-in properties applied (dictionary: all built-ins, none named): shelf: fixed
+    surface, capacity 3 (tableware dictionary); ...`, or empty when none apply. A check
+    without a stored episode shows what it assumed about each built-in kind.
+    `dictionary`: the one the graphs were read with; None: the one the first graph
+    names (`named_dictionary`)."""
+    written = graph
+    for written in (graph, *more):  # the first graph given
+        if written is not None:
+            break
+    if dictionary is None:
+        dictionary = named_dictionary(written.dictionary if written is not None else None)
+    entries = applied_properties(graph, dictionary, *more)
+    if not entries:
+        return ""
+    named = ("all built-ins, none named" if written is None or written.dictionary is None
+             else dictionary.name)
+    text = "; ".join(entries)  # "capacity" within one entry is within the text, and back
+    note = f". {DEFAULTS_NOTE}" if "capacity" in text else ""
+    return f"built-in properties applied (dictionary: {named}): " + text + note

@@ -124,16 +124,6 @@ class _Token:
     at: int  # character offset in the formula text
 
 
-_LEADING_COMMENTS = re.compile(r"(?:\s*;[^\n]*)*\s*")
-
-
-def looks_like_formula(text: str) -> bool:
-    """Goal text starting with `(` (after any `;` comment lines) is a formula; edges
-    text never does."""
-    skipped = _LEADING_COMMENTS.match(text)
-    return text[skipped.end() if skipped else 0:].startswith("(")
-
-
 @lru_cache(maxsize=128)
 def parse_formula(text: str) -> Formula:
     """The formula tree of `text`, or a GoalError naming the position and the fix."""

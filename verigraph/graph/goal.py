@@ -12,13 +12,14 @@ degrees still matches.
 from __future__ import annotations
 
 import itertools
+import operator
 import re
 from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from verigraph.errors import GoalError
-from verigraph.graph.dictionary import STATE_WORDS, ObjectProperties
+from verigraph.graph.dictionary import KIND_KEYS, STATE_WORDS, ObjectProperties
 from verigraph.graph.formula import (
     FORMULA_EXAMPLE,
     MAX_FORMULA_CHARS,
@@ -28,17 +29,26 @@ from verigraph.graph.formula import (
     Junction,
     Pairs,
     Quantified,
-    looks_like_formula,
     parse_formula,
     show,
 )
 from verigraph.graph.formula_eval import MAX_LISTED, evaluate, facts_of
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.graph.wellformed import KIND_KEYS, GraphProblem, resolve_properties
+from verigraph.graph.wellformed import GraphProblem, resolve_properties
 
 PREDICATES = ("single_stack",)
 EdgeKey = tuple[str, str, str, int | None, int | None]
+
+
+_LEADING_COMMENTS = re.compile(r"(?:\s*;[^\n]*)*\s*")
+
+
+def looks_like_formula(text: str) -> bool:
+    """Goal text starting with `(` (after any `;` comment lines) is a formula; edges
+    text never does."""
+    skipped = _LEADING_COMMENTS.match(text)
+    return text[skipped.end() if skipped else 0:].startswith("(")
 
 
 class Goal(BaseModel):
@@ -111,14 +121,14 @@ class GraphDiff(BaseModel):
     detail: str | None = None
     # Written only when the goal lists states, so an edge goal's diff dumps as before.
     missing_states: list[str] = Field(
-        default_factory=list, exclude_if=lambda states: not states,
+        default_factory=list, exclude_if=operator.not_,
         description="goal states not holding, e.g. `fridge closed`, `stove on`")
     # A goal formula's findings: when the goal is not reached, every counterexample of
     # the formula (its failing part with the objects, and why; empty when the formula
     # holds); when it is reached, the witnesses of each exists. The first 1,000 are kept,
     # the last item then saying "... and N more". Written only when there are some.
     formula_detail: list[str] = Field(default_factory=list,
-                                      exclude_if=lambda detail: not detail)
+                                      exclude_if=operator.not_)
 
     def formula_count(self) -> int:
         """How many counterexamples (or witnesses) `formula_detail` stands for."""

@@ -11,8 +11,7 @@ from pydantic import ValidationError
 
 from verigraph.errors import InputFileError
 from verigraph.graph.bulk import collector_paused, graph_items
-from verigraph.graph.formula import looks_like_formula
-from verigraph.graph.goal import Goal
+from verigraph.graph.goal import Goal, looks_like_formula
 from verigraph.graph.model import SceneGraph
 
 MAX_FILE_BYTES = 64 * 1024 * 1024

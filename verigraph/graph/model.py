@@ -36,7 +36,7 @@ class Node(BaseModel):
                                   description="colour; overrides (capacity, movable)")
     # Serialised only when set, so a scene without states dumps as it always did.
     state: Annotated[dict[str, bool], WithJsonSchema({"type": "object"})] = Field(
-        default_factory=dict, exclude_if=lambda state: not state,
+        default_factory=dict, exclude_if=operator.not_,
         description="open, toggled_on: true/false; missing = closed, off")
 
     @field_validator("state", mode="before")

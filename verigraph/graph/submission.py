@@ -8,6 +8,7 @@ so the agent can fix them all in one go.
 
 from __future__ import annotations
 
+import operator
 import re
 import unicodedata
 from typing import Any
@@ -43,7 +44,7 @@ class SubmittedNode(BaseModel):
     label: str = Field(min_length=1, max_length=128)
     attrs: dict[str, Any] = Field(default_factory=dict)
     # Household states (open, toggled_on), checked as on a Node; dumped only when set.
-    state: dict[str, bool] = Field(default_factory=dict, exclude_if=lambda state: not state)
+    state: dict[str, bool] = Field(default_factory=dict, exclude_if=operator.not_)
 
     @field_validator("state", mode="before")
     @classmethod

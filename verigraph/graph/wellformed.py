@@ -24,6 +24,7 @@ from verigraph.budget import checkpoint
 from verigraph.errors import DictionaryError
 from verigraph.graph.cycles import find_single_support_cycle, find_support_cycle
 from verigraph.graph.dictionary import (
+    KIND_KEYS,
     ROOM_RELATION,
     STATE_ROLES,
     SUPPORT_RELATIONS,
@@ -46,7 +47,7 @@ MAX_SPELLING_SUGGESTIONS = 20
 # the node's role are.
 SPELLING_CUTOFF = 0.75
 __all__ = ["GraphProblem", "check_and_resolve", "check_well_formed",
-           "applied_line", "applied_properties", "find_single_support_cycle",
+           "find_single_support_cycle",
            "find_support_cycle", "label_readings", "open_labels", "readings_line",
            "resolve_properties"]
 
@@ -328,66 +329,6 @@ def _looks_like(label: str, dictionary: Dictionary) -> str | None:
     own = dictionary.resolve(label) or canonical_token(label)
     return (f"{label} looks like {target} but is another label, read as {own} "
             f"({names}; write {target} to mean {target})")
-
-
-MAX_APPLIED = 12
-# What a built-in property is: an assumption about a kind, not a fact about the user's
-# object; the user decides, and a node's attrs win over it.
-DEFAULTS_NOTE = ("These are built-in defaults, assumed: confirm them with the user; a "
-                 "node's attrs win over them")
-# The properties that make a kind (what constraints read), as opposed to how it looks.
-KIND_KEYS = ("movable", "surface", "container", "capacity", "openable", "toggleable", "room")
-
-
-def applied_properties(graph: SceneGraph | None, dictionary: Dictionary,
-                       *more: SceneGraph | None, limit: int = MAX_APPLIED) -> list[str]:
-    """The built-in properties a check applies to the graphs' nodes, once per kind:
-    `shelf: fixed surface, capacity 3 (tableware dictionary)`; a node whose attrs
-    change a role or capacity gets its own entry (`cup: movable container, capacity 2
-    (tableware dictionary; capacity from cup_2's attrs)`). The client's own labels are
-    left out (the client declared them). At most `limit` entries, then a count."""
-    entries: dict[str, None] = {}
-    for written in (graph, *more):
-        for node in written.nodes if written is not None else ():
-            label = dictionary.resolve(node.label)
-            if label is None or label in dictionary.user_labels:
-                continue
-            props = dictionary.objects[label]
-            changed: list[str] = []
-            if not node.attrs.keys().isdisjoint(KIND_KEYS):  # its attrs change its kind
-                try:
-                    mine = props.overridden(node.attrs)
-                except DictionaryError:
-                    mine = props
-                changed = [k for k in KIND_KEYS if getattr(mine, k) != getattr(props, k)]
-                props = mine
-            where = dictionary.home(label)
-            if changed:
-                where += f"; {', '.join(changed)} from {node.id}'s attrs"
-            entries.setdefault(f"{label}: {properties_text(props)} ({where})")
-    found = list(entries)
-    if len(found) > limit:
-        found = [*found[:limit], f"... and {len(found) - limit} more"]
-    return found
-
-
-def applied_line(graph: SceneGraph | None, dictionary: Dictionary,
-                 *more: SceneGraph | None) -> str:
-    """`built-in properties applied (dictionary: all built-ins, none named): shelf: fixed
-    surface, capacity 3 (tableware dictionary); ...`, or empty when none apply. A check
-    without a stored episode shows what it assumed about each built-in kind."""
-    entries = applied_properties(graph, dictionary, *more)
-    if not entries:
-        return ""
-    written = graph
-    for written in (graph, *more):  # the first graph given
-        if written is not None:
-            break
-    named = ("all built-ins, none named" if written is None or written.dictionary is None
-             else dictionary.name)
-    text = "; ".join(entries)  # "capacity" within one entry is within the text, and back
-    note = f". {DEFAULTS_NOTE}" if "capacity" in text else ""
-    return f"built-in properties applied (dictionary: {named}): " + text + note
 
 
 def readings_line(readings: list[str]) -> str:

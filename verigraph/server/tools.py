@@ -144,9 +144,9 @@ class ToolCalls:
         if origin.slot is not None and origin.slot.params is not None:
             return origin.slot.params
         if spec.heavy_when.large(arguments):
-            return await self.heavy.run(lambda: parse_arguments(spec, arguments),
+            return await self.heavy.run(lambda: parse_arguments(spec, arguments, large=True),
                                         f"{spec.name} arguments", origin.connection)
-        return parse_arguments(spec, arguments)
+        return parse_arguments(spec, arguments, large=False)
 
     async def execute(self, spec: ToolSpec, params: BaseModel, origin: Origin,
                       answers: dict[str, Any] | None) -> CallToolResult:

@@ -28,6 +28,7 @@ from verigraph.actions.pddl import as_validation_report
 from verigraph.actions.report import ValidationReport, check_plan, validate_plan
 from verigraph.actions.validator import GraphEdit, all_violations, apply_action
 from verigraph.errors import PlanParseError, VeriGraphError
+from verigraph.graph.dictionary import applied_line
 from verigraph.graph.goal import Goal, GraphDiff, check_goal, wanted_placements
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
@@ -36,7 +37,7 @@ from verigraph.pddl.text import plain_summary
 from verigraph.pddl.validate import validate_pddl_dict
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import EpisodeStateError, ToolArgumentError
-from verigraph.tools.executors import arm_mode_of
+from verigraph.tools.executors import arm_mode_of, runs_on
 from verigraph.tools.fields import (
     ActionInput,
     BoundedGraph,
@@ -46,10 +47,14 @@ from verigraph.tools.fields import (
     count_moves,
     parse_actions,
 )
-from verigraph.tools.goals import GOAL_ARGUMENT_HELP, GoalArgument, resolve_goal
-from verigraph.tools.loading import stateless_source
+from verigraph.tools.goals import (
+    GOAL_ARGUMENT_HELP,
+    GoalArgument,
+    resolve_goal,
+    stateless_source,
+)
 from verigraph.tools.store import TraceEntry
-from verigraph.tools.texts import edges_line, properties_line, runs_on
+from verigraph.tools.texts import edges_line
 
 MAX_ACTIONS_PER_CALL = 50
 MAX_PLAN_ACTIONS = 1000
@@ -405,10 +410,7 @@ def validate_plan_tool(ctx: ToolContext, params: ValidatePlanInput) -> Validatio
         return pddl_report(params.pddl, str(params.plan), all_errors=params.all_errors)
     actions = _plan_actions(params.plan)
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
-                                   graph=params.graph, goal=None,
-                                   own_goal=params.goal is not None)
-    if params.goal is not None:
-        goal = resolve_goal(params.goal, state)
+                                   graph=params.graph, goal=params.goal)
     written = params.goal.graph if isinstance(params.goal, Goal) else None
     readings = [] if params.graph is None and written is None else label_readings(
         params.graph, state.dictionary, written)  # the graphs the client wrote, if any
@@ -511,5 +513,5 @@ def report_summary(report: ValidationReport) -> str:
     if report.label_readings:
         lines.append(readings_line(report.label_readings))
     if report.final_graph.nodes:  # what the check assumed about each built-in kind
-        lines.append(properties_line(report.final_graph))
+        lines.append(applied_line(report.final_graph))
     return "\n".join(filter(None, lines))  # the lines that say something

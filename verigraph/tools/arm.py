@@ -23,10 +23,9 @@ from verigraph.arm.models import AuditOutcome
 from verigraph.errors import VeriGraphError
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import EpisodeStateError
-from verigraph.tools.executors import enabled_executors
+from verigraph.tools.executors import enabled_executors, runs_on
 from verigraph.tools.fields import EpisodeId, count_moves, parse_actions
 from verigraph.tools.store import LiveEpisode
-from verigraph.tools.texts import runs_on
 
 
 class ArmRef(BaseModel):

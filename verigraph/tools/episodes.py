@@ -16,11 +16,11 @@ from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.translator import read_instruction
 from verigraph.tools.context import ToolContext
-from verigraph.tools.executors import arm_mode_of, executors_text
+from verigraph.tools.executors import arm_mode_of, executors_text, runs_on
 from verigraph.tools.fields import EpisodeId
 from verigraph.tools.store import LiveEpisode, TraceEntry
 from verigraph.tools.summaries import EpisodeState, describe_episode
-from verigraph.tools.texts import edges_line, runs_on
+from verigraph.tools.texts import edges_line
 
 
 # -- get_state ------------------------------------------------------------------------------

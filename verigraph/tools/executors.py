@@ -68,6 +68,28 @@ def arm_mode_of(world: object) -> RunMode | None:
     return world.config.mode if isinstance(world, ArmWorld) else None
 
 
+def runs_on(executor: str, arm_mode: str | None = None) -> str:
+    """Where the actions run, worded so that no reader takes a check for a motion.
+
+    `graph` and `sim2d` never move anything physical; an arm episode says its mode, and
+    only `real` means a robot moved.
+    """
+    if executor == "graph":
+        return "graph (verified only, nothing physical moved)"
+    if executor == "sim2d":
+        return "sim2d (simulated in the 2D simulator, nothing physical moved)"
+    what = {"real": "real arm: validated actions move the robot after the user approves",
+            "sim": "simulated arm, nothing physical moved",
+            "dry-run": "dry-run: motions recorded, nothing moved"}.get(
+                arm_mode or "", "robot arm")
+    return f"{executor} ({what})"
+
+
+def executor_line(executor: str, arm_mode: str | None = None) -> str:
+    """`executor: graph (verified only, nothing physical moved)`"""
+    return f"executor: {runs_on(executor, arm_mode)}"
+
+
 def enabled_executors(default: str, arm: ArmSetup | None) -> str:
     """The executors this server runs, its default marked: what a client may pick.
 

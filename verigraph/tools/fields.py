@@ -8,6 +8,7 @@ Every conversion error names the argument, the offending value and the fix.
 
 from __future__ import annotations
 
+import functools
 import json
 from collections.abc import Sequence
 from typing import Annotated, Any
@@ -92,7 +93,7 @@ def _check_counts(nodes: int, edges: int) -> None:
                          f"{MAX_GRAPH_NODES} nodes and {MAX_GRAPH_EDGES} edges are accepted")
 
 
-def _counted(value: Any) -> Any:
+def counted_graph(value: Any) -> Any:
     """Refuse an oversized raw graph before its nodes and edges are validated one by one
     (300,000 nodes would take a second to validate only to be refused)."""
     if isinstance(value, dict):
@@ -102,26 +103,17 @@ def _counted(value: Any) -> Any:
     return value
 
 
-def _counted_goal(value: Any) -> Any:
-    if isinstance(value, dict):
-        _counted(value.get("graph"))
-    return value
-
-
-def _bounded(graph: SceneGraph) -> SceneGraph:
+def bounded_graph(graph: SceneGraph) -> SceneGraph:
+    """A validated graph within the counts and the attrs' size, or a ValueError."""
     _check_counts(len(graph.nodes), len(graph.edges))
     check_attrs_size(graph.nodes)
     return graph
 
 
-def _bounded_goal(goal: Goal) -> Goal:
-    if goal.graph is not None:
-        _bounded(goal.graph)
-    return goal
-
-
-BoundedGraph = Annotated[SceneGraph, BeforeValidator(_counted), AfterValidator(_bounded)]
-BoundedGoal = Annotated[Goal, BeforeValidator(_counted_goal), AfterValidator(_bounded_goal)]
+# A graph argument, refused by its counts before its items are validated one by one (a
+# goal's graph: tools.goals.BoundedGoal).
+BoundedGraph = Annotated[SceneGraph, BeforeValidator(counted_graph),
+                         AfterValidator(bounded_graph)]
 
 
 def parse_actions(items: Sequence[Any], *, field: str = "actions", indexed: bool = True
@@ -175,8 +167,21 @@ def builtin_scene(scene_id: str, *, field: str = "scene_id", with_goal: bool = T
         raise ToolArgumentError(f"no built-in scene '{scene_id[:64]}'", field=field,
                                 value=scene_id[:64],
                                 fix=f"use one of {', '.join(BUILTIN_SCENES)}, or pass a graph")
-    goal_maker = BUILTIN_GOALS.get(scene_id) if with_goal else None
-    return maker(), goal_maker() if goal_maker else None
+    return maker(), builtin_goal(scene_id) if with_goal else None
+
+
+def builtin_goal(scene_id: str) -> Goal | None:
+    """A built-in scene's goal, built alone (None for a scene without one)."""
+    goal_maker = BUILTIN_GOALS.get(scene_id)
+    return goal_maker() if goal_maker else None
+
+
+@functools.cache
+def builtin_state(scene_id: str) -> WorldState:
+    """A built-in scene, checked and indexed once per process (built-in scenes are code,
+    never edited); a caller that changes it works on a copy. An unknown id raises
+    (and is not cached)."""
+    return state_from_graph(builtin_scene(scene_id, with_goal=False)[0])
 
 
 def problems_text(problems: Sequence[GraphProblem], prefix: str) -> str:

@@ -14,15 +14,22 @@ from __future__ import annotations
 import difflib
 import re
 from dataclasses import dataclass, field
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 
 from verigraph.errors import GoalError
 from verigraph.graph.dictionary import STATE_ROLES, STATE_WORDS
-from verigraph.graph.formula import FORMULA_EXAMPLE, looks_like_formula, parse_formula
+from verigraph.graph.formula import FORMULA_EXAMPLE, parse_formula
 from verigraph.graph.formula_eval import check_names, facts_of
-from verigraph.graph.goal import PREDICATES, Goal, GraphDiff, check_goal, goal_kind_problems
+from verigraph.graph.goal import (
+    PREDICATES,
+    Goal,
+    GraphDiff,
+    check_goal,
+    goal_kind_problems,
+    looks_like_formula,
+)
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.translator import read_instruction
@@ -30,12 +37,16 @@ from verigraph.graph.wellformed import check_well_formed, label_readings, readin
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.fields import (
-    BoundedGoal,
     BoundedGraph,
     EpisodeId,
     ImageData,
+    bounded_graph,
+    builtin_goal,
+    builtin_state,
+    counted_graph,
     dictionary_for,
     problems_text,
+    state_from_graph,
 )
 from verigraph.tools.images import decode_base64_image
 from verigraph.tools.perceived import Perceived, perceive_photo
@@ -286,6 +297,20 @@ def goal_from_edges(text: str, state: WorldState | None, *, field: str = "edges"
                                  dictionary=state.dictionary.reference()), partial=partial)
 
 
+def _counted_goal(value: Any) -> Any:
+    if isinstance(value, dict):
+        counted_graph(value.get("graph"))
+    return value
+
+
+def _bounded_goal(goal: Goal) -> Goal:
+    if goal.graph is not None:
+        bounded_graph(goal.graph)
+    return goal
+
+
+# A goal argument: its graph within BoundedGraph's bounds, refused by its counts first.
+BoundedGoal = Annotated[Goal, BeforeValidator(_counted_goal), AfterValidator(_bounded_goal)]
 GoalText = Annotated[str, Field(min_length=1, max_length=MAX_GOAL_EDGES_CHARS)]
 # A stateless tool's goal: a goal object, or its edges as text (partial, nodes from the
 # scene) or a predicate's name.
@@ -314,6 +339,28 @@ def resolve_goal(goal: Goal | str, state: WorldState, *, field: str = "goal") ->
         goal = goal.model_copy(update={"graph": _with_scene_nodes(goal.graph, state, field)})
     check_goal_against(goal, state, field=field)
     return goal
+
+
+def stateless_source(ctx: ToolContext, *, episode_id: str | None, scene_id: str | None,
+                     graph: SceneGraph | None, goal: Goal | str | None = None
+                     ) -> tuple[WorldState, Goal | None]:
+    """What a stateless tool checks: the state named by its source arguments (a copy,
+    the caller's own) and the goal, each read once.
+
+    Exactly one of episode_id, scene_id and graph is set (the input models check it).
+    The tool's own `goal` is read against that state (`resolve_goal`); without one, the
+    episode's goal or the built-in scene's applies (a built-in goal is built only then).
+    """
+    if episode_id is not None:
+        with ctx.store.use(episode_id) as episode:
+            state, other = episode.require_state().copy(), episode.goal
+    elif scene_id is not None:
+        state = builtin_state(scene_id).copy()
+        other = builtin_goal(scene_id) if goal is None else None
+    else:
+        assert graph is not None
+        state, other = state_from_graph(graph), None
+    return state, other if goal is None else resolve_goal(goal, state)
 
 
 def _with_scene_nodes(graph: SceneGraph, state: WorldState, field: str) -> SceneGraph:

@@ -1,4 +1,4 @@
-"""Where an episode's scene comes from: the load_scene tool and stateless sources.
+"""Where an episode's scene comes from: the load_scene tool.
 
 A scene is a built-in scene id, a graph, a photo (read by built-in perception, or
 waiting for submit_scene_graph) or a generated sim2d scene. Nothing is stored unless
@@ -7,7 +7,6 @@ the whole input is valid.
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass
 from typing import Any
 
@@ -34,7 +33,6 @@ from verigraph.tools.executors import (
     executors_text,
 )
 from verigraph.tools.fields import (
-    BoundedGoal,
     BoundedGraph,
     DictionaryName,
     ImageData,
@@ -43,7 +41,7 @@ from verigraph.tools.fields import (
     dictionary_for,
     state_from_graph,
 )
-from verigraph.tools.goals import Instruction, check_goal_against
+from verigraph.tools.goals import BoundedGoal, Instruction, check_goal_against
 from verigraph.tools.images import decode_base64_image
 from verigraph.tools.perceived import perceive_photo
 from verigraph.tools.store import DEFAULT_K, DEFAULT_T, LiveEpisode
@@ -215,32 +213,3 @@ def _with_dictionary(graph: SceneGraph, name: str | InlineDictionary | None) -> 
             "the graph names a dictionary and another one was given in `dictionary`",
             field="dictionary", value=None, fix="give only one of them")
     return graph.model_copy(update={"dictionary": name})
-
-
-@functools.cache
-def builtin_state(scene_id: str) -> WorldState:
-    """A built-in scene, checked and indexed once per process (built-in scenes are code,
-    never edited); a caller that changes it works on a copy. An unknown id raises
-    (and is not cached)."""
-    return state_from_graph(builtin_scene(scene_id, with_goal=False)[0])
-
-
-def stateless_source(ctx: ToolContext, *, episode_id: str | None, scene_id: str | None,
-                     graph: SceneGraph | None, goal: Goal | None, own_goal: bool = False
-                     ) -> tuple[WorldState, Goal | None]:
-    """The state (a copy, the caller's own) and goal named by a stateless tool's source
-    arguments.
-
-    Exactly one of episode_id, scene_id and graph is set (the input models check it);
-    an explicit goal wins over the episode's or the built-in scene's. `own_goal`: the
-    caller has a goal of its own still to read against the state, so no other is looked
-    up (nor a built-in one built).
-    """
-    if episode_id is not None:
-        with ctx.store.use(episode_id) as episode:
-            return episode.require_state().copy(), None if own_goal else goal or episode.goal
-    if scene_id is not None:
-        builtin_goal = None if own_goal or goal is not None else builtin_scene(scene_id)[1]
-        return builtin_state(scene_id).copy(), goal or builtin_goal
-    assert graph is not None
-    return state_from_graph(graph), goal

@@ -327,17 +327,24 @@ def argument_error(spec: ToolSpec, exc: ValidationError) -> InvalidArgumentsErro
                                  field=first_field, value=None)
 
 
-def parse_arguments(spec: ToolSpec, arguments: Mapping[str, Any] | None) -> BaseModel:
-    """The tool's input model from raw JSON arguments, or a ToolArgumentError."""
+def parse_arguments(spec: ToolSpec, arguments: Mapping[str, Any] | None, *,
+                    large: bool | None = None) -> BaseModel:
+    """The tool's input model from raw JSON arguments, or a ToolArgumentError.
+
+    `large`: whether `spec.heavy_when` finds the arguments large, if the caller has read
+    it already (the server, to place the call); only large arguments are counted, to
+    pause the cyclic collector while their many objects are built (`graph.bulk`)."""
     if arguments is not None and not isinstance(arguments, Mapping):
         raise ToolArgumentError("arguments must be a JSON object", field="arguments",
                                 value=type(arguments).__name__,
                                 fix="send the arguments as an object of name: value")
     parsed = _pre_parse(spec.input_model, arguments or {})
-    items = 0  # the objects validation builds, about
-    for value in parsed.values():
-        items += graph_items(value) + (len(value) if isinstance(value, list) else 0)
     try:
+        if not (spec.heavy_when.large(parsed) if large is None else large):
+            return spec.input_model.model_validate(parsed)
+        items = 0  # the objects validation builds, about
+        for value in parsed.values():
+            items += graph_items(value) + (len(value) if isinstance(value, list) else 0)
         with collector_paused(items):
             return spec.input_model.model_validate(parsed)
     except ValidationError as exc:

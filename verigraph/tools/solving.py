@@ -11,20 +11,19 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 
 from verigraph.actions.model import Action, AnyAction
 from verigraph.actions.report import validate_plan
+from verigraph.graph.dictionary import applied_line
 from verigraph.solver import solve as search_plan
 from verigraph.solver.pddl_planner import plan_pddl
 from verigraph.tools.acting import MAX_PDDL_CHARS, PDDL_KEYS, pddl_report
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import FeatureUnavailableError, ToolArgumentError
-from verigraph.tools.executors import arm_mode_of
+from verigraph.tools.executors import arm_mode_of, runs_on
 from verigraph.tools.fields import (
     BoundedGraph,
     EpisodeId,
     SceneId,
 )
-from verigraph.tools.goals import GoalArgument, resolve_goal
-from verigraph.tools.loading import stateless_source
-from verigraph.tools.texts import properties_line, runs_on
+from verigraph.tools.goals import GoalArgument, stateless_source
 
 
 class SolveInput(BaseModel):
@@ -129,9 +128,7 @@ def solve_tool(ctx: ToolContext, params: SolveInput) -> SolveOutput:
     if params.pddl is not None:
         return _solve_pddl(params.pddl, params.time_limit)
     state, goal = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
-                                   graph=params.graph, goal=None)
-    if params.goal is not None:
-        goal = resolve_goal(params.goal, state)
+                                   graph=params.graph, goal=params.goal)
     if goal is None:
         raise ToolArgumentError("there is no goal to solve for", field="goal", value=None,
                                 fix="pass goal, or call set_goal on the episode first")
@@ -147,7 +144,7 @@ def solve_tool(ctx: ToolContext, params: SolveInput) -> SolveOutput:
                        verified=verified, optimal=result.optimal, expanded=result.expanded,
                        lower_bound=result.lower_bound,
                        runs_on=_episode_executor(ctx, params.episode_id),
-                       assumed=properties_line(state.to_graph()) or None)
+                       assumed=applied_line(state.to_graph(), dictionary=state.dictionary) or None)
 
 
 def _episode_executor(ctx: ToolContext, episode_id: str | None) -> str | None:

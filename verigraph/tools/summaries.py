@@ -13,13 +13,12 @@ from verigraph.arm import ArmWorld
 from verigraph.arm.models import RunMode
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
-from verigraph.tools.executors import SceneCheck
+from verigraph.tools.executors import SceneCheck, executor_line
 from verigraph.tools.fields import dictionary_for
 from verigraph.tools.store import LiveEpisode
 from verigraph.tools.texts import (
     defaults_line,
     dictionary_line,
-    executor_line,
     goal_line,
     graph_lines,
     sides_line,

@@ -14,22 +14,14 @@ from verigraph.graph.dictionary import (
     Dictionary,
     InlineDictionary,
     ObjectProperties,
-    load_dictionary,
+    named_dictionary,
     open_label_properties,
     properties_text,
     state_text,
 )
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Node, SceneGraph
-from verigraph.graph.wellformed import applied_line, readings_line
-from verigraph.tools.fields import dictionary_for
-
-
-def _dictionary(name: str | InlineDictionary | None) -> Dictionary:
-    try:
-        return dictionary_for(name)
-    except VeriGraphError:  # a name the tools would have refused already; fall back
-        return load_dictionary(None)
+from verigraph.graph.wellformed import readings_line
 
 
 def _properties(node: Node, dictionary: Dictionary) -> ObjectProperties | None:
@@ -59,28 +51,6 @@ def _role_and_state(node: Node, props: ObjectProperties | None) -> str:
     return f"{text}; {states}" if states else text
 
 
-def runs_on(executor: str, arm_mode: str | None = None) -> str:
-    """Where the actions run, worded so that no reader takes a check for a motion.
-
-    `graph` and `sim2d` never move anything physical; an arm episode says its mode, and
-    only `real` means a robot moved.
-    """
-    if executor == "graph":
-        return "graph (verified only, nothing physical moved)"
-    if executor == "sim2d":
-        return "sim2d (simulated in the 2D simulator, nothing physical moved)"
-    what = {"real": "real arm: validated actions move the robot after the user approves",
-            "sim": "simulated arm, nothing physical moved",
-            "dry-run": "dry-run: motions recorded, nothing moved"}.get(
-                arm_mode or "", "robot arm")
-    return f"{executor} ({what})"
-
-
-def executor_line(executor: str, arm_mode: str | None = None) -> str:
-    """`executor: graph (verified only, nothing physical moved)`"""
-    return f"executor: {runs_on(executor, arm_mode)}"
-
-
 def _your_label(node: Node, dictionary: Dictionary) -> bool:
     """Whether the node's label is the client's own (declared inline or in its attrs)."""
     label = dictionary.resolve(node.label)
@@ -102,7 +72,7 @@ def _sizes(node: Node) -> str:
 def objects_line(graph: SceneGraph, dictionary: str | InlineDictionary | None = None) -> str:
     """`objects: table (table: fixed surface); cup_2 (mug: movable container, capacity 1)`,
     with the sizes a node's attrs give (`plate_b (plate: ..., width 18)`)."""
-    d = _dictionary(graph.dictionary or dictionary)
+    d = named_dictionary(graph.dictionary or dictionary)
     parts = [f"{n.id} ({n.label}: {'your label, ' if _your_label(n, d) else ''}"
              f"{_role_and_state(n, _properties(n, d))}{_sizes(n)})" for n in graph.nodes]
     return "objects: " + ("; ".join(parts) or "none")
@@ -156,7 +126,7 @@ def defaults_line(graph: SceneGraph, dictionary: str | InlineDictionary | None =
     (built-in defaults; confirm with the user, a node's attrs win): stove holds 2, shelf
     3`; empty when every capacity is the client's own. A default is said to be one, so
     nobody takes the kitchen stove's 2 for a fact about this kitchen."""
-    d = _dictionary(graph.dictionary or dictionary)
+    d = named_dictionary(graph.dictionary or dictionary)
     found: dict[str, None] = {}
     for node in graph.nodes:
         label = d.resolve(node.label)
@@ -182,17 +152,9 @@ SIDES_TEXT = ("sides: numbered clockwise (seen from above) from vertex 0, side i
 
 def sides_line(graph: SceneGraph, dictionary: str | InlineDictionary | None = None) -> str:
     """How tangram sides are numbered, when the graph has pieces; empty otherwise."""
-    d = _dictionary(graph.dictionary or dictionary)
+    d = named_dictionary(graph.dictionary or dictionary)
     pieces = any((p := _properties(n, d)) is not None and p.sides for n in graph.nodes)
     return SIDES_TEXT if pieces else ""
-
-
-def properties_line(graph: SceneGraph, *more: SceneGraph | None) -> str:
-    """What a stateless check assumed about each built-in kind in the graph (and goal),
-    with the dictionary in use: `built-in properties applied (dictionary: all
-    built-ins, none named): shelf: fixed surface, capacity 3 (tableware dictionary)`;
-    empty when the graph uses only the client's own labels. Bounded (MAX_APPLIED)."""
-    return applied_line(graph, _dictionary(graph.dictionary), *more)
 
 
 MAX_FORMULA_SHOWN = 600  # characters of a goal formula a text shows

@@ -15,8 +15,7 @@ from pydantic import ValidationError
 
 from verigraph.errors import InputFileError, VeriGraphError
 from verigraph.graph.builtin_scenes import BUILTIN_SCENES
-from verigraph.graph.formula import looks_like_formula
-from verigraph.graph.goal import PREDICATES, Goal
+from verigraph.graph.goal import PREDICATES, Goal, looks_like_formula
 from verigraph.graph.io import decode_structured, goal_from_data, scene_from_data
 from verigraph.graph.model import SceneGraph
 from verigraph.tools.acting import ValidatePlanInput

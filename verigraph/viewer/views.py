@@ -28,8 +28,8 @@ from verigraph.sim2d.render import encode_png
 from verigraph.tools.acting import MAX_PLAN_ACTIONS, PlanText, ValidatePlanInput, validate_plan_tool
 from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph
-from verigraph.tools.fields import BoundedGoal, BoundedGraph, EpisodeId, SceneId
-from verigraph.tools.loading import stateless_source
+from verigraph.tools.fields import BoundedGraph, EpisodeId, SceneId
+from verigraph.tools.goals import BoundedGoal, stateless_source
 from verigraph.tools.registry import ToolSpec, argument_error
 from verigraph.tools.scenes import RenderSceneInput, render_scene
 from verigraph.viewer.frames import boxes, outline, step_frames
@@ -132,7 +132,7 @@ def plan_view(ctx: ToolContext, params: ValidatePlanInput, title: str = "plan ch
     """Check the plan with the validate_plan tool function and lay it out per step."""
     report = validate_plan_tool(ctx, params)
     state, _ = stateless_source(ctx, episode_id=params.episode_id, scene_id=params.scene_id,
-                                graph=params.graph, goal=None)
+                                graph=params.graph)
     return _assemble(title, "plan", state, report)
 
 
