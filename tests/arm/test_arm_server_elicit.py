@@ -9,7 +9,9 @@ object is `BlockCellStandIn`, a stand-in for hardware that cannot run here.
 from __future__ import annotations
 
 import json
+import sys
 from pathlib import Path
+from types import FrameType
 from typing import Any
 
 import pytest
@@ -210,3 +212,27 @@ def test_pre_approval_is_single_use_and_in_order() -> None:
     with pytest.raises(Exception, match="not asked about this motion"):
         hook(request(0.5))
     assert hook.remaining == 0
+
+
+@pytest.mark.parametrize(("mode", "rounds"), [("auto", 2), ("legacy", 1)])
+async def test_a_confirmed_call_checks_its_input_once_per_request(
+        tmp_path: Path, mode: str, rounds: int) -> None:
+    """The server checks a confirmed call's input once per request (step 1); the
+    resolvers that ask the user and the tool's body read that check, not their own (on
+    2026-07-28 the question takes two requests, the call and the client's retry)."""
+    parsed: list[str] = []
+
+    def profile(frame: FrameType, event: str, arg: Any) -> None:
+        if event == "call" and frame.f_code is parse_arguments.__code__:
+            parsed.append(frame.f_locals["spec"].name)
+
+    async with Client(build_server(xarm_toolbox(tmp_path, BlockCellStandIn())),
+                      elicitation_callback=User(), mode=mode) as client:
+        eid = await episode(client)
+        sys.setprofile(profile)
+        try:
+            out = structured(await stack_green(client, eid))
+        finally:
+            sys.setprofile(None)
+    assert out["ok"]
+    assert parsed == ["execute_actions"] * rounds

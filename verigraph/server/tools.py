@@ -24,6 +24,7 @@ from __future__ import annotations
 import inspect
 import logging
 from collections.abc import Callable
+from contextvars import ContextVar
 from dataclasses import dataclass, replace
 from typing import Annotated, Any, Protocol
 
@@ -48,6 +49,10 @@ from verigraph.tools.store import WouldBlock, non_blocking
 log = logging.getLogger("verigraph.server")
 SLOT_KEY = "verigraph.call_slot"  # the ASGI scope key of a large HTTP body's slot
 CONTEXT_PARAM = "mcp_context"  # the SDK's Context, for the registered functions
+# A confirmed call's input as step 1 checked it (the tool's name and the input), while
+# the SDK runs the confirmation branch of that request: read once, not again per resolver.
+_CHECKED: ContextVar[tuple[str, BaseModel] | None] = ContextVar("verigraph_checked_input",
+                                                                default=None)
 
 
 class LargeBodySlot(Protocol):
@@ -125,7 +130,11 @@ class ToolCalls:
         answers: dict[str, Any] | None = None
         if spec.confirmation is not None:
             if self.may_ask(spec, params):
-                return await call_next(with_arguments(ctx, origin.slot))
+                checked = _CHECKED.set((spec.name, params))  # for the resolvers and `call`
+                try:
+                    return await call_next(with_arguments(ctx, origin.slot))
+                finally:
+                    _CHECKED.reset(checked)
             answers = {}  # the empty approval the resolvers would give: nothing to ask
         # 3.-5. Placed, run, turned into a result.
         try:
@@ -269,8 +278,12 @@ def with_arguments(ctx: ServerRequestContext[Any, Any], slot: LargeBodySlot | No
 
 
 def request_arguments(spec: ToolSpec, ctx: Context) -> BaseModel:
-    """The call's input as step 1 checked it, from the request the SDK handles (for the
-    confirmation branch: resolvers and the registered function)."""
+    """The call's input as step 1 checked it (for the confirmation branch: resolvers and
+    the registered function, which run inside step 1's request); parsed from the request
+    the SDK handles only when step 1 did not run in this context."""
+    checked = _CHECKED.get()
+    if checked is not None and checked[0] == spec.name:
+        return checked[1]
     params = ctx.request_context.params or {}
     return parse_arguments(spec, params.get("arguments"))
 

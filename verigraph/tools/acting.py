@@ -379,8 +379,6 @@ class ValidatePlanInput(BaseModel):
         if len(given) != 1:
             raise ValueError("give exactly one initial scene: scene_id, graph or episode_id "
                              f"(got {', '.join(given) or 'none'})")
-        if isinstance(self.plan, str) and len(self.plan) > 200_000:
-            raise ValueError("plan text is longer than 200000 characters")
         return self
 
 
