@@ -4,7 +4,8 @@
 sends it through the arm adapter (verigraph.arm), the only path to a robot. The arm's
 configuration belongs to the server (`verigraph serve --arm-config`): a client may
 choose an executor per episode but never the arm's mode or limits, so `real` stays the
-operator's explicit opt-in in the config file.
+operator's explicit opt-in in the config file. `runs_on` words where an episode's
+actions run for every text that says it.
 """
 
 from __future__ import annotations

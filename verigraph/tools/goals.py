@@ -1,4 +1,7 @@
-"""Goals: the set_goal tool and the check every goal passes before it is stored.
+"""Goals: the set_goal tool, the goal arguments of the stateless tools, and the check
+every goal passes before it is stored. A stateless check (validate_plan, solve, the
+viewer's plan view) reads its scene's state and its goal once, together
+(`stateless_source`), and hands both to the core.
 
 A goal graph must be well formed and name only objects of the scene; goal edges may be
 given as text (`cup on table; spoon in pot`), nodes taken from the episode; a goal formula
