@@ -422,22 +422,18 @@ _OPPOSITE = {"open": "close", "close": "open", "toggle_on": "toggle_off",
              "toggle_off": "toggle_on"}
 
 
-def already_explainer(name: str, key: str, value: bool, constraint: str | None = None
+def already_explainer(name: str, key: str, value: bool
                       ) -> Callable[[WorldState, StateAction], Violation]:
-    """The refusal of `open(fridge)` on an open fridge (`already_open`), and of a
-    process on an object already in its state (`cook(fish)` on a cooked fish: the row's
-    `constraint`, `already_cooked`); the fix names the opposite action when there is one."""
+    """The refusal of `open(fridge)` on an open fridge (`already_open`)."""
     word = STATE_WORDS[key][value]
-    refusal = constraint or f"already_{word}"
-    opposite = _OPPOSITE.get(name)
 
     def explain(state: WorldState, a: StateAction) -> Violation:
         default = "" if key in state.states.get(a.object, {}) else \
             f" (no state given: {STATE_WORDS[key][False]})"
-        undo = f"; {opposite}({a.object}) would make it {STATE_WORDS[key][not value]}" \
-            if opposite else ""
-        return _violation(a, refusal, f"{a.object} is already {word}{default}",
-                          f"drop this action{undo}")
+        return _violation(a, f"already_{word}",
+                          f"{a.object} is already {word}{default}",
+                          f"drop this action; {_OPPOSITE[name]}({a.object}) would make it "
+                          f"{STATE_WORDS[key][not value]}")
     return explain
 
 

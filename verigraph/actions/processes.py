@@ -25,6 +25,7 @@ from collections.abc import Callable
 
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import StateAction
+from verigraph.graph.dictionary import STATE_WORDS
 from verigraph.graph.state import WorldState
 
 # action -> (state key, value it sets, role the object needs, source role it needs or
@@ -104,6 +105,18 @@ def _violation(a: StateAction, constraint: str, message: str, fix: str) -> Viola
 
 def _sources(state: WorldState, role: str) -> list[str]:
     return [o for o, info in state.objects.items() if getattr(info.props, role)][:3]
+
+
+def already_explainer(name: str) -> Callable[[WorldState, StateAction], Violation]:
+    key, value, _, _, _ = PROCESSES[name]
+    word = STATE_WORDS[key][value]
+
+    def explain(state: WorldState, a: StateAction) -> Violation:
+        default = "" if key in state.states.get(a.object, {}) else \
+            f" (no state given: {STATE_WORDS[key][False]})"
+        return _violation(a, ALREADY[name], f"{a.object} is already {word}{default}",
+                          "drop this action")
+    return explain
 
 
 def no_source_explainer(name: str) -> Callable[[WorldState, StateAction], Violation]:

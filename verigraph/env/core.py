@@ -57,7 +57,7 @@ from verigraph.planning.iteration import (
     DEFAULT_T,
     MAX_ACTIONS_PER_CALL,
     Iteration,
-    call_execute_actions,
+    execute_actions,
     prompt_goal,
     read_state,
 )
@@ -240,7 +240,7 @@ class VeriGraphEnv(gym.Env[str, str]):
         self._distance = goal_distance(self.graph, self.privileged_goal)
 
     def _execute(self, tools: ToolEnvironment, actions: list[AnyAction]) -> dict[str, Any]:
-        out = call_execute_actions(tools, self.episode_id, actions)
+        out = execute_actions(tools, self.episode_id, actions)
         self._absorb(out)
         self.history.extend(out["executed"])
         self.moves += len(out["executed"])
