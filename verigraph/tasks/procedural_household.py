@@ -14,11 +14,12 @@ parts, each about one or two objects:
 - `cook`: food cooked (`(cooked bread)`): onto the stove, switch the stove on, cook;
 - `place`: a dish on another surface or in the sink;
 - `all` / `some` (the `quantified` knob): every object of a kind somewhere
-  (`(forall (?c - cup) (ontop ?c table))`), or one of them (`(exists ...)`), over two
-  objects of the kind, one of them shut away.
+  (`(forall (?c - cup) (ontop ?c table))`, one of the two shut away in the cabinet or
+  drawer), or one of them (`(exists ...)`, both shut away).
 
-The first `constraints` parts are `store`, `fetch` and `cook` (distinct ones), so the
-plan must open that many closed containers or switch on that many appliances;
+The quantified parts come first, then `store`, `fetch` and `cook` (distinct ones; a
+quantified part stands for `fetch`) up to `constraints`, so the plan must open that
+many closed containers or switch on that many appliances;
 `distractors` further objects are not in the goal, some of them sitting on or in a goal
 object (clear it first). The reference solver (bounded) gives the optimal length, and a
 draw is kept when it is `length` to `length + LENGTH_SLACK` and its optimal plan opens
@@ -78,6 +79,7 @@ class _House:
         self.literals: list[str] = []
         self.words: list[str] = []
         self.goal_objects: list[str] = []
+        self.wanted: dict[str, int] = {}  # target -> goal objects that must end on or in it
 
     # -- places and capacity
     def _capacity(self, target: str) -> int | None:
@@ -90,6 +92,14 @@ class _House:
         capacity = self._capacity(target)
         used = sum(1 for rel, t in self.places.values() if t == target and rel in ("on", "in"))
         return capacity is None or used < capacity
+
+    def takes(self, target: str, count: int = 1) -> bool:
+        """Whether `count` more goal objects may end on or in `target` (its capacity)."""
+        capacity = self._capacity(target)
+        return capacity is None or self.wanted.get(target, 0) + count <= capacity
+
+    def want(self, target: str, count: int = 1) -> None:
+        self.wanted[target] = self.wanted.get(target, 0) + count
 
     def spot(self, options: list[tuple[str, str]]) -> tuple[str, str] | None:
         free = [o for o in options if o[1] in self.furniture + list(self.labels)
@@ -123,9 +133,10 @@ class _House:
     def store(self) -> bool:
         kind = self.fresh_kind(FOOD)
         place = self.spot(self.surfaces())
-        if kind is None or place is None or not self.has_room("fridge"):
+        if kind is None or place is None or not self.takes("fridge"):
             return False
         obj = self.new_object(kind, place)
+        self.want("fridge")
         self.goal(f"(inside {obj} fridge)", f"put the {obj} in the fridge", obj)
         if self.rng.random() < 0.5:
             self.goal("(not (open fridge))", "leave the fridge closed")
@@ -158,7 +169,8 @@ class _House:
             return False
         obj = self.new_object(kind, start)
         targets = [("on", s) for _, s in self.surfaces(but=start[1])] + [("in", "sink")]
-        relation, target = self.rng.choice(targets)
+        relation, target = self.rng.choice([t for t in targets if self.takes(t[1])])
+        self.want(target)
         literal = "ontop" if relation == "on" else "inside"
         self.goal(f"({literal} {obj} {target})", f"put the {obj} {relation} the {target}",
                   obj)
@@ -168,11 +180,13 @@ class _House:
         kind = self.fresh_kind(DISHES)
         if kind is None:
             return False
-        relation, target = self.rng.choice([*self.surfaces(), ("in", "sink")])
-        starts = [("in", "cabinet"), *self.surfaces(but=target)]
+        relation, target = self.rng.choice([t for t in [*self.surfaces(), ("in", "sink")]
+                                            if self.takes(t[1], 2)])
+        self.want(target, 2)
+        shut = [("in", c) for c in ("cabinet", "drawer")]
         made = []
-        for i in (1, 2):
-            start = self.spot(starts if i == 1 else self.surfaces(but=target))
+        for i in (1, 2):  # one shut away (`every`: the other elsewhere; `a`: both)
+            start = self.spot(shut if i == 1 or not every else self.surfaces(but=target))
             if start is None:
                 return False
             made.append(self.new_object(kind, start, suffix=f"_{i}"))
@@ -218,11 +232,13 @@ def draw_household(rng: random.Random, cfg: LevelConfig) -> Generated | None:
     from verigraph.solver import solve
 
     house = _House(rng, cfg.objects)
-    for part in rng.sample(CONSTRAINED, min(cfg.constraints, len(CONSTRAINED))):
-        if not getattr(house, part)():
-            return None
     for _ in range(cfg.quantified):
         if not house.quantified(every=rng.random() < 0.6):
+            return None
+    # a quantified part opens the cabinet or drawer already: it is the `fetch`
+    kinds = [p for p in CONSTRAINED if not (cfg.quantified and p == "fetch")]
+    for part in rng.sample(kinds, min(cfg.constraints - bool(cfg.quantified), len(kinds))):
+        if not getattr(house, part)():
             return None
     while len(house.goal_objects) < cfg.objects - cfg.distractors:
         if not getattr(house, rng.choice(FREE_PARTS))():
@@ -258,8 +274,8 @@ def _sentence(words: list[str]) -> str:
 #                    objects distractors constraints length quantified
 HOUSEHOLD_LEVELS = tuple(
     LevelConfig(objects=o, distractors=d, constraints=c, length=n, quantified=q)
-    for o, d, c, n, q in ((2, 0, 1, 2, 0), (3, 1, 1, 3, 0), (4, 1, 2, 5, 0),
-                          (5, 1, 2, 6, 1), (7, 2, 3, 8, 1), (8, 3, 3, 9, 1)))
+    for o, d, c, n, q in ((2, 0, 1, 3, 0), (3, 1, 1, 4, 0), (4, 1, 2, 6, 0),
+                          (6, 1, 2, 7, 1), (7, 1, 3, 8, 2)))
 
 register_generator(FamilyGenerator("household", "household", draw_household,
                                    HOUSEHOLD_LEVELS,
