@@ -328,6 +328,12 @@ def _graph_json(graph: SceneGraph) -> dict[str, Any]:
     return graph.model_dump(mode="json", exclude_none=True)
 
 
+def _seed_text(cfg: LevelConfig) -> str:
+    """The knobs as the seed reads them: a knob added later (`quantified`) only when set,
+    so the tasks drawn before it existed keep their seeds."""
+    return cfg.model_dump_json(exclude=set() if cfg.quantified else {"quantified"})
+
+
 def generate_task(family: str, level: int, index: int, seed: int = 0,
                   config: LevelConfig | None = None) -> Task:
     """Task `index` of a family's level (or of an explicit `config`), fixed by the
@@ -335,7 +341,7 @@ def generate_task(family: str, level: int, index: int, seed: int = 0,
     generator = generator_for(family)
     cfg = config or generator.config(level)
     for draw in range(MAX_DRAWS):
-        rng = random.Random(f"verigraph-procedural:{family}:{cfg.model_dump_json()}:"
+        rng = random.Random(f"verigraph-procedural:{family}:{_seed_text(cfg)}:"
                             f"{seed}:{index}:{draw}")
         made = generator.draw(rng, cfg)
         if made is None or (made.goal.graph is None and made.goal.formula is None):

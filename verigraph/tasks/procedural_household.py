@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import random
 
-from verigraph.actions.model import StateAction
 from verigraph.errors import VeriGraphError
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Edge, Node, SceneGraph
@@ -229,6 +228,7 @@ class _House:
 
 def draw_household(rng: random.Random, cfg: LevelConfig) -> Generated | None:
     """One household task at the knobs of `cfg`, or None (module docstring)."""
+    from verigraph.actions.model import StateAction
     from verigraph.solver import solve
 
     house = _House(rng, cfg.objects)
