@@ -274,7 +274,7 @@ def _sentence(words: list[str]) -> str:
 #                    objects distractors constraints length quantified
 HOUSEHOLD_LEVELS = tuple(
     LevelConfig(objects=o, distractors=d, constraints=c, length=n, quantified=q)
-    for o, d, c, n, q in ((2, 0, 1, 3, 0), (3, 1, 1, 4, 0), (4, 1, 2, 6, 0),
+    for o, d, c, n, q in ((1, 0, 1, 2, 0), (3, 1, 1, 4, 0), (4, 1, 2, 6, 0),
                           (6, 1, 2, 7, 1), (7, 1, 3, 8, 2)))
 
 register_generator(FamilyGenerator("household", "household", draw_household,
