@@ -14,6 +14,7 @@ from optional import require
 require("gymnasium", "pip install 'verigraph-mcp[env]'")
 
 import gymnasium as gym  # noqa: E402
+from gymnasium.utils.env_checker import check_env  # noqa: E402
 
 import verigraph.env  # noqa: E402,F401
 from verigraph.env.curriculum import VeriGraphCurriculum, VeriGraphDataset  # noqa: E402
@@ -96,6 +97,7 @@ def test_the_oracle_solves_every_level_over_several_seeds(level: int) -> None:
 @pytest.mark.fast
 def test_the_environment_id_and_the_curriculum_cover_household() -> None:
     env = gym.make(procedural_id("household"), level=2)
+    check_env(env.unwrapped, skip_render_check=True)
     _, info = env.reset(seed=4)
     assert info["family"] == "household" and info["level"] == 2
     assert info["kind"] == "level_2" and info["goal_distance"] > 0
