@@ -14,8 +14,9 @@
 #
 # The installer is uv (from PyPI: the one on PATH, else a copy installed with pip into
 # .tools/uv-venv), which resolves and downloads in parallel: both environments from
-# scratch take about 6 s on the 2-core development machine with an empty uv cache,
-# against 77 s with pip one after the other (26 s OpenEnv, 51 s verifiers). uv's cache
+# scratch take about 6 s on the idle 2-core development machine with an empty uv cache
+# (4 s more to install uv; 17-33 s in all under a load average of 6), against 77 s with
+# pip one after the other (26 s OpenEnv, 51 s verifiers). uv's cache
 # (~/.cache/uv, or $UV_CACHE_DIR) only holds downloads, rebuilt on demand.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -5,8 +5,9 @@
 #                                          each framework's own smoke evaluation: OpenEnv
 #                                          0.10 and verifiers 0.4 in their own environments
 #                                          (scripts/install_integration.sh, uv from PyPI,
-#                                          both in parallel: 6 s from scratch, 33 s on a
-#                                          busy machine; their tests about 2 minutes)
+#                                          both in parallel: 10 s from scratch with uv's
+#                                          own install, 17-33 s on a loaded machine;
+#                                          their tests about 2 minutes)
 #   scripts/test.sh --fast [PYTEST ARGS]   the fast tier only: installs the core and `dev`,
 #                                          no service, no server subprocess, no training
 #                                          (under two minutes on two cores)
