@@ -31,6 +31,7 @@ from __future__ import annotations
 import random
 
 from verigraph.errors import VeriGraphError
+from verigraph.graph.dictionary import builtin_dictionary
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
@@ -82,8 +83,6 @@ class _House:
 
     # -- places and capacity
     def _capacity(self, target: str) -> int | None:
-        from verigraph.graph.dictionary import builtin_dictionary
-
         label = self.labels.get(target, target)
         return builtin_dictionary("household").properties(label).capacity
 
@@ -207,7 +206,7 @@ class _House:
             start = self.spot([*self.surfaces(), ("in", "cabinet"), ("in", "fridge")])
         if start is None:
             return False
-        self.new_object(kind, start, suffix="" if kind not in self.labels else "_2")
+        self.new_object(kind, start)
         return True
 
     # -- the scene
