@@ -16,8 +16,9 @@ For each family with a procedural generator (verigraph.tasks.procedural) and eac
 The table gives the mean objects, distractors, constraints and optimal length of the
 level's tasks, the generation time per task, the oracle's success and the noisy
 planner's success (pass@1 over every rollout). Run:
-`python benchmarks/bench_difficulty.py [--tasks 10] [--samples 4]`; writes
-results/difficulty.md. A few minutes on 2 cores.
+`python benchmarks/bench_difficulty.py [--tasks 10] [--samples 8] [--families household]`;
+writes results/difficulty.md (a run of some families keeps the other families' rows). A
+few minutes on 2 cores.
 """
 
 from __future__ import annotations
@@ -67,6 +68,24 @@ def level_row(family: str, level: int, args: argparse.Namespace,
     return row, oracle_rate, noisy_rate
 
 
+def _kept(families: list[str]) -> tuple[dict[str, list[list[str]]], dict[str, str]]:
+    """The rows and summary lines of the other families in the current table, so a run
+    of some families (`--families household`) keeps the rest."""
+    path = Path(__file__).parent / "results" / "difficulty.md"
+    rows: dict[str, list[list[str]]] = {}
+    lines: dict[str, str] = {}
+    if not path.exists():
+        return rows, lines
+    for line in path.read_text().splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if line.startswith("| ") and cells[0] in GENERATORS and cells[0] not in families:
+            rows.setdefault(cells[0], []).append(cells)
+        family = line[2:].split(":")[0] if line.startswith("- ") else ""
+        if family in GENERATORS and family not in families:
+            lines[family] = line[2:]
+    return rows, lines
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--tasks", type=int, default=10, help="tasks per level")
@@ -78,9 +97,15 @@ def main() -> None:
     parser.add_argument("--families", default=",".join(GENERATORS))
     args = parser.parse_args()
     settings = {"k": args.k, "threshold": args.threshold, "max_steps": args.max_steps}
+    families = args.families.split(",")
+    kept_rows, kept_lines = _kept(families)
     rows = []
     falling = []
-    for family in args.families.split(","):
+    for family in GENERATORS:
+        if family not in families:
+            rows += kept_rows.get(family, [])
+            falling += [kept_lines[family]] if family in kept_lines else []
+            continue
         rates = []
         for level in range(1, len(GENERATORS[family].levels) + 1):
             row, oracle_rate, noisy_rate = level_row(family, level, args, settings)

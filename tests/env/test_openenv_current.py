@@ -36,8 +36,6 @@ from verigraph.graph.state import WorldState  # noqa: E402
 from verigraph.solver import solve  # noqa: E402
 from verigraph.tasks.procedural import generate_task  # noqa: E402
 
-pytestmark = pytest.mark.slow
-
 
 def openenv_python() -> Path:
     return venv_python("openenv", "VERIGRAPH_OPENENV_PYTHON")

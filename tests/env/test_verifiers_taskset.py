@@ -5,7 +5,8 @@ own evaluation (`vf-eval`, its chat harness in a subprocess runtime, its model p
 plays them multi-turn against a model endpoint, the verifier's feedback coming back as
 the user's turns and the reward being VeriGraph's.
 
-Slow: the environment's install (verifiers and its dependencies) takes over two minutes.
+In the default run (not `slow`): scripts/test.sh builds the environment with uv, a few
+seconds.
 """
 
 from __future__ import annotations
@@ -13,8 +14,6 @@ from __future__ import annotations
 import json
 import subprocess
 from pathlib import Path
-
-import pytest
 
 from optional import require
 
@@ -27,8 +26,6 @@ from venv_helpers import OUTSIDE, child_env, venv_python  # noqa: E402
 from verigraph.env.openenv_server import create_openenv_app  # noqa: E402
 from verigraph.env.procedural import ProceduralEnv  # noqa: E402
 from verigraph.env.rollout import REFUSED_ACTION, make_policy  # noqa: E402
-
-pytestmark = pytest.mark.slow
 
 LOAD = """
 import json, sys

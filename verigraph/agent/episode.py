@@ -21,7 +21,7 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.planning.iteration import (
     DEFAULT_K,
-    DEFAULT_T,
+    DEFAULT_THRESHOLD,
     MAX_ACTIONS_PER_CALL,
     execute_actions,
     prompt_goal,
@@ -54,7 +54,7 @@ class LoopConfig(BaseModel):
     mode: Mode = "iterative"
     k: int = Field(default=DEFAULT_K, ge=1, le=MAX_ACTIONS_PER_CALL,
                    description="at most k actions per iteration")
-    threshold: int = Field(default=DEFAULT_T, ge=1, le=100,
+    threshold: int = Field(default=DEFAULT_THRESHOLD, ge=1, le=100,
                            description="stop after t consecutive failed iterations")
     done_policy: DonePolicy = "verify"
     stop_on_goal: bool = Field(default=True,

@@ -23,6 +23,7 @@ from verigraph.errors import VeriGraphError
 def register(sub: Any) -> None:
     from verigraph.llm.formats import RESPONSE_FORMATS
     from verigraph.planning.factory import PLANNER_NAMES
+    from verigraph.planning.iteration import DEFAULT_K, DEFAULT_THRESHOLD
     from verigraph.planning.noisy import MISTAKE_KINDS
 
     p = sub.add_parser(
@@ -46,9 +47,11 @@ def register(sub: Any) -> None:
     loop = p.add_argument_group("loop (Algorithm 1)")
     loop.add_argument("--planner", choices=PLANNER_NAMES, default="oracle")
     loop.add_argument("--mode", choices=("iterative", "direct"), default="iterative")
-    loop.add_argument("--k", type=int, default=3, help="actions per iteration (default 3)")
-    loop.add_argument("--threshold", "-t", type=int, default=5,
-                      help="stop after t consecutive failed iterations (default 5)")
+    loop.add_argument("--k", type=int, default=DEFAULT_K,
+                      help=f"actions per iteration (default {DEFAULT_K})")
+    loop.add_argument("--threshold", "-t", type=int, default=DEFAULT_THRESHOLD,
+                      help="the error threshold: stop after this many consecutive failed "
+                           f"iterations (default {DEFAULT_THRESHOLD})")
     loop.add_argument("--done-policy", choices=("verify", "trust"), default="verify",
                       help="verify: refuse done while the goal does not hold (default); "
                            "trust: the end token always stops (the paper's literal rule)")

@@ -94,6 +94,7 @@ def add_engine_arguments(p: argparse.ArgumentParser) -> None:
 def plan_parser() -> argparse.ArgumentParser:
     from verigraph.agent.evaluation import plan_bench
     from verigraph.planning.factory import PLANNER_NAMES
+    from verigraph.planning.iteration import DEFAULT_K, DEFAULT_THRESHOLD
     from verigraph.tasks.groups import GROUPS
 
     p = argparse.ArgumentParser(prog="verigraph bench plan", description=plan_bench.__doc__,
@@ -105,8 +106,10 @@ def plan_parser() -> argparse.ArgumentParser:
     p.add_argument("--planners", default=",".join(plan_bench.DEFAULT_PLANNERS),
                    help=f"comma-separated planners for the main table ({', '.join(PLANNER_NAMES)})")
     p.add_argument("--noise", type=float, default=0.3, help="noisy planner's mistake rate")
-    p.add_argument("--k", type=int, default=3, help="actions per iteration (main table)")
-    p.add_argument("--threshold", "-t", type=int, default=5, help="error threshold (main table)")
+    p.add_argument("--k", type=int, default=DEFAULT_K,
+                   help="actions per iteration (main table)")
+    p.add_argument("--threshold", "-t", type=int, default=DEFAULT_THRESHOLD,
+                   help="error threshold (main table)")
     p.add_argument("--max-iterations", type=int, default=30,
                    help="stop an episode after this many iterations even if tau < t "
                         "(a planner that keeps making valid but useless moves)")

@@ -32,6 +32,8 @@ FAMILIES = ("blocks", "kitchen", "tangram", "household", "behavior")
 
 
 def register(sub: Any) -> None:
+    from verigraph.planning.iteration import DEFAULT_K, DEFAULT_THRESHOLD
+
     p = sub.add_parser("rollouts", help="run environment rollouts of a task suite "
                                         "(pass@1, pass^k, trajectories as JSONL)",
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -50,9 +52,11 @@ def register(sub: Any) -> None:
                    help="rollouts per task, policy seeds 0..K-1 (pass^k needs K > 1)")
     p.add_argument("--noise", type=float, default=0.3, help="the noisy policy's error rate")
     p.add_argument("--seed", type=int, default=0, help="every episode's reset seed")
-    p.add_argument("--k", type=int, default=3, help="actions per step at most (default 3)")
-    p.add_argument("--threshold", type=int, default=5,
-                   help="refusals in a row before an episode is truncated (default 5)")
+    p.add_argument("--k", type=int, default=DEFAULT_K,
+                   help=f"actions per step at most (default {DEFAULT_K})")
+    p.add_argument("--threshold", "-t", type=int, default=DEFAULT_THRESHOLD,
+                   help="the error threshold: failed steps in a row before an episode is "
+                        f"truncated (default {DEFAULT_THRESHOLD})")
     p.add_argument("--max-steps", type=int, default=40, help="steps before truncation")
     p.add_argument("--ray", metavar="ADDRESS", help="run on Ray: local (this machine's "
                                                     "cores), auto, HOST:PORT or ray://HOST:10001")

@@ -54,7 +54,7 @@ from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.planning.iteration import (
     DEFAULT_K,
-    DEFAULT_T,
+    DEFAULT_THRESHOLD,
     MAX_ACTIONS_PER_CALL,
     Iteration,
     execute_actions,
@@ -121,7 +121,8 @@ class VeriGraphEnv(gym.Env[str, str]):
                  tasks: str | Path | Sequence[Task | dict[str, Any]] | None = None,
                  per_group: int | None = None, suite_seed: int = 0,
                  test_fraction: float = DEFAULT_TEST_FRACTION, k: int = DEFAULT_K,
-                 threshold: int = DEFAULT_T, max_steps: int = 40, feedback: FeedbackMode = "full",
+                 threshold: int = DEFAULT_THRESHOLD, max_steps: int = 40,
+                 feedback: FeedbackMode = "full",
                  rubric: Rubric | dict[str, float] | None = None,
                  tools: ToolEnvironment | None = None,
                  render_mode: Literal["ansi"] | None = None) -> None:

@@ -4,7 +4,8 @@ Reasoning Gym's datasets are indexable lists of entries `{"question", "answer",
 "metadata"}` with a `score_answer(answer, entry)` in [0, 1], built from a config that a
 curriculum object moves through attribute levels (`increment_attr_level`,
 `generate_configuration`). `VeriGraphCurriculum` is that object for one family: its
-attributes are the generator's knobs (verigraph.tasks.procedural.LevelConfig), each with
+attributes are the knobs its generator reads (`FamilyGenerator.knobs`, fields of
+verigraph.tasks.procedural.LevelConfig), each with
 one value per level, plus `level`, which sets every knob to one level's preset at once.
 `VeriGraphDataset` is the dataset: entry i is task i of the configuration (seeded, the
 same in every process), the question the direct planner prompt (the whole plan in one
@@ -39,7 +40,6 @@ from verigraph.tasks.procedural import LevelConfig, generate_task, generator_for
 from verigraph.tasks.task import Task
 
 MAX_PLAN = 50
-KNOBS = ("objects", "distractors", "constraints", "length", "towers")
 
 
 class AttributeDefinition(BaseModel):
@@ -76,14 +76,16 @@ class VeriGraphCurriculum:
 
     def __init__(self, family: str = "blocks") -> None:
         self.family = family
-        presets = generator_for(family).levels
+        generator = generator_for(family)
+        presets = generator.levels
+        self.knobs = generator.knobs
         self.attributes: dict[str, AttributeDefinition] = {
             "level": AttributeDefinition(name="level", levels=tuple(range(1, len(presets) + 1)),
                                          description="every knob at one level's preset"),
             **{knob: AttributeDefinition(
                 name=knob, levels=tuple(getattr(p, knob) for p in presets),
                 description=str(LevelConfig.model_fields[knob].description))
-               for knob in KNOBS},
+               for knob in self.knobs},
         }
         self._levels = dict.fromkeys(self.attributes, 0)
 
@@ -109,7 +111,7 @@ class VeriGraphCurriculum:
                                  value=level, fix="stay within the attribute's levels")
         self._levels[name] = level
         if name == "level":
-            self._levels.update(dict.fromkeys(KNOBS, level))
+            self._levels.update(dict.fromkeys(self.knobs, level))
 
     def increment_attr_level(self, name: str) -> bool:
         """One level up; False (nothing changes) at the top."""
@@ -126,9 +128,9 @@ class VeriGraphCurriculum:
         return True
 
     def generate_configuration(self, size: int = 100, seed: int = 0) -> VeriGraphDatasetConfig:
-        knobs = LevelConfig(**{k: self.get_attr_value(k) for k in KNOBS})
         level = self.get_attr_value("level")
         preset = generator_for(self.family).config(level)
+        knobs = preset.model_copy(update={k: self.get_attr_value(k) for k in self.knobs})
         return VeriGraphDatasetConfig(family=self.family, level=level, size=size, seed=seed,
                                       knobs=None if knobs == preset else knobs)
 

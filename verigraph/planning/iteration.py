@@ -18,8 +18,11 @@ iteration stops when either reaches t (`Outcome.server_threshold`), which is how
 rule serves a caller that sends malformed answers (they never reach the server) and one
 that does not.
 
-The defaults k and t are the server's (`load_scene`'s), and `MAX_ACTIONS_PER_CALL` is
-`execute_actions`' limit; both are read from the tools, not restated.
+The defaults `DEFAULT_K` and `DEFAULT_THRESHOLD` (the error threshold t, called
+`threshold` everywhere but `load_scene`'s argument `t`) are the server's, defined once in
+`verigraph.tools.store`; the environment, the agent's loop and the CLI's options read
+them here. `MAX_ACTIONS_PER_CALL` is `execute_actions`' limit; both are read from the
+tools, not restated.
 """
 
 from __future__ import annotations
@@ -36,9 +39,9 @@ from verigraph.planning.parsing import split_proposal
 from verigraph.planning.progress import malformed_feedback, violation_feedback
 from verigraph.planning.tool_calls import ToolEnvironment
 from verigraph.tools.acting import MAX_ACTIONS_PER_CALL
-from verigraph.tools.store import DEFAULT_K, DEFAULT_T
+from verigraph.tools.store import DEFAULT_K, DEFAULT_THRESHOLD
 
-__all__ = ["DEFAULT_K", "DEFAULT_T", "MAX_ACTIONS_PER_CALL", "Execute", "GoalView",
+__all__ = ["DEFAULT_K", "DEFAULT_THRESHOLD", "MAX_ACTIONS_PER_CALL", "Execute", "GoalView",
            "Iteration", "Outcome", "Reading", "execute_actions", "prompt_goal", "read_state"]
 
 Execute = Callable[[list[AnyAction]], Mapping[str, Any]]
@@ -109,17 +112,18 @@ class Outcome:
 
 
 class Iteration:
-    """Algorithm 1's iteration over one episode: k, t, tau and the end-token rule.
+    """Algorithm 1's iteration over one episode: k, the error threshold t, tau and the
+    end-token rule.
 
     `verify_done` refuses an end token while a checkable goal does not hold (the
     agent's `done_policy="verify"`, always on in the environment); `stop_on_goal` stops
     as soon as the goal holds.
     """
 
-    def __init__(self, k: int | None, t: int, *, verify_done: bool = True,
+    def __init__(self, k: int | None, threshold: int, *, verify_done: bool = True,
                  stop_on_goal: bool = True) -> None:
         self.k = k
-        self.t = t
+        self.threshold = threshold
         self.verify_done = verify_done
         self.stop_on_goal = stop_on_goal
         self.tau = 0
@@ -158,6 +162,6 @@ class Iteration:
             outcome.stop = "end_token"
         elif self.stop_on_goal and outcome.goal_satisfied:
             outcome.stop = "goal_reached"
-        elif self.tau >= self.t or outcome.server_threshold:
+        elif self.tau >= self.threshold or outcome.server_threshold:
             outcome.stop = "threshold"
         return outcome

@@ -24,6 +24,12 @@ every knob rises (or stays) from one level to the next, and so does the optimal 
   out (the order matters), and `distractors` of them are left touching the figure in a
   contact it does not have. The optimal length comes from the bounded breadth-first
   search of `verigraph.planning.tangram_plan`.
+- **household** (verigraph.tasks.procedural_household): a home in the household
+  dictionary with `objects` food and dishes, a formula goal of parts (food into the
+  fridge, a dish out of a closed cabinet, food cooked on the stove, a dish moved, and
+  `quantified` parts over a kind); `constraints` closed containers to open or
+  appliances to switch on, `distractors` objects not in the goal; the optimal length is
+  the reference solver's, `length` to `length + 2`.
 
 A family is one `register_generator(FamilyGenerator(...))` call (its group, draw function
 and level presets); `generate_tasks(family, level, n, seed)` gives `Task`s (kind
@@ -66,6 +72,8 @@ class LevelConfig(BaseModel):
     length: int = Field(default=0, ge=0, le=12, description="kitchen: optimal length aimed "
                         "at; tangram: pieces out; blocks: unused (it follows)")
     towers: int = Field(default=1, ge=1, le=3, description="blocks: goal towers")
+    quantified: int = Field(default=0, ge=0, le=3, description="household: goal parts "
+                            "stated over a kind (forall, exists) instead of by id")
 
 
 @dataclass(frozen=True)
@@ -90,6 +98,8 @@ class FamilyGenerator:
     group: GroupName
     draw: Draw
     levels: tuple[LevelConfig, ...]  # level 1 first
+    # the LevelConfig fields this family reads: a curriculum's attributes
+    knobs: tuple[str, ...] = ("objects", "distractors", "constraints", "length", "towers")
 
     def config(self, level: int) -> LevelConfig:
         if not 1 <= level <= len(self.levels):
@@ -318,6 +328,12 @@ def _graph_json(graph: SceneGraph) -> dict[str, Any]:
     return graph.model_dump(mode="json", exclude_none=True)
 
 
+def _seed_text(cfg: LevelConfig) -> str:
+    """The knobs as the seed reads them: a knob added later (`quantified`) only when set,
+    so the tasks drawn before it existed keep their seeds."""
+    return cfg.model_dump_json(exclude=set() if cfg.quantified else {"quantified"})
+
+
 def generate_task(family: str, level: int, index: int, seed: int = 0,
                   config: LevelConfig | None = None) -> Task:
     """Task `index` of a family's level (or of an explicit `config`), fixed by the
@@ -325,13 +341,16 @@ def generate_task(family: str, level: int, index: int, seed: int = 0,
     generator = generator_for(family)
     cfg = config or generator.config(level)
     for draw in range(MAX_DRAWS):
-        rng = random.Random(f"verigraph-procedural:{family}:{cfg.model_dump_json()}:"
+        rng = random.Random(f"verigraph-procedural:{family}:{_seed_text(cfg)}:"
                             f"{seed}:{index}:{draw}")
         made = generator.draw(rng, cfg)
-        if made is None or made.goal.graph is None:
+        if made is None or (made.goal.graph is None and made.goal.formula is None):
             continue
-        set_goal: dict[str, Any] = {"graph": _graph_json(made.goal.graph),
-                                    "instruction": made.goal.instruction}
+        set_goal: dict[str, Any] = {"instruction": made.goal.instruction}
+        if made.goal.graph is not None:
+            set_goal["graph"] = _graph_json(made.goal.graph)
+        if made.goal.formula is not None:
+            set_goal["formula"] = made.goal.formula
         if made.goal.partial:
             set_goal["partial"] = True
         return Task.create(task_id=f"{family}-L{level}/{seed}/{index}",
@@ -354,3 +373,7 @@ def generate_tasks(family: str, level: int, n: int, seed: int = 0,
         raise VeriGraphError("n must be between 1 and 100000", field="n", value=n,
                              fix="use e.g. 200")
     return [generate_task(family, level, i, seed, config) for i in range(n)]
+
+
+# the household family registers itself (its generator lives in its own module)
+import verigraph.tasks.procedural_household  # noqa: E402,F401

@@ -44,7 +44,7 @@ from verigraph.tools.fields import (
 from verigraph.tools.goals import BoundedGoal, Instruction, check_goal_against
 from verigraph.tools.images import decode_base64_image
 from verigraph.tools.perceived import perceive_photo
-from verigraph.tools.store import DEFAULT_K, DEFAULT_T, LiveEpisode
+from verigraph.tools.store import DEFAULT_K, DEFAULT_THRESHOLD, LiveEpisode
 from verigraph.tools.summaries import EpisodeState, describe_episode
 
 
@@ -89,7 +89,7 @@ class LoadSceneInput(BaseModel):
     seed: int = Field(default=0, ge=0, le=2**31 - 1, description="simulator seed")
     k: int = Field(default=DEFAULT_K, ge=1, le=50, description="max actions per "
                                                                "execute_actions call")
-    t: int = Field(default=DEFAULT_T, ge=1, le=100,
+    t: int = Field(default=DEFAULT_THRESHOLD, ge=1, le=100,
                    description="stop after t failed calls in a row")
 
     @model_validator(mode="after")

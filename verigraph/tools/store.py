@@ -45,7 +45,7 @@ from verigraph.tools.executors import SceneCheck
 from verigraph.tools.images import KeptImage
 
 DEFAULT_K = 3
-DEFAULT_T = 5
+DEFAULT_THRESHOLD = 5
 DEFAULT_MAX_EPISODES = 256
 DEFAULT_IDLE_TIMEOUT_S = 3600.0
 DEFAULT_RECLAIM_IDLE_S = 600.0  # a full store replaces episodes idle this long
@@ -158,7 +158,7 @@ class LiveEpisode:
     state: WorldState | None
     source: str
     k: int = DEFAULT_K
-    t: int = DEFAULT_T
+    t: int = DEFAULT_THRESHOLD
     goal: Goal | None = None
     instruction: str | None = None
     world: World | None = None

@@ -36,7 +36,7 @@ from verigraph.agent.evaluation.tables import (
 )
 from verigraph.errors import VeriGraphError
 from verigraph.planning.factory import PLANNER_NAMES
-from verigraph.planning.iteration import DEFAULT_K, DEFAULT_T
+from verigraph.planning.iteration import DEFAULT_K, DEFAULT_THRESHOLD
 from verigraph.tasks.groups import (
     GROUPS,
     SUITE_VERSION,
@@ -61,7 +61,7 @@ class PlanConfig(BaseModel):
     planners: list[str] = Field(default_factory=lambda: list(DEFAULT_PLANNERS))
     noise: float = 0.3
     k: int = DEFAULT_K
-    threshold: int = DEFAULT_T  # the error threshold t
+    threshold: int = DEFAULT_THRESHOLD  # the error threshold t
     max_iterations: int = 30
     no_progress: int = 15
     ground_truth_graphs: bool = False

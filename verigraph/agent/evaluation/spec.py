@@ -17,7 +17,7 @@ from collections.abc import Iterable
 from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph import __version__
-from verigraph.planning.iteration import DEFAULT_K, DEFAULT_T
+from verigraph.planning.iteration import DEFAULT_K, DEFAULT_THRESHOLD
 from verigraph.planning.models import DonePolicy, FeedbackMode, Mode
 from verigraph.tasks.groups import GroupTasks
 from verigraph.tasks.task import SUITE_VERSION, GroupName, Task
@@ -31,7 +31,7 @@ class Setting(BaseModel):
     planner: str
     mode: Mode = "iterative"
     k: int = DEFAULT_K
-    threshold: int = DEFAULT_T  # the error threshold t
+    threshold: int = DEFAULT_THRESHOLD  # the error threshold t
     done_policy: DonePolicy = "verify"
     noise: float = 0.3
     max_iterations: int = 30
