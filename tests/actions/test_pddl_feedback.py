@@ -17,10 +17,10 @@ from verigraph.pddl import (
     PddlInputError,
     UnsupportedRequirementError,
     planbench_verdict,
-    report_text,
     validate_pddl_dict,
 )
 from verigraph.pddl.syntax import MAX_DEPTH, PddlSyntaxError
+from verigraph.reporting import report_text
 
 MYSTERY = (PDDL_DATA / "mystery_domain.pddl").read_text()
 MYSTERY_PROBLEM = (PDDL_DATA / "mystery_instance.pddl").read_text()  # b craves c; goal c craves b

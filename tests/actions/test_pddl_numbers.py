@@ -18,9 +18,9 @@ from verigraph.cli import main as verigraph_main
 from verigraph.cli import val
 from verigraph.pddl import (
     PddlInputError,
-    report_text,
     validate_pddl_dict,
 )
+from verigraph.reporting import report_text
 
 pytestmark = pytest.mark.fast
 

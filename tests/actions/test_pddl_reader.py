@@ -20,10 +20,10 @@ from verigraph.pddl import (
     explain,
     read_domain,
     read_problem,
-    report_text,
     validate_pddl_dict,
 )
 from verigraph.pddl.syntax import PddlSyntaxError, parse_sexpr
+from verigraph.reporting import report_text
 
 pytestmark = pytest.mark.fast
 

@@ -35,6 +35,7 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, MoveAction, StateAction
 from verigraph.graph.dictionary import STATE_WORDS, SUPPORT_RELATIONS, state_value
 from verigraph.graph.state import WorldState
+from verigraph.reporting import state_change_text as reporting_state_text
 
 # (removed edges, added edges, state changes): edges as (source, relation, target),
 # state changes as (object, key, before, after).
@@ -371,10 +372,8 @@ HOUSEHOLD_CONSTRAINTS = frozenset({
 
 
 def state_change_text(change: StateChange) -> str:
-    """`fridge: closed -> open`."""
-    obj, key, before, after = change
-    words = STATE_WORDS[key]
-    return f"{obj}: {words[before]} -> {words[after]}"
+    """`fridge: closed -> open` (`reporting.state_change_text`)."""
+    return reporting_state_text(*change)
 
 
 def action_lines(*, household: bool) -> list[str]:

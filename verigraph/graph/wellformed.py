@@ -37,6 +37,7 @@ from verigraph.graph.dictionary import (
     union_dictionary,
 )
 from verigraph.graph.model import Edge, Node, SceneGraph
+from verigraph.reporting import readings_line
 
 # Spelling suggestions cost a fuzzy match each; past this many unknown labels the fix
 # names a few known labels instead, so a large bad graph is refused in linear time.
@@ -388,12 +389,6 @@ def applied_line(graph: SceneGraph | None, dictionary: Dictionary,
     text = "; ".join(entries)  # "capacity" within one entry is within the text, and back
     note = f". {DEFAULTS_NOTE}" if "capacity" in text else ""
     return f"built-in properties applied (dictionary: {named}): " + text + note
-
-
-def readings_line(readings: list[str]) -> str:
-    """`labels read: box read as block (synonym, blocks dictionary)`: every label the
-    client wrote that was taken as another name (never silent); empty when none."""
-    return "labels read: " + "; ".join(readings) if readings else ""
 
 
 def check_well_formed(graph: SceneGraph, dictionary: Dictionary, *,
