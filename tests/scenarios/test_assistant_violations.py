@@ -53,7 +53,8 @@ async def test_validate_plan_all_errors_puts_the_per_step_report_in_the_text(
     said = text(report)
     assert said.splitlines()[0].startswith("INVALID: 4 step(s) checked, 2 violation(s)")
     assert re.search(r"^\s*1 FAIL\s+move\(pot, on, shelf\): \[object_not_clear\]", said, re.M)
-    assert re.search(r"^\s*2 ok\s+move\(pan, on, shelf\)   -pan on \w+, \+pan on shelf$", said, re.M)
+    assert re.search(r"^\s*2 ok\s+move\(pan, on, shelf\)   -pan on \w+, \+pan on shelf$", said,
+                     re.M)
     assert re.search(r"^\s*4 FAIL\s+move\(cutting_board, on, stove\): \[target_full\] stove",
                      said, re.M)
     assert "more violation" not in said
