@@ -35,7 +35,6 @@ from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, MoveAction, StateAction
 from verigraph.graph.dictionary import STATE_WORDS, SUPPORT_RELATIONS, state_value
 from verigraph.graph.state import WorldState
-from verigraph.reporting import state_change_text as reporting_state_text
 
 # (removed edges, added edges, state changes): edges as (source, relation, target),
 # state changes as (object, key, before, after).
@@ -371,11 +370,6 @@ HOUSEHOLD_CONSTRAINTS = frozenset({
     *p.NO_SOURCE.values(), *p.SOURCE_OFF.values(), *p.STILL_AT_SOURCE.values()})
 
 
-def state_change_text(change: StateChange) -> str:
-    """`fridge: closed -> open` (`reporting.state_change_text`)."""
-    return reporting_state_text(*change)
-
-
 def action_lines(*, household: bool) -> list[str]:
     """One line per row: `move(object, relation, target): object: ...; target: ...`."""
     lines = []
@@ -388,5 +382,5 @@ def action_lines(*, household: bool) -> list[str]:
 
 
 __all__ = ["SCHEMAS", "ActionSchema", "Parameter", "Precondition", "action_lines",
-           "closed_passage", "fits", "schema_of", "state_change_text", "state_value",
+           "closed_passage", "fits", "schema_of", "state_value",
            "table_constraints"]
