@@ -19,8 +19,10 @@ The form (keys whose value would be None are left out):
   `{ok, step, action, constraint, message, blocking, suggestion}` and, from a PDDL
   engine, `unsatisfied` (each literal with its explanation and achievers);
 * `violations`: every step's violation, in order;
-* `goal_diff`: `{satisfied, missing_edges, extra_edges, missing_nodes, extra_nodes,
-  predicate?, detail?, missing_states?, formula_detail?}`;
+* `goal_diff`: a scene's `{satisfied, missing_edges, extra_edges, missing_nodes,
+  extra_nodes, predicate?, detail?, missing_states?, formula_detail?}` (edges as
+  sentences, `cup on desk`), or a PDDL problem's `{satisfied, missing_atoms}` (the goal
+  literals that do not hold, `(on c a)`);
 * `final_graph` (a scene, or the blocks world's), `label_readings` (how the labels the
   caller wrote were read);
 * PDDL only: `engine`, `unmet_goals` (explained like `unsatisfied`), `total_cost`,
@@ -72,7 +74,8 @@ def goal_text(diff: dict[str, Any]) -> str:
         head = f"goal reached ({detail})" if detail else "goal reached"
         return f"{head}; " + "; ".join(shortened(formula)) if formula else head
     parts = []
-    for key, name, sep in (("missing_edges", "missing: ", "; "),
+    for key, name, sep in (("missing_atoms", "missing: ", "; "),
+                           ("missing_edges", "missing: ", "; "),
                            ("missing_states", "states not reached: ", "; "),
                            ("extra_edges", "extra: ", "; "),
                            ("missing_nodes", "missing objects: ", ", "),

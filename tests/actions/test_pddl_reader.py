@@ -195,7 +195,7 @@ def test_nested_and_in_goals_preconditions_and_effects():
         bad = validate_pddl_dict(nested, problem, "(load-truck p0 t0 ap)", engine=engine)
         assert bad["violations"][0]["unsatisfied"][0]["literal"] == "(at t0 ap)"
         short = validate_pddl_dict(nested, problem, GOOD.rsplit("\n", 1)[0], engine=engine)
-        assert short["goal_diff"]["missing_edges"] == ["(at p0 ap)", "(not (in p0 t0))"]
+        assert short["goal_diff"]["missing_atoms"] == ["(at p0 ap)", "(not (in p0 t0))"]
 
 
 # -- 4. type hierarchies --------------------------------------------------------------------

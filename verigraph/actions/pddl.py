@@ -13,7 +13,8 @@ precondition with the step that last made it false into the violation's message 
 every achiever, as `reporting.achiever_text` writes them), led by a plain summary
 (`in short: ...`) when the message is long; the achievers of each unmet goal, the plan's
 total cost and, with all_errors, from which state later steps were checked, into
-`goal_diff.detail`.
+`goal_diff.detail`. The goal literals that do not hold (`goal_diff.missing_atoms`) are
+the model's `goal_diff.missing_edges`, its one list of unmet goal parts.
 """
 
 from __future__ import annotations
@@ -77,7 +78,10 @@ def as_validation_report(data: dict[str, Any]) -> ValidationReport:
     for s in steps:
         if not s["ok"]:
             s["violation"] = by_step[s["step"]]
-    diff = dict(data["goal_diff"])
+    # the model's goal diff is a graph's: the unmet goal literals go where its missing
+    # goal edges go (a blocks-world atom is one of its edges, `(on c a)`)
+    diff = {"satisfied": data["goal_diff"]["satisfied"],
+            "missing_edges": data["goal_diff"]["missing_atoms"]}
     notes = []
     if data.get("unmet_goals"):
         notes.append(_explained(data["unmet_goals"]))

@@ -223,7 +223,7 @@ def plan_lines(data: dict[str, Any], opts: Options, metric: bool = False) -> Pla
             if opts.silent < 2:
                 out.append("Plan invalid")
             missing = [_atom_and_value(x, True)
-                       for x in (data.get("goal_diff") or {}).get("missing_edges", [])]
+                       for x in (data.get("goal_diff") or {}).get("missing_atoms", [])]
             advice += ["", "The goal is not satisfied", *_set_advice(missing),
                        *_reason_lines(data.get("unmet_goals") or [])]
     else:

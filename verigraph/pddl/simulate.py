@@ -460,8 +460,7 @@ class _Simulation:
             "engine": "strips", "valid": plan_valid and not unmet, "plan_valid": plan_valid,
             "goal_reached": not unmet, "steps": self.out_steps, "violations": violations,
             "not_checked": not_checked, "done": False,
-            "goal_diff": {"satisfied": not unmet, "missing_nodes": [], "extra_nodes": [],
-                          "missing_edges": missing, "extra_edges": []},
+            "goal_diff": {"satisfied": not unmet, "missing_atoms": missing},
             "unmet_goals": unmet,
             "final_state": sorted(map(show, state)),
         }

@@ -63,7 +63,7 @@ def planbench_verdict(data: dict[str, Any]) -> dict[str, Any]:
         return {"valid": False, "unmet_precondition": {
             "action": action, "predicate": [planbench_atom(x) for x in literals]},
             "message": message}
-    missing = data["goal_diff"]["missing_edges"]
+    missing = data["goal_diff"]["missing_atoms"]
     many = len(missing) > 1
     return {"valid": False, "unmet_goal": [planbench_atom(x) for x in missing],
             "message": "The above plan is invalid. "

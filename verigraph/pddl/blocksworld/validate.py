@@ -59,8 +59,7 @@ def _report(domain_text: str, problem_text: str, plan_text: str) -> dict[str, An
         "valid": plan_valid and not missing, "plan_valid": plan_valid,
         "goal_reached": not missing, "steps": out_steps, "violations": violations,
         "not_checked": n_steps - len(out_steps), "done": False,
-        "goal_diff": {"satisfied": not missing, "missing_nodes": [], "extra_nodes": [],
-                      "missing_edges": missing, "extra_edges": []},
+        "goal_diff": {"satisfied": not missing, "missing_atoms": missing},
         "final_graph": {
             "nodes": [{"id": o, "label": label, "attrs": {}} for o, label in state.objects.items()],
             "edges": [_edge((o, r, t)) for o, (r, t) in state.support.items()],
