@@ -54,8 +54,9 @@ async def modules_switched(client: Client, name: str, arguments: dict[str, Any]
 async def test_a_small_plan_check_reads_its_scene_goal_and_plan_once() -> None:
     """validate_plan on a built-in scene with a goal as edge text: the scene is not
     rebuilt nor checked again (a built-in's state is indexed once), no built-in goal is
-    built beside the one given, and the path stays short (20 modules and 44 switches
-    here, in process; the aim is 14 and 40)."""
+    built beside the one given, and the path stays short (21 modules and 48 switches
+    here, in process, the report's one text renderer, `verigraph.reporting`, among them;
+    the aim is 14 and 40)."""
     arguments = {"scene_id": "cup_on_book", "goal": "book on shelf",
                  "plan": "move(cup, on, desk)\nmove(book, on, shelf)"}
     async with Client(build_server(Toolbox())) as client:
@@ -64,8 +65,8 @@ async def test_a_small_plan_check_reads_its_scene_goal_and_plan_once() -> None:
     again = {"verigraph.graph.builtin_scenes", "verigraph.graph.cycles",
              "verigraph.graph.support", "verigraph.graph.io"}
     assert not seen & again, sorted(seen & again)
-    assert len(seen) <= 20, sorted(seen)
-    assert switches <= 46, switches
+    assert len(seen) <= 21, sorted(seen)
+    assert switches <= 49, switches
 
 
 def test_a_stdio_server_imports_nothing_of_the_http_wing() -> None:

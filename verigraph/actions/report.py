@@ -14,6 +14,7 @@ it at their boundary (`actions.pddl.as_validation_report`).
 from __future__ import annotations
 
 import gc
+from contextlib import nullcontext
 from typing import Any
 
 from pydantic import BaseModel, Field
@@ -108,7 +109,8 @@ def check_plan(state: WorldState, actions: list[AnyAction], goal: Goal | None = 
     calls with what it has already read, so nothing is copied, parsed or read twice.
     `readings`: how the labels of the graphs the caller wrote were read."""
     size = len(actions)
-    with collector_paused(size):  # a long plan creates many acyclic objects
+    # a long plan creates many acyclic objects; a short one leaves the collector alone
+    with collector_paused(size) if size >= LARGE_GRAPH_ITEMS else nullcontext():
         run = run_actions(state, actions, all_errors=all_errors, wanted=NO_GOAL
                           if goal is None else wanted_placements(goal))
         goal_diff = check_goal(state, goal) if goal is not None else None

@@ -412,8 +412,8 @@ def validate_plan_tool(ctx: ToolContext, params: ValidatePlanInput) -> Validatio
     written = params.goal.graph if isinstance(params.goal, Goal) else None
     readings = [] if params.graph is None and written is None else label_readings(
         params.graph, state.dictionary, written)  # the graphs the client wrote, if any
-    return as_validation_report(check_plan(state, actions, goal, all_errors=params.all_errors,
-                                           readings=readings))
+    return ValidationReport.model_validate(  # the plain report as the tool's model
+        check_plan(state, actions, goal, all_errors=params.all_errors, readings=readings))
 
 
 # The text of a plan report shows the first steps and every failure (up to a bound)
