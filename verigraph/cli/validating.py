@@ -176,7 +176,8 @@ def scene_and_goal(scene: str | Path, goal: str | Path | None) -> tuple[Any, Any
 
 
 def scene_report(scene: str | Path, plan: str | Path, goal: str | Path | None,
-                 all_errors: bool = False) -> Any:
+                 all_errors: bool = False) -> dict[str, Any]:
+    """The scene plan's report in its plain form (`verigraph.reporting`)."""
     from verigraph.actions.report import validate_plan
 
     graph, goal_value = scene_and_goal(scene, goal)
