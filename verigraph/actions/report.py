@@ -108,8 +108,9 @@ def check_plan(state: WorldState, actions: list[AnyAction], goal: Goal | None = 
     own copy, taken once), with a parsed goal: the core of `validate_plan` that the tool
     calls with what it has already read, so nothing is copied, parsed or read twice.
     `readings`: how the labels of the graphs the caller wrote were read."""
-    size = len(actions)
-    # a long plan creates many acyclic objects; a short one leaves the collector alone
+    # a long plan, or a large final graph, creates many acyclic objects; a small report
+    # leaves the collector alone
+    size = len(actions) + len(state.objects)
     with collector_paused(size) if size >= LARGE_GRAPH_ITEMS else nullcontext():
         run = run_actions(state, actions, all_errors=all_errors, wanted=NO_GOAL
                           if goal is None else wanted_placements(goal))
@@ -127,7 +128,7 @@ def check_plan(state: WorldState, actions: list[AnyAction], goal: Goal | None = 
         report["done"] = run.done
         if goal_diff is not None:
             report["goal_diff"] = goal_diff.model_dump(mode="json", exclude_none=True)
-        report["final_graph"] = state.to_graph().model_dump(mode="json", exclude_none=True)
+        report["final_graph"] = state.graph_data()
         report["label_readings"] = readings or []
         if size >= LARGE_GRAPH_ITEMS and gc.get_freeze_count() == 0:
             promote_young_objects()  # see there: the report is acyclic
