@@ -37,9 +37,9 @@ goes on as VAL does when asked to continue: the failing step is skipped (the sta
 as it was before it) and every later step is checked from there; the report says so
 (`after_failure`). With action costs, the report's `total_cost` is the initial
 `(= (total-cost) N)` (0 when not given) plus the applied steps' `(increase (total-cost)
-...)`, VAL's "Final value" (`total_value` says how it is written). The report is a
-JSON-ready dict with the keys of the blocks-world report (valid, plan_valid,
-goal_reached, steps, violations, not_checked, goal_diff).
+...)`, VAL's "Final value" (`total_value` says how it is written). The report is the
+plan report every engine returns (`verigraph.reporting`: valid, plan_valid,
+goal_reached, steps, violations, not_checked, goal_diff, ...).
 """
 
 from __future__ import annotations
