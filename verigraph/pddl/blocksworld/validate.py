@@ -3,7 +3,8 @@
 The report is the plan report every engine returns (`verigraph.reporting`: valid,
 plan_valid, goal_reached, steps, violations, not_checked, done, goal_diff, final_graph),
 built as plain dicts, so batch runs and `--json` never pay for pydantic;
-`verigraph.actions.pddl.validate_pddl_plan` wraps it in the tools' model. Step numbers are 1-based indices of actions in the plan.
+`verigraph.actions.pddl.validate_pddl_plan` wraps it in the tools' model. Step numbers
+are 1-based indices of actions in the plan.
 An accepted step's arrays (`args`, `edit.removed`, `edit.added`) are tuples: immutable,
 cheaper to build, and the same JSON; the edge a block leaves, with the tuple around it,
 is the one the step that put it there added.
