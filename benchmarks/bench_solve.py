@@ -88,7 +88,7 @@ def main() -> None:
             t0 = time.perf_counter()
             anytime = solve(start, goal, anytime=True)
             t_any = time.perf_counter() - t0
-            assert anytime.reachable and validate_plan(start, anytime.plan, goal).valid
+            assert anytime.reachable and validate_plan(start, anytime.plan, goal)["valid"]
             t0 = time.perf_counter()
             optimal = solve(start, goal, time_limit=args.timeout)
             t_opt = time.perf_counter() - t0

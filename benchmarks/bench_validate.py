@@ -18,6 +18,11 @@
   plan's explanation included), and `--batch` over all of them against VAL run once per
   case;
 * CLI start-up on a small plan (blocks world, STRIPS logistics, `verigraph-val`);
+* `--validate-only`: `validate_plan` with its per-step report (and the two PDDL engines)
+  against VAL's validate-only time on the same plan: VAL's run minus its run on the empty
+  plan (same domain and problem), which takes out VAL's start-up and its reading of the
+  1,000-block problem; about half a minute, appended to the results file as its own
+  section;
 * `--grounding`: the STRIPS engine's three ways to run a plan on the same plans (the fast
   run with generated grounding functions, the fast run with the literal-by-literal
   closures only, the step-by-step run only), reports compared byte for byte; appended to
@@ -212,6 +217,10 @@ def main() -> None:
     parser.add_argument("--batch-items", type=int, default=2000)
     parser.add_argument("--ipc-only", action="store_true",
                         help="only the IPC rows (printed, no results file)")
+    parser.add_argument("--validate-only", action="store_true",
+                        help="only validate_plan and the PDDL engines against VAL's "
+                             "validate-only time (VAL's run minus its empty-plan run; about "
+                             "half a minute), appended to the results file")
     parser.add_argument("--grounding", action="store_true",
                         help="only the STRIPS engine's grounding paths compared (about "
                              "half a minute), appended to the results file")
@@ -220,6 +229,9 @@ def main() -> None:
     py = [sys.executable, "-m", "verigraph"]
     if args.grounding:
         grounding_rows()
+        return
+    if args.validate_only:
+        validate_only_rows(find_val(args.val), work)
         return
     if args.ipc_only:
         ipc_long_rows(args, work, find_val(args.val), [])
@@ -266,7 +278,7 @@ def main() -> None:
         assert not run.violations and len(run.records) == N_ACTIONS
 
     def report() -> None:
-        assert validate_plan(state, plan).valid
+        assert validate_plan(state, plan)["valid"]
 
     hand_text = "\n".join(hand)  # the plan file's text, as VAL reads it from its file
 
@@ -307,12 +319,25 @@ def main() -> None:
     seconds = process_time(cmd)
     row("process: verigraph validate --json, PDDL, 20,000 actions", seconds, len(hand),
         len(hand) / last_cpu(cmd), up_rate=up_rate, val_time=val_time)
-    if val_time is not None:
+    if val and val_time is not None:
         rows.append(["process: VAL Validate, PDDL, 20,000 actions (wall: median of 5, the "
                      "lower of two timings; CPU: best of 10)",
                      f"{val_time[0] * 1000:.1f}", f"{len(hand) / val_time[0]:,.0f}",
                      f"{len(hand) / val_time[1]:,.0f}",
                      f"{len(hand) / val_time[0] / up_rate:,.1f}x", "1.00x", "1.00x"])
+        (work / "empty_plan.txt").write_text("")
+        _, empty_cpu, _ = run_val(val, DOMAIN_FILE, work / "big.pddl", work / "empty_plan.txt",
+                                  runs=10)
+        only = val_time[1] - empty_cpu  # VAL's validate-only time: its run minus start-up
+        ours = {name: n / cpu for name, _, n, cpu in measured}  # CPU seconds per row
+        ratios = ", ".join(f"{what} {only / ours[name]:.2f}x" for what, name in (
+            ("validate_plan", "scene: validate_plan with per-step report"),
+            ("native blocks", "PDDL 4-op: native validator with report (20,000 actions)"),
+            ("STRIPS", "PDDL 4-op: general STRIPS engine with report (20,000 actions)")))
+        rows.append([f"process: VAL Validate, the empty plan on the same problem (start-up "
+                     f"and reading): {empty_cpu * 1000:.1f} ms CPU, so VAL validate-only "
+                     f"{only * 1000:.1f} ms CPU; ours against it (CPU): {ratios}",
+                     "-", "-", "-", "-", "-", "-"])
     logistics_rows(args, work, val, rows)
     bare_python = process_time([sys.executable, "-c", "pass"], runs=15)
     rows.append(["process: `python -c pass` (the floor for any Python command)",
@@ -693,6 +718,78 @@ def ipc_corpus_rows(args: argparse.Namespace, work: Path, py: list[str], val: st
 # ---------------------------------------------------------------- grounding paths
 
 GROUNDING_TITLE = "## The STRIPS engine's grounding paths"
+VALIDATE_ONLY_TITLE = "## validate_plan against VAL's validate-only time"
+
+
+def append_section(title: str, lines: list[str]) -> None:
+    """Append a section to results/validate.md, replacing an earlier one of that title
+    (and keeping the sections after it)."""
+    path = RESULTS / "validate.md"
+    text = path.read_text("utf-8") if path.exists() else ""
+    if title in text:
+        start = text.index(title)
+        after = text.find("\n## ", start + len(title))
+        text = text[:start].rstrip("\n") + "\n" + (text[after:] if after >= 0 else "")
+    path.write_text(text.rstrip("\n") + "\n\n" + "\n".join(lines) + "\n", "utf-8")
+    print("\n".join(lines))
+
+
+def validate_only_rows(val: str | None, work: Path, runs: int = 9) -> None:
+    """`validate_plan` with its per-step report on the 10,000-move walk (parsed actions,
+    and from its text), and the native blocks and STRIPS engines on its PDDL form,
+    against VAL's validate-only time on that PDDL form: VAL's best CPU on the plan minus
+    its best CPU on the empty plan (same domain and problem: start-up and reading the
+    1,000-block problem). Best CPU of `runs` on every side, in one run."""
+    from verigraph.agent.evaluation.markdown import table
+
+    if val is None:
+        raise SystemExit("--validate-only needs VAL's Validate (--val, $VERIGRAPH_VAL or "
+                         f"{DEFAULT_VAL}; docs/validator.md says how to build it)")
+    scene = big_scene()
+    plan = valid_random_walk(scene, N_ACTIONS)
+    text = "\n".join(a.text() for a in plan)
+    state = WorldState.from_graph(scene)
+    problem_text, hand = as_pddl(scene, plan)
+    hand_text = "\n".join(hand)
+    domain_text = DOMAIN_FILE.read_text()
+    (work / "big.pddl").write_text(problem_text)
+    (work / "big_plan.txt").write_text(hand_text + "\n")
+    (work / "empty_plan.txt").write_text("")
+    ours = [("validate_plan with per-step report (parsed actions)",
+             lambda: validate_plan(state, plan)),
+            ("validate_plan with per-step report, from the plan's text",
+             lambda: validate_plan(state, text)),
+            ("validate + apply alone (the core loop, no report)",
+             lambda: run_actions(state.copy(), plan)),
+            ("native blocks engine with report, the PDDL form (20,000 hand actions)",
+             lambda: validate_blocks_dict(domain_text, problem_text, hand_text)),
+            ("STRIPS engine with report, the PDDL form (20,000 hand actions)",
+             lambda: validate_strips_dict(domain_text, problem_text, hand_text))]
+    val_full = run_val(val, DOMAIN_FILE, work / "big.pddl", work / "big_plan.txt", runs)
+    val_empty = run_val(val, DOMAIN_FILE, work / "big.pddl", work / "empty_plan.txt", runs)
+    cpus = [(name, _in_process_cpu(fn, runs, before=_cold)) for name, fn in ours]
+    again = run_val(val, DOMAIN_FILE, work / "big.pddl", work / "big_plan.txt", runs)
+    empty_again = run_val(val, DOMAIN_FILE, work / "big.pddl", work / "empty_plan.txt", runs)
+    full, empty = min(val_full[1], again[1]), min(val_empty[1], empty_again[1])
+    only = full - empty
+    rows = [["VAL Validate, whole process", f"{full * 1000:.1f}", "-", "-"],
+            ["VAL Validate, the empty plan (start-up, reading domain and problem)",
+             f"{empty * 1000:.1f}", "-", "-"],
+            ["VAL validate-only (the two above subtracted)", f"{only * 1000:.1f}", "1.00x",
+             "-"]]
+    rows += [[name, f"{cpu * 1000:.1f}", f"{only / cpu:.2f}x", f"{full / cpu:.2f}x"]
+             for name, cpu in cpus]
+    load = os.getloadavg()[0]
+    append_section(VALIDATE_ONLY_TITLE, [
+        VALIDATE_ONLY_TITLE, "", f"Machine: {machine()}  ",
+        f"Date: {time.strftime('%Y-%m-%d')}", "",
+        *table(["what", "ms CPU", "vs VAL validate-only", "vs VAL's whole process"], rows),
+        "", f"`python benchmarks/bench_validate.py --validate-only`. {N_ACTIONS:,} valid "
+        f"moves on a {N_OBJECTS:,}-object blocks scene; VAL and the PDDL engines check its "
+        "PDDL form (20,000 hand actions, the problem read in every run). Best CPU of "
+        f"{runs} on every side (VAL: of two series of {runs}, before and after ours); the "
+        "ratios are VAL's time over ours. Load average at the end: "
+        f"{load:.1f} on {os.cpu_count()} cores."])
 
 
 def grounding_rows() -> None:
@@ -795,12 +892,7 @@ def grounding_rows() -> None:
              "explanation after a failing step); the generated functions pay where a plan "
              f"grounds many distinct actions. Load average at the end: {load:.1f} on "
              f"{os.cpu_count()} cores."]
-    path = RESULTS / "validate.md"
-    text = path.read_text("utf-8") if path.exists() else ""
-    if GROUNDING_TITLE in text:
-        text = text[:text.index(GROUNDING_TITLE)].rstrip("\n") + "\n"
-    path.write_text(text + "\n" + "\n".join(lines) + "\n", "utf-8")
-    print("\n".join(lines))
+    append_section(GROUNDING_TITLE, lines)
 
 
 if __name__ == "__main__":

@@ -121,7 +121,7 @@ def test_cli_pddl_text_json_and_bad_input(tmp_path):
     (tmp_path / "arity.txt").write_text("(unstack d c)\n(unstack b)\n")
     r = verigraph(*base, "--plan", str(tmp_path / "arity.txt"), cwd=DATA)
     assert r.returncode == 1 and "Traceback" not in r.stderr  # a failing step, not bad input
-    assert "2 FAIL  (unstack b)   [malformed_action] line 2: unstack takes 2 argument(s)" \
+    assert "2 FAIL  (unstack b): [malformed_action] line 2: unstack takes 2 argument(s)" \
         in r.stdout
     # a domain outside the blocks-world family goes to the STRIPS engine, which judges it
     (tmp_path / "d.pddl").write_text(PLANBENCH.replace("(holding ?x)", "(holding ?x) (wet ?x)"))

@@ -15,6 +15,7 @@ from scenes import random_blocks
 from verigraph.actions import MoveAction, validate_plan
 from verigraph.errors import GoalError
 from verigraph.graph import Goal, WorldState
+from verigraph.reporting import report_text
 from verigraph.solver import solve
 from verigraph.solver.pddl import (
     PddlNames,
@@ -59,10 +60,10 @@ def test_validator_and_unified_planning_agree_on_generated_blocks_plans(tmp_path
             actions = random_plan(rng, ids, rng.randint(1, 6))  # mostly invalid
         if not actions:
             continue
-        ours = validate_plan(start, actions, goal).valid
+        ours = validate_plan(start, actions, goal)["valid"]
         theirs = up_verdict(tmp_path, state, goal, actions)
         assert ours == theirs, (case, [a.text() for a in actions],
-                                validate_plan(start, actions, goal).text())
+                                report_text(validate_plan(start, actions, goal)))
         verdicts[ours] += 1
     assert verdicts[True] >= 10 and verdicts[False] >= 10
 
@@ -81,7 +82,7 @@ def test_tableware_capacities_and_containers_agree(tmp_path):
                               target=rng.choice(ids)) for _ in range(3)]
         if case % 3 == 0:
             actions = solve(start, goal).plan or actions
-        ours = validate_plan(start, actions, goal).valid
+        ours = validate_plan(start, actions, goal)["valid"]
         assert ours == up_verdict(tmp_path, state, goal, actions), [a.text() for a in actions]
         verdicts.append(ours)
     assert True in verdicts and False in verdicts
@@ -109,5 +110,5 @@ def test_pyperplan_plans_for_the_export_pass_our_validator(tmp_path):
         plan = [action_from_pddl(a.action.name, [str(p) for p in a.actual_parameters], names)
                 for a in result.plan.actions]
         report = validate_plan(start, plan or "done", goal)
-        assert report.valid, report.text()
+        assert report["valid"], report_text(report)
         assert len(plan) == len(solve(start, goal).plan)

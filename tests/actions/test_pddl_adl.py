@@ -13,7 +13,8 @@ from unified_planning.engines.plan_validator import SequentialPlanValidator
 from unified_planning.io import PDDLReader
 
 from pddl_corpus import PDDL_DATA, random_walk
-from verigraph.pddl import report_text, validate_pddl_dict
+from verigraph.pddl import validate_pddl_dict
+from verigraph.reporting import report_text
 
 DOMAIN_FILE = PDDL_DATA / "briefcase_adl_domain.pddl"
 DOMAIN = DOMAIN_FILE.read_text()

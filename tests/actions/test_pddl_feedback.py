@@ -17,10 +17,10 @@ from verigraph.pddl import (
     PddlInputError,
     UnsupportedRequirementError,
     planbench_verdict,
-    report_text,
     validate_pddl_dict,
 )
 from verigraph.pddl.syntax import MAX_DEPTH, PddlSyntaxError
+from verigraph.reporting import report_text
 
 MYSTERY = (PDDL_DATA / "mystery_domain.pddl").read_text()
 MYSTERY_PROBLEM = (PDDL_DATA / "mystery_instance.pddl").read_text()  # b craves c; goal c craves b
@@ -87,7 +87,9 @@ def test_unmet_goal_lists_the_actions_that_achieve_it():
     assert g["achievers"][0]["applicable_now"] == "(unload-truck p0 t0 ap)"
     assert "(unload-airplane p0 ?airplane ap)" in [a["action"] for a in g["achievers"]]
     text = report_text(r)
-    assert "unload-truck p0 t0 ap" in text and text.endswith("goal not reached")
+    assert "unload-truck p0 t0 ap" in text
+    assert text.startswith("INVALID: 2 step(s) checked; goal not reached: missing: (at p0 ap)")
+    assert "unmet goal (at p0 ap): never true" in text
     assert planbench_verdict(r) == {"valid": False, "unmet_goal": ["at_p0_ap"], "message":
                                     "The above plan is invalid. This is the unmet goal "
                                     "condition:\n(at p0 ap)"}

@@ -18,9 +18,9 @@ from verigraph.cli import main as verigraph_main
 from verigraph.cli import val
 from verigraph.pddl import (
     PddlInputError,
-    report_text,
     validate_pddl_dict,
 )
+from verigraph.reporting import report_text
 
 pytestmark = pytest.mark.fast
 
@@ -44,7 +44,7 @@ def test_the_initial_total_cost_is_counted_as_val_counts_it(capsys, tmp_path):
     increases (10 + 3 + 5 = 18), in the JSON report, its text, the MCP text and `val`."""
     report = validate_pddl_dict(ROADS, trip(), PLAN)
     assert report["valid"] and report["total_cost"] == 18
-    assert "total cost 18 " in report_text(report)
+    assert "plan cost 18 " in report_text(report)
     assert "total cost 18" in (as_validation_report(report).goal_diff.detail or "")
     assert validate_pddl_dict(ROADS, trip(start=""), PLAN)["total_cost"] == 8
     stepwise = validate_pddl_dict(ROADS, trip(), PLAN, all_errors=True)
@@ -163,7 +163,7 @@ def test_a_total_is_an_integer_when_integral_and_small_else_a_float(xy: str, tot
     report = validate_pddl_dict(ROADS, trip(xy=xy), PLAN)
     assert report["total_cost"] == total
     assert isinstance(report["total_cost"], int) is (shown == "18")
-    assert f"total cost {shown} " in report_text(report)
+    assert f"plan cost {shown} " in report_text(report)
     assert len(json.dumps(report["total_cost"])) < 25
 
 

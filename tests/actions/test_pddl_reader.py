@@ -20,10 +20,10 @@ from verigraph.pddl import (
     explain,
     read_domain,
     read_problem,
-    report_text,
     validate_pddl_dict,
 )
 from verigraph.pddl.syntax import PddlSyntaxError, parse_sexpr
+from verigraph.reporting import report_text
 
 pytestmark = pytest.mark.fast
 
@@ -195,7 +195,7 @@ def test_nested_and_in_goals_preconditions_and_effects():
         bad = validate_pddl_dict(nested, problem, "(load-truck p0 t0 ap)", engine=engine)
         assert bad["violations"][0]["unsatisfied"][0]["literal"] == "(at t0 ap)"
         short = validate_pddl_dict(nested, problem, GOOD.rsplit("\n", 1)[0], engine=engine)
-        assert short["goal_diff"]["missing_edges"] == ["(at p0 ap)", "(not (in p0 t0))"]
+        assert short["goal_diff"]["missing_atoms"] == ["(at p0 ap)", "(not (in p0 t0))"]
 
 
 # -- 4. type hierarchies --------------------------------------------------------------------
@@ -322,7 +322,7 @@ def test_a_malformed_plan_line_is_a_failing_step_of_an_invalid_plan(line, constr
     assert (v["step"], v["constraint"]) == (2, constraint) and v["suggestion"].startswith(fix)
     assert "line 2" in v["message"] and report["not_checked"] == 1
     text = report_text(report)
-    assert f"2 FAIL  {line}" in text and text.splitlines()[-1].startswith("INVALID")
+    assert f"2 FAIL  {line}: [{constraint}]" in text and text.startswith("INVALID")
     assert as_validation_report(report).violations[0].constraint == constraint
 
 
@@ -345,7 +345,8 @@ def test_all_errors_skips_each_failing_step_and_checks_the_rest_from_there():
             "(drive-truck t0 l0 ap c0)\n(unload-truck p0 t0 l0)\n(unload-truck p0 t0 ap)")
     first = validate_pddl_dict(LOGISTICS, LOG_PROBLEM, plan)
     assert len(first["violations"]) == 1 and first["not_checked"] == 5
-    assert "not checked: it stopped at the first failing step" in report_text(first)
+    assert "5 later action(s) not checked: it stopped at the first violation" \
+        in report_text(first)
     every = validate_pddl_dict(LOGISTICS, LOG_PROBLEM, plan, all_errors=True)
     assert [(v["step"], v["constraint"]) for v in every["violations"]] == [
         (1, "precondition_unsatisfied"), (3, "malformed_action"), (5, "precondition_unsatisfied")]
@@ -422,7 +423,7 @@ COST_PROBLEM = """(define (problem p) (:domain roads)
 def test_either_types_and_action_costs_over_static_functions():
     report = validate_pddl_dict(COSTS, COST_PROBLEM, "(drive t x y)\n(wait v)\n(drive t y z)")
     assert report["valid"] and report["total_cost"] == 12
-    assert "total cost 12" in report_text(report)
+    assert "plan cost 12" in report_text(report)
     assert "total cost 12" in (as_validation_report(report).goal_diff.detail or "")
     wrong = validate_pddl_dict(COSTS, COST_PROBLEM, "(drive x t y)")
     assert wrong["violations"][0]["constraint"] == "wrong_type"

@@ -35,9 +35,9 @@ def scene() -> object:
 
 def refusal(scene: object, plan: str) -> tuple[str, str, str]:
     report = validate_plan(scene, plan)  # type: ignore[arg-type]
-    assert not report.plan_valid
-    v = report.violations[0]
-    return v.constraint, v.message, v.suggestion
+    assert not report["plan_valid"]
+    v = report["violations"][0]
+    return v["constraint"], v["message"], v["suggestion"]
 
 
 def test_the_processes_are_rows_of_the_one_table() -> None:
@@ -62,9 +62,9 @@ def test_cook_through_what_carries_it_changes_one_state(scene: object) -> None:
     plan = ("move(frying_pan_1, on, stove_1)\nmove(bacon_1, in, frying_pan_1)\n"
             "toggle_on(stove_1)\ncook(bacon_1)")
     report = validate_plan(scene, plan, {"formula": "(cooked bacon_1)"})  # type: ignore[arg-type]
-    assert report.valid and report.goal_reached
-    node = next(n for n in report.final_graph.nodes if n.id == "bacon_1")
-    assert node.state.get("cooked") is True and not node.state.get("hot", False)
+    assert report["valid"] and report["goal_reached"]
+    node = next(n for n in report["final_graph"]["nodes"] if n["id"] == "bacon_1")
+    assert node["state"].get("cooked") is True and not node["state"].get("hot", False)
     assert refusal(scene, plan + "\ncook(bacon_1)")[0] == "already_cooked"
 
 
@@ -73,11 +73,11 @@ def test_cool_and_thaw_need_the_source_gone(scene: object) -> None:
     assert refusal(scene, on_stove + "cool(bacon_1)")[0] == "still_heated"
     report = validate_plan(scene, on_stove + "toggle_off(stove_1)\ncool(bacon_1)",  # type: ignore[arg-type]
                            {"formula": "(not (hot bacon_1))"})
-    assert report.valid
+    assert report["valid"]
     constraint, _, fix = refusal(scene, "thaw(strawberry_1)")
     assert constraint == "still_cold" and fix == "move strawberry_1 off fridge_1"
     assert validate_plan(scene, "move(strawberry_1, on, countertop_1)\nthaw(strawberry_1)"  # type: ignore[arg-type]
-                         ).plan_valid
+                         )["plan_valid"]
     assert refusal(scene, "freeze(strawberry_1)")[0] == "already_frozen"
 
 

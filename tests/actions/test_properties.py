@@ -58,7 +58,7 @@ def test_solver_plans_validate_and_reach_the_goal(n, seed, kind):
     result = solve(start, goal)
     if result.reachable:
         report = validate_plan(start, result.plan or "done", goal)
-        assert report.valid and report.goal_reached
+        assert report["valid"] and report["goal_reached"]
     else:
         assert result.reason
 

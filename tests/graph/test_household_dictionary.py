@@ -77,7 +77,7 @@ def test_a_user_dictionary_extends_the_household() -> None:
         "edges": [{"source": "milk", "relation": "on", "target": "counter"}],
         "dictionary": spec.model_dump(mode="json", exclude_none=True)})
     report = validate_plan(graph, "move(milk, in, safe)")
-    assert report.violations[0].constraint == "container_closed"
+    assert report["violations"][0]["constraint"] == "container_closed"
 
 
 def test_a_state_the_kind_lacks_outside_the_household_names_the_household() -> None:
@@ -104,7 +104,7 @@ def test_a_drawer_without_a_dictionary_is_not_closed() -> None:
                   {"id": "c", "label": "cup"}],
         "edges": [{"source": "c", "relation": "on", "target": "t"},
                   {"source": "d", "relation": "on", "target": "t"}]})
-    assert validate_plan(graph, "move(c, in, d)").valid
+    assert validate_plan(graph, "move(c, in, d)")["valid"]
 
 
 def test_only_household_scenes_go_to_the_table_search() -> None:

@@ -100,7 +100,8 @@ async def test_the_first_check_plan_call_now_shows_every_blocker_and_the_fix() -
     said = text(result)
     assert "move knife somewhere else first" in shown_text(entry)  # what the model read then
     assert "move knife, spoon and lid somewhere else first" in said  # what it reads now
-    assert re.search(r"^\s*2 ok\s+move\(knife, on, counter\)$", said, re.M)
+    assert re.search(r"^\s*2 ok\s+move\(knife, on, counter\)   -knife \w+ \w+, \+knife on counter$",
+                     said, re.M)
 
 
 async def test_the_arm_refusal_now_names_the_servers_executors() -> None:

@@ -68,7 +68,8 @@ def test_inspector_calls_a_tool_over_stdio() -> None:
     assert result["structuredContent"]["valid"] is True
     assert result["content"][0]["text"] == (
         "VALID: 2 step(s) checked; goal reached (a check only, nothing was executed)\n"
-        "  1 ok    move(cup, on, desk)\n  2 ok    move(book, on, shelf)\n"
+        "  1 ok    move(cup, on, desk)   -cup on book, +cup on desk\n"
+        "  2 ok    move(book, on, shelf)   -book on desk, +book on shelf\n"
         "built-in properties applied (dictionary: tableware): book: movable surface, "
         "capacity 2 (tableware dictionary); cup: movable container, capacity 1 (tableware "
         "dictionary); desk: fixed surface, capacity unlimited (tableware dictionary); shelf: "

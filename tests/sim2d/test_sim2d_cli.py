@@ -87,7 +87,7 @@ def test_demo_catches_the_mistake_and_reaches_the_goal(scene: str, tmp_path: Pat
     assert main(["demo", "--scene", scene, "--out", str(out), "--width", "320",
                  "--height", "240"]) == 0
     printed = capsys.readouterr().out
-    assert "FAIL" in printed and "object_not_clear" in printed and "fix:" in printed
+    assert "FAIL" in printed and "object_not_clear" in printed and "Suggestion:" in printed
     assert "Verdict: SUCCESS" in printed
     steps = sorted(p.name for p in out.glob("step_*.png"))
     assert steps[0] == "step_0_start.png" and len(steps) >= 3

@@ -38,7 +38,7 @@ def test_anytime_plans_are_valid_and_within_twice_the_lower_bound(n):
         start, goal = random_blocks(n, seed), Goal(graph=random_blocks(n, seed + 100))
         result = solve(start, goal, anytime=True, time_limit=1.0)
         assert result.reachable and result.lower_bound is not None
-        assert validate_plan(start, result.plan, goal).valid
+        assert validate_plan(start, result.plan, goal)["valid"]
         assert result.lower_bound <= len(result.plan) <= 2 * result.lower_bound
         if result.optimal:
             assert len(result.plan) == result.lower_bound

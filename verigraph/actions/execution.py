@@ -20,7 +20,9 @@ validator (`verigraph.actions.report`) are views of the same run.
 
 from __future__ import annotations
 
+import gc
 from collections.abc import Sequence
+from contextlib import nullcontext
 from dataclasses import dataclass, field
 from typing import Any, Protocol, runtime_checkable
 
@@ -32,7 +34,8 @@ from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveActi
 from verigraph.actions.schemas import MOVE, REFUSED, schema_of
 from verigraph.actions.validator import GraphEdit, apply_action, edit_from, validate_action
 from verigraph.budget import checkpoint
-from verigraph.graph.goal import diff
+from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
+from verigraph.graph.goal import Goal, check_goal, diff, wanted_placements
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 
@@ -252,3 +255,97 @@ def new_contacts(predicted: WorldState, observed: SceneGraph, moved: str) -> lis
         added.append(predicted.add_contact((e.source, e.source_side or 0),
                                            (e.target, e.target_side or 0)))
     return added
+
+
+PlanReport = dict[str, Any]  # the plain form (verigraph.reporting)
+
+
+def check_plan(state: WorldState, actions: list[AnyAction], goal: Goal | None = None, *,
+               all_errors: bool = False, readings: list[str] | None = None
+               ) -> PlanReport:
+    """The report for parsed actions run on `state`, which the run edits (the caller's
+    own copy, taken once), with a parsed goal: the core of `validate_plan` that the tool
+    calls with what it has already read, so nothing is copied, parsed or read twice.
+    `readings`: how the labels of the graphs the caller wrote were read."""
+    # a long plan, or a large final graph, creates many acyclic objects; a small report
+    # leaves the collector alone
+    size = len(actions) + len(state.objects)
+    with collector_paused(size) if size >= LARGE_GRAPH_ITEMS else nullcontext():
+        run = run_actions(state, actions, all_errors=all_errors, wanted=NO_GOAL
+                          if goal is None else wanted_placements(goal))
+        goal_diff = check_goal(state, goal) if goal is not None else None
+        plan_valid = not run.violations
+        dumped = {id(v): v.model_dump(mode="json", exclude_none=True) for v in run.violations}
+        violations = list(dumped.values())
+        report: PlanReport = {"valid": plan_valid and (goal_diff is None or goal_diff.satisfied),
+                              "plan_valid": plan_valid}
+        if goal_diff is not None:
+            report["goal_reached"] = goal_diff.satisfied
+        report["steps"] = _steps_from_records(run.records, dumped)
+        report["violations"] = violations
+        report["not_checked"] = run.not_checked
+        report["done"] = run.done
+        if goal_diff is not None:
+            report["goal_diff"] = goal_diff.model_dump(mode="json", exclude_none=True)
+        report["final_graph"] = state.graph_data()
+        report["label_readings"] = readings or []
+        if size >= LARGE_GRAPH_ITEMS and gc.get_freeze_count() == 0:
+            promote_young_objects()  # see there: the report is acyclic
+    return report
+
+
+def _action_dict(action: AnyAction) -> dict[str, Any]:
+    if type(action) is MoveAction:
+        return {"action": "move", "object": action.object, "relation": action.relation,
+                "target": action.target}
+    return action.model_dump()
+
+
+def _edit_dict(edit: GraphEdit) -> dict[str, Any]:
+    return edit.model_dump(mode="json", exclude_none=True)
+
+
+def _steps_from_records(records: list[Record], violations: dict[int, dict[str, Any]]
+                        ) -> list[dict[str, Any]]:
+    """The report's steps for the run's records (plain dicts; `violations`: the run's
+    violations as dicts, by the id of their model, so a step and the list share one).
+
+    An action of the table applied on the fast path left what its effect replaced; its
+    row gives the edit (`validator.edit_from`). Accepted moves, the bulk of any long plan,
+    are built inline: the move row's effect replaces the object's placement edge, whose
+    old value the record holds. The caller pauses the garbage collector
+    (`collector_paused`).
+    """
+    steps: list[dict[str, Any]] = []
+    append = steps.append
+    move_type, built_edit, refused, name = MoveAction, GraphEdit, Violation, MOVE.name
+    for index, action, payload in records:
+        if not index & 63:
+            checkpoint()  # the server's per-call budget and cancellation
+        kind = type(payload)
+        if kind is refused:
+            append({"step": index, "ok": False, "action": _action_dict(action),
+                    "text": action.text(), "violation": violations.get(id(payload))
+                    or payload.model_dump(mode="json", exclude_none=True)})
+            continue
+        if kind is built_edit:
+            append({"step": index, "ok": True, "action": _action_dict(action),
+                    "text": action.text(), "edit": _edit_dict(payload)})
+            continue
+        if type(action) is not move_type:  # a state row: its edit from the row
+            row = schema_of(action)
+            assert row is not None
+            args = row.args(action)
+            append({"step": index, "ok": True, "action": row.action_dict(*args),
+                    "text": row.text(*args),
+                    "edit": _edit_dict(edit_from(row, args, payload))})
+            continue
+        # The move row, the bulk of any long plan: its placement edge replaced.
+        obj, rel, target = action.object, action.relation, action.target
+        append({"step": index, "ok": True,
+                "action": {"action": name, "object": obj, "relation": rel, "target": target},
+                "text": f"{name}({obj}, {rel}, {target})",
+                "edit": {"removed": [] if payload is None else [
+                    {"source": obj, "relation": payload[0], "target": payload[1]}],
+                    "added": [{"source": obj, "relation": rel, "target": target}]}})
+    return steps

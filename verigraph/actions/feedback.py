@@ -6,6 +6,8 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, Field
 
+from verigraph.reporting import violation_text
+
 ConstraintId = Literal[
     "unknown_object", "unknown_relation", "same_object", "not_movable", "object_not_clear",
     "target_full", "target_not_surface", "target_not_container", "would_create_cycle",
@@ -89,5 +91,5 @@ class Violation(BaseModel):
     suggestion: str
 
     def text(self, with_step: bool = True) -> str:
-        where = f"step {self.step}: " if self.step is not None and with_step else ""
-        return f"{where}[{self.constraint}] {self.message}. Suggestion: {self.suggestion}"
+        """`step 2: [c] message. Suggestion: ...` (`reporting.violation_text`)."""
+        return violation_text(self.model_dump(), with_step)

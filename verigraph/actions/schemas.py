@@ -370,13 +370,6 @@ HOUSEHOLD_CONSTRAINTS = frozenset({
     *p.NO_SOURCE.values(), *p.SOURCE_OFF.values(), *p.STILL_AT_SOURCE.values()})
 
 
-def state_change_text(change: StateChange) -> str:
-    """`fridge: closed -> open`."""
-    obj, key, before, after = change
-    words = STATE_WORDS[key]
-    return f"{obj}: {words[before]} -> {words[after]}"
-
-
 def action_lines(*, household: bool) -> list[str]:
     """One line per row: `move(object, relation, target): object: ...; target: ...`."""
     lines = []
@@ -389,5 +382,5 @@ def action_lines(*, household: bool) -> list[str]:
 
 
 __all__ = ["SCHEMAS", "ActionSchema", "Parameter", "Precondition", "action_lines",
-           "closed_passage", "fits", "schema_of", "state_change_text", "state_value",
+           "closed_passage", "fits", "schema_of", "state_value",
            "table_constraints"]

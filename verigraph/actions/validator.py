@@ -17,9 +17,10 @@ from pydantic import BaseModel, Field
 from verigraph.actions.constraints import NO_GOAL, Wanted, check_align
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AlignAction, AnyAction
-from verigraph.actions.schemas import ActionSchema, Precondition, schema_of, state_change_text
+from verigraph.actions.schemas import ActionSchema, Precondition, schema_of
 from verigraph.graph.model import Edge
 from verigraph.graph.state import WorldState
+from verigraph.reporting import edit_text
 
 
 class StateChange(BaseModel):
@@ -43,11 +44,8 @@ class GraphEdit(BaseModel):
                                              exclude_if=operator.not_)
 
     def text(self) -> str:
-        parts = [f"-{e.sentence()}" for e in self.removed] + [f"+{e.sentence()}"
-                                                               for e in self.added]
-        parts += [state_change_text((s.object, s.key, s.before, s.after))
-                  for s in self.states or ()]
-        return ", ".join(parts)
+        """`-cup on book, +cup on desk` (`reporting.edit_text`, as every report text)."""
+        return edit_text(self.model_dump(exclude_none=True))
 
 
 def _refusal(pre: Precondition, state: WorldState, action: AnyAction, wanted: Wanted

@@ -165,9 +165,7 @@ def _item_report(item: Any, base: Path, cache: dict[str, str], planbench: bool,
                            engine=str(engine), planbench=planbench)
     if "scene" in item:
         goal = path("goal") if item.get("goal") is not None else None
-        report = scene_report(path("scene"), path("plan"), goal)
-        data: dict[str, Any] = report.model_dump(mode="json", exclude_none=True)
-        return data
+        return scene_report(path("scene"), path("plan"), goal)
     raise InputFileError("a batch item needs domain/problem/plan or scene/plan[/goal]",
                          field="item", value=", ".join(map(str, item))[:80],
                          fix='add "domain", "problem" and "plan", or "scene" and "plan"')

@@ -146,17 +146,11 @@ def _set_advice(literals: list[tuple[str, bool]]) -> list[str]:
 
 
 def _reason_lines(items: list[dict[str, Any]]) -> list[str]:
-    """VeriGraph's why for each unmet atom: its history and the actions that achieve it."""
-    lines = []
-    for item in items:
-        text = f"    {item.get('literal')}: {item.get('explanation', '')}"
-        achievers = item.get("achievers") or []
-        if achievers:
-            now = achievers[0].get("applicable_now")
-            text += (f"; achieved by {achievers[0]['action']}, applicable now as {now}" if now
-                     else "; achieved by " + ", ".join(str(a["action"]) for a in achievers))
-        lines.append(text)
-    return lines
+    """VeriGraph's why for each unmet atom: its history and the actions that achieve it,
+    as every report text says it (`reporting.explained_text`)."""
+    from verigraph.reporting import explained_text
+
+    return [f"    {explained_text(item)}" for item in items]
 
 
 @dataclass
@@ -229,7 +223,7 @@ def plan_lines(data: dict[str, Any], opts: Options, metric: bool = False) -> Pla
             if opts.silent < 2:
                 out.append("Plan invalid")
             missing = [_atom_and_value(x, True)
-                       for x in (data.get("goal_diff") or {}).get("missing_edges", [])]
+                       for x in (data.get("goal_diff") or {}).get("missing_atoms", [])]
             advice += ["", "The goal is not satisfied", *_set_advice(missing),
                        *_reason_lines(data.get("unmet_goals") or [])]
     else:

@@ -1,6 +1,6 @@
 """`verigraph validate`: a plan against a scene graph, a PDDL blocks-world problem, or a batch.
 
-Three inputs, one report shape (the `--json` report of ValidationReport):
+Three inputs, one report form (`verigraph.reporting`: what `--json` prints, and its one text):
 
 * `--scene S --plan P [--goal G]`: a scene graph and a move/align plan;
 * `--domain D --problem P --plan PLAN`: PDDL: the native blocks world for any domain that
@@ -176,7 +176,8 @@ def scene_and_goal(scene: str | Path, goal: str | Path | None) -> tuple[Any, Any
 
 
 def scene_report(scene: str | Path, plan: str | Path, goal: str | Path | None,
-                 all_errors: bool = False) -> Any:
+                 all_errors: bool = False) -> dict[str, Any]:
+    """The scene plan's report in its plain form (`verigraph.reporting`)."""
     from verigraph.actions.report import validate_plan
 
     graph, goal_value = scene_and_goal(scene, goal)
@@ -223,7 +224,7 @@ def run_validate(args: argparse.Namespace) -> int:
             if args.json:
                 print(json.dumps(data))
             else:
-                from verigraph.pddl.text import report_text
+                from verigraph.reporting import report_text
 
                 print(data["planbench"]["message"] if args.planbench else report_text(data))
             return EXIT_OK if data["valid"] else EXIT_NEGATIVE
@@ -246,10 +247,12 @@ def run_validate(args: argparse.Namespace) -> int:
                                                              all_errors=args.all_errors))
             if args.html:
                 write_html_report(args.html, graph, plan_text, goal, args.all_errors)
-            if args.json:
-                print(report.model_dump_json(exclude_none=True))
-                return EXIT_OK if report.valid else EXIT_NEGATIVE
+            if args.json:  # as pydantic wrote it: compact, not ASCII-escaped
+                print(json.dumps(report, separators=(",", ":"), ensure_ascii=False))
+                return EXIT_OK if report["valid"] else EXIT_NEGATIVE
     except VeriGraphError as exc:
         return emit_error(exc, args.json)
-    print(report.text())
-    return EXIT_OK if report.valid else EXIT_NEGATIVE
+    from verigraph.reporting import report_text
+
+    print(report_text(report))
+    return EXIT_OK if report["valid"] else EXIT_NEGATIVE

@@ -31,6 +31,7 @@ from pydantic_core import PydanticCustomError
 
 from verigraph.errors import DictionaryError, InputFileError
 from verigraph.graph.behavior import BEHAVIOR, behavior_dictionary
+from verigraph.reporting import STATE_WORDS
 
 if TYPE_CHECKING:  # the graph model imports this module; a graph is only read here
     from verigraph.graph.model import SceneGraph
@@ -205,11 +206,6 @@ def state_value(state: dict[str, bool], key: str) -> bool:
     """A node's state `key` (`open`, `toggled_on`), its default when the node has none:
     an openable object is closed and a toggleable one off unless its state says so."""
     return state.get(key, False)
-
-
-STATE_WORDS = {"open": ("closed", "open"), "toggled_on": ("off", "on"),
-               "cooked": ("raw", "cooked"), "hot": ("not hot", "hot"),
-               "frozen": ("not frozen", "frozen")}
 
 
 def state_text(props: ObjectProperties, state: dict[str, bool]) -> str:

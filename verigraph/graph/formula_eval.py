@@ -45,13 +45,13 @@ from verigraph.graph.formula import (
     constants,
     show,
 )
+from verigraph.reporting import MAX_LISTED
 
 if TYPE_CHECKING:
     from verigraph.graph.state import WorldState
 
 MAX_GROUND = 200_000  # ground instances a formula may expand to on one scene
 MAX_KEPT = 1_000  # counterexamples and witnesses kept (all are counted)
-MAX_LISTED = 10  # items joined into one sentence before "and N more"
 SHOWN_CHARS = 160  # a part is shown up to this many characters
 LINE_CHARS = 600  # a counterexample or witness, part and reason, up to this many
 _WORDS = {"on": "on", "in": "in", "under": "under", "nextto": "next to", "inroom": "in room"}

@@ -32,10 +32,11 @@ from verigraph.graph.formula import (
     parse_formula,
     show,
 )
-from verigraph.graph.formula_eval import MAX_LISTED, evaluate, facts_of
+from verigraph.graph.formula_eval import evaluate, facts_of
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import GraphProblem, resolve_properties
+from verigraph.reporting import goal_text, listed_count
 
 PREDICATES = ("single_stack",)
 EdgeKey = tuple[str, str, str, int | None, int | None]
@@ -135,45 +136,8 @@ class GraphDiff(BaseModel):
         return listed_count(self.formula_detail)
 
     def summary(self) -> str:
-        if self.satisfied:  # a reached goal's detail is a note (a PDDL plan's total cost)
-            head = f"goal reached ({self.detail})" if self.detail else "goal reached"
-            if self.formula_detail:
-                return f"{head}; " + "; ".join(shortened(self.formula_detail))
-            return head
-        parts = []
-        if self.missing_edges:
-            parts.append("missing: " + "; ".join(self.missing_edges))
-        if self.missing_states:
-            parts.append("states not reached: " + "; ".join(self.missing_states))
-        if self.extra_edges:
-            parts.append("extra: " + "; ".join(self.extra_edges))
-        if self.missing_nodes:
-            parts.append("missing objects: " + ", ".join(self.missing_nodes))
-        if self.extra_nodes:
-            parts.append("extra objects: " + ", ".join(self.extra_nodes))
-        if self.detail:
-            parts.append(self.detail)
-        if self.formula_detail:
-            n = self.formula_count()
-            parts.append(f"formula fails ({n} counterexample{'s' if n != 1 else ''}): "
-                         + "; ".join(shortened(self.formula_detail)))
-        return "goal not reached: " + " | ".join(parts)
-
-
-_MORE = re.compile(r"\.\.\. and (\d+) more")
-
-
-def listed_count(lines: list[str]) -> int:
-    """The items a kept list stands for (its last item may say "... and N more")."""
-    m = _MORE.fullmatch(lines[-1]) if lines else None
-    return len(lines) - 1 + int(m.group(1)) if m else len(lines)
-
-
-def shortened(lines: list[str], limit: int = MAX_LISTED) -> list[str]:
-    """The first `limit` items of a kept list, then "... and N more" for the rest."""
-    total = listed_count(lines)
-    shown = [line for line in lines[:limit] if not _MORE.fullmatch(line)]
-    return shown + ([f"... and {total - len(shown)} more"] if total > len(shown) else [])
+        """The diff in one line (`reporting.goal_text`, the one renderer's goal part)."""
+        return goal_text(self.model_dump(exclude_none=True))
 
 
 def check_formula(state: WorldState, formula: str) -> GraphDiff:

@@ -9,7 +9,9 @@ validated in one call, rather than one model at a time.
 
 from __future__ import annotations
 
+import operator
 from dataclasses import dataclass
+from typing import Any
 
 from verigraph.errors import MalformedGraphError
 from verigraph.graph.bulk import collector_paused
@@ -22,9 +24,12 @@ from verigraph.graph.dictionary import (
     load_dictionary,
     state_value,
 )
-from verigraph.graph.model import Edge, SceneGraph
+from verigraph.graph.model import Edge, SceneGraph, _edge_order
 from verigraph.graph.support import SupportIndex
 from verigraph.graph.wellformed import check_and_resolve, open_labels
+
+_object_id = operator.attrgetter("id")  # the canonical order of a graph's nodes
+_first = operator.itemgetter(0)
 
 Side = tuple[str, int]
 
@@ -246,3 +251,30 @@ class WorldState(SupportIndex):
         return SceneGraph.model_validate({"nodes": nodes, "edges": edges,
                                           "dictionary": self.dictionary.reference()}
                                          ).sorted_in_place()
+
+    def graph_data(self) -> dict[str, Any]:
+        """`to_graph()` as JSON-ready plain data, as `model_dump(mode="json",
+        exclude_none=True)` writes it, without building or checking a model: the final
+        graph of a plan report (`verigraph.reporting`), whose data this state already
+        checked. Nodes and edges in the canonical order."""
+        states = self.states
+        nodes = []
+        for o in sorted(self.objects.values(), key=_object_id):
+            node: dict[str, Any] = {"id": o.id, "label": o.label, "attrs": o.attrs}
+            if states.get(o.id):
+                node["state"] = states[o.id]
+            nodes.append(node)
+        edges: list[dict[str, Any]] = [
+            {"source": o, "relation": r, "target": t} for o, (r, t) in self.support.items()]
+        edges += [{"source": o, "relation": ROOM_RELATION, "target": r}
+                  for o, r in self.rooms.items()]
+        keyed = [(_edge_order(e), e.model_dump(exclude_none=True))
+                 for e in self._contact_edges()]
+        keyed += [((e["source"], e["relation"], e["target"], "", ""), e) for e in edges]
+        keyed.sort(key=_first)
+        data: dict[str, Any] = {"nodes": nodes, "edges": [e for _, e in keyed]}
+        reference = self.dictionary.reference()
+        if reference is not None:
+            data["dictionary"] = reference if isinstance(reference, str) else \
+                reference.model_dump(mode="json", exclude_none=True)
+        return data

@@ -38,6 +38,7 @@ from verigraph.graph.dictionary import (
     union_dictionary,
 )
 from verigraph.graph.model import Edge, Node, SceneGraph
+from verigraph.reporting import readings_line
 
 # Spelling suggestions cost a fuzzy match each; past this many unknown labels the fix
 # names a few known labels instead, so a large bad graph is refused in linear time.
@@ -331,10 +332,6 @@ def _looks_like(label: str, dictionary: Dictionary) -> str | None:
             f"({names}; write {target} to mean {target})")
 
 
-def readings_line(readings: list[str]) -> str:
-    """`labels read: box read as block (synonym, blocks dictionary)`: every label the
-    client wrote that was taken as another name (never silent); empty when none."""
-    return "labels read: " + "; ".join(readings) if readings else ""
 
 
 def check_well_formed(graph: SceneGraph, dictionary: Dictionary, *,

@@ -24,7 +24,6 @@ from .simulate import simulate as simulate
 from .simulate import validate_strips_dict as validate_strips_dict
 from .syntax import PddlSyntaxError as PddlSyntaxError
 from .text import planbench_verdict as planbench_verdict
-from .text import report_text as report_text
 from .validate import ENGINES as ENGINES
 from .validate import validate_pddl_dict as validate_pddl_dict
 
@@ -42,7 +41,6 @@ __all__ = [
     "planbench_verdict",
     "read_domain",
     "read_problem",
-    "report_text",
     "simulate",
     "validate_pddl_dict",
     "validate_strips_dict",

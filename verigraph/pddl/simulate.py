@@ -37,9 +37,9 @@ goes on as VAL does when asked to continue: the failing step is skipped (the sta
 as it was before it) and every later step is checked from there; the report says so
 (`after_failure`). With action costs, the report's `total_cost` is the initial
 `(= (total-cost) N)` (0 when not given) plus the applied steps' `(increase (total-cost)
-...)`, VAL's "Final value" (`total_value` says how it is written). The report is a
-JSON-ready dict with the keys of the blocks-world report (valid, plan_valid,
-goal_reached, steps, violations, not_checked, goal_diff).
+...)`, VAL's "Final value" (`total_value` says how it is written). The report is the
+plan report every engine returns (`verigraph.reporting`: valid, plan_valid,
+goal_reached, steps, violations, not_checked, goal_diff, ...).
 """
 
 from __future__ import annotations
@@ -460,8 +460,7 @@ class _Simulation:
             "engine": "strips", "valid": plan_valid and not unmet, "plan_valid": plan_valid,
             "goal_reached": not unmet, "steps": self.out_steps, "violations": violations,
             "not_checked": not_checked, "done": False,
-            "goal_diff": {"satisfied": not unmet, "missing_nodes": [], "extra_nodes": [],
-                          "missing_edges": missing, "extra_edges": []},
+            "goal_diff": {"satisfied": not unmet, "missing_atoms": missing},
             "unmet_goals": unmet,
             "final_state": sorted(map(show, state)),
         }

@@ -25,6 +25,7 @@ from verigraph.graph.builtin_scenes import BUILTIN_GOALS, BUILTIN_SCENES
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.reporting import report_text
 from verigraph.sim2d import world_for_graph
 from verigraph.sim2d.render import side_by_side
 from verigraph.sim2d.tabletop import TabletopWorld
@@ -98,15 +99,15 @@ def play_demo(scene: str, out: Path, width: int | None = None, height: int | Non
     for line in task.mistaken.splitlines():
         _say(f"     {line}")
     report = validate_plan(state, task.mistaken, task.goal)
-    for line in report.text().splitlines():
+    for line in report_text(report).splitlines():
         _say(f"   {line}")
-    assert report.violations, "the demo's mistaken plan must be caught"
-    first = report.violations[0]
-    _say(f"   -> caught at step {first.step} [{first.constraint}]; nothing was executed.")
+    assert report["violations"], "the demo's mistaken plan must be caught"
+    first = report["violations"][0]
+    _say(f"   -> caught at step {first['step']} [{first['constraint']}]; nothing was executed.")
 
     _say("\n2. What the mistake would do without the verifier (unverified, in a copy):")
     what_if = world.copy()
-    bad = parse_plan(task.mistaken)[(first.step or 1) - 1]
+    bad = parse_plan(task.mistaken)[(first["step"] or 1) - 1]
     assert not isinstance(bad, str)
     observed = what_if.perform_unverified(bad)  # type: ignore[arg-type]
     fallen = what_if.tipped() if isinstance(what_if, TabletopWorld) else []
@@ -121,8 +122,8 @@ def play_demo(scene: str, out: Path, width: int | None = None, height: int | Non
     for line in task.corrected.splitlines():
         _say(f"     {line}")
     fixed = validate_plan(state, task.corrected, task.goal)
-    _say(f"   -> {'valid' if fixed.plan_valid else 'INVALID'}, goal "
-         f"{'reached' if fixed.goal_reached else 'missed'} (symbolically)")
+    _say(f"   -> {'valid' if fixed['plan_valid'] else 'INVALID'}, goal "
+         f"{'reached' if fixed.get('goal_reached') else 'missed'} (symbolically)")
 
     _say("\n4. Executing it in the simulator (validate, act, observe, compare per step):")
     actions: list[AnyAction] = parse_plan(task.corrected)

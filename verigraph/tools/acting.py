@@ -20,21 +20,21 @@ from pydantic import (
 )
 
 from verigraph.actions.constraints import NO_GOAL
-from verigraph.actions.execution import execute_in_world
+from verigraph.actions.execution import check_plan, execute_in_world
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction, DoneAction
 from verigraph.actions.parser import parse_plan
 from verigraph.actions.pddl import as_validation_report
-from verigraph.actions.report import ValidationReport, check_plan, validate_plan
+from verigraph.actions.report import ValidationReport, validate_plan
 from verigraph.actions.validator import GraphEdit, all_violations, apply_action
 from verigraph.errors import PlanParseError, VeriGraphError
 from verigraph.graph.dictionary import applied_line
 from verigraph.graph.goal import Goal, GraphDiff, check_goal, wanted_placements
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.graph.wellformed import label_readings, readings_line
-from verigraph.pddl.text import plain_summary
+from verigraph.graph.wellformed import label_readings
 from verigraph.pddl.validate import validate_pddl_dict
+from verigraph.reporting import report_text, violation_text
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import EpisodeStateError, ToolArgumentError
 from verigraph.tools.executors import arm_mode_of, runs_on
@@ -96,9 +96,9 @@ class ActionCheck(BaseModel):
         if self.violation is not None:
             found = self.violations or [self.violation]
             if len(found) == 1:
-                return f"INVALID {self.action}: {found[0].text()}\n{checked}"
+                return f"INVALID {self.action}: {violation_text(found[0].model_dump())}\n{checked}"
             lines = [f"INVALID {self.action}: breaks {len(found)} constraints (fix all):"]
-            lines += [f"- {v.text()}" for v in found]
+            lines += [f"- {violation_text(v.model_dump())}" for v in found]
             return "\n".join([*lines, checked])
         if self.action == "done":
             return f"valid: done (the end token; execute_actions then end_episode)\n{checked}"
@@ -209,12 +209,12 @@ def _check_whole_plan(state: WorldState, actions: list[AnyAction], arm_mode: str
             "most k actions", field="whole_plan", value=True,
             fix="send at most k actions per call")
     report = validate_plan(state, actions)
-    if not report.valid:
-        first = report.violations[0]
+    if not report["valid"]:
+        first = report["violations"][0]
         raise ToolArgumentError(
             f"whole_plan: the plan is not valid from the current graph, nothing was run: "
-            f"step {first.step} {first.text(with_step=False)}", field="actions",
-            value=first.step, fix="correct the plan (validate_plan with this episode_id "
+            f"step {first['step']} {violation_text(first, with_step=False)}", field="actions",
+            value=first["step"], fix="correct the plan (validate_plan with this episode_id "
             "shows every step) and send it again")
 
 
@@ -412,7 +412,8 @@ def validate_plan_tool(ctx: ToolContext, params: ValidatePlanInput) -> Validatio
     written = params.goal.graph if isinstance(params.goal, Goal) else None
     readings = [] if params.graph is None and written is None else label_readings(
         params.graph, state.dictionary, written)  # the graphs the client wrote, if any
-    return check_plan(state, actions, goal, all_errors=params.all_errors, readings=readings)
+    return ValidationReport.model_validate(  # the plain report as the tool's model
+        check_plan(state, actions, goal, all_errors=params.all_errors, readings=readings))
 
 
 # The text of a plan report shows the first steps and every failure (up to a bound)
@@ -429,9 +430,7 @@ def pddl_report(pddl: dict[str, str], plan: str, *, all_errors: bool = False
             raise ToolArgumentError(f"the plan has more than {MAX_PLAN_ACTIONS} actions",
                                     field="plan", value=None,
                                     fix="use verigraph validate --batch for longer plans")
-        report = as_validation_report(data)
-        _summarise_failures(report, data)
-        return report
+        return as_validation_report(data)
     except VeriGraphError as exc:
         field = exc.field if exc.field in ("domain", "problem") else exc.field or "plan"
         raise ToolArgumentError(exc.message, field=f"pddl.{field}" if field in (
@@ -439,77 +438,17 @@ def pddl_report(pddl: dict[str, str], plan: str, *, all_errors: bool = False
             exc.value, int | None) else str(exc.value)[:120], fix=exc.fix) from None
 
 
-# A PDDL failure whose raw text is longer than this gets a plain line before it.
-PLAIN_FROM_CHARS = 160
-
-
-def _summarise_failures(report: ValidationReport, data: dict[str, Any]) -> None:
-    """Put a plain one-line summary (`in short: ...`) before each long PDDL failure, so
-    a reader gets what failed for which object before the raw formulas."""
-    unsatisfied = {v["step"]: v.get("unsatisfied") or [] for v in data["violations"]}
-    found = [report.violations, [s.violation for s in report.steps if s.violation]]
-    for violation in (v for group in found for v in group):
-        parts = unsatisfied.get(violation.step)
-        if parts and len(violation.message) > PLAIN_FROM_CHARS and \
-                not violation.message.startswith("in short: "):
-            action = next((s.text for s in report.steps if s.step == violation.step), "it")
-            violation.message = (f"in short: {plain_summary(action, parts)}. In full: "
-                                 + violation.message)
-
-
-def _cost_text(detail: str) -> str:
-    """`total cost 216` -> `plan cost 216 (the sum of its actions' costs, the domain's
-    total-cost)`: the figure a costed domain's user asks for, said in the verdict."""
-    if detail.startswith("total cost "):
-        return (f"plan cost {detail.removeprefix('total cost ')} (the sum of its actions' "
-                "costs, the domain's total-cost)")
-    return detail
-
-
 def report_summary(report: ValidationReport) -> str:
-    """The verdict, then the per-step report: the first 20 steps and every failure.
+    """The report's text (`reporting.report_text`): the verdict, then the first 20 steps
+    and every failure.
 
     Many clients hand a model only the text of a result, so every violation found (with
     all_errors, one per failed step) is in it, with its fix; accepted steps beyond the
     first 20 are counted, as are failures beyond 50. Nothing is executed or stored.
     """
-    verdict = "VALID" if report.valid else "INVALID"
-    head = f"{verdict}: {len(report.steps)} step(s) checked"
-    if report.violations:
-        head += f", {len(report.violations)} violation(s)"
-    if report.goal_diff is not None:
-        if report.goal_diff.satisfied and report.goal_diff.detail:  # a PDDL plan's cost,
-            # said once, in words (the diff's own summary carries it as a bare note)
-            head += f"; goal reached; {_cost_text(report.goal_diff.detail)}"
-        else:
-            head += f"; {report.goal_diff.summary()}"
-    lines = [head + " (a check only, nothing was executed)"]
-    hidden_ok = hidden_failed = 0
-    failures = 0
-    for step in report.steps:
-        if step.ok:
-            if step.step <= SHOWN_FIRST_STEPS:
-                lines.append(f"{step.step:>3} ok    {step.text}")
-            else:
-                hidden_ok += 1
-            continue
-        failures += 1
-        if failures > SHOWN_MAX_FAILURES:
-            hidden_failed += 1
-            continue
-        assert step.violation is not None
-        lines.append(f"{step.step:>3} FAIL  {step.text}: "
-                     f"{step.violation.text(with_step=False)}")
-    if hidden_ok:
-        lines.append(f"... and {hidden_ok} more accepted step(s) after step "
-                     f"{SHOWN_FIRST_STEPS}")
-    if hidden_failed:
-        lines.append(f"... and {hidden_failed} more failed step(s) (see structured content)")
-    if report.not_checked:
-        lines.append(f"... {report.not_checked} later action(s) not checked: it stopped at "
-                     "the first violation (all_errors=true checks them)")
-    if report.label_readings:
-        lines.append(readings_line(report.label_readings))
+    text = report_text(report.model_dump(exclude_none=True), max_steps=SHOWN_FIRST_STEPS,
+                       max_failures=SHOWN_MAX_FAILURES)
     if report.final_graph.nodes:  # what the check assumed about each built-in kind
-        lines.append(applied_line(report.final_graph))
-    return "\n".join(filter(None, lines))  # the lines that say something
+        assumed = applied_line(report.final_graph)
+        text += f"\n{assumed}" if assumed else ""
+    return text

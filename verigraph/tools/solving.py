@@ -138,7 +138,7 @@ def solve_tool(ctx: ToolContext, params: SolveInput) -> SolveOutput:
     plan: list[AnyAction] = list(result.plan or [])
     verified = False
     if result.reachable:
-        verified = validate_plan(state, plan or "done", goal).valid
+        verified = validate_plan(state, plan or "done", goal)["valid"]
     return SolveOutput(reachable=result.reachable, plan=[a.text() for a in plan],
                        actions=plan, length=len(plan), reason=result.reason,
                        verified=verified, optimal=result.optimal, expanded=result.expanded,

@@ -1,9 +1,10 @@
 """Validate a blocks-world PDDL plan natively: domain + problem + plan text -> report.
 
-The report has the shape of `ValidationReport` (valid, plan_valid, goal_reached, steps,
-violations, not_checked, done, goal_diff, final_graph) and is built as plain dicts, so
-batch runs and `--json` never pay for pydantic; `verigraph.actions.pddl.validate_pddl_plan`
-wraps it in the model for library users. Step numbers are 1-based indices of actions in the plan.
+The report is the plan report every engine returns (`verigraph.reporting`: valid,
+plan_valid, goal_reached, steps, violations, not_checked, done, goal_diff, final_graph),
+built as plain dicts, so batch runs and `--json` never pay for pydantic;
+`verigraph.actions.pddl.validate_pddl_plan` wraps it in the tools' model. Step numbers
+are 1-based indices of actions in the plan.
 An accepted step's arrays (`args`, `edit.removed`, `edit.added`) are tuples: immutable,
 cheaper to build, and the same JSON; the edge a block leaves, with the tuple around it,
 is the one the step that put it there added.
@@ -59,8 +60,7 @@ def _report(domain_text: str, problem_text: str, plan_text: str) -> dict[str, An
         "valid": plan_valid and not missing, "plan_valid": plan_valid,
         "goal_reached": not missing, "steps": out_steps, "violations": violations,
         "not_checked": n_steps - len(out_steps), "done": False,
-        "goal_diff": {"satisfied": not missing, "missing_nodes": [], "extra_nodes": [],
-                      "missing_edges": missing, "extra_edges": []},
+        "goal_diff": {"satisfied": not missing, "missing_atoms": missing},
         "final_graph": {
             "nodes": [{"id": o, "label": label, "attrs": {}} for o, label in state.objects.items()],
             "edges": [_edge((o, r, t)) for o, (r, t) in state.support.items()],
