@@ -267,3 +267,89 @@ async def test_the_lab_fixes_serve_the_goal() -> None:
     blocked = next(line for line in said.splitlines() if "[object_not_clear]" in line)
     assert "move(tube_e, in, tube_rack) (where the goal wants it)" in blocked
     assert "move(tube_e, on, bench)" not in blocked
+
+
+DINNER_ASKED = ("pot on stove; pan on stove; kettle on stove; lid in pot; cutting_board on "
+                "counter; knife on cutting_board; spoon on shelf")
+
+
+async def _dinner_without_words(client: Client) -> str:
+    """The dinner kitchen loaded with no instruction: the request comes by set_goal."""
+    graph = with_attachments(THIRD_SET / "t10_dinner", "@json:./start.json")
+    loaded = await client.call_tool("load_scene", {"graph": graph, "dictionary": "kitchen"})
+    return str(structured(loaded)["episode_id"])
+
+
+async def _solve_run_end(client: Client, episode: str) -> CallToolResult:
+    plan = structured(await client.call_tool("solve", {"episode_id": episode}))["plan"]
+    ran = await client.call_tool("execute_actions", {
+        "episode_id": episode, "actions": "\n".join([*plan, "done"]), "whole_plan": True})
+    assert "goal reached" in text(ran), text(ran)
+    return await client.call_tool("end_episode", {"episode_id": episode})
+
+
+async def test_a_goal_set_goal_refused_then_narrowed_ends_partial() -> None:
+    """The user's goal through set_goal (not load_scene's words): refused for the stove's
+    capacity, then narrowed; the verdict is read against the refused goal."""
+    async with Client(build_server(Toolbox())) as client:
+        episode = await _dinner_without_words(client)
+        refused_goal = await client.call_tool("set_goal", {"episode_id": episode,
+                                                           "edges": DINNER_ASKED})
+        assert refused_goal.is_error
+        assert "kept as the user's request: a narrower goal set and reached ends PARTIAL" \
+            in text(refused_goal)
+        narrowed = text(await client.call_tool("set_goal", {
+            "episode_id": episode, "edges": DINNER_ASKED.replace("kettle on stove; ", "")}))
+        assert "narrower than the goal first asked for (refused by set_goal: 'stove' " \
+               "carries 3 objects but its capacity is 2): it leaves out kettle on stove; " \
+               "end_episode will say PARTIAL, not SUCCESS" in narrowed
+        ended = await _solve_run_end(client, episode)
+    assert text(ended).startswith(
+        "PARTIAL: the goal set was reached, but it is narrower than the goal first asked "
+        "for (refused by set_goal: 'stove' carries 3 objects but its capacity is 2); not "
+        "done: kettle on stove;")
+    assert structured(ended)["verdict"] == "partial" and not structured(ended)["success"]
+
+
+async def test_a_goal_narrowed_by_a_later_set_goal_ends_partial() -> None:
+    async with Client(build_server(Toolbox())) as client:
+        episode = await _dinner_without_words(client)
+        fits = "pot on stove; lid in pot; spoon on shelf"
+        await client.call_tool("set_goal", {"episode_id": episode, "edges": fits})
+        narrowed = text(await client.call_tool("set_goal", {
+            "episode_id": episode, "edges": "pot on stove; spoon on shelf"}))
+        assert "narrower than the goal first asked for (narrowed by a later set_goal): it " \
+               "leaves out lid in pot" in narrowed
+        ended = await _solve_run_end(client, episode)
+    assert text(ended).startswith("PARTIAL: the goal set was reached, but it is narrower "
+                                  "than the goal first asked for (narrowed by a later "
+                                  "set_goal); not done: lid in pot;")
+
+
+async def test_words_given_to_set_goal_are_the_request_and_a_narrower_goal_is_partial() -> None:
+    async with Client(build_server(Toolbox())) as client:
+        episode = await _dinner_without_words(client)
+        proposal = text(await client.call_tool("set_goal", {
+            "episode_id": episode, "instruction": "the pot, the frying pan and the kettle "
+            "on the stove, and the spoon on the shelf"}))
+        assert "cannot place: 'kettle on stove'" in proposal
+        await client.call_tool("set_goal", {"episode_id": episode,
+                                            "edges": "pot on stove; spoon on shelf"})
+        ended = text(await _solve_run_end(client, episode))
+    assert ended.startswith("PARTIAL: the goal set was reached, but it is narrower than the "
+                            "request set_goal was first given in words; not done: kettle on "
+                            "stove (asked, but stove holds 2")
+
+
+async def test_a_goal_corrected_after_a_writing_mistake_ends_as_success() -> None:
+    """A goal refused for how it was written (a lid on a pot, which is no surface) is a
+    mistake to correct, not the user's request: the corrected goal reached is SUCCESS."""
+    async with Client(build_server(Toolbox())) as client:
+        episode = await _dinner_without_words(client)
+        wrong = await client.call_tool("set_goal", {"episode_id": episode,
+                                                    "edges": "lid on pot"})
+        assert wrong.is_error and "kept as the user's request" not in text(wrong)
+        await client.call_tool("set_goal", {"episode_id": episode, "edges": "lid in pot"})
+        ended = await _solve_run_end(client, episode)
+    assert text(ended).startswith("SUCCESS: goal reached"), text(ended)
+    assert structured(ended)["verdict"] == "goal_reached"

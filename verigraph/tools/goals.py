@@ -14,7 +14,7 @@ from __future__ import annotations
 import difflib
 import re
 from dataclasses import dataclass, field
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
@@ -39,6 +39,14 @@ from verigraph.tools.fields import (
 )
 from verigraph.tools.images import decode_base64_image
 from verigraph.tools.perceived import Perceived, perceive_photo
+from verigraph.tools.request import (
+    WORLD_LIMITS,
+    is_narrower,
+    keep_asked_goal,
+    keep_asked_words,
+    left_out,
+)
+from verigraph.tools.store import LiveEpisode
 from verigraph.tools.texts import goal_edges_text, goal_line
 
 Instruction = Field(default=None, max_length=4000,
@@ -448,70 +456,115 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
     client confirms it by sending its edges back, so a misread word never becomes the
     goal unseen.
     """
-    graph = params.graph
     image = decode_base64_image(params.image) if params.image is not None else None
     with ctx.store.use(params.episode_id) as episode:
-        reading = _Reading(None)
-        if image is not None:
-            dictionary = (episode.state.dictionary if episode.state
-                          else dictionary_for(episode.dictionary_name))
-            seen = perceive_photo(image, dictionary)
-            if not seen.confident:
-                raise ToolArgumentError(
-                    "built-in perception is unsure of the goal image: "
-                    + "; ".join(d.message for d in seen.doubts[:5]),
-                    field="image", value=None,
-                    fix="give the goal as edges or a graph (generate_scene_graph returns "
-                        "the perceived proposal to check and correct)")
-            reading = _match_perceived(seen, episode.state)
-            assert reading.goal is not None
-            graph = reading.goal.graph
-        goal: Goal | None = None
-        partial = bool(params.partial) or (reading.goal is not None and reading.goal.partial)
-        formula, formula_field = params.formula, "formula"
-        if params.edges is not None and looks_like_formula(params.edges):
-            formula, formula_field = params.edges, "edges"
-        elif params.edges is not None:
-            edges_goal = goal_from_edges(params.edges, episode.state,
-                                         partial=params.partial is not False)
-            graph, partial = edges_goal.graph, edges_goal.partial
-        if formula is not None:
-            formula = goal_from_formula(formula, episode.state, field=formula_field).formula
-        readings: list[str] = []
-        if graph is not None or params.predicate is not None or formula is not None:
-            goal = Goal(graph=graph, partial=partial, predicate=params.predicate,
-                        formula=formula, instruction=params.instruction)
-            check_goal_against(goal, episode.state, field="goal" if graph is None else "graph")
-            if formula is not None and episode.state is None:
-                reading.notes.append("no scene graph yet, so the formula's ids and kinds "
-                                     "are not checked: an id the submitted scene lacks "
-                                     "never holds")
-            if params.graph is not None:  # a graph the client wrote (not edges or a photo)
-                readings = label_readings(params.graph, episode.state.dictionary
-                                          if episode.state is not None else
-                                          dictionary_for(params.graph.dictionary
-                                                         or episode.dictionary_name))
-        elif params.instruction is not None:
-            reading = _from_words(params.instruction, episode.state)
-        if not reading.accepted:
-            if params.instruction is not None:  # the words are kept; the proposal is not
-                episode.instruction = params.instruction
-            proposal = goal or reading.goal
-            current = episode.goal
-            diff = (check_goal(episode.state, current)
-                    if current and episode.state is not None else None)
-            return GoalOutput(episode_id=episode.id, goal=current,
-                              instruction=episode.instruction, checkable=current is not None,
-                              goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
-                              accepted=False, proposal=proposal, notes=reading.notes,
-                              label_readings=readings)
-        if goal is not None:
-            episode.goal = goal
-        if params.instruction is not None:
+        try:
+            return _set_goal_on(episode, params, image)
+        except _BeyondTheScene as beyond:  # kept as the request, then refused
+            keep_asked_goal(episode, beyond.goal, beyond.why)
+            refusal = beyond.error
+    raise refusal
+
+
+class _BeyondTheScene(Exception):
+    """A goal refused because the scene cannot hold it (a rule of WORLD_LIMITS)."""
+
+    def __init__(self, goal: Goal, why: str, error: ToolArgumentError) -> None:
+        super().__init__(why)
+        self.goal, self.why, self.error = goal, why, error
+
+
+def _checked(goal: Goal, state: WorldState | None, field: str) -> None:
+    """check_goal_against; a goal the scene cannot hold raises _BeyondTheScene."""
+    try:
+        check_goal_against(goal, state, field=field)
+    except ToolArgumentError as exc:
+        if goal.graph is None or state is None:
+            raise
+        limits = [p.message for p in check_well_formed(goal.graph, state.dictionary,
+                                                       partial=goal.partial)
+                  if p.rule in WORLD_LIMITS]
+        if not limits:
+            raise
+        kept = ToolArgumentError(
+            f"{exc.message}\nthe scene cannot hold this goal, so it is kept as the user's "
+            "request: a narrower goal set and reached ends PARTIAL, naming what is left out",
+            field=exc.field, value=exc.value, fix=exc.fix)
+        raise _BeyondTheScene(goal, "refused by set_goal: " + "; ".join(limits[:3]),
+                              kept) from None
+
+
+def _set_goal_on(episode: LiveEpisode, params: SetGoalInput, image: Any) -> GoalOutput:
+    graph = params.graph
+    reading = _Reading(None)
+    if image is not None:
+        dictionary = (episode.state.dictionary if episode.state
+                      else dictionary_for(episode.dictionary_name))
+        seen = perceive_photo(image, dictionary)
+        if not seen.confident:
+            raise ToolArgumentError(
+                "built-in perception is unsure of the goal image: "
+                + "; ".join(d.message for d in seen.doubts[:5]),
+                field="image", value=None,
+                fix="give the goal as edges or a graph (generate_scene_graph returns "
+                    "the perceived proposal to check and correct)")
+        reading = _match_perceived(seen, episode.state)
+        assert reading.goal is not None
+        graph = reading.goal.graph
+    goal: Goal | None = None
+    partial = bool(params.partial) or (reading.goal is not None and reading.goal.partial)
+    formula, formula_field = params.formula, "formula"
+    if params.edges is not None and looks_like_formula(params.edges):
+        formula, formula_field = params.edges, "edges"
+    elif params.edges is not None:
+        edges_goal = goal_from_edges(params.edges, episode.state,
+                                     partial=params.partial is not False)
+        graph, partial = edges_goal.graph, edges_goal.partial
+    if formula is not None:
+        formula = goal_from_formula(formula, episode.state, field=formula_field).formula
+    readings: list[str] = []
+    if graph is not None or params.predicate is not None or formula is not None:
+        goal = Goal(graph=graph, partial=partial, predicate=params.predicate,
+                    formula=formula, instruction=params.instruction)
+        _checked(goal, episode.state, "goal" if graph is None else "graph")
+        if formula is not None and episode.state is None:
+            reading.notes.append("no scene graph yet, so the formula's ids and kinds "
+                                 "are not checked: an id the submitted scene lacks "
+                                 "never holds")
+        if params.graph is not None:  # a graph the client wrote (not edges or a photo)
+            readings = label_readings(params.graph, episode.state.dictionary
+                                      if episode.state is not None else
+                                      dictionary_for(params.graph.dictionary
+                                                     or episode.dictionary_name))
+    elif params.instruction is not None:
+        reading = _from_words(params.instruction, episode.state)
+        keep_asked_words(episode, params.instruction)
+    if not reading.accepted:
+        if params.instruction is not None:  # the words are kept; the proposal is not
             episode.instruction = params.instruction
-        goal = episode.goal
-        diff = check_goal(episode.state, goal) if goal and episode.state is not None else None
-        return GoalOutput(episode_id=episode.id, goal=goal,
-                          instruction=episode.instruction, checkable=goal is not None,
+        proposal = goal or reading.goal
+        current = episode.goal
+        diff = (check_goal(episode.state, current)
+                if current and episode.state is not None else None)
+        return GoalOutput(episode_id=episode.id, goal=current,
+                          instruction=episode.instruction, checkable=current is not None,
                           goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
-                          notes=reading.notes, label_readings=readings)
+                          accepted=False, proposal=proposal, notes=reading.notes,
+                          label_readings=readings)
+    if goal is not None:
+        if episode.goal is not None and is_narrower(goal, episode.goal):
+            keep_asked_goal(episode, episode.goal, "narrowed by a later set_goal")
+        asked, missing = left_out(episode, goal)
+        if missing:
+            reading.notes.append(
+                f"narrower than {asked}: it leaves out {'; '.join(missing[:10])}; "
+                "end_episode will say PARTIAL, not SUCCESS: tell the user")
+        episode.goal = goal
+    if params.instruction is not None:
+        episode.instruction = params.instruction
+    goal = episode.goal
+    diff = check_goal(episode.state, goal) if goal and episode.state is not None else None
+    return GoalOutput(episode_id=episode.id, goal=goal,
+                      instruction=episode.instruction, checkable=goal is not None,
+                      goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
+                      notes=reading.notes, label_readings=readings)

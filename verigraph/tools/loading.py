@@ -23,7 +23,6 @@ from verigraph.graph.wellformed import label_readings
 from verigraph.sim2d import SimWorld, generate_scene, world_for_graph
 from verigraph.sim2d.persist import world_state
 from verigraph.tools.context import ToolContext
-from verigraph.tools.episodes import ASKED
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.executors import (
     EXECUTOR_HELP,
@@ -46,6 +45,7 @@ from verigraph.tools.fields import (
 from verigraph.tools.goals import Instruction, check_goal_against
 from verigraph.tools.images import decode_base64_image
 from verigraph.tools.perceived import perceive_photo
+from verigraph.tools.request import ASKED
 from verigraph.tools.store import DEFAULT_K, DEFAULT_T, LiveEpisode
 from verigraph.tools.summaries import EpisodeState, describe_episode
 
