@@ -169,9 +169,15 @@ def load_scene_tool(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
     state: WorldState | None = None
     world = source.world
     if source.graph is not None:
-        state = state_from_graph(_with_dictionary(source.graph, params.dictionary))
+        graph = _with_dictionary(source.graph, params.dictionary)
+        state = state_from_graph(graph)
         if executor == "sim2d" and world is None:
             world = world_for_graph(state.to_graph(), seed=params.seed)
+        elif world is None and state.objects and all(
+                o.props.sides is not None for o in state.objects.values()):
+            # One rule of a valid tangram start for every executor: the simulator's
+            # layout (pieces as align lays them, exactly the listed contacts, no overlap).
+            world_for_graph(state.to_graph())
         if goal is not None:
             check_goal_against(goal, state, field="goal")
     elif executor == "sim2d":
