@@ -102,6 +102,18 @@ async def test_a_failing_adl_step_is_summed_up_in_one_plain_line_first() -> None
     assert "(imply" not in short and full.startswith("(stop f3) needs (imply")
 
 
+async def test_a_pddl_goal_not_reached_names_every_counterexample() -> None:
+    """The student's plan stops at step 10 with five passengers not served: the goal line
+    names all five (it named only alice), so the model needs no second call to count."""
+    async with Client(build_server(Toolbox())) as client:
+        results = await run_recorded(client, "t02_elevator", calls=1)
+    head = said_by(results, "validate_plan").splitlines()[0]
+    assert "(forall (?p - passenger) (served ?p)): 5 counterexamples: for ?p = alice: " \
+           "(served alice) is false; for ?p = bob: (served bob) is false; for ?p = dana: " \
+           "(served dana) is false; for ?p = eve: (served eve) is false; for ?p = gus: " \
+           "(served gus) is false" in head
+
+
 async def test_a_simulated_run_says_observed_equals_predicted() -> None:
     async with Client(build_server(Toolbox())) as client:
         results = await run_recorded(client, "t04_desk_sim")
