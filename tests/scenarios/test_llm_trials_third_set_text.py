@@ -31,8 +31,9 @@ pytestmark = [pytest.mark.fast, pytest.mark.anyio]
 TASKS = sorted(p.name for p in THIRD_SET.iterdir() if (p / "transcript.jsonl").exists())
 # (task, 1-based call) refused then and answered now: the simulator takes the tangram
 # start the graph executor took; solve takes PDDL (replayed with the pddl extra, in
-# test_llm_trials_third_set_pddl.py; the fast tier stops before it).
-NOW_ANSWERED = {("t09_tangram", 1), ("t03_deliveries", 3)}
+# test_llm_trials_third_set_pddl.py; the fast tier stops before it); goal edges with
+# `not` are read as the formula they mean.
+NOW_ANSWERED = {("t09_tangram", 1), ("t03_deliveries", 3), ("t07_party", 2)}
 NEEDS_AN_EXTRA = {"t03_deliveries": 2}
 # Verdicts the model read, kept word for word at the start of the new answer, except
 # where the answer now says more: the dinner's end is PARTIAL (the kettle was asked for).
@@ -160,6 +161,24 @@ async def test_the_words_keep_the_pot_and_say_why_the_kettle_has_no_place() -> N
     assert "- cannot place: 'kettle on stove' (stove holds 2" in said
     assert "accepting it narrows the request: tell the user" in said
     assert "not understood" not in said
+
+
+async def test_the_party_goal_as_the_model_first_wrote_it_is_set_and_solved() -> None:
+    """'cup_1 not on plate_a' was refused (a graph goal cannot say not) and the model
+    guessed placements instead; the same edges are now the formula they mean."""
+    async with Client(build_server(Toolbox())) as client:
+        results = await run_recorded(client, "t07_party", calls=2)
+        said = said_by(results, "set_goal")
+        assert said.startswith("goal set; goal not reached: formula fails (6 "
+                               "counterexamples): ")
+        assert "goal: formula (and (on plate_b tray) (on plate_c plate_b) (on plate_a "\
+               "plate_c) (not (on cup_1 plate_a)) (not (on cup_2 plate_b)) (not (in spoon_1 "\
+               "cup_1)) (not (in spoon_2 cup_3)))" in said
+        assert "for every cup and plate at once: formula='(forall (?c - cup) (not (exists " \
+               "(?p - plate) (ontop ?c ?p))))'" in said
+        episode = structured(results[0][1])["episode_id"]
+        solved = text(await client.call_tool("solve", {"episode_id": episode}))
+    assert solved.startswith("plan of 7 action(s), verified, optimal"), solved
 
 
 async def test_sizes_from_attrs_appear_in_the_scene_text() -> None:

@@ -129,7 +129,8 @@ class SetGoalInput(BaseModel):
     episode_id: EpisodeId
     graph: BoundedGraph | None = Field(default=None, description="goal scene graph")
     edges: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
-                              description="goal edges as text")
+                              description="goal edges as text; 'x not on y' makes "
+                                          "them a formula")
     formula: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
                                 description=f"BDDL, e.g. {FORMULA_EXAMPLE}")
     partial: bool | None = Field(default=None, description="only the listed edges must "
@@ -231,6 +232,37 @@ _STATE_OF_WORD = {word: (key, value) for key, words in STATE_WORDS.items()
                   for value, word in ((False, words[0]), (True, words[1]))}
 
 
+# `cup_1 not on plate_a`: an item that asks for an edge NOT to hold.
+_NOT_EDGE_TEXT = re.compile(r"\s*+([\w.-]++)\s++not\s++([a-z_]++)\s++([\w.-]++)\s*+")
+
+
+def negated_edges_formula(text: str) -> str | None:
+    """Goal edges with `x not on y` items, as the formula they mean: `(and (on plate_b
+    tray) (not (on cup_1 plate_a)))` (a graph goal cannot say "not"); None when no item
+    is negated or an item is not an edge, a negated edge or a state (goal_from_edges
+    then reports it)."""
+    items = [i for i in re.split(r"[;\n]", text) if i.strip()]
+    parts: list[str] = []
+    negated = False
+    for item in items:
+        if (m := _NOT_EDGE_TEXT.fullmatch(item)) is not None:
+            source, relation, target = m.groups()
+            parts.append(f"(not ({relation} {source} {target}))")
+            negated = True
+        elif (m := _EDGE_TEXT.fullmatch(item)) is not None:
+            source, relation, target = m.groups()
+            parts.append(f"({relation} {source} {target})")
+        elif (m := _STATE_TEXT.fullmatch(item)) is not None:
+            obj, word = m.groups()
+            key, value = _STATE_OF_WORD[word]
+            parts.append(f"({key} {obj})" if value else f"(not ({key} {obj}))")
+        else:
+            return None
+    if not negated:
+        return None
+    return parts[0] if len(parts) == 1 else f"(and {' '.join(parts)})"
+
+
 def goal_from_edges(text: str, state: WorldState | None, *, field: str = "edges",
                     partial: bool = True) -> Goal:
     """`cup on table; spoon in pot` (or one per line, or move(...) forms) as a goal;
@@ -282,8 +314,9 @@ def goal_from_edges(text: str, state: WorldState | None, *, field: str = "edges"
     if problems or not (edges or states):
         raise ToolArgumentError(
             "goal edges: " + ("; ".join(problems[:10]) or "no edge given"), field=field,
-            value=text[:80], fix="write one 'source relation target' per item, separated by "
-                                 f"';', with ids from the scene: "
+            value=text[:80], fix="write one 'source relation target' (or 'source not "
+                                 "relation target') per item, separated by ';', with ids from "
+                                 "the scene: "
                                  f"{', '.join(sorted(state.objects)[:20])}")
     # The scene's nodes (as `state.to_graph().stateless_nodes()` has them, in id order),
     # read off the state itself: the scene's edges are not needed.
@@ -317,6 +350,8 @@ def resolve_goal(goal: Goal | str, state: WorldState, *, field: str = "goal") ->
             return Goal(predicate=name)  # type: ignore[arg-type]
         if looks_like_formula(name):
             return goal_from_formula(name, state, field=field)
+        if (negated := negated_edges_formula(name)) is not None:
+            return goal_from_formula(negated, state, field=field)
         return goal_from_edges(goal, state, field=field)
     if goal.graph is not None:
         goal = goal.model_copy(update={"graph": _with_scene_nodes(goal.graph, state, field)})
@@ -516,6 +551,12 @@ def _set_goal_on(episode: LiveEpisode, params: SetGoalInput, image: Any) -> Goal
     formula, formula_field = params.formula, "formula"
     if params.edges is not None and looks_like_formula(params.edges):
         formula, formula_field = params.edges, "edges"
+    elif params.edges is not None and \
+            (negated := negated_edges_formula(params.edges)) is not None:
+        formula, formula_field = negated, "edges"
+        reading.notes.append("edges with 'not' read as the formula they mean (a goal "
+                             "graph cannot say not); for every cup and plate at once: "
+                             f"formula='{FORMULA_EXAMPLE}'")
     elif params.edges is not None:
         edges_goal = goal_from_edges(params.edges, episode.state,
                                      partial=params.partial is not False)
