@@ -222,3 +222,13 @@ def test_process_fixes_serve_the_goal():
                            wanted=frozenset({("stove_1", "toggled_on", "false")}))
     assert cook is not None and cook.suggestion == \
         "toggle_on(stove_1) first, then toggle_off(stove_1) (the goal wants it off)"
+
+
+def test_an_unknown_target_is_fixed_by_the_move_the_goal_wants():
+    v = validate_action(kitchen_table(), move("cup", "on", "table"),
+                        wanted=frozenset({("cup", "on", "shelf")}))
+    assert v is not None and v.constraint == "unknown_object"
+    assert v.suggestion.startswith("e.g. move(cup, on, shelf) (where the goal wants it); or ")
+    covered = validate_action(kitchen_table(), move("book", "on", "table"),
+                              wanted=frozenset({("book", "on", "shelf")}))
+    assert covered is not None and "move(book, on, shelf)" not in covered.suggestion

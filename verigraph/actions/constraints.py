@@ -257,13 +257,20 @@ def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str], *,
 
 # -- move: the refusals of the move row's preconditions (verigraph.actions.schemas) ----------
 # Each is called only when its precondition's test failed, and says why and how to fix it.
-def explain_unknown_object(state: WorldState, a: MoveAction | StateAction) -> Violation:
+def explain_unknown_object(state: WorldState, a: MoveAction | StateAction, *,
+                           wanted: Wanted = NO_GOAL) -> Violation:
+    """An id the scene lacks: the ids that look like it; with a goal and an unknown
+    target, the move the goal wants for the object first."""
     names = (("object", a.object), ("target", a.target)) if isinstance(a, MoveAction) \
         else (("object", a.object),)
     role, name = next((r, n) for r, n in names if n not in state.objects)
     near = _nearest_ids(state, name)
     hint = f"did you mean {' or '.join(near)}?" if near else \
         f"use an id from the scene: {', '.join(list(state.objects)[:8])}"
+    if role == "target" and a.object in state.objects and wanted and \
+            state.is_clear(a.object) and (toward := _goal_place(state, a.object, set(), {}, wanted)):
+        hint = f"did you mean {_move_text(a.object, toward)}? ({hint[0].lower()}{hint[1:]})" \
+            if near else f"e.g. {_move_text(a.object, toward)}; or {hint}"
     return _violation(a, "unknown_object",
                       f"there is no object '{name}' in the scene ({role})", hint)
 

@@ -247,7 +247,7 @@ MOVE = ActionSchema(
     preconditions=(
         Precondition("unknown_object", "(info := objects.get(obj)) is not None and "
                      "(about := objects.get(target)) is not None",
-                     c.explain_unknown_object, gate=True),
+                     c.explain_unknown_object, gate=True, goal_aware=True),
         Precondition("unknown_relation", "relation in state.move_relations",
                      c.explain_relation, gate=True),
         Precondition("same_object", "obj != target", c.explain_same_object, gate=True,
