@@ -384,3 +384,21 @@ async def test_a_goal_corrected_after_a_writing_mistake_ends_as_success() -> Non
         ended = await _solve_run_end(client, episode)
     assert text(ended).startswith("SUCCESS: goal reached"), text(ended)
     assert structured(ended)["verdict"] == "goal_reached"
+
+
+async def test_the_garage_fixes_keep_the_goal_and_every_move_is_valid() -> None:
+    """The drawer the goal keeps the pliers in is emptied by its tin, not by the pliers;
+    a blocker the goal keeps where it is is said to go back; no fix names a place that
+    is 'ruled out' for a reason it does not give."""
+    async with Client(build_server(Toolbox())) as client:
+        results = await run_recorded(client, "t01_garage", calls=3)
+    said = said_by(results, "validate_plan")
+    full = next(line for line in said.splitlines() if "[target_full] drawer" in line)
+    assert "make room on drawer first (tin elsewhere; the goal keeps pliers there), e.g. " \
+           "move(screws, on, workbench); then put screws back in tin (the goal keeps it " \
+           "there)" in full
+    assert "move(tin, on, workbench)" in full and "ruled out" not in full
+    assert "move(pliers, on, workbench)" not in full
+    clear = next(line for line in said.splitlines() if "cannot move drawer" in line)
+    assert "move(pliers, on, workbench); then put pliers back in drawer (the goal keeps it " \
+           "there)" in clear

@@ -221,6 +221,23 @@ def _unstack_order(state: WorldState, blockers: list[str]) -> list[str]:
     return order
 
 
+def _unstack_moves(state: WorldState, order: list[str], exclude: set[str],
+                   wanted: Wanted) -> list[str]:
+    """A move for each of the first MAX_NAMED_BLOCKERS objects of `order` (an unstack
+    order), the places accounting for each other (see _clear_hint)."""
+    moving = exclude | set(order)
+    planned: dict[str, int] = {}
+    hints = []
+    for obj in order[:MAX_NAMED_BLOCKERS]:
+        found = _free_place(state, obj, moving, planned, wanted=wanted)
+        if found is None:
+            hints.append(_no_place(state, obj, moving))
+            continue
+        hints.append(_move_text(obj, found) + kept_note(state, obj, wanted))
+        planned[found[1]] = planned.get(found[1], 0) + 1
+    return hints
+
+
 def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str], *,
                 wanted: Wanted = NO_GOAL) -> str:
     """`move knife, spoon and lid somewhere else first, e.g. move(knife, on, counter), ...`
@@ -231,17 +248,8 @@ def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str], *,
     valid in sequence. Only runs on failure, O(moves x MAX_PLACE_CANDIDATES) at most.
     """
     order = _unstack_order(state, blockers)
-    moving = exclude | set(order)
+    hints = _unstack_moves(state, order, exclude, wanted)
     shown = order[:MAX_NAMED_BLOCKERS]
-    planned: dict[str, int] = {}
-    hints = []
-    for obj in shown:
-        found = _free_place(state, obj, moving, planned, wanted=wanted)
-        if found is None:
-            hints.append(_no_place(state, obj, moving))
-            continue
-        hints.append(_move_text(obj, found) + kept_note(state, obj, wanted))
-        planned[found[1]] = planned.get(found[1], 0) + 1
     named = blockers[:MAX_NAMED_BLOCKERS]
     more = len(blockers) - len(named)
     who = _names(named) if not more else f"{', '.join(named)} and {more} more"
@@ -268,7 +276,8 @@ def explain_unknown_object(state: WorldState, a: MoveAction | StateAction, *,
     hint = f"did you mean {' or '.join(near)}?" if near else \
         f"use an id from the scene: {', '.join(list(state.objects)[:8])}"
     if role == "target" and a.object in state.objects and wanted and \
-            state.is_clear(a.object) and (toward := _goal_place(state, a.object, set(), {}, wanted)):
+            state.is_clear(a.object) and \
+            (toward := _goal_place(state, a.object, set(), {}, wanted)):
         hint = f"did you mean {_move_text(a.object, toward)}? ({hint[0].lower()}{hint[1:]})" \
             if near else f"e.g. {_move_text(a.object, toward)}; or {hint}"
     return _violation(a, "unknown_object",
@@ -434,8 +443,11 @@ def explain_capacity(state: WorldState, a: MoveAction, *,
                  if (found := _goal_place(state, o, exclude, {}, wanted))), None) \
         if wanted else None
     hint = hint or next((_move_text(o, found) for o in movers
-                         if (found := _free_place(state, o, exclude))),
-                        None) or _no_place(state, free[0], exclude)
+                         if (found := _free_place(state, o, exclude))), None)
+    if hint is None and not movers:  # none is clear: the first with what rests on it
+        hint = ", ".join(_unstack_moves(state, _unstack_order(state, free[:1]), exclude,
+                                        wanted))
+    hint = hint or _no_place(state, free[0], exclude)
     keeps = f"; the goal keeps {_names(kept[:MAX_NAMED_BLOCKERS])} there" if kept else ""
     return _violation(
         a, "target_full", message,
