@@ -402,3 +402,15 @@ async def test_the_garage_fixes_keep_the_goal_and_every_move_is_valid() -> None:
     clear = next(line for line in said.splitlines() if "cannot move drawer" in line)
     assert "move(pliers, on, workbench); then put pliers back in drawer (the goal keeps it " \
            "there)" in clear
+
+
+async def test_a_multi_line_text_of_k_actions_runs_as_the_fix_says() -> None:
+    """execute_actions' fix says JSON or text: k lines of text run as they are."""
+    async with Client(build_server(Toolbox())) as client:
+        results = await run_recorded(client, "t08_storage", calls=2)
+        episode = structured(results[0][1])["episode_id"]
+        solved = shown(transcript(THIRD_SET / "t08_storage")[2])
+        plan = re.findall(r"move\(\w+, on, \w+\)", solved.splitlines()[0])
+        ran = await client.call_tool("execute_actions", {
+            "episode_id": episode, "actions": "\n".join(plan[:3]) + "\n"})
+    assert not ran.is_error and text(ran).startswith("executed 3: " + ", ".join(plan[:3]))
