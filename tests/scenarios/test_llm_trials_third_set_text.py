@@ -414,3 +414,13 @@ async def test_a_multi_line_text_of_k_actions_runs_as_the_fix_says() -> None:
         ran = await client.call_tool("execute_actions", {
             "episode_id": episode, "actions": "\n".join(plan[:3]) + "\n"})
     assert not ran.is_error and text(ran).startswith("executed 3: " + ", ".join(plan[:3]))
+
+
+async def test_an_episode_ended_without_a_goal_after_a_refusal_says_what_was_asked() -> None:
+    async with Client(build_server(Toolbox())) as client:
+        episode = await _dinner_without_words(client)
+        await client.call_tool("set_goal", {"episode_id": episode, "edges": DINNER_ASKED})
+        ended = text(await client.call_tool("end_episode", {"episode_id": episode}))
+    assert ended.startswith("ended (no checkable goal was set); not done of the goal first "
+                            "asked for (refused by set_goal: 'stove' carries 3 objects but its "
+                            "capacity is 2): cutting_board on counter; kettle on stove; "), ended

@@ -105,6 +105,8 @@ class EpisodeVerdict(BaseModel):
                 "no_goal": "ended (no checkable goal was set)",
                 "no_scene": "ended before a scene graph was submitted"}[self.verdict]
         detail = f" ({self.goal_diff.summary()})" if self.goal_diff and not self.success else ""
+        if self.asked_missing:  # no goal was set, but the user asked for something
+            detail += f"; not done of {self.asked}: " + "; ".join(self.asked_missing)
         text = (f"{text}{detail}; {self.steps} action(s) in {self.calls} call(s); "
                 f"episode {self.episode_id} closed")
         if self.runs_on is not None:
@@ -126,6 +128,7 @@ def end_episode(ctx: ToolContext, params: EpisodeRef) -> EpisodeVerdict:
             verdict = "no_scene"
         elif diff is None:
             verdict = "no_goal"
+            asked, asked_missing = asked_against(episode)
         elif diff.satisfied:
             asked, asked_missing = asked_against(episode)
             verdict = "partial" if asked_missing else "goal_reached"
