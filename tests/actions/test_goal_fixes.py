@@ -232,3 +232,22 @@ def test_an_unknown_target_is_fixed_by_the_move_the_goal_wants():
     covered = validate_action(kitchen_table(), move("book", "on", "table"),
                               wanted=frozenset({("book", "on", "shelf")}))
     assert covered is not None and "move(book, on, shelf)" not in covered.suggestion
+
+
+def test_a_world_refusal_says_when_its_blocker_is_kept_by_the_goal():
+    """The simulator knows no goal: its refusal's fix (move the overlapped piece away) is
+    noted when the goal keeps that piece's contact."""
+    from verigraph.actions.constraints import with_goal_note
+    from verigraph.actions.feedback import Violation
+    state = tangram()  # large_triangle_1[1] touches large_triangle_2[1]
+    refusal = Violation(action=align("square", 0, "large_triangle_2", 0).model_dump(),
+                        constraint="overlap", message="would overlap large_triangle_1",
+                        blocking=["large_triangle_1"], suggestion="align square with a side "
+                        "that faces free space, or move large_triangle_1 away first")
+    noted = with_goal_note(state, refusal.model_copy(), frozenset(
+        {("large_triangle_1[1]", "touches", "large_triangle_2[1]")}))
+    assert noted.suggestion.endswith("; the goal keeps large_triangle_1 where it is: prefer "
+                                     "another target, or put it back after")
+    plain = with_goal_note(state, refusal.model_copy(), frozenset(
+        {("square[0]", "touches", "parallelogram[0]")}))
+    assert plain.suggestion == refusal.suggestion

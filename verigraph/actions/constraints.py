@@ -494,6 +494,30 @@ def already_explainer(name: str, key: str, value: bool
 
 
 # -- align (tangram, symbolic part; geometry is checked by sim2d) ---------------------------
+def goal_keeps(state: WorldState, obj: str, wanted: Wanted) -> bool:
+    """Whether the goal keeps `obj` where it is now: its placement, or one of its
+    tangram contacts, is wanted and holds."""
+    if _pinned(state, obj, wanted):
+        return True
+    return any((f"{obj}[{side}]", "touches", f"{other}[{other_side}]") in wanted
+               or (f"{other}[{other_side}]", "touches", f"{obj}[{side}]") in wanted
+               for (piece, side), partners in state.contacts.items() if piece == obj
+               for other, other_side in partners)
+
+
+def with_goal_note(state: WorldState, violation: Violation, wanted: Wanted) -> Violation:
+    """A world's refusal (the simulator's room check or overlap, which know no goal)
+    with a note when its fix would move a blocker the goal keeps where it is."""
+    kept = [b for b in violation.blocking if b in state.objects and goal_keeps(state, b,
+                                                                                wanted)]
+    if kept:
+        them = "it" if len(kept) == 1 else "them"
+        violation.suggestion += (f"; the goal keeps {_names(kept[:MAX_NAMED_BLOCKERS])} "
+                                 f"where {them} {'is' if len(kept) == 1 else 'are'}: prefer "
+                                 f"another target, or put {them} back after")
+    return violation
+
+
 def _goal_contacts(wanted: Wanted, piece: str) -> list[tuple[int, str, int]]:
     """(side, other, other_side) of each contact the goal wants for `piece`."""
     found = []
