@@ -40,6 +40,9 @@ def get_state(ctx: ToolContext, params: EpisodeRef) -> EpisodeState:
 
 
 # -- end_episode ----------------------------------------------------------------------------
+# end_episode's text names at most this many items of the request not done (all are in
+# `asked_missing`).
+MAX_ASKED_SHOWN = 20
 Verdict = Literal["goal_reached", "partial", "goal_not_reached", "threshold_reached",
                   "no_goal", "no_scene"]
 
@@ -88,10 +91,15 @@ class EpisodeVerdict(BaseModel):
         lines = text.split("\n")
         return "\n".join([*lines[:2], observed, *lines[2:]])
 
+    def _asked_text(self) -> str:
+        shown = self.asked_missing[:MAX_ASKED_SHOWN]
+        more = len(self.asked_missing) - len(shown)
+        return "; ".join(shown) + (f"; ... and {more} more" if more else "")
+
     def _verdict_text(self) -> str:
         if self.verdict == "partial":
             text = ("PARTIAL: the goal set was reached, but it is narrower than "
-                    f"{self.asked}; not done: " + "; ".join(self.asked_missing)
+                    f"{self.asked}; not done: " + self._asked_text()
                     + f"; {self.steps} action(s) in {self.calls} call(s); episode "
                     f"{self.episode_id} closed")
             if self.runs_on is not None:
@@ -106,7 +114,7 @@ class EpisodeVerdict(BaseModel):
                 "no_scene": "ended before a scene graph was submitted"}[self.verdict]
         detail = f" ({self.goal_diff.summary()})" if self.goal_diff and not self.success else ""
         if self.asked_missing:  # no goal was set, but the user asked for something
-            detail += f"; not done of {self.asked}: " + "; ".join(self.asked_missing)
+            detail += f"; not done of {self.asked}: " + self._asked_text()
         text = (f"{text}{detail}; {self.steps} action(s) in {self.calls} call(s); "
                 f"episode {self.episode_id} closed")
         if self.runs_on is not None:
