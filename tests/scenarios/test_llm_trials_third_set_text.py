@@ -139,6 +139,9 @@ async def test_the_stove_is_a_default_the_user_confirms_and_the_verdict_is_parti
     assert "raise attrs.capacity" not in refusal
     assert "ask the user which to leave out" in refusal
     assert "never raise a capacity just to make a goal fit" in refusal
+    narrowed = said_by(results, "set_goal", 1)
+    assert "narrower than the request the episode was loaded with: it leaves out kettle on " \
+           "stove; end_episode will say PARTIAL, not SUCCESS: tell the user" in narrowed
     verdict = said_by(results, "end_episode")
     assert verdict.startswith("PARTIAL: the goal set was reached, but it is narrower than the "
                               "request the episode was loaded with; not done: kettle on "
