@@ -278,8 +278,7 @@ def explain_unknown_object(state: WorldState, a: MoveAction | StateAction, *,
     if role == "target" and a.object in state.objects and wanted and \
             state.is_clear(a.object) and \
             (toward := _goal_place(state, a.object, set(), {}, wanted)):
-        hint = f"did you mean {_move_text(a.object, toward)}? ({hint[0].lower()}{hint[1:]})" \
-            if near else f"e.g. {_move_text(a.object, toward)}; or {hint}"
+        hint = f"e.g. {_move_text(a.object, toward)}; or {hint}"
     return _violation(a, "unknown_object",
                       f"there is no object '{name}' in the scene ({role})", hint)
 
@@ -493,7 +492,7 @@ def already_explainer(name: str, key: str, value: bool
     return explain
 
 
-# -- align (tangram, symbolic part; geometry is checked by sim2d) ---------------------------
+# -- the goal in a world's refusal (the simulator knows no goal) ---------------------------
 def goal_keeps(state: WorldState, obj: str, wanted: Wanted) -> bool:
     """Whether the goal keeps `obj` where it is now: its placement, or one of its
     tangram contacts, is wanted and holds."""
@@ -518,6 +517,7 @@ def with_goal_note(state: WorldState, violation: Violation, wanted: Wanted) -> V
     return violation
 
 
+# -- align (tangram, symbolic part; geometry is checked by sim2d) ---------------------------
 def _goal_contacts(wanted: Wanted, piece: str) -> list[tuple[int, str, int]]:
     """(side, other, other_side) of each contact the goal wants for `piece`."""
     found = []
