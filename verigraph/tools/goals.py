@@ -14,7 +14,7 @@ from __future__ import annotations
 import difflib
 import re
 from dataclasses import dataclass, field
-from typing import Annotated, Any, Literal
+from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
@@ -489,28 +489,102 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
 
     Words alone are translated into a proposal (accepted: false) that is not stored: the
     client confirms it by sending its edges back, so a misread word never becomes the
-    goal unseen.
+    goal unseen. A goal the scene cannot hold is refused but kept as the user's request
+    (`tools.request`): the call ends normally, so a durable store saves that, and then
+    the refusal is raised.
     """
+    out = _set_goal(ctx, params)
+    if isinstance(out, ToolArgumentError):
+        raise out
+    return out
+
+
+def _set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput | ToolArgumentError:
+    graph = params.graph
     image = decode_base64_image(params.image) if params.image is not None else None
     with ctx.store.use(params.episode_id) as episode:
-        try:
-            return _set_goal_on(episode, params, image)
-        except _BeyondTheScene as beyond:  # kept as the request, then refused
-            keep_asked_goal(episode, beyond.goal, beyond.why)
-            refusal = beyond.error
-    raise refusal
+        reading = _Reading(None)
+        if image is not None:
+            dictionary = (episode.state.dictionary if episode.state
+                          else dictionary_for(episode.dictionary_name))
+            seen = perceive_photo(image, dictionary)
+            if not seen.confident:
+                raise ToolArgumentError(
+                    "built-in perception is unsure of the goal image: "
+                    + "; ".join(d.message for d in seen.doubts[:5]),
+                    field="image", value=None,
+                    fix="give the goal as edges or a graph (generate_scene_graph returns "
+                        "the perceived proposal to check and correct)")
+            reading = _match_perceived(seen, episode.state)
+            assert reading.goal is not None
+            graph = reading.goal.graph
+        goal: Goal | None = None
+        partial = bool(params.partial) or (reading.goal is not None and reading.goal.partial)
+        formula, formula_field = params.formula, "formula"
+        if params.edges is not None and looks_like_formula(params.edges):
+            formula, formula_field = params.edges, "edges"
+        elif params.edges is not None and \
+                (negated := negated_edges_formula(params.edges)) is not None:
+            formula, formula_field = negated, "edges"
+            reading.notes.append("edges with 'not' read as the formula they mean (a goal "
+                                 "graph cannot say not); for every cup and plate at once: "
+                                 f"formula='{FORMULA_EXAMPLE}'")
+        elif params.edges is not None:
+            edges_goal = goal_from_edges(params.edges, episode.state,
+                                         partial=params.partial is not False)
+            graph, partial = edges_goal.graph, edges_goal.partial
+        if formula is not None:
+            formula = goal_from_formula(formula, episode.state, field=formula_field).formula
+        readings: list[str] = []
+        if graph is not None or params.predicate is not None or formula is not None:
+            goal = Goal(graph=graph, partial=partial, predicate=params.predicate,
+                        formula=formula, instruction=params.instruction)
+            refused = _beyond_the_scene(goal, episode, "goal" if graph is None else "graph")
+            if refused is not None:
+                return refused
+            if formula is not None and episode.state is None:
+                reading.notes.append("no scene graph yet, so the formula's ids and kinds "
+                                     "are not checked: an id the submitted scene lacks "
+                                     "never holds")
+            if params.graph is not None:  # a graph the client wrote (not edges or a photo)
+                readings = label_readings(params.graph, episode.state.dictionary
+                                          if episode.state is not None else
+                                          dictionary_for(params.graph.dictionary
+                                                         or episode.dictionary_name))
+        elif params.instruction is not None:
+            reading = _from_words(params.instruction, episode.state)
+            keep_asked_words(episode, params.instruction)
+        if not reading.accepted:
+            if params.instruction is not None:  # the words are kept; the proposal is not
+                episode.instruction = params.instruction
+            proposal = goal or reading.goal
+            current = episode.goal
+            diff = (check_goal(episode.state, current)
+                    if current and episode.state is not None else None)
+            return GoalOutput(episode_id=episode.id, goal=current,
+                              instruction=episode.instruction, checkable=current is not None,
+                              goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
+                              accepted=False, proposal=proposal, notes=reading.notes,
+                              label_readings=readings)
+        if goal is not None:
+            _note_narrowing(episode, goal, reading.notes)
+            episode.goal = goal
+        if params.instruction is not None:
+            episode.instruction = params.instruction
+        goal = episode.goal
+        diff = check_goal(episode.state, goal) if goal and episode.state is not None else None
+        return GoalOutput(episode_id=episode.id, goal=goal,
+                          instruction=episode.instruction, checkable=goal is not None,
+                          goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
+                          notes=reading.notes, label_readings=readings)
 
 
-class _BeyondTheScene(Exception):
-    """A goal refused because the scene cannot hold it (a rule of WORLD_LIMITS)."""
-
-    def __init__(self, goal: Goal, why: str, error: ToolArgumentError) -> None:
-        super().__init__(why)
-        self.goal, self.why, self.error = goal, why, error
-
-
-def _checked(goal: Goal, state: WorldState | None, field: str) -> None:
-    """check_goal_against; a goal the scene cannot hold raises _BeyondTheScene."""
+def _beyond_the_scene(goal: Goal, episode: LiveEpisode, field: str
+                      ) -> ToolArgumentError | None:
+    """check_goal_against; a goal refused because the scene cannot hold it (a rule of
+    WORLD_LIMITS, e.g. a capacity) is kept as the request and its refusal returned, to
+    be raised once the call's changes are saved. Any other refusal is raised here."""
+    state = episode.state
     try:
         check_goal_against(goal, state, field=field)
     except ToolArgumentError as exc:
@@ -521,91 +595,20 @@ def _checked(goal: Goal, state: WorldState | None, field: str) -> None:
                   if p.rule in WORLD_LIMITS]
         if not limits:
             raise
-        kept = ToolArgumentError(
+        keep_asked_goal(episode, goal, "refused by set_goal: " + "; ".join(limits[:3]))
+        return ToolArgumentError(
             f"{exc.message}\nthe scene cannot hold this goal, so it is kept as the user's "
             "request: a narrower goal set and reached ends PARTIAL, naming what is left out",
             field=exc.field, value=exc.value, fix=exc.fix)
-        raise _BeyondTheScene(goal, "refused by set_goal: " + "; ".join(limits[:3]),
-                              kept) from None
+    return None
 
 
-def _set_goal_on(episode: LiveEpisode, params: SetGoalInput, image: Any) -> GoalOutput:
-    graph = params.graph
-    reading = _Reading(None)
-    if image is not None:
-        dictionary = (episode.state.dictionary if episode.state
-                      else dictionary_for(episode.dictionary_name))
-        seen = perceive_photo(image, dictionary)
-        if not seen.confident:
-            raise ToolArgumentError(
-                "built-in perception is unsure of the goal image: "
-                + "; ".join(d.message for d in seen.doubts[:5]),
-                field="image", value=None,
-                fix="give the goal as edges or a graph (generate_scene_graph returns "
-                    "the perceived proposal to check and correct)")
-        reading = _match_perceived(seen, episode.state)
-        assert reading.goal is not None
-        graph = reading.goal.graph
-    goal: Goal | None = None
-    partial = bool(params.partial) or (reading.goal is not None and reading.goal.partial)
-    formula, formula_field = params.formula, "formula"
-    if params.edges is not None and looks_like_formula(params.edges):
-        formula, formula_field = params.edges, "edges"
-    elif params.edges is not None and \
-            (negated := negated_edges_formula(params.edges)) is not None:
-        formula, formula_field = negated, "edges"
-        reading.notes.append("edges with 'not' read as the formula they mean (a goal "
-                             "graph cannot say not); for every cup and plate at once: "
-                             f"formula='{FORMULA_EXAMPLE}'")
-    elif params.edges is not None:
-        edges_goal = goal_from_edges(params.edges, episode.state,
-                                     partial=params.partial is not False)
-        graph, partial = edges_goal.graph, edges_goal.partial
-    if formula is not None:
-        formula = goal_from_formula(formula, episode.state, field=formula_field).formula
-    readings: list[str] = []
-    if graph is not None or params.predicate is not None or formula is not None:
-        goal = Goal(graph=graph, partial=partial, predicate=params.predicate,
-                    formula=formula, instruction=params.instruction)
-        _checked(goal, episode.state, "goal" if graph is None else "graph")
-        if formula is not None and episode.state is None:
-            reading.notes.append("no scene graph yet, so the formula's ids and kinds "
-                                 "are not checked: an id the submitted scene lacks "
-                                 "never holds")
-        if params.graph is not None:  # a graph the client wrote (not edges or a photo)
-            readings = label_readings(params.graph, episode.state.dictionary
-                                      if episode.state is not None else
-                                      dictionary_for(params.graph.dictionary
-                                                     or episode.dictionary_name))
-    elif params.instruction is not None:
-        reading = _from_words(params.instruction, episode.state)
-        keep_asked_words(episode, params.instruction)
-    if not reading.accepted:
-        if params.instruction is not None:  # the words are kept; the proposal is not
-            episode.instruction = params.instruction
-        proposal = goal or reading.goal
-        current = episode.goal
-        diff = (check_goal(episode.state, current)
-                if current and episode.state is not None else None)
-        return GoalOutput(episode_id=episode.id, goal=current,
-                          instruction=episode.instruction, checkable=current is not None,
-                          goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
-                          accepted=False, proposal=proposal, notes=reading.notes,
-                          label_readings=readings)
-    if goal is not None:
-        if episode.goal is not None and is_narrower(goal, episode.goal):
-            keep_asked_goal(episode, episode.goal, "narrowed by a later set_goal")
-        asked, missing = left_out(episode, goal)
-        if missing:
-            reading.notes.append(
-                f"narrower than {asked}: it leaves out {'; '.join(missing[:10])}; "
-                "end_episode will say PARTIAL, not SUCCESS: tell the user")
-        episode.goal = goal
-    if params.instruction is not None:
-        episode.instruction = params.instruction
-    goal = episode.goal
-    diff = check_goal(episode.state, goal) if goal and episode.state is not None else None
-    return GoalOutput(episode_id=episode.id, goal=goal,
-                      instruction=episode.instruction, checkable=goal is not None,
-                      goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
-                      notes=reading.notes, label_readings=readings)
+def _note_narrowing(episode: LiveEpisode, goal: Goal, notes: list[str]) -> None:
+    """A goal replacing one it asks a strict subset of keeps the old one as the request;
+    a goal leaving part of the request out says so (end_episode will say PARTIAL)."""
+    if episode.goal is not None and is_narrower(goal, episode.goal):
+        keep_asked_goal(episode, episode.goal, "narrowed by a later set_goal")
+    asked, missing = left_out(episode, goal)
+    if missing:
+        notes.append(f"narrower than {asked}: it leaves out {'; '.join(missing[:10])}; "
+                     "end_episode will say PARTIAL, not SUCCESS: tell the user")
