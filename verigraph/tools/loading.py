@@ -29,6 +29,7 @@ from verigraph.tools.executors import (
     SceneCheck,
     arm_setup_for,
     check_executor,
+    check_tangram_start,
     enabled_executors,
     executors_text,
 )
@@ -169,15 +170,11 @@ def load_scene_tool(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
     state: WorldState | None = None
     world = source.world
     if source.graph is not None:
-        graph = _with_dictionary(source.graph, params.dictionary)
-        state = state_from_graph(graph)
+        state = state_from_graph(_with_dictionary(source.graph, params.dictionary))
         if executor == "sim2d" and world is None:
             world = world_for_graph(state.to_graph(), seed=params.seed)
-        elif world is None and state.objects and all(
-                o.props.sides is not None for o in state.objects.values()):
-            # One rule of a valid tangram start for every executor: the simulator's
-            # layout (pieces as align lays them, exactly the listed contacts, no overlap).
-            world_for_graph(state.to_graph())
+        elif world is None:
+            check_tangram_start(state)  # the rule sim2d's layout applies, for every executor
         if goal is not None:
             check_goal_against(goal, state, field="goal")
     elif executor == "sim2d":
