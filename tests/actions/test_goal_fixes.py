@@ -84,7 +84,8 @@ def test_the_placements_a_goal_asks_for():
     formula = Goal(formula="(and (ontop cup plate) (not (inside spoon bowl)) "
                            "(forall (?c - cup) (ontop ?c desk)) "
                            "(imply (ontop fork desk) (inside mug bowl)))")
-    assert wanted_placements(formula) == {("cup", "on", "plate"), ("mug", "in", "bowl")}
+    assert wanted_placements(formula) == {("cup", "on", "plate"), ("mug", "in", "bowl"),
+                                          ("spoon", "not in", "bowl")}  # a place forbidden
 
 
 def test_the_other_target_offered_is_the_goals_when_it_takes_the_object():
@@ -251,3 +252,14 @@ def test_a_world_refusal_says_when_its_blocker_is_kept_by_the_goal():
     plain = with_goal_note(state, refusal.model_copy(), frozenset(
         {("square[0]", "touches", "parallelogram[0]")}))
     assert plain.suggestion == refusal.suggestion
+
+
+def test_a_place_the_goal_forbids_is_never_offered():
+    goal = Goal(formula="(and (not (on cup desk)) (not (on cup shelf)))")
+    wanted = wanted_placements(goal)
+    assert {("cup", "not on", "desk"), ("cup", "not on", "shelf")} <= wanted
+    blind = validate_action(kitchen_table(), move("book", "on", "shelf"))
+    assert blind is not None and "move(cup, on, desk)" in blind.suggestion
+    v = validate_action(kitchen_table(), move("book", "on", "shelf"), wanted=wanted)
+    assert v is not None and "move(cup, on, desk)" not in v.suggestion
+    assert "move(cup, on, shelf)" not in v.suggestion

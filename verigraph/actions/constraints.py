@@ -134,6 +134,9 @@ def _free_place(state: WorldState, obj: str, exclude: set[str],
     planned = planned or {}
     if wanted and (toward := _goal_place(state, obj, exclude, planned, wanted)):
         return toward
+    if wanted:  # never a place the goal forbids (`(not (on cup_1 plate_a))`)
+        exclude = exclude | {place for o, relation, place in wanted
+                             if o == obj and relation.startswith("not ")}
     for surface in state.fixed_surfaces:
         if _takes(state, obj, surface, exclude, planned) == "on":
             return "on", surface, ""

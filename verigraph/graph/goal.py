@@ -355,8 +355,9 @@ def wanted_placements(goal: Goal) -> frozenset[Placement]:
 
     Also in the set, in the same shape: the states a goal asks for, `(fridge, open,
     "false")` (a goal node's state, a formula's `(open fridge)` or `(not (open fridge))`),
-    and each tangram contact with its sides, `(square[1], touches, medium_triangle[1])`,
-    so a fix neither undoes a wanted state or contact nor proposes against it."""
+    a formula's placements it forbids, `(cup_1, "not on", plate_a)`, and each tangram
+    contact with its sides, `(square[1], touches, medium_triangle[1])`, so a fix neither
+    undoes a wanted state or contact nor proposes against it."""
     wanted: set[Placement] = set()
     if goal.graph is not None:
         for e in goal.graph.edges:
@@ -373,8 +374,9 @@ def wanted_placements(goal: Goal) -> frozenset[Placement]:
             if isinstance(node, Atom):
                 if any(t.startswith("?") for t in node.terms):
                     continue
-                if len(node.terms) == 2 and positive:
-                    wanted.add((node.terms[0], node.relation, node.terms[1]))
+                if len(node.terms) == 2:  # `(not (on cup plate))`: (cup, "not on", plate)
+                    wanted.add((node.terms[0], ("" if positive else "not ") + node.relation,
+                                node.terms[1]))
                 elif len(node.terms) == 1 and node.relation in STATE_KEYS:
                     wanted.add((node.terms[0], node.relation, str(positive).lower()))
             elif isinstance(node, Not):
