@@ -5,6 +5,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 import pytest
+from mcp_helpers import png_b64
 
 from verigraph.errors import VeriGraphError
 from verigraph.tools import Toolbox
@@ -91,5 +92,11 @@ def test_graph_and_sim2d_accept_and_refuse_the_same_tangram_starts(
             assert exc.field == "edges" and "cannot" in exc.message and exc.fix
             assert "laid with side" in exc.message or "not list" in exc.message
             answers.append(exc.message)
-    assert answers[0] == answers[1]
+    photo = box.call("load_scene", {"image": png_b64(), "dictionary": "tangram"})
+    try:  # an image episode adopting the graph follows the same rule
+        box.call("submit_scene_graph", {"episode_id": photo.episode_id, "graph": graph})
+        answers.append("accepted")
+    except VeriGraphError as exc:
+        answers.append(exc.message)
+    assert answers[0] == answers[1] == answers[2]
     assert (answers[0] == "accepted") == valid, answers[0]
