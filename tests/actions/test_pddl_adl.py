@@ -104,9 +104,10 @@ def test_adl_feedback_names_the_condition_and_a_counterexample():
                                 "(unlock)")
     (goal,) = missed["unmet_goals"]
     assert goal["literal"] == "(forall (?p - portable) (at ?p l2))"
-    assert goal["explanation"] == "for ?p = o0: (at o0 l2) is false"
+    assert goal["explanation"] == ("2 counterexamples: for ?p = o0: (at o0 l2) is false; "
+                                   "for ?p = o1: (at o1 l2) is false")  # every one named
     text = report_text(missed)
-    assert "(forall (?p - portable) (at ?p l2)): for ?p = o0" in text
+    assert "(forall (?p - portable) (at ?p l2)): 2 counterexamples: for ?p = o0" in text
 
 
 @pytest.mark.parametrize("edit,requirement", [

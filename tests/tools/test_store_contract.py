@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 from store_helpers import redis_url  # noqa: F401 - the session fixture
 
+from verigraph.errors import VeriGraphError
 from verigraph.tools import EpisodeLimitError, Toolbox, ToolConfig, UnknownEpisodeError
 from verigraph.tools.errors import StaleEpisodeError, StoreError
 from verigraph.tools.store_durable import DurableStore
@@ -40,6 +41,26 @@ def test_load_execute_end_through_the_store(store_url: str) -> None:
     assert verdict.executed == ["move(cup, on, desk)"] and len(verdict.trace) == 2
     with pytest.raises(UnknownEpisodeError):
         box.call("get_state", {"episode_id": ep})
+
+
+def test_a_goal_refused_for_a_capacity_is_kept_as_the_request(store_url: str) -> None:
+    """The refusal changes no goal but keeps the request, in every store (a durable
+    store reloads what a refused call left), so a narrower goal reached ends PARTIAL."""
+    box = box_for(store_url)
+    ep = box.call("load_scene", {"scene_id": "kitchen_pan"}).episode_id
+    stove = box.call("get_state", {"episode_id": ep}).graph
+    movable = [n.id for n in stove.nodes if n.id not in ("counter", "stove", "shelf")]
+    asked = "; ".join(f"{m} on stove" for m in movable[:3])
+    with pytest.raises(VeriGraphError, match="kept as the user's request"):
+        box.call("set_goal", {"episode_id": ep, "edges": asked})
+    # another process's view of a durable store (memory is one process's own)
+    again = box if store_url.startswith("memory") else box_for(store_url)
+    assert again.call("get_state", {"episode_id": ep}).goal is None
+    again.call("set_goal", {"episode_id": ep, "edges": asked.rsplit("; ", 1)[0]})
+    plan = again.call("solve", {"episode_id": ep}).plan
+    again.call("execute_actions", {"episode_id": ep, "actions": plan, "whole_plan": True})
+    verdict = again.call("end_episode", {"episode_id": ep})
+    assert verdict.verdict == "partial" and verdict.asked_missing == [f"{movable[2]} on stove"]
 
 
 def test_unknown_id_is_a_clear_error(store_url: str) -> None:

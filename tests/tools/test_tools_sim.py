@@ -5,6 +5,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 import pytest
+from mcp_helpers import png_b64
 
 from verigraph.errors import VeriGraphError
 from verigraph.tools import Toolbox
@@ -57,3 +58,45 @@ def test_generator_errors_name_the_field() -> None:
     with pytest.raises(VeriGraphError) as err:
         Toolbox().call("load_scene", {"generator": {"family": "garden"}})
     assert err.value.field == "family" and "tangram" in (err.value.fix or "")
+
+
+TANGRAM_START = [  # (contacts, valid): one rule of a valid start for every executor
+    ([("large_triangle_2", 1, "medium_triangle", 0)], True),  # the model's start
+    ([("large_triangle_1", 1, "small_triangle_1", 1),
+      ("large_triangle_1", 1, "small_triangle_2", 1)], False),  # two pieces on one side
+    ([("square", 0, "small_triangle_1", 0), ("square", 1, "small_triangle_1", 1)], False),
+    ([("square", 0, "small_triangle_1", 0), ("square", 2, "small_triangle_2", 0),
+      ("small_triangle_1", 1, "small_triangle_2", 1)], False),
+]
+
+
+@pytest.mark.fast
+@pytest.mark.parametrize("contacts,valid", TANGRAM_START)
+def test_graph_and_sim2d_accept_and_refuse_the_same_tangram_starts(
+        contacts: list[tuple[str, int, str, int]], valid: bool) -> None:
+    """The graph executor lays a tangram start out as sim2d does (the one rule: pieces
+    as align lays them, exactly the listed contacts, no overlap), so both answer alike,
+    and a refusal names the piece, the contact tried and what went wrong."""
+    pieces = ["large_triangle_1", "large_triangle_2", "medium_triangle", "parallelogram",
+              "small_triangle_1", "small_triangle_2", "square"]
+    graph = {"nodes": [{"id": p, "label": p} for p in pieces], "dictionary": "tangram",
+             "edges": [{"source": a, "relation": "touches", "target": b, "source_side": sa,
+                        "target_side": sb} for a, sa, b, sb in contacts]}
+    box = Toolbox()
+    answers = []
+    for executor in ("graph", "sim2d"):
+        try:
+            box.call("load_scene", {"graph": graph, "executor": executor})
+            answers.append("accepted")
+        except VeriGraphError as exc:
+            assert exc.field == "edges" and "cannot" in exc.message and exc.fix
+            assert "laid with side" in exc.message or "not list" in exc.message
+            answers.append(exc.message)
+    photo = box.call("load_scene", {"image": png_b64(), "dictionary": "tangram"})
+    try:  # an image episode adopting the graph follows the same rule
+        box.call("submit_scene_graph", {"episode_id": photo.episode_id, "graph": graph})
+        answers.append("accepted")
+    except VeriGraphError as exc:
+        answers.append(exc.message)
+    assert answers[0] == answers[1] == answers[2]
+    assert (answers[0] == "accepted") == valid, answers[0]

@@ -18,12 +18,32 @@ from verigraph.actions.model import AlignAction, MoveAction, StateAction
 from verigraph.graph.dictionary import STATE_WORDS
 from verigraph.graph.state import WorldState
 
-# The (object, relation, place) edges a known goal asks for (`graph.goal.wanted_placements`).
-# With them a fix keeps the goal edges that hold (it moves an object the goal does not
-# keep where it is) and puts a blocker where the goal wants it when that move is valid;
-# empty (no goal), every fix is the goal-blind one.
+# The (object, relation, place) edges a known goal asks for (`graph.goal.wanted_placements`),
+# with its states (`(fridge, open, "false")`) and sided tangram contacts in the same shape.
+# With them every fix keeps the goal edges, states and contacts that hold (it moves an
+# object the goal does not keep where it is, says to put back what it must move, to
+# close again what the goal wants closed) and moves toward the goal when that move is
+# valid; empty (no goal), every fix is the goal-blind one.
 Wanted = frozenset[tuple[str, str, str]]
 NO_GOAL: Wanted = frozenset()
+
+
+def wanted_state(wanted: Wanted, obj: str, key: str) -> bool | None:
+    """The value the goal wants for `obj`'s state `key`, or None (the goal is silent)."""
+    if (obj, key, "true") in wanted:
+        return True
+    if (obj, key, "false") in wanted:
+        return False
+    return None
+
+
+def kept_note(state: WorldState, obj: str, wanted: Wanted) -> str:
+    """`; then put knife back on board (the goal keeps it there)` for an object a fix
+    must move off a goal edge that holds; empty otherwise."""
+    where = state.support.get(obj)
+    if where is None or (obj, *where) not in wanted:
+        return ""
+    return f"; then put {obj} back {where[0]} {where[1]} (the goal keeps it there)"
 
 
 def _violation(action: MoveAction | AlignAction | StateAction, constraint: str, message: str,
@@ -114,6 +134,9 @@ def _free_place(state: WorldState, obj: str, exclude: set[str],
     planned = planned or {}
     if wanted and (toward := _goal_place(state, obj, exclude, planned, wanted)):
         return toward
+    if wanted:  # never a place the goal forbids (`(not (on cup_1 plate_a))`)
+        exclude = exclude | {place for o, relation, place in wanted
+                             if o == obj and relation.startswith("not ")}
     for surface in state.fixed_surfaces:
         if _takes(state, obj, surface, exclude, planned) == "on":
             return "on", surface, ""
@@ -169,7 +192,8 @@ def _move_text(obj: str, found: tuple[str, str, str]) -> str:
 
 def _place_hint(state: WorldState, obj: str, exclude: set[str], *,
                 wanted: Wanted = NO_GOAL) -> str:
-    """`move(cup, on, desk)`, or a place with the reason it was chosen."""
+    """`move(cup, on, desk)`, or a place with the reason it was chosen (with a goal:
+    where the goal wants it first)."""
     found = _free_place(state, obj, exclude, wanted=wanted)
     return _move_text(obj, found) if found else _no_place(state, obj, exclude)
 
@@ -200,6 +224,23 @@ def _unstack_order(state: WorldState, blockers: list[str]) -> list[str]:
     return order
 
 
+def _unstack_moves(state: WorldState, order: list[str], exclude: set[str],
+                   wanted: Wanted) -> list[str]:
+    """A move for each of the first MAX_NAMED_BLOCKERS objects of `order` (an unstack
+    order), the places accounting for each other (see _clear_hint)."""
+    moving = exclude | set(order)
+    planned: dict[str, int] = {}
+    hints = []
+    for obj in order[:MAX_NAMED_BLOCKERS]:
+        found = _free_place(state, obj, moving, planned, wanted=wanted)
+        if found is None:
+            hints.append(_no_place(state, obj, moving))
+            continue
+        hints.append(_move_text(obj, found) + kept_note(state, obj, wanted))
+        planned[found[1]] = planned.get(found[1], 0) + 1
+    return hints
+
+
 def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str], *,
                 wanted: Wanted = NO_GOAL) -> str:
     """`move knife, spoon and lid somewhere else first, e.g. move(knife, on, counter), ...`
@@ -210,17 +251,8 @@ def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str], *,
     valid in sequence. Only runs on failure, O(moves x MAX_PLACE_CANDIDATES) at most.
     """
     order = _unstack_order(state, blockers)
-    moving = exclude | set(order)
+    hints = _unstack_moves(state, order, exclude, wanted)
     shown = order[:MAX_NAMED_BLOCKERS]
-    planned: dict[str, int] = {}
-    hints = []
-    for obj in shown:
-        found = _free_place(state, obj, moving, planned, wanted=wanted)
-        if found is None:
-            hints.append(_no_place(state, obj, moving))
-            continue
-        hints.append(_move_text(obj, found))
-        planned[found[1]] = planned.get(found[1], 0) + 1
     named = blockers[:MAX_NAMED_BLOCKERS]
     more = len(blockers) - len(named)
     who = _names(named) if not more else f"{', '.join(named)} and {more} more"
@@ -236,13 +268,20 @@ def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str], *,
 
 # -- move: the refusals of the move row's preconditions (verigraph.actions.schemas) ----------
 # Each is called only when its precondition's test failed, and says why and how to fix it.
-def explain_unknown_object(state: WorldState, a: MoveAction | StateAction) -> Violation:
+def explain_unknown_object(state: WorldState, a: MoveAction | StateAction, *,
+                           wanted: Wanted = NO_GOAL) -> Violation:
+    """An id the scene lacks: the ids that look like it; with a goal and an unknown
+    target, the move the goal wants for the object first."""
     names = (("object", a.object), ("target", a.target)) if isinstance(a, MoveAction) \
         else (("object", a.object),)
     role, name = next((r, n) for r, n in names if n not in state.objects)
     near = _nearest_ids(state, name)
     hint = f"did you mean {' or '.join(near)}?" if near else \
         f"use an id from the scene: {', '.join(list(state.objects)[:8])}"
+    if role == "target" and a.object in state.objects and wanted and \
+            state.is_clear(a.object) and \
+            (toward := _goal_place(state, a.object, set(), {}, wanted)):
+        hint = f"e.g. {_move_text(a.object, toward)}; or {hint}"
     return _violation(a, "unknown_object",
                       f"there is no object '{name}' in the scene ({role})", hint)
 
@@ -256,9 +295,11 @@ def explain_relation(state: WorldState, a: MoveAction) -> Violation:
                       f"(R = {', '.join(allowed) or 'none'})", fix)
 
 
-def explain_same_object(state: WorldState, a: MoveAction) -> Violation:
+def explain_same_object(state: WorldState, a: MoveAction, *,
+                        wanted: Wanted = NO_GOAL) -> Violation:
     return _violation(a, "same_object", f"cannot put {a.object} {a.relation} itself",
-                      f"choose a different target, e.g. {_place_hint(state, a.object, set())}")
+                      "choose a different target, e.g. "
+                      f"{_place_hint(state, a.object, set(), wanted=wanted)}")
 
 
 def explain_movable(state: WorldState, a: MoveAction) -> Violation:
@@ -272,7 +313,8 @@ def explain_already_there(state: WorldState, a: MoveAction) -> Violation:
                       "drop this action; it changes nothing")
 
 
-def explain_cycle(state: WorldState, a: MoveAction) -> Violation:
+def explain_cycle(state: WorldState, a: MoveAction, *, wanted: Wanted = NO_GOAL
+                  ) -> Violation:
     chain = state.supports_chain(a.target)
     above = chain[: chain.index(a.object)]
     path = " on ".join([a.target, *above, a.object])
@@ -280,7 +322,8 @@ def explain_cycle(state: WorldState, a: MoveAction) -> Violation:
         a, "would_create_cycle",
         f"cannot put {a.object} {a.relation} {a.target}: {path}, so it would rest on itself",
         f"first move {a.target} off {a.object}, e.g. "
-        f"{_place_hint(state, a.target, {a.object, *above})}", [a.target, *above])
+        f"{_place_hint(state, a.target, {a.object, *above}, wanted=wanted)}"
+        f"{kept_note(state, a.target, wanted)}", [a.target, *above])
 
 
 def explain_clear(state: WorldState, a: MoveAction, *, wanted: Wanted = NO_GOAL) -> Violation:
@@ -291,10 +334,11 @@ def explain_clear(state: WorldState, a: MoveAction, *, wanted: Wanted = NO_GOAL)
                       _clear_hint(state, blockers, {a.object}, wanted=wanted), blockers)
 
 
-def _kind_fix(state: WorldState, a: MoveAction, other: str, takes_other: bool) -> str:
+def _kind_fix(state: WorldState, a: MoveAction, other: str, takes_other: bool,
+              wanted: Wanted) -> str:
     """The fix for a target of the wrong kind: the other relation when the target takes
     it now, else a place that does (never a move the verifier would refuse)."""
-    wanted = "a surface or a container" if a.relation == "on" else "a container or a surface"
+    kinds = "a surface or a container" if a.relation == "on" else "a container or a surface"
     if takes_other and other in state.move_relations:
         if state.support.get(a.object) == (other, a.target):
             return f"{a.object} is already {other} {a.target}; drop this action"
@@ -302,33 +346,34 @@ def _kind_fix(state: WorldState, a: MoveAction, other: str, takes_other: bool) -
         closed = other == "in" and _closed(state, a.target)
         if state.has_room(a.target) and not cycle and not closed:
             return f"use move({a.object}, {other}, {a.target})"
-    return f"choose {wanted}, e.g. {_place_hint(state, a.object, {a.target})}"
+    return f"choose {kinds}, e.g. {_place_hint(state, a.object, {a.target}, wanted=wanted)}"
 
 
-def explain_target_kind(state: WorldState, a: MoveAction) -> Violation:
+def explain_target_kind(state: WorldState, a: MoveAction, *,
+                        wanted: Wanted = NO_GOAL) -> Violation:
     t = state.objects[a.target]
     if a.relation == "on":
         return _violation(a, "target_not_surface",
                           f"{a.target} ({t.label}) is not a surface, nothing can go on it",
-                          _kind_fix(state, a, "in", t.props.container))
+                          _kind_fix(state, a, "in", t.props.container, wanted))
     if a.relation == "in":
         return _violation(a, "target_not_container",
                           f"{a.target} ({t.label}) is not a container, nothing can go in it",
-                          _kind_fix(state, a, "on", t.props.surface))
+                          _kind_fix(state, a, "on", t.props.surface, wanted))
     if a.relation == "under":
         furniture = [o for o in state.fixed_surfaces if o != a.object][:3]
         return _violation(
             a, "target_not_furniture",
             f"{a.target} ({t.label}) is not furniture (a fixed surface), nothing stands "
             "under it", f"use move({a.object}, under, {furniture[0]})" if furniture
-            else f"choose a place, e.g. {_place_hint(state, a.object, {a.target})}")
+            else f"choose a place, e.g. {_place_hint(state, a.object, {a.target}, wanted=wanted)}")
     room = a.target
     near = next((f for f, r in state.rooms.items() if r == room and f != a.object), None)
     return _violation(
         a, "target_is_room",
         f"{room} is a room; an object is placed by furniture and is in the room its "
         "furniture is in", f"use move({a.object}, nextto, {near})" if near else
-        f"choose furniture, e.g. {_place_hint(state, a.object, {room})}")
+        f"choose furniture, e.g. {_place_hint(state, a.object, {room}, wanted=wanted)}")
 
 
 def _closed(state: WorldState, obj: str) -> bool:
@@ -352,7 +397,10 @@ def closed_passage(state: WorldState, obj: str, relation: str, target: str) -> s
     return None
 
 
-def explain_container_closed(state: WorldState, a: MoveAction) -> Violation:
+def explain_container_closed(state: WorldState, a: MoveAction, *,
+                             wanted: Wanted = NO_GOAL) -> Violation:
+    """Open it first; with a goal, close it again after when the goal wants it closed,
+    and say so when the move takes the object off a goal edge that holds."""
     box = closed_passage(state, a.object, a.relation, a.target)
     assert box is not None  # the precondition failed on it
     label = state.objects[box].label
@@ -362,8 +410,14 @@ def explain_container_closed(state: WorldState, a: MoveAction) -> Violation:
         message = f"cannot take {a.object} out of {box} ({label}): {box} is closed"
     else:
         message = f"cannot reach {a.target} in {box} ({label}): {box} is closed"
-    return _violation(a, "container_closed", message,
-                      f"open({box}) first, then {a.text()}", [box])
+    fix = f"open({box}) first, then {a.text()}"
+    if wanted_state(wanted, box, "open") is False:
+        fix += f", then close({box}) (the goal wants it closed)"
+    where = state.support.get(a.object)
+    if where is not None and (a.object, *where) in wanted:
+        fix += (f"; but the goal keeps {a.object} {where[0]} {where[1]}: this move undoes "
+                "it, so drop it unless it clears the way")
+    return _violation(a, "container_closed", message, fix, [box])
 
 
 def explain_capacity(state: WorldState, a: MoveAction, *,
@@ -391,8 +445,11 @@ def explain_capacity(state: WorldState, a: MoveAction, *,
                  if (found := _goal_place(state, o, exclude, {}, wanted))), None) \
         if wanted else None
     hint = hint or next((_move_text(o, found) for o in movers
-                         if (found := _free_place(state, o, exclude))),
-                        None) or _no_place(state, free[0], exclude)
+                         if (found := _free_place(state, o, exclude))), None)
+    if hint is None and not movers:  # none is clear: the first with what rests on it
+        hint = ", ".join(_unstack_moves(state, _unstack_order(state, free[:1]), exclude,
+                                        wanted))
+    hint = hint or _no_place(state, free[0], exclude)
     keeps = f"; the goal keeps {_names(kept[:MAX_NAMED_BLOCKERS])} there" if kept else ""
     return _violation(
         a, "target_full", message,
@@ -427,18 +484,73 @@ def already_explainer(name: str, key: str, value: bool
     """The refusal of `open(fridge)` on an open fridge (`already_open`)."""
     word = STATE_WORDS[key][value]
 
-    def explain(state: WorldState, a: StateAction) -> Violation:
+    def explain(state: WorldState, a: StateAction, *, wanted: Wanted = NO_GOAL) -> Violation:
         default = "" if key in state.states.get(a.object, {}) else \
             f" (no state given: {STATE_WORDS[key][False]})"
-        return _violation(a, f"already_{word}",
-                          f"{a.object} is already {word}{default}",
-                          f"drop this action; {_OPPOSITE[name]}({a.object}) would make it "
-                          f"{STATE_WORDS[key][not value]}")
+        fix = (f"drop this action (the goal wants {a.object} {word})"
+               if wanted_state(wanted, a.object, key) is value else
+               f"drop this action; {_OPPOSITE[name]}({a.object}) would make it "
+               f"{STATE_WORDS[key][not value]}")
+        return _violation(a, f"already_{word}", f"{a.object} is already {word}{default}", fix)
     return explain
 
 
+# -- the goal in a world's refusal (the simulator knows no goal) ---------------------------
+def goal_keeps(state: WorldState, obj: str, wanted: Wanted) -> bool:
+    """Whether the goal keeps `obj` where it is now: its placement, or one of its
+    tangram contacts, is wanted and holds."""
+    if _pinned(state, obj, wanted):
+        return True
+    return any((f"{obj}[{side}]", "touches", f"{other}[{other_side}]") in wanted
+               or (f"{other}[{other_side}]", "touches", f"{obj}[{side}]") in wanted
+               for (piece, side), partners in state.contacts.items() if piece == obj
+               for other, other_side in partners)
+
+
+def with_goal_note(state: WorldState, violation: Violation, wanted: Wanted) -> Violation:
+    """A world's refusal (the simulator's room check or overlap, which know no goal)
+    with a note when its fix would move a blocker the goal keeps where it is."""
+    kept = [b for b in violation.blocking if b in state.objects and goal_keeps(state, b,
+                                                                                wanted)]
+    if kept:
+        them = "it" if len(kept) == 1 else "them"
+        violation.suggestion += (f"; the goal keeps {_names(kept[:MAX_NAMED_BLOCKERS])} "
+                                 f"where {them} {'is' if len(kept) == 1 else 'are'}: prefer "
+                                 f"another target, or put {them} back after")
+    return violation
+
+
 # -- align (tangram, symbolic part; geometry is checked by sim2d) ---------------------------
-def check_align(state: WorldState, a: AlignAction) -> Violation | None:
+def _goal_contacts(wanted: Wanted, piece: str) -> list[tuple[int, str, int]]:
+    """(side, other, other_side) of each contact the goal wants for `piece`."""
+    found = []
+    for source, relation, target in wanted:
+        if relation != "touches" or "[" not in source:
+            continue
+        ends = [(name, int(side[:-1])) for name, side in
+                (x.rsplit("[", 1) for x in (source, target))]
+        for (mine, side), (other, other_side) in (ends, ends[::-1]):
+            if mine == piece:
+                found.append((side, other, other_side))
+    return sorted(found)
+
+
+def _toward_goal_contact(state: WorldState, a: AlignAction, wanted: Wanted) -> str:
+    """`, e.g. align(square, 1, medium_triangle, 1) (a contact the goal wants)` for the
+    first contact the goal wants for the moved piece that align could make now."""
+    for side, other, other_side in _goal_contacts(wanted, a.object):
+        if other in state.objects and (other, other_side) not in \
+                state.partners((a.object, side)) and not any(
+                s[0] != a.object for s in state.partners((other, other_side))):
+            return (f", e.g. align({a.object}, {side}, {other}, {other_side}) (a contact "
+                    "the goal wants)")
+    return ""
+
+
+def check_align(state: WorldState, a: AlignAction, *, wanted: Wanted = NO_GOAL
+                ) -> Violation | None:
+    """The symbolic refusal of an align (sides, occupied sides); with a goal, its fix
+    never breaks a contact the goal wants and moves toward one it wants."""
     for role, name in (("object", a.object), ("target", a.target)):
         if name not in state.objects:
             near = _nearest_ids(state, name)
@@ -465,8 +577,16 @@ def check_align(state: WorldState, a: AlignAction) -> Violation | None:
     taken = next((s for s in state.partners((a.target, a.target_side)) if s[0] != a.object),
                  None)
     if taken is not None:
-        return _violation(a, "side_occupied",
-                          f"side {a.target_side} of {a.target} already touches side {taken[1]} "
-                          f"of {taken[0]}", f"align with a free side of {a.target}, or move "
-                          f"{taken[0]} away first", [taken[0]])
+        message = (f"side {a.target_side} of {a.target} already touches side {taken[1]} of "
+                   f"{taken[0]}")
+        toward = _toward_goal_contact(state, a, wanted)
+        if {(f"{a.target}[{a.target_side}]", "touches", f"{taken[0]}[{taken[1]}]"),
+                (f"{taken[0]}[{taken[1]}]", "touches", f"{a.target}[{a.target_side}]")} \
+                & wanted:
+            return _violation(a, "side_occupied", message,
+                              f"the goal keeps that contact: align {a.object} with another "
+                              f"free side{toward or ' of ' + a.target}", [taken[0]])
+        return _violation(a, "side_occupied", message,
+                          f"align with a free side of {a.target}, or move {taken[0]} away "
+                          f"first{toward}", [taken[0]])
     return None

@@ -28,7 +28,7 @@ from typing import Any, Protocol, runtime_checkable
 
 from pydantic import BaseModel, Field
 
-from verigraph.actions.constraints import NO_GOAL, Wanted
+from verigraph.actions.constraints import NO_GOAL, Wanted, with_goal_note
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction, StateAction
 from verigraph.actions.schemas import MOVE, REFUSED, schema_of
@@ -136,6 +136,8 @@ def run_actions(state: WorldState, actions: Sequence[AnyAction], *,
         if violation is None and world is not None:
             violation = _perform(run, world, action, index)
             assert run.state is not None
+            if violation is not None and wanted:
+                violation = with_goal_note(state, violation, wanted)
             state = run.state  # the prediction, or the observation after a mismatch
             if violation is None:
                 continue

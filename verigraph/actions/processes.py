@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from verigraph.actions.constraints import NO_GOAL, Wanted, kept_note, wanted_state
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import StateAction
 from verigraph.graph.dictionary import STATE_WORDS
@@ -123,13 +124,19 @@ def no_source_explainer(name: str) -> Callable[[WorldState, StateAction], Violat
     role = PROCESSES[name][3]
     word = SOURCE_WORDS[role]
 
-    def explain(state: WorldState, a: StateAction) -> Violation:
+    def explain(state: WorldState, a: StateAction, *, wanted: Wanted = NO_GOAL) -> Violation:
         there = _sources(state, role)
+        # With a goal: the source the goal wants the object on or in first.
+        goal_sources = [place for obj, relation, place in sorted(wanted)
+                        if obj == a.object and relation in ("on", "in")
+                        and place in state.objects
+                        and getattr(state.objects[place].props, role)]
+        there = list(dict.fromkeys([*goal_sources, *there]))
         relation = "in" if there and state.objects[there[0]].props.container and \
             not state.objects[there[0]].props.surface else "on"
         fix = (f"put it on or in a {word} first, e.g. move({a.object}, {relation}, "
-               f"{there[0]})" if there else f"nothing in the scene is a {word}; drop this "
-               "action")
+               f"{there[0]}){kept_note(state, a.object, wanted)}" if there else
+               f"nothing in the scene is a {word}; drop this action")
         return _violation(a, NO_SOURCE[role], f"{a.object} is not on or in a {word}", fix)
     return explain
 
@@ -137,24 +144,40 @@ def no_source_explainer(name: str) -> Callable[[WorldState, StateAction], Violat
 def source_off_explainer(name: str) -> Callable[[WorldState, StateAction], Violation]:
     role = PROCESSES[name][3]
 
-    def explain(state: WorldState, a: StateAction) -> Violation:
+    def explain(state: WorldState, a: StateAction, *, wanted: Wanted = NO_GOAL) -> Violation:
         source = source_below(state, a.object, role)
+        after = (f", then toggle_off({source}) (the goal wants it off)"
+                 if wanted_state(wanted, str(source), "toggled_on") is False else "")
         return _violation(a, SOURCE_OFF[role],
                           f"{a.object} rests on or in {source}, a {SOURCE_WORDS[role]} that is off"
                           + ("" if "toggled_on" in state.states.get(str(source), {}) else
                              " (no state given: off)"),
-                          f"toggle_on({source}) first")
+                          f"toggle_on({source}) first{after}")
     return explain
 
 
 def still_at_source_explainer(name: str) -> Callable[[WorldState, StateAction], Violation]:
     role = PROCESSES[name][3]
 
-    def explain(state: WorldState, a: StateAction) -> Violation:
-        source = source_below(state, a.object, role)
-        fix = f"move {a.object} off {source}" + (
-            f", or toggle_off({source})" if state.objects[str(source)].props.toggleable
-            else "")
+    def explain(state: WorldState, a: StateAction, *, wanted: Wanted = NO_GOAL) -> Violation:
+        source = str(source_below(state, a.object, role))
+        move = f"move {a.object} off {source}"
+        toward = next((f"move({a.object}, {relation}, {place}) (where the goal wants it)"
+                       for obj, relation, place in sorted(wanted)
+                       if obj == a.object and relation in ("on", "in") and place != source
+                       and (a.object, relation, place) != (a.object, *state.support[a.object])),
+                      None)
+        move = toward or move
+        switch = f"toggle_off({source})" if state.objects[source].props.toggleable else ""
+        # With a goal: what keeps a goal edge or state first (the goal keeps the object
+        # where it is: switch the source off; the goal wants the source on: move).
+        pinned = bool(kept_note(state, a.object, wanted))
+        if switch and wanted_state(wanted, source, "toggled_on") is not True and pinned:
+            fix = f"{switch} (the goal keeps {a.object} where it is), or {move}"
+        elif switch and wanted_state(wanted, source, "toggled_on") is True:
+            fix = f"{move} (the goal wants {source} on)"
+        else:
+            fix = move + (f", or {switch}" if switch else "")
         return _violation(a, STILL_AT_SOURCE[role],
                           f"{a.object} rests on {source}, a {SOURCE_WORDS[role]} that is on",
                           fix)

@@ -247,23 +247,25 @@ MOVE = ActionSchema(
     preconditions=(
         Precondition("unknown_object", "(info := objects.get(obj)) is not None and "
                      "(about := objects.get(target)) is not None",
-                     c.explain_unknown_object, gate=True),
+                     c.explain_unknown_object, gate=True, goal_aware=True),
         Precondition("unknown_relation", "relation in state.move_relations",
                      c.explain_relation, gate=True),
-        Precondition("same_object", "obj != target", c.explain_same_object, gate=True),
+        Precondition("same_object", "obj != target", c.explain_same_object, gate=True,
+                     goal_aware=True),
         Precondition("not_movable", "info.props.movable", c.explain_movable),
         Precondition("already_there", "old != (relation, target)", c.explain_already_there),
         Precondition("would_create_cycle",
-                     "not held or obj not in state.supports_chain(target)", c.explain_cycle),
+                     "not held or obj not in state.supports_chain(target)", c.explain_cycle,
+                     goal_aware=True),
         Precondition("object_not_clear", "not held", c.explain_clear, goal_aware=True),
         Precondition("target_not_surface",
                      "props.surface if relation == 'on' else props.container if "
                      "relation == 'in' else fits(props, relation)",
-                     c.explain_target_kind,
+                     c.explain_target_kind, goal_aware=True,
                      also=("target_not_container", "target_not_furniture", "target_is_room")),
         Precondition("container_closed",
                      "not state.openable or closed_passage(state, obj, relation, target) "
-                     "is None", c.explain_container_closed),
+                     "is None", c.explain_container_closed, goal_aware=True),
         Precondition("target_full",
                      "relation not in CARRYING or (cap := props.capacity) is None "
                      "or len(carried[target]) < cap or state.has_room(target)",
@@ -292,7 +294,7 @@ def _state_row(name: str, key: str, value: bool) -> ActionSchema:
             Precondition(wrong_role, f"objects[obj].props.{role}",
                          c.role_explainer(name, role)),
             Precondition(already, f"state.state_value(obj, {key!r}) != {value}",
-                         c.already_explainer(name, key, value)),
+                         c.already_explainer(name, key, value), goal_aware=True),
         ),
         effect=SetState(key, value), household=True)
 
@@ -305,14 +307,14 @@ def _process_row(name: str) -> ActionSchema:
     if needed:
         where = (
             Precondition(p.NO_SOURCE[source], f"source_below(state, obj, {source!r}) is not None",
-                         p.no_source_explainer(name), gate=True),
+                         p.no_source_explainer(name), gate=True, goal_aware=True),
             Precondition(p.SOURCE_OFF[source], f"active_source_below(state, obj, {source!r})",
-                         p.source_off_explainer(name)))
+                         p.source_off_explainer(name), goal_aware=True))
         needs = f"a {role} object, not {STATE_WORDS[key][value]}, on or in a {word} that is on"
     else:
         where = (Precondition(p.STILL_AT_SOURCE[source],
                               f"not active_source_below(state, obj, {source!r})",
-                              p.still_at_source_explainer(name)),)
+                              p.still_at_source_explainer(name), goal_aware=True),)
         needs = f"a {STATE_WORDS[key][True]} object, not on or in a {word} that is on"
     return ActionSchema(
         name=name, parameters=(Parameter("object", needs, role),),

@@ -70,7 +70,7 @@ def validate_action(state: WorldState, action: AnyAction, step: int | None = Non
             pre = next(p for p in row.preconditions if not p.holds(state, *args))
             violation = _refusal(pre, state, action, wanted)
     elif isinstance(action, AlignAction):
-        violation = check_align(state, action)
+        violation = check_align(state, action, wanted=wanted)
     if violation is not None and step is not None:
         violation.step = step
     return violation

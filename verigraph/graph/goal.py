@@ -23,10 +23,12 @@ from verigraph.graph.dictionary import KIND_KEYS, STATE_WORDS, ObjectProperties
 from verigraph.graph.formula import (
     FORMULA_EXAMPLE,
     MAX_FORMULA_CHARS,
+    STATE_KEYS,
     Atom,
     Formula,
     Imply,
     Junction,
+    Not,
     Pairs,
     Quantified,
     parse_formula,
@@ -323,20 +325,40 @@ def wanted_placements(goal: Goal) -> frozenset[Placement]:
     """The (object, relation, place) edges a goal asks for: a goal graph's edges, and a
     formula's positive atoms of two object ids (`(inside tube_e tube_rack)`; an atom with
     a variable, under a `not` or in an `imply`'s condition asks for no one placement).
-    Fixes use them to keep goal edges that hold and to suggest moves toward the goal."""
-    wanted = {(e.source, e.relation, e.target) for e in goal.graph.edges} \
-        if goal.graph is not None else set()
+    Fixes use them to keep goal edges that hold and to suggest moves toward the goal.
+
+    Also in the set, in the same shape: the states a goal asks for, `(fridge, open,
+    "false")` (a goal node's state, a formula's `(open fridge)` or `(not (open fridge))`),
+    a formula's placements it forbids, `(cup_1, "not on", plate_a)`, and each tangram
+    contact with its sides, `(square[1], touches, medium_triangle[1])`, so a fix neither
+    undoes a wanted state or contact nor proposes against it."""
+    wanted: set[Placement] = set()
+    if goal.graph is not None:
+        for e in goal.graph.edges:
+            wanted.add((e.source, e.relation, e.target))
+            if e.relation == "touches":
+                wanted.add((f"{e.source}[{e.source_side or 0}]", "touches",
+                            f"{e.target}[{e.target_side or 0}]"))
+        wanted.update((n.id, key, str(value).lower()) for n in goal.graph.nodes
+                      for key, value in n.state.items())
     if goal.formula is not None:
-        stack: list[Formula] = [parse_formula(goal.formula)]
+        stack: list[tuple[Formula, bool]] = [(parse_formula(goal.formula), True)]
         while stack:
-            node = stack.pop()
+            node, positive = stack.pop()
             if isinstance(node, Atom):
-                if len(node.terms) == 2 and not any(t.startswith("?") for t in node.terms):
-                    wanted.add((node.terms[0], node.relation, node.terms[1]))
+                if any(t.startswith("?") for t in node.terms):
+                    continue
+                if len(node.terms) == 2:  # `(not (on cup plate))`: (cup, "not on", plate)
+                    wanted.add((node.terms[0], ("" if positive else "not ") + node.relation,
+                                node.terms[1]))
+                elif len(node.terms) == 1 and node.relation in STATE_KEYS:
+                    wanted.add((node.terms[0], node.relation, str(positive).lower()))
+            elif isinstance(node, Not):
+                stack.append((node.body, not positive))
             elif isinstance(node, Junction):
-                stack.extend(node.parts)
+                stack.extend((part, positive) for part in node.parts)
             elif isinstance(node, Quantified | Pairs):
-                stack.append(node.body)
+                stack.append((node.body, positive))
             elif isinstance(node, Imply):
-                stack.append(node.then)
+                stack.append((node.then, positive))
     return frozenset(wanted)

@@ -30,6 +30,8 @@ from verigraph.pddl.model import Domain, GroundAtom, Problem
 Formula = tuple[Any, ...]
 MAX_QUANTIFIED = 1_000_000
 COMPILE_FROM = 256  # a quantifier over this many bindings has its body compiled
+# A goal forall not reached names at most this many counterexamples (then how many more).
+MAX_COUNTEREXAMPLES = 20
 _UNSET: Any = object()
 
 
@@ -130,6 +132,34 @@ class Evaluator:
                 if check(binding, state) != want:
                     return (*objs, obj)
         return None
+
+    def why_goal_false(self, f: Formula, binding: list[str | None], names: list[str]) -> str:
+        """`why_false` for a goal formula, except that a goal `forall` names every
+        counterexample (the first MAX_COUNTEREXAMPLES, then how many more): a goal not
+        reached says all that is missing, not only the first passenger not served."""
+        if f[0] != "forall":
+            return self.why_false(f, binding, names)
+        self.tried = 0
+        variables, body = f[1], f[2]
+        found: list[str] = []
+        total = 0
+        for n, objs in enumerate(self.bindings(variables)):
+            if not n & 1023:
+                checkpoint()
+            for (slot, _, _), obj in zip(variables, objs, strict=True):
+                binding[slot] = obj
+            if not self.holds(body, binding):
+                total += 1
+                if len(found) < MAX_COUNTEREXAMPLES:
+                    where = ", ".join(f"{name} = {o}"
+                                      for (_, name, _), o in zip(variables, objs, strict=True))
+                    found.append(f"for {where}: {self.why_false(body, binding, names, 1)}")
+        for slot, _, _ in variables:
+            binding[slot] = None
+        if total <= 1:
+            return self.why_false(f, binding, names)
+        more = f"; ... and {total - len(found)} more" if total > len(found) else ""
+        return f"{total} counterexamples: " + "; ".join(found) + more
 
     def why_false(self, f: Formula, binding: list[str | None], names: list[str],
                   depth: int = 0) -> str:

@@ -451,7 +451,8 @@ class _Simulation:
                 if not ev.holds(f, slots):
                     unmet.append({"literal": formula_text(f, slots, problem.goal_slots),
                                   "expected": True, "last_changed": None,
-                                  "explanation": ev.why_false(f, slots, problem.goal_slots)})
+                                  "explanation": ev.why_goal_false(f, slots,
+                                                                     problem.goal_slots)})
                     if derived is not None:
                         derived_predicates.note(domain, problem, state, unmet[-1], None)
         plan_valid = not violations

@@ -167,6 +167,10 @@ def build_tangram(graph: SceneGraph) -> TangramWorld:
     Pieces are placed breadth-first along the contacts, each aligned with one already
     placed neighbour and checked against all others (no overlap, exactly the contacts
     the graph lists); separate groups and loose pieces are set side by side.
+
+    This is the one rule of a valid tangram start, for every executor: `load_scene`
+    lays out a tangram graph with it whether the episode runs on sim2d or on the graph
+    alone, so both accept and refuse the same starts, with the same reason.
     """
     state = WorldState.from_graph(graph)
     labels = {o.id: o.label for o in state.objects.values()}
@@ -200,10 +204,12 @@ def build_tangram(graph: SceneGraph) -> TangramWorld:
     observed = {frozenset({(e.source, e.source_side or 0), (e.target, e.target_side or 0)})
                 for e in world.observe().edges}
     if observed != set(wanted):
-        extra = sorted(str(sorted(c)) for c in observed - set(wanted))
-        raise SimError("the contacts cannot all hold at once without others appearing: "
-                       f"{'; '.join(extra) or 'geometry inconsistent'}", field="edges",
-                       value=None, fix="list contacts that a real tangram figure can have")
+        extra = sorted(" touches ".join(f"{p}[{side}]" for p, side in sorted(c))
+                       for c in observed - set(wanted))
+        raise SimError("the listed contacts cannot all hold without others the graph does "
+                       f"not list: {'; '.join(extra) or 'geometry inconsistent'}",
+                       field="edges", value=None,
+                       fix="list contacts that a real tangram figure can have")
     return world
 
 
@@ -229,25 +235,42 @@ def _place_group(world: TangramWorld, root: str,
 def _place_piece(world: TangramWorld, piece: str,
                  neighbours: dict[str, list[tuple[int, str, int]]], group: list[str],
                  wanted: dict[frozenset[tuple[str, int]], None]) -> None:
+    """Lay `piece` against a placed neighbour as align would; refuse, naming what went
+    wrong for each listed contact tried, when none gives exactly its listed contacts."""
+    reasons: list[str] = []
     for side_index, other, other_side in neighbours[piece]:
         if other not in group:
             continue
         world.set_pose(piece, align_pose(world.labels[piece], side_index, world.vertices(other),
                                      other_side))
-        if world.overlapping(piece):
+        how = f"laid with side {side_index} against {other}[{other_side}]"
+        hits = world.overlapping(piece)
+        if hits:
+            reasons.append(f"{how}, it overlaps {', '.join(hits)}")
             continue
         mine = world.vertices(piece)
-        ok = True
+        extra: list[str] = []
+        lacking: list[str] = []
         for q in group:
             got = {frozenset({(piece, a), (q, b)})
                    for a, b in touching_sides(mine, world.vertices(q))}
             need = {c for c in wanted if any(pid == q for pid, _ in c)
                     and any(pid == piece for pid, _ in c)}
-            if got != need:
-                ok = False
-                break
-        if ok:
+            extra += [_contact_text(c, piece) for c in got - need]
+            lacking += [_contact_text(c, piece) for c in need - got]
+        if not extra and not lacking:
             return
-    raise SimError(f"'{piece}' cannot touch its neighbours as listed without overlapping or "
-                   "touching others", field="edges", value=piece,
-                   fix="list contacts that a real tangram figure can have")
+        reasons.append(how + "".join(
+            (f", it would also touch {', '.join(extra)}, which the graph does not list"
+             if extra else "",
+             f", it cannot also touch {', '.join(lacking)} as listed" if lacking else "")))
+    raise SimError(f"'{piece}' cannot lie with exactly its listed contacts: "
+                   + "; ".join(reasons[:4]), field="edges", value=piece,
+                   fix="list contacts that a real tangram figure can have (a side touches one "
+                       "other side, and no two listed contacts pull a piece to two places)")
+
+
+def _contact_text(contact: frozenset[tuple[str, int]], piece: str) -> str:
+    """`side 2 to square[1]`: a contact of `piece`, its own side first."""
+    (a, sa), (b, sb) = sorted(contact, key=lambda end: end[0] != piece)
+    return f"side {sa} to {b}[{sb}]"

@@ -235,6 +235,7 @@ def _kitchen_goal_graph(state: WorldState, moved: list[str]) -> SceneGraph:
 
 # -- tangram ------------------------------------------------------------------------------
 def draw_tangram(rng: random.Random, cfg: LevelConfig) -> Generated | None:
+    from verigraph.sim2d import world_for_graph
     from verigraph.sim2d.generator import generate_scene
     from verigraph.tasks.suite_tangram import put_back_goal
 
@@ -271,6 +272,10 @@ def draw_tangram(rng: random.Random, cfg: LevelConfig) -> Generated | None:
         return None
     start = SceneGraph(nodes=list(figure.nodes), edges=kept + wrong,
                        dictionary=figure.dictionary)
+    try:  # a start load_scene takes: its pieces can lie with exactly these contacts
+        world_for_graph(start)
+    except VeriGraphError:
+        return None
     put_back = put_back_goal(figure, start, out)
     if put_back is None:
         return None

@@ -14,11 +14,11 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from verigraph.graph.goal import Goal, GraphDiff, check_goal
 from verigraph.graph.model import SceneGraph
-from verigraph.graph.translator import read_instruction
 from verigraph.tools.context import ToolContext
 from verigraph.tools.executors import arm_mode_of, executors_text, runs_on
 from verigraph.tools.fields import EpisodeId
-from verigraph.tools.store import LiveEpisode, TraceEntry
+from verigraph.tools.request import asked_against
+from verigraph.tools.store import TraceEntry
 from verigraph.tools.summaries import EpisodeState, describe_episode
 from verigraph.tools.texts import edges_line
 
@@ -40,11 +40,11 @@ def get_state(ctx: ToolContext, params: EpisodeRef) -> EpisodeState:
 
 
 # -- end_episode ----------------------------------------------------------------------------
+# end_episode's text names at most this many items of the request not done (all are in
+# `asked_missing`).
+MAX_ASKED_SHOWN = 20
 Verdict = Literal["goal_reached", "partial", "goal_not_reached", "threshold_reached",
                   "no_goal", "no_scene"]
-# The episode's first instruction (load_scene's): the request its verdict is read
-# against, kept in `extras` since later set_goal instructions replace `instruction`.
-ASKED = "asked"
 
 
 class EpisodeVerdict(BaseModel):
@@ -65,8 +65,11 @@ class EpisodeVerdict(BaseModel):
     trace: list[TraceEntry]
     runs_on: str | None = Field(default=None, description="the episode's executor")
     asked_missing: list[str] = Field(
-        default_factory=list, description="what the episode's first instruction asked "
-        "for that does not hold at the end (with why, when it could not be placed)")
+        default_factory=list, description="what the user's request (load_scene's "
+        "instruction, or the first goal set_goal refused or narrowed) asked for that does "
+        "not hold at the end (with why, when it could not be placed)")
+    asked: str | None = Field(default=None, description="which request asked_missing "
+                              "is read against")
 
     def observed(self) -> str | None:
         """A simulator or arm episode: whether every action ended as predicted."""
@@ -88,10 +91,15 @@ class EpisodeVerdict(BaseModel):
         lines = text.split("\n")
         return "\n".join([*lines[:2], observed, *lines[2:]])
 
+    def _asked_text(self) -> str:
+        shown = self.asked_missing[:MAX_ASKED_SHOWN]
+        more = len(self.asked_missing) - len(shown)
+        return "; ".join(shown) + (f"; ... and {more} more" if more else "")
+
     def _verdict_text(self) -> str:
         if self.verdict == "partial":
-            text = ("PARTIAL: the goal set was reached, but it is narrower than the request "
-                    "the episode was loaded with; not done: " + "; ".join(self.asked_missing)
+            text = ("PARTIAL: the goal set was reached, but it is narrower than "
+                    f"{self.asked}; not done: " + self._asked_text()
                     + f"; {self.steps} action(s) in {self.calls} call(s); episode "
                     f"{self.episode_id} closed")
             if self.runs_on is not None:
@@ -105,6 +113,8 @@ class EpisodeVerdict(BaseModel):
                 "no_goal": "ended (no checkable goal was set)",
                 "no_scene": "ended before a scene graph was submitted"}[self.verdict]
         detail = f" ({self.goal_diff.summary()})" if self.goal_diff and not self.success else ""
+        if self.asked_missing:  # no goal was set, but the user asked for something
+            detail += f"; not done of {self.asked}: " + self._asked_text()
         text = (f"{text}{detail}; {self.steps} action(s) in {self.calls} call(s); "
                 f"episode {self.episode_id} closed")
         if self.runs_on is not None:
@@ -121,12 +131,14 @@ def end_episode(ctx: ToolContext, params: EpisodeRef) -> EpisodeVerdict:
         diff = check_goal(state, episode.goal) if state is not None and episode.goal else None
         verdict: Verdict
         asked_missing: list[str] = []
+        asked: str | None = None
         if state is None:
             verdict = "no_scene"
         elif diff is None:
             verdict = "no_goal"
+            asked, asked_missing = asked_against(episode)
         elif diff.satisfied:
-            asked_missing = _asked_missing(episode)
+            asked, asked_missing = asked_against(episode)
             verdict = "partial" if asked_missing else "goal_reached"
         elif episode.threshold_reached:
             verdict = "threshold_reached"
@@ -139,25 +151,7 @@ def end_episode(ctx: ToolContext, params: EpisodeRef) -> EpisodeVerdict:
             steps=len(episode.executed), calls=episode.calls, tau=episode.tau, t=episode.t,
             threshold_reached=episode.threshold_reached, trace=list(episode.trace),
             runs_on=runs_on(episode.executor, arm_mode_of(episode.world)),
-            asked_missing=asked_missing)
+            asked_missing=asked_missing, asked=asked if asked_missing else None)
         ctx.store.remove(episode.id)
         return result
 
-
-def _asked_missing(episode: LiveEpisode) -> list[str]:
-    """What the episode's first instruction asked for (as the translator reads it on the
-    scene as loaded) that the final graph does not have, each with why it could not be
-    placed when the words asked for more than the scene holds. A goal that was narrowed
-    (part of the request refused or left out) thus never ends as plain SUCCESS."""
-    asked = episode.extras.get(ASKED)
-    if not isinstance(asked, str) or episode.initial_graph is None or episode.state is None:
-        return []
-    reading = read_instruction(asked, episode.initial_graph)
-    support = episode.state.support
-    missing = [e.sentence() for e in reading.edges
-               if support.get(e.source) != (e.relation, e.target)]
-    for sentence, why in reading.unplaced:
-        obj, relation, target = sentence.split(" ", 2)
-        if support.get(obj) != (relation, target):
-            missing.append(f"{sentence} (asked, but {why})")
-    return missing

@@ -35,6 +35,7 @@ from verigraph.arm import (
 from verigraph.arm.models import RunMode
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.sim2d import world_for_graph
 from verigraph.tools.errors import EpisodeLimitError, ToolArgumentError
 
 EXECUTOR_HELP = "graph (verify only), sim2d or arm:<pybullet|rosbridge|xarm>"
@@ -312,3 +313,12 @@ def _hardware_key(config: ArmConfig) -> str | None:
     if config.mode == "dry-run" or config.driver == "pybullet":
         return None
     return f"{config.driver}@{config.host}"
+
+
+def check_tangram_start(state: WorldState) -> None:
+    """The one rule of a valid tangram start, whatever the executor: the pieces can lie
+    as align lays them with exactly the listed contacts and no overlap, as the
+    simulator lays them out (`sim2d.tangram.build_tangram`, whose SimError names the
+    piece, each contact tried and what went wrong). Anything but tangram passes."""
+    if state.objects and all(o.props.sides is not None for o in state.objects.values()):
+        world_for_graph(state.to_graph())

@@ -53,6 +53,14 @@ from verigraph.tools.fields import (
 )
 from verigraph.tools.images import decode_base64_image
 from verigraph.tools.perceived import Perceived, perceive_photo
+from verigraph.tools.request import (
+    WORLD_LIMITS,
+    is_narrower,
+    keep_asked_goal,
+    keep_asked_words,
+    left_out,
+)
+from verigraph.tools.store import LiveEpisode
 from verigraph.tools.texts import goal_edges_text, goal_line
 
 Instruction = Field(default=None, max_length=4000,
@@ -135,7 +143,8 @@ class SetGoalInput(BaseModel):
     episode_id: EpisodeId
     graph: BoundedGraph | None = Field(default=None, description="goal scene graph")
     edges: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
-                              description="goal edges as text")
+                              description="goal edges as text; 'x not on y' makes "
+                                          "them a formula")
     formula: str | None = Field(default=None, max_length=MAX_GOAL_EDGES_CHARS,
                                 description=f"BDDL, e.g. {FORMULA_EXAMPLE}")
     partial: bool | None = Field(default=None, description="only the listed edges must "
@@ -237,6 +246,37 @@ _STATE_OF_WORD = {word: (key, value) for key, words in STATE_WORDS.items()
                   for value, word in ((False, words[0]), (True, words[1]))}
 
 
+# `cup_1 not on plate_a`: an item that asks for an edge NOT to hold.
+_NOT_EDGE_TEXT = re.compile(r"\s*+([\w.-]++)\s++not\s++([a-z_]++)\s++([\w.-]++)\s*+")
+
+
+def negated_edges_formula(text: str) -> str | None:
+    """Goal edges with `x not on y` items, as the formula they mean: `(and (on plate_b
+    tray) (not (on cup_1 plate_a)))` (a graph goal cannot say "not"); None when no item
+    is negated or an item is not an edge, a negated edge or a state (goal_from_edges
+    then reports it)."""
+    items = [i for i in re.split(r"[;\n]", text) if i.strip()]
+    parts: list[str] = []
+    negated = False
+    for item in items:
+        if (m := _NOT_EDGE_TEXT.fullmatch(item)) is not None:
+            source, relation, target = m.groups()
+            parts.append(f"(not ({relation} {source} {target}))")
+            negated = True
+        elif (m := _EDGE_TEXT.fullmatch(item)) is not None:
+            source, relation, target = m.groups()
+            parts.append(f"({relation} {source} {target})")
+        elif (m := _STATE_TEXT.fullmatch(item)) is not None:
+            obj, word = m.groups()
+            key, value = _STATE_OF_WORD[word]
+            parts.append(f"({key} {obj})" if value else f"(not ({key} {obj}))")
+        else:
+            return None
+    if not negated:
+        return None
+    return parts[0] if len(parts) == 1 else f"(and {' '.join(parts)})"
+
+
 def goal_from_edges(text: str, state: WorldState | None, *, field: str = "edges",
                     partial: bool = True) -> Goal:
     """`cup on table; spoon in pot` (or one per line, or move(...) forms) as a goal;
@@ -288,8 +328,9 @@ def goal_from_edges(text: str, state: WorldState | None, *, field: str = "edges"
     if problems or not (edges or states):
         raise ToolArgumentError(
             "goal edges: " + ("; ".join(problems[:10]) or "no edge given"), field=field,
-            value=text[:80], fix="write one 'source relation target' per item, separated by "
-                                 f"';', with ids from the scene: "
+            value=text[:80], fix="write one 'source relation target' (or 'source not "
+                                 "relation target') per item, separated by ';', with ids from "
+                                 "the scene: "
                                  f"{', '.join(sorted(state.objects)[:20])}")
     # The scene's nodes (as `state.to_graph().stateless_nodes()` has them, in id order),
     # read off the state itself: the scene's edges are not needed.
@@ -337,6 +378,8 @@ def resolve_goal(goal: Goal | str, state: WorldState, *, field: str = "goal") ->
             return Goal(predicate=name)  # type: ignore[arg-type]
         if looks_like_formula(name):
             return goal_from_formula(name, state, field=field)
+        if (negated := negated_edges_formula(name)) is not None:
+            return goal_from_formula(negated, state, field=field)
         return goal_from_edges(goal, state, field=field)
     if goal.graph is not None:
         goal = goal.model_copy(update={"graph": _with_scene_nodes(goal.graph, state, field)})
@@ -496,8 +539,17 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
 
     Words alone are translated into a proposal (accepted: false) that is not stored: the
     client confirms it by sending its edges back, so a misread word never becomes the
-    goal unseen.
+    goal unseen. A goal the scene cannot hold is refused but kept as the user's request
+    (`tools.request`): the call ends normally, so a durable store saves that, and then
+    the refusal is raised.
     """
+    out = _set_goal(ctx, params)
+    if isinstance(out, ToolArgumentError):
+        raise out
+    return out
+
+
+def _set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput | ToolArgumentError:
     graph = params.graph
     image = decode_base64_image(params.image) if params.image is not None else None
     with ctx.store.use(params.episode_id) as episode:
@@ -521,6 +573,12 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
         formula, formula_field = params.formula, "formula"
         if params.edges is not None and looks_like_formula(params.edges):
             formula, formula_field = params.edges, "edges"
+        elif params.edges is not None and \
+                (negated := negated_edges_formula(params.edges)) is not None:
+            formula, formula_field = negated, "edges"
+            reading.notes.append("edges with 'not' read as the formula they mean (a goal "
+                                 "graph cannot say not); for every cup and plate at once: "
+                                 f"formula='{FORMULA_EXAMPLE}'")
         elif params.edges is not None:
             edges_goal = goal_from_edges(params.edges, episode.state,
                                          partial=params.partial is not False)
@@ -531,7 +589,9 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
         if graph is not None or params.predicate is not None or formula is not None:
             goal = Goal(graph=graph, partial=partial, predicate=params.predicate,
                         formula=formula, instruction=params.instruction)
-            check_goal_against(goal, episode.state, field="goal" if graph is None else "graph")
+            refused = _beyond_the_scene(goal, episode, "goal" if graph is None else "graph")
+            if refused is not None:
+                return refused
             if formula is not None and episode.state is None:
                 reading.notes.append("no scene graph yet, so the formula's ids and kinds "
                                      "are not checked: an id the submitted scene lacks "
@@ -543,6 +603,7 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
                                                          or episode.dictionary_name))
         elif params.instruction is not None:
             reading = _from_words(params.instruction, episode.state)
+            keep_asked_words(episode, params.instruction)
         if not reading.accepted:
             if params.instruction is not None:  # the words are kept; the proposal is not
                 episode.instruction = params.instruction
@@ -556,6 +617,7 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
                               accepted=False, proposal=proposal, notes=reading.notes,
                               label_readings=readings)
         if goal is not None:
+            _note_narrowing(episode, goal, reading.notes)
             episode.goal = goal
         if params.instruction is not None:
             episode.instruction = params.instruction
@@ -565,3 +627,38 @@ def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:
                           instruction=episode.instruction, checkable=goal is not None,
                           goal_satisfied=diff.satisfied if diff else None, goal_diff=diff,
                           notes=reading.notes, label_readings=readings)
+
+
+def _beyond_the_scene(goal: Goal, episode: LiveEpisode, field: str
+                      ) -> ToolArgumentError | None:
+    """check_goal_against; a goal refused because the scene cannot hold it (a rule of
+    WORLD_LIMITS, e.g. a capacity) is kept as the request and its refusal returned, to
+    be raised once the call's changes are saved. Any other refusal is raised here."""
+    state = episode.state
+    try:
+        check_goal_against(goal, state, field=field)
+    except ToolArgumentError as exc:
+        if goal.graph is None or state is None:
+            raise
+        limits = [p.message for p in check_well_formed(goal.graph, state.dictionary,
+                                                       partial=goal.partial)
+                  if p.rule in WORLD_LIMITS]
+        if not limits:
+            raise
+        keep_asked_goal(episode, goal, "refused by set_goal: " + "; ".join(limits[:3]))
+        return ToolArgumentError(
+            f"{exc.message}\nthe scene cannot hold this goal, so it is kept as the user's "
+            "request: a narrower goal set and reached ends PARTIAL, naming what is left out",
+            field=exc.field, value=exc.value, fix=exc.fix)
+    return None
+
+
+def _note_narrowing(episode: LiveEpisode, goal: Goal, notes: list[str]) -> None:
+    """A goal replacing one it asks a strict subset of keeps the old one as the request;
+    a goal leaving part of the request out says so (end_episode will say PARTIAL)."""
+    if episode.goal is not None and is_narrower(goal, episode.goal):
+        keep_asked_goal(episode, episode.goal, "narrowed by a later set_goal")
+    asked, missing = left_out(episode, goal)
+    if missing:
+        notes.append(f"narrower than {asked}: it leaves out {'; '.join(missing[:10])}; "
+                     "end_episode will say PARTIAL, not SUCCESS: tell the user")

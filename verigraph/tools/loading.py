@@ -22,13 +22,13 @@ from verigraph.graph.wellformed import label_readings
 from verigraph.sim2d import SimWorld, generate_scene, world_for_graph
 from verigraph.sim2d.persist import world_state
 from verigraph.tools.context import ToolContext
-from verigraph.tools.episodes import ASKED
 from verigraph.tools.errors import ToolArgumentError
 from verigraph.tools.executors import (
     EXECUTOR_HELP,
     SceneCheck,
     arm_setup_for,
     check_executor,
+    check_tangram_start,
     enabled_executors,
     executors_text,
 )
@@ -44,6 +44,7 @@ from verigraph.tools.fields import (
 from verigraph.tools.goals import BoundedGoal, Instruction, check_goal_against
 from verigraph.tools.images import decode_base64_image
 from verigraph.tools.perceived import perceive_photo
+from verigraph.tools.request import ASKED
 from verigraph.tools.store import DEFAULT_K, DEFAULT_THRESHOLD, LiveEpisode
 from verigraph.tools.summaries import EpisodeState, describe_episode
 
@@ -170,6 +171,8 @@ def load_scene_tool(ctx: ToolContext, params: LoadSceneInput) -> EpisodeState:
         state = state_from_graph(_with_dictionary(source.graph, params.dictionary))
         if executor == "sim2d" and world is None:
             world = world_for_graph(state.to_graph(), seed=params.seed)
+        elif world is None:
+            check_tangram_start(state)  # the rule sim2d's layout applies, for every executor
         if goal is not None:
             check_goal_against(goal, state, field="goal")
     elif executor == "sim2d":

@@ -28,7 +28,7 @@ from verigraph.sim2d.render import encode_png
 from verigraph.tools.context import ToolContext
 from verigraph.tools.drawing import draw_graph, render_caption
 from verigraph.tools.errors import ToolArgumentError
-from verigraph.tools.executors import SceneCheck, arm_setup_for
+from verigraph.tools.executors import SceneCheck, arm_setup_for, check_tangram_start
 from verigraph.tools.fields import (
     DictionaryName,
     EpisodeId,
@@ -238,6 +238,7 @@ def submit_scene_graph(ctx: ToolContext, params: SubmitSceneGraphInput) -> Scene
             return result
         if episode.state is None:
             state = WorldState.from_graph(result.graph, dictionary)
+            check_tangram_start(state)  # the start rule every executor shares
             if episode.executor.startswith("arm:"):  # the arm waited for this graph
                 setup = arm_setup_for(episode.executor, ctx.config.arm)
                 episode.world, episode.scene_check = ctx.arms.open(setup, state,
