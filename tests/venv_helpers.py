@@ -13,6 +13,7 @@ from __future__ import annotations
 import functools
 import os
 import socket
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -79,3 +80,14 @@ def child_env(**extra: str) -> dict[str, str]:
     inherited = {k: v for k, v in os.environ.items()
                  if k != "PYTHONPATH" and not k.upper().startswith(("UV_", "PIP_"))}
     return {**inherited, **offline_settings(), **extra}
+
+
+def assert_reaches_loopback_only(python: Path) -> None:
+    """A request to PyPI from `python` with `child_env()` is refused at once by the
+    loopback proxy (PyPI itself would answer, or time out): the child is offline."""
+    probe = subprocess.run(
+        [str(python), "-c", "import urllib.request; "
+         "urllib.request.urlopen('https://pypi.org/simple/certifi/', timeout=30)"],
+        capture_output=True, text=True, timeout=60, env=child_env(), cwd=OUTSIDE)
+    assert probe.returncode != 0 and "Connection refused" in probe.stderr, \
+        probe.stderr[-2000:]

@@ -23,7 +23,13 @@ require("openenv", "pip install 'verigraph-mcp[env]'")
 
 from env_doubles import ScriptedPlannerEndpointForTests  # noqa: E402
 from openenv_helpers import serving_app  # noqa: E402
-from venv_helpers import OUTSIDE, child_env, harness_wheels, venv_python  # noqa: E402
+from venv_helpers import (  # noqa: E402
+    OUTSIDE,
+    assert_reaches_loopback_only,
+    child_env,
+    harness_wheels,
+    venv_python,
+)
 
 from verigraph.env.openenv_server import create_openenv_app  # noqa: E402
 from verigraph.env.procedural import ProceduralEnv  # noqa: E402
@@ -74,12 +80,7 @@ def test_the_children_cannot_reach_an_index_but_have_the_harness_wheels() -> Non
     verifiers environment fails at once, and uv resolves the harness program there from
     .tools/verifiers-wheels alone."""
     python, wheels = verifiers_python(), harness_wheels()
-    probe = subprocess.run(
-        [str(python), "-c", "import httpx; httpx.get('https://pypi.org/simple/certifi/')"],
-        capture_output=True, text=True, timeout=60, env=child_env(), cwd=OUTSIDE)
-    # refused by the loopback proxy at once (PyPI itself would answer, or time out)
-    assert probe.returncode != 0 and "Connection refused" in probe.stderr, \
-        probe.stderr[-2000:]
+    assert_reaches_loopback_only(python)
     resolved = subprocess.run(
         [str(python.parent / "uv"), "pip", "compile", "--no-cache", "--quiet", "--python",
          str(python), str(wheels / "chat_program.py")],
