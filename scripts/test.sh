@@ -6,8 +6,10 @@
 #                                          0.10 and verifiers 0.4 in their own environments
 #                                          (scripts/install_integration.sh, uv from PyPI,
 #                                          both in parallel: 10 s from scratch with uv's
-#                                          own install, 17-33 s on a loaded machine;
-#                                          their tests about 2 minutes)
+#                                          own install, 17-33 s on a loaded machine, and
+#                                          1.3-1.7 s more for the wheels of verifiers'
+#                                          chat harness; their tests about 2 minutes,
+#                                          offline: loopback only)
 #   scripts/test.sh --fast [PYTEST ARGS]   the fast tier only: installs the core and `dev`,
 #                                          no service, no server subprocess, no training
 #                                          (under two minutes on two cores)

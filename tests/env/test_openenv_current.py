@@ -6,7 +6,8 @@ VeriGraph's served environment (procedural blocks, level 1) runs in this process
 OpenEnv 0.10 server runs as a child in its own virtual environment and forwards every
 session to it; OpenEnv 0.10's client, in a second child, plays an episode: a refused
 action first (the verifier's violation comes back), then the oracle's plan (reward 1.0,
-done), a level moved on reset, and a refused reset reported as an error.
+done), a level moved on reset, and a refused reset reported as an error. The children
+reach loopback only (tests/venv_helpers.py): nothing is fetched at test time.
 """
 
 from __future__ import annotations
@@ -28,7 +29,13 @@ require("openenv", "pip install 'verigraph-mcp[env]'")
 import httpx  # noqa: E402
 from mcp_helpers import free_port  # noqa: E402
 from openenv_helpers import serving_app  # noqa: E402
-from venv_helpers import OUTSIDE, ROOT, child_env, venv_python  # noqa: E402
+from venv_helpers import (  # noqa: E402
+    OUTSIDE,
+    ROOT,
+    assert_reaches_loopback_only,
+    child_env,
+    venv_python,
+)
 
 from verigraph.env.openenv_server import create_openenv_app  # noqa: E402
 from verigraph.graph.model import SceneGraph  # noqa: E402
@@ -146,6 +153,12 @@ def test_the_openenv_environment_cannot_import_verigraph() -> None:
         cwd=OUTSIDE).stdout.split()
     assert out[0] == "0.10.0" and int(out[1].split(".")[0]) < 2 and out[2] == "True"
     assert sys.version_info >= (3, 10)
+
+
+def test_the_openenv_children_reach_loopback_only() -> None:
+    """The server, the client and `openenv validate` above run with child_env(): a
+    request to PyPI from this environment is refused, and they pass all the same."""
+    assert_reaches_loopback_only(openenv_python())
 
 
 def test_openenv_validate_passes_the_package_and_the_running_server(openenv_url: str

@@ -6,7 +6,9 @@ plays them multi-turn against a model endpoint, the verifier's feedback coming b
 the user's turns and the reward being VeriGraph's.
 
 In the default run (not `slow`): scripts/test.sh builds the environment with uv, a few
-seconds.
+seconds, and downloads the chat harness program's wheels. The children run offline
+(tests/venv_helpers.py: proxies that refuse, uv's only index those wheels) with a home
+of their own, so `vf-eval` prepares its harness program afresh from the wheels alone.
 """
 
 from __future__ import annotations
@@ -21,7 +23,13 @@ require("openenv", "pip install 'verigraph-mcp[env]'")
 
 from env_doubles import ScriptedPlannerEndpointForTests  # noqa: E402
 from openenv_helpers import serving_app  # noqa: E402
-from venv_helpers import OUTSIDE, child_env, venv_python  # noqa: E402
+from venv_helpers import (  # noqa: E402
+    OUTSIDE,
+    assert_reaches_loopback_only,
+    child_env,
+    harness_wheels,
+    venv_python,
+)
 
 from verigraph.env.openenv_server import create_openenv_app  # noqa: E402
 from verigraph.env.procedural import ProceduralEnv  # noqa: E402
@@ -67,6 +75,20 @@ def test_verifiers_loads_the_taskset_and_its_tasks_are_verigraph_episodes() -> N
     assert loaded["mcp"] == "2.0.0"  # verifiers' pin: why it has its own environment
 
 
+def test_the_children_cannot_reach_an_index_but_have_the_harness_wheels() -> None:
+    """What makes the `vf-eval` run below an offline one: a request to PyPI from the
+    verifiers environment fails at once, and uv resolves the harness program there from
+    .tools/verifiers-wheels alone."""
+    python, wheels = verifiers_python(), harness_wheels()
+    assert_reaches_loopback_only(python)
+    resolved = subprocess.run(
+        [str(python.parent / "uv"), "pip", "compile", "--no-cache", "--quiet", "--python",
+         str(python), str(wheels / "chat_program.py")],
+        capture_output=True, text=True, timeout=120, env=child_env(), cwd=OUTSIDE)
+    assert resolved.returncode == 0, resolved.stderr[-2000:]
+    assert "mcp==2.0.0" in resolved.stdout and "openai==" in resolved.stdout
+
+
 def refuse_then_oracle(level: int, seeds: range) -> dict[str, str]:
     """observation -> answer: a refused action first, then the oracle's steps (the
     server's episodes are these: the same generator, level and seeds)."""
@@ -85,7 +107,11 @@ def refuse_then_oracle(level: int, seeds: range) -> dict[str, str]:
 
 def test_vf_eval_plays_multi_turn_episodes_with_the_verifiers_feedback(tmp_path: Path
                                                                        ) -> None:
-    python = verifiers_python()
+    python, wheels = verifiers_python(), harness_wheels()
+    home = tmp_path / "home"  # empty caches: the harness program is prepared in this run
+    env = child_env(PATH=f"{python.parent}:{child_env()['PATH']}", HOME=str(home),
+                    UV_CACHE_DIR=str(home / ".cache" / "uv"), UV_PYTHON=str(python))
+    assert env["UV_DEFAULT_INDEX"] == wheels.as_uri() and "127.0.0.1" in env["HTTPS_PROXY"]
     endpoint = ScriptedPlannerEndpointForTests(refuse_then_oracle(2, range(2)))
     with endpoint, serving_app(create_openenv_app(family="blocks", level=1)) as url:
         out = subprocess.run(
@@ -94,11 +120,13 @@ def test_vf_eval_plays_multi_turn_episodes_with_the_verifiers_feedback(tmp_path:
              "--env.taskset.size", "2", "--env.player.runtime.type", "subprocess",
              "--env.player.harness.id", "null", "-m", "scripted",
              "--client.base-url", endpoint.base_url, "--no-push", "--no-rich",
-             "-o", str(tmp_path)],
-            capture_output=True, text=True, timeout=600, cwd=OUTSIDE,
-            env=child_env(PATH=f"{python.parent}:{child_env()['PATH']}"))
+             "-o", str(tmp_path / "out")],
+            capture_output=True, text=True, timeout=600, cwd=OUTSIDE, env=env)
     assert out.returncode == 0, (out.stdout + out.stderr)[-3000:]
-    [traces] = list(tmp_path.glob("*/traces.jsonl"))
+    # the harness program was prepared here, offline: its script and uv environment
+    assert list((home / ".cache" / "verifiers" / "runtimes" / "scripts").glob("*.py"))
+    assert list((home / ".cache" / "uv" / "environments-v2").iterdir())
+    [traces] = list((tmp_path / "out").glob("*/traces.jsonl"))
     episodes = [json.loads(line) for line in traces.read_text().splitlines()]
     assert len(episodes) == 2
     for episode in episodes:
