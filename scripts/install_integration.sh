@@ -52,7 +52,7 @@ install() {
 # here, at install time, into .tools/verifiers-wheels: the program's requirements pinned
 # for this environment's Python (uv pip compile reads the program's header, taken from
 # verifiers' source) and downloaded in parallel (scripts/download_wheels.py), so the tests
-# prepare it from that directory alone (UV_NO_INDEX and UV_FIND_LINKS, set by
+# prepare it from that directory alone (UV_DEFAULT_INDEX and UV_FIND_LINKS, set by
 # tests/venv_helpers.py) and never reach an index. Skipped while the header is unchanged.
 harness_wheels() {
   local venv=.tools/verifiers-venv wheels=.tools/verifiers-wheels
