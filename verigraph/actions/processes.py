@@ -108,7 +108,7 @@ def _sources(state: WorldState, role: str) -> list[str]:
     return [o for o, info in state.objects.items() if getattr(info.props, role)][:3]
 
 
-def already_explainer(name: str) -> Callable[[WorldState, StateAction], Violation]:
+def already_processed_explainer(name: str) -> Callable[[WorldState, StateAction], Violation]:
     key, value, _, _, _ = PROCESSES[name]
     word = STATE_WORDS[key][value]
 

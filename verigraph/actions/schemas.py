@@ -325,7 +325,7 @@ def _process_row(name: str) -> ActionSchema:
                          c.role_explainer(name, role), gate=True),
             *(pre for pre in where if pre.gate),  # the table checks gates first
             Precondition(p.ALREADY[name], f"state.state_value(obj, {key!r}) != {value}",
-                         p.already_explainer(name)),
+                         p.already_processed_explainer(name)),
             *(pre for pre in where if not pre.gate)),
         effect=SetState(key, value), household=True)
 

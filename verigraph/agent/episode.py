@@ -23,7 +23,7 @@ from verigraph.planning.iteration import (
     DEFAULT_K,
     DEFAULT_THRESHOLD,
     MAX_ACTIONS_PER_CALL,
-    execute_actions,
+    call_execute_actions,
     prompt_goal,
     read_state,
 )
@@ -128,7 +128,7 @@ class EpisodeRun:
         self.trace.instruction = self.instruction
 
     def execute(self, actions: list[AnyAction]) -> dict[str, Any]:
-        out = execute_actions(self.env, self.episode_id, actions)
+        out = call_execute_actions(self.env, self.episode_id, actions)
         self.graph, self.goal_satisfied, self.goal_diff = read_state(out)
         self.history.extend(out["executed"])
         self.trace.actions_executed += len(out["executed"])

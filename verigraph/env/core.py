@@ -57,7 +57,7 @@ from verigraph.planning.iteration import (
     DEFAULT_THRESHOLD,
     MAX_ACTIONS_PER_CALL,
     Iteration,
-    execute_actions,
+    call_execute_actions,
     prompt_goal,
     read_state,
 )
@@ -241,7 +241,7 @@ class VeriGraphEnv(gym.Env[str, str]):
         self._distance = goal_distance(self.graph, self.privileged_goal)
 
     def _execute(self, tools: ToolEnvironment, actions: list[AnyAction]) -> dict[str, Any]:
-        out = execute_actions(tools, self.episode_id, actions)
+        out = call_execute_actions(tools, self.episode_id, actions)
         self._absorb(out)
         self.history.extend(out["executed"])
         self.moves += len(out["executed"])

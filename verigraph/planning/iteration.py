@@ -4,7 +4,7 @@ the agent alike.
 `Iteration.step(reply, execute, goal)` takes the planner's reply (parsed actions or a
 parse error), keeps at most k moves (`split_proposal`), sends them with `execute` (the
 caller's `execute_actions` call, which also updates the caller's view of the episode),
-reads the goal back with `goal`, and returns an `Outcome`: the verdict, the feedback for
+reads the goal back with `goal`, and returns an `IterationOutcome`: the verdict, the feedback for
 the next prompt, tau, and the stop it calls for, if any. The verigraph.env environment
 (`VeriGraphEnv.step`) and the agent's loop (`verigraph.agent.loop`) both drive it, so the
 verdicts, the premature-`done` sentence and the tau rule exist once.
@@ -14,7 +14,7 @@ iteration is a malformed answer, a refused action (violation) or a premature `do
 clean iteration or an accepted end token resets it to 0, and tau reaching t stops the
 episode. The server's own counter (`execute_actions`' `tau`, kept in the trace as
 `server_tau`) only sees the calls that reach it, so it counts violations alone; the
-iteration stops when either reaches t (`Outcome.server_threshold`), which is how the one
+iteration stops when either reaches t (`IterationOutcome.server_threshold`), which is how the one
 rule serves a caller that sends malformed answers (they never reach the server) and one
 that does not.
 
@@ -42,7 +42,8 @@ from verigraph.tools.acting import MAX_ACTIONS_PER_CALL
 from verigraph.tools.store import DEFAULT_K, DEFAULT_THRESHOLD
 
 __all__ = ["DEFAULT_K", "DEFAULT_THRESHOLD", "MAX_ACTIONS_PER_CALL", "Execute", "GoalView",
-           "Iteration", "Outcome", "Reading", "execute_actions", "prompt_goal", "read_state"]
+           "Iteration", "IterationOutcome", "StateReading", "call_execute_actions", "prompt_goal",
+           "read_state"]
 
 Execute = Callable[[list[AnyAction]], Mapping[str, Any]]
 """Send actions to `execute_actions` and return its result (the caller absorbs it)."""
@@ -50,7 +51,7 @@ GoalView = Callable[[], tuple["bool | None", "GraphDiff | None"]]
 """The caller's current (goal_satisfied, goal_diff)."""
 
 
-class Reading(NamedTuple):
+class StateReading(NamedTuple):
     """What a driver of the iteration keeps of a tool's answer (`load_scene`,
     `get_state`, `execute_actions`): the graph and the goal check."""
 
@@ -59,14 +60,14 @@ class Reading(NamedTuple):
     goal_diff: GraphDiff | None
 
 
-def read_state(state: Mapping[str, Any]) -> Reading:
+def read_state(state: Mapping[str, Any]) -> StateReading:
     """The graph and the goal check of a tool's answer, as models."""
     diff = state.get("goal_diff")
-    return Reading(SceneGraph.model_validate(state["graph"]), state.get("goal_satisfied"),
+    return StateReading(SceneGraph.model_validate(state["graph"]), state.get("goal_satisfied"),
                    GraphDiff.model_validate(diff) if diff else None)
 
 
-def execute_actions(tools: ToolEnvironment, episode_id: str,
+def call_execute_actions(tools: ToolEnvironment, episode_id: str,
                     actions: list[AnyAction]) -> dict[str, Any]:
     """Call `execute_actions` with `actions` on the episode and return its answer."""
     return tools.call("execute_actions", {
@@ -92,7 +93,7 @@ def premature_done_feedback(diff: GraphDiff | None) -> Feedback:
 
 
 @dataclass
-class Outcome:
+class IterationOutcome:
     """What one iteration came to."""
 
     verdict: IterationVerdict
@@ -128,10 +129,10 @@ class Iteration:
         self.stop_on_goal = stop_on_goal
         self.tau = 0
 
-    def step(self, reply: PlannerReply, execute: Execute, goal: GoalView) -> Outcome:
+    def step(self, reply: PlannerReply, execute: Execute, goal: GoalView) -> IterationOutcome:
         """Judge one reply: execute its moves, update tau, and say whether to stop."""
         moves, done, dropped = split_proposal(reply.actions, self.k)
-        outcome = Outcome(verdict="clean", feedback=None, tau=self.tau, moves=moves,
+        outcome = IterationOutcome(verdict="clean", feedback=None, tau=self.tau, moves=moves,
                           dropped=dropped)
         if reply.error is not None or not (moves or done):
             outcome.feedback = malformed_feedback(reply)

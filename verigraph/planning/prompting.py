@@ -43,10 +43,10 @@ def planner_prompt(mode: Mode, state: WorldState, goal: Goal | None, *, k: int |
     that only the instruction is shown, while the episode keeps the ground truth.
     """
     relations = pieces.prompt_relations(state)
-    household = pieces.is_household(state)
+    household = pieces.speaks_household(state)
     return prompts.render(
         TEMPLATE[mode], relations=", ".join(relations), objects=pieces.objects_text(state),
-        current_graph=pieces.graph_text(state), goal=pieces.goal_text(goal, instruction),
+        current_graph=pieces.graph_text(state), goal=pieces.goal_section(goal, instruction),
         actions=pieces.actions_text(relations, household),
         constraints=pieces.constraints_text(relations, household),
         history=history_line(history), feedback=feedback_line(feedback, iteration),

@@ -15,7 +15,7 @@ from verigraph.actions.schemas import SCHEMAS
 from verigraph.graph.dictionary import PLACEMENT_RELATIONS, SUPPORT_RELATIONS
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
-from verigraph.prompts.filling import is_household
+from verigraph.prompts.filling import speaks_household
 
 SCHEMA_NAME = "verigraph_actions"
 
@@ -45,7 +45,7 @@ def action_schema(graph: SceneGraph | None = None, *, constrain_ids: bool = True
         ids = sorted(state.objects) if constrain_ids else []
         tangram = any(o.props.sides for o in state.objects.values())
         tabletop = not tangram
-        household = tabletop and is_household(state)
+        household = tabletop and speaks_household(state)
         kinds = PLACEMENT_RELATIONS if household else SUPPORT_RELATIONS
         relations = [r for r in state.dictionary.relations if r in kinds] or relations
     variants: list[dict[str, Any]] = []

@@ -34,7 +34,7 @@ def _is_tangram(relations: Sequence[str]) -> bool:
     return "touches" in relations and "on" not in relations
 
 
-def is_household(state: WorldState) -> bool:
+def speaks_household(state: WorldState) -> bool:
     """Whether the scene has what only household worlds have: openable objects, rooms,
     object states given, or an object under or next to another. Prompts speak of the
     household actions and rules only then, so a tabletop in the household dictionary
@@ -47,9 +47,9 @@ def is_household(state: WorldState) -> bool:
 
 def prompt_relations(state: WorldState) -> tuple[str, ...]:
     """The relations a prompt names: the dictionary's R, without the household ones
-    (`under`, `nextto`, `inroom`) unless the scene is a household (`is_household`)."""
+    (`under`, `nextto`, `inroom`) unless the scene is a household (`speaks_household`)."""
     relations = state.dictionary.relations
-    if is_household(state):
+    if speaks_household(state):
         return relations
     return tuple(r for r in relations if r in SUPPORT_RELATIONS or r not in HOUSEHOLD_RELATIONS)
 
@@ -57,7 +57,7 @@ def prompt_relations(state: WorldState) -> tuple[str, ...]:
 def objects_text(state: WorldState) -> str:
     """One line per object with its role; in a household, its states too (`openable,
     now closed (default)`)."""
-    household = is_household(state)
+    household = speaks_household(state)
     lines = []
     for obj in state.objects.values():
         p = obj.props
@@ -105,7 +105,7 @@ def rooms_text(state: WorldState) -> str:
                                  for room, items in by_room.items())
 
 
-def goal_text(goal: Goal | None, instruction: str | None = None) -> str:
+def goal_section(goal: Goal | None, instruction: str | None = None) -> str:
     lines = []
     if instruction or (goal and goal.instruction):
         lines.append(f"Instruction: {instruction or (goal.instruction if goal else '')}")
@@ -193,10 +193,10 @@ def fill_planner_prompt(name: str, state: WorldState, goal: Goal | None, *, k: i
                    episode_id: str | None = None) -> str:
     """The iterative or direct planner prompt for a state and goal."""
     relations = prompt_relations(state)
-    household = is_household(state)
+    household = speaks_household(state)
     return prompts.render(
         name, relations=", ".join(relations), objects=objects_text(state),
-        current_graph=graph_text(state), goal=goal_text(goal, instruction),
+        current_graph=graph_text(state), goal=goal_section(goal, instruction),
         actions=actions_text(relations, household),
         constraints=constraints_text(relations, household),
         history=history_text(executed), feedback=feedback_text(violation, calls), k=k,

@@ -33,7 +33,7 @@ LAMP_RADIUS = 2.0  # world units: 6 px across even in a wide household render
 DOOR_THICKNESS = 2.0  # thick enough to show its colour inside the outline at 3 px/unit
 
 
-def is_household(graph: SceneGraph, props: dict[str, object]) -> bool:
+def lays_out_household(graph: SceneGraph, props: dict[str, object]) -> bool:
     """A graph with rooms, doors, switches' states or the household placements."""
     if any(e.relation in HOUSEHOLD_RELATIONS for e in graph.edges):
         return True

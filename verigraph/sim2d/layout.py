@@ -20,7 +20,7 @@ from verigraph.sim2d import physics
 from verigraph.sim2d.beside import BESIDE, place_beside
 from verigraph.sim2d.bodies import furniture_spec, movable_spec
 from verigraph.sim2d.errors import SimError
-from verigraph.sim2d.household import Household, is_household
+from verigraph.sim2d.household import Household, lays_out_household
 from verigraph.sim2d.physics import BodyPose
 from verigraph.sim2d.placement import FIXED_GAP
 from verigraph.sim2d.putdown import put_down
@@ -61,7 +61,7 @@ def build_tabletop(graph: SceneGraph, seed: int = 0) -> TabletopWorld:
     """A TabletopWorld whose observed graph equals `graph` (raises SimError otherwise)."""
     state = WorldState.from_graph(graph)
     scene = TabletopScene()
-    scene.household = is_household(graph, {o.id: o.props for o in state.objects.values()})
+    scene.household = lays_out_household(graph, {o.id: o.props for o in state.objects.values()})
     fixed = [o for o in state.objects.values() if not o.props.movable and not o.props.room]
     household = Household() if scene.household else None
     depth = 0.0

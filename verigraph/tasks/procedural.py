@@ -77,7 +77,7 @@ class LevelConfig(BaseModel):
 
 
 @dataclass(frozen=True)
-class Generated:
+class DrawnTask:
     """One drawn task before it becomes a `Task`."""
 
     graph: SceneGraph
@@ -87,7 +87,7 @@ class Generated:
     constraints: int
 
 
-Draw = Callable[[random.Random, LevelConfig], Generated | None]
+Draw = Callable[[random.Random, LevelConfig], DrawnTask | None]
 
 
 @dataclass(frozen=True)
@@ -151,7 +151,7 @@ def _blocks_graph(stacks: list[list[str]]) -> SceneGraph:
     return SceneGraph(nodes=nodes, edges=edges, dictionary="blocks")
 
 
-def draw_blocks(rng: random.Random, cfg: LevelConfig) -> Generated | None:
+def draw_blocks(rng: random.Random, cfg: LevelConfig) -> DrawnTask | None:
     n, towers = cfg.objects, min(cfg.towers, cfg.objects // 2)
     ids = _block_ids(n + cfg.distractors, rng)
     goal_blocks, extra = ids[:n], ids[n:]
@@ -180,12 +180,12 @@ def draw_blocks(rng: random.Random, cfg: LevelConfig) -> Generated | None:
     goal = Goal(graph=goal_graph, partial=True,
                 instruction=f"Build {len(goal_towers)} tower(s), each from the bottom up: "
                             f"{words}. The other blocks may end up anywhere.")
-    return Generated(_blocks_graph(start), goal, n - len(goal_towers) + len(burying),
+    return DrawnTask(_blocks_graph(start), goal, n - len(goal_towers) + len(burying),
                      len(extra), len(burying))
 
 
 # -- kitchen ------------------------------------------------------------------------------
-def draw_kitchen(rng: random.Random, cfg: LevelConfig) -> Generated | None:
+def draw_kitchen(rng: random.Random, cfg: LevelConfig) -> DrawnTask | None:
     from verigraph.actions.validator import apply_action
     from verigraph.sim2d.generator import generate_scene, valid_moves
     from verigraph.sim2d.room import room_violation
@@ -220,7 +220,7 @@ def draw_kitchen(rng: random.Random, cfg: LevelConfig) -> Generated | None:
         if length > cfg.length + 2:
             return None
         if length >= cfg.length:
-            return Generated(scene.graph, goal, length, len(movable) - len(moved),
+            return DrawnTask(scene.graph, goal, length, len(movable) - len(moved),
                              len(blocked))
     return None
 
@@ -234,7 +234,7 @@ def _kitchen_goal_graph(state: WorldState, moved: list[str]) -> SceneGraph:
 
 
 # -- tangram ------------------------------------------------------------------------------
-def draw_tangram(rng: random.Random, cfg: LevelConfig) -> Generated | None:
+def draw_tangram(rng: random.Random, cfg: LevelConfig) -> DrawnTask | None:
     from verigraph.sim2d import world_for_graph
     from verigraph.sim2d.generator import generate_scene
     from verigraph.tasks.suite_tangram import put_back_goal
@@ -280,7 +280,7 @@ def draw_tangram(rng: random.Random, cfg: LevelConfig) -> Generated | None:
     if put_back is None:
         return None
     goal, length = put_back
-    return Generated(start, goal, length, len(wrong), chained)
+    return DrawnTask(start, goal, length, len(wrong), chained)
 
 
 def _wrong_contacts(rng: random.Random, figure: SceneGraph, out: list[str], count: int

@@ -36,8 +36,8 @@ from verigraph.graph.goal import Goal
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.tasks.procedural import (
+    DrawnTask,
     FamilyGenerator,
-    Generated,
     LevelConfig,
     register_generator,
 )
@@ -225,7 +225,7 @@ class _House:
         return SceneGraph(nodes=nodes, edges=edges, dictionary="household")
 
 
-def draw_household(rng: random.Random, cfg: LevelConfig) -> Generated | None:
+def draw_household(rng: random.Random, cfg: LevelConfig) -> DrawnTask | None:
     """One household task at the knobs of `cfg`, or None (module docstring)."""
     from verigraph.actions.model import StateAction
     from verigraph.solver import solve
@@ -262,7 +262,7 @@ def draw_household(rng: random.Random, cfg: LevelConfig) -> Generated | None:
                    for a in result.plan)
     if not cfg.length <= length <= cfg.length + LENGTH_SLACK or switched < cfg.constraints:
         return None
-    return Generated(graph, goal, length, cfg.distractors, switched)
+    return DrawnTask(graph, goal, length, cfg.distractors, switched)
 
 
 def _sentence(words: list[str]) -> str:
