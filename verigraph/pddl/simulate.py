@@ -89,7 +89,7 @@ from verigraph.pddl.model import (
 from verigraph.pddl.plans import MAX_STEPS, Step, line_reader, parse_strips_plan
 from verigraph.pddl.reader import PddlInputError, read_domain, read_problem
 
-__all__ = ["MAX_ACHIEVERS", "complete_binding", "simulate", "total_value",
+__all__ = ["MAX_ACHIEVERS", "complete_binding", "explain_steps", "simulate", "total_value",
            "validate_strips_dict"]
 MAX_EXPLAINED_GOALS = 20
 # a plan that stopped at a failing step: that step is what to fix, and its state is not
@@ -304,7 +304,7 @@ class _Simulation:
         """Apply `steps`, numbered from `first`, until one fails (or, with `all_errors`,
         skipping each that fails)."""
         domain, problem, state = self.domain, self.problem, self.state
-        derived, changed, explainer = self.derived, self.changed, self.explainer
+        derived, changed = self.derived, self.changed
         out_steps, violations = self.out_steps, self.violations
         schemas = domain.schemas
         compiled: dict[str, _Compiled] = problem.compiled
@@ -385,27 +385,11 @@ class _Simulation:
                                       "edit": {"removed": [show(a) for a in removed],
                                                "added": [show(a) for a in added]}})
                     continue
-                if failure is None:
-                    unsatisfied = _unsatisfied(schemas[name], binding, state, changed, domain,
-                                               problem)
             if failure is not None:
                 constraint, message, suggestion = failure
-            else:
-                state_index = StateIndex(state)
-                for k, item in enumerate(unsatisfied):
-                    if "atom" not in item:
-                        if derived is not None:
-                            derived_predicates.note(domain, problem, state, item, None)
-                        continue  # an ADL condition: explained by why_false already
-                    atom = item.pop("atom")
-                    item.update(history(atom, item["expected"], changed, state, state_index,
-                                        domain.static))
-                    if derived is not None:
-                        derived_predicates.note(domain, problem, state, item, atom)
-                    if k < 3 and len(violations) < MAX_EXPLAINED_FAILURES:
-                        item["achievers"] = explainer.achievers(state_index, atom,
-                                                                item["expected"])
+            else:  # a precondition is false
                 constraint = "precondition_unsatisfied"
+                unsatisfied = self.unsatisfied(schemas[name], binding)
                 message = f"{text} needs " + "; ".join(
                     f"{u['literal']} ({u['explanation']})" for u in unsatisfied)
                 fixed = [u["literal"] for u in unsatisfied if u.get("fixed")]
@@ -426,11 +410,55 @@ class _Simulation:
         """The JSON-ready report of the run so far: its steps and violations, and the
         goal checked in the state it ended in (unmet goals explained)."""
         domain, problem, state = self.domain, self.problem, self.state
-        derived, violations, explainer = self.derived, self.violations, self.explainer
+        violations = self.violations
+        unmet = self.unmet_goals(MAX_EXPLAINED_GOALS if all_errors or not violations
+                                 else MAX_EXPLAINED_GOALS_AFTER_FAILURE)
+        plan_valid = not violations
+        missing = [u["literal"] for u in unmet]
+        report: dict[str, Any] = {
+            "engine": "strips", "valid": plan_valid and not unmet, "plan_valid": plan_valid,
+            "goal_reached": not unmet, "steps": self.out_steps, "violations": violations,
+            "not_checked": not_checked, "done": False,
+            "goal_diff": {"satisfied": not unmet, "missing_atoms": missing},
+            "unmet_goals": unmet,
+            "final_state": sorted(map(show, state)),
+        }
+        if all_errors:
+            report["after_failure"] = SKIPPED
+        if _has_costs(domain) or problem.initial_cost is not None:
+            report["total_cost"] = total_value(self.total_cost)
+        return report
+
+    def unsatisfied(self, schema: Schema, binding: tuple[str, ...]) -> list[dict[str, Any]]:
+        """The preconditions of `schema` under `binding` that are false in the state, each
+        with the step that last changed it (or what holds instead) and, for the first
+        three, the actions that would achieve it; [] when every one holds."""
+        domain, problem, state, derived = self.domain, self.problem, self.state, self.derived
+        changed = self.changed
+        unsatisfied = _unsatisfied(schema, binding, state, changed, domain, problem)
+        state_index = StateIndex(state)
+        for k, item in enumerate(unsatisfied):
+            if "atom" not in item:
+                if derived is not None:
+                    derived_predicates.note(domain, problem, state, item, None)
+                continue  # an ADL condition: explained by why_false already
+            atom = item.pop("atom")
+            item.update(history(atom, item["expected"], changed, state, state_index,
+                                domain.static))
+            if derived is not None:
+                derived_predicates.note(domain, problem, state, item, atom)
+            if k < 3 and len(self.violations) < MAX_EXPLAINED_FAILURES:
+                item["achievers"] = self.explainer.achievers(state_index, atom,
+                                                             item["expected"])
+        return unsatisfied
+
+    def unmet_goals(self, explained: int) -> list[dict[str, Any]]:
+        """The goals that do not hold in the state, each with its history and, for the
+        first `explained`, the actions that would achieve it."""
+        domain, problem, state = self.domain, self.problem, self.state
+        derived, explainer = self.derived, self.explainer
         unmet: list[dict[str, Any]] = []
         final_index = StateIndex(state)
-        explained = MAX_EXPLAINED_GOALS if all_errors or not violations \
-            else MAX_EXPLAINED_GOALS_AFTER_FAILURE
         for goals, expected in ((problem.goal_pos, True), (problem.goal_neg, False)):
             for atom in goals:
                 if holds(atom, state) != expected:
@@ -454,21 +482,52 @@ class _Simulation:
                                   "explanation": ev.why_false(f, slots, problem.goal_slots)})
                     if derived is not None:
                         derived_predicates.note(domain, problem, state, unmet[-1], None)
-        plan_valid = not violations
-        missing = [u["literal"] for u in unmet]
-        report: dict[str, Any] = {
-            "engine": "strips", "valid": plan_valid and not unmet, "plan_valid": plan_valid,
-            "goal_reached": not unmet, "steps": self.out_steps, "violations": violations,
-            "not_checked": not_checked, "done": False,
-            "goal_diff": {"satisfied": not unmet, "missing_atoms": missing},
-            "unmet_goals": unmet,
-            "final_state": sorted(map(show, state)),
-        }
-        if all_errors:
-            report["after_failure"] = SKIPPED
-        if _has_costs(domain) or problem.initial_cost is not None:
-            report["total_cost"] = total_value(self.total_cost)
-        return report
+        return unmet
+
+
+Applied = Iterable[tuple[int, str, tuple[str, ...]]]  # (step number, action, binding)
+
+
+def explain_steps(domain: Domain, problem: Problem, applied: Applied,
+                  failing: tuple[str, tuple[str, ...]] | None
+                  ) -> tuple[list[dict[str, Any]] | None, list[dict[str, Any]]]:
+    """The explanations of a plan another engine judged (the native blocks world), in this
+    engine's form: `applied` are the steps it applied, `failing` the step it refused (or
+    None). Their effects are replayed onto the initial state, no precondition tested (the
+    other engine judged them), recording the step that last changed each atom, as the
+    fast run's hand-over reads it back from its edits. Returns the failing step's
+    unsatisfied preconditions (as `_Simulation.run` explains them; [] for an object the
+    action does not take; None when every precondition holds here, which would be a
+    disagreement between the engines) and, when no step failed, the unmet goals."""
+    sim = _Simulation(domain, problem)
+    state, changed, compiled = sim.state, sim.changed, problem.compiled
+    for index, name, binding in applied:
+        if not index & 4095:
+            checkpoint()  # the server's per-call budget and cancellation
+        fast = compiled.get(name)
+        if fast is None:
+            fast = compiled[name] = _Compiled(domain, problem, domain.schemas[name])
+        adds = [g(binding) for g in fast.add]
+        add_set = set(adds)
+        removed = [a for a in dict.fromkeys(g(binding) for g in fast.delete)
+                   if a in state and a not in add_set]
+        state.difference_update(removed)
+        added = [a for a in dict.fromkeys(adds) if a not in state]
+        state.update(added)
+        mark = (index, "(" + " ".join((name, *binding)) + ")")
+        for atom in removed:
+            changed[atom] = mark
+        for atom in added:
+            changed[atom] = mark
+    if failing is None:
+        return None, sim.unmet_goals(MAX_EXPLAINED_GOALS)
+    name, binding = failing
+    schema = domain.schemas[name]
+    fast = compiled.get(name) or _Compiled(domain, problem, schema)
+    if not all(map(frozenset.__contains__, fast.admits, binding)) and _check_objects(
+            domain, problem, schema, Step(name, binding, 0, None)) is not None:
+        return [], []
+    return sim.unsatisfied(schema, binding) or None, []
 
 
 # A ground action of the fast run: the positive and negative preconditions on predicates
