@@ -7,13 +7,18 @@ a domain silently. `validate_pddl_dict` then tries the blocks-world recogniser (
 names: recognition is by structure) because its hand model is several times faster; a
 domain or problem it refuses (another domain, or a blocks-world problem whose initial
 state no scene can hold) goes to the general STRIPS simulator, which judges it by PDDL's
-own semantics. An invalid blocks-world plan is then also explained by the STRIPS
-simulator, so both engines report the same fields: the unsatisfied preconditions with the
-step that last made each false, and the actions that would achieve an unmet goal. A
+own semantics. One engine judges each plan: where the blocks engine refuses a step or
+misses the goal it explains that itself, in the STRIPS engine's form (the unsatisfied
+preconditions with the step that last made each false, the actions that would achieve an
+unmet goal), from the history of the steps it applied (`simulate.explain_steps`, which
+replays their effects and tests no precondition), so both engines report the same fields
+and no plan is judged twice. A
 blocks-world plan with a line that is no action of the domain, and any invalid plan
 checked with `all_errors=True`, is judged by the STRIPS simulator (each line of PlanBench
 text read as the blocks world reads it), which makes such lines failing steps and goes on
-after a failure. The report says which engine judged it (`engine`).
+after a failure (the blocks engine goes no further than the first failure, so with
+`all_errors` it only finds whether there is one). The report says which engine judged it
+(`engine`).
 """
 
 from __future__ import annotations
