@@ -302,77 +302,38 @@ class _Simulation:
 
     def run(self, steps: Iterable[Step], first: int, all_errors: bool) -> None:
         """Apply `steps`, numbered from `first`, until one fails (or, with `all_errors`,
-        skipping each that fails)."""
+        skipping each that fails). Each step is grounded as the fast run grounds it
+        (`_ground_action`, kept on the problem under its (action, args)), and applied
+        from that ground action; a step it does not apply is judged and explained here."""
         domain, problem, state = self.domain, self.problem, self.state
         derived, changed = self.derived, self.changed
         out_steps, violations = self.out_steps, self.violations
         schemas = domain.schemas
         compiled: dict[str, _Compiled] = problem.compiled
-        costs = _has_costs(domain)
+        grounded: dict[Any, _Ground] = problem.grounded
         total_cost = self.total_cost
-        values = problem.values
-        fast: _Compiled
         for index, step in enumerate(steps, start=first):
             name, binding, _, failure = step
             if not index & 4095:
                 checkpoint()  # the server's per-call budget and cancellation
+            action = {"action": name, "args": list(binding)}
+            unsatisfied: list[dict[str, Any]] = []
             if failure is not None:
                 text = name
-                action = {"action": name, "args": list(binding)}
-                unsatisfied: list[dict[str, Any]] = []
             else:
-                got = compiled.get(name)
-                if got is None:
-                    got = compiled[name] = _Compiled(domain, problem, schemas[name])
-                fast = got
                 text = "(" + " ".join((name, *binding)) + ")"
-                action = {"action": name, "args": list(binding)}
-                for arg, admits in zip(binding, fast.admits, strict=True):
-                    if arg not in admits:
-                        failure = _check_objects(domain, problem, schemas[name], step)
-                        break
-                unsatisfied = []
-            if failure is None:
-                holds_all = True
-                for g, eq in fast.pre_pos:
-                    atom = g(binding)
-                    if not (atom[1] == atom[2] if eq else atom in state):
-                        holds_all = False
-                        break
-                if holds_all:
-                    for g, eq in fast.pre_neg:
-                        atom = g(binding)
-                        if atom[1] == atom[2] if eq else atom in state:
-                            holds_all = False
-                            break
-                if holds_all and fast.adl is not None:
-                    adl = _adl_step(domain, problem, fast.adl, binding, state)
-                    if adl is None:
-                        holds_all = False
-                elif holds_all and fast.checks is not None:
-                    holds_all = all(check(binding, state) for check in fast.checks)
-                if holds_all and costs:
-                    cost = _cost(fast, binding, values)
-                    if isinstance(cost, tuple):
-                        failure = ("precondition_unsatisfied", f"{text} needs a value for "
-                                   f"{show(cost)}, its cost, which the initial state does not "
-                                   "give", f"add (= {show(cost)} N) to the problem's :init")
-                        holds_all = False
-                    else:
-                        total_cost += cost
-                if holds_all:
-                    dels = [g(binding) for g in fast.delete]
-                    adds = [g(binding) for g in fast.add]
-                    if fast.adl is not None and adl is not None:
-                        dels += adl[1]
-                        adds += adl[0]
-                    if len(dels) < 2 and len(adds) < 2:
-                        add_set: set[GroundAtom] | tuple[GroundAtom, ...] = tuple(adds)
-                    else:
-                        add_set = set(adds)
-                    removed = [a for a in dict.fromkeys(dels) if a in state and a not in add_set]
+                key = step[:2]  # the key simulate's fast run grounds a step under
+                entry = grounded.get(key)
+                if entry is None:
+                    fast = compiled.get(name)
+                    if fast is None:
+                        fast = compiled[name] = _Compiled(domain, problem, schemas[name])
+                    got = _ground_action(domain, problem, fast, step)
+                    if got is not None:
+                        entry = grounded[key] = got
+                if entry is not None and (edit := _edit(domain, problem, entry, state)):
+                    removed, added, shown = edit
                     state.difference_update(removed)
-                    added = [a for a in dict.fromkeys(adds) if a not in state]
                     state.update(added)
                     for atom in removed:
                         changed[atom] = (index, text)
@@ -380,11 +341,11 @@ class _Simulation:
                         changed[atom] = (index, text)
                     if derived is not None:  # derived predicates follow the basic atoms
                         derived.follow(state, removed, added, changed, index, text)
+                    total_cost += entry[7]
                     out_steps.append({"step": index, "ok": True, "action": action,
-                                      "text": text,
-                                      "edit": {"removed": [show(a) for a in removed],
-                                               "added": [show(a) for a in added]}})
+                                      "text": text, "edit": shown})
                     continue
+                failure = self._refused(schemas[name], step, entry is not None)
             if failure is not None:
                 constraint, message, suggestion = failure
             else:  # a precondition is false
@@ -405,6 +366,30 @@ class _Simulation:
             if not all_errors:
                 break
         self.total_cost = total_cost
+        if len(grounded) > MAX_GROUNDED:
+            grounded.clear()
+
+    def _refused(self, schema: Schema, step: Step, grounded: bool
+                 ) -> tuple[str, str, str] | None:
+        """Why a step that does not apply fails: an object its action does not take, a
+        cost with no value in the initial state (checked after the preconditions, which
+        come first), or None: a precondition is false. `grounded`: the step was grounded
+        (its objects, static preconditions and cost are fine)."""
+        if grounded:
+            return None
+        domain, problem = self.domain, self.problem
+        fast = problem.compiled[schema.name]
+        if not all(map(frozenset.__contains__, fast.admits, step.args)):
+            failure = _check_objects(domain, problem, schema, step)
+            if failure is not None:
+                return failure
+        if _unsatisfied(schema, step.args, self.state, self.changed, domain, problem):
+            return None
+        cost = _cost(fast, step.args, problem.values)
+        term = show(cost) if isinstance(cost, tuple) else "?"
+        text = "(" + " ".join((schema.name, *step.args)) + ")"
+        return ("precondition_unsatisfied", f"{text} needs a value for {term}, its cost, "
+                "which the initial state does not give", f"add (= {term} N) to the problem's :init")
 
     def report(self, not_checked: int, all_errors: bool) -> dict[str, Any]:
         """The JSON-ready report of the run so far: its steps and violations, and the
@@ -528,6 +513,44 @@ def explain_steps(domain: Domain, problem: Problem, applied: Applied,
             domain, problem, schema, Step(name, binding, 0, None)) is not None:
         return [], []
     return sim.unsatisfied(schema, binding) or None, []
+
+
+def _edit(domain: Domain, problem: Problem, entry: _Ground, state: set[GroundAtom]
+          ) -> tuple[list[GroundAtom], list[GroundAtom], dict[str, list[str]]] | None:
+    """What the ground action `entry` changes in `state` (the atoms it removes and adds,
+    and the report's edit), or None when a precondition is false: the step-by-step run's
+    way of applying a step (the fast run inlines the same tests)."""
+    pre, neg, removed, added, edit, action, _, _, sure, checks, ordered, adl, _ = entry
+    if not pre <= state or (neg is not None and not state.isdisjoint(neg)) or (
+            checks is not None and not all(c(action["args"], state) for c in checks)):
+        return None
+    if adl is not None:
+        changes = _adl_changes(domain, problem, adl, tuple(action["args"]), state)
+        if changes is None:
+            return None
+        gone, new = changes
+    elif sure and state.isdisjoint(added):
+        return list(ordered), list(added), edit
+    else:
+        gone = [a for a in ordered if a in state]
+        new = [a for a in added if a not in state]
+    return gone, new, {"removed": [show(a) for a in gone], "added": [show(a) for a in new]}
+
+
+def _adl_changes(domain: Domain, problem: Problem, fast: _Compiled, args: tuple[str, ...],
+                 state: set[GroundAtom]) -> tuple[list[GroundAtom], list[GroundAtom]] | None:
+    """The atoms a step of a schema with an ADL part removes from `state` and adds to it
+    (each once, in order; an atom both deleted and added is added), or None when an ADL
+    precondition is false."""
+    assert fast.adl is not None
+    effects = _adl_step(domain, problem, fast.adl, args, state)
+    if effects is None:
+        return None
+    adds = [g(args) for g in fast.add] + effects[0]
+    add_set = set(adds)
+    gone = [a for a in dict.fromkeys([g(args) for g in fast.delete] + effects[1])
+            if a in state and a not in add_set]
+    return gone, [a for a in dict.fromkeys(adds) if a not in state]
 
 
 # A ground action of the fast run: the positive and negative preconditions on predicates
@@ -689,18 +712,12 @@ def _fast_steps(domain: Domain, problem: Problem, keys: Sequence[Any],
             append({"step": index, "ok": True, "action": action, "text": text,
                     "edit": variant[2]})
         else:
-            args, schema = tuple(action["args"]), adl.adl
-            assert schema is not None
-            effects = _adl_step(domain, problem, schema, args, state)
-            if effects is None:
+            changes = _adl_changes(domain, problem, adl, tuple(action["args"]), state)
+            if changes is None:
                 return _handed_over(domain, problem, state, out_steps, total_cost, keys,
                                     step_at, position, index)
-            step_dels = [g(args) for g in adl.delete] + effects[1]
-            step_adds = [g(args) for g in adl.add] + effects[0]
-            add_set = set(step_adds)
-            gone = [a for a in dict.fromkeys(step_dels) if a in state and a not in add_set]
+            gone, new = changes
             state.difference_update(gone)
-            new = [a for a in dict.fromkeys(step_adds) if a not in state]
             state.update(new)
             append({"step": index, "ok": True, "action": action, "text": text,
                     "edit": {"removed": [show(a) for a in gone],
