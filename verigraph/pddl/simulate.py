@@ -15,16 +15,14 @@ it hands its state to the step-by-step run (`_Simulation`), which reads the hist
 from the report's edits and gives every explanation; with `all_errors` or derived
 predicates the step-by-step run takes the whole plan (docs/validator.md, Performance).
 
-The two runs and the generated grounding functions (`fastground.py`) give the same
-report, byte for byte, and all three are kept because each pays for itself
-(`benchmarks/bench_validate.py --grounding`, results/validate.md): the step-by-step run
-is the only one that keeps the history of changed atoms, so it alone explains a failure,
-goes on after one (`all_errors`) and evaluates derived predicates, but run alone it is 3
-to 15 times slower on long valid plans (20,000 steps: blocks 280 ms against 99, gripper
-218 against 15, visitall 219 against 52 ms CPU); the generated functions ground an
-action faster than the closures, which shows where a plan grounds many distinct actions
-(the 20,000-action blocks plan: 99 against 129 ms; the IPC corpus's quick pass: 666
-against 729 ms) and costs nothing where it grounds few (gripper, visitall: within noise).
+Both runs ground a step one way, `_ground_action` (the schema's generated function,
+`fastground.py`, once made; the closures before that and for what it does not cover),
+kept on the problem under (action, args) or the line, and give the same report, byte for
+byte: the step-by-step run applies each step from that ground action and also records
+the step that last changed each atom, which is what lets it alone explain a failure, go
+on after one (`all_errors`) and evaluate derived predicates; the fast run keeps no
+history and is 1.4 to 4 times faster on long valid plans (`benchmarks/bench_validate.py
+--grounding`, results/validate.md).
 
 A plan line that is no action of the domain (an unknown action, the wrong number of
 arguments, `(no plan possible)`, `(1) (feast d b)`) is a failing step of an invalid plan,
