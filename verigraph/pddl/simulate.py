@@ -473,35 +473,45 @@ Applied = Iterable[tuple[int, str, tuple[str, ...]]]  # (step number, action, bi
 
 def explain_steps(domain: Domain, problem: Problem, applied: Applied,
                   failing: tuple[str, tuple[str, ...]] | None
-                  ) -> tuple[list[dict[str, Any]] | None, list[dict[str, Any]]]:
+                  ) -> tuple[list[dict[str, Any]] | None, list[dict[str, Any]] | None]:
     """The explanations of a plan another engine judged (the native blocks world), in this
     engine's form: `applied` are the steps it applied, `failing` the step it refused (or
-    None). Their effects are replayed onto the initial state, no precondition tested (the
-    other engine judged them), recording the step that last changed each atom, as the
-    fast run's hand-over reads it back from its edits. Returns the failing step's
-    unsatisfied preconditions (as `_Simulation.run` explains them; [] for an object the
-    action does not take; None when every precondition holds here, which would be a
-    disagreement between the engines) and, when no step failed, the unmet goals."""
+    None). Each applied step is grounded and applied as the step-by-step run applies it
+    (`_ground_action`, `_edit`), recording the step that last changed each atom. Returns
+    the failing step's unsatisfied preconditions ([] for an object its action does not
+    take) and, when no step failed, the unmet goals; None for either where this engine
+    would judge the plan otherwise (a step the other engine applied that does not apply
+    here, or a refused step whose preconditions all hold): nothing is explained then."""
     sim = _Simulation(domain, problem)
     state, changed, compiled = sim.state, sim.changed, problem.compiled
-    for index, name, binding in applied:
-        if not index & 4095:
-            checkpoint()  # the server's per-call budget and cancellation
-        fast = compiled.get(name)
-        if fast is None:
-            fast = compiled[name] = _Compiled(domain, problem, domain.schemas[name])
-        adds = [g(binding) for g in fast.add]
-        add_set = set(adds)
-        removed = [a for a in dict.fromkeys(g(binding) for g in fast.delete)
-                   if a in state and a not in add_set]
-        state.difference_update(removed)
-        added = [a for a in dict.fromkeys(adds) if a not in state]
-        state.update(added)
-        mark = (index, "(" + " ".join((name, *binding)) + ")")
-        for atom in removed:
-            changed[atom] = mark
-        for atom in added:
-            changed[atom] = mark
+    grounded: dict[Any, _Ground] = problem.grounded
+    try:
+        for index, name, binding in applied:
+            if not index & 4095:
+                checkpoint()  # the server's per-call budget and cancellation
+            entry = grounded.get((name, binding))
+            if entry is None:
+                fast = compiled.get(name)
+                if fast is None:
+                    fast = compiled[name] = _Compiled(domain, problem, domain.schemas[name])
+                got = _ground_action(domain, problem, fast, Step(name, binding, index))
+                if got is None:
+                    return None, None
+                entry = grounded[(name, binding)] = got
+            edit = _edit(domain, problem, entry, state)
+            if edit is None:
+                return None, None
+            removed, added, _ = edit
+            state.difference_update(removed)
+            state.update(added)
+            mark = (index, entry[6])
+            for atom in removed:
+                changed[atom] = mark
+            for atom in added:
+                changed[atom] = mark
+    finally:
+        if len(grounded) > MAX_GROUNDED:
+            grounded.clear()
     if failing is None:
         return None, sim.unmet_goals(MAX_EXPLAINED_GOALS)
     name, binding = failing
@@ -509,8 +519,8 @@ def explain_steps(domain: Domain, problem: Problem, applied: Applied,
     fast = compiled.get(name) or _Compiled(domain, problem, schema)
     if not all(map(frozenset.__contains__, fast.admits, binding)) and _check_objects(
             domain, problem, schema, Step(name, binding, 0, None)) is not None:
-        return [], []
-    return sim.unsatisfied(schema, binding) or None, []
+        return [], None
+    return sim.unsatisfied(schema, binding) or None, None
 
 
 def _edit(domain: Domain, problem: Problem, entry: _Ground, state: set[GroundAtom]

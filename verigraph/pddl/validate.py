@@ -182,8 +182,8 @@ def _canonical(domain_text: str, problem_text: str, plan_text: str) -> str:
 
 def _explain(data: dict[str, Any], domain_text: str, problem_text: str) -> None:
     """The blocks engine's own failure or unmet goal explained in the STRIPS engine's
-    form (`unsatisfied` on the violation, `unmet_goals`): the history is read from the
-    steps it applied (`simulate.explain_steps`), no step judged again."""
+    form (`unsatisfied` on the violation, `unmet_goals`), with the history of the steps
+    it applied (`simulate.explain_steps`)."""
     blocks = cached_domain(domain_text)
     try:
         domain = cached_strips_domain(domain_text)
@@ -193,7 +193,7 @@ def _explain(data: dict[str, Any], domain_text: str, problem_text: str) -> None:
         unsatisfied, unmet = explain_steps(domain, problem, applied, failing)
     except VeriGraphError:
         return
-    if failing is None:
+    if unmet is not None:
         data["unmet_goals"] = unmet
     elif unsatisfied is not None:
         data["violations"][0]["unsatisfied"] = unsatisfied
