@@ -11,13 +11,14 @@ own semantics. One engine judges each plan: where the blocks engine refuses a st
 misses the goal it explains that itself, in the STRIPS engine's form (the unsatisfied
 preconditions with the step that last made each false, the actions that would achieve an
 unmet goal), from the history of the steps it applied (`simulate.explain_steps`, which
-replays their effects and tests no precondition), so both engines report the same fields
-and no plan is judged twice. A
+grounds and applies them as the STRIPS step-by-step run does), so both engines report
+the same fields. A
 blocks-world plan with a line that is no action of the domain, and any invalid plan
 checked with `all_errors=True`, is judged by the STRIPS simulator (each line of PlanBench
 text read as the blocks world reads it), which makes such lines failing steps and goes on
 after a failure (the blocks engine goes no further than the first failure, so with
-`all_errors` it only finds whether there is one). The report says which engine judged it
+`all_errors` it only finds whether there is one, and the STRIPS simulator judges the
+invalid plan again). The report says which engine judged it
 (`engine`).
 """
 
