@@ -806,6 +806,7 @@ def grounding_rows() -> None:
 
     from verigraph.agent.evaluation.markdown import table
     from verigraph.errors import VeriGraphError
+    from verigraph.graph.bulk import collector_paused, promote_young_objects
     from verigraph.pddl.plans import parse_strips_plan
 
     simulate = importlib.import_module("verigraph.pddl.simulate")
@@ -824,9 +825,14 @@ def grounding_rows() -> None:
         return simulate.validate_strips_dict(d, p, t)
 
     def stepwise(d: str, p: str, t: str) -> dict:  # type: ignore[type-arg]
-        domain = simulate.cached_strips_domain(d)
-        problem = simulate.cached_strips_problem(d, p)
-        return simulate.simulate(domain, problem, parse_strips_plan(t, domain), try_fast=False)
+        # with the collector handled as validate_strips_dict handles it for every run
+        with collector_paused(t.count("\n") + 1 + p.count("(")):
+            domain = simulate.cached_strips_domain(d)
+            problem = simulate.cached_strips_problem(d, p)
+            report = simulate.simulate(domain, problem, parse_strips_plan(t, domain),
+                                       try_fast=False)
+            promote_young_objects()
+        return report
 
     scene = big_scene()
     problem_text, hand = as_pddl(scene, valid_random_walk(scene, N_ACTIONS))

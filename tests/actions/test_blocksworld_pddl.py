@@ -165,3 +165,50 @@ def test_the_ascii_line_pattern_reads_every_ascii_line_as_the_unicode_one():
         for line in (f"(pick-up a{c}b)", f"({c}stack a b)", f"(stack a b{c})", f"(x {c} y)",
                      f"(move a b c{c})", f"(x y)\n({c})\n(z w)", f"(x y){c}"):
             assert _PLAIN_ASCII_LINE.findall(line) == _PLAIN_LINE.findall(line), repr(line)
+
+
+def test_the_native_engine_explains_as_the_strips_engine_does():
+    """One engine judges a blocks-world plan and explains its own failure: the native
+    report's `unsatisfied` and `unmet_goals` are those the STRIPS engine gives for the same
+    plan, on domains with renamed names and a reordered parameter list."""
+    import random
+    import re
+
+    from blocksworld_corpus import generate
+    from verigraph.pddl import validate_pddl_dict
+
+    names = ["pick-up", "put-down", "stack", "unstack", "on", "on-table", "clear", "holding",
+             "arm-empty"]
+    pool = ["at", "over", "start", "end", "all", "goal", "either", "define", "and-2", "p",
+            "p-1", "move", "x"]
+
+    def rename(text: str, renaming: dict[str, str]) -> str:
+        return re.sub(r"[^\s()]+", lambda m: renaming.get(m.group(0).lower(), m.group(0)),
+                      text)
+
+    rng = random.Random(11)
+    explained = {"unsatisfied": 0, "unmet_goals": 0}
+    swapped = PLANBENCH.replace(":parameters  (?ob ?underob)\n  :precondition (and (clear "
+                                "?underob) (holding ?ob))", ":parameters  (?underob ?ob)\n"
+                                "  :precondition (and (clear ?underob) (holding ?ob))", 1)
+    assert swapped != PLANBENCH
+    for _spelling, problem, plan, _kind in generate(28, seed=4):
+        if _spelling != "planbench":
+            continue
+        plan = [f"(stack {a.split()[2][:-1]} {a.split()[1]})" if a.startswith("(stack")
+                else a for a in plan]
+        renaming = dict(zip(names, rng.sample(pool, len(names)), strict=False))
+        domain, problem = rename(swapped, renaming), rename(problem, renaming)
+        text = "\n".join(rename(a, renaming) for a in plan)
+        native = validate_pddl_dict(domain, problem, text)
+        strips = validate_pddl_dict(domain, problem, text, engine="strips")
+        assert native["engine"] == "blocksworld" and native["valid"] == strips["valid"]
+        if native["violations"]:
+            got, want = native["violations"][0], strips["violations"][0]
+            assert got["step"] == want["step"]
+            assert got["unsatisfied"] == want["unsatisfied"]
+            explained["unsatisfied"] += bool(got["unsatisfied"])
+        elif not native["valid"]:
+            assert native["unmet_goals"] == strips["unmet_goals"]
+            explained["unmet_goals"] += 1
+    assert explained["unsatisfied"] >= 5 and explained["unmet_goals"] >= 1, explained

@@ -15,16 +15,14 @@ it hands its state to the step-by-step run (`_Simulation`), which reads the hist
 from the report's edits and gives every explanation; with `all_errors` or derived
 predicates the step-by-step run takes the whole plan (docs/validator.md, Performance).
 
-The two runs and the generated grounding functions (`fastground.py`) give the same
-report, byte for byte, and all three are kept because each pays for itself
-(`benchmarks/bench_validate.py --grounding`, results/validate.md): the step-by-step run
-is the only one that keeps the history of changed atoms, so it alone explains a failure,
-goes on after one (`all_errors`) and evaluates derived predicates, but run alone it is 3
-to 15 times slower on long valid plans (20,000 steps: blocks 280 ms against 99, gripper
-218 against 15, visitall 219 against 52 ms CPU); the generated functions ground an
-action faster than the closures, which shows where a plan grounds many distinct actions
-(the 20,000-action blocks plan: 99 against 129 ms; the IPC corpus's quick pass: 666
-against 729 ms) and costs nothing where it grounds few (gripper, visitall: within noise).
+Both runs ground a step one way, `_ground_action` (the schema's generated function,
+`fastground.py`, once made; the closures before that and for what it does not cover),
+kept on the problem under (action, args) or the line, and give the same report, byte for
+byte: the step-by-step run applies each step from that ground action and also records
+the step that last changed each atom, which is what lets it alone explain a failure, go
+on after one (`all_errors`) and evaluate derived predicates; the fast run keeps no
+history and is 1.4 to 4 times faster on long valid plans (`benchmarks/bench_validate.py
+--grounding`, results/validate.md).
 
 A plan line that is no action of the domain (an unknown action, the wrong number of
 arguments, `(no plan possible)`, `(1) (feast d b)`) is a failing step of an invalid plan,
@@ -89,7 +87,7 @@ from verigraph.pddl.model import (
 from verigraph.pddl.plans import MAX_STEPS, Step, line_reader, parse_strips_plan
 from verigraph.pddl.reader import PddlInputError, read_domain, read_problem
 
-__all__ = ["MAX_ACHIEVERS", "complete_binding", "simulate", "total_value",
+__all__ = ["MAX_ACHIEVERS", "complete_binding", "explain_steps", "simulate", "total_value",
            "validate_strips_dict"]
 MAX_EXPLAINED_GOALS = 20
 # a plan that stopped at a failing step: that step is what to fix, and its state is not
@@ -302,77 +300,38 @@ class _Simulation:
 
     def run(self, steps: Iterable[Step], first: int, all_errors: bool) -> None:
         """Apply `steps`, numbered from `first`, until one fails (or, with `all_errors`,
-        skipping each that fails)."""
+        skipping each that fails). Each step is grounded as the fast run grounds it
+        (`_ground_action`, kept on the problem under its (action, args)), and applied
+        from that ground action; a step it does not apply is judged and explained here."""
         domain, problem, state = self.domain, self.problem, self.state
-        derived, changed, explainer = self.derived, self.changed, self.explainer
+        derived, changed = self.derived, self.changed
         out_steps, violations = self.out_steps, self.violations
         schemas = domain.schemas
         compiled: dict[str, _Compiled] = problem.compiled
-        costs = _has_costs(domain)
+        grounded: dict[Any, _Ground] = problem.grounded
         total_cost = self.total_cost
-        values = problem.values
-        fast: _Compiled
         for index, step in enumerate(steps, start=first):
             name, binding, _, failure = step
             if not index & 4095:
                 checkpoint()  # the server's per-call budget and cancellation
+            action = {"action": name, "args": list(binding)}
+            unsatisfied: list[dict[str, Any]] = []
             if failure is not None:
                 text = name
-                action = {"action": name, "args": list(binding)}
-                unsatisfied: list[dict[str, Any]] = []
             else:
-                got = compiled.get(name)
-                if got is None:
-                    got = compiled[name] = _Compiled(domain, problem, schemas[name])
-                fast = got
                 text = "(" + " ".join((name, *binding)) + ")"
-                action = {"action": name, "args": list(binding)}
-                for arg, admits in zip(binding, fast.admits, strict=True):
-                    if arg not in admits:
-                        failure = _check_objects(domain, problem, schemas[name], step)
-                        break
-                unsatisfied = []
-            if failure is None:
-                holds_all = True
-                for g, eq in fast.pre_pos:
-                    atom = g(binding)
-                    if not (atom[1] == atom[2] if eq else atom in state):
-                        holds_all = False
-                        break
-                if holds_all:
-                    for g, eq in fast.pre_neg:
-                        atom = g(binding)
-                        if atom[1] == atom[2] if eq else atom in state:
-                            holds_all = False
-                            break
-                if holds_all and fast.adl is not None:
-                    adl = _adl_step(domain, problem, fast.adl, binding, state)
-                    if adl is None:
-                        holds_all = False
-                elif holds_all and fast.checks is not None:
-                    holds_all = all(check(binding, state) for check in fast.checks)
-                if holds_all and costs:
-                    cost = _cost(fast, binding, values)
-                    if isinstance(cost, tuple):
-                        failure = ("precondition_unsatisfied", f"{text} needs a value for "
-                                   f"{show(cost)}, its cost, which the initial state does not "
-                                   "give", f"add (= {show(cost)} N) to the problem's :init")
-                        holds_all = False
-                    else:
-                        total_cost += cost
-                if holds_all:
-                    dels = [g(binding) for g in fast.delete]
-                    adds = [g(binding) for g in fast.add]
-                    if fast.adl is not None and adl is not None:
-                        dels += adl[1]
-                        adds += adl[0]
-                    if len(dels) < 2 and len(adds) < 2:
-                        add_set: set[GroundAtom] | tuple[GroundAtom, ...] = tuple(adds)
-                    else:
-                        add_set = set(adds)
-                    removed = [a for a in dict.fromkeys(dels) if a in state and a not in add_set]
+                key = step[:2]  # the key simulate's fast run grounds a step under
+                entry = grounded.get(key)
+                if entry is None:
+                    fast = compiled.get(name)
+                    if fast is None:
+                        fast = compiled[name] = _Compiled(domain, problem, schemas[name])
+                    got = _ground_action(domain, problem, fast, step)
+                    if got is not None:
+                        entry = grounded[key] = got
+                if entry is not None and (edit := _edit(domain, problem, entry, state)):
+                    removed, added, shown = edit
                     state.difference_update(removed)
-                    added = [a for a in dict.fromkeys(adds) if a not in state]
                     state.update(added)
                     for atom in removed:
                         changed[atom] = (index, text)
@@ -380,32 +339,16 @@ class _Simulation:
                         changed[atom] = (index, text)
                     if derived is not None:  # derived predicates follow the basic atoms
                         derived.follow(state, removed, added, changed, index, text)
+                    total_cost += entry[7]
                     out_steps.append({"step": index, "ok": True, "action": action,
-                                      "text": text,
-                                      "edit": {"removed": [show(a) for a in removed],
-                                               "added": [show(a) for a in added]}})
+                                      "text": text, "edit": shown})
                     continue
-                if failure is None:
-                    unsatisfied = _unsatisfied(schemas[name], binding, state, changed, domain,
-                                               problem)
+                failure = self._refused(schemas[name], step, entry is not None)
             if failure is not None:
                 constraint, message, suggestion = failure
-            else:
-                state_index = StateIndex(state)
-                for k, item in enumerate(unsatisfied):
-                    if "atom" not in item:
-                        if derived is not None:
-                            derived_predicates.note(domain, problem, state, item, None)
-                        continue  # an ADL condition: explained by why_false already
-                    atom = item.pop("atom")
-                    item.update(history(atom, item["expected"], changed, state, state_index,
-                                        domain.static))
-                    if derived is not None:
-                        derived_predicates.note(domain, problem, state, item, atom)
-                    if k < 3 and len(violations) < MAX_EXPLAINED_FAILURES:
-                        item["achievers"] = explainer.achievers(state_index, atom,
-                                                                item["expected"])
+            else:  # a precondition is false
                 constraint = "precondition_unsatisfied"
+                unsatisfied = self.unsatisfied(schemas[name], binding)
                 message = f"{text} needs " + "; ".join(
                     f"{u['literal']} ({u['explanation']})" for u in unsatisfied)
                 fixed = [u["literal"] for u in unsatisfied if u.get("fixed")]
@@ -421,16 +364,84 @@ class _Simulation:
             if not all_errors:
                 break
         self.total_cost = total_cost
+        if len(grounded) > MAX_GROUNDED:
+            grounded.clear()
+
+    def _refused(self, schema: Schema, step: Step, grounded: bool
+                 ) -> tuple[str, str, str] | None:
+        """Why a step that does not apply fails: an object its action does not take, a
+        cost with no value in the initial state (checked after the preconditions, which
+        come first), or None: a precondition is false. `grounded`: the step was grounded
+        (its objects, static preconditions and cost are fine)."""
+        if grounded:
+            return None
+        domain, problem = self.domain, self.problem
+        fast = problem.compiled[schema.name]
+        if not all(map(frozenset.__contains__, fast.admits, step.args)):
+            failure = _check_objects(domain, problem, schema, step)
+            if failure is not None:
+                return failure
+        if _unsatisfied(schema, step.args, self.state, self.changed, domain, problem):
+            return None
+        cost = _cost(fast, step.args, problem.values)
+        term = show(cost) if isinstance(cost, tuple) else "?"
+        text = "(" + " ".join((schema.name, *step.args)) + ")"
+        return ("precondition_unsatisfied", f"{text} needs a value for {term}, its cost, "
+                "which the initial state does not give", f"add (= {term} N) to the problem's :init")
 
     def report(self, not_checked: int, all_errors: bool) -> dict[str, Any]:
         """The JSON-ready report of the run so far: its steps and violations, and the
         goal checked in the state it ended in (unmet goals explained)."""
         domain, problem, state = self.domain, self.problem, self.state
-        derived, violations, explainer = self.derived, self.violations, self.explainer
+        violations = self.violations
+        unmet = self.unmet_goals(MAX_EXPLAINED_GOALS if all_errors or not violations
+                                 else MAX_EXPLAINED_GOALS_AFTER_FAILURE)
+        plan_valid = not violations
+        missing = [u["literal"] for u in unmet]
+        report: dict[str, Any] = {
+            "engine": "strips", "valid": plan_valid and not unmet, "plan_valid": plan_valid,
+            "goal_reached": not unmet, "steps": self.out_steps, "violations": violations,
+            "not_checked": not_checked, "done": False,
+            "goal_diff": {"satisfied": not unmet, "missing_atoms": missing},
+            "unmet_goals": unmet,
+            "final_state": sorted(map(show, state)),
+        }
+        if all_errors:
+            report["after_failure"] = SKIPPED
+        if _has_costs(domain) or problem.initial_cost is not None:
+            report["total_cost"] = total_value(self.total_cost)
+        return report
+
+    def unsatisfied(self, schema: Schema, binding: tuple[str, ...]) -> list[dict[str, Any]]:
+        """The preconditions of `schema` under `binding` that are false in the state, each
+        with the step that last changed it (or what holds instead) and, for the first
+        three, the actions that would achieve it; [] when every one holds."""
+        domain, problem, state, derived = self.domain, self.problem, self.state, self.derived
+        changed = self.changed
+        unsatisfied = _unsatisfied(schema, binding, state, changed, domain, problem)
+        state_index = StateIndex(state)
+        for k, item in enumerate(unsatisfied):
+            if "atom" not in item:
+                if derived is not None:
+                    derived_predicates.note(domain, problem, state, item, None)
+                continue  # an ADL condition: explained by why_false already
+            atom = item.pop("atom")
+            item.update(history(atom, item["expected"], changed, state, state_index,
+                                domain.static))
+            if derived is not None:
+                derived_predicates.note(domain, problem, state, item, atom)
+            if k < 3 and len(self.violations) < MAX_EXPLAINED_FAILURES:
+                item["achievers"] = self.explainer.achievers(state_index, atom,
+                                                             item["expected"])
+        return unsatisfied
+
+    def unmet_goals(self, explained: int) -> list[dict[str, Any]]:
+        """The goals that do not hold in the state, each with its history and, for the
+        first `explained`, the actions that would achieve it."""
+        domain, problem, state = self.domain, self.problem, self.state
+        derived, explainer = self.derived, self.explainer
         unmet: list[dict[str, Any]] = []
         final_index = StateIndex(state)
-        explained = MAX_EXPLAINED_GOALS if all_errors or not violations \
-            else MAX_EXPLAINED_GOALS_AFTER_FAILURE
         for goals, expected in ((problem.goal_pos, True), (problem.goal_neg, False)):
             for atom in goals:
                 if holds(atom, state) != expected:
@@ -455,21 +466,100 @@ class _Simulation:
                                                                      problem.goal_slots)})
                     if derived is not None:
                         derived_predicates.note(domain, problem, state, unmet[-1], None)
-        plan_valid = not violations
-        missing = [u["literal"] for u in unmet]
-        report: dict[str, Any] = {
-            "engine": "strips", "valid": plan_valid and not unmet, "plan_valid": plan_valid,
-            "goal_reached": not unmet, "steps": self.out_steps, "violations": violations,
-            "not_checked": not_checked, "done": False,
-            "goal_diff": {"satisfied": not unmet, "missing_atoms": missing},
-            "unmet_goals": unmet,
-            "final_state": sorted(map(show, state)),
-        }
-        if all_errors:
-            report["after_failure"] = SKIPPED
-        if _has_costs(domain) or problem.initial_cost is not None:
-            report["total_cost"] = total_value(self.total_cost)
-        return report
+        return unmet
+
+
+Applied = Iterable[tuple[int, str, tuple[str, ...]]]  # (step number, action, binding)
+
+
+def explain_steps(domain: Domain, problem: Problem, applied: Applied,
+                  failing: tuple[str, tuple[str, ...]] | None
+                  ) -> tuple[list[dict[str, Any]] | None, list[dict[str, Any]] | None]:
+    """The explanations of a plan another engine judged (the native blocks world), in this
+    engine's form: `applied` are the steps it applied, `failing` the step it refused (or
+    None). Each applied step is grounded and applied as the step-by-step run applies it
+    (`_ground_action`, `_edit`), recording the step that last changed each atom. Returns
+    the failing step's unsatisfied preconditions ([] for an object its action does not
+    take) and, when no step failed, the unmet goals; None for either where this engine
+    would judge the plan otherwise (a step the other engine applied that does not apply
+    here, or a refused step whose preconditions all hold): nothing is explained then."""
+    sim = _Simulation(domain, problem)
+    state, changed, compiled = sim.state, sim.changed, problem.compiled
+    grounded: dict[Any, _Ground] = problem.grounded
+    try:
+        for index, name, binding in applied:
+            if not index & 4095:
+                checkpoint()  # the server's per-call budget and cancellation
+            entry = grounded.get((name, binding))
+            if entry is None:
+                fast = compiled.get(name)
+                if fast is None:
+                    fast = compiled[name] = _Compiled(domain, problem, domain.schemas[name])
+                got = _ground_action(domain, problem, fast, Step(name, binding, index))
+                if got is None:
+                    return None, None
+                entry = grounded[(name, binding)] = got
+            edit = _edit(domain, problem, entry, state)
+            if edit is None:
+                return None, None
+            removed, added, _ = edit
+            state.difference_update(removed)
+            state.update(added)
+            mark = (index, entry[6])
+            for atom in removed:
+                changed[atom] = mark
+            for atom in added:
+                changed[atom] = mark
+    finally:
+        if len(grounded) > MAX_GROUNDED:
+            grounded.clear()
+    if failing is None:
+        return None, sim.unmet_goals(MAX_EXPLAINED_GOALS)
+    name, binding = failing
+    schema = domain.schemas[name]
+    fast = compiled.get(name) or _Compiled(domain, problem, schema)
+    if not all(map(frozenset.__contains__, fast.admits, binding)) and _check_objects(
+            domain, problem, schema, Step(name, binding, 0, None)) is not None:
+        return [], None
+    return sim.unsatisfied(schema, binding) or None, None
+
+
+def _edit(domain: Domain, problem: Problem, entry: _Ground, state: set[GroundAtom]
+          ) -> tuple[list[GroundAtom], list[GroundAtom], dict[str, list[str]]] | None:
+    """What the ground action `entry` changes in `state` (the atoms it removes and adds,
+    and the report's edit), or None when a precondition is false: the step-by-step run's
+    way of applying a step (the fast run inlines the same tests)."""
+    pre, neg, removed, added, edit, action, _, _, sure, checks, ordered, adl, _ = entry
+    if not pre <= state or (neg is not None and not state.isdisjoint(neg)) or (
+            checks is not None and not all(c(action["args"], state) for c in checks)):
+        return None
+    if adl is not None:
+        changes = _adl_changes(domain, problem, adl, tuple(action["args"]), state)
+        if changes is None:
+            return None
+        gone, new = changes
+    elif sure and state.isdisjoint(added):
+        return list(ordered), list(added), edit
+    else:
+        gone = [a for a in ordered if a in state]
+        new = [a for a in added if a not in state]
+    return gone, new, {"removed": [show(a) for a in gone], "added": [show(a) for a in new]}
+
+
+def _adl_changes(domain: Domain, problem: Problem, fast: _Compiled, args: tuple[str, ...],
+                 state: set[GroundAtom]) -> tuple[list[GroundAtom], list[GroundAtom]] | None:
+    """The atoms a step of a schema with an ADL part removes from `state` and adds to it
+    (each once, in order; an atom both deleted and added is added), or None when an ADL
+    precondition is false."""
+    assert fast.adl is not None
+    effects = _adl_step(domain, problem, fast.adl, args, state)
+    if effects is None:
+        return None
+    adds = [g(args) for g in fast.add] + effects[0]
+    add_set = set(adds)
+    gone = [a for a in dict.fromkeys([g(args) for g in fast.delete] + effects[1])
+            if a in state and a not in add_set]
+    return gone, [a for a in dict.fromkeys(adds) if a not in state]
 
 
 # A ground action of the fast run: the positive and negative preconditions on predicates
@@ -631,18 +721,12 @@ def _fast_steps(domain: Domain, problem: Problem, keys: Sequence[Any],
             append({"step": index, "ok": True, "action": action, "text": text,
                     "edit": variant[2]})
         else:
-            args, schema = tuple(action["args"]), adl.adl
-            assert schema is not None
-            effects = _adl_step(domain, problem, schema, args, state)
-            if effects is None:
+            changes = _adl_changes(domain, problem, adl, tuple(action["args"]), state)
+            if changes is None:
                 return _handed_over(domain, problem, state, out_steps, total_cost, keys,
                                     step_at, position, index)
-            step_dels = [g(args) for g in adl.delete] + effects[1]
-            step_adds = [g(args) for g in adl.add] + effects[0]
-            add_set = set(step_adds)
-            gone = [a for a in dict.fromkeys(step_dels) if a in state and a not in add_set]
+            gone, new = changes
             state.difference_update(gone)
-            new = [a for a in dict.fromkeys(step_adds) if a not in state]
             state.update(new)
             append({"step": index, "ok": True, "action": action, "text": text,
                     "edit": {"removed": [show(a) for a in gone],

@@ -7,13 +7,19 @@ a domain silently. `validate_pddl_dict` then tries the blocks-world recogniser (
 names: recognition is by structure) because its hand model is several times faster; a
 domain or problem it refuses (another domain, or a blocks-world problem whose initial
 state no scene can hold) goes to the general STRIPS simulator, which judges it by PDDL's
-own semantics. An invalid blocks-world plan is then also explained by the STRIPS
-simulator, so both engines report the same fields: the unsatisfied preconditions with the
-step that last made each false, and the actions that would achieve an unmet goal. A
+own semantics. One engine judges each plan: where the blocks engine refuses a step or
+misses the goal it explains that itself, in the STRIPS engine's form (the unsatisfied
+preconditions with the step that last made each false, the actions that would achieve an
+unmet goal), from the history of the steps it applied (`simulate.explain_steps`, which
+grounds and applies them as the STRIPS step-by-step run does), so both engines report
+the same fields. A
 blocks-world plan with a line that is no action of the domain, and any invalid plan
 checked with `all_errors=True`, is judged by the STRIPS simulator (each line of PlanBench
 text read as the blocks world reads it), which makes such lines failing steps and goes on
-after a failure. The report says which engine judged it (`engine`).
+after a failure (the blocks engine goes no further than the first failure, so with
+`all_errors` it only finds whether there is one, and the STRIPS simulator judges the
+invalid plan again). The report says which engine judged it
+(`engine`).
 """
 
 from __future__ import annotations
@@ -23,11 +29,16 @@ from functools import lru_cache
 from typing import Any
 
 from verigraph.errors import PlanParseError, VeriGraphError
-from verigraph.pddl.blocksworld.domain import UnsupportedDomainError, cached_domain
+from verigraph.pddl.blocksworld.domain import (
+    BlocksDomain,
+    UnsupportedDomainError,
+    cached_domain,
+)
 from verigraph.pddl.reader import PROBLEM_SECTIONS, SUPPORTED_REQUIREMENTS
 from verigraph.pddl.simulate import (
     cached_strips_domain,
     cached_strips_problem,
+    explain_steps,
     total_value,
     validate_strips_dict,
 )
@@ -129,7 +140,7 @@ def _judge_blocks(domain_text: str, problem_text: str, plan_text: str, engine: s
             return validate_strips_dict(domain_text, problem_text,
                                         _canonical(domain_text, problem_text, plan_text),
                                         all_errors=True)
-        _explain(data, domain_text, problem_text, plan_text)
+        _explain(data, domain_text, problem_text)
     return data
 
 
@@ -170,20 +181,28 @@ def _canonical(domain_text: str, problem_text: str, plan_text: str) -> str:
     return "\n".join(out)
 
 
-def _explain(data: dict[str, Any], domain_text: str, problem_text: str, plan_text: str) -> None:
-    """Add the STRIPS explanation (unsatisfied literals, achievers) to a blocks report."""
-    from verigraph.pddl.blocksworld.plans import parse_blocks_plan
-    from verigraph.pddl.blocksworld.problem import read_blocks_problem
-
+def _explain(data: dict[str, Any], domain_text: str, problem_text: str) -> None:
+    """The blocks engine's own failure or unmet goal explained in the STRIPS engine's
+    form (`unsatisfied` on the violation, `unmet_goals`), with the history of the steps
+    it applied (`simulate.explain_steps`)."""
+    blocks = cached_domain(domain_text)
     try:
-        domain = cached_domain(domain_text)
-        declared = set(read_blocks_problem(problem_text, domain).blocks)
-        canonical = "\n".join(s.text for s in parse_blocks_plan(plan_text, domain, declared))
-        strips = validate_strips_dict(domain_text, problem_text, canonical)
+        domain = cached_strips_domain(domain_text)
+        problem = cached_strips_problem(domain_text, problem_text)
+        applied = (_written(blocks, s) for s in data["steps"] if s["ok"])
+        failing = _written(blocks, data["violations"][0])[1:] if data["violations"] else None
+        unsatisfied, unmet = explain_steps(domain, problem, applied, failing)
     except VeriGraphError:
         return
-    if data["violations"] and strips["violations"] \
-            and strips["violations"][0]["step"] == data["violations"][0]["step"]:
-        data["violations"][0]["unsatisfied"] = strips["violations"][0]["unsatisfied"]
-    if not data["violations"] and not strips["violations"]:
-        data["unmet_goals"] = strips["unmet_goals"]
+    if unmet is not None:
+        data["unmet_goals"] = unmet
+    elif unsatisfied is not None:
+        data["violations"][0]["unsatisfied"] = unsatisfied
+
+
+def _written(blocks: BlocksDomain, step: dict[str, Any]) -> tuple[int, str, tuple[str, ...]]:
+    """A blocks report's step as the STRIPS engine reads it: its number, the action and
+    its arguments in the domain's parameter order (the report has the template's)."""
+    name, args = step["action"]["action"], step["action"]["args"]
+    order = blocks.operators[name].order
+    return step["step"], name, tuple(args[order[i]] for i in range(len(args)))
