@@ -85,7 +85,7 @@ class Edge(BaseModel):
 _node_order = operator.attrgetter("id")  # the sort key of a graph's nodes
 
 
-def _edge_order(e: Edge) -> tuple[str, str, str, str, str]:
+def edge_order(e: Edge) -> tuple[str, str, str, str, str]:
     """The sort key of `SceneGraph.canonical`: the edge's key, a missing side as ''."""
     source, relation, target, source_side, target_side = e.key()
     return (source, relation, target, "" if source_side is None else str(source_side),
@@ -122,14 +122,14 @@ class SceneGraph(BaseModel):
     def canonical(self) -> SceneGraph:
         """Same graph with nodes and edges in a stable order: equal scenes dump equally."""
         return SceneGraph(nodes=sorted(self.nodes, key=_node_order),
-                          edges=sorted(self.edges, key=_edge_order),
+                          edges=sorted(self.edges, key=edge_order),
                           dictionary=self.dictionary)
 
     def sorted_in_place(self) -> SceneGraph:
         """This graph, its lists put in `canonical`'s order: for a graph just built that
         no one else holds yet, the same result without building and checking a second."""
         self.nodes.sort(key=_node_order)
-        self.edges.sort(key=_edge_order)
+        self.edges.sort(key=edge_order)
         return self
 
     def to_networkx(self) -> nx.DiGraph:

@@ -24,7 +24,7 @@ from verigraph.graph.dictionary import (
     load_dictionary,
     state_value,
 )
-from verigraph.graph.model import Edge, SceneGraph, _edge_order
+from verigraph.graph.model import Edge, SceneGraph, edge_order
 from verigraph.graph.support import SupportIndex
 from verigraph.graph.wellformed import check_and_resolve, open_labels
 
@@ -268,7 +268,7 @@ class WorldState(SupportIndex):
             {"source": o, "relation": r, "target": t} for o, (r, t) in self.support.items()]
         edges += [{"source": o, "relation": ROOM_RELATION, "target": r}
                   for o, r in self.rooms.items()]
-        keyed = [(_edge_order(e), e.model_dump(exclude_none=True))
+        keyed = [(edge_order(e), e.model_dump(exclude_none=True))
                  for e in self._contact_edges()]
         keyed += [((e["source"], e["relation"], e["target"], "", ""), e) for e in edges]
         keyed.sort(key=_first)

@@ -46,7 +46,7 @@ from verigraph.pddl.model import (
     Term,
 )
 from verigraph.pddl.syntax import SExpr
-from verigraph.pddl.syntax import define_body as _define_body
+from verigraph.pddl.syntax import define_body
 
 MAX_OBJECTS = 100_000
 TOTAL_COST: GroundAtom = ("total-cost",)
@@ -119,10 +119,10 @@ def _split_glued(expr: SExpr) -> SExpr:
     return out
 
 
-def define_body(text: str, *, what: str, kind: str) -> tuple[str, list[SExpr]]:
+def _define_sections(text: str, *, what: str, kind: str) -> tuple[str, list[SExpr]]:
     """`(define (KIND name) sections...)` -> (name, sections), glued variables split
     (see `_split_glued`; a regex scan decides whether the walk is needed)."""
-    name, sections = _define_body(text, what=what, kind=kind)
+    name, sections = define_body(text, what=what, kind=kind)
     if _GLUED.search(text):
         sections = [_split_glued(s) for s in sections]
     return name, sections
@@ -601,7 +601,7 @@ def _check_types(domain: Domain) -> None:
 
 def read_domain(text: str) -> Domain:
     """The STRIPS domain in `text`, or an error naming the requirement or name at fault."""
-    name, sections = define_body(text, what="domain", kind="domain")
+    name, sections = _define_sections(text, what="domain", kind="domain")
     domain = Domain(name, [], {}, {}, {}, {})
     actions: list[list[SExpr]] = []
     rules: list[list[SExpr]] = []
@@ -912,7 +912,7 @@ def _goal_literals(expr: SExpr) -> list[tuple[SExpr, bool]]:
 
 def read_problem(text: str, domain: Domain) -> Problem:
     """The problem in `text` against `domain`; objects include the domain's constants."""
-    name, sections = define_body(text, what="problem", kind="problem")
+    name, sections = _define_sections(text, what="problem", kind="problem")
     objects = dict(domain.constants)
     declared: set[str] = set()  # the problem's own objects
     init: set[GroundAtom] = set()
