@@ -45,8 +45,7 @@ from verigraph.pddl.model import (
     Schema,
     Term,
 )
-from verigraph.pddl.syntax import SExpr
-from verigraph.pddl.syntax import define_body
+from verigraph.pddl.syntax import SExpr, define_body
 
 MAX_OBJECTS = 100_000
 TOTAL_COST: GroundAtom = ("total-cost",)
