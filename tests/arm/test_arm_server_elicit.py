@@ -9,9 +9,7 @@ object is `BlockCellStandIn`, a stand-in for hardware that cannot run here.
 from __future__ import annotations
 
 import json
-import sys
 from pathlib import Path
-from types import FrameType
 from typing import Any
 
 import pytest
@@ -23,10 +21,11 @@ from mcp_helpers import structured, text
 
 from verigraph.arm import ConfirmationRequest, Pose, PreApproved, confirm_scope
 from verigraph.server import build_server
-from verigraph.tools import Toolbox
+from verigraph.server import tools as server_tools
+from verigraph.tools import Toolbox, registry
 from verigraph.tools.acting import ExecutionOutput
 from verigraph.tools.arm import preview_execute
-from verigraph.tools.registry import TOOLS, parse_arguments
+from verigraph.tools.registry import TOOLS, ToolSpec
 
 require("xarm")
 
@@ -186,7 +185,7 @@ def test_a_motion_that_changed_since_it_was_approved_is_refused(tmp_path: Path) 
     api = BlockCellStandIn()
     box: Toolbox = xarm_toolbox(tmp_path, api)
     eid = box.call("load_scene", {"graph": loose_blocks()}).episode_id
-    params = parse_arguments(TOOLS["execute_actions"], {
+    params = registry.parse_arguments(TOOLS["execute_actions"], {
         "episode_id": eid, "actions": ["move(green_block, on, red_block)"]})
     question = preview_execute(box.context, params)
     assert question is not None and len(question.requests) == 1
@@ -216,23 +215,22 @@ def test_pre_approval_is_single_use_and_in_order() -> None:
 
 @pytest.mark.parametrize(("mode", "rounds"), [("auto", 2), ("legacy", 1)])
 async def test_a_confirmed_call_checks_its_input_once_per_request(
-        tmp_path: Path, mode: str, rounds: int) -> None:
+        tmp_path: Path, mode: str, rounds: int, monkeypatch: pytest.MonkeyPatch) -> None:
     """The server checks a confirmed call's input once per request (step 1); the
     resolvers that ask the user and the tool's body read that check, not their own (on
     2026-07-28 the question takes two requests, the call and the client's retry)."""
     parsed: list[str] = []
+    parse = registry.parse_arguments
 
-    def profile(frame: FrameType, event: str, arg: Any) -> None:
-        if event == "call" and frame.f_code is parse_arguments.__code__:
-            parsed.append(frame.f_locals["spec"].name)
+    def counted(spec: ToolSpec, *args: Any, **kwargs: Any) -> Any:
+        parsed.append(spec.name)
+        return parse(spec, *args, **kwargs)
 
     async with Client(build_server(xarm_toolbox(tmp_path, BlockCellStandIn())),
                       elicitation_callback=User(), mode=mode) as client:
         eid = await episode(client)
-        sys.setprofile(profile)
-        try:
-            out = structured(await stack_green(client, eid))
-        finally:
-            sys.setprofile(None)
+        for module in (registry, server_tools):  # every name the server calls it by
+            monkeypatch.setattr(module, "parse_arguments", counted)
+        out = structured(await stack_green(client, eid))
     assert out["ok"]
     assert parsed == ["execute_actions"] * rounds
