@@ -61,3 +61,23 @@ async def test_solve_on_the_elevator_adl_says_satisficing_when_not_proven() -> N
     if not structured(solved)["optimal"]:
         assert "satisficing (Fast Downward lama-first; not proven optimal)" in said
         assert "Fast Downward seq-opt-lmcut: " in said
+
+
+async def test_a_failing_adl_step_names_an_action_that_applies_instead() -> None:
+    """The elevator plan's step 10 fails an ADL condition no single action is known to
+    make true: the fix names a step that applies in that state (it said only "choose an
+    action whose preconditions hold"), checked by running it there."""
+    folder = THIRD_SET / "t02_elevator"
+    entry = transcript(folder)[0]
+    async with Client(build_server(Toolbox())) as client:
+        said = text(await client.call_tool("validate_plan", with_attachments(folder,
+                                                                             entry["args"])))
+        assert "choose an action whose preconditions hold" not in said
+        fix = re.search(r" 10 FAIL .*applies in this state", said)
+        assert fix is not None, said
+        instead = re.search(r"or choose another action: (\([^)]*\)) applies", fix.group(0))
+        assert instead is not None, fix.group(0)
+        steps = (folder / "plan.txt").read_text().splitlines()[:9] + [instead.group(1)]
+        replaced = structured(await client.call_tool(
+            "validate_plan", {"plan": "\n".join(steps), "pddl": pddl_of("t02_elevator")}))
+        assert replaced["plan_valid"] is True

@@ -354,7 +354,7 @@ class _Simulation:
                 fixed = [u["literal"] for u in unsatisfied if u.get("fixed")]
                 suggestion = (f"choose other arguments: {', '.join(fixed)} is fixed by the "
                               "problem" if fixed else
-                              _suggest(unsatisfied, "choose an action whose preconditions hold"))
+                              _suggest(unsatisfied, self._instead(schemas[name])))
             violation = {"ok": False, "step": index, "action": action, "constraint": constraint,
                          "message": message, "blocking": [], "suggestion": suggestion,
                          "unsatisfied": unsatisfied}
@@ -411,6 +411,21 @@ class _Simulation:
         if _has_costs(domain) or problem.initial_cost is not None:
             report["total_cost"] = total_value(self.total_cost)
         return report
+
+    def _instead(self, schema: Schema) -> str:
+        """The fix when no action is known to make the false condition hold (an ADL
+        condition, or no achiever): an action that applies in this state, one of the same
+        name first, or that none does; for the first failures only, as the achievers."""
+        first = ("make the condition above hold first (for the objects it names), or "
+                 "choose another action")
+        if len(self.violations) >= MAX_EXPLAINED_FAILURES:  # as achievers: bounded
+            return first
+        for other in (schema, *(s for s in self.domain.schemas.values() if s is not schema)):
+            args = complete_binding(self.domain, self.problem, other,
+                                    [None] * len(other.params), self.state)
+            if args is not None:
+                return f"{first}: ({' '.join((other.name, *args))}) applies in this state"
+        return f"{first}: no action applies in this state"
 
     def unsatisfied(self, schema: Schema, binding: tuple[str, ...]) -> list[dict[str, Any]]:
         """The preconditions of `schema` under `binding` that are false in the state, each
