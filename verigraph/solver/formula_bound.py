@@ -8,15 +8,18 @@ wanted, requirements of the form "one of these things must change" (a set of
 
 - an atom with the wrong truth: its thing must change (`on`/`in`/`under`: the source's
   placement; `open`, `toggled_on`: that state of the object); `nextto` (read either
-  way) and `inroom` (a room follows what the object stands on) only say that some
-  action is needed, since moving either object, or what it stands on, may change them;
+  way): the placement of one of the two, since only moving one of them changes it;
+  `inroom` (a room follows what the object stands on) only says that some action is
+  needed, since moving the object, or what it stands on, may change it;
 - all parts wanted (and, forall; or, exists wanted false; ...): every part's
   requirements;
 - one part wanted (or, exists; and, forall wanted false; ...): each part's
   requirements thinned to pairwise disjoint ones, and the j-th of every part joined
   into one, for as many j as the poorest part has (whichever part a solution makes
   true, it meets each joined one with a distinct action);
-- `forn` and the pair quantifiers: some action, when their truth is wrong.
+- `forn` and the pair quantifiers: some action, when their truth is wrong (for the
+  additive guide, `forn` wanted true: the requirements of the fewest parts that must
+  change).
 
 A container that must be opened and that the formula wants closed at the end (`(not
 (open x))` under `and`/`forall` alone) must be closed again: one more action.
@@ -77,7 +80,7 @@ def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None
     `additive`: the number of distinct requirements instead, not a lower bound (shared
     actions are counted once per requirement) but a sharper guide for a search that
     does not promise optimal plans (weighted A*)."""
-    truth, needs, some = _Bound(facts, state_needs).need(formula, {}, True)
+    truth, needs, some = _Bound(facts, state_needs, additive).need(formula, {}, True)
     if truth:
         return 0
     needs = [*needs, *_made_free(needs, facts)]
@@ -171,9 +174,11 @@ def _disjoint(needs: list[frozenset[Thing]]) -> list[frozenset[Thing]]:
 
 
 class _Bound:
-    def __init__(self, facts: Facts, state_needs: StateNeeds | None = None) -> None:
+    def __init__(self, facts: Facts, state_needs: StateNeeds | None = None,
+                 additive: bool = False) -> None:
         self.facts = facts
         self.state_needs = state_needs
+        self.additive = additive
 
     def need(self, node: Formula, env: dict[str, str], want: bool) -> Need:
         """(truth now, requirements to reach `want`, some action needed)."""
@@ -201,7 +206,23 @@ class _Bound:
             return self.combine(truth, want, parts, every == want)
         assert isinstance(node, Quantified | Pairs)
         truth = holds_in(node, self.facts, env)
+        if truth != want and want and self.additive and isinstance(node, Quantified):
+            return self.count_guide(node, env)
         return truth, [], truth != want
+
+    def count_guide(self, node: Quantified, env: dict[str, str]) -> Need:
+        """`forn (N)` wanted true, for a guide (not a bound: one action may change two
+        parts): the requirements of the fewest parts that must change, those that must
+        become true while fewer than N hold, those that must become false while more do."""
+        name, count = node.param.name, node.count or 0
+        truths = [(o, holds_in(node.body, self.facts, {**env, name: o}))
+                  for o in self.facts.objects_of(node.param.kind)]
+        held = sum(truth for _, truth in truths)
+        flip = held < count
+        options = sorted((self.need(node.body, {**env, name: o}, flip)[1]
+                          for o, truth in truths if truth != flip), key=len)
+        changes = options[:abs(held - count)]
+        return False, [n for needs in changes for n in needs], True
 
     @staticmethod
     def combine(truth: bool, want: bool, parts: list[Need], all_parts: bool) -> Need:
@@ -219,6 +240,8 @@ class _Bound:
             thing = ("place", terms[0])
         if truth == want:
             return truth, [], False
+        if node.relation == "nextto":  # only moving one of the two changes it
+            return truth, [frozenset({thing, ("place", terms[1])})], True
         if len(terms) == 2 and node.relation not in PLACE_RELATIONS:
             return truth, [], True
         if len(terms) == 1 and self.state_needs is not None:

@@ -18,13 +18,19 @@ from __future__ import annotations
 
 import heapq
 import itertools
+import math
 from collections.abc import Iterator
 from typing import Any
 
 from verigraph.actions.model import AnyAction, MoveAction, StateAction
 from verigraph.actions.processes import process_needs
-from verigraph.actions.schemas import SCHEMAS, ActionSchema
-from verigraph.graph.dictionary import PLACEMENT_RELATIONS, STATE_ROLES, SUPPORT_RELATIONS
+from verigraph.actions.schemas import SCHEMAS, ActionSchema, SetState
+from verigraph.graph.dictionary import (
+    PLACEMENT_RELATIONS,
+    STATE_ROLES,
+    SUPPORT_RELATIONS,
+    THERMAL_ROLES,
+)
 from verigraph.graph.formula import Atom, Formula, Imply, Junction, Not, parse_formula
 from verigraph.graph.formula_eval import Facts, facts_of
 from verigraph.graph.goal import Goal, check_goal
@@ -102,9 +108,24 @@ class TableProblem:
         self.additive = additive  # h from distinct requirements: a guide, not a bound
         objects = state.objects
         self.movable = sorted(o for o, info in objects.items() if info.props.movable)
+        # The formula's atoms (parsed once): which states the goal reads.
+        self.formula = parse_formula(goal.formula) if goal.formula is not None else None
+        wanted = _atom_relations(self.formula) if self.formula is not None else set()
+        if goal.graph is not None:
+            wanted |= {e.relation for e in goal.graph.edges}
+            wanted |= {key for n in goal.graph.nodes for key in n.state}
+        # A thermal state (cooked, hot, frozen) is read by no precondition but its own
+        # process's, so where the goal does not read it, an action that changes it never
+        # helps: those rows are left out (plans stay optimal, the space much smaller).
+        # `open` and `toggled_on` gate moves and processes, so they always count.
+        self.keys = {key for key in STATE_ROLES
+                     if key not in THERMAL_ROLES or key in wanted}
+        self.rows = [row for row in SCHEMAS.values()
+                     if not isinstance(row.effect, SetState) or row.effect.key in self.keys]
         self.stateful = sorted(
             (o, key) for o, info in objects.items()
-            for key, role in STATE_ROLES.items() if getattr(info.props, role))
+            for key, role in STATE_ROLES.items()
+            if key in self.keys and getattr(info.props, role))
         roles = {p.role for row in SCHEMAS.values() for p in row.parameters
                  if p.role not in (None, "relation")}
         self.candidates: dict[str, list[str]] = {
@@ -122,13 +143,9 @@ class TableProblem:
                 for key, value in n.state.items():
                     self.states[(n.id, key)] = value
         # A formula goal: its admissible bound (verigraph.solver.formula_bound) joins.
-        self.formula = parse_formula(goal.formula) if goal.formula is not None else None
         # `under`/`nextto` moves only where the goal reads them or rooms: with a fixed
         # surface of unlimited capacity, a parking move by them has an equally long
         # replacement onto it (needs_table_search), so the plans stay optimal.
-        wanted = _atom_relations(self.formula) if self.formula is not None else set()
-        if goal.graph is not None:
-            wanted |= {e.relation for e in goal.graph.edges}
         unlimited = any(objects[s].props.capacity is None for s in state.fixed_surfaces)
         self.relations = [r for r in state.move_relations
                           if r in SUPPORT_RELATIONS or r in wanted or not unlimited
@@ -208,7 +225,7 @@ class TableProblem:
         `state` in place, read, and undone (a copy per successor cost more than the
         search did), so `state` is unchanged when the iteration ends."""
         made = 0
-        for row in SCHEMAS.values():
+        for row in self.rows:
             for args in self._bindings(row, state):
                 if not row.accepted(state, *args):
                     continue
@@ -263,26 +280,32 @@ def _action(row: ActionSchema, args: tuple[str, ...]) -> AnyAction:
 
 
 def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: float = 1.0,
-                proof: dict[str, int] | None = None) -> tuple[bool, list[AnyAction]]:
+                proof: dict[str, int] | None = None, bound: float = math.inf
+                ) -> tuple[bool, list[AnyAction]]:
     """(found, plan): an optimal plan over the table's actions, every action one step.
 
     With `weight` > 1, weighted A* (f = g + weight * h, h counting every distinct
-    requirement of the formula rather than a bound): a plan sooner, not proven optimal.
+    requirement of the formula rather than a bound): a plan sooner, not proven optimal;
+    with `weight` infinite, greedy best-first search (the node with the fewest
+    requirements left first, shallower on ties): a plan soonest, often longer.
+    `bound`: only plans shorter than it are sought (a node whose g + h reaches it is
+    dropped; h is then the admissible bound, weight 1).
     `proof["floor"]` is raised, for weight 1, to the smallest f still open (every plan
     needs at least that many actions), so a search the budget stops keeps its bound."""
     problem = TableProblem(state, goal, additive=weight > 1.0)
+    greedy = math.isinf(weight)
     counter = itertools.count()
     start_key = problem.key(state)
     start_h = problem.h(state)
-    frontier: list[tuple[float, int, int, Key]] = [(weight * start_h, 0, next(counter),
-                                                    start_key)]
+    frontier: list[tuple[float, int, int, Key]] = [
+        (start_h if greedy else weight * start_h, 0, next(counter), start_key)]
     parent: dict[Key, tuple[Key, AnyAction] | None] = {start_key: None}
     best_g = {start_key: 0}
     if proof is not None:
         proof["floor"] = max(proof.get("floor", 0), start_h)
     while frontier:
-        f, neg_g, _, key = heapq.heappop(frontier)
-        g = -neg_g
+        f, tie, _, key = heapq.heappop(frontier)
+        g = tie if greedy else -tie
         if g > best_g.get(key, g):
             continue
         if proof is not None and weight == 1.0:
@@ -301,8 +324,13 @@ def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: 
         for row, args, nkey, nh in problem.successors(current, budget):
             ng = g + 1
             if ng < best_g.get(nkey, ng + 1):
+                if ng + nh >= bound:
+                    continue  # cannot beat the plan already found
                 best_g[nkey] = ng
                 parent[nkey] = (key, _action(row, args))
+                if greedy:  # fewest requirements first, then the shallower node
+                    heapq.heappush(frontier, (nh, ng, next(counter), nkey))
+                    continue
                 # Ties broken towards deeper nodes: fewer expansions, still optimal.
                 heapq.heappush(frontier, (ng + weight * nh, -ng, next(counter), nkey))
     return False, []
