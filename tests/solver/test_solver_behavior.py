@@ -1,0 +1,83 @@
+"""BEHAVIOR-style goals the solver reaches: `nextto` beside a placement (an object next
+to another stands where that one stands; next to furniture, on its room's floor), a
+thermal state with no source to make it said unreachable before any search, and a goal
+whose bound is flat for A* found by the greedy first phase of the anytime search."""
+
+from __future__ import annotations
+
+import pytest
+from bddl_problems import KINDLING, STEWED, VODKA
+
+from verigraph.actions.execution import run_actions
+from verigraph.actions.model import MoveAction
+from verigraph.actions.report import validate_plan
+from verigraph.actions.validator import validate_action
+from verigraph.graph.bddl_problem import import_problem
+from verigraph.graph.formula import parse_formula
+from verigraph.graph.formula_eval import facts_of, holds
+from verigraph.graph.goal import Goal
+from verigraph.graph.state import WorldState
+from verigraph.solver import solve
+
+pytestmark = pytest.mark.fast
+
+
+def solved(text: str) -> tuple[WorldState, Goal, list[str]]:
+    """Import, solve (optimal), validate against the formula and run on a copy."""
+    imported = import_problem(text)
+    state = WorldState.from_graph(imported.scene_graph())
+    goal = Goal(formula=imported.formula)
+    result = solve(state, goal, time_limit=10)
+    assert result.reachable and result.optimal, result.reason
+    report = validate_plan(state.copy(), result.plan or "done", goal)
+    assert report.valid and report.goal_diff is not None and report.goal_diff.satisfied
+    after = state.copy()
+    run = run_actions(after, result.plan)
+    assert not run.violations
+    assert holds(parse_formula(imported.formula), facts_of(after))
+    return state, goal, [a.text() for a in result.plan]
+
+
+def test_next_to_a_bottle_in_the_cabinet_is_in_the_cabinet() -> None:
+    _, _, plan = solved(VODKA)
+    assert plan[0] == "open(cabinet_1)" and len(plan) == 3
+    assert plan[2] in ("move(bottle_of_vodka_2, nextto, bottle_of_vodka_1)",
+                       "move(bottle_of_vodka_1, nextto, bottle_of_vodka_2)")
+
+
+def test_next_to_the_fireplace_is_on_the_floor_of_its_room() -> None:
+    state, goal, plan = solved(KINDLING)
+    assert sorted(plan) == ["move(firewood_1, nextto, wood_fireplace_1)",
+                            "move(firewood_2, nextto, wood_fireplace_1)"]
+    facts = facts_of(state)
+    assert not holds(parse_formula("(ontop firewood_1 floor_2)"), facts)
+    run_actions(state, [MoveAction(object="firewood_1", relation="nextto",
+                                   target="wood_fireplace_1")])
+    facts = facts_of(state)
+    assert holds(parse_formula("(ontop firewood_1 floor_2)"), facts)  # the living room's
+    assert not holds(parse_formula("(ontop firewood_1 floor_1)"), facts)  # the garden's
+    assert not holds(parse_formula("(inside firewood_1 floor_2)"), facts)
+    assert holds(parse_formula("(inroom firewood_1 living_room)"), facts)
+
+
+def test_next_to_an_object_in_a_closed_cabinet_is_refused_until_it_is_opened() -> None:
+    state = WorldState.from_graph(import_problem(VODKA).scene_graph())
+    state.set_state("cabinet_1", "open", True)
+    assert not run_actions(state, [MoveAction(object="bottle_of_vodka_1", relation="in",
+                                              target="cabinet_1")]).violations
+    state.set_state("cabinet_1", "open", False)
+    beside = MoveAction(object="bottle_of_vodka_2", relation="nextto",
+                        target="bottle_of_vodka_1")
+    violation = validate_action(state, beside)
+    assert violation is not None and violation.constraint == "container_closed"
+    assert "cabinet_1" in violation.message and violation.blocking == ["cabinet_1"]
+    state.set_state("cabinet_1", "open", True)
+    assert validate_action(state, beside) is None
+
+
+def test_a_state_no_source_can_make_is_unreachable_without_search() -> None:
+    imported = import_problem(STEWED)
+    result = solve(imported.scene_graph(), Goal(formula=imported.formula))
+    assert result.reachable is False and result.expanded == 0
+    assert result.reason is not None
+    assert "(cooked pear_1)" in result.reason and "no heat source" in result.reason
