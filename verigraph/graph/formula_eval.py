@@ -272,6 +272,15 @@ def holds_in(formula: Formula, facts: Facts, binding: dict[str, str]) -> bool:
     return _Evaluator(facts).holds(formula, binding)
 
 
+def pairing(node: Pairs, facts: Facts, binding: dict[str, str]
+            ) -> tuple[list[tuple[str, str]], list[str], list[str], int]:
+    """A largest one-to-one pairing for which a pair quantifier's body holds, the objects
+    of each kind left unpaired, and how many pairs the quantifier needs."""
+    evaluator = _Evaluator(facts)
+    pairs, left_first, left_second = evaluator.pairing(node, binding)
+    return pairs, left_first, left_second, evaluator.pairs_needed(node)
+
+
 def evaluate(formula: Formula, facts: Facts) -> FormulaResult:
     """Whether the formula holds, every counterexample when it does not, and the
     witnesses of each `exists` in the parts that hold."""

@@ -19,7 +19,8 @@ wanted, requirements of the form "one of these things must change" (a set of
   true, it meets each joined one with a distinct action);
 - `forn` and the pair quantifiers: some action, when their truth is wrong (for the
   additive guide, `forn` wanted true: the requirements of the fewest parts that must
-  change).
+  change; a pair quantifier wanted true: those of the cheapest pairing of each
+  unpaired object, as many as pairs are missing).
 
 A container that must be opened and that the formula wants closed at the end (`(not
 (open x))` under `and`/`forall` alone) must be closed again: one more action.
@@ -48,7 +49,7 @@ from verigraph.graph.formula import (
     parse_formula,
 )
 from verigraph.graph.formula import parts as every_part
-from verigraph.graph.formula_eval import Facts, holds_in
+from verigraph.graph.formula_eval import Facts, holds_in, pairing
 from verigraph.graph.goal import Goal
 
 Thing = tuple[str, str]
@@ -206,9 +207,26 @@ class _Bound:
             return self.combine(truth, want, parts, every == want)
         assert isinstance(node, Quantified | Pairs)
         truth = holds_in(node, self.facts, env)
-        if truth != want and want and self.additive and isinstance(node, Quantified):
-            return self.count_guide(node, env)
+        if truth != want and want and self.additive:
+            if isinstance(node, Quantified):
+                return self.count_guide(node, env)
+            return self.pairs_guide(node, env)
         return truth, [], truth != want
+
+    def pairs_guide(self, node: Pairs, env: dict[str, str]) -> Need:
+        """`forpairs`/`fornpairs` wanted true, for a guide: for each pair still missing,
+        the requirements of the cheapest way to pair an unpaired object of the first
+        kind with an unpaired one of the second."""
+        pairs, left_first, left_second, needed = pairing(node, self.facts, env)
+        options = []
+        for a in left_first:
+            ways = [self.need(node.body, {**env, node.first.name: a,
+                                          node.second.name: b}, True)[1]
+                    for b in left_second if b != a]
+            if ways:
+                options.append(min(ways, key=len))
+        chosen = sorted(options, key=len)[:max(needed - len(pairs), 0)]
+        return False, [n for needs in chosen for n in needs], True
 
     def count_guide(self, node: Quantified, env: dict[str, str]) -> Need:
         """`forn (N)` wanted true, for a guide (not a bound: one action may change two
