@@ -299,7 +299,7 @@ def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: 
     start_h = problem.h(state)
     frontier: list[tuple[float, int, int, Key]] = [
         (start_h if greedy else weight * start_h, 0, next(counter), start_key)]
-    parent: dict[Key, tuple[Key, AnyAction] | None] = {start_key: None}
+    parent: dict[Key, tuple[Key, ActionSchema, tuple[str, ...]] | None] = {start_key: None}
     best_g = {start_key: 0}
     if proof is not None:
         proof["floor"] = max(proof.get("floor", 0), start_h)
@@ -315,8 +315,8 @@ def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: 
             plan: list[AnyAction] = []
             node: Key | None = key
             while node is not None and parent[node] is not None:
-                prev, action = parent[node]  # type: ignore[misc]
-                plan.append(action)
+                prev, row, args = parent[node]  # type: ignore[misc]
+                plan.append(_action(row, args))
                 node = prev
             return True, list(reversed(plan))
         budget.expansions += 1
@@ -327,7 +327,7 @@ def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: 
                 if ng + nh >= bound:
                     continue  # cannot beat the plan already found
                 best_g[nkey] = ng
-                parent[nkey] = (key, _action(row, args))
+                parent[nkey] = (key, row, args)
                 if greedy:  # fewest requirements first, then the shallower node
                     heapq.heappush(frontier, (nh, ng, next(counter), nkey))
                     continue
