@@ -216,17 +216,22 @@ class _Bound:
     def pairs_guide(self, node: Pairs, env: dict[str, str]) -> Need:
         """`forpairs`/`fornpairs` wanted true, for a guide: for each pair still missing,
         the requirements of the cheapest way to pair an unpaired object of the first
-        kind with an unpaired one of the second."""
+        kind with an unpaired one of the second not yet taken (greedily, one to one)."""
         pairs, left_first, left_second, needed = pairing(node, self.facts, env)
-        options = []
-        for a in left_first:
-            ways = [self.need(node.body, {**env, node.first.name: a,
-                                          node.second.name: b}, True)[1]
-                    for b in left_second if b != a]
-            if ways:
-                options.append(min(ways, key=len))
-        chosen = sorted(options, key=len)[:max(needed - len(pairs), 0)]
-        return False, [n for needs in chosen for n in needs], True
+        missing = max(needed - len(pairs), 0)
+        ways = sorted(
+            (len(needs), a, b, needs) for a in left_first for b in left_second if b != a
+            for needs in [self.need(node.body, {**env, node.first.name: a,
+                                                node.second.name: b}, True)[1]])
+        chosen: list[frozenset[Thing]] = []
+        taken: set[str] = set()
+        for _, a, b, needs in ways:
+            if len(taken) >= 2 * missing:
+                break
+            if a not in taken and b not in taken:
+                taken |= {a, b}
+                chosen += needs
+        return False, chosen, True
 
     def count_guide(self, node: Quantified, env: dict[str, str]) -> Need:
         """`forn (N)` wanted true, for a guide (not a bound: one action may change two

@@ -95,7 +95,10 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
         return SolveResult(reachable=False, status="unreachable", reason=reason)
     if state.contacts or any(o.props.sides for o in state.objects.values()):
         return _solve_tangram(state, goal_model, budget)
-    if needs_table_search(state, goal_model) or formula_needs_table(goal_model):
+    if needs_table_search(state, goal_model) or formula_needs_table(goal_model) \
+            or (anytime and goal_model.formula is not None):
+        # anytime over a formula: the table's greedy best-first search, guided by every
+        # requirement of the formula, finds a plan where the encoded weighted A* stalls
         return _solve_table(state, goal_model, budget, anytime)
     problem = SearchProblem(state)
     wanted = goal_codes(problem, goal_model.graph) if goal_model.graph is not None else {}
