@@ -44,6 +44,9 @@ def test_every_activity_is_imported_or_refused_naming_a_predicate() -> None:
     ("turn_off_a_normal_school_calculator", 1),  # household: toggle_off
     ("make_toast", 6),                          # thermal: open, move in, toggle_on, cook
     ("thaw_frozen_fish", 5),                    # thermal: open the fridge, out, thaw
+    ("store_vodka", 3),             # nextto beside inside: open, in, next to the first
+    ("bringing_in_kindling", 3),    # next to the fireplace: on its room's floor
+    ("buy_mulch", 5),               # was out of budget: the nextto bound sharpened A*
 ])
 def test_an_activity_is_solved_validated_and_executed(activity: str, length: int) -> None:
     outcome = run_activity(activity, time_limit=20)
@@ -54,3 +57,16 @@ def test_an_activity_is_solved_validated_and_executed(activity: str, length: int
 def test_a_refused_activity_names_its_predicate() -> None:
     outcome = run_activity("adding_chemicals_to_pool")
     assert (outcome.status, outcome.predicate) == ("refused", "filled")
+
+
+def test_a_goal_no_source_can_reach_is_unreachable_and_says_why() -> None:
+    outcome = run_activity("make_stewed_fruit")
+    assert outcome.status == "unreachable"
+    assert outcome.reason is not None and "no heat source" in outcome.reason
+
+
+@pytest.mark.slow  # the optimal phase spends its 10 s first
+def test_a_large_pairing_goal_is_solved_by_the_anytime_search() -> None:
+    outcome = run_activity("assembling_gift_baskets", time_limit=10)
+    assert outcome.status == "solved", outcome.reason
+    assert len(outcome.plan) == 16  # a candle, a cheese, a cookie and a bow in each basket

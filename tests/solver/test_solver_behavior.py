@@ -81,3 +81,40 @@ def test_a_state_no_source_can_make_is_unreachable_without_search() -> None:
     assert result.reachable is False and result.expanded == 0
     assert result.reason is not None
     assert "(cooked pear_1)" in result.reason and "no heat source" in result.reason
+
+
+def test_the_guide_counts_each_pair_and_each_part_still_missing() -> None:
+    from verigraph.graph.model import SceneGraph
+    from verigraph.solver.formula_bound import formula_bound
+
+    nodes = [("table", "table"), ("plate_1", "plate"), ("plate_2", "plate"),
+             ("plate_3", "plate"), ("cup_1", "cup"), ("cup_2", "cup"), ("cup_3", "cup")]
+    edges = [(n, "on", "table") for n, label in nodes if label != "table"]
+    state = WorldState.from_graph(SceneGraph.model_validate({
+        "nodes": [{"id": i, "label": label} for i, label in nodes],
+        "edges": [{"source": s, "relation": r, "target": t} for s, r, t in edges],
+        "dictionary": "household"}))
+    pairs = parse_formula("(forpairs (?c - cup) (?p - plate) (ontop ?c ?p))")
+    two = parse_formula("(forn (2) (?c - cup) (exists (?p - plate) (ontop ?c ?p)))")
+    facts = facts_of(state)
+    # the bound only knows some action is needed; the guide counts a move per pair
+    assert formula_bound(pairs, facts) == 1
+    assert formula_bound(pairs, facts, additive=True) == 3
+    assert formula_bound(two, facts, additive=True) == 2
+    run_actions(state, [MoveAction(object="cup_1", relation="on", target="plate_2")])
+    facts = facts_of(state)
+    assert formula_bound(pairs, facts, additive=True) == 2
+    assert formula_bound(two, facts, additive=True) == 1
+
+
+def test_thermal_actions_the_goal_does_not_read_are_not_searched() -> None:
+    from verigraph.solver.table_search import TableProblem
+
+    imported = import_problem(VODKA)
+    state = WorldState.from_graph(imported.scene_graph())
+    rows = {row.name for row in TableProblem(state, Goal(formula=imported.formula)).rows}
+    assert {"move", "open", "close", "toggle_on", "toggle_off"} <= rows
+    assert not rows & {"cook", "heat", "cool", "freeze", "thaw"}
+    cooked = TableProblem(state, Goal(formula="(cooked bottle_of_vodka_1)"))
+    assert "cook" in {row.name for row in cooked.rows}
+    assert "freeze" not in {row.name for row in cooked.rows}
