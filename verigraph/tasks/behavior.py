@@ -192,9 +192,9 @@ def placement_conflict(formula: str) -> str | None:
         node = stack.pop()
         if isinstance(node, Junction) and node.op == "and":
             stack.extend(node.parts)
-        elif isinstance(node, Atom) and not any(t.startswith("?") for t in node.terms):
-            if node.relation in ("on", "in", "under"):
-                placed.setdefault(node.terms[0], set()).add((node.relation, node.terms[1]))
+        elif isinstance(node, Atom) and node.relation in ("on", "in", "under") \
+                and not any(t.startswith("?") for t in node.terms):
+            placed.setdefault(node.terms[0], set()).add((node.relation, node.terms[1]))
     for obj, places in sorted(placed.items()):
         if len(places) > 1:
             shown = " and ".join(f"{r} {t}" for r, t in sorted(places))
