@@ -73,14 +73,15 @@ StateNeeds = Callable[[str, str, bool], list[frozenset[Thing]]]
 
 
 def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None = None, *,
-                  additive: bool = False) -> int:
+                  additive: bool = False, things: set[Thing] | None = None) -> int:
     """Actions the formula needs at least, from the state `facts` describe.
     `state_needs`: the other requirements of changing a state (each met by an action
     other than the one that changes the state).
 
     `additive`: the number of distinct requirements instead, not a lower bound (shared
     actions are counted once per requirement) but a sharper guide for a search that
-    does not promise optimal plans (weighted A*)."""
+    does not promise optimal plans (weighted A*). `things`: filled with every thing the
+    requirements name (what a helpful action changes)."""
     truth, needs, some = _Bound(facts, state_needs, additive).need(formula, {}, True)
     if truth:
         return 0
@@ -89,6 +90,8 @@ def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None
     if opened:  # opened now, closed at the end: closed again, one more action each
         closed = _closed_at_the_end(formula, facts)
         needs += [frozenset({("close", c)}) for _, c in opened if c in closed]
+    if things is not None:
+        things.update(thing for need in needs for thing in need)
     if additive:
         return max(len(set(needs)), 1)
     taken: set[Thing] = set()

@@ -197,6 +197,17 @@ class TableProblem:
                 additive=self.additive))
         return wrong
 
+    def helpful(self, state: WorldState) -> set[tuple[str, str]]:
+        """The things (`("place", x)`, `("open", box)`, `("cooked", x)`, ...) the goal
+        formula's requirements name on `state`: an action that changes one of them is
+        helpful (greedy search tries those first). Empty without a formula."""
+        things: set[tuple[str, str]] = set()
+        if self.formula is not None:
+            formula_bound(self.formula, self.facts(state),
+                          lambda obj, key, want: process_needs(state, obj, key, want),
+                          additive=True, things=things)
+        return things
+
     def world(self, key: Key) -> WorldState:
         """The world of a search key: the start with its placements and states."""
         state = self.start.copy()
@@ -279,6 +290,65 @@ def _action(row: ActionSchema, args: tuple[str, ...]) -> AnyAction:
     return StateAction(action=row.name, object=args[0])  # type: ignore[arg-type]
 
 
+def _changes(row: ActionSchema, args: tuple[str, ...]) -> tuple[str, str]:
+    """The thing an action changes: `("place", x)` for a move, `(key, x)` for a state."""
+    if isinstance(row.effect, SetState):
+        key = row.effect.key
+        if key == "open" and not row.effect.value:
+            return "close", args[0]
+        return key, args[0]
+    return "place", args[0]
+
+
+# Of every HELPFUL_SHARE pops, all but one come from the helpful actions' queue.
+HELPFUL_SHARE = 4
+
+
+def _greedy(problem: TableProblem, state: WorldState, goal: Goal, budget: SearchBudget
+            ) -> tuple[bool, list[AnyAction]]:
+    """Greedy best-first search with helpful actions: two queues, both ordered by the
+    guide (fewest requirements left, shallower on ties), one holding every successor,
+    the other only those reached by a helpful action (one that changes a thing the
+    requirements name: `TableProblem.helpful`); they are popped in turn, so a plateau
+    where the guide does not move (emptying a container before it moves) is crossed
+    by the actions that matter first. A plan soonest, not proven optimal."""
+    counter = itertools.count()
+    start_key = problem.key(state)
+    queues: tuple[list[tuple[int, int, int, Key]], ...] = (
+        [(problem.h(state), 0, next(counter), start_key)], [])
+    parent: dict[Key, tuple[Key, ActionSchema, tuple[str, ...]] | None] = {start_key: None}
+    expanded: set[Key] = set()
+    pops = 0
+    while queues[0] or queues[1]:
+        pops += 1
+        turn = 1 if queues[1] and (pops % HELPFUL_SHARE or not queues[0]) else 0
+        _, g, _, key = heapq.heappop(queues[turn])
+        if key in expanded:
+            continue
+        expanded.add(key)
+        current = problem.world(key)
+        if problem.h(current) == 0 and check_goal(current, goal).satisfied:
+            plan: list[AnyAction] = []
+            node: Key | None = key
+            while node is not None and parent[node] is not None:
+                prev, row, args = parent[node]  # type: ignore[misc]
+                plan.append(_action(row, args))
+                node = prev
+            return True, list(reversed(plan))
+        budget.expansions += 1
+        budget.check()
+        helpful = problem.helpful(current)
+        for row, args, nkey, nh in problem.successors(current, budget):
+            if nkey in parent:
+                continue
+            parent[nkey] = (key, row, args)
+            entry = (nh, g + 1, next(counter), nkey)
+            heapq.heappush(queues[0], entry)
+            if _changes(row, args) in helpful:
+                heapq.heappush(queues[1], entry)
+    return False, []
+
+
 def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: float = 1.0,
                 proof: dict[str, int] | None = None, bound: float = math.inf
                 ) -> tuple[bool, list[AnyAction]]:
@@ -294,18 +364,20 @@ def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: 
     needs at least that many actions), so a search the budget stops keeps its bound."""
     problem = TableProblem(state, goal, additive=weight > 1.0)
     greedy = math.isinf(weight)
+    if greedy:
+        return _greedy(problem, state, goal, budget)
     counter = itertools.count()
     start_key = problem.key(state)
     start_h = problem.h(state)
-    frontier: list[tuple[float, int, int, Key]] = [
-        (start_h if greedy else weight * start_h, 0, next(counter), start_key)]
+    frontier: list[tuple[float, int, int, Key]] = [(weight * start_h, 0, next(counter),
+                                                    start_key)]
     parent: dict[Key, tuple[Key, ActionSchema, tuple[str, ...]] | None] = {start_key: None}
     best_g = {start_key: 0}
     if proof is not None:
         proof["floor"] = max(proof.get("floor", 0), start_h)
     while frontier:
-        f, tie, _, key = heapq.heappop(frontier)
-        g = tie if greedy else -tie
+        f, neg_g, _, key = heapq.heappop(frontier)
+        g = -neg_g
         if g > best_g.get(key, g):
             continue
         if proof is not None and weight == 1.0:
@@ -328,9 +400,6 @@ def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: 
                     continue  # cannot beat the plan already found
                 best_g[nkey] = ng
                 parent[nkey] = (key, row, args)
-                if greedy:  # fewest requirements first, then the shallower node
-                    heapq.heappush(frontier, (nh, ng, next(counter), nkey))
-                    continue
                 # Ties broken towards deeper nodes: fewer expansions, still optimal.
                 heapq.heappush(frontier, (ng + weight * nh, -ng, next(counter), nkey))
     return False, []
