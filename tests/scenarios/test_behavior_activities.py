@@ -70,3 +70,23 @@ def test_a_large_pairing_goal_is_solved_by_the_anytime_search() -> None:
     outcome = run_activity("assembling_gift_baskets", time_limit=10)
     assert outcome.status == "solved", outcome.reason
     assert len(outcome.plan) == 16  # a candle, a cheese, a cookie and a bow in each basket
+
+
+def test_greedy_search_crosses_a_plateau_with_helpful_actions() -> None:
+    import math
+
+    from verigraph.actions.execution import run_actions
+    from verigraph.graph.goal import Goal, check_goal
+    from verigraph.graph.state import WorldState
+    from verigraph.solver.budget import SearchBudget
+    from verigraph.solver.table_search import table_astar
+
+    # lamb and potato out of the closed fridge, heated in the oven, on platters that
+    # must first come out of the closed cabinet (was out of budget)
+    imported = import_problem(activity_text("laying_out_a_feast"), activity="laying_out_a_feast")
+    state = WorldState.from_graph(imported.scene_graph())
+    goal = Goal(formula=imported.formula)
+    found, plan = table_astar(state, goal, SearchBudget(time_limit_s=10), weight=math.inf)
+    assert found and 8 <= len(plan) <= 20
+    run = run_actions(state, plan)
+    assert not run.violations and check_goal(state, goal).satisfied

@@ -118,3 +118,20 @@ def test_thermal_actions_the_goal_does_not_read_are_not_searched() -> None:
     cooked = TableProblem(state, Goal(formula="(cooked bottle_of_vodka_1)"))
     assert "cook" in {row.name for row in cooked.rows}
     assert "freeze" not in {row.name for row in cooked.rows}
+
+
+def test_helpful_actions_change_what_the_requirements_name() -> None:
+    from verigraph.actions.schemas import SCHEMAS
+    from verigraph.solver.table_search import TableProblem, _changes
+
+    imported = import_problem(VODKA)
+    state = WorldState.from_graph(imported.scene_graph())
+    problem = TableProblem(state, Goal(formula=imported.formula), additive=True)
+    helpful = problem.helpful(state)
+    assert {("place", "bottle_of_vodka_1"), ("place", "bottle_of_vodka_2"),
+            ("open", "cabinet_1")} <= helpful
+    assert ("place", "floor_1") not in helpful
+    assert _changes(SCHEMAS["open"], ("cabinet_1",)) == ("open", "cabinet_1")
+    assert _changes(SCHEMAS["close"], ("cabinet_1",)) == ("close", "cabinet_1")
+    assert _changes(SCHEMAS["move"], ("bottle_of_vodka_1", "in", "cabinet_1")) == \
+        ("place", "bottle_of_vodka_1")
