@@ -135,3 +135,16 @@ def test_helpful_actions_change_what_the_requirements_name() -> None:
     assert _changes(SCHEMAS["close"], ("cabinet_1",)) == ("close", "cabinet_1")
     assert _changes(SCHEMAS["move"], ("bottle_of_vodka_1", "in", "cabinet_1")) == \
         ("place", "bottle_of_vodka_1")
+
+
+def test_objects_asked_pairwise_next_to_each_other_are_said_unreachable() -> None:
+    from verigraph.tasks.behavior import placement_conflict
+
+    triangle = "(and (nextto folder book) (nextto folder bag) (nextto book bag))"
+    reason = placement_conflict(triangle)
+    assert reason is not None and "bag, book, folder" in reason and "cycle" in reason
+    # a chain is fine (book next to the folder, the bag next to the book), and so is
+    # nextto beside ontop: the one moved stands where the other stands
+    assert placement_conflict("(and (nextto folder book) (nextto book bag))") is None
+    assert placement_conflict("(and (nextto folder book) (ontop folder desk))") is None
+    assert placement_conflict("(and (ontop folder desk) (inside folder bag))") is not None
