@@ -7,8 +7,9 @@ Run: verigraph bench behavior [--budget 10] [--activities a,b,...] [--jsonl FILE
      verigraph bench behavior --from FILE.jsonl [FILE.jsonl ...]   (table only)
 
 Each activity gets `--budget` CPU seconds for optimal A*; when that runs out, the same
-again for the anytime search (a plan, not proven optimal). Writes
-benchmarks/results/behavior.md (with `--out`, another file).
+again for the anytime search (greedy best-first search for a plan, then A* pruned by
+its length to shorten it or prove it optimal). Writes benchmarks/results/behavior.md
+(with `--out`, another file). `--activities a,b` runs only those.
 """
 
 from __future__ import annotations
@@ -104,7 +105,8 @@ def report(records: list[dict[str, Any]], budget: float | None) -> str:
         "# BEHAVIOR-1K activities: imported, solved, validated, executed", "",
         f"Machine: {machine()}  ", f"Date: {time.strftime('%Y-%m-%d')}  ",
         f"Budget: {budget:g} CPU s per activity for optimal A*, then as much for the anytime "
-        "search" if budget is not None else "Budget: as recorded", "",
+        "search (greedy best-first, then A* pruned by its plan)" if budget is not None
+        else "Budget: as recorded", "",
         f"{total} activities (bddl's `activity_definitions`, problem0 of each): "
         f"{len(imported)} imported, {len(refused)} refused naming a predicate outside "
         f"the supported set ({', '.join(SUPPORTED)}).", "",
@@ -115,7 +117,9 @@ def report(records: list[dict[str, Any]], budget: float | None) -> str:
         "holds at the end there, the plan runs in an episode on the graph executor and "
         "`check_goal` and the formula evaluator both find the goal reached there; "
         "*(optimal)*: A* proved no shorter plan (every action one step); the rest came from "
-        "the anytime search. *reached only on paper*: validated as reaching the goal, not "
+        "the anytime search (greedy best-first search, then A* pruned by that plan's length, "
+        "stopped by the budget before it proved the plan shortest). *reached only on "
+        "paper*: validated as reaching the goal, not "
         "reached when executed. Times are wall-clock seconds of the `solve` call.", "",
         "## Refused, by the first unsupported predicate named", "",
         *table(["predicate", "activities"],

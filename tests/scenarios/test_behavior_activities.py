@@ -44,6 +44,9 @@ def test_every_activity_is_imported_or_refused_naming_a_predicate() -> None:
     ("turn_off_a_normal_school_calculator", 1),  # household: toggle_off
     ("make_toast", 6),                          # thermal: open, move in, toggle_on, cook
     ("thaw_frozen_fish", 5),                    # thermal: open the fridge, out, thaw
+    ("store_vodka", 3),             # nextto beside inside: open, in, next to the first
+    ("bringing_in_kindling", 3),    # next to the fireplace: on its room's floor
+    ("buy_mulch", 5),               # was out of budget: the nextto bound sharpened A*
 ])
 def test_an_activity_is_solved_validated_and_executed(activity: str, length: int) -> None:
     outcome = run_activity(activity, time_limit=20)
@@ -54,3 +57,36 @@ def test_an_activity_is_solved_validated_and_executed(activity: str, length: int
 def test_a_refused_activity_names_its_predicate() -> None:
     outcome = run_activity("adding_chemicals_to_pool")
     assert (outcome.status, outcome.predicate) == ("refused", "filled")
+
+
+def test_a_goal_no_source_can_reach_is_unreachable_and_says_why() -> None:
+    outcome = run_activity("make_stewed_fruit")
+    assert outcome.status == "unreachable"
+    assert outcome.reason is not None and "no heat source" in outcome.reason
+
+
+@pytest.mark.slow  # the optimal phase spends its 10 s first
+def test_a_large_pairing_goal_is_solved_by_the_anytime_search() -> None:
+    outcome = run_activity("assembling_gift_baskets", time_limit=10)
+    assert outcome.status == "solved", outcome.reason
+    assert len(outcome.plan) == 16  # a candle, a cheese, a cookie and a bow in each basket
+
+
+def test_greedy_search_crosses_a_plateau_with_helpful_actions() -> None:
+    import math
+
+    from verigraph.actions.execution import run_actions
+    from verigraph.graph.goal import Goal, check_goal
+    from verigraph.graph.state import WorldState
+    from verigraph.solver.budget import SearchBudget
+    from verigraph.solver.table_search import table_astar
+
+    # lamb and potato out of the closed fridge, heated in the oven, on platters that
+    # must first come out of the closed cabinet (was out of budget)
+    imported = import_problem(activity_text("laying_out_a_feast"), activity="laying_out_a_feast")
+    state = WorldState.from_graph(imported.scene_graph())
+    goal = Goal(formula=imported.formula)
+    found, plan = table_astar(state, goal, SearchBudget(time_limit_s=10), weight=math.inf)
+    assert found and 8 <= len(plan) <= 20
+    run = run_actions(state, plan)
+    assert not run.violations and check_goal(state, goal).satisfied

@@ -207,6 +207,8 @@ def test_household_formulas_are_solved_over_the_action_table(text: str, plan: li
     "(imply (not (open fridge)) (inside pot fridge))",
     "(forall (?x - milk) (nextto ?x sink))",
     "(and (inside milk fridge) (inside lid fridge))",
+    "(and (nextto pot sink) (nextto lid milk))",
+    "(and (inside milk fridge) (nextto lid milk))",
 ])
 def test_the_bound_is_admissible_over_the_action_table(text: str) -> None:
     from verigraph.solver.table_search import TableProblem, neighbours

@@ -5,7 +5,10 @@ relation name and each node's states through one accessor (`node_state`), so it 
 nothing of how a `WorldState` stores them. Meanings:
 
 - `(ontop a b)`/`(on a b)`, `(inside a b)`/`(in a b)`, `(under a b)`: the scene has that
-  edge (`a on b`, ...); `(nextto a b)`: an edge `nextto` either way;
+  edge (`a on b`, ...), or `a` stands next to something that is so placed: an object
+  placed `nextto c` stands where `c` stands (beside a bottle in the cabinet is in the
+  cabinet; beside furniture, which stands in its room, is on that room's floor or lawn,
+  `GROUND_KINDS`); `(nextto a b)`: an edge `nextto` either way;
 - `(inroom a r)`: `a` is in room `r`: furniture by its own `inroom` edge, any other
   object by the room of the furniture its placements lead down to (a cup on a plate on
   the kitchen table is in the kitchen).
@@ -54,6 +57,9 @@ MAX_GROUND = 200_000  # ground instances a formula may expand to on one scene
 MAX_KEPT = 1_000  # counterexamples and witnesses kept (all are counted)
 SHOWN_CHARS = 160  # a part is shown up to this many characters
 LINE_CHARS = 600  # a counterexample or witness, part and reason, up to this many
+# What furniture (an object with no placement, standing in its room) stands on: an
+# object placed next to furniture is on its room's floor (or lawn, outdoors).
+GROUND_KINDS = ("floor", "lawn")
 _WORDS = {"on": "on", "in": "in", "under": "under", "nextto": "next to", "inroom": "in room"}
 
 
@@ -116,7 +122,28 @@ class Facts:
             return True
         if relation == "inroom":
             return self.room(source) == target
-        return relation == "nextto" and ("nextto", target, source) in self.edges
+        if relation == "nextto":
+            return ("nextto", target, source) in self.edges
+        return self._beside(relation, source, target)
+
+    def _beside(self, relation: str, source: str, target: str) -> bool:
+        """Whether `source` stands next to something placed `relation target` (an object
+        placed next to another stands where that one stands; next to furniture, on its
+        room's ground), followed along `nextto` placements (bounded: no cycle)."""
+        current = source
+        for _ in range(len(self.placed) + 1):
+            beside = next((t for r, t in self.placed.get(current, []) if r == "nextto"), None)
+            if beside is None:
+                return False
+            if (relation, beside, target) in self.edges:
+                return True
+            if not any(r != "inroom" for r, _ in self.placed.get(beside, [])):
+                # furniture stands on the ground of its room
+                room = self.room(beside)
+                return relation == "on" and room is not None and self.room(target) == room \
+                    and any(target in self.by_kind.get(k, ()) for k in GROUND_KINDS)
+            current = beside
+        return False
 
     def room(self, obj: str) -> str | None:
         """The room of `obj`: its own `inroom` edge, or that of what it is placed on,
@@ -243,6 +270,15 @@ def holds(formula: Formula, facts: Facts) -> bool:
 def holds_in(formula: Formula, facts: Facts, binding: dict[str, str]) -> bool:
     """Whether a part holds with its free variables bound to objects."""
     return _Evaluator(facts).holds(formula, binding)
+
+
+def pairing(node: Pairs, facts: Facts, binding: dict[str, str]
+            ) -> tuple[list[tuple[str, str]], list[str], list[str], int]:
+    """A largest one-to-one pairing for which a pair quantifier's body holds, the objects
+    of each kind left unpaired, and how many pairs the quantifier needs."""
+    evaluator = _Evaluator(facts)
+    pairs, left_first, left_second = evaluator.pairing(node, binding)
+    return pairs, left_first, left_second, evaluator.pairs_needed(node)
 
 
 def evaluate(formula: Formula, facts: Facts) -> FormulaResult:

@@ -8,15 +8,19 @@ wanted, requirements of the form "one of these things must change" (a set of
 
 - an atom with the wrong truth: its thing must change (`on`/`in`/`under`: the source's
   placement; `open`, `toggled_on`: that state of the object); `nextto` (read either
-  way) and `inroom` (a room follows what the object stands on) only say that some
-  action is needed, since moving either object, or what it stands on, may change them;
+  way): the placement of one of the two, since only moving one of them changes it;
+  `inroom` (a room follows what the object stands on) only says that some action is
+  needed, since moving the object, or what it stands on, may change it;
 - all parts wanted (and, forall; or, exists wanted false; ...): every part's
   requirements;
 - one part wanted (or, exists; and, forall wanted false; ...): each part's
   requirements thinned to pairwise disjoint ones, and the j-th of every part joined
   into one, for as many j as the poorest part has (whichever part a solution makes
   true, it meets each joined one with a distinct action);
-- `forn` and the pair quantifiers: some action, when their truth is wrong.
+- `forn` and the pair quantifiers: some action, when their truth is wrong (for the
+  additive guide, `forn` wanted true: the requirements of the fewest parts that must
+  change; a pair quantifier wanted true: those of the cheapest pairing of each
+  unpaired object, as many as pairs are missing).
 
 A container that must be opened and that the formula wants closed at the end (`(not
 (open x))` under `and`/`forall` alone) must be closed again: one more action.
@@ -45,7 +49,7 @@ from verigraph.graph.formula import (
     parse_formula,
 )
 from verigraph.graph.formula import parts as every_part
-from verigraph.graph.formula_eval import Facts, holds_in
+from verigraph.graph.formula_eval import Facts, holds_in, pairing
 from verigraph.graph.goal import Goal
 
 Thing = tuple[str, str]
@@ -69,15 +73,16 @@ StateNeeds = Callable[[str, str, bool], list[frozenset[Thing]]]
 
 
 def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None = None, *,
-                  additive: bool = False) -> int:
+                  additive: bool = False, things: set[Thing] | None = None) -> int:
     """Actions the formula needs at least, from the state `facts` describe.
     `state_needs`: the other requirements of changing a state (each met by an action
     other than the one that changes the state).
 
     `additive`: the number of distinct requirements instead, not a lower bound (shared
     actions are counted once per requirement) but a sharper guide for a search that
-    does not promise optimal plans (weighted A*)."""
-    truth, needs, some = _Bound(facts, state_needs).need(formula, {}, True)
+    does not promise optimal plans (weighted A*). `things`: filled with every thing the
+    requirements name (what a helpful action changes)."""
+    truth, needs, some = _Bound(facts, state_needs, additive).need(formula, {}, True)
     if truth:
         return 0
     needs = [*needs, *_made_free(needs, facts)]
@@ -85,6 +90,8 @@ def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None
     if opened:  # opened now, closed at the end: closed again, one more action each
         closed = _closed_at_the_end(formula, facts)
         needs += [frozenset({("close", c)}) for _, c in opened if c in closed]
+    if things is not None:
+        things.update(thing for need in needs for thing in need)
     if additive:
         return max(len(set(needs)), 1)
     taken: set[Thing] = set()
@@ -171,9 +178,11 @@ def _disjoint(needs: list[frozenset[Thing]]) -> list[frozenset[Thing]]:
 
 
 class _Bound:
-    def __init__(self, facts: Facts, state_needs: StateNeeds | None = None) -> None:
+    def __init__(self, facts: Facts, state_needs: StateNeeds | None = None,
+                 additive: bool = False) -> None:
         self.facts = facts
         self.state_needs = state_needs
+        self.additive = additive
 
     def need(self, node: Formula, env: dict[str, str], want: bool) -> Need:
         """(truth now, requirements to reach `want`, some action needed)."""
@@ -201,7 +210,45 @@ class _Bound:
             return self.combine(truth, want, parts, every == want)
         assert isinstance(node, Quantified | Pairs)
         truth = holds_in(node, self.facts, env)
+        if truth != want and want and self.additive:
+            if isinstance(node, Quantified):
+                return self.count_guide(node, env)
+            return self.pairs_guide(node, env)
         return truth, [], truth != want
+
+    def pairs_guide(self, node: Pairs, env: dict[str, str]) -> Need:
+        """`forpairs`/`fornpairs` wanted true, for a guide: for each pair still missing,
+        the requirements of the cheapest way to pair an unpaired object of the first
+        kind with an unpaired one of the second not yet taken (greedily, one to one)."""
+        pairs, left_first, left_second, needed = pairing(node, self.facts, env)
+        missing = max(needed - len(pairs), 0)
+        ways = sorted(
+            (len(needs), a, b, needs) for a in left_first for b in left_second if b != a
+            for needs in [self.need(node.body, {**env, node.first.name: a,
+                                                node.second.name: b}, True)[1]])
+        chosen: list[frozenset[Thing]] = []
+        taken: set[str] = set()
+        for _, a, b, needs in ways:
+            if len(taken) >= 2 * missing:
+                break
+            if a not in taken and b not in taken:
+                taken |= {a, b}
+                chosen += needs
+        return False, chosen, True
+
+    def count_guide(self, node: Quantified, env: dict[str, str]) -> Need:
+        """`forn (N)` wanted true, for a guide (not a bound: one action may change two
+        parts): the requirements of the fewest parts that must change, those that must
+        become true while fewer than N hold, those that must become false while more do."""
+        name, count = node.param.name, node.count or 0
+        truths = [(o, holds_in(node.body, self.facts, {**env, name: o}))
+                  for o in self.facts.objects_of(node.param.kind)]
+        held = sum(truth for _, truth in truths)
+        flip = held < count
+        options = sorted((self.need(node.body, {**env, name: o}, flip)[1]
+                          for o, truth in truths if truth != flip), key=len)
+        changes = options[:abs(held - count)]
+        return False, [n for needs in changes for n in needs], True
 
     @staticmethod
     def combine(truth: bool, want: bool, parts: list[Need], all_parts: bool) -> Need:
@@ -219,6 +266,8 @@ class _Bound:
             thing = ("place", terms[0])
         if truth == want:
             return truth, [], False
+        if node.relation == "nextto":  # only moving one of the two changes it
+            return truth, [frozenset({thing, ("place", terms[1])})], True
         if len(terms) == 2 and node.relation not in PLACE_RELATIONS:
             return truth, [], True
         if len(terms) == 1 and self.state_needs is not None:

@@ -46,7 +46,11 @@ class SolveResult(BaseModel):
 
 
 def static_reason(state: WorldState, goal: Goal) -> str | None:
-    """Reasons a goal graph can never hold, found without search."""
+    """Reasons a goal can never hold, found without search."""
+    if goal.formula is not None:
+        reason = process_reason(state, goal.formula)
+        if reason:
+            return reason
     if goal.graph is None:
         return None
     g = goal.graph
@@ -77,4 +81,38 @@ def static_reason(state: WorldState, goal: Goal) -> str | None:
             if not o.props.movable and o.id in state.support and not any(
                     e.source == o.id for e in g.edges):
                 return f"{o.id} is fixed on {state.support[o.id][1]}; the goal removes that edge"
+    return None
+
+
+def process_reason(state: WorldState, formula: str) -> str | None:
+    """A thermal state the formula needs (`(cooked x)` under `and` and `forall` alone, x
+    an id or each object of the kind) that does not hold yet, where the scene has no
+    source for it at all: no action can ever make it true (cook and heat need a heat
+    source, freeze a cold source)."""
+    from verigraph.actions.processes import PROCESSES, SOURCE_WORDS
+    from verigraph.graph.formula import Atom, Junction, Quantified, parse_formula
+    from verigraph.graph.formula_eval import facts_of
+
+    makes = {key: (name, source) for name, (key, value, _, source, needed) in PROCESSES.items()
+             if value and needed}
+    have = {source for source in SOURCE_WORDS
+            if any(getattr(o.props, source) for o in state.objects.values())}
+    facts = None
+    stack: list[tuple[object, dict[str, str]]] = [(parse_formula(formula), {})]
+    while stack:
+        node, env = stack.pop()
+        if isinstance(node, Junction) and node.op == "and":
+            stack.extend((part, env) for part in node.parts)
+        elif isinstance(node, Quantified) and node.op == "forall":
+            facts = facts or facts_of(state)
+            stack.extend((node.body, {**env, node.param.name: o})
+                         for o in facts.objects_of(node.param.kind))
+        elif isinstance(node, Atom) and node.relation in makes:
+            obj = env.get(node.terms[0], node.terms[0])
+            name, source = makes[node.relation]
+            if source not in have and obj in state.objects \
+                    and not state.state_value(obj, node.relation):
+                word = SOURCE_WORDS[source]
+                return (f"the goal needs ({node.relation} {obj}), which only {name} makes, "
+                        f"on or in a {word} that is on, and the scene has no {word}")
     return None

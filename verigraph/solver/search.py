@@ -95,7 +95,10 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
         return SolveResult(reachable=False, status="unreachable", reason=reason)
     if state.contacts or any(o.props.sides for o in state.objects.values()):
         return _solve_tangram(state, goal_model, budget)
-    if needs_table_search(state, goal_model) or formula_needs_table(goal_model):
+    if needs_table_search(state, goal_model) or formula_needs_table(goal_model) \
+            or (anytime and goal_model.formula is not None):
+        # anytime over a formula: the table's greedy best-first search, guided by every
+        # requirement of the formula, finds a plan where the encoded weighted A* stalls
         return _solve_table(state, goal_model, budget, anytime)
     problem = SearchProblem(state)
     wanted = goal_codes(problem, goal_model.graph) if goal_model.graph is not None else {}
@@ -266,25 +269,30 @@ def _astar(problem: SearchProblem, h: Callable[[Codes], int], is_goal: Callable[
 
 def _solve_table(state: WorldState, goal: Goal, budget: SearchBudget,
                  anytime: bool = False) -> SolveResult:
-    """A household world: optimal A* over the action table; anytime: weighted A*
-    (w = 3) first, a plan sooner whose length is not proven optimal, then A* with what
-    budget is left (its bound kept if it stops)."""
+    """A household world: optimal A* over the action table; anytime: greedy best-first
+    search first (a plan soonest, its length not proven optimal), then A* over what
+    budget is left, pruned by that plan's length (a shorter plan found replaces it; A*
+    that finishes proves the one kept optimal; its bound is kept if it stops)."""
     proof = {"floor": 0}
     first: list[AnyAction] | None = None
     try:
         if anytime:
-            found, plan = table_astar(state, goal, budget, weight=3.0)
+            found, plan = table_astar(state, goal, budget, weight=math.inf)
             if not found:
                 return _searched(found, plan, budget, "actions")
             first = plan
-        found, plan = table_astar(state, goal, budget, proof=proof)
+        found, plan = table_astar(state, goal, budget, proof=proof,
+                                  bound=math.inf if first is None else len(first))
     except SearchBudgetSpent as exc:
         if first is not None:
             return SolveResult(reachable=True, plan=first, expanded=budget.expansions,
                                optimal=len(first) <= proof["floor"],
-                               lower_bound=proof["floor"])
+                               lower_bound=proof["floor"], reason=f"refinement stopped: {exc}")
         return SolveResult(reachable=None, status="budget_exhausted", reason=str(exc),
                            expanded=budget.expansions, lower_bound=proof["floor"])
+    if first is not None and not found:  # nothing shorter than the first plan exists
+        return SolveResult(reachable=True, plan=first, expanded=budget.expansions,
+                           optimal=True, lower_bound=len(first))
     return _searched(found, plan, budget, "actions")
 
 

@@ -18,13 +18,19 @@ from __future__ import annotations
 
 import heapq
 import itertools
+import math
 from collections.abc import Iterator
 from typing import Any
 
 from verigraph.actions.model import AnyAction, MoveAction, StateAction
 from verigraph.actions.processes import process_needs
-from verigraph.actions.schemas import SCHEMAS, ActionSchema
-from verigraph.graph.dictionary import PLACEMENT_RELATIONS, STATE_ROLES, SUPPORT_RELATIONS
+from verigraph.actions.schemas import SCHEMAS, ActionSchema, SetState
+from verigraph.graph.dictionary import (
+    PLACEMENT_RELATIONS,
+    STATE_ROLES,
+    SUPPORT_RELATIONS,
+    THERMAL_ROLES,
+)
 from verigraph.graph.formula import Atom, Formula, Imply, Junction, Not, parse_formula
 from verigraph.graph.formula_eval import Facts, facts_of
 from verigraph.graph.goal import Goal, check_goal
@@ -102,9 +108,24 @@ class TableProblem:
         self.additive = additive  # h from distinct requirements: a guide, not a bound
         objects = state.objects
         self.movable = sorted(o for o, info in objects.items() if info.props.movable)
+        # The formula's atoms (parsed once): which states the goal reads.
+        self.formula = parse_formula(goal.formula) if goal.formula is not None else None
+        wanted = _atom_relations(self.formula) if self.formula is not None else set()
+        if goal.graph is not None:
+            wanted |= {e.relation for e in goal.graph.edges}
+            wanted |= {key for n in goal.graph.nodes for key in n.state}
+        # A thermal state (cooked, hot, frozen) is read by no precondition but its own
+        # process's, so where the goal does not read it, an action that changes it never
+        # helps: those rows are left out (plans stay optimal, the space much smaller).
+        # `open` and `toggled_on` gate moves and processes, so they always count.
+        self.keys = {key for key in STATE_ROLES
+                     if key not in THERMAL_ROLES or key in wanted}
+        self.rows = [row for row in SCHEMAS.values()
+                     if not isinstance(row.effect, SetState) or row.effect.key in self.keys]
         self.stateful = sorted(
             (o, key) for o, info in objects.items()
-            for key, role in STATE_ROLES.items() if getattr(info.props, role))
+            for key, role in STATE_ROLES.items()
+            if key in self.keys and getattr(info.props, role))
         roles = {p.role for row in SCHEMAS.values() for p in row.parameters
                  if p.role not in (None, "relation")}
         self.candidates: dict[str, list[str]] = {
@@ -122,13 +143,9 @@ class TableProblem:
                 for key, value in n.state.items():
                     self.states[(n.id, key)] = value
         # A formula goal: its admissible bound (verigraph.solver.formula_bound) joins.
-        self.formula = parse_formula(goal.formula) if goal.formula is not None else None
         # `under`/`nextto` moves only where the goal reads them or rooms: with a fixed
         # surface of unlimited capacity, a parking move by them has an equally long
         # replacement onto it (needs_table_search), so the plans stay optimal.
-        wanted = _atom_relations(self.formula) if self.formula is not None else set()
-        if goal.graph is not None:
-            wanted |= {e.relation for e in goal.graph.edges}
         unlimited = any(objects[s].props.capacity is None for s in state.fixed_surfaces)
         self.relations = [r for r in state.move_relations
                           if r in SUPPORT_RELATIONS or r in wanted or not unlimited
@@ -180,6 +197,17 @@ class TableProblem:
                 additive=self.additive))
         return wrong
 
+    def helpful(self, state: WorldState) -> set[tuple[str, str]]:
+        """The things (`("place", x)`, `("open", box)`, `("cooked", x)`, ...) the goal
+        formula's requirements name on `state`: an action that changes one of them is
+        helpful (greedy search tries those first). Empty without a formula."""
+        things: set[tuple[str, str]] = set()
+        if self.formula is not None:
+            formula_bound(self.formula, self.facts(state),
+                          lambda obj, key, want: process_needs(state, obj, key, want),
+                          additive=True, things=things)
+        return things
+
     def world(self, key: Key) -> WorldState:
         """The world of a search key: the start with its placements and states."""
         state = self.start.copy()
@@ -208,7 +236,7 @@ class TableProblem:
         `state` in place, read, and undone (a copy per successor cost more than the
         search did), so `state` is unchanged when the iteration ends."""
         made = 0
-        for row in SCHEMAS.values():
+        for row in self.rows:
             for args in self._bindings(row, state):
                 if not row.accepted(state, *args):
                     continue
@@ -262,21 +290,88 @@ def _action(row: ActionSchema, args: tuple[str, ...]) -> AnyAction:
     return StateAction(action=row.name, object=args[0])  # type: ignore[arg-type]
 
 
+def _changes(row: ActionSchema, args: tuple[str, ...]) -> tuple[str, str]:
+    """The thing an action changes: `("place", x)` for a move, `(key, x)` for a state."""
+    if isinstance(row.effect, SetState):
+        key = row.effect.key
+        if key == "open" and not row.effect.value:
+            return "close", args[0]
+        return key, args[0]
+    return "place", args[0]
+
+
+# Of every HELPFUL_SHARE pops, all but one come from the helpful actions' queue.
+HELPFUL_SHARE = 4
+
+
+def _greedy(problem: TableProblem, state: WorldState, goal: Goal, budget: SearchBudget
+            ) -> tuple[bool, list[AnyAction]]:
+    """Greedy best-first search with helpful actions: two queues, both ordered by the
+    guide (fewest requirements left, shallower on ties), one holding every successor,
+    the other only those reached by a helpful action (one that changes a thing the
+    requirements name: `TableProblem.helpful`); they are popped in turn, so a plateau
+    where the guide does not move (emptying a container before it moves) is crossed
+    by the actions that matter first. A plan soonest, not proven optimal."""
+    counter = itertools.count()
+    start_key = problem.key(state)
+    queues: tuple[list[tuple[int, int, int, Key]], ...] = (
+        [(problem.h(state), 0, next(counter), start_key)], [])
+    parent: dict[Key, tuple[Key, ActionSchema, tuple[str, ...]] | None] = {start_key: None}
+    expanded: set[Key] = set()
+    pops = 0
+    while queues[0] or queues[1]:
+        pops += 1
+        turn = 1 if queues[1] and (pops % HELPFUL_SHARE or not queues[0]) else 0
+        _, g, _, key = heapq.heappop(queues[turn])
+        if key in expanded:
+            continue
+        expanded.add(key)
+        current = problem.world(key)
+        if problem.h(current) == 0 and check_goal(current, goal).satisfied:
+            plan: list[AnyAction] = []
+            node: Key | None = key
+            while node is not None and parent[node] is not None:
+                prev, row, args = parent[node]  # type: ignore[misc]
+                plan.append(_action(row, args))
+                node = prev
+            return True, list(reversed(plan))
+        budget.expansions += 1
+        budget.check()
+        helpful = problem.helpful(current)
+        for row, args, nkey, nh in problem.successors(current, budget):
+            if nkey in parent:
+                continue
+            parent[nkey] = (key, row, args)
+            entry = (nh, g + 1, next(counter), nkey)
+            heapq.heappush(queues[0], entry)
+            if _changes(row, args) in helpful:
+                heapq.heappush(queues[1], entry)
+    return False, []
+
+
 def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: float = 1.0,
-                proof: dict[str, int] | None = None) -> tuple[bool, list[AnyAction]]:
+                proof: dict[str, int] | None = None, bound: float = math.inf
+                ) -> tuple[bool, list[AnyAction]]:
     """(found, plan): an optimal plan over the table's actions, every action one step.
 
     With `weight` > 1, weighted A* (f = g + weight * h, h counting every distinct
-    requirement of the formula rather than a bound): a plan sooner, not proven optimal.
+    requirement of the formula rather than a bound): a plan sooner, not proven optimal;
+    with `weight` infinite, greedy best-first search (the node with the fewest
+    requirements left first, shallower on ties): a plan soonest, often longer.
+    `bound`: only plans shorter than it are sought (a node whose g + h reaches it is
+    dropped; h is then the admissible bound, weight 1).
     `proof["floor"]` is raised, for weight 1, to the smallest f still open (every plan
     needs at least that many actions), so a search the budget stops keeps its bound."""
     problem = TableProblem(state, goal, additive=weight > 1.0)
+    greedy = math.isinf(weight)
+    if greedy:
+        return _greedy(problem, state, goal, budget)
     counter = itertools.count()
     start_key = problem.key(state)
     start_h = problem.h(state)
     frontier: list[tuple[float, int, int, Key]] = [(weight * start_h, 0, next(counter),
                                                     start_key)]
-    parent: dict[Key, tuple[Key, AnyAction] | None] = {start_key: None}
+    parent: dict[Key, tuple[Key, ActionSchema, tuple[str, ...]] | None] = {start_key: None}
     best_g = {start_key: 0}
     if proof is not None:
         proof["floor"] = max(proof.get("floor", 0), start_h)
@@ -292,8 +387,8 @@ def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: 
             plan: list[AnyAction] = []
             node: Key | None = key
             while node is not None and parent[node] is not None:
-                prev, action = parent[node]  # type: ignore[misc]
-                plan.append(action)
+                prev, row, args = parent[node]  # type: ignore[misc]
+                plan.append(_action(row, args))
                 node = prev
             return True, list(reversed(plan))
         budget.expansions += 1
@@ -301,8 +396,10 @@ def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: 
         for row, args, nkey, nh in problem.successors(current, budget):
             ng = g + 1
             if ng < best_g.get(nkey, ng + 1):
+                if ng + nh >= bound:
+                    continue  # cannot beat the plan already found
                 best_g[nkey] = ng
-                parent[nkey] = (key, _action(row, args))
+                parent[nkey] = (key, row, args)
                 # Ties broken towards deeper nodes: fewer expansions, still optimal.
                 heapq.heappush(frontier, (ng + weight * nh, -ng, next(counter), nkey))
     return False, []

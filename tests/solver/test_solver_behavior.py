@@ -1,0 +1,150 @@
+"""BEHAVIOR-style goals the solver reaches: `nextto` beside a placement (an object next
+to another stands where that one stands; next to furniture, on its room's floor), a
+thermal state with no source to make it said unreachable before any search, and a goal
+whose bound is flat for A* found by the greedy first phase of the anytime search."""
+
+from __future__ import annotations
+
+import pytest
+from bddl_problems import KINDLING, STEWED, VODKA
+
+from verigraph.actions.execution import run_actions
+from verigraph.actions.model import MoveAction
+from verigraph.actions.report import validate_plan
+from verigraph.actions.validator import validate_action
+from verigraph.graph.bddl_problem import import_problem
+from verigraph.graph.formula import parse_formula
+from verigraph.graph.formula_eval import facts_of, holds
+from verigraph.graph.goal import Goal
+from verigraph.graph.state import WorldState
+from verigraph.solver import solve
+
+pytestmark = pytest.mark.fast
+
+
+def solved(text: str) -> tuple[WorldState, Goal, list[str]]:
+    """Import, solve (optimal), validate against the formula and run on a copy."""
+    imported = import_problem(text)
+    state = WorldState.from_graph(imported.scene_graph())
+    goal = Goal(formula=imported.formula)
+    result = solve(state, goal, time_limit=10)
+    assert result.reachable and result.optimal, result.reason
+    report = validate_plan(state.copy(), result.plan or "done", goal)
+    assert report.valid and report.goal_diff is not None and report.goal_diff.satisfied
+    after = state.copy()
+    run = run_actions(after, result.plan)
+    assert not run.violations
+    assert holds(parse_formula(imported.formula), facts_of(after))
+    return state, goal, [a.text() for a in result.plan]
+
+
+def test_next_to_a_bottle_in_the_cabinet_is_in_the_cabinet() -> None:
+    _, _, plan = solved(VODKA)
+    assert plan[0] == "open(cabinet_1)" and len(plan) == 3
+    assert plan[2] in ("move(bottle_of_vodka_2, nextto, bottle_of_vodka_1)",
+                       "move(bottle_of_vodka_1, nextto, bottle_of_vodka_2)")
+
+
+def test_next_to_the_fireplace_is_on_the_floor_of_its_room() -> None:
+    state, goal, plan = solved(KINDLING)
+    assert sorted(plan) == ["move(firewood_1, nextto, wood_fireplace_1)",
+                            "move(firewood_2, nextto, wood_fireplace_1)"]
+    facts = facts_of(state)
+    assert not holds(parse_formula("(ontop firewood_1 floor_2)"), facts)
+    run_actions(state, [MoveAction(object="firewood_1", relation="nextto",
+                                   target="wood_fireplace_1")])
+    facts = facts_of(state)
+    assert holds(parse_formula("(ontop firewood_1 floor_2)"), facts)  # the living room's
+    assert not holds(parse_formula("(ontop firewood_1 floor_1)"), facts)  # the garden's
+    assert not holds(parse_formula("(inside firewood_1 floor_2)"), facts)
+    assert holds(parse_formula("(inroom firewood_1 living_room)"), facts)
+
+
+def test_next_to_an_object_in_a_closed_cabinet_is_refused_until_it_is_opened() -> None:
+    state = WorldState.from_graph(import_problem(VODKA).scene_graph())
+    state.set_state("cabinet_1", "open", True)
+    assert not run_actions(state, [MoveAction(object="bottle_of_vodka_1", relation="in",
+                                              target="cabinet_1")]).violations
+    state.set_state("cabinet_1", "open", False)
+    beside = MoveAction(object="bottle_of_vodka_2", relation="nextto",
+                        target="bottle_of_vodka_1")
+    violation = validate_action(state, beside)
+    assert violation is not None and violation.constraint == "container_closed"
+    assert "cabinet_1" in violation.message and violation.blocking == ["cabinet_1"]
+    state.set_state("cabinet_1", "open", True)
+    assert validate_action(state, beside) is None
+
+
+def test_a_state_no_source_can_make_is_unreachable_without_search() -> None:
+    imported = import_problem(STEWED)
+    result = solve(imported.scene_graph(), Goal(formula=imported.formula))
+    assert result.reachable is False and result.expanded == 0
+    assert result.reason is not None
+    assert "(cooked pear_1)" in result.reason and "no heat source" in result.reason
+
+
+def test_the_guide_counts_each_pair_and_each_part_still_missing() -> None:
+    from verigraph.graph.model import SceneGraph
+    from verigraph.solver.formula_bound import formula_bound
+
+    nodes = [("table", "table"), ("plate_1", "plate"), ("plate_2", "plate"),
+             ("plate_3", "plate"), ("cup_1", "cup"), ("cup_2", "cup"), ("cup_3", "cup")]
+    edges = [(n, "on", "table") for n, label in nodes if label != "table"]
+    state = WorldState.from_graph(SceneGraph.model_validate({
+        "nodes": [{"id": i, "label": label} for i, label in nodes],
+        "edges": [{"source": s, "relation": r, "target": t} for s, r, t in edges],
+        "dictionary": "household"}))
+    pairs = parse_formula("(forpairs (?c - cup) (?p - plate) (ontop ?c ?p))")
+    two = parse_formula("(forn (2) (?c - cup) (exists (?p - plate) (ontop ?c ?p)))")
+    facts = facts_of(state)
+    # the bound only knows some action is needed; the guide counts a move per pair
+    assert formula_bound(pairs, facts) == 1
+    assert formula_bound(pairs, facts, additive=True) == 3
+    assert formula_bound(two, facts, additive=True) == 2
+    run_actions(state, [MoveAction(object="cup_1", relation="on", target="plate_2")])
+    facts = facts_of(state)
+    assert formula_bound(pairs, facts, additive=True) == 2
+    assert formula_bound(two, facts, additive=True) == 1
+
+
+def test_thermal_actions_the_goal_does_not_read_are_not_searched() -> None:
+    from verigraph.solver.table_search import TableProblem
+
+    imported = import_problem(VODKA)
+    state = WorldState.from_graph(imported.scene_graph())
+    rows = {row.name for row in TableProblem(state, Goal(formula=imported.formula)).rows}
+    assert {"move", "open", "close", "toggle_on", "toggle_off"} <= rows
+    assert not rows & {"cook", "heat", "cool", "freeze", "thaw"}
+    cooked = TableProblem(state, Goal(formula="(cooked bottle_of_vodka_1)"))
+    assert "cook" in {row.name for row in cooked.rows}
+    assert "freeze" not in {row.name for row in cooked.rows}
+
+
+def test_helpful_actions_change_what_the_requirements_name() -> None:
+    from verigraph.actions.schemas import SCHEMAS
+    from verigraph.solver.table_search import TableProblem, _changes
+
+    imported = import_problem(VODKA)
+    state = WorldState.from_graph(imported.scene_graph())
+    problem = TableProblem(state, Goal(formula=imported.formula), additive=True)
+    helpful = problem.helpful(state)
+    assert {("place", "bottle_of_vodka_1"), ("place", "bottle_of_vodka_2"),
+            ("open", "cabinet_1")} <= helpful
+    assert ("place", "floor_1") not in helpful
+    assert _changes(SCHEMAS["open"], ("cabinet_1",)) == ("open", "cabinet_1")
+    assert _changes(SCHEMAS["close"], ("cabinet_1",)) == ("close", "cabinet_1")
+    assert _changes(SCHEMAS["move"], ("bottle_of_vodka_1", "in", "cabinet_1")) == \
+        ("place", "bottle_of_vodka_1")
+
+
+def test_objects_asked_pairwise_next_to_each_other_are_said_unreachable() -> None:
+    from verigraph.tasks.behavior import placement_conflict
+
+    triangle = "(and (nextto folder book) (nextto folder bag) (nextto book bag))"
+    reason = placement_conflict(triangle)
+    assert reason is not None and "bag, book, folder" in reason and "cycle" in reason
+    # a chain is fine (book next to the folder, the bag next to the book), and so is
+    # nextto beside ontop: the one moved stands where the other stands
+    assert placement_conflict("(and (nextto folder book) (nextto book bag))") is None
+    assert placement_conflict("(and (nextto folder book) (ontop folder desk))") is None
+    assert placement_conflict("(and (ontop folder desk) (inside folder bag))") is not None
