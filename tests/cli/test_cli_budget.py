@@ -121,3 +121,17 @@ def test_val_counts_a_plan_over_the_budget_as_the_validator_failing(capsys, tmp_
     out = capsys.readouterr().out
     assert "Error occurred in validation attempt:" in out and "0.3 s of CPU" in out
     assert "Plan valid" in out and f"Queries (validator failed):\n {plan} " in out
+
+
+def test_a_commands_cpu_seconds_hold_for_that_command_only(capsys, tmp_path, monkeypatch):
+    """`--cpu-seconds 30` given to one in-process `verigraph validate` does not become the
+    budget of the next check: `verigraph-val` after it keeps $VERIGRAPH_CPU_SECONDS."""
+    d, p, plan = _files(tmp_path, 200)
+    (tmp_path / "one").write_text("(every)\n")
+    assert verigraph_main(["validate", "--domain", d, "--problem", p, "--plan",
+                           str(tmp_path / "one"), "--cpu-seconds", "30"]) == 0
+    monkeypatch.setenv(CPU_SECONDS_ENV, "0.3")
+    started = time.process_time()
+    assert val.run([d, p, plan]) == 1
+    assert time.process_time() - started < 5
+    assert "0.3 s of CPU" in capsys.readouterr().out

@@ -202,7 +202,16 @@ def _usage_error(message: str, fix: str) -> VeriGraphError:
 
 
 def run_validate(args: argparse.Namespace) -> int:
-    _CPU_SECONDS.set(args.cpu_seconds)
+    """`verigraph validate`: its `--cpu-seconds` holds for this command only (reset on the
+    way out, so a caller running commands in process keeps its own budget)."""
+    token = _CPU_SECONDS.set(args.cpu_seconds)
+    try:
+        return _run_validate(args)
+    finally:
+        _CPU_SECONDS.reset(token)
+
+
+def _run_validate(args: argparse.Namespace) -> int:
     try:
         if args.batch:
             if args.scene or args.domain or args.plan or args.dictionary:

@@ -48,8 +48,8 @@ from verigraph.pddl.model import (
     Grounder,
     Problem,
     Term,
+    atom_text,
     grounder,
-    show,
 )
 
 MAX_DERIVED_BINDINGS = 1_000_000
@@ -463,7 +463,7 @@ def explain(domain: Domain, problem: Problem, state: set[GroundAtom], atom: Grou
     axioms = domain.axioms
     assert axioms is not None
     if expected is False:
-        return f"{show(atom)} is derived and its rule holds in this state"
+        return f"{atom_text(atom)} is derived and its rule holds in this state"
     reasons = []
     ev = Evaluator(domain, problem, state)
     for d in axioms.definitions.get(atom[0], [])[:3]:
@@ -477,7 +477,7 @@ def explain(domain: Domain, problem: Problem, state: set[GroundAtom], atom: Grou
         except VeriGraphError:
             why = "its body is false"
         reasons.append(f"{text(d.formula, slots, d.slot_names)[:160]} fails: {why[:200]}")
-    return f"{show(atom)} is derived (:derived {atom[0]}); " + "; ".join(reasons)
+    return f"{atom_text(atom)} is derived (:derived {atom[0]}); " + "; ".join(reasons)
 
 
 def head_types_for(domain: Domain, pred: str, given: list[str]) -> list[str]:

@@ -49,8 +49,8 @@ from verigraph.pddl.model import (
     Literal,
     Problem,
     Schema,
+    atom_text,
     grounder,
-    show,
 )
 
 Changed = dict[GroundAtom, tuple[int, str]]  # atom -> (step, action) that last changed it
@@ -62,10 +62,11 @@ MAX_INSTEAD = 2
 
 
 def literal_text(atom: GroundAtom, expected: bool) -> str:
-    return show(atom) if expected else f"(not {show(atom)})"
+    return atom_text(atom) if expected else f"(not {atom_text(atom)})"
 
 
-def holds(atom: GroundAtom, state: set[GroundAtom]) -> bool:
+def atom_holds(atom: GroundAtom, state: set[GroundAtom]) -> bool:
+    """Whether a ground atom holds in `state` (equality by its terms)."""
     if atom[0] == "=":
         return atom[1] == atom[2]
     return atom in state
@@ -118,8 +119,9 @@ def history(atom: GroundAtom, expected: bool, changed: Changed, state: set[Groun
     if expected:
         others = instead(atom, state, index)
         if others:
-            out["instead"] = [{"literal": show(a), "since": _since(a, changed)} for a in others]
-            text += "; instead " + ", ".join(f"{show(a)} holds ({_since(a, changed)})"
+            out["instead"] = [{"literal": atom_text(a), "since": _since(a, changed)}
+                              for a in others]
+            text += "; instead " + ", ".join(f"{atom_text(a)} holds ({_since(a, changed)})"
                                              for a in others)
     out["explanation"] = text
     return out

@@ -226,6 +226,6 @@ def shower(literal: Literal) -> Shower:
     return lambda b: head + " ".join(get(b)) + ")"
 
 
-def show(atom: GroundAtom | tuple[str, ...]) -> str:
+def atom_text(atom: GroundAtom | tuple[str, ...]) -> str:
     """`("at", "t1", "l1")` -> `(at t1 l1)`; equality reads `(= a b)`."""
     return "(" + " ".join(atom) + ")"

@@ -59,9 +59,9 @@ from verigraph.pddl.explain import (
     Changed,
     Explainer,
     StateIndex,
+    atom_holds,
     complete_binding,
     history,
-    holds,
     literal_text,
 )
 from verigraph.pddl.fastground import UNUSUAL, Generated
@@ -80,8 +80,8 @@ from verigraph.pddl.model import (
     Problem,
     Schema,
     Shower,
+    atom_text,
     grounder,
-    show,
     shower,
 )
 from verigraph.pddl.plans import MAX_STEPS, Step, line_reader, parse_strips_plan
@@ -384,7 +384,7 @@ class _Simulation:
         if _unsatisfied(schema, step.args, self.state, self.changed, domain, problem):
             return None
         cost = _cost(fast, step.args, problem.values)
-        term = show(cost) if isinstance(cost, tuple) else "?"
+        term = atom_text(cost) if isinstance(cost, tuple) else "?"
         text = "(" + " ".join((schema.name, *step.args)) + ")"
         return ("precondition_unsatisfied", f"{text} needs a value for {term}, its cost, "
                 "which the initial state does not give", f"add (= {term} N) to the problem's :init")
@@ -404,7 +404,7 @@ class _Simulation:
             "not_checked": not_checked, "done": False,
             "goal_diff": {"satisfied": not unmet, "missing_atoms": missing},
             "unmet_goals": unmet,
-            "final_state": sorted(map(show, state)),
+            "final_state": sorted(map(atom_text, state)),
         }
         if all_errors:
             report["after_failure"] = SKIPPED
@@ -459,7 +459,7 @@ class _Simulation:
         final_index = StateIndex(state)
         for goals, expected in ((problem.goal_pos, True), (problem.goal_neg, False)):
             for atom in goals:
-                if holds(atom, state) != expected:
+                if atom_holds(atom, state) != expected:
                     goal: dict[str, Any] = {"literal": literal_text(atom, expected),
                                             "expected": expected,
                                             **history(atom, expected, self.changed, state,
@@ -558,7 +558,8 @@ def _edit(domain: Domain, problem: Problem, entry: _Ground, state: set[GroundAto
     else:
         gone = [a for a in ordered if a in state]
         new = [a for a in added if a not in state]
-    return gone, new, {"removed": [show(a) for a in gone], "added": [show(a) for a in new]}
+    return gone, new, {"removed": [atom_text(a) for a in gone],
+                       "added": [atom_text(a) for a in new]}
 
 
 def _adl_changes(domain: Domain, problem: Problem, fast: _Compiled, args: tuple[str, ...],
@@ -633,7 +634,7 @@ def _ground_action(domain: Domain, problem: Problem, fast: _Compiled, step: Step
         ordered = tuple(a for a in dict.fromkeys(dels) if a not in add_set)
         removed = frozenset(ordered)
         added = tuple(dict.fromkeys(adds))
-        edit = {"removed": [show(a) for a in ordered], "added": [show(a) for a in added]}
+        edit = {"removed": [atom_text(a) for a in ordered], "added": [atom_text(a) for a in added]}
     text = "(" + " ".join((name, *binding)) + ")"
     sure = fast.adl is None and removed <= pre
     return (pre, neg, removed, added, edit, {"action": name, "args": list(binding)}, text,
@@ -730,7 +731,7 @@ def _fast_steps(domain: Domain, problem: Problem, keys: Sequence[Any],
                     new = [a for a, h in zip(added, held[len(ordered):], strict=True)
                            if not h]
                 variant = edits[held] = (gone, new, {
-                    "removed": [show(a) for a in gone], "added": [show(a) for a in new]})
+                    "removed": [atom_text(a) for a in gone], "added": [atom_text(a) for a in new]})
             state.difference_update(variant[0])
             state.update(variant[1])
             append({"step": index, "ok": True, "action": action, "text": text,
@@ -744,8 +745,8 @@ def _fast_steps(domain: Domain, problem: Problem, keys: Sequence[Any],
             state.difference_update(gone)
             state.update(new)
             append({"step": index, "ok": True, "action": action, "text": text,
-                    "edit": {"removed": [show(a) for a in gone],
-                             "added": [show(a) for a in new]}})
+                    "edit": {"removed": [atom_text(a) for a in gone],
+                             "added": [atom_text(a) for a in new]}})
         total_cost += cost
     return _Simulation(domain, problem, state, out_steps, total_cost).report(0, False)
 
@@ -864,11 +865,11 @@ def _unsatisfied(schema: Schema, binding: tuple[str, ...], state: set[GroundAtom
                             "explanation": ev.why_false(f, slots, schema.slot_names)})
     for lit in schema.pre_pos:
         atom = schema.ground(lit, binding)
-        if not holds(atom, state):
+        if not atom_holds(atom, state):
             out.append({"literal": literal_text(atom, True), "expected": True, "atom": atom})
     for lit in schema.pre_neg:
         atom = schema.ground(lit, binding)
-        if holds(atom, state):
+        if atom_holds(atom, state):
             out.append({"literal": literal_text(atom, False), "expected": False, "atom": atom})
     return out
 
