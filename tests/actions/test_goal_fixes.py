@@ -263,3 +263,21 @@ def test_a_place_the_goal_forbids_is_never_offered():
     v = validate_action(kitchen_table(), move("book", "on", "shelf"), wanted=wanted)
     assert v is not None and "move(cup, on, desk)" not in v.suggestion
     assert "move(cup, on, shelf)" not in v.suggestion
+
+
+def test_a_place_the_goal_forbids_a_whole_kind_is_never_offered():
+    """"no cup on any plate" forbids every plate to every cup: a quantified goal is read
+    by kind, and the reason names the goal rather than calling a surface the target."""
+    named = "(not (on cup desk)) (not (on cup shelf)) (not (in cup bowl))"
+    wanted = wanted_placements(Goal(formula=f"(and {named})"))
+    v = validate_action(kitchen_table(), move("book", "on", "shelf"), wanted=wanted)
+    assert v is not None and "move(cup, on, plate)" in v.suggestion
+    assert "the goal keeps cup off desk" in v.suggestion and "target" not in v.suggestion
+    for no_plate in ("(forall (?c - cup) (forall (?p - plate) (not (on ?c ?p))))",
+                     "(not (exists (?p - plate) (on cup ?p)))"):
+        wanted = wanted_placements(Goal(formula=f"(and {named} {no_plate})"))
+        assert ("?cup" if "forall" in no_plate else "cup", "not on", "?plate") in wanted
+        v = validate_action(kitchen_table(), move("book", "on", "shelf"), wanted=wanted)
+        assert v is not None and "plate" not in v.suggestion, v.suggestion
+    assert not {w for w in wanted_placements(Goal(
+        formula="(exists (?c - cup) (not (on ?c plate)))")) if w[0].startswith("?")}

@@ -16,6 +16,7 @@ from collections.abc import Callable
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AlignAction, MoveAction, StateAction
 from verigraph.graph.dictionary import STATE_WORDS
+from verigraph.graph.formula_eval import facts_of
 from verigraph.graph.state import WorldState
 
 # The (object, relation, place) edges a known goal asks for (`graph.goal.wanted_placements`),
@@ -120,6 +121,23 @@ def _pinned(state: WorldState, obj: str, wanted: Wanted) -> bool:
     return where is not None and (obj, *where) in wanted
 
 
+def _forbidden_places(state: WorldState, obj: str, wanted: Wanted) -> set[str]:
+    """The places the goal forbids `obj`: named (`(not (on cup_1 plate_a))`) or by kind
+    (`("?cup", "not on", "?plate")`, from "no cup on any plate"), read through the
+    formula evaluator's kinds."""
+    places = {place for o, relation, place in wanted
+              if o == obj and relation.startswith("not ") and not place.startswith("?")}
+    by_kind = [(o, place) for o, relation, place in wanted
+               if relation.startswith("not ") and (o.startswith("?") or place.startswith("?"))]
+    if by_kind:
+        facts = facts_of(state)
+        for o, place in by_kind:
+            if o == obj or (o.startswith("?") and obj in facts.objects_of(o[1:])):
+                places.update(facts.objects_of(place[1:]) if place.startswith("?")
+                              else (place,))
+    return places
+
+
 def _free_place(state: WorldState, obj: str, exclude: set[str],
                 planned: dict[str, int] | None = None, *,
                 wanted: Wanted = NO_GOAL) -> tuple[str, str, str] | None:
@@ -134,9 +152,8 @@ def _free_place(state: WorldState, obj: str, exclude: set[str],
     planned = planned or {}
     if wanted and (toward := _goal_place(state, obj, exclude, planned, wanted)):
         return toward
-    if wanted:  # never a place the goal forbids (`(not (on cup_1 plate_a))`)
-        exclude = exclude | {place for o, relation, place in wanted
-                             if o == obj and relation.startswith("not ")}
+    forbidden = _forbidden_places(state, obj, wanted) if wanted else set()
+    exclude = exclude | forbidden  # never a place the goal forbids (`(not (on cup plate))`)
     for surface in state.fixed_surfaces:
         if _takes(state, obj, surface, exclude, planned) == "on":
             return "on", surface, ""
@@ -157,12 +174,14 @@ def _free_place(state: WorldState, obj: str, exclude: set[str],
     kind = "surface" if relation == "on" else "container"
     what = f"chosen because {place}, a {'movable' if info.props.movable else 'fixed'} " \
            f"{kind}, carries {_load(state, place, planned)}"
-    return relation, place, f"{what} and {_no_fixed_room(state, obj, exclude, planned)}"
+    return relation, place, \
+        f"{what} and {_no_fixed_room(state, obj, exclude, planned, forbidden)}"
 
 
 def _no_fixed_room(state: WorldState, obj: str, exclude: set[str],
-                   planned: dict[str, int]) -> str:
-    """Why no fixed surface was chosen: `shelf is full at 3 of 3`, or there is none."""
+                   planned: dict[str, int], forbidden: set[str] | None = None) -> str:
+    """Why no fixed surface was chosen: `shelf is full at 3 of 3`, `the goal keeps cup off
+    desk`, or there is none."""
     surfaces = state.fixed_surfaces
     if not surfaces:
         return "the scene has no fixed surface"
@@ -172,17 +191,22 @@ def _no_fixed_room(state: WorldState, obj: str, exclude: set[str],
             reasons.append(f"{s} is full at {_load(state, s, planned)}")
         elif state.support.get(obj) == ("on", s):
             reasons.append(f"{obj} is on {s} already")
+        elif forbidden and s in forbidden:
+            reasons.append(f"the goal keeps {obj} off {s}")
         else:
             reasons.append(f"{s} is {'the target' if s in exclude else 'ruled out'}")
     more = f" and {len(surfaces) - 3} more fixed surface(s) too" if len(surfaces) > 3 else ""
     return ", ".join(reasons) + more
 
 
-def _no_place(state: WorldState, obj: str, exclude: set[str]) -> str:
+def _no_place(state: WorldState, obj: str, exclude: set[str], wanted: Wanted = NO_GOAL
+              ) -> str:
     """`no place in the scene takes jam_jar now (shelf is full at 3 of 3)`: said instead of
-    a placeholder when no surface or container has room for the object."""
+    a placeholder when no surface or container has room for the object (or none the goal
+    allows it)."""
+    forbidden = _forbidden_places(state, obj, wanted) if wanted else set()
     return f"no place in the scene takes {obj} now " \
-           f"({_no_fixed_room(state, obj, exclude, {})}); free one first"
+           f"({_no_fixed_room(state, obj, exclude | forbidden, {}, forbidden)}); free one first"
 
 
 def _move_text(obj: str, found: tuple[str, str, str]) -> str:
@@ -195,7 +219,7 @@ def _place_hint(state: WorldState, obj: str, exclude: set[str], *,
     """`move(cup, on, desk)`, or a place with the reason it was chosen (with a goal:
     where the goal wants it first)."""
     found = _free_place(state, obj, exclude, wanted=wanted)
-    return _move_text(obj, found) if found else _no_place(state, obj, exclude)
+    return _move_text(obj, found) if found else _no_place(state, obj, exclude, wanted)
 
 
 # A suggestion names at most this many blockers one by one, then how many more there are.
@@ -234,7 +258,7 @@ def _unstack_moves(state: WorldState, order: list[str], exclude: set[str],
     for obj in order[:MAX_NAMED_BLOCKERS]:
         found = _free_place(state, obj, moving, planned, wanted=wanted)
         if found is None:
-            hints.append(_no_place(state, obj, moving))
+            hints.append(_no_place(state, obj, moving, wanted))
             continue
         hints.append(_move_text(obj, found) + kept_note(state, obj, wanted))
         planned[found[1]] = planned.get(found[1], 0) + 1

@@ -329,7 +329,8 @@ def wanted_placements(goal: Goal) -> frozenset[Placement]:
 
     Also in the set, in the same shape: the states a goal asks for, `(fridge, open,
     "false")` (a goal node's state, a formula's `(open fridge)` or `(not (open fridge))`),
-    a formula's placements it forbids, `(cup_1, "not on", plate_a)`, and each tangram
+    a formula's placements it forbids, `(cup_1, "not on", plate_a)` (for every object of
+    a kind, by kind: `("?cup", "not on", "?plate")`), and each tangram
     contact with its sides, `(square[1], touches, medium_triangle[1])`, so a fix neither
     undoes a wanted state or contact nor proposes against it."""
     wanted: set[Placement] = set()
@@ -342,11 +343,20 @@ def wanted_placements(goal: Goal) -> frozenset[Placement]:
         wanted.update((n.id, key, str(value).lower()) for n in goal.graph.nodes
                       for key, value in n.state.items())
     if goal.formula is not None:
-        stack: list[tuple[Formula, bool]] = [(parse_formula(goal.formula), True)]
+        # `every`: the variables a `forall` (or a negated `exists`) binds, with their kinds
+        stack: list[tuple[Formula, bool, dict[str, str]]] = [
+            (parse_formula(goal.formula), True, {})]
         while stack:
-            node, positive = stack.pop()
+            node, positive, every = stack.pop()
             if isinstance(node, Atom):
                 if any(t.startswith("?") for t in node.terms):
+                    # "no cup on any plate": a place forbidden to every object of a kind,
+                    # written by kind, `("?cup", "not on", "?plate")`
+                    if not positive and len(node.terms) == 2 and all(
+                            not t.startswith("?") or t in every for t in node.terms):
+                        source, target = (f"?{every[t]}" if t in every else t
+                                          for t in node.terms)
+                        wanted.add((source, "not " + node.relation, target))
                     continue
                 if len(node.terms) == 2:  # `(not (on cup plate))`: (cup, "not on", plate)
                     wanted.add((node.terms[0], ("" if positive else "not ") + node.relation,
@@ -354,11 +364,17 @@ def wanted_placements(goal: Goal) -> frozenset[Placement]:
                 elif len(node.terms) == 1 and node.relation in STATE_KEYS:
                     wanted.add((node.terms[0], node.relation, str(positive).lower()))
             elif isinstance(node, Not):
-                stack.append((node.body, not positive))
+                stack.append((node.body, not positive, every))
             elif isinstance(node, Junction):
-                stack.extend((part, positive) for part in node.parts)
-            elif isinstance(node, Quantified | Pairs):
-                stack.append((node.body, positive))
+                stack.extend((part, positive, every) for part in node.parts)
+            elif isinstance(node, Quantified):
+                name = node.param.name
+                inner = {k: v for k, v in every.items() if k != name}
+                if (node.op == "forall") == positive:  # every object of the kind
+                    inner[name] = node.param.kind
+                stack.append((node.body, positive, inner))
+            elif isinstance(node, Pairs):
+                stack.append((node.body, positive, every))
             elif isinstance(node, Imply):
-                stack.append((node.then, positive))
+                stack.append((node.then, positive, every))
     return frozenset(wanted)
