@@ -85,7 +85,11 @@ def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None
     truth, needs, some = _Bound(facts, state_needs, additive).need(formula, {}, True)
     if truth:
         return 0
-    needs = [*needs, *_made_free(needs, facts)]
+    freed = _made_free(needs, facts)
+    needs = [*needs, *freed]
+    if additive:  # a guide: what is cleared out of the way must also come back or go on
+        needs += [frozenset({("back", o)}) for need in freed for kind, o in need
+                  if kind == "place"]
     opened = {n for need in needs if len(need) == 1 for n in need if n[0] == "open"}
     if opened:  # opened now, closed at the end: closed again, one more action each
         closed = _closed_at_the_end(formula, facts)
