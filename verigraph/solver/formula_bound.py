@@ -275,8 +275,11 @@ class _Bound:
         if len(terms) == 2 and node.relation not in PLACE_RELATIONS:
             return truth, [], True
         if len(terms) == 1 and self.state_needs is not None:
-            return truth, [frozenset({thing}),
-                           *self.state_needs(terms[0], node.relation, want)], True
+            more = self.state_needs(terms[0], node.relation, want)
+            if self.additive and any(kind == "place" for need in more for kind, _ in need):
+                # a guide: what goes to a source must also leave it for its goal place
+                more.append(frozenset({("back", terms[0])}))
+            return truth, [frozenset({thing}), *more], True
         if want and node.relation == "in" and self.facts.closed(terms[1]):
             # nothing goes into a closed container: it must be opened too
             return truth, [frozenset({thing}), frozenset({("open", terms[1])})], True
