@@ -83,8 +83,8 @@ def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None
     does not promise optimal plans (greedy, weighted A*); there an object cleared out of
     a mover's way, or one a process needs at its source, counts once more (it must also
     come back or go on to its goal place), so emptying a container before it moves, or
-    heating before placing, lowers the guide instead of leaving a plateau. `things`: filled with every thing the
-    requirements name (what a helpful action changes)."""
+    heating before placing, lowers the guide instead of leaving a plateau. `things`:
+    filled with every thing the requirements name (what a helpful action changes)."""
     truth, needs, some = _Bound(facts, state_needs, additive).need(formula, {}, True)
     if truth:
         return 0

@@ -306,6 +306,12 @@ def _changes(row: ActionSchema, args: tuple[str, ...]) -> tuple[str, str]:
     return "place", args[0]
 
 
+def _helpful_test(helpful: set[tuple[str, str]]
+                  ) -> Callable[[ActionSchema, tuple[str, ...]], bool]:
+    """Whether an action changes one of the things in `helpful`."""
+    return lambda row, args: _changes(row, args) in helpful
+
+
 # Of every HELPFUL_SHARE pops, all but one come from the helpful actions' queue.
 HELPFUL_SHARE = 4
 
@@ -350,11 +356,7 @@ def _greedy(problem: TableProblem, state: WorldState, goal: Goal, budget: Search
             return True, list(reversed(plan))
         budget.expansions += 1
         budget.check()
-        helpful = problem.helpful(current)
-
-        def is_helpful(row: ActionSchema, args: tuple[str, ...]) -> bool:
-            return _changes(row, args) in helpful
-
+        is_helpful = _helpful_test(problem.helpful(current))
         for row, args, nkey, nh in problem.successors(current, budget, is_helpful):
             if nkey in parent:
                 continue
