@@ -30,7 +30,8 @@ def solved(text: str) -> tuple[WorldState, Goal, list[str]]:
     result = solve(state, goal, time_limit=10)
     assert result.reachable and result.optimal, result.reason
     report = validate_plan(state.copy(), result.plan or "done", goal)
-    assert report.valid and report.goal_diff is not None and report.goal_diff.satisfied
+    assert report["valid"] and report["goal_diff"] is not None \
+        and report["goal_diff"]["satisfied"]
     after = state.copy()
     run = run_actions(after, result.plan)
     assert not run.violations
