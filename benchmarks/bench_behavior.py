@@ -82,7 +82,8 @@ def _times(rows: list[dict[str, Any]]) -> str:
     return f"{statistics.median(times):.2f} / {times[-1]:.2f}"
 
 
-def report(records: list[dict[str, Any]], budget: float | None) -> str:
+def report(records: list[dict[str, Any]], budget: float | None, note: str | None = None
+           ) -> str:
     refused = [r for r in records if r["status"] == "refused"]
     imported = [r for r in records if r["status"] != "refused"]
     header = ["class", "activities", "solved (optimal)", "budget", "unreachable", "invalid",
@@ -107,6 +108,7 @@ def report(records: list[dict[str, Any]], budget: float | None) -> str:
         f"Budget: {budget:g} CPU s per activity for optimal A*, then as much for the anytime "
         "search (greedy best-first, then A* pruned by its plan)" if budget is not None
         else "Budget: as recorded", "",
+        *([note, ""] if note else []),
         f"{total} activities (bddl's `activity_definitions`, problem0 of each): "
         f"{len(imported)} imported, {len(refused)} refused naming a predicate outside "
         f"the supported set ({', '.join(SUPPORTED)}).", "",
@@ -155,15 +157,18 @@ def main() -> int:
     parser.add_argument("--from", dest="sources", type=Path, nargs="+", default=None,
                         help="build the table from these JSONL records instead of running")
     parser.add_argument("--out", type=Path, default=RESULTS / "behavior.md")
+    parser.add_argument("--note", default=None,
+                        help="a paragraph under the header (e.g. which rows were re-measured)")
     args = parser.parse_args()
     if args.sources:
         records = [json.loads(line) for path in args.sources
                    for line in path.read_text().splitlines() if line.strip()]
         latest = {r["activity"]: r for r in records}
-        text = report(sorted(latest.values(), key=lambda r: r["activity"]), args.budget)
+        text = report(sorted(latest.values(), key=lambda r: r["activity"]), args.budget,
+                      args.note)
     else:
         names = args.activities.split(",") if args.activities else list(activities())
-        text = report(run(names, args.budget, args.jsonl), args.budget)
+        text = report(run(names, args.budget, args.jsonl), args.budget, args.note)
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(text)
     print(text)

@@ -80,12 +80,19 @@ def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None
 
     `additive`: the number of distinct requirements instead, not a lower bound (shared
     actions are counted once per requirement) but a sharper guide for a search that
-    does not promise optimal plans (weighted A*). `things`: filled with every thing the
-    requirements name (what a helpful action changes)."""
+    does not promise optimal plans (greedy, weighted A*); there an object cleared out of
+    a mover's way, or one a process needs at its source, counts once more (it must also
+    come back or go on to its goal place), so emptying a container before it moves, or
+    heating before placing, lowers the guide instead of leaving a plateau. `things`:
+    filled with every thing the requirements name (what a helpful action changes)."""
     truth, needs, some = _Bound(facts, state_needs, additive).need(formula, {}, True)
     if truth:
         return 0
-    needs = [*needs, *_made_free(needs, facts)]
+    freed = _made_free(needs, facts)
+    needs = [*needs, *freed]
+    if additive:  # a guide: what is cleared out of the way must also come back or go on
+        needs += [frozenset({("back", o)}) for need in freed for kind, o in need
+                  if kind == "place"]
     opened = {n for need in needs if len(need) == 1 for n in need if n[0] == "open"}
     if opened:  # opened now, closed at the end: closed again, one more action each
         closed = _closed_at_the_end(formula, facts)
@@ -271,8 +278,11 @@ class _Bound:
         if len(terms) == 2 and node.relation not in PLACE_RELATIONS:
             return truth, [], True
         if len(terms) == 1 and self.state_needs is not None:
-            return truth, [frozenset({thing}),
-                           *self.state_needs(terms[0], node.relation, want)], True
+            more = self.state_needs(terms[0], node.relation, want)
+            if self.additive and any(kind == "place" for need in more for kind, _ in need):
+                # a guide: what goes to a source must also leave it for its goal place
+                more.append(frozenset({("back", terms[0])}))
+            return truth, [frozenset({thing}), *more], True
         if want and node.relation == "in" and self.facts.closed(terms[1]):
             # nothing goes into a closed container: it must be opened too
             return truth, [frozenset({thing}), frozenset({("open", terms[1])})], True

@@ -19,7 +19,7 @@ from __future__ import annotations
 import heapq
 import itertools
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import Any
 
 from verigraph.actions.model import AnyAction, MoveAction, StateAction
@@ -230,11 +230,14 @@ class TableProblem:
                 pools.append(self.candidates[p.role])
         return itertools.product(*pools)
 
-    def successors(self, state: WorldState, budget: SearchBudget
+    def successors(self, state: WorldState, budget: SearchBudget,
+                   evaluate: Callable[[ActionSchema, tuple[str, ...]], bool] | None = None
                    ) -> Iterator[tuple[ActionSchema, tuple[str, ...], Key, int]]:
         """(row, arguments, key, bound) of each accepted action. Each is applied to
         `state` in place, read, and undone (a copy per successor cost more than the
-        search did), so `state` is unchanged when the iteration ends."""
+        search did), so `state` is unchanged when the iteration ends. With `evaluate`,
+        the bound is computed only for the actions it accepts (-1 for the others: the
+        bound is most of a successor's cost)."""
         made = 0
         for row in self.rows:
             for args in self._bindings(row, state):
@@ -248,7 +251,10 @@ class TableProblem:
                     key = self.key(state)
                     bound = self._bounds.get(key)
                     if bound is None:
-                        bound = self._bounds[key] = self.h(state)
+                        if evaluate is not None and not evaluate(row, args):
+                            bound = -1
+                        else:
+                            bound = self._bounds[key] = self.h(state)
                     yield row, args, key, bound
                 finally:
                     if row.name == "move":
@@ -300,6 +306,12 @@ def _changes(row: ActionSchema, args: tuple[str, ...]) -> tuple[str, str]:
     return "place", args[0]
 
 
+def _helpful_test(helpful: set[tuple[str, str]]
+                  ) -> Callable[[ActionSchema, tuple[str, ...]], bool]:
+    """Whether an action changes one of the things in `helpful`."""
+    return lambda row, args: _changes(row, args) in helpful
+
+
 # Of every HELPFUL_SHARE pops, all but one come from the helpful actions' queue.
 HELPFUL_SHARE = 4
 
@@ -311,7 +323,11 @@ def _greedy(problem: TableProblem, state: WorldState, goal: Goal, budget: Search
     the other only those reached by a helpful action (one that changes a thing the
     requirements name: `TableProblem.helpful`); they are popped in turn, so a plateau
     where the guide does not move (emptying a container before it moves) is crossed
-    by the actions that matter first. A plan soonest, not proven optimal."""
+    by the actions that matter first. Evaluation is deferred for the others: a
+    successor by an action that is not helpful is queued under its parent's guide and
+    evaluated only when popped (with hundreds of moves per state, evaluating each one
+    cost nearly all the time, so long plans ran out of budget). A plan soonest, not
+    proven optimal."""
     counter = itertools.count()
     start_key = problem.key(state)
     queues: tuple[list[tuple[int, int, int, Key]], ...] = (
@@ -327,7 +343,10 @@ def _greedy(problem: TableProblem, state: WorldState, goal: Goal, budget: Search
             continue
         expanded.add(key)
         current = problem.world(key)
-        if problem.h(current) == 0 and check_goal(current, goal).satisfied:
+        own = problem._bounds.get(key)
+        if own is None:
+            own = problem._bounds[key] = problem.h(current)
+        if own == 0 and check_goal(current, goal).satisfied:
             plan: list[AnyAction] = []
             node: Key | None = key
             while node is not None and parent[node] is not None:
@@ -337,14 +356,14 @@ def _greedy(problem: TableProblem, state: WorldState, goal: Goal, budget: Search
             return True, list(reversed(plan))
         budget.expansions += 1
         budget.check()
-        helpful = problem.helpful(current)
-        for row, args, nkey, nh in problem.successors(current, budget):
+        is_helpful = _helpful_test(problem.helpful(current))
+        for row, args, nkey, nh in problem.successors(current, budget, is_helpful):
             if nkey in parent:
                 continue
             parent[nkey] = (key, row, args)
-            entry = (nh, g + 1, next(counter), nkey)
+            entry = (own if nh < 0 else nh, g + 1, next(counter), nkey)
             heapq.heappush(queues[0], entry)
-            if _changes(row, args) in helpful:
+            if nh >= 0 and is_helpful(row, args):
                 heapq.heappush(queues[1], entry)
     return False, []
 
