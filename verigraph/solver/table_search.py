@@ -316,6 +316,19 @@ def _helpful_test(helpful: set[tuple[str, str]]
 HELPFUL_SHARE = 4
 
 
+Parents = dict[Key, tuple[Key, ActionSchema, tuple[str, ...]] | None]
+
+
+def _plan_to(parent: Parents, key: Key) -> list[AnyAction]:
+    """The actions from the start to `key`, read back through `parent`."""
+    plan: list[AnyAction] = []
+    node: Key | None = key
+    while node is not None and (link := parent[node]) is not None:
+        node, row, args = link
+        plan.append(_action(row, args))
+    return list(reversed(plan))
+
+
 def _greedy(problem: TableProblem, state: WorldState, goal: Goal, budget: SearchBudget
             ) -> tuple[bool, list[AnyAction]]:
     """Greedy best-first search with helpful actions: two queues, both ordered by the
@@ -332,7 +345,7 @@ def _greedy(problem: TableProblem, state: WorldState, goal: Goal, budget: Search
     start_key = problem.key(state)
     queues: tuple[list[tuple[int, int, int, Key]], ...] = (
         [(problem.h(state), 0, next(counter), start_key)], [])
-    parent: dict[Key, tuple[Key, ActionSchema, tuple[str, ...]] | None] = {start_key: None}
+    parent: Parents = {start_key: None}
     expanded: set[Key] = set()
     pops = 0
     while queues[0] or queues[1]:
@@ -347,13 +360,7 @@ def _greedy(problem: TableProblem, state: WorldState, goal: Goal, budget: Search
         if own is None:
             own = problem._bounds[key] = problem.h(current)
         if own == 0 and check_goal(current, goal).satisfied:
-            plan: list[AnyAction] = []
-            node: Key | None = key
-            while node is not None and parent[node] is not None:
-                prev, row, args = parent[node]  # type: ignore[misc]
-                plan.append(_action(row, args))
-                node = prev
-            return True, list(reversed(plan))
+            return True, _plan_to(parent, key)
         budget.expansions += 1
         budget.check()
         is_helpful = _helpful_test(problem.helpful(current))
@@ -390,7 +397,7 @@ def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: 
     start_h = problem.h(state)
     frontier: list[tuple[float, int, int, Key]] = [(weight * start_h, 0, next(counter),
                                                     start_key)]
-    parent: dict[Key, tuple[Key, ActionSchema, tuple[str, ...]] | None] = {start_key: None}
+    parent: Parents = {start_key: None}
     best_g = {start_key: 0}
     if proof is not None:
         proof["floor"] = max(proof.get("floor", 0), start_h)
@@ -403,13 +410,7 @@ def table_astar(state: WorldState, goal: Goal, budget: SearchBudget, *, weight: 
             proof["floor"] = max(proof["floor"], int(f))
         current = problem.world(key)
         if problem.h(current) == 0 and check_goal(current, goal).satisfied:
-            plan: list[AnyAction] = []
-            node: Key | None = key
-            while node is not None and parent[node] is not None:
-                prev, row, args = parent[node]  # type: ignore[misc]
-                plan.append(_action(row, args))
-                node = prev
-            return True, list(reversed(plan))
+            return True, _plan_to(parent, key)
         budget.expansions += 1
         budget.check()
         for row, args, nkey, nh in problem.successors(current, budget):
