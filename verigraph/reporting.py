@@ -50,6 +50,7 @@ MAX_TEXT_UNMET = 10  # explained literals shown per failing step or unmet goal l
 AFTER_FAILURE = ("later steps are checked from the state before each failing step (the "
                  "failing step is skipped)")
 _MORE = re.compile(r"\.\.\. and (\d+) more")
+PlanReport = dict[str, Any]  # the one report form (module docstring)
 
 
 def listed_count(lines: list[str]) -> int:

@@ -31,13 +31,14 @@ from pydantic import BaseModel, Field
 from verigraph.actions.constraints import NO_GOAL, Wanted, with_goal_note
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AlignAction, AnyAction, DoneAction, MoveAction, StateAction
-from verigraph.actions.schemas import MOVE, REFUSED, schema_of
+from verigraph.actions.schemas import MOVE, REFUSED, Place, schema_of
 from verigraph.actions.validator import GraphEdit, apply_action, edit_from, validate_action
 from verigraph.budget import checkpoint
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
 from verigraph.graph.goal import Goal, check_goal, diff, wanted_placements
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.reporting import PlanReport
 
 # (step, action, payload): payload is what the row's effect replaced (a move's old
 # placement, tuple or None; a state action's old value) for an action of the table
@@ -259,9 +260,6 @@ def new_contacts(predicted: WorldState, observed: SceneGraph, moved: str) -> lis
     return added
 
 
-PlanReport = dict[str, Any]  # the plain form (verigraph.reporting)
-
-
 def check_plan(state: WorldState, actions: list[AnyAction], goal: Goal | None = None, *,
                all_errors: bool = False, readings: list[str] | None = None
                ) -> PlanReport:
@@ -305,6 +303,9 @@ def _action_dict(action: AnyAction) -> dict[str, Any]:
 
 def _edit_dict(edit: GraphEdit) -> dict[str, Any]:
     return edit.model_dump(mode="json", exclude_none=True)
+
+
+assert isinstance(MOVE.effect, Place)  # the step builder below writes a placement's edit
 
 
 def _steps_from_records(records: list[Record], violations: dict[int, dict[str, Any]]

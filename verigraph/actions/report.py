@@ -1,14 +1,11 @@
 """The standalone plan validator: a per-step report for a whole plan (VAL-style).
 
-The run is `verigraph.actions.execution.run_actions`; its compact step records become
-the report's plain-data form here (`verigraph.reporting`: dicts and lists, the JSON
-`verigraph validate --json` prints), with no model object per step: a step is a dict of
-the action, its text and its edit (the edges as `{source, relation, target}`). A long
-plan's report (a hundred thousand acyclic objects) is built with the cyclic collector
-paused, and its objects are then moved to the oldest generation
-(`graph.bulk.promote_young_objects`) rather than scanned when the collector resumes.
-`ValidationReport` is the model of the same form that the MCP tools return, built from
-it at their boundary (`actions.pddl.as_validation_report`).
+`validate_plan` reads a scene, a plan and a goal in any accepted form and hands them,
+read once, to `verigraph.actions.execution.check_plan`, which runs them and builds the
+report's plain-data form (`verigraph.reporting`: dicts and lists, the JSON
+`verigraph validate --json` prints) with no model object per step. `ValidationReport`
+is the model of the same form that the MCP tools return, built from it at their
+boundary (`actions.pddl.as_validation_report`).
 """
 
 from __future__ import annotations
@@ -21,7 +18,6 @@ from verigraph.actions.execution import check_plan
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import AnyAction
 from verigraph.actions.parser import parse_plan
-from verigraph.actions.schemas import MOVE, Place
 from verigraph.actions.validator import GraphEdit
 from verigraph.graph.bulk import collector_paused
 from verigraph.graph.goal import Goal, GraphDiff
@@ -29,9 +25,7 @@ from verigraph.graph.io import goal_from_data, scene_from_data
 from verigraph.graph.model import SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.graph.wellformed import label_readings
-
-assert isinstance(MOVE.effect, Place)  # the fast path below builds a placement's edit
-PlanReport = dict[str, Any]  # the plain form (verigraph.reporting)
+from verigraph.reporting import PlanReport
 
 
 class StepReport(BaseModel):
