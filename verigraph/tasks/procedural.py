@@ -237,7 +237,7 @@ def _kitchen_goal_graph(state: WorldState, moved: list[str]) -> SceneGraph:
 def draw_tangram(rng: random.Random, cfg: LevelConfig) -> DrawnTask | None:
     from verigraph.sim2d import world_for_graph
     from verigraph.sim2d.generator import generate_scene
-    from verigraph.tasks.suite_tangram import put_back_goal
+    from verigraph.tasks.suite_tangram import peelable, put_back_goal
 
     figure = generate_scene("tangram", rng.randrange(2**31), cfg.objects).goal.graph
     if figure is None:
@@ -247,12 +247,8 @@ def draw_tangram(rng: random.Random, cfg: LevelConfig) -> DrawnTask | None:
     out: list[str] = []
     chained = 0
     for _ in range(cfg.length):
-        degree: dict[str, int] = {}
-        for a, b in edges:
-            degree[a] = degree.get(a, 0) + 1
-            degree[b] = degree.get(b, 0) + 1
-        leaves = sorted(p for p, d in degree.items() if d == 1)
-        if len(degree) <= 2 or not leaves:
+        leaves = peelable(edges)
+        if not leaves:
             return None
         # prefer what the level asks for: a leaf hanging on a piece already out or not
         on_out = [p for p in leaves if any(p in (a, b) and ({a, b} - {p}) & set(out)

@@ -21,16 +21,22 @@ from verigraph.planning.tangram_plan import tangram_plan
 from verigraph.tasks.suite_blocks import Drawn
 
 
+def peelable(edges: set[tuple[str, str]]) -> list[str]:
+    """The pieces that touch one other only (sorted), which can come out of the figure
+    and leave it connected; [] when two pieces or fewer are left."""
+    degree: dict[str, int] = {}
+    for a, b in edges:
+        degree[a] = degree.get(a, 0) + 1
+        degree[b] = degree.get(b, 0) + 1
+    return [] if len(degree) <= 2 else sorted(p for p, d in degree.items() if d == 1)
+
+
 def _peel(figure: SceneGraph, rng: random.Random, count: int) -> list[str]:
     edges = {(e.source, e.target) for e in figure.edges if e.relation == "touches"}
     out: list[str] = []
     for _ in range(count):
-        degree: dict[str, int] = {}
-        for a, b in edges:
-            degree[a] = degree.get(a, 0) + 1
-            degree[b] = degree.get(b, 0) + 1
-        leaves = sorted(p for p, d in degree.items() if d == 1)
-        if len(degree) <= 2 or not leaves:
+        leaves = peelable(edges)
+        if not leaves:
             break
         piece = rng.choice(leaves)
         out.append(piece)
