@@ -38,13 +38,19 @@ def wanted_state(wanted: Wanted, obj: str, key: str) -> bool | None:
     return None
 
 
+def pinned(state: WorldState, obj: str, wanted: Wanted) -> bool:
+    """Whether the goal keeps `obj` where it is (its placement is a goal edge)."""
+    where = state.support.get(obj)
+    return where is not None and (obj, *where) in wanted
+
+
 def kept_note(state: WorldState, obj: str, wanted: Wanted) -> str:
     """`; then put knife back on board (the goal keeps it there)` for an object a fix
     must move off a goal edge that holds; empty otherwise."""
-    where = state.support.get(obj)
-    if where is None or (obj, *where) not in wanted:
+    if not pinned(state, obj, wanted):
         return ""
-    return f"; then put {obj} back {where[0]} {where[1]} (the goal keeps it there)"
+    relation, place = state.support[obj]
+    return f"; then put {obj} back {relation} {place} (the goal keeps it there)"
 
 
 def _violation(action: MoveAction | AlignAction | StateAction, constraint: str, message: str,
@@ -113,12 +119,6 @@ def _goal_place(state: WorldState, obj: str, exclude: set[str], planned: dict[st
                 _takes(state, obj, place, exclude, planned, (relation,)) == relation:
             return relation, place, "where the goal wants it"
     return None
-
-
-def _pinned(state: WorldState, obj: str, wanted: Wanted) -> bool:
-    """Whether the goal keeps `obj` where it is (its placement is a goal edge)."""
-    where = state.support.get(obj)
-    return where is not None and (obj, *where) in wanted
 
 
 def _forbidden_places(state: WorldState, obj: str, wanted: Wanted) -> set[str]:
@@ -437,9 +437,9 @@ def explain_container_closed(state: WorldState, a: MoveAction, *,
     fix = f"open({box}) first, then {a.text()}"
     if wanted_state(wanted, box, "open") is False:
         fix += f", then close({box}) (the goal wants it closed)"
-    where = state.support.get(a.object)
-    if where is not None and (a.object, *where) in wanted:
-        fix += (f"; but the goal keeps {a.object} {where[0]} {where[1]}: this move undoes "
+    if pinned(state, a.object, wanted):
+        relation, place = state.support[a.object]
+        fix += (f"; but the goal keeps {a.object} {relation} {place}: this move undoes "
                 "it, so drop it unless it clears the way")
     return _violation(a, "container_closed", message, fix, [box])
 
@@ -454,7 +454,7 @@ def explain_capacity(state: WorldState, a: MoveAction, *,
     message = f"{a.target} already carries {len(carried)} object(s) " \
               f"({', '.join(carried)}), its capacity is {cap}"
     exclude = {a.target, a.object}
-    kept = [o for o in carried if _pinned(state, o, wanted)]
+    kept = [o for o in carried if pinned(state, o, wanted)]
     free = [o for o in carried if o not in kept]
     if not free:
         return _violation(
@@ -523,7 +523,7 @@ def already_explainer(name: str, key: str, value: bool
 def goal_keeps(state: WorldState, obj: str, wanted: Wanted) -> bool:
     """Whether the goal keeps `obj` where it is now: its placement, or one of its
     tangram contacts, is wanted and holds."""
-    if _pinned(state, obj, wanted):
+    if pinned(state, obj, wanted):
         return True
     return any((f"{obj}[{side}]", "touches", f"{other}[{other_side}]") in wanted
                or (f"{other}[{other_side}]", "touches", f"{obj}[{side}]") in wanted

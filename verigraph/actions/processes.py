@@ -23,7 +23,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from verigraph.actions.constraints import NO_GOAL, Wanted, kept_note, wanted_state
+from verigraph.actions.constraints import NO_GOAL, Wanted, kept_note, pinned, wanted_state
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import StateAction
 from verigraph.graph.dictionary import STATE_WORDS
@@ -171,8 +171,8 @@ def still_at_source_explainer(name: str) -> Callable[[WorldState, StateAction], 
         switch = f"toggle_off({source})" if state.objects[source].props.toggleable else ""
         # With a goal: what keeps a goal edge or state first (the goal keeps the object
         # where it is: switch the source off; the goal wants the source on: move).
-        pinned = bool(kept_note(state, a.object, wanted))
-        if switch and wanted_state(wanted, source, "toggled_on") is not True and pinned:
+        kept = pinned(state, a.object, wanted)
+        if switch and wanted_state(wanted, source, "toggled_on") is not True and kept:
             fix = f"{switch} (the goal keeps {a.object} where it is), or {move}"
         elif switch and wanted_state(wanted, source, "toggled_on") is True:
             fix = f"{move} (the goal wants {source} on)"
