@@ -6,7 +6,10 @@ import random
 
 from hypothesis import strategies as st
 
-from verigraph.graph import Edge, Node, SceneGraph
+from verigraph.actions import MoveAction, apply_action, validate_action
+from verigraph.actions.model import StateAction
+from verigraph.actions.schemas import SCHEMAS, valid_actions
+from verigraph.graph import Edge, Node, SceneGraph, WorldState
 
 TABLEWARE_MOVABLE = ["plate", "bowl", "cup", "mug", "book", "tray", "spoon", "fork"]
 
@@ -83,3 +86,28 @@ def raw_move(draw: st.DrawFn, graph_: SceneGraph) -> dict[str, str]:
     return {"action": "move", "object": draw(st.sampled_from(ids)),
             "relation": draw(st.sampled_from(["on", "in", "under"])),
             "target": draw(st.sampled_from(ids))}
+
+
+def walk_checking_valid_actions(state: WorldState, seed: int, steps: int) -> int:
+    """Walk `steps` random actions of `valid_actions` from `state` (in place), checking at
+    each state that the list is, as a set and without repeats, exactly the definition:
+    every move of every object by every relation onto every object, and every other row
+    of the table on every object, that `validate_action` accepts. Returns how many
+    actions were listed in all (so a caller can see the walk was not empty)."""
+    rng = random.Random(seed)
+    listed = 0
+    for _ in range(steps):
+        ids = sorted(state.objects)
+        tried = [*(MoveAction(object=o, relation=r, target=t)
+                   for o in ids for r in state.move_relations for t in ids),
+                 *(StateAction(action=name, object=o)  # type: ignore[arg-type]
+                   for name in SCHEMAS if name != "move" for o in ids)]
+        wanted = {a.text() for a in tried if validate_action(state, a) is None}
+        found = [a.text() for a in valid_actions(state)]
+        assert len(found) == len(set(found))
+        assert set(found) == wanted
+        listed += len(found)
+        if not found:
+            break
+        apply_action(state, rng.choice(valid_actions(state)))
+    return listed

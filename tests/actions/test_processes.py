@@ -6,8 +6,10 @@ from __future__ import annotations
 
 import pytest
 
-from verigraph.actions import validate_plan
-from verigraph.actions.schemas import SCHEMAS, table_constraints
+from scenes import walk_checking_valid_actions
+from verigraph.actions import apply_action, validate_action, validate_plan
+from verigraph.actions.parser import parse_plan
+from verigraph.actions.schemas import SCHEMAS, table_constraints, valid_actions
 from verigraph.graph.bddl_problem import import_problem
 from verigraph.graph.goal import Goal
 from verigraph.graph.state import WorldState
@@ -46,6 +48,16 @@ def test_the_processes_are_rows_of_the_one_table() -> None:
     ids = table_constraints(household=True)
     assert {"no_heat_source", "heat_source_off", "still_heated", "still_cold"} <= set(ids)
     assert "no_heat_source" not in table_constraints(household=False)
+
+
+def test_valid_actions_list_the_processes_a_scene_allows(scene: object) -> None:
+    state = WorldState.from_graph(scene)  # type: ignore[arg-type]
+    for action in parse_plan("toggle_on(stove_1)\nmove(bacon_1, on, stove_1)"):
+        assert validate_action(state, action) is None
+        apply_action(state, action)
+    assert "cook(bacon_1)" in {a.text() for a in valid_actions(state)}
+    for seed in range(3):
+        assert walk_checking_valid_actions(state.copy(), seed, 8) > 0
 
 
 def test_cook_needs_a_working_heat_source_under_the_object(scene: object) -> None:

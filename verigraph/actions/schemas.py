@@ -10,7 +10,11 @@ state changes). Everything that checks or applies an action reads this table: th
 validator (`validator.validate_action`, `all_violations`, `apply_action`), the
 execution loop (`execution.run_actions`, whose fast path is the row's `accepted`, the
 tests compiled into one function), the plan report, the solver's successors, the
-planner prompt's list of constraints, the tool descriptions and docs/worlds.md.
+planner prompt's list of constraints, the tool descriptions and docs/worlds.md. The
+arguments a row can take are the table's too: `candidates` (each parameter role's
+objects in scene order), `ActionSchema.arguments` (a row's bindings to them) and
+`valid_actions` (every action the verifier accepts on a state), which the solver, the
+household suite and the simulator's agreement check share.
 
 Adding an action is adding a row (its model in `actions.model`, its parser form in
 `actions.parser`) and its tests.
@@ -23,7 +27,8 @@ contacts it really makes come from geometry (sim2d), so it keeps its own check
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import itertools
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from operator import attrgetter
 from typing import Any
@@ -193,10 +198,25 @@ class ActionSchema:
                     [args], [])
         return [], [], [(args[0], self.effect.key, payload, self.effect.value)]
 
+    def arguments(self, pools: Pools) -> Iterator[tuple[str, ...]]:
+        """Every argument tuple the row's parameters' roles allow, from `pools`
+        (`candidates`), the first parameter slowest: what a search or `valid_actions`
+        hands the row's `accepted`, the preconditions deciding the rest."""
+        return itertools.product(*(pools[p.role] for p in self.parameters))
+
+    def action(self, args: tuple[str, ...]) -> AnyAction:
+        """The action model of an argument tuple (the inverse of `args`)."""
+        if isinstance(self.effect, Place):
+            return MoveAction(object=args[0], relation=args[1], target=args[2])
+        return StateAction(action=self.name, object=args[0])  # type: ignore[arg-type]
+
     def form(self) -> str:
         """`move(object, relation, target)`."""
         return f"{self.name}({', '.join(p.name for p in self.parameters)})"
 
+
+# The candidates of each parameter role (`Parameter.role`), in scene order.
+Pools = dict[str | None, list[str]]
 
 # The variable a parameter is bound to in tests (`object` would shadow the builtin).
 VARIABLES = {"object": "obj", "relation": "relation", "target": "target"}
@@ -339,6 +359,9 @@ SCHEMAS: dict[str, ActionSchema] = {row.name: row for row in (
     *(_process_row(name) for name in p.PROCESSES),
 )}
 """The action table, by action name."""
+# The object properties the parameters' roles name.
+_ROLES = tuple(dict.fromkeys(p.role for row in SCHEMAS.values() for p in row.parameters
+                             if p.role is not None and p.role != "relation"))
 
 
 def schema_of(action: AnyAction) -> ActionSchema | None:
@@ -348,6 +371,33 @@ def schema_of(action: AnyAction) -> ActionSchema | None:
     if type(action) is StateAction:
         return SCHEMAS[action.action]
     return None
+
+
+def candidates(state: WorldState, relations: Sequence[str] | None = None) -> Pools:
+    """The candidates of each parameter role on `state`, in scene order (sorted ids):
+    for an object property (`movable`, `openable`, ...) the objects that have it, for
+    None every object, for `relation` the `relations` given (by default the scene's
+    placement relations, `state.move_relations`, in their order). The objects and their
+    properties never change, so a search computes these once (and may narrow the
+    relations to those its goal needs)."""
+    ids = sorted(state.objects)
+    pools: Pools = {None: ids, "relation": list(state.move_relations if relations is None
+                                                else relations)}
+    for role in _ROLES:
+        pools[role] = [o for o in ids if getattr(state.objects[o].props, role)]
+    return pools
+
+
+def valid_actions(state: WorldState) -> list[AnyAction]:
+    """Every action of the table the verifier accepts on `state` now: the rows in table
+    order, each row's arguments from `candidates` (scene order) kept where the row's
+    compiled preconditions (`accepted`) hold. The same set as every move, open, close,
+    toggle and process over every object, relation and target that `validate_action`
+    accepts, found by the parameters' roles instead of trying them all; the order is
+    stable (the household suite draws from it with a seeded generator)."""
+    pools = candidates(state)
+    return [row.action(args) for row in SCHEMAS.values() for args in row.arguments(pools)
+            if row.accepted(state, *args)]
 
 
 def table_constraints(*, household: bool) -> list[str]:
@@ -383,6 +433,6 @@ def action_lines(*, household: bool) -> list[str]:
     return lines
 
 
-__all__ = ["SCHEMAS", "ActionSchema", "Parameter", "Precondition", "action_lines",
-           "closed_passage", "fits", "schema_of", "state_value",
-           "table_constraints"]
+__all__ = ["SCHEMAS", "ActionSchema", "Parameter", "Pools", "Precondition", "action_lines",
+           "candidates", "closed_passage", "fits", "schema_of", "state_value",
+           "table_constraints", "valid_actions"]

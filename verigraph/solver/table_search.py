@@ -4,13 +4,15 @@ Where the integer encoding (`encoding`) cannot speak for every action (openable
 containers, object states in the goal, `under`/`nextto` placements, or parking places
 that only `under`/`nextto` give), the solver searches here: successors are every row
 of the action table (`verigraph.actions.schemas`) bound to the candidates its
-parameters' roles allow and accepted by the row's compiled preconditions, applied with
-the row's effect. Every action is one step. A* with the number of goal atoms (a
-movable object's goal placement, a goal state) that do not hold yet, plus the opening
-(and, where the goal wants it closed, the closing) of each closed container a
-misplaced object must leave or enter: an action changes one placement or one state,
-and those opens and closes fix no placement, so the bound is admissible, and the plan
-found is optimal. The frontier holds compact keys (placements and states), a world is
+parameters' roles allow (`schemas.candidates`, `ActionSchema.arguments`: the bindings
+`schemas.valid_actions` lists, the relations narrowed to those the goal needs) and
+accepted by the row's compiled preconditions, applied with the row's effect. Every
+action is one step. A* with the number of goal atoms (a movable object's goal
+placement, a goal state) that do not hold yet, plus the opening (and, where the goal
+wants it closed, the closing) of each closed container a misplaced object must leave
+or enter: an action changes one placement or one state, and those opens and closes
+fix no placement, so the bound is admissible, and the plan found is optimal. The
+frontier holds compact keys (placements and states), a world is
 rebuilt from its key when it is expanded.
 """
 
@@ -22,9 +24,9 @@ import math
 from collections.abc import Callable, Iterator
 from typing import Any
 
-from verigraph.actions.model import AnyAction, MoveAction, StateAction
+from verigraph.actions.model import AnyAction
 from verigraph.actions.processes import process_needs
-from verigraph.actions.schemas import SCHEMAS, ActionSchema, SetState
+from verigraph.actions.schemas import SCHEMAS, ActionSchema, SetState, candidates
 from verigraph.graph.dictionary import (
     PLACEMENT_RELATIONS,
     STATE_ROLES,
@@ -126,12 +128,6 @@ class TableProblem:
             (o, key) for o, info in objects.items()
             for key, role in STATE_ROLES.items()
             if key in self.keys and getattr(info.props, role))
-        roles = {p.role for row in SCHEMAS.values() for p in row.parameters
-                 if p.role not in (None, "relation")}
-        self.candidates: dict[str, list[str]] = {
-            str(role): sorted(o for o, info in objects.items() if getattr(info.props, str(role)))
-            for role in roles}
-        self.every = sorted(objects)
         self.placements: dict[str, tuple[str, str]] = {}
         self.states: dict[tuple[str, str], bool] = {}
         if goal.graph is not None:
@@ -147,9 +143,10 @@ class TableProblem:
         # surface of unlimited capacity, a parking move by them has an equally long
         # replacement onto it (needs_table_search), so the plans stay optimal.
         unlimited = any(objects[s].props.capacity is None for s in state.fixed_surfaces)
-        self.relations = [r for r in state.move_relations
-                          if r in SUPPORT_RELATIONS or r in wanted or not unlimited
-                          or "inroom" in wanted]
+        # Each parameter's candidates (the table's `candidates`, with those relations).
+        self.pools = candidates(state, [r for r in state.move_relations
+                                        if r in SUPPORT_RELATIONS or r in wanted
+                                        or not unlimited or "inroom" in wanted])
         self._facts = facts_of(state) if self.formula is not None else None
         self._bounds: dict[Key, int] = {}
 
@@ -219,17 +216,6 @@ class TableProblem:
                 state.set_state(o, k, value)
         return state
 
-    def _bindings(self, row: ActionSchema, state: WorldState) -> Iterator[tuple[str, ...]]:
-        pools = []
-        for p in row.parameters:
-            if p.role == "relation":
-                pools.append(self.relations)
-            elif p.role is None:
-                pools.append(self.every)
-            else:
-                pools.append(self.candidates[p.role])
-        return itertools.product(*pools)
-
     def successors(self, state: WorldState, budget: SearchBudget,
                    evaluate: Callable[[ActionSchema, tuple[str, ...]], bool] | None = None
                    ) -> Iterator[tuple[ActionSchema, tuple[str, ...], Key, int]]:
@@ -240,7 +226,7 @@ class TableProblem:
         bound is most of a successor's cost)."""
         made = 0
         for row in self.rows:
-            for args in self._bindings(row, state):
+            for args in row.arguments(self.pools):
                 if not row.accepted(state, *args):
                     continue
                 made += 1
@@ -275,25 +261,7 @@ def neighbours(problem: TableProblem, state: WorldState, budget: SearchBudget
     for row, args, _, _ in list(problem.successors(state, budget)):
         after = state.copy()
         row.apply(after, *args)
-        yield _action(row, args), after
-
-
-def valid_actions(state: WorldState) -> list[AnyAction]:
-    """Every action of the table the verifier accepts on `state` now (scene order)."""
-    problem = TableProblem(state, Goal(predicate="single_stack"))
-    problem.relations = list(state.move_relations)  # every relation, not the goal's
-    found = []
-    for row in SCHEMAS.values():
-        for args in problem._bindings(row, state):
-            if row.accepted(state, *args):
-                found.append(_action(row, args))
-    return found
-
-
-def _action(row: ActionSchema, args: tuple[str, ...]) -> AnyAction:
-    if row.name == "move":
-        return MoveAction(object=args[0], relation=args[1], target=args[2])
-    return StateAction(action=row.name, object=args[0])  # type: ignore[arg-type]
+        yield row.action(args), after
 
 
 def _changes(row: ActionSchema, args: tuple[str, ...]) -> tuple[str, str]:
@@ -325,7 +293,7 @@ def _plan_to(parent: Parents, key: Key) -> list[AnyAction]:
     node: Key | None = key
     while node is not None and (link := parent[node]) is not None:
         node, row, args = link
-        plan.append(_action(row, args))
+        plan.append(row.action(args))
     return list(reversed(plan))
 
 

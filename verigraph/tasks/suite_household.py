@@ -16,6 +16,7 @@ from __future__ import annotations
 import random
 
 from verigraph.actions.model import AnyAction, MoveAction, StateAction
+from verigraph.actions.schemas import valid_actions
 from verigraph.actions.validator import apply_action
 from verigraph.graph.builtin_scenes import kitchen_household
 from verigraph.graph.dictionary import STATE_WORDS
@@ -23,7 +24,6 @@ from verigraph.graph.goal import Goal
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.solver import solve
-from verigraph.solver.table_search import valid_actions
 from verigraph.tasks.suite_blocks import Drawn
 
 SOLVER_BUDGET = 20_000
