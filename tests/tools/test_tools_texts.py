@@ -4,9 +4,12 @@ from __future__ import annotations
 
 import pytest
 from mcp import Client
-from mcp_helpers import text
+from mcp_helpers import structured, text
 
+from verigraph.reporting import report_text
 from verigraph.server import build_server
+from verigraph.tools import Toolbox
+from verigraph.tools.acting import SHOWN_FIRST_STEPS, SHOWN_MAX_FAILURES, report_summary
 
 pytestmark = pytest.mark.fast
 
@@ -52,3 +55,24 @@ async def test_refusals_and_progress_read_in_text() -> None:
         assert "last refusal: step 1: [object_not_clear]" in state
         ended = text(await client.call_tool("end_episode", {"episode_id": eid}))
         assert "final graph: book on desk; cup on book" in ended
+
+
+@pytest.mark.anyio
+async def test_a_plan_report_text_is_rendered_from_its_structured_content() -> None:
+    """validate_plan's text and structured content come from one dump of the report: the
+    text is `report_text` over the very dict the client receives, and the tool's summary
+    renders the dict it is handed rather than dumping the report again."""
+    arguments = {"scene_id": "cup_on_book", "goal": "book on shelf", "all_errors": True,
+                 "plan": "move(book, on, shelf)\nmove(cup, on, desk)\nmove(book, on, shelf)"}
+    async with Client(build_server()) as client:
+        result = await client.call_tool("validate_plan", arguments)
+    data = structured(result)
+    rendered = report_text(data, max_steps=SHOWN_FIRST_STEPS, max_failures=SHOWN_MAX_FAILURES)
+    assert text(result).startswith(rendered + "\nbuilt-in properties applied (dictionary: "
+                                   "tableware): book: movable surface")
+    assert text(result).startswith("INVALID: 3 step(s) checked, 1 violation(s); goal reached")
+    report = Toolbox().call("validate_plan", arguments)
+    assert report_summary(report) == text(result)
+    data["steps"][0]["text"] = "move(book, onto, shelf)"
+    assert "  1 FAIL  move(book, onto, shelf): [object_not_clear]" in \
+        report_summary(report, data)

@@ -248,7 +248,9 @@ class ToolCalls:
 
 def to_result(spec: ToolSpec, result: BaseModel | ImageResult,
               slot: LargeBodySlot | None = None) -> CallToolResult:
-    """Structured content + summary text, or image content for the image-only tools."""
+    """Structured content + summary text, or image content for the image-only tools. The
+    result is dumped once: its JSON-ready dict is the structured content and what the
+    summary may render (a plan report's text), unless a large body keeps it as bytes."""
     if isinstance(result, ImageResult):
         content: list[ImageContent | TextContent] = [ImageContent(
             type="image", data=png_base64(result.png),
@@ -256,10 +258,11 @@ def to_result(spec: ToolSpec, result: BaseModel | ImageResult,
         if result.text:
             content.append(TextContent(type="text", text=result.text))
         return CallToolResult(content=list(content))
-    summary = [TextContent(type="text", text=spec.summary(result))]
     placeholder = slot.keep(result) if slot is not None else None
+    data = result.model_dump(mode="json") if placeholder is None else None
+    summary = [TextContent(type="text", text=spec.summary(result, data))]
     return CallToolResult(content=list(summary), structured_content=(
-        placeholder if placeholder is not None else result.model_dump(mode="json")))
+        placeholder if placeholder is not None else data))
 
 
 def error_result(name: str, error: object) -> CallToolResult:

@@ -438,16 +438,18 @@ def pddl_report(pddl: dict[str, str], plan: str, *, all_errors: bool = False
             exc.value, int | None) else str(exc.value)[:120], fix=exc.fix) from None
 
 
-def report_summary(report: ValidationReport) -> str:
+def report_summary(report: ValidationReport, data: dict[str, Any] | None = None) -> str:
     """The report's text (`reporting.report_text`): the verdict, then the first 20 steps
     and every failure.
 
     Many clients hand a model only the text of a result, so every violation found (with
     all_errors, one per failed step) is in it, with its fix; accepted steps beyond the
     first 20 are counted, as are failures beyond 50. Nothing is executed or stored.
+    `data`: the report as the structured content sends it (the server's one dump of
+    it); without it, the report is dumped here.
     """
-    text = report_text(report.model_dump(exclude_none=True), max_steps=SHOWN_FIRST_STEPS,
-                       max_failures=SHOWN_MAX_FAILURES)
+    text = report_text(report.model_dump(mode="json") if data is None else data,
+                       max_steps=SHOWN_FIRST_STEPS, max_failures=SHOWN_MAX_FAILURES)
     if report.final_graph.nodes:  # what the check assumed about each built-in kind
         assumed = applied_line(report.final_graph)
         text += f"\n{assumed}" if assumed else ""

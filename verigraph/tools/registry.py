@@ -16,7 +16,7 @@ import reprlib
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any, Literal, Protocol
 
 from pydantic import BaseModel, ValidationError
 
@@ -95,6 +95,16 @@ class Confirmation:
     unchanged: str
 
 
+class Summary(Protocol):
+    """A tool's text from its result. `data`, where the server has it, is the result as
+    the structured content sends it (JSON-ready, dumped once for both), so a text
+    rendered from the result's data reads that dict rather than dumping the model again;
+    None when the structured content goes as bytes (a large HTTP body) or the caller
+    has only the result."""
+
+    def __call__(self, result: Any, data: dict[str, Any] | None = None, /) -> str: ...
+
+
 @dataclass(frozen=True)
 class ToolSpec:
     """One tool: what it takes, what it returns, how it behaves, how to summarise it,
@@ -110,7 +120,7 @@ class ToolSpec:
     destructive: bool = False
     idempotent: bool = False
     open_world: bool = False  # may reach outside the server: a robot arm and its controller
-    summary: Callable[[Any], str] = lambda result: str(result.summary())
+    summary: Summary = lambda result, data=None: str(result.summary())
     placement: Placement = "inline"
     opens_world: bool = False  # heavy when the server's default executor is not the graph
     episode_sized: bool = True  # its work grows with the episode's graph (heavy if large)
