@@ -1,4 +1,4 @@
-"""Random household scenes and every valid household action, for the agreement checks.
+"""Random household scenes and the agreement check of random valid household actions.
 
 `household_scene(seed)` draws a kitchen and a dining room (counter, stove, sink, fridge,
 cabinet, table, each in its room), food and dishes on the counter and the table, and
