@@ -165,3 +165,29 @@ def test_random_household_actions_end_as_predicted() -> None:
     executed, refused, failures = household_agreement(200, first_seed=0)
     assert not failures, "\n".join(failures)
     assert executed + refused == 200 and executed >= 100
+
+
+# (object, container, refused by the room check): the simulator agrees either way. A
+# kettle's base is narrower than a bowl's mouth but wider than its floor (slanted walls);
+# cheese reaches the bowl's floor, and a spoon stands upright in a cup.
+INTO_CONTAINERS = [("kettle", "bowl", True), ("cheese", "bowl", False),
+                   ("spoon", "cup", False)]
+
+
+@pytest.mark.fast
+@pytest.mark.parametrize(("obj", "container", "refused"), INTO_CONTAINERS)
+def test_the_room_check_knows_what_fits_in_a_container(obj: str, container: str,
+                                                       refused: bool) -> None:
+    graph = SceneGraph(nodes=[{"id": "counter", "label": "counter"},
+                              {"id": obj, "label": obj}, {"id": container, "label": container}],
+                       edges=[Edge(source=obj, relation="on", target="counter"),
+                              Edge(source=container, relation="on", target="counter")],
+                       dictionary="household")
+    state, action = WorldState.from_graph(graph), MoveAction(object=obj, relation="in",
+                                                             target=container)
+    predicted = household_room_violation(state, action)
+    assert (predicted is not None) == refused, predicted
+    _, _, violation, _, _ = execute_in_world(state, [action], _world(graph))
+    assert (violation is not None) == refused, violation
+    if predicted is not None:
+        assert container in predicted.message and predicted.suggestion

@@ -37,6 +37,7 @@ class BodySpec:
     top: float
     cavity: Cavity | None = None
     wall: float = 0.0
+    floor: float = 0.0  # a container's inner width at its floor (a bowl's is under its mouth's)
 
     @property
     def mass_centre(self) -> tuple[float, float, float]:
@@ -96,12 +97,14 @@ def _container(label: str, w: float, h: float) -> BodySpec:
                  ((-foot, 0.0), (-foot + t, 0.0), (-half + t, h), (-half, h)),
                  ((foot - t, 0.0), (foot, 0.0), (half, h), (half - t, h)))
         cavity = (-(half - t), half - t, t, h)
+        floor = 2 * (foot - t)
     else:
         parts = (_box(-half, 0.0, half, t), _box(-half, t, -half + t, h),
                  _box(half - t, t, half, h))
         cavity = (-(half - t), half - t, t, h)
+        floor = 2 * (half - t)
     return BodySpec(label=label, kind="container", width=w, height=h, parts=parts, top=h,
-                    cavity=cavity, wall=t)
+                    cavity=cavity, wall=t, floor=floor)
 
 
 def movable_spec(label: str, props: ObjectProperties) -> BodySpec:

@@ -10,12 +10,9 @@ a stable order) on them in the simulator.
 from __future__ import annotations
 
 import random
-from collections.abc import Callable
-from typing import Any
 
 from verigraph.actions.execution import execute_in_world
-from verigraph.actions.model import AnyAction, MoveAction, StateAction
-from verigraph.actions.schemas import SCHEMAS, valid_actions
+from verigraph.actions.schemas import valid_actions
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
 from verigraph.sim2d.layout import build_tabletop
@@ -49,26 +46,11 @@ def household_scene(seed: int, n_objects: int | None = None
     return graph, build_tabletop(graph, seed)
 
 
-def _draw_order(state: WorldState) -> Callable[[AnyAction], tuple[Any, ...]]:
-    """The order the agreement check draws from: by object, its moves (by target, then
-    relation) before its state actions (in table order). The measured figures in
-    benchmarks/results/sim2d_household.md are for these draws."""
-    relations = {r: i for i, r in enumerate(state.move_relations)}
-    rows = {name: i for i, name in enumerate(SCHEMAS)}
-
-    def key(action: AnyAction) -> tuple[Any, ...]:
-        if isinstance(action, MoveAction):
-            return action.object, 0, action.target, relations[action.relation]
-        assert isinstance(action, StateAction)  # the table's other rows
-        return action.object, 1, "", rows[action.action]
-    return key
-
-
 def household_agreement(n: int, first_seed: int = 0, per_scene: int = 15
                         ) -> tuple[int, int, list[str]]:
     """(executed, refused, failures) over `n` random valid household actions.
 
-    Actions are drawn uniformly from `valid_actions` (in `_draw_order`) on
+    Actions are drawn uniformly from `valid_actions` (the action table's order) on
     `household_scene`s (seeds from `first_seed`, `per_scene` draws each). One the room check
     (`room_household.household_room_violation`) refuses is counted as refused and not
     run; every other one goes through `execute_in_world`, must be carried out, and the
@@ -85,7 +67,7 @@ def household_agreement(n: int, first_seed: int = 0, per_scene: int = 15
         for step in range(per_scene):
             if executed + refused >= n:
                 break
-            action = rng.choice(sorted(valid_actions(state), key=_draw_order(state)))
+            action = rng.choice(valid_actions(state))
             if household_room_violation(state, action) is not None:
                 refused += 1
                 continue

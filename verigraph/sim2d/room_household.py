@@ -122,13 +122,18 @@ def household_room_violation(state: WorldState, action: AnyAction) -> Violation 
                          f"move {target} away from {below[1]} first")
         info = state.objects[target]
         if rel == "in" and info.props.movable:
-            cavity = movable_spec(info.label, info.props).cavity
-            opening = cavity[1] - cavity[0] if cavity is not None else 0.0
-            if cavity is not None and (abs(opening - _width(state, obj)) < SNUG or (
-                    _width(state, obj) > opening > base_width(state, obj))):
+            spec = movable_spec(info.label, info.props)
+            opening = spec.cavity[1] - spec.cavity[0] if spec.cavity is not None else 0.0
+            width, base = _width(state, obj), base_width(state, obj)
+            if spec.cavity is not None and (abs(opening - width) < SNUG or (
+                    width > opening > base)):
                 return _fail(action, f"{obj} is about as wide as the opening of {target}: it "
                              "would wedge or drop in unevenly", [target],
                              "choose another container")
+            if spec.cavity is not None and opening > base > spec.floor:
+                return _fail(action, f"{obj} stands on a base {base:g} wide and the floor of "
+                             f"{target} is {spec.floor:.1f} wide under slanted walls: it would "
+                             "wedge between them", [target], "choose another container")
         capacity = state.objects[target].props.capacity
         if rel == "on" and not state.objects[target].props.movable and capacity is not None:
             crowded = _surface_violation(state, action, target)
