@@ -169,9 +169,10 @@ def test_random_household_actions_end_as_predicted() -> None:
 
 # (object, container, refused by the room check): the simulator agrees either way. A
 # kettle's base is narrower than a bowl's mouth but wider than its floor (slanted walls);
-# cheese reaches the bowl's floor, and a spoon stands upright in a cup.
+# cheese reaches the bowl's floor, a spoon stands upright in a cup, and a pot rests
+# over a cup with nothing beside it.
 INTO_CONTAINERS = [("kettle", "bowl", True), ("cheese", "bowl", False),
-                   ("spoon", "cup", False)]
+                   ("spoon", "cup", False), ("pot", "cup", False)]
 
 
 @pytest.mark.fast
@@ -191,3 +192,16 @@ def test_the_room_check_knows_what_fits_in_a_container(obj: str, container: str,
     assert (violation is not None) == refused, violation
     if predicted is not None:
         assert container in predicted.message and predicted.suggestion
+
+
+@pytest.mark.fast
+def test_a_wide_object_is_not_lowered_over_a_cup_beside_a_taller_neighbour() -> None:
+    """Scene household:30061: the cup stands between a lamp at the counter's end and a
+    plate; a pot wider than the cup would meet the lamp, which cannot be pushed aside."""
+    graph, world = household_scene(30061)
+    state, action = WorldState.from_graph(graph), MoveAction(object="pot", relation="in",
+                                                             target="cup")
+    predicted = household_room_violation(state, action)
+    assert predicted is not None and predicted.blocking == ["lamp"], predicted
+    _, _, violation, _, _ = execute_in_world(state, [action], world)
+    assert violation is not None and violation.constraint == "no_room"

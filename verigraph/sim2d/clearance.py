@@ -107,13 +107,20 @@ def _within(state: WorldState, obj: str, relation: str, target: str) -> bool:
 
 def lowering_blockers(state: WorldState, obj: str, relation: str, target: str) -> list[str]:
     """Neighbours that may stand in the way of lowering `obj` `relation` `target`: for a
-    target raised on another movable object, every object on the same furniture, other
-    than what carries the target or lies on or in it, that reaches above where `obj`
-    would come to rest (a neighbour on the same tray, or in another stack)."""
+    target raised on another movable object, or standing on furniture with `obj` wider
+    than it (a pot lowered over a cup), every object on the same furniture, other than
+    what carries the target or lies on or in it, that reaches above where `obj` would
+    come to rest (a neighbour on the same tray, in another stack, or a lamp beside the
+    cup that cannot be pushed off the counter's end)."""
     below = state.support.get(target)
-    if below is None or not state.objects[below[1]].props.movable:
-        return []  # on furniture (neighbours are pushed aside) or furniture itself
-    _, furniture = _stack_root(state, target)
+    if below is None:
+        return []  # furniture itself
+    if not state.objects[below[1]].props.movable:
+        if _within(state, obj, relation, target):
+            return []  # on furniture, neighbours are pushed aside
+        furniture: str | None = below[1]  # but what overhangs it may meet a taller one
+    else:
+        _, furniture = _stack_root(state, target)
     if furniture is None:
         return []
     rest = bottom(state, obj, relation, target)

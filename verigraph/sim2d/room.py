@@ -19,7 +19,8 @@ thing in or across it for a container):
   anywhere above it and gives none up: the rest could tip;
 - on or in a target raised on another movable object: no other stack on the same
   furniture reaches above where the object would rest (see `clearance`: it may stand
-  right beside the target, or hang over it);
+  right beside the target, or hang over it); the same for a target on furniture with
+  an object wider than it (a pot over a cup beside a lamp);
 - in a container: nothing lies across its rim; an object narrower than the opening
   goes inside if the contents side by side leave room (one that only just fits, only
   into an empty container; cutlery may stand upright in an empty narrow one); a wider
@@ -144,6 +145,10 @@ def room_violation(state: WorldState, action: MoveAction) -> Violation | None:
                      "objects; more load could tip it", [balancing],
                      f"put {obj} somewhere steadier, or clear {balancing} first")
     blockers = lowering_blockers(state, obj, rel, target)
+    if blockers and below is not None and not state.objects[below[1]].props.movable:
+        return _fail(action, f"{obj} is wider than {target} and {blockers[0]} beside it "
+                     f"stands higher: {obj} could not be lowered {rel} {target} past it",
+                     blockers, f"move {blockers[0]} away first, or choose a wider target")
     if blockers:
         return _fail(action, f"{target} is raised on {below[1] if below else target} and "
                      f"{blockers[0]} may stand as high right beside it or over it: {obj} could "
