@@ -26,14 +26,17 @@ from __future__ import annotations
 
 import re
 from functools import lru_cache
+from operator import attrgetter
 from typing import Any
 
 from verigraph.errors import PlanParseError, VeriGraphError
+from verigraph.graph.bulk import collector_paused
 from verigraph.pddl.blocksworld.domain import (
     BlocksDomain,
     UnsupportedDomainError,
     cached_domain,
 )
+from verigraph.pddl.plans import Step, read_step
 from verigraph.pddl.reader import PROBLEM_SECTIONS, SUPPORTED_REQUIREMENTS
 from verigraph.pddl.simulate import (
     cached_strips_domain,
@@ -41,6 +44,7 @@ from verigraph.pddl.simulate import (
     explain_steps,
     total_value,
     validate_strips_dict,
+    validate_strips_steps,
 )
 from verigraph.pddl.syntax import COMMENT, ascii_names
 
@@ -126,9 +130,7 @@ def _judge_blocks(domain_text: str, problem_text: str, plan_text: str, engine: s
     except PlanParseError:
         if not plan_text.isascii():
             ascii_names(plan_text)
-        return validate_strips_dict(domain_text, problem_text,
-                                    _canonical(domain_text, problem_text, plan_text),
-                                    all_errors=all_errors)
+        return _strips_judges(domain_text, problem_text, plan_text, all_errors, 0)
     except VeriGraphError:  # PDDL the recogniser does not take (either types, ...)
         if engine == "blocksworld":
             raise
@@ -137,9 +139,8 @@ def _judge_blocks(domain_text: str, problem_text: str, plan_text: str, engine: s
     _add_total_cost(data, domain_text, problem_text)
     if not data["valid"]:
         if all_errors and data["violations"]:
-            return validate_strips_dict(domain_text, problem_text,
-                                        _canonical(domain_text, problem_text, plan_text),
-                                        all_errors=True)
+            return _strips_judges(domain_text, problem_text, plan_text, True,
+                                  data["violations"][0]["step"] - 1)
         _explain(data, domain_text, problem_text)
     return data
 
@@ -162,23 +163,46 @@ def _blocks_world(domain_text: str) -> bool:
     return True
 
 
-def _canonical(domain_text: str, problem_text: str, plan_text: str) -> str:
-    """The plan with each line the blocks world can read as `(op args)`, the others as
-    written (the STRIPS reader makes them failing steps); one output line per input line."""
+def _strips_judges(domain_text: str, problem_text: str, plan_text: str, all_errors: bool,
+                   applied: int) -> dict[str, Any]:
+    """The STRIPS engine's report of a blocks-world plan that engine judges: its steps
+    read once (`_strips_steps`), the first `applied` replayed, not judged again
+    (`validate_strips_steps`)."""
+    with collector_paused(plan_text.count("\n") + 1):  # a long plan's steps: acyclic
+        steps = _strips_steps(domain_text, problem_text, plan_text)
+        return validate_strips_steps(domain_text, problem_text, steps, all_errors=all_errors,
+                                     applied=applied)
+
+
+def _strips_steps(domain_text: str, problem_text: str, plan_text: str) -> list[Step]:
+    """The plan's steps for the STRIPS engine, read in one pass: each line the blocks
+    world reads as the action it reads there (a PlanBench sentence, a colour for a name, a
+    reordered parameter list), each other line as the STRIPS reader reads it (a line that
+    is no action a failing step, with that reader's message and fix). The steps are those
+    the STRIPS reader gives for the plan with the first kind of line written `(op args)`."""
     from verigraph.pddl.blocksworld.plans import parse_blocks_plan
     from verigraph.pddl.blocksworld.problem import read_blocks_problem
 
-    domain = cached_domain(domain_text)
-    declared = set(read_blocks_problem(problem_text, domain).blocks)
-    out = []
-    for line in plan_text.splitlines():
-        try:
-            steps = parse_blocks_plan(line, domain, declared)
-        except PlanParseError:
-            out.append(line)
-            continue
-        out.append(steps[0].text if steps else line)
-    return "\n".join(out)
+    blocks = cached_domain(domain_text)
+    declared = set(read_blocks_problem(problem_text, blocks).blocks)
+    domain = cached_strips_domain(domain_text)
+    others: list[Step] = []
+
+    def unreadable(number: int, raw: str) -> None:
+        step = read_step(raw, number, domain)
+        if step is not None:
+            others.append(step)
+
+    steps = [_strips_step(s.text, s.line)
+             for s in parse_blocks_plan(plan_text, blocks, declared, unreadable=unreadable)]
+    return sorted([*steps, *others], key=attrgetter("line")) if others else steps
+
+
+def _strips_step(text: str, line: int) -> Step:
+    """A step the blocks world read, `(op args)` with the domain's parameter order, as the
+    STRIPS reader reads that text."""
+    name, *args = text[1:-1].split(" ")
+    return Step(name, tuple(args), line)
 
 
 def _explain(data: dict[str, Any], domain_text: str, problem_text: str) -> None:
