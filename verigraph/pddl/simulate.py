@@ -33,7 +33,10 @@ rule for an undefined numeric value).
 By default the simulation stops at the first failing step. With `all_errors=True` it
 goes on as VAL does when asked to continue: the failing step is skipped (the state stays
 as it was before it) and every later step is checked from there; the report says so
-(`after_failure`). With action costs, the report's `total_cost` is the initial
+(`after_failure`). A plan the native blocks world hands over (docs/validator.md) comes
+as its steps (`validate_strips_steps`): the steps that engine applied are replayed
+(`_Simulation.replay`, which `explain_steps` uses too) and the step-by-step run judges
+from the next one. With action costs, the report's `total_cost` is the initial
 `(= (total-cost) N)` (0 when not given) plus the applied steps' `(increase (total-cost)
 ...)`, VAL's "Final value" (`total_value` says how it is written). The report is the
 plan report every engine returns (`verigraph.reporting`: valid, plan_valid,

@@ -7,19 +7,29 @@ a domain silently. `validate_pddl_dict` then tries the blocks-world recogniser (
 names: recognition is by structure) because its hand model is several times faster; a
 domain or problem it refuses (another domain, or a blocks-world problem whose initial
 state no scene can hold) goes to the general STRIPS simulator, which judges it by PDDL's
-own semantics. One engine judges each plan: where the blocks engine refuses a step or
-misses the goal it explains that itself, in the STRIPS engine's form (the unsatisfied
-preconditions with the step that last made each false, the actions that would achieve an
-unmet goal), from the history of the steps it applied (`simulate.explain_steps`, which
-grounds and applies them as the STRIPS step-by-step run does), so both engines report
-the same fields. A
-blocks-world plan with a line that is no action of the domain, and any invalid plan
-checked with `all_errors=True`, is judged by the STRIPS simulator (each line of PlanBench
-text read as the blocks world reads it), which makes such lines failing steps and goes on
-after a failure (the blocks engine goes no further than the first failure, so with
-`all_errors` it only finds whether there is one, and the STRIPS simulator judges the
-invalid plan again). The report says which engine judged it
-(`engine`).
+own semantics. One engine judges each plan, and no step twice: where the blocks engine
+refuses a step or misses the goal it explains that itself, in the STRIPS engine's form
+(the unsatisfied preconditions with the step that last made each false, the actions that
+would achieve an unmet goal), from the history of the steps it applied
+(`simulate.explain_steps`, which grounds and applies them as the STRIPS step-by-step run
+does), so both engines report the same fields.
+
+Two kinds of blocks-world plan get the STRIPS engine's report (its steps' edits are
+atoms, its constraint ids and messages its own), because only that engine judges what
+they need: a plan with a line that is no action of the domain (the STRIPS engine makes
+such a line a failing step), and an invalid plan checked with `all_errors=True` (the
+STRIPS engine goes on after a failure, skipping the failing step). Their lines are read
+once, by the blocks world's reader (PlanBench sentences and colours included), which
+hands each line it cannot read to the STRIPS reader (`_strips_steps`). A plan with such
+a line is judged by the STRIPS engine alone; the blocks engine reads a whole plan before
+it judges a step, except that its fast run meets an unknown operator or a wrong number of
+arguments in a plain `(op args)` line only when it gets there. An invalid plan checked
+with `all_errors` is judged by the blocks engine up to its first failing step, and the
+STRIPS engine takes over there (`simulate.validate_strips_steps`): it replays the steps
+the blocks engine applied, as `explain_steps` does, which gives its history and its form
+of their report steps, and judges from the failing step on. A valid plan, or one that
+only misses the goal, is the blocks engine's with or without `all_errors`. The report
+says which engine judged it (`engine`: "strips" for both kinds above).
 """
 
 from __future__ import annotations
@@ -108,15 +118,16 @@ def validate_pddl_dict(domain_text: str, problem_text: str, plan_text: str, *,
 
 def _judge_blocks(domain_text: str, problem_text: str, plan_text: str, engine: str,
                   all_errors: bool) -> dict[str, Any] | None:
-    """The report when the blocks world takes the domain and problem, explained by the
-    STRIPS simulator where the plan fails; None when it takes neither (the STRIPS
+    """The report when the blocks world takes the domain and problem, its failure
+    explained in the STRIPS engine's form; None when it takes neither (the STRIPS
     simulator then judges the plan as written; with engine="blocksworld" the refusal is
     raised instead).
 
-    A plan line the blocks world cannot read is judged by the STRIPS simulator, which
-    makes it a failing step; a name that is not ASCII is bad input in every engine, so
-    that refusal (`ascii_names`, the first thing either engine's plan reader does) is
-    raised as it is.
+    A plan with a line the blocks world cannot read is judged by the STRIPS simulator,
+    which makes that line a failing step; an invalid plan checked with `all_errors` is
+    handed to it at its first failing step (`_strips_judges`; module docstring). A name
+    that is not ASCII is bad input in every engine, so that refusal (`ascii_names`, the
+    first thing either engine's plan reader does) is raised as it is.
     """
     from verigraph.pddl.blocksworld.validate import validate_blocks_dict
 

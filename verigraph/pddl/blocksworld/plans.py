@@ -14,7 +14,9 @@ Mystery Blocksworld writes `feast object b from object c` for `(feast b c)`.
 Names are ASCII in every mode (as in the domain and problem files): a non-ASCII name is
 bad input naming its line.
 A line that is no action, names an unknown operator or has the wrong number of arguments
-is bad input (PlanParseError naming the line), never a verdict.
+is bad input (PlanParseError naming the line), never a verdict; a caller may instead take
+such lines as they come (`parse_blocks_plan`'s `unreadable`: `validate_pddl_dict` has the
+STRIPS reader make each a failing step).
 
 A plan whose every line is a plain `(op args)` is read with one regex pass
 (`plain_actions`), possessive, and on ASCII text with its name class as byte ranges.
