@@ -378,7 +378,9 @@ class _Simulation:
         given, each grounded and applied as `run` applies it (`_ground_action`, `_edit`),
         recording the step that last changed each atom, and with `record` each step in the
         report and its cost, as `run` records them. False at a step that does not apply
-        here (this engine would judge the plan otherwise): the run is then unusable."""
+        here (this engine would judge the plan otherwise): the run is then unusable. No
+        derived predicates are followed (a blocks world has none; `validate_strips_steps`
+        judges a domain with them from its first step)."""
         domain, problem, state, changed = self.domain, self.problem, self.state, self.changed
         compiled: dict[str, _Compiled] = problem.compiled
         grounded: dict[Any, _Ground] = problem.grounded
