@@ -33,7 +33,10 @@ rule for an undefined numeric value).
 By default the simulation stops at the first failing step. With `all_errors=True` it
 goes on as VAL does when asked to continue: the failing step is skipped (the state stays
 as it was before it) and every later step is checked from there; the report says so
-(`after_failure`). With action costs, the report's `total_cost` is the initial
+(`after_failure`). A plan the native blocks world hands over (docs/validator.md) comes
+as its steps (`validate_strips_steps`): the steps that engine applied are replayed
+(`_Simulation.replay`, which `explain_steps` uses too) and the step-by-step run judges
+from the next one. With action costs, the report's `total_cost` is the initial
 `(= (total-cost) N)` (0 when not given) plus the applied steps' `(increase (total-cost)
 ...)`, VAL's "Final value" (`total_value` says how it is written). The report is the
 plan report every engine returns (`verigraph.reporting`: valid, plan_valid,
@@ -51,7 +54,7 @@ from itertools import product
 from typing import Any, cast
 
 from verigraph.budget import checkpoint
-from verigraph.errors import VeriGraphError
+from verigraph.errors import PlanParseError, VeriGraphError
 from verigraph.graph.bulk import LARGE_GRAPH_ITEMS, collector_paused, promote_young_objects
 from verigraph.pddl import axioms as derived_predicates
 from verigraph.pddl.explain import (
@@ -88,7 +91,7 @@ from verigraph.pddl.plans import MAX_STEPS, Step, line_reader, parse_strips_plan
 from verigraph.pddl.reader import PddlInputError, read_domain, read_problem
 
 __all__ = ["MAX_ACHIEVERS", "complete_binding", "explain_steps", "simulate", "total_value",
-           "validate_strips_dict"]
+           "validate_strips_dict", "validate_strips_steps"]
 MAX_EXPLAINED_GOALS = 20
 # a plan that stopped at a failing step: that step is what to fix, and its state is not
 # where the plan meant to end, so only the first unmet goals get achievers
@@ -267,6 +270,9 @@ def total_value(total: float) -> int | float:
     return total
 
 
+Applied = Iterable[tuple[int, str, tuple[str, ...]]]  # (step number, action, binding)
+
+
 class _Simulation:
     """The step-by-step run: the state, the step that last changed each atom, the
     report's steps and violations. `run` goes on from wherever they are: from the
@@ -366,6 +372,54 @@ class _Simulation:
         self.total_cost = total_cost
         if len(grounded) > MAX_GROUNDED:
             grounded.clear()
+
+    def replay(self, applied: Applied, record: bool) -> bool:
+        """Apply the steps another engine applied (the native blocks world), numbered as
+        given, each grounded and applied as `run` applies it (`_ground_action`, `_edit`),
+        recording the step that last changed each atom, and with `record` each step in the
+        report and its cost, as `run` records them. False at a step that does not apply
+        here (this engine would judge the plan otherwise): the run is then unusable. No
+        derived predicates are followed (a blocks world has none; `validate_strips_steps`
+        judges a domain with them from its first step)."""
+        domain, problem, state, changed = self.domain, self.problem, self.state, self.changed
+        compiled: dict[str, _Compiled] = problem.compiled
+        grounded: dict[Any, _Ground] = problem.grounded
+        append = self.out_steps.append
+        total_cost = self.total_cost
+        try:
+            for index, name, binding in applied:
+                if not index & 4095:
+                    checkpoint()  # the server's per-call budget and cancellation
+                entry = grounded.get((name, binding))
+                if entry is None:
+                    fast = compiled.get(name)
+                    if fast is None:
+                        fast = compiled[name] = _Compiled(domain, problem, domain.schemas[name])
+                    got = _ground_action(domain, problem, fast, Step(name, binding, index))
+                    if got is None:
+                        return False
+                    entry = grounded[(name, binding)] = got
+                edit = _edit(domain, problem, entry, state)
+                if edit is None:
+                    return False
+                removed, added, shown = edit
+                state.difference_update(removed)
+                state.update(added)
+                mark = (index, entry[6])
+                for atom in removed:
+                    changed[atom] = mark
+                for atom in added:
+                    changed[atom] = mark
+                if record:
+                    total_cost += entry[7]
+                    append({"step": index, "ok": True,
+                             "action": {"action": name, "args": list(binding)},
+                             "text": entry[6], "edit": shown})
+        finally:
+            self.total_cost = total_cost
+            if len(grounded) > MAX_GROUNDED:
+                grounded.clear()
+        return True
 
     def _refused(self, schema: Schema, step: Step, grounded: bool
                  ) -> tuple[str, str, str] | None:
@@ -484,9 +538,6 @@ class _Simulation:
         return unmet
 
 
-Applied = Iterable[tuple[int, str, tuple[str, ...]]]  # (step number, action, binding)
-
-
 def explain_steps(domain: Domain, problem: Problem, applied: Applied,
                   failing: tuple[str, tuple[str, ...]] | None
                   ) -> tuple[list[dict[str, Any]] | None, list[dict[str, Any]] | None]:
@@ -499,35 +550,9 @@ def explain_steps(domain: Domain, problem: Problem, applied: Applied,
     would judge the plan otherwise (a step the other engine applied that does not apply
     here, or a refused step whose preconditions all hold): nothing is explained then."""
     sim = _Simulation(domain, problem)
-    state, changed, compiled = sim.state, sim.changed, problem.compiled
-    grounded: dict[Any, _Ground] = problem.grounded
-    try:
-        for index, name, binding in applied:
-            if not index & 4095:
-                checkpoint()  # the server's per-call budget and cancellation
-            entry = grounded.get((name, binding))
-            if entry is None:
-                fast = compiled.get(name)
-                if fast is None:
-                    fast = compiled[name] = _Compiled(domain, problem, domain.schemas[name])
-                got = _ground_action(domain, problem, fast, Step(name, binding, index))
-                if got is None:
-                    return None, None
-                entry = grounded[(name, binding)] = got
-            edit = _edit(domain, problem, entry, state)
-            if edit is None:
-                return None, None
-            removed, added, _ = edit
-            state.difference_update(removed)
-            state.update(added)
-            mark = (index, entry[6])
-            for atom in removed:
-                changed[atom] = mark
-            for atom in added:
-                changed[atom] = mark
-    finally:
-        if len(grounded) > MAX_GROUNDED:
-            grounded.clear()
+    if not sim.replay(applied, False):
+        return None, None
+    compiled = problem.compiled
     if failing is None:
         return None, sim.unmet_goals(MAX_EXPLAINED_GOALS)
     name, binding = failing
@@ -894,4 +919,37 @@ def validate_strips_dict(domain_text: str, problem_text: str, plan_text: str, *,
                                line_reader(plan_text, lowered, domain))
         if lines >= LARGE_GRAPH_ITEMS and gc.get_freeze_count() == 0:
             promote_young_objects()  # see there: the report is acyclic
+    return report
+
+
+def validate_strips_steps(domain_text: str, problem_text: str, steps: list[Step], *,
+                          all_errors: bool = False, applied: int = 0) -> dict[str, Any]:
+    """The report `validate_strips_dict` gives for a plan whose steps another reader read
+    (the native blocks world's, which also reads PlanBench's sentences and colours): the
+    steps as `parse_strips_plan` would read the plan with each of them written `(action
+    args)`, a line that reader cannot read as this engine reads it (a malformed one a
+    failing step).
+
+    `applied`: the leading steps another engine already judged and applied (with
+    `all_errors`, the native engine hands a plan over at its first failing step). They
+    are replayed (`_Simulation.replay`, as `explain_steps` replays them), which builds
+    this engine's history and its form of their report steps, and the step-by-step run
+    judges the plan from the next step on; should one of them not apply here, this
+    engine judges the whole plan."""
+    if len(steps) > MAX_STEPS:
+        raise PlanParseError(f"the plan has more than {MAX_STEPS:,} actions",
+                             line=steps[MAX_STEPS].line, column=1, text="",
+                             expected=f"at most {MAX_STEPS:,} actions")
+    with collector_paused(len(steps) + problem_text.count("(")):
+        domain = cached_strips_domain(domain_text)
+        problem = cached_strips_problem(domain_text, problem_text)
+        sim = _Simulation(domain, problem) if applied and domain.axioms is None else None
+        if sim is not None and sim.replay(
+                ((i, s.name, s.args) for i, s in enumerate(steps[:applied], start=1)), True):
+            sim.run(steps[applied:], applied + 1, all_errors)
+            report = sim.report(len(steps) - len(sim.out_steps), all_errors)
+        else:
+            report = simulate(domain, problem, steps, all_errors=all_errors)
+        if len(steps) >= LARGE_GRAPH_ITEMS and gc.get_freeze_count() == 0:
+            promote_young_objects()  # see validate_strips_dict
     return report

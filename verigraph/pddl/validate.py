@@ -7,33 +7,46 @@ a domain silently. `validate_pddl_dict` then tries the blocks-world recogniser (
 names: recognition is by structure) because its hand model is several times faster; a
 domain or problem it refuses (another domain, or a blocks-world problem whose initial
 state no scene can hold) goes to the general STRIPS simulator, which judges it by PDDL's
-own semantics. One engine judges each plan: where the blocks engine refuses a step or
-misses the goal it explains that itself, in the STRIPS engine's form (the unsatisfied
-preconditions with the step that last made each false, the actions that would achieve an
-unmet goal), from the history of the steps it applied (`simulate.explain_steps`, which
-grounds and applies them as the STRIPS step-by-step run does), so both engines report
-the same fields. A
-blocks-world plan with a line that is no action of the domain, and any invalid plan
-checked with `all_errors=True`, is judged by the STRIPS simulator (each line of PlanBench
-text read as the blocks world reads it), which makes such lines failing steps and goes on
-after a failure (the blocks engine goes no further than the first failure, so with
-`all_errors` it only finds whether there is one, and the STRIPS simulator judges the
-invalid plan again). The report says which engine judged it
-(`engine`).
+own semantics. One engine judges each plan, and no step twice: where the blocks engine
+refuses a step or misses the goal it explains that itself, in the STRIPS engine's form
+(the unsatisfied preconditions with the step that last made each false, the actions that
+would achieve an unmet goal), from the history of the steps it applied
+(`simulate.explain_steps`, which grounds and applies them as the STRIPS step-by-step run
+does), so both engines report the same fields.
+
+Two kinds of blocks-world plan get the STRIPS engine's report (its steps' edits are
+atoms, its constraint ids and messages its own), because only that engine judges what
+they need: a plan with a line that is no action of the domain (the STRIPS engine makes
+such a line a failing step), and an invalid plan checked with `all_errors=True` (the
+STRIPS engine goes on after a failure, skipping the failing step). Their lines are read
+once, by the blocks world's reader (PlanBench sentences and colours included), which
+hands each line it cannot read to the STRIPS reader (`_strips_steps`). A plan with such
+a line is judged by the STRIPS engine alone; the blocks engine reads a whole plan before
+it judges a step, except that its fast run meets an unknown operator or a wrong number of
+arguments in a plain `(op args)` line only when it gets there. An invalid plan checked
+with `all_errors` is judged by the blocks engine up to its first failing step, and the
+STRIPS engine takes over there (`simulate.validate_strips_steps`): it replays the steps
+the blocks engine applied, as `explain_steps` does, which gives its history and its form
+of their report steps, and judges from the failing step on. A valid plan, or one that
+only misses the goal, is the blocks engine's with or without `all_errors`. The report
+says which engine judged it (`engine`: "strips" for both kinds above).
 """
 
 from __future__ import annotations
 
 import re
 from functools import lru_cache
+from operator import attrgetter
 from typing import Any
 
 from verigraph.errors import PlanParseError, VeriGraphError
+from verigraph.graph.bulk import collector_paused
 from verigraph.pddl.blocksworld.domain import (
     BlocksDomain,
     UnsupportedDomainError,
     cached_domain,
 )
+from verigraph.pddl.plans import Step, read_step
 from verigraph.pddl.reader import PROBLEM_SECTIONS, SUPPORTED_REQUIREMENTS
 from verigraph.pddl.simulate import (
     cached_strips_domain,
@@ -41,6 +54,7 @@ from verigraph.pddl.simulate import (
     explain_steps,
     total_value,
     validate_strips_dict,
+    validate_strips_steps,
 )
 from verigraph.pddl.syntax import COMMENT, ascii_names
 
@@ -104,15 +118,16 @@ def validate_pddl_dict(domain_text: str, problem_text: str, plan_text: str, *,
 
 def _judge_blocks(domain_text: str, problem_text: str, plan_text: str, engine: str,
                   all_errors: bool) -> dict[str, Any] | None:
-    """The report when the blocks world takes the domain and problem, explained by the
-    STRIPS simulator where the plan fails; None when it takes neither (the STRIPS
+    """The report when the blocks world takes the domain and problem, its failure
+    explained in the STRIPS engine's form; None when it takes neither (the STRIPS
     simulator then judges the plan as written; with engine="blocksworld" the refusal is
     raised instead).
 
-    A plan line the blocks world cannot read is judged by the STRIPS simulator, which
-    makes it a failing step; a name that is not ASCII is bad input in every engine, so
-    that refusal (`ascii_names`, the first thing either engine's plan reader does) is
-    raised as it is.
+    A plan with a line the blocks world cannot read is judged by the STRIPS simulator,
+    which makes that line a failing step; an invalid plan checked with `all_errors` is
+    handed to it at its first failing step (`_strips_judges`; module docstring). A name
+    that is not ASCII is bad input in every engine, so that refusal (`ascii_names`, the
+    first thing either engine's plan reader does) is raised as it is.
     """
     from verigraph.pddl.blocksworld.validate import validate_blocks_dict
 
@@ -126,9 +141,7 @@ def _judge_blocks(domain_text: str, problem_text: str, plan_text: str, engine: s
     except PlanParseError:
         if not plan_text.isascii():
             ascii_names(plan_text)
-        return validate_strips_dict(domain_text, problem_text,
-                                    _canonical(domain_text, problem_text, plan_text),
-                                    all_errors=all_errors)
+        return _strips_judges(domain_text, problem_text, plan_text, all_errors, 0)
     except VeriGraphError:  # PDDL the recogniser does not take (either types, ...)
         if engine == "blocksworld":
             raise
@@ -137,9 +150,8 @@ def _judge_blocks(domain_text: str, problem_text: str, plan_text: str, engine: s
     _add_total_cost(data, domain_text, problem_text)
     if not data["valid"]:
         if all_errors and data["violations"]:
-            return validate_strips_dict(domain_text, problem_text,
-                                        _canonical(domain_text, problem_text, plan_text),
-                                        all_errors=True)
+            return _strips_judges(domain_text, problem_text, plan_text, True,
+                                  data["violations"][0]["step"] - 1)
         _explain(data, domain_text, problem_text)
     return data
 
@@ -162,23 +174,46 @@ def _blocks_world(domain_text: str) -> bool:
     return True
 
 
-def _canonical(domain_text: str, problem_text: str, plan_text: str) -> str:
-    """The plan with each line the blocks world can read as `(op args)`, the others as
-    written (the STRIPS reader makes them failing steps); one output line per input line."""
+def _strips_judges(domain_text: str, problem_text: str, plan_text: str, all_errors: bool,
+                   applied: int) -> dict[str, Any]:
+    """The STRIPS engine's report of a blocks-world plan that engine judges: its steps
+    read once (`_strips_steps`), the first `applied` replayed, not judged again
+    (`validate_strips_steps`)."""
+    with collector_paused(plan_text.count("\n") + 1):  # a long plan's steps: acyclic
+        steps = _strips_steps(domain_text, problem_text, plan_text)
+        return validate_strips_steps(domain_text, problem_text, steps, all_errors=all_errors,
+                                     applied=applied)
+
+
+def _strips_steps(domain_text: str, problem_text: str, plan_text: str) -> list[Step]:
+    """The plan's steps for the STRIPS engine, read in one pass: each line the blocks
+    world reads as the action it reads there (a PlanBench sentence, a colour for a name, a
+    reordered parameter list), each other line as the STRIPS reader reads it (a line that
+    is no action a failing step, with that reader's message and fix). The steps are those
+    the STRIPS reader gives for the plan with the first kind of line written `(op args)`."""
     from verigraph.pddl.blocksworld.plans import parse_blocks_plan
     from verigraph.pddl.blocksworld.problem import read_blocks_problem
 
-    domain = cached_domain(domain_text)
-    declared = set(read_blocks_problem(problem_text, domain).blocks)
-    out = []
-    for line in plan_text.splitlines():
-        try:
-            steps = parse_blocks_plan(line, domain, declared)
-        except PlanParseError:
-            out.append(line)
-            continue
-        out.append(steps[0].text if steps else line)
-    return "\n".join(out)
+    blocks = cached_domain(domain_text)
+    declared = set(read_blocks_problem(problem_text, blocks).blocks)
+    domain = cached_strips_domain(domain_text)
+    others: list[Step] = []
+
+    def unreadable(number: int, raw: str) -> None:
+        step = read_step(raw, number, domain)
+        if step is not None:
+            others.append(step)
+
+    steps = [_strips_step(s.text, s.line)
+             for s in parse_blocks_plan(plan_text, blocks, declared, unreadable=unreadable)]
+    return sorted([*steps, *others], key=attrgetter("line")) if others else steps
+
+
+def _strips_step(text: str, line: int) -> Step:
+    """A step the blocks world read, `(op args)` with the domain's parameter order, as the
+    STRIPS reader reads that text."""
+    name, *args = text[1:-1].split(" ")
+    return Step(name, tuple(args), line)
 
 
 def _explain(data: dict[str, Any], domain_text: str, problem_text: str) -> None:

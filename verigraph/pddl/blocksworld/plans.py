@@ -14,7 +14,9 @@ Mystery Blocksworld writes `feast object b from object c` for `(feast b c)`.
 Names are ASCII in every mode (as in the domain and problem files): a non-ASCII name is
 bad input naming its line.
 A line that is no action, names an unknown operator or has the wrong number of arguments
-is bad input (PlanParseError naming the line), never a verdict.
+is bad input (PlanParseError naming the line), never a verdict; a caller may instead take
+such lines as they come (`parse_blocks_plan`'s `unreadable`: `validate_pddl_dict` has the
+STRIPS reader make each a failing step).
 
 A plan whose every line is a plain `(op args)` is read with one regex pass
 (`plain_actions`), possessive, and on ASCII text with its name class as byte ranges.
@@ -23,6 +25,7 @@ A plan whose every line is a plain `(op args)` is read with one regex pass
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from typing import NamedTuple
 
 from verigraph.errors import PlanParseError
@@ -186,12 +189,16 @@ def _plain_plan(lowered: str, domain: BlocksDomain) -> list[PlanStep] | None:
     return steps
 
 
-def parse_blocks_plan(text: str, domain: BlocksDomain, declared: set[str]) -> list[PlanStep]:
+def parse_blocks_plan(text: str, domain: BlocksDomain, declared: set[str], *,
+                      unreadable: Callable[[int, str], object] | None = None
+                      ) -> list[PlanStep]:
     """Every action line of a plan, in order; an empty plan is valid input.
 
     A line that is exactly `(op args)` with the right arity (VAL's and planners' format,
     nearly every line of a long plan) takes an inlined path; any other line goes through
-    the general forms above, which also produce every error.
+    the general forms above, which also produce every error. With `unreadable`, a line
+    that is no action is handed to it (its number and the line as written) and reading
+    goes on, instead of the PlanParseError; a name that is not ASCII is still refused.
     """
     if not text.isascii():
         ascii_names(text)
@@ -229,9 +236,14 @@ def parse_blocks_plan(text: str, domain: BlocksDomain, declared: set[str]) -> li
             body = DURATION.sub("", STEP_PREFIX.sub("", body)).rstrip(".").strip()
             if not body:
                 continue
-        if body[0] == "(":
-            append(_sexpr_step(body, number, raw, domain))
-        else:
-            append(_named_step(body, number, raw, domain, declared)
-                   or _english_step(body, number, raw, domain, declared))
+        try:
+            step = _sexpr_step(body, number, raw, domain) if body[0] == "(" else (
+                _named_step(body, number, raw, domain, declared)
+                or _english_step(body, number, raw, domain, declared))
+        except PlanParseError:
+            if unreadable is None:
+                raise
+            unreadable(number, raw)
+            continue
+        append(step)
     return steps
