@@ -25,7 +25,7 @@ Speed, per domain: VeriGraph in process per plan (one run; both engines' code is
 by one untimed check first, and each domain is read again) against VAL's whole process
 per plan (VAL has no library), and `verigraph validate --batch` over all cases against
 VAL once per plan. A full run also rewrites data/ipc/val_verdicts.json (VAL's verdicts,
-for tests/actions/test_pddl_ipc_corpus.py). Every disagreement is listed with a
+for tests/pddl/test_pddl_ipc_corpus.py). Every disagreement is listed with a
 judgement (JUDGEMENTS below, written by reading the plan and the domain); one without a
 judgement is marked so.
 
@@ -693,7 +693,7 @@ def render(cases: list[Case], batch: tuple[float, int, int] | None, val: str,
 
 
 def write_verdicts(cases: list[Case]) -> None:
-    """Record every case's expected verdict for tests/actions/test_pddl_ipc_corpus.py,
+    """Record every case's expected verdict for tests/pddl/test_pddl_ipc_corpus.py,
     which checks VeriGraph against them without VAL: VAL's verdict where it gave one
     (VeriGraph's where the judgement says VAL is wrong), "invalid" where VAL crashed on a
     step of the wrong arity (such a step is no action of the domain, in any validator)."""

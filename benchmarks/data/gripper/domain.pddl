@@ -1,5 +1,5 @@
 ; IPC 1998 gripper (STRIPS), as in aibasel/downward-benchmarks; the long-plan rows of
-; benchmarks/bench_validate.py and tests/actions/test_pddl_fast_run.py use it.
+; benchmarks/bench_validate.py and tests/pddl/test_pddl_fast_run.py use it.
 (define (domain gripper-strips)
   (:predicates (room ?r) (ball ?b) (gripper ?g) (at-robby ?r) (at ?b ?r) (free ?g)
                (carry ?o ?g))
