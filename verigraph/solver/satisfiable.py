@@ -1,0 +1,583 @@
+"""Whether any state at all satisfies a goal formula, however a plan would reach it.
+
+A movable object has exactly one placement (docs/worlds.md, Placements), so a formula
+may ask for what no state has: six logs each on the table or on a log, exactly two on
+the table and exactly two on a log. A search would spend its whole budget before it
+could say so; this check says it first, and why.
+
+It looks for ANY state where the formula holds, ignoring how it is reached: each movable
+object gets one placement `(relation, target)` the world allows (the target fits the
+relation as `move` asks: `on` a surface, `in` a container, `under` furniture, `nextto`
+anything but a room; `on` and `in` within the target's capacity; never itself, never a
+cycle; its current placement is always allowed, and so is resting on nothing when it
+does now), and each state key the formula reads is free, true or false (a relaxation:
+some states no action can change, so "satisfiable" here promises no plan; only
+"unsatisfiable" is an answer). Fixed objects keep their placements.
+
+The search is depth-first over those choices, made lazily: only objects whose placement
+some atom still needs get one (an object the formula names, and whatever stands below
+it as far as its atoms read). The formula is grounded on the scene's objects once
+(`forall`, `exists`, `forn`, `forpairs`, `fornpairs` over the objects of their kind) and
+read in three values (true, false, unknown): each atom is read once it is known, and its
+truth is propagated up (`and`: false at its first false part; `or` the dual; `forn (N)`:
+false once more than N parts hold or fewer than N still can; a pair quantifier: false
+once a largest pairing over the pairs that still can hold is too small), so a choice
+that makes the formula false is abandoned at once.
+
+An atom is read through formula_eval's `Facts` (its meaning is the evaluator's) once it
+is known: a relation atom once the placements down the chain of its first object are
+chosen (what it stands on, in, under or next to, and so on down to what is fixed or
+rests on nothing), for `nextto` those of both objects; a state atom once its key is
+chosen. This rests on the evaluator reading `(on a b)`, `(inside a b)`, `(under a b)`
+and `(inroom a r)` from where `a` is (b only as the place named), and `(nextto a b)`
+from where both are.
+
+Objects of one label and properties that the formula treats alike (swapping the two
+leaves it the same, the parts of `and` and `or` in any order) are interchangeable: of
+those neither placed yet, nor a target of a placement, nor with a state chosen, only the
+first is tried as a target.
+
+`unsatisfiable_reason` returns the reason when the search proves that no state satisfies
+the formula (the top-level conjuncts that cannot hold together, as few as it finds), and
+None when it finds a state or its share of the solve's budget runs out.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterator
+
+from verigraph.actions.schemas import fits
+from verigraph.graph.dictionary import PLACEMENT_RELATIONS, SUPPORT_RELATIONS
+from verigraph.graph.formula import (
+    Atom,
+    Formula,
+    Imply,
+    Junction,
+    Not,
+    Pairs,
+    Quantified,
+    constants,
+    show,
+)
+from verigraph.graph.formula_eval import SHOWN_CHARS, Facts, facts_of
+from verigraph.graph.state import WorldState
+from verigraph.solver.budget import SearchBudget
+
+MAX_GROUND = 20_000  # ground parts the check builds; beyond, it says nothing
+MAX_CHOICES = 200  # placements and states chosen at once (the depth of the search)
+SHARE = 0.2  # of the solve's CPU time limit, at most MAX_SECONDS
+MAX_SECONDS = 1.0
+TRIAL_NODES = 2_000  # at least, for each trial without one conjunct (the reason's core)
+MAX_SHOWN = 4  # conjuncts shown in the reason
+
+Placement = tuple[str, str] | None  # (relation, target), or resting on nothing
+Var = str | tuple[str, str]  # an object's placement, or (object, state key)
+# The relations whose reading follows both objects' placements (`nextto` holds from
+# either side); the others read where the first object is, the second only as a place.
+BOTH_CHAINS = ("nextto",)
+_AND, _OR, _NOT, _COUNT, _PAIRS, _ATOM = range(6)
+
+
+class _Undecided(Exception):  # noqa: N818 - a control-flow signal, not an error
+    """The check's share of the budget ran out, or the formula is too large for it."""
+
+
+def unsatisfiable_reason(state: WorldState, formula: Formula, budget: SearchBudget
+                         ) -> str | None:
+    """Why no state satisfies `formula` (whatever the plan), or None: a state found, or
+    the check's share of `budget` spent. Only the solve's own limits reaching their end
+    stop it with SearchBudgetSpent."""
+    seconds = min(MAX_SECONDS, SHARE * budget.time_limit_s)
+    clock = _Clock(budget, time.thread_time() + seconds)
+    world = _World(state)
+    parts = _conjuncts(formula)
+    try:
+        if _satisfiable(world, parts, clock):
+            return None
+    except _Undecided:
+        return None
+    core = list(parts)
+    trial_nodes = max(TRIAL_NODES, 4 * clock.ticks)
+    for part in parts:  # fewer conjuncts that still cannot hold together say more
+        if len(core) == 1:
+            break
+        rest = [p for p in core if p is not part]
+        clock.stop_at = clock.ticks + trial_nodes
+        try:
+            if not _satisfiable(world, rest, clock):
+                core = rest
+        except _Undecided:
+            if clock.late():
+                break
+    return _reason(core)
+
+
+def _conjuncts(formula: Formula) -> list[Formula]:
+    """The parts of the top-level `and` (nested ones flattened), or the formula."""
+    if isinstance(formula, Junction) and formula.op == "and" and formula.parts:
+        return [p for part in formula.parts for p in _conjuncts(part)]
+    return [formula]
+
+
+def _reason(core: list[Formula]) -> str:
+    shown = [_shown(p) for p in core[:MAX_SHOWN]]
+    if len(core) > len(shown):
+        asked = f"{', '.join(shown)} and {len(core) - len(shown)} more part(s)"
+    else:
+        asked = " and ".join(shown) if len(shown) <= 2 else \
+            f"{', '.join(shown[:-1])} and {shown[-1]}"
+    verb = "cannot hold" if len(core) == 1 else "cannot hold together"
+    return (f"no state satisfies the goal, whatever the plan: {asked} {verb} (each object "
+            "has one placement: on a surface, in a container, under furniture or next to "
+            "one object, within capacities)")
+
+
+def _shown(part: Formula) -> str:
+    text = " ".join(show(part).split())
+    return text if len(text) <= SHOWN_CHARS else text[:SHOWN_CHARS - 4] + "...)"
+
+
+class _Clock:
+    """The check's share of the CPU time, the nodes one trial may take, and the solve's
+    budget checked now and then."""
+
+    def __init__(self, budget: SearchBudget, deadline: float) -> None:
+        self.budget = budget
+        self.deadline = deadline
+        self.ticks = 0
+        self.stop_at = -1  # a trial's last node (-1: no limit)
+
+    def late(self) -> bool:
+        return time.thread_time() > self.deadline
+
+    def tick(self) -> None:
+        self.ticks += 1
+        if self.ticks == self.stop_at:
+            raise _Undecided
+        if self.ticks % 64 == 0:
+            self.budget.check()
+            if self.late():
+                raise _Undecided
+
+
+class _World:
+    """What a state may be: each movable object's placements, capacities, fixed edges,
+    and the classes of interchangeable objects (filled per formula)."""
+
+    def __init__(self, state: WorldState) -> None:
+        self.state = state
+        self.facts = facts_of(state)
+        objects = state.objects
+        self.movable = {o for o, info in objects.items() if info.props.movable}
+        self.fixed_place = {o: p for o, p in state.support.items() if o not in self.movable}
+        self.fixed_edges = [e for e in self.facts.edges if e[1] not in self.movable]
+        self.capacity = {o: info.props.capacity for o, info in objects.items()
+                         if info.props.capacity is not None}
+        self.fixed_load: dict[str, int] = {}
+        for relation, target in self.fixed_place.values():
+            if relation in SUPPORT_RELATIONS:
+                self.fixed_load[target] = self.fixed_load.get(target, 0) + 1
+        self.relations = [r for r in state.move_relations if r in PLACEMENT_RELATIONS]
+        self._allowed: dict[str, list[Placement]] = {}
+
+    def allowed(self, obj: str) -> list[Placement]:
+        """The placements `obj` may have: every one the rules allow, and its current
+        one (or resting on nothing, where it rests on nothing now)."""
+        if obj not in self._allowed:
+            objects = self.state.objects
+            allowed: list[Placement] = [(r, t) for r in self.relations for t in objects
+                                        if t != obj and fits(objects[t].props, r)]
+            current = self.state.support.get(obj)
+            if current not in allowed:
+                allowed.append(current)
+            self._allowed[obj] = allowed
+        return self._allowed[obj]
+
+    def regular(self, obj: str) -> bool:
+        """Whether `obj` rests on nothing or as the rules allow (so two such objects of
+        one kind may take the same placements, each but on itself)."""
+        current = self.state.support.get(obj)
+        return current is None or (current[0] in self.relations and current[1] != obj
+                                   and fits(self.state.objects[current[1]].props,
+                                            current[0]))
+
+    def classes(self, formula: Formula) -> dict[str, list[str]]:
+        """Object -> its class of interchangeable movable objects (same label and
+        properties, carrying no fixed object, a current placement the rules allow or
+        none in both, and the formula the same with the two swapped)."""
+        objects, support = self.state.objects, self.state.support
+        named = constants(formula)[0]
+        fixed_targets = {t for _, t in self.fixed_place.values()}
+        groups: dict[tuple[object, ...], list[list[str]]] = {}
+        plain = _canonical(formula, {}) if named else ""
+        for o in sorted(self.movable):
+            if o in fixed_targets or not self.regular(o):
+                continue
+            key = (objects[o].label, objects[o].props, o in support)
+            for members in groups.setdefault(key, []):
+                first = members[0]
+                if (o not in named and first not in named) \
+                        or _canonical(formula, {first: o, o: first}) == plain:
+                    members.append(o)
+                    break
+            else:
+                groups[key].append([o])
+        return {o: members for classes in groups.values() for members in classes
+                if len(members) > 1 for o in members}
+
+
+def _canonical(node: Formula, swap: dict[str, str]) -> str:
+    """The formula as text with ids swapped, the parts of `and`/`or` sorted."""
+    if isinstance(node, Atom):
+        return f"({node.predicate} {' '.join(swap.get(t, t) for t in node.terms)})"
+    if isinstance(node, Not):
+        return f"(not {_canonical(node.body, swap)})"
+    if isinstance(node, Junction):
+        return f"({node.op} {' '.join(sorted(_canonical(p, swap) for p in node.parts))})"
+    if isinstance(node, Imply):
+        return f"(imply {_canonical(node.condition, swap)} {_canonical(node.then, swap)})"
+    if isinstance(node, Quantified):
+        return (f"({node.op} {node.count} {node.param.name} {node.param.kind} "
+                f"{_canonical(node.body, swap)})")
+    return (f"({node.op} {node.count} {node.first.name} {node.first.kind} "
+            f"{node.second.name} {node.second.kind} {_canonical(node.body, swap)})")
+
+
+def _satisfiable(world: _World, parts: list[Formula], clock: _Clock) -> bool:
+    """Whether some state makes every part hold (raises _Undecided)."""
+    formula = parts[0] if len(parts) == 1 else Junction("and", tuple(parts))
+    return _Search(world, formula, clock).run()
+
+
+class _Search:
+    """The ground formula with three-valued truths, and the depth-first search over
+    placements and states that propagates them."""
+
+    def __init__(self, world: _World, formula: Formula, clock: _Clock) -> None:
+        self.world = world
+        self.clock = clock
+        self.facts_now: Facts | None = None
+        # the ground formula, children before parents
+        self.op: list[int] = []
+        self.size: list[int] = []
+        self.count: list[int] = []
+        self.parents: list[list[int]] = []
+        self.pairs: dict[int, list[tuple[str, str, int]]] = {}
+        self.atoms: dict[tuple[str, tuple[str, ...]], int] = {}
+        self.atom_of: dict[int, tuple[str, tuple[str, ...]]] = {}
+        self.root = self.ground(formula, {})
+        # the truths and the choices made so far
+        n = len(self.op)
+        self.value: list[bool | None] = [None] * n
+        self.n_true = [0] * n
+        self.n_false = [0] * n
+        self.trail: list[int] = []
+        self.place: dict[str, Placement] = {}
+        self.states: dict[tuple[str, str], bool] = {}
+        self.load = dict(world.fixed_load)
+        self.targeted: dict[str, int] = {}
+        self.watch: dict[Var, list[int]] = {}
+        self.watch_trail: list[Var] = []
+        self.classes = world.classes(formula)
+        self.wanted = self.wanted_places()
+        self.start()
+
+    # -- grounding ---------------------------------------------------------------------
+    def node(self, op: int, children: list[int], count: int = 0) -> int:
+        index = len(self.op)
+        if index >= MAX_GROUND:
+            raise _Undecided
+        self.op.append(op)
+        self.size.append(len(children))
+        self.count.append(count)
+        self.parents.append([])
+        for child in children:
+            self.parents[child].append(index)
+        return index
+
+    def ground(self, node: Formula, env: dict[str, str]) -> int:
+        if isinstance(node, Atom):
+            key = (node.relation, tuple(env.get(t, t) for t in node.terms))
+            if key not in self.atoms:
+                self.atoms[key] = index = self.node(_ATOM, [])
+                self.atom_of[index] = key
+            return self.atoms[key]
+        if isinstance(node, Not):
+            return self.node(_NOT, [self.ground(node.body, env)])
+        if isinstance(node, Junction):
+            return self.node(_AND if node.op == "and" else _OR,
+                             [self.ground(p, env) for p in node.parts])
+        if isinstance(node, Imply):
+            return self.node(_OR, [self.node(_NOT, [self.ground(node.condition, env)]),
+                                   self.ground(node.then, env)])
+        if isinstance(node, Quantified):
+            name = node.param.name
+            bodies = [self.ground(node.body, {**env, name: o})
+                      for o in self.world.facts.objects_of(node.param.kind)]
+            if node.op == "forn":
+                return self.node(_COUNT, bodies, node.count or 0)
+            return self.node(_AND if node.op == "forall" else _OR, bodies)
+        firsts = self.world.facts.objects_of(node.first.kind)
+        seconds = self.world.facts.objects_of(node.second.kind)
+        edges = [(a, b, self.ground(node.body, {**env, node.first.name: a,
+                                                 node.second.name: b}))
+                 for a in firsts for b in seconds if b != a]
+        needed = node.count if node.count is not None else min(len(firsts), len(seconds))
+        index = self.node(_PAIRS, [child for _, _, child in edges], needed)
+        self.pairs[index] = edges
+        return index
+
+    def wanted_places(self) -> dict[str, list[Placement]]:
+        """Each object's placements the atoms name (tried first)."""
+        wanted: dict[str, list[Placement]] = {}
+        for relation, terms in self.atoms:
+            if relation not in PLACEMENT_RELATIONS or len(terms) != 2:
+                continue
+            pairs = [(terms[0], terms[1])] + ([(terms[1], terms[0])]
+                                               if relation == "nextto" else [])
+            for obj, target in pairs:
+                places = wanted.setdefault(obj, [])
+                if (relation, target) not in places:
+                    places.append((relation, target))
+        return wanted
+
+    # -- three-valued truth --------------------------------------------------------------
+    def start(self) -> None:
+        """Every part's truth before any choice (children come before their parents)."""
+        for index, op in enumerate(self.op):
+            if op == _ATOM:
+                truth, blocker = self.read(index)
+                if blocker is not None:
+                    self.watch.setdefault(blocker, []).append(index)
+            else:
+                truth = self.truth(index)
+            if truth is not None:
+                self.value[index] = truth
+                for parent in self.parents[index]:
+                    if truth:
+                        self.n_true[parent] += 1
+                    else:
+                        self.n_false[parent] += 1
+
+    def truth(self, index: int) -> bool | None:
+        """A part's truth from its parts' (None: not known yet)."""
+        op, size, yes, no = self.op[index], self.size[index], self.n_true[index], \
+            self.n_false[index]
+        if op == _AND:
+            return False if no else True if yes == size else None
+        if op == _OR:
+            return True if yes else False if no == size else None
+        if op == _NOT:
+            return False if yes else True if no else None
+        if op == _COUNT:
+            wanted = self.count[index]
+            if yes > wanted or size - no < wanted:
+                return False
+            return True if yes + no == size else None
+        edges = self.pairs[index]
+        needed = self.count[index]
+        if _matching([(a, b) for a, b, c in edges if self.value[c] is not False]) < needed:
+            return False
+        if _matching([(a, b) for a, b, c in edges if self.value[c]]) >= needed:
+            return True
+        return None
+
+    def set(self, index: int, truth: bool) -> None:
+        """A part's truth is now known: its parents learn it, up as far as it goes."""
+        stack = [(index, truth)]
+        while stack:
+            index, truth = stack.pop()
+            if self.value[index] is not None:
+                continue
+            self.value[index] = truth
+            self.trail.append(index)
+            for parent in self.parents[index]:
+                if truth:
+                    self.n_true[parent] += 1
+                else:
+                    self.n_false[parent] += 1
+                if self.value[parent] is None:
+                    known = self.truth(parent)
+                    if known is not None:
+                        stack.append((parent, known))
+
+    def read(self, index: int) -> tuple[bool | None, Var | None]:
+        """An atom's truth through the evaluator's Facts once it is known, else the
+        choice it waits for."""
+        relation, terms = self.atom_of[index]
+        if len(terms) == 1:
+            key = (terms[0], relation)
+            return (self.states[key], None) if key in self.states else (None, key)
+        for term in terms if relation in BOTH_CHAINS else terms[:1]:
+            blocker = self.blocker(term)
+            if blocker is not None:
+                return None, blocker
+        if self.facts_now is None:
+            self.facts_now = self.world.facts.with_edges(
+                [*self.world.fixed_edges,
+                 *((p[0], o, p[1]) for o, p in self.place.items() if p is not None)])
+        return self.facts_now.related(relation, terms[0], terms[1]), None
+
+    def blocker(self, obj: str) -> str | None:
+        """The first object down `obj`'s placements whose placement is not chosen."""
+        current: str | None = obj
+        for _ in range(len(self.world.state.objects) + 1):
+            if current is None:
+                return None
+            if current in self.world.movable:
+                if current not in self.place:
+                    return current
+                placement = self.place[current]
+            else:
+                placement = self.world.fixed_place.get(current)
+            current = placement[1] if placement is not None else None
+        return None
+
+    # -- choices -------------------------------------------------------------------------
+    def run(self) -> bool:
+        """Whether some choice of the placements and states makes the formula hold."""
+        self.clock.tick()
+        truth = self.value[self.root]
+        if truth is not None:
+            return truth
+        var = self.choose()
+        if var is None or len(self.place) + len(self.states) >= MAX_CHOICES:
+            raise _Undecided  # nothing left to choose, yet unknown: not a proof
+        for choice in self.choices(var):
+            mark = self.assign(var, choice)
+            if mark is None:
+                continue
+            if self.value[self.root] is not False and self.run():
+                return True
+            self.undo(var, choice, mark)
+        return False
+
+    def choose(self) -> Var | None:
+        """The choice the first atom still unknown and still needed waits for."""
+        for index in self.atom_of:
+            if self.value[index] is None and self.needed(index):
+                return self.read(index)[1]
+        return None
+
+    def needed(self, index: int) -> bool:
+        """Whether a part's truth still matters: some path up to the root is unknown."""
+        if index == self.root:
+            return True
+        return any(self.value[p] is None and self.needed(p) for p in self.parents[index])
+
+    def choices(self, var: Var) -> Iterator[Placement | bool]:
+        if not isinstance(var, str):
+            yield from (True, False)
+            return
+        allowed = self.world.allowed(var)
+        first = [p for p in self.wanted.get(var, []) if p in allowed]
+        current = self.world.state.support.get(var)
+        ordered = [*first, *([current] if current not in first else [])]
+        ordered += [p for p in allowed if p not in ordered]
+        stand_in: dict[int, str | None] = {}  # class -> its one untouched member tried
+        for placement in ordered:
+            target = placement[1] if placement is not None else None
+            members = self.classes.get(target) if target is not None else None
+            if members is not None and self.untouched(target, var):
+                if id(members) not in stand_in:
+                    stand_in[id(members)] = next(
+                        (m for m in members if self.untouched(m, var)), None)
+                if stand_in[id(members)] != target:
+                    continue  # an interchangeable object was tried in its place
+            yield placement
+
+    def untouched(self, obj: str | None, var: Var) -> bool:
+        return obj != var and obj not in self.place and not self.targeted.get(obj) \
+            and not any(key[0] == obj for key in self.states)
+
+    def assign(self, var: Var, choice: Placement | bool) -> tuple[int, int] | None:
+        """Make a choice and propagate it; None when the rules forbid it."""
+        if isinstance(var, str):
+            assert not isinstance(choice, bool)
+            if choice is not None:
+                relation, target = choice
+                capacity = self.world.capacity.get(target)
+                if relation in SUPPORT_RELATIONS and capacity is not None \
+                        and self.load.get(target, 0) >= capacity:
+                    return None
+                if self.below(target, var):
+                    return None
+                self.targeted[target] = self.targeted.get(target, 0) + 1
+                if relation in SUPPORT_RELATIONS:
+                    self.load[target] = self.load.get(target, 0) + 1
+            self.place[var] = choice
+        else:
+            assert isinstance(choice, bool)
+            self.states[var] = choice
+        self.facts_now = None
+        mark = (len(self.trail), len(self.watch_trail))
+        for index in self.watch.get(var, []):
+            if self.value[index] is not None:
+                continue
+            truth, blocker = self.read(index)
+            if blocker is not None:
+                self.watch.setdefault(blocker, []).append(index)
+                self.watch_trail.append(blocker)
+            else:
+                assert truth is not None
+                self.set(index, truth)
+        return mark
+
+    def below(self, target: str, obj: str) -> bool:
+        """Whether `obj` is down `target`'s placements (placing obj there: a cycle)."""
+        current: str | None = target
+        for _ in range(len(self.world.state.objects) + 1):
+            if current is None:
+                return False
+            if current == obj:
+                return True
+            if current in self.world.movable:
+                placement = self.place.get(current)
+            else:
+                placement = self.world.fixed_place.get(current)
+            current = placement[1] if placement is not None else None
+        return False
+
+    def undo(self, var: Var, choice: Placement | bool, mark: tuple[int, int]) -> None:
+        while len(self.trail) > mark[0]:
+            index = self.trail.pop()
+            truth = self.value[index]
+            self.value[index] = None
+            for parent in self.parents[index]:
+                if truth:
+                    self.n_true[parent] -= 1
+                else:
+                    self.n_false[parent] -= 1
+        while len(self.watch_trail) > mark[1]:
+            self.watch[self.watch_trail.pop()].pop()
+        if isinstance(var, str):
+            del self.place[var]
+            if choice is not None:
+                assert not isinstance(choice, bool)
+                relation, target = choice
+                self.targeted[target] -= 1
+                if relation in SUPPORT_RELATIONS:
+                    self.load[target] -= 1
+        else:
+            del self.states[var]
+        self.facts_now = None
+
+
+def _matching(edges: list[tuple[str, str]]) -> int:
+    """The size of a largest one-to-one pairing over `edges` (augmenting paths)."""
+    fits_of: dict[str, list[str]] = {}
+    for a, b in edges:
+        fits_of.setdefault(a, []).append(b)
+    partner: dict[str, str] = {}
+
+    def augment(a: str, seen: set[str]) -> bool:
+        for b in fits_of[a]:
+            if b not in seen:
+                seen.add(b)
+                if b not in partner or augment(partner[b], seen):
+                    partner[b] = a
+                    return True
+        return False
+
+    return sum(augment(a, set()) for a in fits_of)
