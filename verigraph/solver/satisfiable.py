@@ -55,7 +55,6 @@ from verigraph.graph.formula import (
     Imply,
     Junction,
     Not,
-    Pairs,
     Quantified,
     constants,
     show,
@@ -479,7 +478,7 @@ class _Search:
         for placement in ordered:
             target = placement[1] if placement is not None else None
             members = self.classes.get(target) if target is not None else None
-            if members is not None and self.untouched(target, var):
+            if members is not None and target is not None and self.untouched(target, var):
                 if id(members) not in stand_in:
                     stand_in[id(members)] = next(
                         (m for m in members if self.untouched(m, var)), None)
@@ -487,7 +486,8 @@ class _Search:
                     continue  # an interchangeable object was tried in its place
             yield placement
 
-    def untouched(self, obj: str | None, var: Var) -> bool:
+    def untouched(self, obj: str, var: Var) -> bool:
+        """Neither chosen for, nor a target, nor with a state chosen (nor `var`)."""
         return obj != var and obj not in self.place and not self.targeted.get(obj) \
             and not any(key[0] == obj for key in self.states)
 
