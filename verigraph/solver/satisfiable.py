@@ -203,11 +203,15 @@ class _World:
 
     def classes(self, formula: Formula) -> dict[str, list[str]]:
         """Object -> its class of interchangeable movable objects (same label and
-        properties, carrying no fixed object, a current placement the rules allow or
-        none in both, and the formula the same with the two swapped)."""
+        properties, a current placement the rules allow or none in both, the target of
+        no fixed object's placement nor of one the rules would not allow, and the
+        formula the same with the two swapped)."""
         objects, support = self.state.objects, self.state.support
         named = constants(formula)[0]
+        # what a fixed object, or a placement the rules would not allow, names as its
+        # target is not interchangeable with another (only it is in those placements)
         fixed_targets = {t for _, t in self.fixed_place.values()}
+        fixed_targets |= {support[o][1] for o in self.movable if not self.regular(o)}
         groups: dict[tuple[object, ...], list[list[str]]] = {}
         plain = _canonical(formula, {}) if named else ""
         for o in sorted(self.movable):
