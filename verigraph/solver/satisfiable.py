@@ -75,6 +75,8 @@ Var = str | tuple[str, str]  # an object's placement, or (object, state key)
 # The relations whose reading follows both objects' placements (`nextto` holds from
 # either side); the others read where the first object is, the second only as a place.
 BOTH_CHAINS = ("nextto",)
+_WAYS = {"on": "on a surface", "in": "in a container", "under": "under furniture",
+         "nextto": "next to one object"}
 _AND, _OR, _NOT, _COUNT, _PAIRS, _ATOM = range(6)
 
 
@@ -109,7 +111,7 @@ def unsatisfiable_reason(state: WorldState, formula: Formula, budget: SearchBudg
         except _Undecided:
             if clock.late():
                 break
-    return _reason(core)
+    return _reason(core, world.relations)
 
 
 def _conjuncts(formula: Formula) -> list[Formula]:
@@ -119,7 +121,7 @@ def _conjuncts(formula: Formula) -> list[Formula]:
     return [formula]
 
 
-def _reason(core: list[Formula]) -> str:
+def _reason(core: list[Formula], relations: list[str]) -> str:
     shown = [_shown(p) for p in core[:MAX_SHOWN]]
     if len(core) > len(shown):
         asked = f"{', '.join(shown)} and {len(core) - len(shown)} more part(s)"
@@ -127,9 +129,10 @@ def _reason(core: list[Formula]) -> str:
         asked = " and ".join(shown) if len(shown) <= 2 else \
             f"{', '.join(shown[:-1])} and {shown[-1]}"
     verb = "cannot hold" if len(core) == 1 else "cannot hold together"
+    ways = [_WAYS[r] for r in relations if r in _WAYS]
+    how = ", ".join(ways[:-1]) + f" or {ways[-1]}" if len(ways) > 1 else "".join(ways)
     return (f"no state satisfies the goal, whatever the plan: {asked} {verb} (each object "
-            "has one placement: on a surface, in a container, under furniture or next to "
-            "one object, within capacities)")
+            f"has one placement: {how}, within capacities)")
 
 
 def _shown(part: Formula) -> str:
