@@ -182,7 +182,8 @@ def reachable_states(seed: int) -> list[WorldState]:
 
     start = WorldState.from_graph(little_world(seed))
     problem = TableProblem(start, Goal(formula="(or (ontop table table) (inside table table) "
-                                                "(nextto table table) (under table table))"))
+                                                "(nextto table table) (under table table) "
+                                                "(open table))"))
     budget = SearchBudget(max_expansions=10**6, time_limit_s=60)
     seen = {problem.key(start)}
     layer, states = [start], [start]
@@ -202,23 +203,34 @@ def random_formula(rng: random.Random, objects: list[str], kinds: list[str], dep
                    ) -> str:
     """A small random formula over the world's objects and kinds."""
     places = ["table", "counter", *objects]
+    boxes = [o for o in objects if o.startswith("box")]
     roll = rng.random()
     if depth >= 2 or roll < 0.35:
+        if boxes and rng.random() < 0.15:
+            return f"(open {rng.choice(boxes)})"
         relation = rng.choice(["ontop", "inside", "nextto", "under"])
         return f"({relation} {rng.choice(objects)} {rng.choice(places)})"
-    if roll < 0.55:
+    if roll < 0.5:
         parts = [random_formula(rng, objects, kinds, depth + 1)
                  for _ in range(rng.randint(2, 3))]
         return f"({rng.choice(['and', 'and', 'or'])} {' '.join(parts)})"
-    if roll < 0.65:
+    if roll < 0.6:
         return f"(not {random_formula(rng, objects, kinds, depth + 1)})"
-    kind = rng.choice(kinds)
+    if roll < 0.65:
+        return (f"(imply {random_formula(rng, objects, kinds, depth + 1)} "
+                f"{random_formula(rng, objects, kinds, depth + 1)})")
     var = f"?v{depth}"
+    if roll < 0.72:
+        relation = rng.choice(["ontop", "inside", "nextto"])
+        count = rng.choice(["forpairs", f"fornpairs ({rng.randint(1, 2)})"])
+        return (f"({count} ({var} - {rng.choice(kinds)}) (?w{depth} - {rng.choice(kinds)}) "
+                f"({relation} {var} ?w{depth}))")
+    kind = rng.choice(kinds)
     relation = rng.choice(["ontop", "inside", "nextto"])
     body = f"({relation} {var} {rng.choice(places)})"
     if rng.random() < 0.5:
         body = f"(and {body} {random_formula(rng, objects, kinds, depth + 1)})"
-    if roll < 0.8:
+    if roll < 0.85:
         return f"(forn ({rng.randint(0, 2)}) ({var} - {kind}) {body})"
     return f"({rng.choice(['forall', 'exists'])} ({var} - {kind}) {body})"
 

@@ -256,59 +256,45 @@ def _satisfiable(world: _World, parts: list[Formula], clock: _Clock) -> bool:
     return _Search(world, formula, clock).run()
 
 
-class _Search:
-    """The ground formula with three-valued truths, and the depth-first search over
-    placements and states that propagates them."""
+class _Ground:
+    """The formula grounded on the scene's objects: parts numbered children first, one
+    number per distinct part (the same atom, or the same `or` of the same atoms, read
+    in two places is one part, so what one place implies the other sees)."""
 
-    def __init__(self, world: _World, formula: Formula, clock: _Clock) -> None:
+    def __init__(self, world: _World, formula: Formula) -> None:
         self.world = world
-        self.clock = clock
-        self.facts_now: Facts | None = None
-        # the ground formula, children before parents
         self.op: list[int] = []
-        self.size: list[int] = []
         self.count: list[int] = []
+        self.children: list[tuple[int, ...]] = []
         self.parents: list[list[int]] = []
         self.pairs: dict[int, list[tuple[str, str, int]]] = {}
-        self.atoms: dict[tuple[str, tuple[str, ...]], int] = {}
-        self.atom_of: dict[int, tuple[str, tuple[str, ...]]] = {}
+        self.atoms: dict[int, tuple[str, tuple[str, ...]]] = {}
+        self.seen: dict[tuple[object, ...], int] = {}
         self.root = self.ground(formula, {})
-        # the truths and the choices made so far
-        n = len(self.op)
-        self.value: list[bool | None] = [None] * n
-        self.n_true = [0] * n
-        self.n_false = [0] * n
-        self.trail: list[int] = []
-        self.place: dict[str, Placement] = {}
-        self.states: dict[tuple[str, str], bool] = {}
-        self.load = dict(world.fixed_load)
-        self.targeted: dict[str, int] = {}
-        self.watch: dict[Var, list[int]] = {}
-        self.watch_trail: list[Var] = []
-        self.classes = world.classes(formula)
-        self.wanted = self.wanted_places()
-        self.start()
 
-    # -- grounding ---------------------------------------------------------------------
-    def node(self, op: int, children: list[int], count: int = 0) -> int:
+    def node(self, op: int, children: list[int], count: int = 0,
+             key: tuple[object, ...] | None = None) -> int:
+        key = key if key is not None else (op, tuple(children), count)
+        if key in self.seen:
+            return self.seen[key]
         index = len(self.op)
         if index >= MAX_GROUND:
             raise _Undecided
+        self.seen[key] = index
         self.op.append(op)
-        self.size.append(len(children))
         self.count.append(count)
+        self.children.append(tuple(children))
         self.parents.append([])
-        for child in children:
+        for child in dict.fromkeys(children):
             self.parents[child].append(index)
         return index
 
     def ground(self, node: Formula, env: dict[str, str]) -> int:
         if isinstance(node, Atom):
-            key = (node.relation, tuple(env.get(t, t) for t in node.terms))
-            if key not in self.atoms:
-                self.atoms[key] = index = self.node(_ATOM, [])
-                self.atom_of[index] = key
-            return self.atoms[key]
+            atom = (node.relation, tuple(env.get(t, t) for t in node.terms))
+            index = self.node(_ATOM, [], key=atom)
+            self.atoms[index] = atom
+            return index
         if isinstance(node, Not):
             return self.node(_NOT, [self.ground(node.body, env)])
         if isinstance(node, Junction):
@@ -317,27 +303,110 @@ class _Search:
         if isinstance(node, Imply):
             return self.node(_OR, [self.node(_NOT, [self.ground(node.condition, env)]),
                                    self.ground(node.then, env)])
+        facts = self.world.facts
         if isinstance(node, Quantified):
             name = node.param.name
             bodies = [self.ground(node.body, {**env, name: o})
-                      for o in self.world.facts.objects_of(node.param.kind)]
+                      for o in facts.objects_of(node.param.kind)]
             if node.op == "forn":
                 return self.node(_COUNT, bodies, node.count or 0)
             return self.node(_AND if node.op == "forall" else _OR, bodies)
-        firsts = self.world.facts.objects_of(node.first.kind)
-        seconds = self.world.facts.objects_of(node.second.kind)
+        firsts = facts.objects_of(node.first.kind)
+        seconds = facts.objects_of(node.second.kind)
         edges = [(a, b, self.ground(node.body, {**env, node.first.name: a,
                                                  node.second.name: b}))
                  for a in firsts for b in seconds if b != a]
         needed = node.count if node.count is not None else min(len(firsts), len(seconds))
-        index = self.node(_PAIRS, [child for _, _, child in edges], needed)
+        index = self.node(_PAIRS, [c for _, _, c in edges], needed,
+                          key=(_PAIRS, tuple(edges), needed))
         self.pairs[index] = edges
         return index
+
+
+class _Truths:
+    """One truth per ground part (None: not known) and, per part, how many of its parts
+    are known true and false; every change on a trail, so a choice is undone exactly.
+    `truth` reads a part's truth off its parts' (Kleene's three values)."""
+
+    def __init__(self, ground: _Ground) -> None:
+        n = len(ground.op)
+        self.g = ground
+        self.value: list[bool | None] = [None] * n
+        self.yes = [0] * n
+        self.no = [0] * n
+        self.trail: list[int] = []
+
+    def learn(self, index: int, truth: bool) -> None:
+        self.value[index] = truth
+        self.trail.append(index)
+        counts = self.yes if truth else self.no
+        for parent in self.g.parents[index]:
+            counts[parent] += self.g.children[parent].count(index)
+
+    def undo(self, mark: int) -> None:
+        while len(self.trail) > mark:
+            index = self.trail.pop()
+            counts = self.yes if self.value[index] else self.no
+            self.value[index] = None
+            for parent in self.g.parents[index]:
+                counts[parent] -= self.g.children[parent].count(index)
+
+    def truth(self, index: int) -> bool | None:
+        g = self.g
+        op, size, yes, no = g.op[index], len(g.children[index]), self.yes[index], \
+            self.no[index]
+        if op == _AND:
+            return False if no else True if yes == size else None
+        if op == _OR:
+            return True if yes else False if no == size else None
+        if op == _NOT:
+            return False if yes else True if no else None
+        if op == _COUNT:
+            wanted = g.count[index]
+            if yes > wanted or size - no < wanted:
+                return False
+            return True if yes + no == size else None
+        if op == _ATOM:
+            return None
+        edges, needed, value = g.pairs[index], g.count[index], self.value
+        if _matching([(a, b) for a, b, c in edges if value[c] is not False]) < needed:
+            return False
+        if _matching([(a, b) for a, b, c in edges if value[c]]) >= needed:
+            return True
+        return None
+
+
+class _Search:
+    """The depth-first search over placements and states, with two layers of truths
+    over the ground formula: `known`, read off the atoms read so far (the formula known
+    true there: a state found), and `implied`, what every satisfying state must have,
+    from the formula wanted true down (an `and` wanted: each part; an `or` wanted with
+    all parts but one false: that one; `forn (N)` wanted with N parts true: the others
+    false, ...) and from what is known up; a part implied both true and false ends the
+    choice that led there."""
+
+    def __init__(self, world: _World, formula: Formula, clock: _Clock) -> None:
+        self.world = world
+        self.clock = clock
+        self.facts_now: Facts | None = None
+        self.g = _Ground(world, formula)
+        self.root = self.g.root
+        self.known = _Truths(self.g)
+        self.implied = _Truths(self.g)
+        self.place: dict[str, Placement] = {}
+        self.states: dict[tuple[str, str], bool] = {}
+        self.load = dict(world.fixed_load)
+        self.targeted: dict[str, int] = {}
+        self.watch: dict[Var, list[int]] = {}
+        self.watch_trail: list[Var] = []
+        self.classes = world.classes(formula)
+        self.wanted = self.wanted_places()
+        self.consistent = self.start()
 
     def wanted_places(self) -> dict[str, list[Placement]]:
         """Each object's placements the atoms name (tried first)."""
         wanted: dict[str, list[Placement]] = {}
-        for relation, terms in self.atoms:
+        for relation, terms in self.g.atoms.values():
             if relation not in PLACEMENT_RELATIONS or len(terms) != 2:
                 continue
             pairs = [(terms[0], terms[1])] + ([(terms[1], terms[0])]
@@ -348,70 +417,92 @@ class _Search:
                     places.append((relation, target))
         return wanted
 
-    # -- three-valued truth --------------------------------------------------------------
-    def start(self) -> None:
-        """Every part's truth before any choice (children come before their parents)."""
-        for index, op in enumerate(self.op):
+    # -- truths --------------------------------------------------------------------------
+    def start(self) -> bool:
+        """The truths before any choice (children come before their parents), and the
+        formula wanted true; False when that is already contradictory."""
+        for index, op in enumerate(self.g.op):
             if op == _ATOM:
                 truth, blocker = self.read(index)
                 if blocker is not None:
                     self.watch.setdefault(blocker, []).append(index)
             else:
-                truth = self.truth(index)
+                truth = self.known.truth(index)
             if truth is not None:
-                self.value[index] = truth
-                for parent in self.parents[index]:
-                    if truth:
-                        self.n_true[parent] += 1
-                    else:
-                        self.n_false[parent] += 1
+                self.known.learn(index, truth)
+                self.implied.learn(index, truth)
+        return self.imply([(self.root, True)])
 
-    def truth(self, index: int) -> bool | None:
-        """A part's truth from its parts' (None: not known yet)."""
-        op, size, yes, no = self.op[index], self.size[index], self.n_true[index], \
-            self.n_false[index]
-        if op == _AND:
-            return False if no else True if yes == size else None
-        if op == _OR:
-            return True if yes else False if no == size else None
-        if op == _NOT:
-            return False if yes else True if no else None
-        if op == _COUNT:
-            wanted = self.count[index]
-            if yes > wanted or size - no < wanted:
-                return False
-            return True if yes + no == size else None
-        edges = self.pairs[index]
-        needed = self.count[index]
-        if _matching([(a, b) for a, b, c in edges if self.value[c] is not False]) < needed:
-            return False
-        if _matching([(a, b) for a, b, c in edges if self.value[c]]) >= needed:
-            return True
-        return None
-
-    def set(self, index: int, truth: bool) -> None:
-        """A part's truth is now known: its parents learn it, up as far as it goes."""
+    def found(self, index: int, truth: bool) -> bool:
+        """An atom read: known up as far as it goes, and implied (False: a
+        contradiction)."""
+        known = self.known
         stack = [(index, truth)]
         while stack:
-            index, truth = stack.pop()
-            if self.value[index] is not None:
+            part, value = stack.pop()
+            if known.value[part] is not None:
                 continue
-            self.value[index] = truth
-            self.trail.append(index)
-            for parent in self.parents[index]:
-                if truth:
-                    self.n_true[parent] += 1
-                else:
-                    self.n_false[parent] += 1
-                if self.value[parent] is None:
-                    known = self.truth(parent)
-                    if known is not None:
-                        stack.append((parent, known))
+            known.learn(part, value)
+            for parent in self.g.parents[part]:
+                if known.value[parent] is None:
+                    up = known.truth(parent)
+                    if up is not None:
+                        stack.append((parent, up))
+        return self.imply([(index, truth)])
+
+    def imply(self, queue: list[tuple[int, bool]]) -> bool:
+        """Parts every satisfying state has with these truths, up and down the formula;
+        False when a part is implied both true and false."""
+        implied, g = self.implied, self.g
+        while queue:
+            index, truth = queue.pop()
+            now = implied.value[index]
+            if now is not None:
+                if now != truth:
+                    return False
+                continue
+            implied.learn(index, truth)
+            for parent in g.parents[index]:
+                up = implied.truth(parent)
+                if up is not None:
+                    queue.append((parent, up))
+                if implied.value[parent] is not None and not self.down(parent, queue):
+                    return False
+            if not self.down(index, queue):
+                return False
+        return True
+
+    def down(self, index: int, queue: list[tuple[int, bool]]) -> bool:
+        """What a part's implied truth implies of its parts (False: contradictory)."""
+        implied, g = self.implied, self.g
+        op, value, children = g.op[index], implied.value, g.children[index]
+        truth = bool(value[index])
+        if op in (_AND, _OR):
+            every = truth if op == _AND else not truth  # each part must be `every`
+            if every:
+                queue.extend((c, truth) for c in children if value[c] is None)
+                return not (implied.no if op == _AND else implied.yes)[index]
+            open_ = [c for c in children if value[c] is None]
+            if (implied.yes if op == _AND else implied.no)[index] == len(children):
+                return False  # all parts hold (or all fail) where one must not
+            if len(open_) == 1 and not (implied.no if op == _AND else implied.yes)[index]:
+                queue.append((open_[0], truth))
+            return True
+        if op == _NOT:
+            queue.append((children[0], not truth))
+            return True
+        if op == _COUNT and truth:
+            wanted, yes, no = g.count[index], implied.yes[index], implied.no[index]
+            if yes > wanted or len(children) - no < wanted:
+                return False
+            if yes == wanted or len(children) - no == wanted:
+                queue.extend((c, yes != wanted) for c in children if value[c] is None)
+        return True
 
     def read(self, index: int) -> tuple[bool | None, Var | None]:
         """An atom's truth through the evaluator's Facts once it is known, else the
         choice it waits for."""
-        relation, terms = self.atom_of[index]
+        relation, terms = self.g.atoms[index]
         if len(terms) == 1:
             key = (terms[0], relation)
             return (self.states[key], None) if key in self.states else (None, key)
@@ -443,10 +534,11 @@ class _Search:
     # -- choices -------------------------------------------------------------------------
     def run(self) -> bool:
         """Whether some choice of the placements and states makes the formula hold."""
+        if not self.consistent:
+            return False
         self.clock.tick()
-        truth = self.value[self.root]
-        if truth is not None:
-            return truth
+        if self.known.value[self.root]:
+            return True
         var = self.choose()
         if var is None or len(self.place) + len(self.states) >= MAX_CHOICES:
             raise _Undecided  # nothing left to choose, yet unknown: not a proof
@@ -454,15 +546,15 @@ class _Search:
             mark = self.assign(var, choice)
             if mark is None:
                 continue
-            if self.value[self.root] is not False and self.run():
+            if self.consistent and self.run():
                 return True
             self.undo(var, choice, mark)
         return False
 
     def choose(self) -> Var | None:
         """The choice the first atom still unknown and still needed waits for."""
-        for index in self.atom_of:
-            if self.value[index] is None and self.needed(index):
+        for index in self.g.atoms:
+            if self.known.value[index] is None and self.needed(index):
                 return self.read(index)[1]
         return None
 
@@ -470,7 +562,8 @@ class _Search:
         """Whether a part's truth still matters: some path up to the root is unknown."""
         if index == self.root:
             return True
-        return any(self.value[p] is None and self.needed(p) for p in self.parents[index])
+        value = self.known.value
+        return any(value[p] is None and self.needed(p) for p in self.g.parents[index])
 
     def choices(self, var: Var) -> Iterator[Placement | bool]:
         if not isinstance(var, str):
@@ -498,8 +591,9 @@ class _Search:
         return obj != var and obj not in self.place and not self.targeted.get(obj) \
             and not any(key[0] == obj for key in self.states)
 
-    def assign(self, var: Var, choice: Placement | bool) -> tuple[int, int] | None:
-        """Make a choice and propagate it; None when the rules forbid it."""
+    def assign(self, var: Var, choice: Placement | bool) -> tuple[int, int, int] | None:
+        """Make a choice and propagate it (`consistent` says whether it holds up);
+        None when the rules forbid it."""
         if isinstance(var, str):
             assert not isinstance(choice, bool)
             if choice is not None:
@@ -518,17 +612,17 @@ class _Search:
             assert isinstance(choice, bool)
             self.states[var] = choice
         self.facts_now = None
-        mark = (len(self.trail), len(self.watch_trail))
+        mark = (len(self.known.trail), len(self.implied.trail), len(self.watch_trail))
         for index in self.watch.get(var, []):
-            if self.value[index] is not None:
+            if self.known.value[index] is not None:
                 continue
             truth, blocker = self.read(index)
             if blocker is not None:
                 self.watch.setdefault(blocker, []).append(index)
                 self.watch_trail.append(blocker)
-            else:
-                assert truth is not None
-                self.set(index, truth)
+            elif truth is not None and not self.found(index, truth):
+                self.consistent = False
+                break
         return mark
 
     def below(self, target: str, obj: str) -> bool:
@@ -546,17 +640,11 @@ class _Search:
             current = placement[1] if placement is not None else None
         return False
 
-    def undo(self, var: Var, choice: Placement | bool, mark: tuple[int, int]) -> None:
-        while len(self.trail) > mark[0]:
-            index = self.trail.pop()
-            truth = self.value[index]
-            self.value[index] = None
-            for parent in self.parents[index]:
-                if truth:
-                    self.n_true[parent] -= 1
-                else:
-                    self.n_false[parent] -= 1
-        while len(self.watch_trail) > mark[1]:
+    def undo(self, var: Var, choice: Placement | bool, mark: tuple[int, int, int]) -> None:
+        self.consistent = True
+        self.known.undo(mark[0])
+        self.implied.undo(mark[1])
+        while len(self.watch_trail) > mark[2]:
             self.watch[self.watch_trail.pop()].pop()
         if isinstance(var, str):
             del self.place[var]
