@@ -17,12 +17,17 @@ some states no action can change, so "satisfiable" here promises no plan; only
 The search is depth-first over those choices, made lazily: only objects whose placement
 some atom still needs get one (an object the formula names, and whatever stands below
 it as far as its atoms read). The formula is grounded on the scene's objects once
-(`forall`, `exists`, `forn`, `forpairs`, `fornpairs` over the objects of their kind) and
-read in three values (true, false, unknown): each atom is read once it is known, and its
-truth is propagated up (`and`: false at its first false part; `or` the dual; `forn (N)`:
-false once more than N parts hold or fewer than N still can; a pair quantifier: false
-once a largest pairing over the pairs that still can hold is too small), so a choice
-that makes the formula false is abandoned at once.
+(`forall`, `exists`, `forn`, `forpairs`, `fornpairs` over the objects of their kind; one
+ground part per distinct part) and read in three values (true, false, unknown): each
+atom is read once it is known, and its truth is propagated up (`and`: false at its
+first false part; `or` the dual; `forn (N)`: false once more than N parts hold or fewer
+than N still can; a pair quantifier: false once a largest pairing over the pairs that
+still can hold is too small). Beside what is known, what every satisfying state must
+have is implied from the formula wanted true, down (an `and` wanted: each part; an `or`
+wanted whose parts all fail but one: that one; `not`: the opposite; `forn (N)` wanted
+with N parts true: the others false, with N that can still hold: those true) and up
+again; a part implied both true and false abandons the choice that led there: with two
+logs on the table, every other log must be on a log, more than `forn (2)` allows.
 
 An atom is read through formula_eval's `Facts` (its meaning is the evaluator's) once it
 is known: a relation atom once the placements down the chain of its first object are
@@ -69,6 +74,7 @@ SHARE = 0.2  # of the solve's CPU time limit, at most MAX_SECONDS
 MAX_SECONDS = 1.0
 TRIAL_NODES = 2_000  # at least, for each trial without one conjunct (the reason's core)
 MAX_SHOWN = 4  # conjuncts shown in the reason
+QUICK_NODES = 500  # the quick search for a state, before the whole search
 
 Placement = tuple[str, str] | None  # (relation, target), or resting on nothing
 Var = str | tuple[str, str]  # an object's placement, or (object, state key)
@@ -157,7 +163,7 @@ class _Clock:
         self.ticks += 1
         if self.ticks == self.stop_at:
             raise _Undecided
-        if self.ticks % 64 == 0:
+        if self.ticks % 64 == 1:
             self.budget.check()
             if self.late():
                 raise _Undecided
@@ -251,8 +257,22 @@ def _canonical(node: Formula, swap: dict[str, str]) -> str:
 
 
 def _satisfiable(world: _World, parts: list[Formula], clock: _Clock) -> bool:
-    """Whether some state makes every part hold (raises _Undecided)."""
+    """Whether some state makes every part hold (raises _Undecided): a quick search for
+    a state first, where an object goes only where an atom names or onto what is fixed
+    or placed already (no chain of objects yet to be placed beneath it), then the whole
+    search."""
     formula = parts[0] if len(parts) == 1 else Junction("and", tuple(parts))
+    limit = clock.stop_at
+    clock.stop_at = clock.ticks + QUICK_NODES if limit < 0 else \
+        min(limit, clock.ticks + QUICK_NODES)
+    try:
+        if _Search(world, formula, clock, quick=True).run():
+            return True
+    except _Undecided:
+        if clock.late() or clock.ticks == limit:
+            raise
+    finally:
+        clock.stop_at = limit
     return _Search(world, formula, clock).run()
 
 
@@ -385,9 +405,11 @@ class _Search:
     false, ...) and from what is known up; a part implied both true and false ends the
     choice that led there."""
 
-    def __init__(self, world: _World, formula: Formula, clock: _Clock) -> None:
+    def __init__(self, world: _World, formula: Formula, clock: _Clock, *,
+                 quick: bool = False) -> None:
         self.world = world
         self.clock = clock
+        self.quick = quick  # only the placements an atom names, or onto what is placed
         self.facts_now: Facts | None = None
         self.g = _Ground(world, formula)
         self.root = self.g.root
@@ -570,13 +592,18 @@ class _Search:
             yield from (True, False)
             return
         allowed = self.world.allowed(var)
-        first = [p for p in self.wanted.get(var, []) if p in allowed]
+        first = sorted((p for p in self.wanted.get(var, []) if p in allowed),
+                       key=lambda p: self.rank(var, p))
         current = self.world.state.support.get(var)
         ordered = [*first, *([current] if current not in first else [])]
         ordered += [p for p in allowed if p not in ordered]
         stand_in: dict[int, str | None] = {}  # class -> its one untouched member tried
+        movable = self.world.movable
         for placement in ordered:
             target = placement[1] if placement is not None else None
+            if self.quick and placement not in first and target in movable \
+                    and target not in self.place:
+                continue
             members = self.classes.get(target) if target is not None else None
             if members is not None and target is not None and self.untouched(target, var):
                 if id(members) not in stand_in:
@@ -585,6 +612,17 @@ class _Search:
                 if stand_in[id(members)] != target:
                     continue  # an interchangeable object was tried in its place
             yield placement
+
+    def rank(self, obj: str, placement: Placement) -> int:
+        """A placement whose own atom every satisfying state has first, one whose atom
+        must fail last."""
+        assert placement is not None
+        relation, target = placement
+        index = self.g.seen.get((relation, (obj, target)))
+        if index is None and relation in BOTH_CHAINS:
+            index = self.g.seen.get((relation, (target, obj)))
+        truth = self.implied.value[index] if index is not None else None
+        return 0 if truth else 1 if truth is None else 2
 
     def untouched(self, obj: str, var: Var) -> bool:
         """Neither chosen for, nor a target, nor with a state chosen (nor `var`)."""
