@@ -11,7 +11,8 @@ carries the lower bound it proved: the heuristic at the start, raised to the sma
 f-value A* left open when it stopped. A search the budget stops before any plan is found
 still returns that bound (`lower_bound`: every plan needs at least that many moves).
 Tangram goals are solved by breadth-first search: goal-directed first (`solver.tangram`),
-then over every align to depth 2.
+then over every align to depth 2. Before any search, a goal formula that no state
+satisfies at all (`satisfiable`) is said unreachable, with the parts that cannot hold.
 """
 
 from __future__ import annotations
@@ -46,6 +47,7 @@ from verigraph.solver.encoding import (
 )
 from verigraph.solver.formula_bound import formula_bound, formula_needs_table
 from verigraph.solver.result import SolveResult, static_reason
+from verigraph.solver.satisfiable import unsatisfiable_reason
 from verigraph.solver.table_search import needs_table_search, table_astar
 from verigraph.solver.tangram import tangram_plan
 
@@ -95,6 +97,10 @@ def _solve(scene: SceneGraph | WorldState, goal: Goal | SceneGraph | str, budget
         return SolveResult(reachable=False, status="unreachable", reason=reason)
     if state.contacts or any(o.props.sides for o in state.objects.values()):
         return _solve_tangram(state, goal_model, budget)
+    if goal_model.formula is not None:  # a goal no state satisfies: said before search
+        reason = unsatisfiable_reason(state, parse_formula(goal_model.formula), budget)
+        if reason:
+            return SolveResult(reachable=False, status="unreachable", reason=reason)
     if needs_table_search(state, goal_model) or formula_needs_table(goal_model) \
             or (anytime and goal_model.formula is not None):
         # anytime over a formula: the table's greedy best-first search, guided by every
