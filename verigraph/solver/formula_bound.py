@@ -7,7 +7,10 @@ wanted, requirements of the form "one of these things must change" (a set of
 `(aspect, object)`, aspect `place`, `open` or `toggled_on`) that every solution meets:
 
 - an atom with the wrong truth: its thing must change (`on`/`in`/`under`: the source's
-  placement; `open`, `toggled_on`: that state of the object); `nextto` (read either
+  placement, even where `in` reads the whole way down, a pizza on a plate in the fridge
+  (the atom reads only the placements from the source down, and the first move that
+  changes one of them moves the source: each object below carries the one above, so is
+  not clear); `open`, `toggled_on`: that state of the object); `nextto` (read either
   way): the placement of one of the two, since only moving one of them changes it;
   `inroom` (a room follows what the object stands on) only says that some action is
   needed, since moving the object, or what it stands on, may change it;
@@ -284,6 +287,6 @@ class _Bound:
                 more.append(frozenset({("back", terms[0])}))
             return truth, [frozenset({thing}), *more], True
         if want and node.relation == "in" and self.facts.closed(terms[1]):
-            # nothing goes into a closed container: it must be opened too
+            # nothing goes into a closed container, nor onto what is in it: opened too
             return truth, [frozenset({thing}), frozenset({("open", terms[1])})], True
         return truth, [frozenset({thing})], True
