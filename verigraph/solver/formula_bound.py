@@ -96,7 +96,8 @@ def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None
     if additive:  # a guide: what is cleared out of the way must also come back or go on
         needs += [frozenset({("back", o)}) for need in freed for kind, o in need
                   if kind == "place"]
-    opened = {n for need in needs if len(need) == 1 for n in need if n[0] == "open"}
+    opened = {n for need in needs if len(need) == 1 for n in need
+              if n[0] == "open" and facts.closed(n[1])}  # an open one's change is closing
     if opened:  # opened now, closed at the end: closed again, one more action each
         closed = _closed_at_the_end(formula, facts)
         needs += [frozenset({("close", c)}) for _, c in opened if c in closed]
