@@ -89,10 +89,16 @@ def test_a_formula_and_a_goal_graph_must_both_hold() -> None:
 
 
 def test_an_unreachable_formula_is_said_unreachable() -> None:
-    # no pot can hold a cup and a lid at once (capacity 1), and both are demanded in pot_1
-    goal = Goal(formula="(and (inside lid_1 pot_1) (inside cup_1 pot_1))")
+    # the plate carries two (capacity 2) and three are demanded on it (`ontop` is the
+    # direct support)
+    goal = Goal(formula="(and (ontop lid_1 plate_1) (ontop lid_2 plate_1) "
+                        "(ontop cup_1 plate_1))")
     result = solve(kitchen(1), goal)
     assert result.reachable is False and result.status == "unreachable"
+    # while `inside` reads down the placements: the cup in pot_1 carries the lid, which
+    # is in pot_1 too, though pot_1 holds one (capacity 1)
+    result = solve(kitchen(1), Goal(formula="(and (inside lid_1 pot_1) (inside cup_1 pot_1))"))
+    assert result.optimal and [a.text() for a in result.plan][-1] == "move(lid_1, in, cup_1)"
 
 
 def fewest_steps(start: T, successors: Callable[[T], Iterable[T]], key: Callable[[T], Hashable],
