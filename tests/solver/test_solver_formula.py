@@ -325,7 +325,7 @@ def test_the_bound_never_exceeds_the_true_cost_over_nested_placements(seed: int)
         for _ in range(rng.randrange(0, 4)):  # a random walk gives another start
             start = rng.choice([after for _, after in neighbours(problem, start, budget)])
 
-        def reached(world: WorldState, formula: Formula = formula) -> bool:
+        def reached(world: WorldState, formula: Formula = formula, text: str = text) -> bool:
             truth = holds(formula, facts_of(world))
             assert (formula_bound(formula, facts_of(world)) == 0) is truth, text
             return truth
