@@ -63,54 +63,54 @@ BOOKS = """(define (problem sorting_books_on_shelf-0)
         floor.n.01_1 - floor.n.01
         agent.n.01_1 - agent.n.01
     )
-    
-    (:init 
-        (inside notebook.n.01_1 bookcase.n.01_1) 
-        (inside comic_book.n.01_1 bookcase.n.01_1) 
-        (ontop notebook.n.01_2 comic_book.n.01_1) 
-        (ontop comic_book.n.01_2 notebook.n.01_1) 
-        (inside textbook.n.01_1 bookcase.n.01_1) 
-        (inside comic_book.n.01_3 bookcase.n.01_1) 
-        (ontop textbook.n.01_2 comic_book.n.01_3) 
-        (inroom coffee_table.n.01_1 living_room) 
-        (inroom bookcase.n.01_1 living_room) 
-        (inroom floor.n.01_1 living_room) 
+
+    (:init
+        (inside notebook.n.01_1 bookcase.n.01_1)
+        (inside comic_book.n.01_1 bookcase.n.01_1)
+        (ontop notebook.n.01_2 comic_book.n.01_1)
+        (ontop comic_book.n.01_2 notebook.n.01_1)
+        (inside textbook.n.01_1 bookcase.n.01_1)
+        (inside comic_book.n.01_3 bookcase.n.01_1)
+        (ontop textbook.n.01_2 comic_book.n.01_3)
+        (inroom coffee_table.n.01_1 living_room)
+        (inroom bookcase.n.01_1 living_room)
+        (inroom floor.n.01_1 living_room)
         (ontop agent.n.01_1 floor.n.01_1)
     )
-    
-    (:goal 
-        (and 
-            (forall 
+
+    (:goal
+        (and
+            (forall
                 (?comic_book.n.01 - comic_book.n.01)
                 (inside ?comic_book.n.01 ?bookcase.n.01_1)
             )
             (forn
                 (2)
                 (?comic_book.n.01 - comic_book.n.01)
-                (or 
+                (or
                     (ontop ?comic_book.n.01 ?comic_book.n.01_1)
                     (ontop ?comic_book.n.01 ?comic_book.n.01_2)
                     (ontop ?comic_book.n.01 ?comic_book.n.01_3)
                 )
             )
-            (forall 
+            (forall
                 (?notebook.n.01 - notebook.n.01)
                 (inside ?notebook.n.01 ?bookcase.n.01_1)
             )
             (exists
                 (?notebook.n.01 - notebook.n.01)
-                (or 
+                (or
                     (ontop ?notebook.n.01 ?notebook.n.01_1)
                     (ontop ?notebook.n.01 ?notebook.n.01_2)
                 )
             )
-            (forall 
+            (forall
                 (?textbook.n.01 - textbook.n.01)
                 (inside ?textbook.n.01 ?bookcase.n.01_1)
             )
             (exists
                 (?textbook.n.01 - textbook.n.01)
-                (or 
+                (or
                     (ontop ?textbook.n.01 ?textbook.n.01_1)
                     (ontop ?textbook.n.01 ?textbook.n.01_2)
                 )
