@@ -30,9 +30,10 @@ A container that must be opened and that the formula wants closed at the end (`(
 
 An object that must move must first be clear, so whatever stands on, in, under or next
 to it (and so on up) must move too; nothing goes into or comes out of a closed container,
-so one that must be entered or left must be opened. Requirements with no thing in
-common need distinct actions, so the size of a family of pairwise disjoint requirements
-(picked greedily, smallest first) is a lower bound; it is 0 exactly at the goal.
+so one that must be entered or left (directly or with what carries the object) must be
+opened. Requirements with no thing in common need distinct actions, so the size of a
+family of pairwise disjoint requirements (picked greedily, smallest first) is a lower
+bound; it is 0 exactly at the goal.
 Admissible, so A* over it stays optimal.
 """
 
@@ -135,7 +136,8 @@ def _closed_at_the_end(formula: Formula, facts: Facts) -> set[str]:
 def _made_free(needs: list[frozenset[Thing]], facts: Facts) -> list[frozenset[Thing]]:
     """An object that must move must be clear first: whatever is placed on, in, under or
     next to it, and so on up, must move too (once each, at least); and nothing comes out
-    of a closed container, so each closed one that holds a mover must be opened."""
+    of a closed container, so each closed one that holds a mover (directly or through
+    what carries it) must be opened."""
     must_move = [next(iter(n))[1] for n in needs if len(n) == 1 and next(iter(n))[0] == "place"]
     if not must_move:
         return []
@@ -151,10 +153,24 @@ def _made_free(needs: list[frozenset[Thing]], facts: Facts) -> list[frozenset[Th
             if other not in found:
                 found.add(other)
                 stack.append(other)
-    boxes = {t for o in (*must_move, *found) for r, t in facts.placed.get(o, [])
-             if r == "in" and facts.closed(t)}
+    boxes = {box for o in (*must_move, *found) for box in _closed_around(o, facts)}
     return [*(frozenset({("place", o)}) for o in sorted(found)),
             *(frozenset({("open", box)}) for box in sorted(boxes))]
+
+
+def _closed_around(obj: str, facts: Facts) -> set[str]:
+    """The closed containers `obj` is within, directly or through what carries it (a
+    pizza on a plate in a closed fridge): each must be opened before `obj` moves."""
+    boxes: set[str] = set()
+    stack, seen = [obj], {obj}
+    while stack:
+        for relation, place in facts.placed.get(stack.pop(), ()):
+            if relation == "in" and facts.closed(place):
+                boxes.add(place)
+            if relation != "inroom" and place not in seen:
+                seen.add(place)
+                stack.append(place)
+    return boxes
 
 
 def _every(truth: bool, parts: list[Need]) -> Need:
