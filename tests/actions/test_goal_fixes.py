@@ -281,3 +281,28 @@ def test_a_place_the_goal_forbids_a_whole_kind_is_never_offered():
         assert v is not None and "plate" not in v.suggestion, v.suggestion
     assert not {w for w in wanted_placements(Goal(
         formula="(exists (?c - cup) (not (on ?c plate)))")) if w[0].startswith("?")}
+
+
+def test_what_is_within_a_forbidden_container_is_never_offered():
+    """"not in the cabinet" forbids the plate in it too: a formula's `inside` reads down
+    the placements, so a cup put on that plate would be in the cabinet."""
+    from verigraph.graph.model import SceneGraph
+    state = WorldState.from_graph(SceneGraph.model_validate({
+        "nodes": [{"id": i, "label": label, **({"state": {"open": True}} if i == "cabinet"
+                                                else {})}
+                  for i, label in [("kitchen", "kitchen"), ("desk", "desk"),
+                                   ("shelf", "shelf"), ("cabinet", "cabinet"),
+                                   ("book", "book"), ("cup", "cup"), ("plate", "plate"),
+                                   ("bowl", "bowl")]],
+        "edges": [{"source": s, "relation": r, "target": t} for s, r, t in [
+            ("cabinet", "inroom", "kitchen"), ("book", "on", "desk"), ("cup", "on", "book"),
+            ("plate", "in", "cabinet"), ("bowl", "on", "desk")]],
+        "dictionary": "household"}))
+    named = "(not (on cup desk)) (not (on cup shelf))"
+    wanted = wanted_placements(Goal(formula=f"(and {named})"))
+    v = validate_action(state, move("book", "on", "shelf"), wanted=wanted)
+    assert v is not None and "move(cup, in, cabinet)" in v.suggestion, v.suggestion
+    wanted = wanted_placements(Goal(formula=f"(and {named} (not (inside cup cabinet)))"))
+    v = validate_action(state, move("book", "on", "shelf"), wanted=wanted)
+    assert v is not None and "cabinet" not in v.suggestion and "plate" not in v.suggestion
+    assert "move(cup, in, bowl)" in v.suggestion, v.suggestion

@@ -241,6 +241,33 @@ def test_relations_are_read_by_name_rooms_follow_placements() -> None:
         "(inroom milk bedroom) fails: milk is not in room bedroom (milk is in fridge)"]
 
 
+def test_inside_reads_where_an_object_is_and_ontop_its_direct_support() -> None:
+    """`inside` holds anywhere within the container, down the placements (as BEHAVIOR's
+    Inside); `ontop` only of the direct support (its OnTop needs contact)."""
+    f = facts_of(WorldState.from_graph(SceneGraph.model_validate({
+        "nodes": [{"id": i, "label": label} for i, label in [
+            ("kitchen", "kitchen"), ("fridge", "fridge"), ("counter", "counter"),
+            ("plate", "plate"), ("cheese", "cheese"), ("bowl", "bowl"), ("cup", "cup"),
+            ("milk", "milk"), ("butter", "butter")]],
+        "edges": [{"source": s, "relation": r, "target": t} for s, r, t in [
+            ("fridge", "inroom", "kitchen"), ("counter", "inroom", "kitchen"),
+            ("plate", "in", "fridge"), ("cheese", "on", "plate"), ("bowl", "on", "plate"),
+            ("cup", "in", "bowl"), ("milk", "nextto", "plate"),
+            ("butter", "on", "counter")]],
+        "dictionary": "household"})))
+    for text, expected in [("(inside cheese fridge)", True),  # on a plate in the fridge
+                           ("(ontop cheese plate)", True), ("(ontop cheese fridge)", False),
+                           ("(inside cup fridge)", True),  # in a bowl on a plate in it
+                           ("(inside cup bowl)", True), ("(inside cup plate)", False),
+                           ("(ontop cup plate)", False), ("(inside bowl fridge)", True),
+                           ("(inside milk fridge)", True),  # beside the plate in it
+                           ("(inside butter fridge)", False), ("(inside fridge fridge)", False),
+                           ("(forall (?c - cup) (not (inside ?c fridge)))", False)]:
+        assert holds(parse_formula(text), f) is expected, text
+    assert evaluate(parse_formula("(forall (?c - cup) (not (inside ?c fridge)))"),
+                    f).counterexamples == ["(not (inside cup fridge)) fails: cup is in fridge"]
+
+
 def test_names_are_checked_against_the_scene_all_at_once() -> None:
     f = facts([("cup_1", "on", "table"), ("cup_2", "on", "table")])
     check_names(parse_formula("(forall (?b - bowl) (ontop ?b plate_1))"), f)  # a known kind

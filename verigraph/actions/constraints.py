@@ -124,17 +124,26 @@ def _goal_place(state: WorldState, obj: str, exclude: set[str], planned: dict[st
 def _forbidden_places(state: WorldState, obj: str, wanted: Wanted) -> set[str]:
     """The places the goal forbids `obj`: named (`(not (on cup_1 plate_a))`) or by kind
     (`("?cup", "not on", "?plate")`, from "no cup on any plate"), read through the
-    formula evaluator's kinds."""
-    places = {place for o, relation, place in wanted
-              if o == obj and relation.startswith("not ") and not place.startswith("?")}
-    by_kind = [(o, place) for o, relation, place in wanted
-               if relation.startswith("not ") and (o.startswith("?") or place.startswith("?"))]
-    if by_kind:
-        facts = facts_of(state)
-        for o, place in by_kind:
+    formula evaluator's kinds; a container forbidden with `not in` forbids what is
+    within it too (a formula's `inside` reads down the placements: a cup on a plate in
+    the cabinet is in the cabinet)."""
+    forbidden: set[tuple[str, str]] = set()  # (relation, place)
+    facts = None
+    for o, relation, place in wanted:
+        if not relation.startswith("not "):
+            continue
+        if o.startswith("?") or place.startswith("?"):
+            facts = facts or facts_of(state)
             if o == obj or (o.startswith("?") and obj in facts.objects_of(o[1:])):
-                places.update(facts.objects_of(place[1:]) if place.startswith("?")
-                              else (place,))
+                forbidden.update((relation, p) for p in (
+                    facts.objects_of(place[1:]) if place.startswith("?") else (place,)))
+        elif o == obj:
+            forbidden.add((relation, place))
+    places = {place for _, place in forbidden}
+    boxes = {place for relation, place in forbidden if relation == "not in"}
+    if boxes:
+        facts = facts or facts_of(state)
+        places.update(o for o in state.objects if any(facts.within(o, b) for b in boxes))
     return places
 
 

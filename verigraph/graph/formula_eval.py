@@ -4,10 +4,14 @@ The evaluator reads a scene through `Facts`: the objects of each kind, the edges
 relation name and each node's states through one accessor (`node_state`), so it needs
 nothing of how a `WorldState` stores them. Meanings:
 
-- `(ontop a b)`/`(on a b)`, `(inside a b)`/`(in a b)`, `(under a b)`: the scene has that
-  edge (`a on b`, ...), or `a` stands next to something that is so placed: an object
-  placed `nextto c` stands where `c` stands (beside a bottle in the cabinet is in the
-  cabinet; beside furniture, which stands in its room, is on that room's floor or lawn,
+- `(inside a b)`/`(in a b)`: `a` is anywhere within `b`, as BEHAVIOR reads Inside:
+  placed `in b`, or placed on, in, under or next to something that is itself within `b`,
+  followed down its placements (a pizza on a plate in the fridge, a book on a book in
+  the bookcase, a cup beside a bottle in the cabinet are in it);
+- `(ontop a b)`/`(on a b)`, `(under a b)`: the direct support, as BEHAVIOR's OnTop needs
+  contact: the scene has that edge (`a on b`, `a under b`), or `a` stands next to
+  something that is so placed: an object placed `nextto c` stands where `c` stands
+  (beside furniture, which stands in its room, is on that room's floor or lawn,
   `GROUND_KINDS`); `(nextto a b)`: an edge `nextto` either way;
 - `(inroom a r)`: `a` is in room `r`: furniture by its own `inroom` edge, any other
   object by the room of the furniture its placements lead down to (a cup on a plate on
@@ -120,11 +124,29 @@ class Facts:
     def related(self, relation: str, source: str, target: str) -> bool:
         if (relation, source, target) in self.edges:
             return True
+        if relation == "in":
+            return self.within(source, target)
         if relation == "inroom":
             return self.room(source) == target
         if relation == "nextto":
             return ("nextto", target, source) in self.edges
         return self._beside(relation, source, target)
+
+    def within(self, source: str, target: str) -> bool:
+        """Whether `source` is anywhere within `target`: placed `in` it, or placed on, in,
+        under or next to something that is, followed down (bounded: placements have no
+        cycle). Its truth reads only the placements of `source` and what they lead down
+        to, none of which a move can change before `source` itself has moved: each of
+        them carries the one above, so is not clear (a goal's bound relies on it)."""
+        stack, seen = [source], {source}
+        while stack:
+            for relation, place in self.placed.get(stack.pop(), ()):
+                if relation == "in" and place == target:
+                    return True
+                if relation != "inroom" and place not in seen:
+                    seen.add(place)
+                    stack.append(place)
+        return False
 
     def _beside(self, relation: str, source: str, target: str) -> bool:
         """Whether `source` stands next to something placed `relation target` (an object

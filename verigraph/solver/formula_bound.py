@@ -7,7 +7,10 @@ wanted, requirements of the form "one of these things must change" (a set of
 `(aspect, object)`, aspect `place`, `open` or `toggled_on`) that every solution meets:
 
 - an atom with the wrong truth: its thing must change (`on`/`in`/`under`: the source's
-  placement; `open`, `toggled_on`: that state of the object); `nextto` (read either
+  placement, even where `in` reads the whole way down, a pizza on a plate in the fridge
+  (the atom reads only the placements from the source down, and the first move that
+  changes one of them moves the source: each object below carries the one above, so is
+  not clear); `open`, `toggled_on`: that state of the object); `nextto` (read either
   way): the placement of one of the two, since only moving one of them changes it;
   `inroom` (a room follows what the object stands on) only says that some action is
   needed, since moving the object, or what it stands on, may change it;
@@ -27,9 +30,10 @@ A container that must be opened and that the formula wants closed at the end (`(
 
 An object that must move must first be clear, so whatever stands on, in, under or next
 to it (and so on up) must move too; nothing goes into or comes out of a closed container,
-so one that must be entered or left must be opened. Requirements with no thing in
-common need distinct actions, so the size of a family of pairwise disjoint requirements
-(picked greedily, smallest first) is a lower bound; it is 0 exactly at the goal.
+so one that must be entered or left (directly or with what carries the object) must be
+opened. Requirements with no thing in common need distinct actions, so the size of a
+family of pairwise disjoint requirements (picked greedily, smallest first) is a lower
+bound; it is 0 exactly at the goal.
 Admissible, so A* over it stays optimal.
 """
 
@@ -93,7 +97,8 @@ def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None
     if additive:  # a guide: what is cleared out of the way must also come back or go on
         needs += [frozenset({("back", o)}) for need in freed for kind, o in need
                   if kind == "place"]
-    opened = {n for need in needs if len(need) == 1 for n in need if n[0] == "open"}
+    opened = {n for need in needs if len(need) == 1 for n in need
+              if n[0] == "open" and facts.closed(n[1])}  # an open one's change is closing
     if opened:  # opened now, closed at the end: closed again, one more action each
         closed = _closed_at_the_end(formula, facts)
         needs += [frozenset({("close", c)}) for _, c in opened if c in closed]
@@ -131,7 +136,8 @@ def _closed_at_the_end(formula: Formula, facts: Facts) -> set[str]:
 def _made_free(needs: list[frozenset[Thing]], facts: Facts) -> list[frozenset[Thing]]:
     """An object that must move must be clear first: whatever is placed on, in, under or
     next to it, and so on up, must move too (once each, at least); and nothing comes out
-    of a closed container, so each closed one that holds a mover must be opened."""
+    of a closed container, so each closed one that holds a mover (directly or through
+    what carries it) must be opened."""
     must_move = [next(iter(n))[1] for n in needs if len(n) == 1 and next(iter(n))[0] == "place"]
     if not must_move:
         return []
@@ -147,10 +153,24 @@ def _made_free(needs: list[frozenset[Thing]], facts: Facts) -> list[frozenset[Th
             if other not in found:
                 found.add(other)
                 stack.append(other)
-    boxes = {t for o in (*must_move, *found) for r, t in facts.placed.get(o, [])
-             if r == "in" and facts.closed(t)}
+    boxes = {box for o in (*must_move, *found) for box in _closed_around(o, facts)}
     return [*(frozenset({("place", o)}) for o in sorted(found)),
             *(frozenset({("open", box)}) for box in sorted(boxes))]
+
+
+def _closed_around(obj: str, facts: Facts) -> set[str]:
+    """The closed containers `obj` is within, directly or through what carries it (a
+    pizza on a plate in a closed fridge): each must be opened before `obj` moves."""
+    boxes: set[str] = set()
+    stack, seen = [obj], {obj}
+    while stack:
+        for relation, place in facts.placed.get(stack.pop(), ()):
+            if relation == "in" and facts.closed(place):
+                boxes.add(place)
+            if relation != "inroom" and place not in seen:
+                seen.add(place)
+                stack.append(place)
+    return boxes
 
 
 def _every(truth: bool, parts: list[Need]) -> Need:
@@ -284,6 +304,6 @@ class _Bound:
                 more.append(frozenset({("back", terms[0])}))
             return truth, [frozenset({thing}), *more], True
         if want and node.relation == "in" and self.facts.closed(terms[1]):
-            # nothing goes into a closed container: it must be opened too
+            # nothing goes into a closed container, nor onto what is in it: opened too
             return truth, [frozenset({thing}), frozenset({("open", terms[1])})], True
         return truth, [frozenset({thing})], True
