@@ -7,8 +7,9 @@ wanted, requirements of the form "one of these things must change" (a set of
 `(aspect, object)`, aspect `place`, `open` or `toggled_on`) that every solution meets:
 
 - an atom with the wrong truth: its thing must change (`on`/`in`/`under`: the source's
-  placement; `open`, `toggled_on`: that state of the object); `nextto` (read either
-  way): the placement of one of the two, since only moving one of them changes it;
+  placement; `open`, `toggled_on`: that state of the object); `nextto` (either placed
+  next to the other, or both next to one object): the placement of one of the two,
+  since its truth reads only theirs (moving one next to a third may make it);
   `inroom` (a room follows what the object stands on) only says that some action is
   needed, since moving the object, or what it stands on, may change it;
 - all parts wanted (and, forall; or, exists wanted false; ...): every part's
@@ -22,8 +23,9 @@ wanted, requirements of the form "one of these things must change" (a set of
   change; a pair quantifier wanted true: those of the cheapest pairing of each
   unpaired object, as many as pairs are missing).
 
-A container that must be opened and that the formula wants closed at the end (`(not
-(open x))` under `and`/`forall` alone) must be closed again: one more action.
+A closed container that must be opened and that the formula wants closed at the end
+(`(not (open x))` under `and`/`forall` alone) must be closed again: one more action (an
+open one wanted closed needs only the closing).
 
 An object that must move must first be clear, so whatever stands on, in, under or next
 to it (and so on up) must move too; nothing goes into or comes out of a closed container,
@@ -93,7 +95,8 @@ def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None
     if additive:  # a guide: what is cleared out of the way must also come back or go on
         needs += [frozenset({("back", o)}) for need in freed for kind, o in need
                   if kind == "place"]
-    opened = {n for need in needs if len(need) == 1 for n in need if n[0] == "open"}
+    opened = {n for need in needs if len(need) == 1 for n in need
+              if n[0] == "open" and facts.closed(n[1])}  # closed now: it must be opened
     if opened:  # opened now, closed at the end: closed again, one more action each
         closed = _closed_at_the_end(formula, facts)
         needs += [frozenset({("close", c)}) for _, c in opened if c in closed]
@@ -273,7 +276,8 @@ class _Bound:
             thing = ("place", terms[0])
         if truth == want:
             return truth, [], False
-        if node.relation == "nextto":  # only moving one of the two changes it
+        if node.relation == "nextto":  # only moving one of the two changes it (one
+            # beside the other, or beside what the other is beside: both their places)
             return truth, [frozenset({thing, ("place", terms[1])})], True
         if len(terms) == 2 and node.relation not in PLACE_RELATIONS:
             return truth, [], True
