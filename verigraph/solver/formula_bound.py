@@ -8,8 +8,9 @@ wanted, requirements of the form "one of these things must change" (a set of
 
 - an atom with the wrong truth: its thing must change (`on`/`in`/`under`: the source's
   placement; `open`, `toggled_on`: that state of the object); `nextto` (either placed
-  next to the other, or both next to one object): the placement of one of the two,
-  since its truth reads only theirs (moving one next to a third may make it);
+  next to the other, or both next to one object): the placement of one of the two
+  (but furniture, standing `inroom`, never moves), since its truth reads only theirs
+  (moving one next to a third may make it);
   `inroom` (a room follows what the object stands on) only says that some action is
   needed, since moving the object, or what it stands on, may change it;
 - all parts wanted (and, forall; or, exists wanted false; ...): every part's
@@ -156,6 +157,12 @@ def _made_free(needs: list[frozenset[Thing]], facts: Facts) -> list[frozenset[Th
             *(frozenset({("open", box)}) for box in sorted(boxes))]
 
 
+def _in_a_room(facts: Facts, obj: str) -> bool:
+    """Whether an object stands in a room by its own `inroom` edge: only furniture (a
+    fixed object) does, so it never moves."""
+    return any(relation == "inroom" for relation, _ in facts.placed.get(obj, []))
+
+
 def _every(truth: bool, parts: list[Need]) -> Need:
     """All parts must reach the wanted truth: every part's requirements."""
     return truth, [n for part in parts for n in part[1]], any(part[2] for part in parts)
@@ -277,8 +284,10 @@ class _Bound:
         if truth == want:
             return truth, [], False
         if node.relation == "nextto":  # only moving one of the two changes it (one
-            # beside the other, or beside what the other is beside: both their places)
-            return truth, [frozenset({thing, ("place", terms[1])})], True
+            # beside the other, or beside what the other is beside: both their places),
+            # and furniture (standing inroom) never moves
+            movers = {("place", t) for t in terms if not _in_a_room(self.facts, t)}
+            return truth, [frozenset(movers)] if movers else [], True
         if len(terms) == 2 and node.relation not in PLACE_RELATIONS:
             return truth, [], True
         if len(terms) == 1 and self.state_needs is not None:
