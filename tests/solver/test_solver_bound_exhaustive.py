@@ -132,3 +132,26 @@ def test_a_container_wanted_closed_that_is_open_costs_one_action() -> None:
     f = TableProblem(closed, Goal(formula="(open cabinet)")).facts(closed)
     assert formula_bound(parse_formula("(and (not (open cabinet)) (inside cup cabinet))"),
                          f) == 3  # open it, move the cup in, close it again
+
+
+def test_furniture_never_moves_so_the_other_object_must() -> None:
+    state = kitchen()  # the lid next to the pot, the pot next to the sink
+    f = TableProblem(state, Goal(formula="(open cabinet)")).facts(state)
+    # the pot must go next to the counter (the counter stays), so the lid must go first
+    assert formula_bound(parse_formula("(and (nextto cup sink) (nextto pot counter))"),
+                         f) == 3
+    assert formula_bound(parse_formula("(nextto sink counter)"), f) == 1  # never, in fact
+
+
+def test_objects_beside_one_object_are_parted_by_moving_one() -> None:
+    from verigraph.actions.report import validate_plan
+    from verigraph.solver import solve
+
+    state = kitchen()
+    state.set_support("cup", "nextto", "sink")  # beside the sink, so beside the pot
+    goal = Goal(formula="(not (nextto cup pot))")
+    result = solve(state, goal)
+    assert result.reachable and result.optimal and len(result.plan) == 1
+    assert result.plan[0].text().startswith("move(cup, ")  # the pot, not clear, stays
+    report = validate_plan(state.copy(), result.plan, goal)
+    assert report["valid"] and report["goal_diff"]["satisfied"]
