@@ -285,8 +285,10 @@ class _Bound:
             return truth, [], False
         if node.relation == "nextto":  # only moving one of the two changes it (one
             # beside the other, or beside what the other is beside: both their places),
-            # and furniture (standing inroom) never moves
-            movers = {("place", t) for t in terms if not _in_a_room(self.facts, t)}
+            # and furniture (standing inroom) never moves; the guide keeps both names, so
+            # one object asked next to two pieces of furniture stays two requirements
+            movers = {("place", t) for t in terms
+                      if self.additive or not _in_a_room(self.facts, t)}
             return truth, [frozenset(movers)] if movers else [], True
         if len(terms) == 2 and node.relation not in PLACE_RELATIONS:
             return truth, [], True
