@@ -268,6 +268,24 @@ def test_inside_reads_where_an_object_is_and_ontop_its_direct_support() -> None:
                     f).counterexamples == ["(not (inside cup fridge)) fails: cup is in fridge"]
 
 
+def test_objects_placed_next_to_one_object_stand_next_to_each_other() -> None:
+    state = household()  # the pot next to the sink
+    state.set_support("box", "nextto", "sink")
+    state.set_support("milk", "nextto", "pot")
+    f = facts_of(state)
+    for text, expected in [("(nextto box pot)", True), ("(nextto pot box)", True),
+                           ("(nextto box sink)", True), ("(nextto milk pot)", True),
+                           ("(nextto pot milk)", True),
+                           ("(nextto milk sink)", False),  # beside the pot, not the sink
+                           ("(nextto milk box)", False),  # next to different objects
+                           ("(nextto box box)", False), ("(nextto sink sink)", False),
+                           ("(and (nextto box pot) (nextto pot sink) (nextto box sink))",
+                            True)]:  # three pairwise: two beside the third
+        assert holds(parse_formula(text), f) is expected, text
+    state.set_support("box", "under", "counter")  # moved away: no longer side by side
+    assert not holds(parse_formula("(nextto box pot)"), facts_of(state))
+
+
 def test_names_are_checked_against_the_scene_all_at_once() -> None:
     f = facts([("cup_1", "on", "table"), ("cup_2", "on", "table")])
     check_names(parse_formula("(forall (?b - bowl) (ontop ?b plate_1))"), f)  # a known kind

@@ -12,7 +12,12 @@ nothing of how a `WorldState` stores them. Meanings:
   contact: the scene has that edge (`a on b`, `a under b`), or `a` stands next to
   something that is so placed: an object placed `nextto c` stands where `c` stands
   (beside furniture, which stands in its room, is on that room's floor or lawn,
-  `GROUND_KINDS`); `(nextto a b)`: an edge `nextto` either way;
+  `GROUND_KINDS`);
+- `(nextto a b)`: an edge `nextto` either way, or `a` and `b` (two objects) both placed
+  next to one object: `nextto` stays one placement per object (x set next to y), and
+  objects set beside one anchor stand side by side around it (chairs around a table),
+  so three books pairwise next to each other are two placed beside the third, or all
+  three beside a fourth;
 - `(inroom a r)`: `a` is in room `r`: furniture by its own `inroom` edge, any other
   object by the room of the furniture its placements lead down to (a cup on a plate on
   the kitchen table is in the kitchen).
@@ -129,7 +134,7 @@ class Facts:
         if relation == "inroom":
             return self.room(source) == target
         if relation == "nextto":
-            return ("nextto", target, source) in self.edges
+            return ("nextto", target, source) in self.edges or self._side_by_side(source, target)
         return self._beside(relation, source, target)
 
     def within(self, source: str, target: str) -> bool:
@@ -147,6 +152,14 @@ class Facts:
                     seen.add(place)
                     stack.append(place)
         return False
+
+    def _side_by_side(self, source: str, target: str) -> bool:
+        """Whether two distinct objects are both placed next to one object (chairs set
+        around a table, books beside a folder: they stand side by side around it)."""
+        if source == target:
+            return False
+        anchors = {t for r, t in self.placed.get(source, []) if r == "nextto"}
+        return any(r == "nextto" and t in anchors for r, t in self.placed.get(target, []))
 
     def _beside(self, relation: str, source: str, target: str) -> bool:
         """Whether `source` stands next to something placed `relation target` (an object

@@ -30,7 +30,8 @@ RELATION_MEANINGS = {
     "under": "source stands under target, on what target stands on; target must be "
              "furniture (a fixed surface); counts against no capacity",
     "nextto": "source stands next to target, on what target stands on; target must not be "
-              "a room; counts against no capacity",
+              "a room; counts against no capacity; a goal formula's (nextto a b) also holds "
+              "of two objects placed next to one object",
     "inroom": "furniture (a fixed object) source stands in room target",
 }
 

@@ -10,8 +10,10 @@ wanted, requirements of the form "one of these things must change" (a set of
   placement, even where `in` reads the whole way down, a pizza on a plate in the fridge
   (the atom reads only the placements from the source down, and the first move that
   changes one of them moves the source: each object below carries the one above, so is
-  not clear); `open`, `toggled_on`: that state of the object); `nextto` (read either
-  way): the placement of one of the two, since only moving one of them changes it;
+  not clear); `open`, `toggled_on`: that state of the object); `nextto` (either placed
+  next to the other, or both next to one object): the placement of one of the two
+  (but furniture, standing `inroom`, never moves), since its truth reads only theirs
+  (moving one next to a third may make it);
   `inroom` (a room follows what the object stands on) only says that some action is
   needed, since moving the object, or what it stands on, may change it;
 - all parts wanted (and, forall; or, exists wanted false; ...): every part's
@@ -25,8 +27,9 @@ wanted, requirements of the form "one of these things must change" (a set of
   change; a pair quantifier wanted true: those of the cheapest pairing of each
   unpaired object, as many as pairs are missing).
 
-A container that must be opened and that the formula wants closed at the end (`(not
-(open x))` under `and`/`forall` alone) must be closed again: one more action.
+A closed container that must be opened and that the formula wants closed at the end
+(`(not (open x))` under `and`/`forall` alone) must be closed again: one more action (an
+open one wanted closed needs only the closing).
 
 An object that must move must first be clear, so whatever stands on, in, under or next
 to it (and so on up) must move too; nothing goes into or comes out of a closed container,
@@ -98,7 +101,7 @@ def formula_bound(formula: Formula, facts: Facts, state_needs: StateNeeds | None
         needs += [frozenset({("back", o)}) for need in freed for kind, o in need
                   if kind == "place"]
     opened = {n for need in needs if len(need) == 1 for n in need
-              if n[0] == "open" and facts.closed(n[1])}  # an open one's change is closing
+              if n[0] == "open" and facts.closed(n[1])}  # closed now: it must be opened
     if opened:  # opened now, closed at the end: closed again, one more action each
         closed = _closed_at_the_end(formula, facts)
         needs += [frozenset({("close", c)}) for _, c in opened if c in closed]
@@ -171,6 +174,12 @@ def _closed_around(obj: str, facts: Facts) -> set[str]:
                 seen.add(place)
                 stack.append(place)
     return boxes
+
+
+def _in_a_room(facts: Facts, obj: str) -> bool:
+    """Whether an object stands in a room by its own `inroom` edge: only furniture (a
+    fixed object) does, so it never moves."""
+    return any(relation == "inroom" for relation, _ in facts.placed.get(obj, []))
 
 
 def _every(truth: bool, parts: list[Need]) -> Need:
@@ -293,8 +302,13 @@ class _Bound:
             thing = ("place", terms[0])
         if truth == want:
             return truth, [], False
-        if node.relation == "nextto":  # only moving one of the two changes it
-            return truth, [frozenset({thing, ("place", terms[1])})], True
+        if node.relation == "nextto":  # only moving one of the two changes it (one
+            # beside the other, or beside what the other is beside: both their places),
+            # and furniture (standing inroom) never moves; the guide keeps both names, so
+            # one object asked next to two pieces of furniture stays two requirements
+            movers = {("place", t) for t in terms
+                      if self.additive or not _in_a_room(self.facts, t)}
+            return truth, [frozenset(movers)] if movers else [], True
         if len(terms) == 2 and node.relation not in PLACE_RELATIONS:
             return truth, [], True
         if len(terms) == 1 and self.state_needs is not None:

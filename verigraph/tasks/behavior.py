@@ -181,55 +181,27 @@ def run_activity(name: str, *, time_limit: float = 10.0, tools: Any = None,
 def placement_conflict(formula: str) -> str | None:
     """Why a goal can never hold in VeriGraph's model, where a movable object has one
     placement: its conjunction asks one object to be `on`/`in`/`under` two things
-    (BEHAVIOR's geometry allows both at once), or asks objects to stand next to each
-    other around a cycle (three pairwise: each object's one placement is `nextto` at
-    most one other, and placements form no cycle, so k objects hold at most k - 1 such
-    pairs). None when no such demand is found. (An object next to another stands where
-    that one stands, so `nextto` beside `on`, `in` or `under` is no conflict.)"""
+    (BEHAVIOR's geometry allows both at once). None when no such demand is found. (An
+    object next to another stands where that one stands, so `nextto` beside `on`, `in`
+    or `under` is no conflict; nor are objects pairwise next to each other, since
+    objects placed next to one object stand side by side around it.)"""
     from verigraph.graph.formula import Atom, Junction, parse_formula
 
     placed: dict[str, set[tuple[str, str]]] = {}
-    beside: set[frozenset[str]] = set()
     stack = [parse_formula(formula)]
     while stack:
         node = stack.pop()
         if isinstance(node, Junction) and node.op == "and":
             stack.extend(node.parts)
-        elif isinstance(node, Atom) and not any(t.startswith("?") for t in node.terms):
-            if node.relation in ("on", "in", "under"):
-                placed.setdefault(node.terms[0], set()).add((node.relation, node.terms[1]))
-            elif node.relation == "nextto" and node.terms[0] != node.terms[1]:
-                beside.add(frozenset(node.terms))
+        elif isinstance(node, Atom) and not any(t.startswith("?") for t in node.terms) \
+                and node.relation in ("on", "in", "under"):
+            placed.setdefault(node.terms[0], set()).add((node.relation, node.terms[1]))
     for obj, places in sorted(placed.items()):
         if len(places) > 1:
             shown = " and ".join(f"{r} {t}" for r, t in sorted(places))
             return (f"the goal places {obj} {shown}; an object has one placement here "
                     "(BEHAVIOR's geometry allows both)")
-    cycle = _beside_cycle(beside)
-    if cycle:
-        return (f"the goal asks {', '.join(cycle)} to stand next to each other around a "
-                "cycle; here nextto is one placement per object, next to at most one other, "
-                "and placements form no cycle (BEHAVIOR's geometry allows it)")
     return None
-
-
-def _beside_cycle(pairs: set[frozenset[str]]) -> list[str]:
-    """The objects of the first cycle the `nextto` pairs close (union-find), or []."""
-    root: dict[str, str] = {}
-
-    def find(x: str) -> str:
-        while root.setdefault(x, x) != x:
-            root[x] = root[root[x]]
-            x = root[x]
-        return x
-
-    for pair in sorted(pairs, key=sorted):
-        a, b = sorted(pair)
-        ra, rb = find(a), find(b)
-        if ra == rb:
-            return sorted(o for o in root if find(o) == ra)
-        root[ra] = rb
-    return []
 
 
 def formula_holds(graph: dict[str, Any], formula: str) -> bool:
