@@ -328,28 +328,34 @@ class _Parser:
         return Atom(name, relation, tuple(terms))
 
 
-def show(formula: Formula, binding: dict[str, str] | None = None) -> str:
-    """The formula as text, with bound variables replaced by their objects."""
+def show(formula: Formula, binding: dict[str, str] | None = None, *,
+         ordered: bool = False) -> str:
+    """The formula as text, with bound variables replaced by their objects. `ordered`:
+    the parts of each `and`/`or` sorted, so formulas equal up to their order read the
+    same (a key)."""
     env = binding or {}
 
     def term(t: str) -> str:
         return env.get(t, t)
 
+    def sub(node: Formula) -> str:
+        return show(node, env, ordered=ordered)
+
     if isinstance(formula, Atom):
         return f"({formula.predicate} {' '.join(term(t) for t in formula.terms)})"
     if isinstance(formula, Not):
-        return f"(not {show(formula.body, env)})"
+        return f"(not {sub(formula.body)})"
     if isinstance(formula, Junction):
-        return f"({' '.join([formula.op, *(show(p, env) for p in formula.parts)])})"
+        shown = [sub(p) for p in formula.parts]
+        return f"({' '.join([formula.op, *(sorted(shown) if ordered else shown)])})"
     if isinstance(formula, Imply):
-        return f"(imply {show(formula.condition, env)} {show(formula.then, env)})"
+        return f"(imply {sub(formula.condition)} {sub(formula.then)})"
     if isinstance(formula, Quantified):
         count = f" ({formula.count})" if formula.count is not None else ""
-        return (f"({formula.op}{count} ({_param(formula.param)}) "
-                f"{show(formula.body, env)})")
+        return f"({formula.op}{count} ({_param(formula.param)}) {sub(formula.body)})"
     count = f" ({formula.count})" if formula.count is not None else ""
     return (f"({formula.op}{count} ({_param(formula.first)}) ({_param(formula.second)}) "
-            f"{show(formula.body, env)})")
+            f"{sub(formula.body)})")
 
 
 def _param(param: Param) -> str:

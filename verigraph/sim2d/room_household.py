@@ -124,14 +124,14 @@ def household_room_violation(state: WorldState, action: AnyAction) -> Violation 
         if rel == "in" and info.props.movable:
             spec = movable_spec(info.label, info.props)
             opening = spec.cavity[1] - spec.cavity[0] if spec.cavity is not None else 0.0
-            width, base = _width(state, obj), base_width(state, obj)
+            width, foot = _width(state, obj), base_width(state, obj)
             if spec.cavity is not None and (abs(opening - width) < SNUG or (
-                    width > opening > base)):
+                    width > opening > foot)):
                 return _fail(action, f"{obj} is about as wide as the opening of {target}: it "
                              "would wedge or drop in unevenly", [target],
                              "choose another container")
-            if spec.cavity is not None and opening > base > spec.floor:
-                return _fail(action, f"{obj} stands on a base {base:g} wide and the floor of "
+            if spec.cavity is not None and opening > foot > spec.floor:
+                return _fail(action, f"{obj} stands on a base {foot:g} wide and the floor of "
                              f"{target} is {spec.floor:.1f} wide under slanted walls: it would "
                              "wedge between them", [target], "choose another container")
         capacity = state.objects[target].props.capacity

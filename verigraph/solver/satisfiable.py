@@ -222,7 +222,7 @@ class _World:
         fixed_targets = {t for _, t in self.fixed_place.values()}
         fixed_targets |= {support[o][1] for o in self.movable if not self.regular(o)}
         groups: dict[tuple[object, ...], list[list[str]]] = {}
-        plain = _canonical(formula, {}) if named else ""
+        plain = show(formula, ordered=True) if named else ""
         for o in sorted(self.movable):
             if o in fixed_targets or not self.regular(o):
                 continue
@@ -230,30 +230,13 @@ class _World:
             for members in groups.setdefault(key, []):
                 first = members[0]
                 if (o not in named and first not in named) \
-                        or _canonical(formula, {first: o, o: first}) == plain:
+                        or show(formula, {first: o, o: first}, ordered=True) == plain:
                     members.append(o)
                     break
             else:
                 groups[key].append([o])
         return {o: members for classes in groups.values() for members in classes
                 if len(members) > 1 for o in members}
-
-
-def _canonical(node: Formula, swap: dict[str, str]) -> str:
-    """The formula as text with ids swapped, the parts of `and`/`or` sorted."""
-    if isinstance(node, Atom):
-        return f"({node.predicate} {' '.join(swap.get(t, t) for t in node.terms)})"
-    if isinstance(node, Not):
-        return f"(not {_canonical(node.body, swap)})"
-    if isinstance(node, Junction):
-        return f"({node.op} {' '.join(sorted(_canonical(p, swap) for p in node.parts))})"
-    if isinstance(node, Imply):
-        return f"(imply {_canonical(node.condition, swap)} {_canonical(node.then, swap)})"
-    if isinstance(node, Quantified):
-        return (f"({node.op} {node.count} {node.param.name} {node.param.kind} "
-                f"{_canonical(node.body, swap)})")
-    return (f"({node.op} {node.count} {node.first.name} {node.first.kind} "
-            f"{node.second.name} {node.second.kind} {_canonical(node.body, swap)})")
 
 
 def _satisfiable(world: _World, parts: list[Formula], clock: _Clock) -> bool:
