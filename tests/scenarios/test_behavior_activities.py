@@ -117,3 +117,18 @@ def test_greedy_search_plans_a_long_activity_within_its_budget(activity: str) ->
     assert found and len(plan) >= 9
     run = run_actions(state, plan)
     assert not run.violations and check_goal(state, goal).satisfied
+
+
+def test_the_greedy_plan_keeps_none_of_its_detours() -> None:
+    """freeze_vegetables: the greedy search sets each vegetable on the fridge (a cold
+    source) before boxing it in a container in the fridge; with those six moves dropped
+    the plan is as long as the proven lower bound, so it is optimal at once."""
+    from verigraph.graph.goal import Goal
+    from verigraph.solver import solve
+
+    imported = import_problem(activity_text("freeze_vegetables"), activity="freeze_vegetables")
+    result = solve(imported.scene_graph(), Goal(formula=imported.formula), time_limit=10,
+                   anytime=True)
+    assert result.plan is not None and len(result.plan) == 17
+    assert result.optimal and result.lower_bound == 17
+    assert not any(a.text().endswith("on, fridge_1)") for a in result.plan)

@@ -341,3 +341,31 @@ def test_the_bound_never_exceeds_the_true_cost_over_nested_placements(seed: int)
         assert len(result.plan) == distance, (text, [a.text() for a in result.plan])
         measured += distance > 0
     assert measured, "no formula met a real search"
+
+
+# (plan, kept): a detour is dropped, a needed action kept; `cup` goes into the fridge.
+DETOURS = [
+    (["open(fridge)", "move(cup, on, table)", "move(cup, in, fridge)"],
+     ["open(fridge)", "move(cup, in, fridge)"]),
+    (["toggle_on(stove)", "open(fridge)", "move(cup, in, fridge)", "toggle_off(stove)"],
+     ["open(fridge)", "move(cup, in, fridge)"]),
+    (["open(fridge)", "move(cup, in, fridge)"], ["open(fridge)", "move(cup, in, fridge)"]),
+]
+
+
+@pytest.mark.parametrize(("plan", "kept"), DETOURS)
+def test_a_plan_keeps_none_of_its_detours(plan: list[str], kept: list[str]) -> None:
+    from verigraph.actions.parser import parse_plan
+    from verigraph.actions.schemas import schema_of
+    from verigraph.graph.builtin_scenes import kitchen_household
+    from verigraph.solver.table_search import without_detours
+
+    state = WorldState.from_graph(kitchen_household())
+    goal = Goal(formula="(inside cup fridge)")
+    steps = []
+    for action in parse_plan("\n".join(plan)):
+        row = schema_of(action)
+        assert row is not None
+        steps.append((row, row.args(action)))
+    shortened = without_detours(state, goal, steps, SearchBudget(time_limit_s=5))
+    assert [a.text() for a in shortened] == kept

@@ -276,7 +276,8 @@ def _astar(problem: SearchProblem, h: Callable[[Codes], int], is_goal: Callable[
 def _solve_table(state: WorldState, goal: Goal, budget: SearchBudget,
                  anytime: bool = False) -> SolveResult:
     """A household world: optimal A* over the action table; anytime: greedy best-first
-    search first (a plan soonest, its length not proven optimal), then A* over what
+    search first (a plan soonest, its detours dropped by `table_search.without_detours`,
+    its length not proven optimal), then A* over what
     budget is left, pruned by that plan's length (a shorter plan found replaces it; A*
     that finishes proves the one kept optimal; its bound is kept if it stops)."""
     proof = {"floor": 0}

@@ -37,7 +37,7 @@ from verigraph.graph.formula import Atom, Formula, Imply, Junction, Not, parse_f
 from verigraph.graph.formula_eval import Facts, facts_of
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.state import WorldState
-from verigraph.solver.budget import SearchBudget
+from verigraph.solver.budget import SearchBudget, SearchBudgetSpent
 from verigraph.solver.formula_bound import formula_bound
 
 Key = tuple[tuple[Any, ...], tuple[bool, ...]]
@@ -287,14 +287,53 @@ HELPFUL_SHARE = 4
 Parents = dict[Key, tuple[Key, ActionSchema, tuple[str, ...]] | None]
 
 
-def _plan_to(parent: Parents, key: Key) -> list[AnyAction]:
-    """The actions from the start to `key`, read back through `parent`."""
-    plan: list[AnyAction] = []
+def _steps_to(parent: Parents, key: Key) -> list[tuple[ActionSchema, tuple[str, ...]]]:
+    """The rows and arguments from the start to `key`, read back through `parent`."""
+    steps = []
     node: Key | None = key
     while node is not None and (link := parent[node]) is not None:
         node, row, args = link
-        plan.append(row.action(args))
-    return list(reversed(plan))
+        steps.append((row, args))
+    return list(reversed(steps))
+
+
+def _plan_to(parent: Parents, key: Key) -> list[AnyAction]:
+    """The actions from the start to `key`, read back through `parent`."""
+    return [row.action(args) for row, args in _steps_to(parent, key)]
+
+
+def without_detours(state: WorldState, goal: Goal,
+                    steps: list[tuple[ActionSchema, tuple[str, ...]]],
+                    budget: SearchBudget) -> list[AnyAction]:
+    """The plan with every action dropped whose removal leaves each remaining action
+    accepted and the goal reached (greedy action elimination, first to last, until none
+    can go): a greedy search's detour (a pepper set on the fridge before it goes into a
+    box in it) costs its length nothing. Quadratic in the plan's length, a replay per
+    try; the budget is checked between tries, and a spent one keeps the plan as far as
+    it was shortened."""
+    def reaches(trial: list[tuple[ActionSchema, tuple[str, ...]]]) -> bool:
+        world = state.copy()
+        for row, args in trial:
+            if not row.accepted(world, *args):
+                return False
+            row.apply(world, *args)
+        return check_goal(world, goal).satisfied
+
+    dropped = True
+    try:
+        while dropped:
+            dropped = False
+            i = 0
+            while i < len(steps):
+                budget.check()
+                trial = steps[:i] + steps[i + 1:]
+                if reaches(trial):
+                    steps, dropped = trial, True
+                else:
+                    i += 1
+    except SearchBudgetSpent:
+        pass  # the plan as shortened so far: still valid, the goal still reached
+    return [row.action(args) for row, args in steps]
 
 
 def _greedy(problem: TableProblem, state: WorldState, goal: Goal, budget: SearchBudget
@@ -328,7 +367,7 @@ def _greedy(problem: TableProblem, state: WorldState, goal: Goal, budget: Search
         if own is None:
             own = problem._bounds[key] = problem.h(current)
         if own == 0 and check_goal(current, goal).satisfied:
-            return True, _plan_to(parent, key)
+            return True, without_detours(state, goal, _steps_to(parent, key), budget)
         budget.expansions += 1
         budget.check()
         is_helpful = _helpful_test(problem.helpful(current))
