@@ -7,8 +7,8 @@ Run: verigraph bench behavior [--budget 10] [--activities a,b,...] [--jsonl FILE
      verigraph bench behavior --from FILE.jsonl [FILE.jsonl ...]   (table only)
 
 Each activity gets `--budget` CPU seconds for optimal A*; when that runs out, the same
-again for the anytime search (greedy best-first search for a plan, then A* pruned by
-its length to shorten it or prove it optimal). Writes benchmarks/results/behavior.md
+again for the anytime search (greedy best-first search for a plan, its detours dropped,
+then A* pruned by its length to shorten it or prove it optimal). Writes benchmarks/results/behavior.md
 (with `--out`, another file). `--activities a,b` runs only those.
 """
 
@@ -106,7 +106,7 @@ def report(records: list[dict[str, Any]], budget: float | None, note: str | None
         "# BEHAVIOR-1K activities: imported, solved, validated, executed", "",
         f"Machine: {machine()}  ", f"Date: {time.strftime('%Y-%m-%d')}  ",
         f"Budget: {budget:g} CPU s per activity for optimal A*, then as much for the anytime "
-        "search (greedy best-first, then A* pruned by its plan)" if budget is not None
+        "search (greedy best-first, its detours dropped, then A* pruned by its plan)" if budget is not None
         else "Budget: as recorded", "",
         *([note, ""] if note else []),
         f"{total} activities (bddl's `activity_definitions`, problem0 of each): "
@@ -119,7 +119,8 @@ def report(records: list[dict[str, Any]], budget: float | None, note: str | None
         "holds at the end there, the plan runs in an episode on the graph executor and "
         "`check_goal` and the formula evaluator both find the goal reached there; "
         "*(optimal)*: A* proved no shorter plan (every action one step); the rest came from "
-        "the anytime search (greedy best-first search, then A* pruned by that plan's length, "
+        "the anytime search (greedy best-first search, its detours dropped, then A* pruned "
+        "by that plan's length, "
         "stopped by the budget before it proved the plan shortest). *reached only on "
         "paper*: validated as reaching the goal, not "
         "reached when executed. Times are wall-clock seconds of the `solve` call.", "",
