@@ -8,8 +8,8 @@ Run: verigraph bench behavior [--budget 10] [--activities a,b,...] [--jsonl FILE
 
 Each activity gets `--budget` CPU seconds for optimal A*; when that runs out, the same
 again for the anytime search (greedy best-first search for a plan, its detours dropped,
-then A* pruned by its length to shorten it or prove it optimal). Writes benchmarks/results/behavior.md
-(with `--out`, another file). `--activities a,b` runs only those.
+then A* pruned by its length to shorten it or prove it optimal). Writes
+benchmarks/results/behavior.md (with `--out`, another file). `--activities a,b` runs only those.
 """
 
 from __future__ import annotations
@@ -106,8 +106,8 @@ def report(records: list[dict[str, Any]], budget: float | None, note: str | None
         "# BEHAVIOR-1K activities: imported, solved, validated, executed", "",
         f"Machine: {machine()}  ", f"Date: {time.strftime('%Y-%m-%d')}  ",
         f"Budget: {budget:g} CPU s per activity for optimal A*, then as much for the anytime "
-        "search (greedy best-first, its detours dropped, then A* pruned by its plan)" if budget is not None
-        else "Budget: as recorded", "",
+        "search (greedy best-first, its detours dropped, then A* pruned by its plan)"
+        if budget is not None else "Budget: as recorded", "",
         *([note, ""] if note else []),
         f"{total} activities (bddl's `activity_definitions`, problem0 of each): "
         f"{len(imported)} imported, {len(refused)} refused naming a predicate outside "
