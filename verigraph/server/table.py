@@ -3,7 +3,7 @@
 Every tools/call is looked up here (verigraph.server.tools, and the process that
 checks large HTTP bodies), so each tool is one row: `view_episode` (drawn for the MCP
 Apps episode viewer, a heavy call) differs from the others only by its row's fields,
-`visibility=("app",)` and `placement="heavy"`.
+`visibility=("app",)` and `lane="heavy"`.
 """
 
 from __future__ import annotations
@@ -14,6 +14,6 @@ from verigraph.tools.registry import TOOL_SPECS, HeavyWhen, ToolSpec
 from verigraph.viewer import VIEW_SPEC
 
 SERVER_TOOL_SPECS: tuple[ToolSpec, ...] = (*TOOL_SPECS, replace(
-    VIEW_SPEC, visibility=("app",), placement="heavy",
+    VIEW_SPEC, visibility=("app",), lane="heavy",
     heavy_when=HeavyWhen(graphs=("graph", "goal"), plans=("plan",))))
 SERVER_TOOLS: dict[str, ToolSpec] = {spec.name: spec for spec in SERVER_TOOL_SPECS}

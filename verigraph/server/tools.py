@@ -6,7 +6,7 @@
 2. Confirmation, where the row's `confirmation` says and the call may make an arm act:
    the call is handed to the SDK, whose resolvers ask the user (verigraph.server.
    confirmation) and whose registered function (`tool_function`) then goes on at 3.
-3. Placement, from the row's fields: `placement`, and for an inline tool `heavy_when`
+3. Lane, from the row's fields: `lane`, and for an inline tool `heavy_when`
    (its inputs that make a call heavy), the episode's size and the store; an inline
    call runs on the event loop, a heavy one on a worker thread within its budget and
    its connection's share (verigraph.server.heavy).
@@ -170,14 +170,14 @@ class ToolCalls:
 
     async def placed(self, spec: ToolSpec, params: BaseModel, origin: Origin
                      ) -> CallToolResult:
-        placement = self.placement(spec, params)
-        if placement == "inline":  # a thread hop costs more than the verification itself
+        lane = self.lane(spec, params)
+        if lane == "inline":  # a thread hop costs more than the verification itself
             try:
                 with non_blocking():
                     return self.result(spec, params)
             except WouldBlock:  # the episode is busy: wait for it on a worker thread
-                placement = "heavy"
-        if placement == "heavy":
+                lane = "heavy"
+        if lane == "heavy":
             try:
                 return await self.heavy.run(lambda: self.result(spec, params, origin.slot),
                                             spec.name, origin.connection)
@@ -185,15 +185,15 @@ class ToolCalls:
                 raise ToolError(str(exc)) from None
         # The arm's controls answer while a motion runs: a worker thread outside the heavy
         # queue, and for arm_stop one of its own, waiting on nothing.
-        own = anyio.CapacityLimiter(1) if placement == "own_thread" else None
+        own = anyio.CapacityLimiter(1) if lane == "own_thread" else None
         return await anyio.to_thread.run_sync(self.result, spec, params, limiter=own)
 
-    def placement(self, spec: ToolSpec, params: BaseModel) -> str:
-        """The row's `placement`; an inline tool's call is heavy when its input says so
+    def lane(self, spec: ToolSpec, params: BaseModel) -> str:
+        """The row's `lane`; an inline tool's call is heavy when its input says so
         (`heavy_when`), when it works on a large episode, when the store blocks, or when
         it may open a world (the server's default executor is not the graph)."""
-        if spec.placement != "inline":
-            return spec.placement
+        if spec.lane != "inline":
+            return spec.lane
         if self.store_blocks or (spec.opens_world and self.default_opens_world) \
                 or spec.heavy_when(params) or self.big_episode(spec, params):
             return "heavy"

@@ -32,7 +32,7 @@ from verigraph.tools.scenes import ImageResult
 #   heavy:      always a heavy call (worker thread, budget, the client's share);
 #   thread:     a worker thread outside the heavy queue (the arm's controls answer mid-motion);
 #   own_thread: a thread of its own for each call, waiting on nothing (arm_stop).
-Placement = Literal["inline", "heavy", "thread", "own_thread"]
+Lane = Literal["inline", "heavy", "thread", "own_thread"]
 # Where an MCP host shows a tool (the MCP Apps `visibility`): to the model, to apps.
 Visibility = Literal["model", "app"]
 
@@ -108,7 +108,7 @@ class Summary(Protocol):
 @dataclass(frozen=True)
 class ToolSpec:
     """One tool: what it takes, what it returns, how it behaves, how to summarise it,
-    and how a server runs it (placement, confirmation, viewer), so a tool is one entry."""
+    and how a server runs it (lane, confirmation, viewer), so a tool is one entry."""
 
     name: str
     title: str
@@ -121,7 +121,7 @@ class ToolSpec:
     idempotent: bool = False
     open_world: bool = False  # may reach outside the server: a robot arm and its controller
     summary: Summary = lambda result, data=None: str(result.summary())
-    placement: Placement = "inline"
+    lane: Lane = "inline"
     opens_world: bool = False  # heavy when the server's default executor is not the graph
     episode_sized: bool = True  # its work grows with the episode's graph (heavy if large)
     confirmation: Confirmation | None = None  # asks the user before a real arm acts
@@ -187,23 +187,23 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              "get_scene_image, then submit_scene_graph.",
              scenes.GenerateSceneGraphInput, scenes.SceneGraphSubmission,
              scenes.generate_scene_graph, read_only=True, idempotent=True,
-             placement="heavy", heavy_when=HeavyWhen(images=("image",))),
+             lane="heavy", heavy_when=HeavyWhen(images=("image",))),
     ToolSpec("render_scene", "Render the scene",
              "PNG: the simulator's render, else a diagram of the graph (pictures need "
              "simulate=true); view=goal: the goal.",
              scenes.RenderSceneInput, None, scenes.render_scene,
-             read_only=True, idempotent=True, placement="heavy", viewer=True),
+             read_only=True, idempotent=True, lane="heavy", viewer=True),
     ToolSpec("solve", "Reference plan",
              "A reference plan by search, re-checked by the validator: optimal, else its "
              "proven lower bound; pddl: cost-optimal if proven.",
              solving.SolveInput, solving.SolveOutput, solving.solve_tool,
-             read_only=True, idempotent=True, placement="heavy",
+             read_only=True, idempotent=True, lane="heavy",
              heavy_when=HeavyWhen(graphs=("graph", "goal"))),
     ToolSpec("get_scene_image", "Scene image and prompt",
              "The episode's image and the scene-graph prompt (relations R, dictionary D) for "
              "your vision model; answer with submit_scene_graph.",
              scenes.GetSceneImageInput, None, scenes.get_scene_image,
-             read_only=True, idempotent=True, placement="heavy"),
+             read_only=True, idempotent=True, lane="heavy"),
     ToolSpec("submit_scene_graph", "Submit a scene graph",
              "Check a scene graph you wrote against D and R (synonyms normalised, every "
              "problem at once).",
@@ -218,17 +218,17 @@ TOOL_SPECS: tuple[ToolSpec, ...] = (
              "The arm: driver, mode, connection, latched stop and why, busy, pose, last "
              "outcome. Answers mid-motion.",
              arm.ArmRef, arm.ArmStatusOutput, arm.arm_status,
-             read_only=True, idempotent=True, open_world=True, placement="thread"),
+             read_only=True, idempotent=True, open_world=True, lane="thread"),
     ToolSpec("arm_stop", "Stop the arm",
              "Stop the arm now, even mid-motion, and latch the stop: later motions are refused"
              " until arm_reset.",
              arm.ArmStopInput, arm.ArmStatusOutput, arm.arm_stop,
-             read_only=False, idempotent=True, open_world=True, placement="own_thread"),
+             read_only=False, idempotent=True, open_world=True, lane="own_thread"),
     ToolSpec("arm_reset", "Reset the arm's stop",
              "Clear the latched stop once the motion ended; nothing moves. A real arm asks "
              "the user; sim/dry-run only if the operator allows it.",
              arm.ArmRef, arm.ArmStatusOutput, arm.arm_reset,
-             read_only=False, destructive=True, open_world=True, placement="thread",
+             read_only=False, destructive=True, open_world=True, lane="thread",
              confirmation=Confirmation(arm.preview_reset, "the stop stays latched")),
 )
 TOOLS: dict[str, ToolSpec] = {spec.name: spec for spec in TOOL_SPECS}
