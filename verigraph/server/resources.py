@@ -25,7 +25,8 @@ from verigraph.tools.summaries import describe_episode
 JSON = "application/json"
 RELATION_MEANINGS = {
     "on": "source rests on target; target must be a surface",
-    "in": "source is inside target; target must be a container",
+    "in": "source is inside target; target must be a container; a goal formula's "
+          "(inside a b) also holds of a on, in, under or next to what is inside b",
     "touches": "tangram: side source_side of source lies against side target_side of target",
     "under": "source stands under target, on what target stands on; target must be "
              "furniture (a fixed surface); counts against no capacity",
