@@ -7,10 +7,11 @@ a domain silently. `validate_pddl_dict` then tries the blocks-world recogniser (
 names: recognition is by structure) because its hand model is several times faster; a
 domain or problem it refuses (another domain, or a blocks-world problem whose initial
 state no scene can hold) goes to the general STRIPS simulator, which judges it by PDDL's
-own semantics. One engine judges each plan, and no step twice: where the blocks engine
-refuses a step or misses the goal it explains that itself, in the STRIPS engine's form
-(the unsatisfied preconditions with the step that last made each false, the actions that
-would achieve an unmet goal), from the history of the steps it applied
+own semantics. One engine judges each step, once (but the failing step at which the
+blocks engine hands an `all_errors` check over, below, which both read): where the
+blocks engine refuses a step or misses the goal it explains that itself, in the STRIPS
+engine's form (the unsatisfied preconditions with the step that last made each false,
+the actions that would achieve an unmet goal), from the history of the steps it applied
 (`simulate.explain_steps`, which grounds and applies them as the STRIPS step-by-step run
 does), so both engines report the same fields.
 
