@@ -202,3 +202,25 @@ def test_load_scene_takes_a_formula_goal_and_checks_its_names() -> None:
         box.call("load_scene", {"graph": kitchen(),
                                 "goal": {"formula": "(forall (?b - bowll) (on ?b counter))"}})
     assert refused.value.field == "goal.formula" and "kind 'bowll'" in refused.value.message
+
+
+# (formula, meanings the text states): a formula's own reading of `inside` and
+# `nextto` (beyond the edge) is said where the formula uses the word, and only there.
+MEANINGS = [(A_LID_IN_EACH_POT, ["inside"]), (NO_CUP_ON_A_PLATE, []),
+            ("(and (inside lid_1 pot_1) (nextto cup_1 cup_2))", ["inside", "nextto"])]
+
+
+@pytest.mark.parametrize(("formula", "stated"), MEANINGS)
+def test_what_a_formula_means_by_inside_and_nextto_is_said(formula: str,
+                                                            stated: list[str]) -> None:
+    from verigraph.graph.formula_eval import FORMULA_MEANINGS
+    from verigraph.graph.goal import Goal
+    from verigraph.prompts.filling import goal_section
+
+    box = Toolbox()
+    eid = box.call("load_scene", {"graph": kitchen()}).episode_id
+    summary = said(box, "set_goal", {"episode_id": eid, "formula": formula})
+    prompt = goal_section(Goal(formula=formula))
+    for word, meaning in FORMULA_MEANINGS.items():
+        assert (meaning in summary) is (word in stated), summary
+        assert (meaning in prompt) is (word in stated), prompt

@@ -70,6 +70,14 @@ LINE_CHARS = 600  # a counterexample or witness, part and reason, up to this man
 # object placed next to furniture is on its room's floor (or lawn, outdoors).
 GROUND_KINDS = ("floor", "lawn")
 _WORDS = {"on": "on", "in": "in", "under": "under", "nextto": "next to", "inroom": "in room"}
+# What a formula means by these words beyond their edge, a line each, for the texts
+# a planner or a client reads beside a formula (the module docstring says why).
+FORMULA_MEANINGS = {
+    "inside": "(inside a b) holds when a is in b, or on, in, under or next to something "
+              "that is itself inside b",
+    "nextto": "(nextto a b) holds when a is placed next to b, b next to a, or both next to "
+              "one object",
+}
 
 
 def node_state(state: WorldState, obj: str) -> Mapping[str, bool]:

@@ -21,6 +21,7 @@ from verigraph.graph.dictionary import (
     Dictionary,
     state_text,
 )
+from verigraph.graph.formula_eval import FORMULA_MEANINGS
 from verigraph.graph.goal import Goal
 from verigraph.graph.state import WorldState
 
@@ -121,7 +122,9 @@ def goal_section(goal: Goal | None, instruction: str | None = None) -> str:
     if goal is not None and goal.formula is not None:
         lines.append("Goal formula (BDDL; kinds are labels, ?x variables, other names ids; "
                      "it must hold at the end):")
-        lines.append(goal.formula_text() or "")
+        text = goal.formula_text() or ""
+        lines.append(text)
+        lines.extend(meaning for word, meaning in FORMULA_MEANINGS.items() if f"({word} " in text)
     return "\n".join(lines) or "No goal was given; ask the user what the robot should achieve."
 
 

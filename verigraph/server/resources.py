@@ -18,6 +18,7 @@ from verigraph.actions.model import ActionAdapter
 from verigraph.errors import VeriGraphError
 from verigraph.graph.builtin_scenes import BUILTIN_GOALS, BUILTIN_SCENES
 from verigraph.graph.dictionary import BUILTIN_DICTIONARIES, load_dictionary
+from verigraph.graph.formula_eval import FORMULA_MEANINGS
 from verigraph.server.schemas import without_openapi_keywords
 from verigraph.tools.registry import Toolbox
 from verigraph.tools.summaries import describe_episode
@@ -25,14 +26,12 @@ from verigraph.tools.summaries import describe_episode
 JSON = "application/json"
 RELATION_MEANINGS = {
     "on": "source rests on target; target must be a surface",
-    "in": "source is inside target; target must be a container; a goal formula's "
-          "(inside a b) also holds of a on, in, under or next to what is inside b",
+    "in": f"source is inside target; target must be a container; {FORMULA_MEANINGS['inside']}",
     "touches": "tangram: side source_side of source lies against side target_side of target",
     "under": "source stands under target, on what target stands on; target must be "
              "furniture (a fixed surface); counts against no capacity",
     "nextto": "source stands next to target, on what target stands on; target must not be "
-              "a room; counts against no capacity; a goal formula's (nextto a b) also holds "
-              "of two objects placed next to one object",
+              f"a room; counts against no capacity; {FORMULA_MEANINGS['nextto']}",
     "inroom": "furniture (a fixed object) source stands in room target",
 }
 
