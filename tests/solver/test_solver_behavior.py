@@ -193,12 +193,29 @@ GARDEN = """(define (problem setting_up_garden_furniture-0)
 
 
 def test_objects_asked_pairwise_next_to_each_other_stand_around_one() -> None:
-    from verigraph.tasks.behavior import placement_conflict
+    from verigraph.graph.model import SceneGraph
+    from verigraph.solver.budget import SearchBudget
+    from verigraph.solver.satisfiable import unsatisfiable_reason
+
+    state = WorldState.from_graph(SceneGraph.model_validate({
+        "nodes": [{"id": i, "label": i} for i in ("kitchen", "desk", "folder", "book",
+                                                    "bag")],
+        "edges": [*({"source": o, "relation": "on", "target": "desk"}
+                    for o in ("folder", "book", "bag")),
+                  {"source": "desk", "relation": "inroom", "target": "kitchen"}],
+        "dictionary": "behavior"}))
+
+    def possible(text: str) -> bool:
+        return unsatisfiable_reason(state, parse_formula(text), SearchBudget()) is None
 
     triangle = "(and (nextto folder book) (nextto folder bag) (nextto book bag))"
-    assert placement_conflict(triangle) is None  # two placed beside the third
-    assert placement_conflict("(and (nextto folder book) (ontop folder desk))") is None
-    assert placement_conflict("(and (ontop folder desk) (inside folder bag))") is not None
+    assert possible(triangle)  # two placed beside the third
+    assert possible("(and (nextto folder book) (ontop folder desk))")
+    assert not possible("(and (ontop folder desk) (inside folder bag))")
+    # on a plate and inside the fridge at once: the plate in the fridge
+    pizza = WorldState.from_graph(import_problem(PIZZA).scene_graph())
+    both = parse_formula("(and (ontop pizza_1 plate_1) (inside pizza_1 fridge_1))")
+    assert unsatisfiable_reason(pizza, both, SearchBudget()) is None
     _, _, plan = solved(SCHOOL)
     assert len(plan) == 3 and plan[0] == "move(backpack_1, on, bed_1)"
     assert sorted(plan[1:]) == ["move(book_1, nextto, backpack_1)",

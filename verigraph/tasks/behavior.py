@@ -124,10 +124,6 @@ def run_activity(name: str, *, time_limit: float = 10.0, tools: Any = None,
     seconds["import"] = time.perf_counter() - start
     outcome = ActivityOutcome(name, "solved", predicate_class=imported.predicate_class,
                               objects=len(imported.ids), seconds=seconds)
-    conflict = placement_conflict(imported.formula)
-    if conflict is not None:
-        outcome.status, outcome.reason = "unreachable", conflict
-        return outcome
     scene = graph.model_dump(mode="json", exclude_none=True)
     goal = imported.goal
     tools = tools or InProcessTools()
@@ -178,32 +174,6 @@ def run_activity(name: str, *, time_limit: float = 10.0, tools: Any = None,
     return outcome
 
 
-def placement_conflict(formula: str) -> str | None:
-    """Why a goal can never hold in VeriGraph's model, where a movable object has one
-    placement: its conjunction asks one object to be `on`/`in`/`under` two things
-    (BEHAVIOR's geometry allows both at once). None when no such demand is found. (An
-    object next to another stands where that one stands, so `nextto` beside `on`, `in`
-    or `under` is no conflict; nor are objects pairwise next to each other, since
-    objects placed next to one object stand side by side around it.)"""
-    from verigraph.graph.formula import Atom, Junction, parse_formula
-
-    placed: dict[str, set[tuple[str, str]]] = {}
-    stack = [parse_formula(formula)]
-    while stack:
-        node = stack.pop()
-        if isinstance(node, Junction) and node.op == "and":
-            stack.extend(node.parts)
-        elif isinstance(node, Atom) and not any(t.startswith("?") for t in node.terms) \
-                and node.relation in ("on", "in", "under"):
-            placed.setdefault(node.terms[0], set()).add((node.relation, node.terms[1]))
-    for obj, places in sorted(placed.items()):
-        if len(places) > 1:
-            shown = " and ".join(f"{r} {t}" for r, t in sorted(places))
-            return (f"the goal places {obj} {shown}; an object has one placement here "
-                    "(BEHAVIOR's geometry allows both)")
-    return None
-
-
 def formula_holds(graph: dict[str, Any], formula: str) -> bool:
     """Whether the goal formula holds on a graph, by the formula evaluator itself."""
     from verigraph.graph.formula import parse_formula
@@ -237,8 +207,6 @@ def behavior_tasks(max_solve_s: float = TASK_SOLVE_SECONDS,
             imported = import_problem(activity_text(name), activity=name)
             graph = imported.scene_graph()
         except UnsupportedActivityError:
-            continue
-        if placement_conflict(imported.formula) is not None:
             continue
         result = solve(graph, Goal(formula=imported.formula), time_limit=max_solve_s)
         if not result.reachable or not result.optimal:
