@@ -80,6 +80,11 @@ FORMULA_MEANINGS = {
 }
 
 
+def meanings_in(formula: str) -> list[str]:
+    """The `FORMULA_MEANINGS` lines of the words a formula's text uses, in table order."""
+    return [meaning for word, meaning in FORMULA_MEANINGS.items() if f"({word} " in formula]
+
+
 def node_state(state: WorldState, obj: str) -> Mapping[str, bool]:
     """The state keys a node sets (`open`, `toggled_on`); a key it does not set reads
     false (an openable object is closed, a toggleable one off)."""

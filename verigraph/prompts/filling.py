@@ -21,7 +21,7 @@ from verigraph.graph.dictionary import (
     Dictionary,
     state_text,
 )
-from verigraph.graph.formula_eval import FORMULA_MEANINGS
+from verigraph.graph.formula_eval import meanings_in
 from verigraph.graph.goal import Goal
 from verigraph.graph.state import WorldState
 
@@ -124,7 +124,7 @@ def goal_section(goal: Goal | None, instruction: str | None = None) -> str:
                      "it must hold at the end):")
         text = goal.formula_text() or ""
         lines.append(text)
-        lines.extend(meaning for word, meaning in FORMULA_MEANINGS.items() if f"({word} " in text)
+        lines.extend(meanings_in(text))
     return "\n".join(lines) or "No goal was given; ask the user what the robot should achieve."
 
 

@@ -24,7 +24,7 @@ from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Fie
 from verigraph.errors import GoalError
 from verigraph.graph.dictionary import STATE_ROLES, STATE_WORDS
 from verigraph.graph.formula import FORMULA_EXAMPLE, parse_formula
-from verigraph.graph.formula_eval import FORMULA_MEANINGS, check_names, facts_of
+from verigraph.graph.formula_eval import check_names, facts_of, meanings_in
 from verigraph.graph.goal import (
     PREDICATES,
     Goal,
@@ -200,9 +200,8 @@ class GoalOutput(BaseModel):
             head += "; it will be checked once the scene graph is submitted"
         else:
             head += f"; {self.goal_diff.summary()}"
-        formula = self.goal.formula or ""
-        meanings = [m for word, m in FORMULA_MEANINGS.items() if f"({word} " in formula]
-        return "\n".join([head, goal_line(self.goal) or "", *meanings, *notes])
+        return "\n".join([head, goal_line(self.goal) or "",
+                          *meanings_in(self.goal.formula or ""), *notes])
 
     def _proposal_lines(self) -> list[str]:
         kept = (f"the episode keeps its goal: {goal_line(self.goal)}" if self.goal is not None
