@@ -80,6 +80,26 @@ FORMULA_MEANINGS = {
 }
 
 
+def one_to_one(fits: dict[str, list[str]]) -> dict[str, str]:
+    """A largest one-to-one pairing over `fits` (each first -> the seconds it may pair
+    with), as second -> first, by augmenting paths (firsts tried in the dict's order)."""
+    partner: dict[str, str] = {}
+
+    def augment(a: str, seen: set[str]) -> bool:
+        for b in fits[a]:
+            if b in seen:
+                continue
+            seen.add(b)
+            if b not in partner or augment(partner[b], seen):
+                partner[b] = a
+                return True
+        return False
+
+    for a in fits:
+        augment(a, set())
+    return partner
+
+
 def meanings_in(formula: str) -> list[str]:
     """The `FORMULA_MEANINGS` lines of the words a formula's text uses, in table order."""
     return [meaning for word, meaning in FORMULA_MEANINGS.items() if f"({word} " in formula]
@@ -433,20 +453,7 @@ class _Evaluator:
             a: [b for b in seconds if b != a and self.holds(
                 node.body, _bound(_bound(env, node.first.name, a), node.second.name, b))]
             for a in firsts}
-        partner: dict[str, str] = {}  # second -> first
-
-        def augment(a: str, seen: set[str]) -> bool:
-            for b in fits[a]:
-                if b in seen:
-                    continue
-                seen.add(b)
-                if b not in partner or augment(partner[b], seen):
-                    partner[b] = a
-                    return True
-            return False
-
-        for a in firsts:
-            augment(a, set())
+        partner = one_to_one(fits)  # second -> first
         pairs = sorted((a, b) for b, a in partner.items())
         paired_first = {a for a, _ in pairs}
         return (pairs, [a for a in firsts if a not in paired_first],

@@ -64,7 +64,7 @@ from verigraph.graph.formula import (
     constants,
     show,
 )
-from verigraph.graph.formula_eval import SHOWN_CHARS, Facts, facts_of
+from verigraph.graph.formula_eval import SHOWN_CHARS, Facts, facts_of, one_to_one
 from verigraph.graph.state import WorldState
 from verigraph.solver.budget import SearchBudget
 
@@ -681,19 +681,8 @@ class _Search:
 
 
 def _matching(edges: list[tuple[str, str]]) -> int:
-    """The size of a largest one-to-one pairing over `edges` (augmenting paths)."""
-    fits_of: dict[str, list[str]] = {}
+    """The size of a largest one-to-one pairing over `edges`."""
+    fits: dict[str, list[str]] = {}
     for a, b in edges:
-        fits_of.setdefault(a, []).append(b)
-    partner: dict[str, str] = {}
-
-    def augment(a: str, seen: set[str]) -> bool:
-        for b in fits_of[a]:
-            if b not in seen:
-                seen.add(b)
-                if b not in partner or augment(partner[b], seen):
-                    partner[b] = a
-                    return True
-        return False
-
-    return sum(augment(a, set()) for a in fits_of)
+        fits.setdefault(a, []).append(b)
+    return len(one_to_one(fits))
