@@ -39,7 +39,7 @@ the failing part with its objects filled in and why it fails), and the witnesses
 from __future__ import annotations
 
 import difflib
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -176,15 +176,20 @@ class Facts:
         cycle). Its truth reads only the placements of `source` and what they lead down
         to, none of which a move can change before `source` itself has moved: each of
         them carries the one above, so is not clear (a goal's bound relies on it)."""
-        stack, seen = [source], {source}
+        return any(relation == "in" and place == target
+                   for relation, place in self.down(source))
+
+    def down(self, obj: str) -> Iterator[tuple[str, str]]:
+        """Every placement `(relation, place)` of `obj` and of what it is placed on, in,
+        under or next to, followed down (a room is not followed; each place once, so
+        bounded)."""
+        stack, seen = [obj], {obj}
         while stack:
             for relation, place in self.placed.get(stack.pop(), ()):
-                if relation == "in" and place == target:
-                    return True
+                yield relation, place
                 if relation != "inroom" and place not in seen:
                     seen.add(place)
                     stack.append(place)
-        return False
 
     def _side_by_side(self, source: str, target: str) -> bool:
         """Whether two distinct objects are both placed next to one object (chairs set

@@ -164,16 +164,8 @@ def _made_free(needs: list[frozenset[Thing]], facts: Facts) -> list[frozenset[Th
 def _closed_around(obj: str, facts: Facts) -> set[str]:
     """The closed containers `obj` is within, directly or through what carries it (a
     pizza on a plate in a closed fridge): each must be opened before `obj` moves."""
-    boxes: set[str] = set()
-    stack, seen = [obj], {obj}
-    while stack:
-        for relation, place in facts.placed.get(stack.pop(), ()):
-            if relation == "in" and facts.closed(place):
-                boxes.add(place)
-            if relation != "inroom" and place not in seen:
-                seen.add(place)
-                stack.append(place)
-    return boxes
+    return {place for relation, place in facts.down(obj)
+            if relation == "in" and facts.closed(place)}
 
 
 def _in_a_room(facts: Facts, obj: str) -> bool:
