@@ -523,18 +523,22 @@ class _Search:
 
     def blocker(self, obj: str) -> str | None:
         """The first object down `obj`'s placements whose placement is not chosen."""
+        return next((o for o in self.chain(obj)
+                     if o in self.world.movable and o not in self.place), None)
+
+    def chain(self, obj: str) -> Iterator[str]:
+        """`obj` and each object down its placements as far as they are known: chosen
+        for a movable object, fixed for the rest (bounded: placements form no cycle)."""
         current: str | None = obj
         for _ in range(len(self.world.state.objects) + 1):
             if current is None:
-                return None
+                return
+            yield current
             if current in self.world.movable:
-                if current not in self.place:
-                    return current
-                placement = self.place[current]
+                placement = self.place.get(current)
             else:
                 placement = self.world.fixed_place.get(current)
             current = placement[1] if placement is not None else None
-        return None
 
     # -- choices -------------------------------------------------------------------------
     def run(self) -> bool:
@@ -648,18 +652,7 @@ class _Search:
 
     def below(self, target: str, obj: str) -> bool:
         """Whether `obj` is down `target`'s placements (placing obj there: a cycle)."""
-        current: str | None = target
-        for _ in range(len(self.world.state.objects) + 1):
-            if current is None:
-                return False
-            if current == obj:
-                return True
-            if current in self.world.movable:
-                placement = self.place.get(current)
-            else:
-                placement = self.world.fixed_place.get(current)
-            current = placement[1] if placement is not None else None
-        return False
+        return obj in self.chain(target)
 
     def undo(self, var: Var, choice: Placement | bool, mark: tuple[int, int, int]) -> None:
         self.consistent = True
