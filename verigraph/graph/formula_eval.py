@@ -114,7 +114,7 @@ def node_state(state: WorldState, obj: str) -> Mapping[str, bool]:
 class Facts:
     """What a formula reads of a scene: kinds, edges by relation name, node states."""
 
-    __slots__ = ("by_kind", "edges", "placed", "states", "resolve", "openable")
+    __slots__ = ("by_kind", "edges", "placed", "states", "resolve", "openable", "_inside")
 
     def __init__(self, labels: Mapping[str, str], edges: Iterable[tuple[str, str, str]],
                  states: Mapping[str, Mapping[str, bool]],
@@ -136,6 +136,7 @@ class Facts:
 
     def _index(self, edges: Iterable[tuple[str, str, str]]) -> None:
         """Each edge `(relation, source, target)`, and each source's placements."""
+        self._inside: dict[str, set[str]] = {}  # object -> every container it is within
         for relation, source, target in edges:
             self.edges.add((relation, source, target))
             self.placed.setdefault(source, []).append((relation, target))
@@ -176,8 +177,11 @@ class Facts:
         cycle). Its truth reads only the placements of `source` and what they lead down
         to, none of which a move can change before `source` itself has moved: each of
         them carries the one above, so is not clear (a goal's bound relies on it)."""
-        return any(relation == "in" and place == target
-                   for relation, place in self.down(source))
+        inside = self._inside.get(source)
+        if inside is None:  # read many times over one state (every atom, every target)
+            inside = self._inside[source] = {
+                place for relation, place in self.down(source) if relation == "in"}
+        return target in inside
 
     def down(self, obj: str) -> Iterator[tuple[str, str]]:
         """Every placement `(relation, place)` of `obj` and of what it is placed on, in,
