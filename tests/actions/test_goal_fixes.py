@@ -175,14 +175,15 @@ def test_a_cycle_fix_puts_the_target_where_the_goal_wants_it_and_back_if_kept():
     kept = validate_action(state, move("book", "on", "cup"),
                            wanted=frozenset({("cup", "on", "book")}))
     assert kept is not None and kept.suggestion.endswith(
-        "; then put cup back on book (the goal keeps it there)")
+        "; later, put cup back on book (the goal keeps it there)")
 
 
 def test_clearing_a_blocker_the_goal_keeps_says_to_put_it_back():
     v = validate_action(kitchen_table(), move("book", "on", "shelf"),
                         wanted=frozenset({("cup", "on", "book")}))
     assert v is not None and v.suggestion == "move cup somewhere else first, e.g. move(cup, " \
-        "on, desk); then put cup back on book (the goal keeps it there)"
+        "on, desk); after move(book, on, shelf), put cup back on book (the goal keeps it " \
+        "there)"
 
 
 def test_an_occupied_side_the_goal_keeps_is_not_broken_and_a_goal_contact_offered():

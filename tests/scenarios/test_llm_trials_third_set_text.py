@@ -391,20 +391,42 @@ async def test_a_goal_corrected_after_a_writing_mistake_ends_as_success() -> Non
 
 async def test_the_garage_fixes_keep_the_goal_and_every_move_is_valid() -> None:
     """The drawer the goal keeps the pliers in is emptied by its tin, not by the pliers;
-    a blocker the goal keeps where it is is said to go back; no fix names a place that
-    is 'ruled out' for a reason it does not give."""
+    a blocker the goal keeps where it is is said to go back after the fix's moves (the
+    screws once their tin is where the goal wants it), never in between; no fix names a
+    place that is 'ruled out' for a reason it does not give."""
     async with Client(build_server(Toolbox())) as client:
         results = await run_recorded(client, "t01_garage", calls=3)
     said = said_by(results, "validate_plan")
     full = next(line for line in said.splitlines() if "[target_full] drawer" in line)
     assert "make room on drawer first (tin elsewhere; the goal keeps pliers there), e.g. " \
-           "move(screws, on, workbench); then put screws back in tin (the goal keeps it " \
-           "there)" in full
-    assert "move(tin, on, workbench)" in full and "ruled out" not in full
-    assert "move(pliers, on, workbench)" not in full
+           "move(screws, on, workbench), move(battery, on, workbench), move(tin, on, " \
+           "workbench); put screws and battery back in tin once tin is in wall_cabinet (the " \
+           "goal keeps them there)" in full
+    assert "ruled out" not in full and "move(pliers, on, workbench)" not in full
     clear = next(line for line in said.splitlines() if "cannot move drawer" in line)
-    assert "move(pliers, on, workbench); then put pliers back in drawer (the goal keeps it " \
-           "there)" in clear
+    assert clear.endswith("move(pliers, on, workbench); after move(drawer, on, workbench), "
+                          "put pliers back in drawer, and put screws back in tin once tin is "
+                          "in wall_cabinet (the goal keeps them there)")
+
+
+async def test_the_garage_fix_followed_word_for_word_reaches_the_goal_optimally() -> None:
+    """The moves a fix names run first, then the refused action, then the objects go back
+    as the fix says: every step is valid, and, with the rest of the goal, the plan is as
+    short as solve's proven optimum (nothing put back only to be moved again)."""
+    async with Client(build_server(Toolbox())) as client:
+        results = await run_recorded(client, "t01_garage", calls=3)
+        episode = structured(results[0][1])["episode_id"]
+        clear = next(line for line in said_by(results, "validate_plan").splitlines()
+                     if "cannot move drawer" in line)
+        plan = [*re.findall(r"move\(\w+, \w+, \w+\)", clear.split("e.g. ")[1].split("; after")[0]),
+                "move(drawer, on, workbench)", "move(pliers, in, drawer)",
+                "move(tin, in, wall_cabinet)", "move(screws, in, tin)",
+                "move(battery, in, tin)", "move(tape_measure, in, drawer)"]
+        checked = await client.call_tool("validate_plan", {"episode_id": episode,
+                                                           "plan": "\n".join(plan)})
+        optimum = await client.call_tool("solve", {"episode_id": episode})
+    assert text(checked).startswith("VALID: 9 step(s) checked; goal reached"), text(checked)
+    assert text(optimum).startswith("plan of 9 action(s), verified, optimal"), text(optimum)
 
 
 async def test_a_multi_line_text_of_k_actions_runs_as_the_fix_says() -> None:

@@ -44,13 +44,36 @@ def pinned(state: WorldState, obj: str, wanted: Wanted) -> bool:
     return where is not None and (obj, *where) in wanted
 
 
-def kept_note(state: WorldState, obj: str, wanted: Wanted) -> str:
-    """`; then put knife back on board (the goal keeps it there)` for an object a fix
-    must move off a goal edge that holds; empty otherwise."""
-    if not pinned(state, obj, wanted):
+def put_back(state: WorldState, objs: list[str], wanted: Wanted, after: str | None = None
+             ) -> str:
+    """`; after move(book, on, shelf), put cup back on book (the goal keeps it there)`: said
+    once, after a fix's moves, for the objects of `objs` it takes off a goal edge that
+    holds; empty when there are none.
+
+    The clause follows every move of the fix, never one of them: putting an object back
+    at once would block the very move it was cleared for. An object whose carrier the fix
+    moves too goes back once that carrier is where the goal wants it (screws back in the
+    tin once the tin is in the cabinet), which also saves moving them twice.
+    """
+    kept = [o for o in objs if pinned(state, o, wanted)]
+    if not kept:
         return ""
-    relation, place = state.support[obj]
-    return f"; then put {obj} back {relation} {place} (the goal keeps it there)"
+    goal_of = {o: (r, p) for o, r, p in sorted(wanted) if r in ("on", "in")}
+    now: list[str] = []
+    waiting: dict[str, list[str]] = {}
+    for obj in kept:
+        relation, place = state.support[obj]
+        if place in objs and place in goal_of and not pinned(state, place, wanted):
+            waiting.setdefault(place, []).append(obj)
+        else:
+            now.append(f"{obj} back {relation} {place}")
+    parts = [f"{'after ' + after if after else 'later'}, put {_names(now)}"] if now else []
+    for place, objects in waiting.items():
+        relation = state.support[objects[0]][0]
+        parts.append(f"{'and ' if parts else ''}put {_names(objects)} back {relation} "
+                     f"{place} once {place} is {' '.join(goal_of[place])}")
+    them = "it" if len(kept) == 1 else "them"
+    return f"; {', '.join(parts)} (the goal keeps {them} there)"
 
 
 def _violation(action: MoveAction | AlignAction | StateAction, constraint: str, message: str,
@@ -260,7 +283,8 @@ def _unstack_order(state: WorldState, blockers: list[str]) -> list[str]:
 def _unstack_moves(state: WorldState, order: list[str], exclude: set[str],
                    wanted: Wanted) -> list[str]:
     """A move for each of the first MAX_NAMED_BLOCKERS objects of `order` (an unstack
-    order), the places accounting for each other (see _clear_hint)."""
+    order), the places accounting for each other (see _clear_hint); what the goal keeps
+    where it is goes back after them all (`put_back`)."""
     moving = exclude | set(order)
     planned: dict[str, int] = {}
     hints = []
@@ -269,12 +293,12 @@ def _unstack_moves(state: WorldState, order: list[str], exclude: set[str],
         if found is None:
             hints.append(_no_place(state, obj, moving, wanted))
             continue
-        hints.append(_move_text(obj, found) + kept_note(state, obj, wanted))
+        hints.append(_move_text(obj, found))
         planned[found[1]] = planned.get(found[1], 0) + 1
     return hints
 
 
-def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str], *,
+def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str], after: str, *,
                 wanted: Wanted = NO_GOAL) -> str:
     """`move knife, spoon and lid somewhere else first, e.g. move(knife, on, counter), ...`
 
@@ -296,7 +320,8 @@ def _clear_hint(state: WorldState, blockers: list[str], exclude: set[str], *,
              f"{_names(above[:MAX_NAMED_BLOCKERS])}{tail})" if above else "")
     rest = len(order) - len(shown)
     later = f", then {rest} more move(s)" if rest else ""
-    return f"move {who} somewhere else first{first}, e.g. {', '.join(hints)}{later}"
+    return f"move {who} somewhere else first{first}, e.g. {', '.join(hints)}{later}" \
+        f"{put_back(state, order, wanted, after)}"
 
 
 # -- move: the refusals of the move row's preconditions (verigraph.actions.schemas) ----------
@@ -356,7 +381,7 @@ def explain_cycle(state: WorldState, a: MoveAction, *, wanted: Wanted = NO_GOAL
         f"cannot put {a.object} {a.relation} {a.target}: {path}, so it would rest on itself",
         f"first move {a.target} off {a.object}, e.g. "
         f"{_place_hint(state, a.target, {a.object, *above}, wanted=wanted)}"
-        f"{kept_note(state, a.target, wanted)}", [a.target, *above])
+        f"{put_back(state, [a.target], wanted)}", [a.target, *above])
 
 
 def explain_clear(state: WorldState, a: MoveAction, *, wanted: Wanted = NO_GOAL) -> Violation:
@@ -364,7 +389,8 @@ def explain_clear(state: WorldState, a: MoveAction, *, wanted: Wanted = NO_GOAL)
     blockers = list(on_top)
     what = ", ".join(f"{b} is {on_top[b]} {a.object}" for b in blockers)
     return _violation(a, "object_not_clear", f"cannot move {a.object}: {what}",
-                      _clear_hint(state, blockers, {a.object}, wanted=wanted), blockers)
+                      _clear_hint(state, blockers, {a.object}, a.text(), wanted=wanted),
+                      blockers)
 
 
 def _kind_fix(state: WorldState, a: MoveAction, other: str, takes_other: bool,
@@ -480,8 +506,9 @@ def explain_capacity(state: WorldState, a: MoveAction, *,
     hint = hint or next((_move_text(o, found) for o in movers
                          if (found := _free_place(state, o, exclude))), None)
     if hint is None and not movers:  # none is clear: the first with what rests on it
-        hint = ", ".join(_unstack_moves(state, _unstack_order(state, free[:1]), exclude,
-                                        wanted))
+        order = _unstack_order(state, free[:1])
+        hint = ", ".join(_unstack_moves(state, order, exclude, wanted)) + \
+            put_back(state, order, wanted, a.text())
     hint = hint or _no_place(state, free[0], exclude)
     keeps = f"; the goal keeps {_names(kept[:MAX_NAMED_BLOCKERS])} there" if kept else ""
     return _violation(

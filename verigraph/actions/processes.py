@@ -23,7 +23,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from verigraph.actions.constraints import NO_GOAL, Wanted, kept_note, pinned, wanted_state
+from verigraph.actions.constraints import NO_GOAL, Wanted, pinned, put_back, wanted_state
 from verigraph.actions.feedback import Violation
 from verigraph.actions.model import StateAction
 from verigraph.graph.dictionary import STATE_WORDS
@@ -135,7 +135,7 @@ def no_source_explainer(name: str) -> Callable[[WorldState, StateAction], Violat
         relation = "in" if there and state.objects[there[0]].props.container and \
             not state.objects[there[0]].props.surface else "on"
         fix = (f"put it on or in a {word} first, e.g. move({a.object}, {relation}, "
-               f"{there[0]}){kept_note(state, a.object, wanted)}" if there else
+               f"{there[0]}){put_back(state, [a.object], wanted, a.text())}" if there else
                f"nothing in the scene is a {word}; drop this action")
         return _violation(a, NO_SOURCE[role], f"{a.object} is not on or in a {word}", fix)
     return explain
