@@ -105,14 +105,29 @@ async def test_a_failing_adl_step_is_summed_up_in_one_plain_line_first() -> None
 
 async def test_a_pddl_goal_not_reached_names_every_counterexample() -> None:
     """The student's plan stops at step 10 with five passengers not served: the goal line
-    names all five (it named only alice), so the model needs no second call to count."""
+    names all five (it named only alice), so the model needs no second call to count;
+    the one unmet goal is named once, then why it fails."""
     async with Client(build_server(Toolbox())) as client:
         results = await run_recorded(client, "t02_elevator", calls=1)
     head = said_by(results, "validate_plan").splitlines()[0]
-    assert "(forall (?p - passenger) (served ?p)): 5 counterexamples: for ?p = alice: " \
+    assert head.count("(forall (?p - passenger) (served ?p))") == 1, head
+    assert "missing: (forall (?p - passenger) (served ?p)) | why: 5 counterexamples: " \
+           "for ?p = alice: " \
            "(served alice) is false; for ?p = bob: (served bob) is false; for ?p = dana: " \
            "(served dana) is false; for ?p = eve: (served eve) is false; for ?p = gus: " \
            "(served gus) is false" in head
+
+
+async def test_a_failing_exists_names_its_variable_and_what_was_tried() -> None:
+    """Step 16's `(exists (?q - attendant) ...)` read `no ?q makes (boarded gus) ...`: the
+    last object tried stood in for ?q. It now keeps ?q and names the objects tried."""
+    async with Client(build_server(Toolbox())) as client:
+        results = await run_recorded(client, "t02_elevator", calls=3)
+    step = next(line for line in said_by(results, "validate_plan", 2).splitlines()
+                if line.startswith(" 16 FAIL"))
+    assert "no ?q - attendant makes (or (and (boarded ?q) (not (destin ?q f1))) (and (not " \
+           "(served ?q)) (origin ?q f1))) true (tried: gus)" in step, step
+    assert "(boarded gus)" not in step
 
 
 async def test_a_simulated_run_says_observed_equals_predicted() -> None:

@@ -36,9 +36,12 @@ PLAIN_FROM_CHARS = 160
 
 
 def _explained(items: list[dict[str, Any]]) -> str:
+    """Why each unmet goal literal is false; one alone is not named again (the text's
+    `missing:` list has just named it): `why: 5 counterexamples: for ?p = alice: ...`."""
     parts = []
     for u in items[:MAX_DETAIL_GOALS]:
-        text = f"{u['literal']}: {u['explanation']}"
+        text = f"why: {u['explanation']}" if len(items) == 1 else \
+            f"{u['literal']}: {u['explanation']}"
         achievers = achiever_text(u)
         if achievers:
             text += f", {achievers}"

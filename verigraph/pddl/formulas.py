@@ -181,9 +181,14 @@ class Evaluator:
         if kind == "imply":
             return (f"{text(f[1], binding, names)} holds but "
                     + self.why_false(f[2], binding, names, depth + 1))
-        if kind == "exists":
+        if kind == "exists":  # its variables unbound: the text names them, not the last tried
+            for slot, _, _ in f[1]:
+                binding[slot] = None
+            tried = [self.problem.of_type(self.domain, t) for _, _, t in f[1]]
+            among = f" (tried: {', '.join(tried[0])})" if len(tried) == 1 and \
+                0 < len(tried[0]) <= MAX_COUNTEREXAMPLES else ""
             return "no " + ", ".join(f"{n} - {t}" for _, n, t in f[1]) + " makes " \
-                + text(f[2], binding, names) + " true"
+                + text(f[2], binding, names) + " true" + among
         if kind == "forall":
             objs = self.search(f[1], f[2], binding, True)
             if objs is not None:
