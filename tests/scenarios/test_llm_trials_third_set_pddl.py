@@ -31,7 +31,8 @@ async def test_solve_on_the_transport_pddl_gives_the_cheapest_plan_and_says_so()
         solved = await client.call_tool("solve", {"pddl": pddl, "time_limit": 60})
         said = text(solved)
         assert said.startswith("plan of 13 action(s), verified, plan cost 146, cost-optimal "
-                               "(Fast Downward seq-opt-lmcut proved that no plan costs less"), said
+                               "(Fast Downward seq-opt-lmcut proved that no plan costs "
+                               "less): "), said
         assert structured(solved)["cost"] == 146 and structured(solved)["optimal"] is True
         plan = "\n".join(structured(solved)["plan"])
         again = text(await client.call_tool("validate_plan", {"plan": plan, "pddl": pddl}))
@@ -61,6 +62,10 @@ async def test_solve_on_the_elevator_adl_says_satisficing_when_not_proven() -> N
     if not structured(solved)["optimal"]:
         assert "satisficing (Fast Downward lama-first; not proven optimal)" in said
         assert "Fast Downward seq-opt-lmcut: " in said
+    else:  # the domain has no action costs: optimal in actions, and said so
+        assert structured(solved)["cost"] is None
+        assert "optimal (Fast Downward seq-opt-lmcut proved that no plan has fewer " \
+               "actions)" in said, said
 
 
 async def test_a_failing_adl_step_names_an_action_that_applies_instead() -> None:
@@ -81,3 +86,28 @@ async def test_a_failing_adl_step_names_an_action_that_applies_instead() -> None
         replaced = structured(await client.call_tool(
             "validate_plan", {"plan": "\n".join(steps), "pddl": pddl_of("t02_elevator")}))
         assert replaced["plan_valid"] is True
+
+
+GRIPPER = """(define (domain gripper) (:requirements :strips)
+ (:predicates (at ?b ?r) (robot ?r) (free) (holding ?b))
+ (:action pick :parameters (?b ?r) :precondition (and (at ?b ?r) (robot ?r) (free))
+  :effect (and (holding ?b) (not (at ?b ?r)) (not (free))))
+ (:action drop :parameters (?b ?r) :precondition (and (holding ?b) (robot ?r))
+  :effect (and (at ?b ?r) (free) (not (holding ?b))))
+ (:action go :parameters (?from ?to) :precondition (robot ?from)
+  :effect (and (robot ?to) (not (robot ?from)))))"""
+TWO_BALLS = """(define (problem two) (:domain gripper) (:objects a b left right)
+ (:init (at a left) (at b left) (robot left) (free))
+ (:goal (and (at a right) (at b right))))"""
+
+
+async def test_solve_on_a_pddl_without_costs_says_optimal_in_actions() -> None:
+    """No action costs: the proof is about the number of actions, and the text says only
+    that (not a cost it does not have)."""
+    async with Client(build_server(Toolbox())) as client:
+        solved = await client.call_tool("solve", {"pddl": {"domain": GRIPPER,
+                                                           "problem": TWO_BALLS}})
+    said = text(solved)
+    assert said.startswith("plan of 7 action(s), verified, optimal (Fast Downward "
+                           "seq-opt-lmcut proved that no plan has fewer actions): "), said
+    assert "cost" not in said.splitlines()[0] and structured(solved)["cost"] is None

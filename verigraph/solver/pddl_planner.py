@@ -3,8 +3,9 @@
 The reference solver (`verigraph.solver.search`) plans on scene graphs; a PDDL domain
 of the client's own (action costs, ADL) goes to Fast Downward through unified-planning:
 first its optimal search (`seq-opt-lmcut`, admissible, so a plan it returns has the
-least total cost, the domain's `total-cost` when it has one), and when that does not
-finish within the time given, its satisficing search (`lama-first`), said to be so.
+least total cost, the domain's `total-cost` when it has one, else the fewest actions),
+and when that does not finish within the time given, its satisficing search
+(`lama-first`), said to be so.
 The plan comes back as PDDL text lines; the caller checks it with the PDDL validator.
 """
 
@@ -39,7 +40,11 @@ def plan_pddl(domain: str, problem: str, *, time_limit: float) -> PddlPlan:
     require("pddl")
     from unified_planning.engines import PlanGenerationResultStatus as Status
     from unified_planning.io import PDDLReader
-    from unified_planning.shortcuts import OneshotPlanner, get_environment
+    from unified_planning.shortcuts import (
+        MinimizeSequentialPlanLength,
+        OneshotPlanner,
+        get_environment,
+    )
 
     get_environment().credits_stream = None  # stdout may be the MCP wire
     try:
@@ -49,6 +54,9 @@ def plan_pddl(domain: str, problem: str, *, time_limit: float) -> PddlPlan:
                              field="pddl", value=None,
                              fix="check the domain and problem (validate_plan with pddl "
                                  "reports where they fail)") from None
+    if not parsed.quality_metrics:  # no action costs: every action counts 1, and the
+        # optimal search's plan is the shortest; unified-planning says so only when asked
+        parsed.add_quality_metric(MinimizeSequentialPlanLength())
     tried: list[str] = []
     for engine, name in (OPTIMAL, SATISFICING):
         with warnings.catch_warnings():

@@ -83,12 +83,15 @@ class SolveOutput(BaseModel):
                                                           "found it")
 
     def optimality(self) -> str:
-        """`optimal (no plan has fewer moves)`, or the proven bound when it is not shown."""
+        """`optimal (no plan has fewer moves)`, or the proven bound when it is not shown; a
+        PDDL plan's says which planner proved what: no cheaper plan (a domain with action
+        costs) or none with fewer actions."""
         if self.planner is not None:
             cost = f"plan cost {self.cost:g}, " if self.cost is not None else ""
-            if self.optimal:
-                return (f"{cost}cost-optimal ({self.planner} proved that no plan costs less; "
-                        "without action costs: has fewer actions)")
+            if self.optimal and self.cost is not None:
+                return f"{cost}cost-optimal ({self.planner} proved that no plan costs less)"
+            if self.optimal:  # a domain without action costs: every action counts 1
+                return f"optimal ({self.planner} proved that no plan has fewer actions)"
             return f"{cost}satisficing ({self.planner}; not proven optimal)"
         if self.optimal:
             return "optimal (no plan has fewer moves)"
