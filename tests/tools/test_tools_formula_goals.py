@@ -224,3 +224,4 @@ def test_what_a_formula_means_by_inside_and_nextto_is_said(formula: str,
     for word, meaning in FORMULA_MEANINGS.items():
         assert (meaning in summary) is (word in stated), summary
         assert (meaning in prompt) is (word in stated), prompt
+

@@ -14,7 +14,7 @@ from verigraph.actions.report import validate_plan
 from verigraph.graph.dictionary import applied_line
 from verigraph.solver import solve as search_plan
 from verigraph.solver.pddl_planner import plan_pddl
-from verigraph.tools.acting import MAX_PDDL_CHARS, PDDL_KEYS, pddl_report
+from verigraph.tools.acting import MAX_ACTIONS_PER_CALL, MAX_PDDL_CHARS, PDDL_KEYS, pddl_report
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import FeatureUnavailableError, ToolArgumentError
 from verigraph.tools.executors import arm_mode_of, runs_on
@@ -81,6 +81,8 @@ class SolveOutput(BaseModel):
     cost: float | None = Field(default=None, description="a PDDL plan's total cost")
     planner: str | None = Field(default=None, description="a PDDL plan: the search that "
                                                           "found it")
+    run_with: str | None = Field(default=None, description="an episode's plan: the call "
+                                                           "that runs it")
 
     def optimality(self) -> str:
         """`optimal (no plan has fewer moves)`, or the proven bound when it is not shown; a
@@ -120,6 +122,8 @@ class SolveOutput(BaseModel):
             head += f"\n{self.assumed}"
         if self.runs_on is not None:
             planned += f"; episode executor: {self.runs_on}"
+        if self.run_with is not None:
+            planned += f"\n{self.run_with}"
         return f"{head}\n{planned}"
 
 
@@ -142,20 +146,42 @@ def solve_tool(ctx: ToolContext, params: SolveInput) -> SolveOutput:
     verified = False
     if result.reachable:
         verified = validate_plan(state, plan or "done", goal)["valid"]
+    where, run_with = _episode_run(ctx, params.episode_id, len(plan) if verified else 0)
     return SolveOutput(reachable=result.reachable, plan=[a.text() for a in plan],
                        actions=plan, length=len(plan), reason=result.reason,
                        verified=verified, optimal=result.optimal, expanded=result.expanded,
-                       lower_bound=result.lower_bound,
-                       runs_on=_episode_executor(ctx, params.episode_id),
+                       lower_bound=result.lower_bound, runs_on=where, run_with=run_with,
                        assumed=applied_line(state.to_graph(), dictionary=state.dictionary) or None)
 
 
-def _episode_executor(ctx: ToolContext, episode_id: str | None) -> str | None:
-    """Where the episode's actions run (None for a plan on a scene or graph)."""
+def _episode_run(ctx: ToolContext, episode_id: str | None, length: int
+                 ) -> tuple[str | None, str | None]:
+    """Where the episode's actions run, and the call that runs a verified plan of
+    `length` actions there (`run_hint`); (None, None) for a plan on a scene or graph."""
     if episode_id is None:
-        return None
+        return None, None
     with ctx.store.use(episode_id) as episode:
-        return runs_on(episode.executor, arm_mode_of(episode.world))
+        mode = arm_mode_of(episode.world)
+        where, k = runs_on(episode.executor, mode), episode.k
+    return where, run_hint(length, k, mode)
+
+
+def run_hint(length: int, k: int, arm_mode: str | None) -> str | None:
+    """How execute_actions runs a verified plan of `length` actions, so the first call is
+    the right one: one call when it fits in k or may go whole (`whole_plan`, up to its
+    limit, never on a real arm, where the user approves each call), else calls of k.
+    None for an empty plan."""
+    if length == 0:
+        return None
+    if length <= k:
+        return "to run it: execute_actions with these actions, one call"
+    calls = -(-length // k)
+    if arm_mode == "real" or length > MAX_ACTIONS_PER_CALL:
+        return (f"to run it: execute_actions in {calls} calls of at most k={k} actions, in "
+                "this order (each call's result before the next)")
+    return ("to run it in one call: execute_actions with these actions and whole_plan=true "
+            f"(checked first, then run step by step; k={k} per call otherwise, {calls} "
+            "calls)")
 
 
 def _solve_pddl(pddl: dict[str, str], time_limit: float) -> SolveOutput:
