@@ -807,7 +807,9 @@ def applied_properties(graph: SceneGraph | None, dictionary: Dictionary,
     `shelf: fixed surface, capacity 3 (tableware dictionary)`; a node whose attrs
     change a role or capacity gets its own entry (`cup: movable container, capacity 2
     (tableware dictionary; capacity from cup_2's attrs)`). The client's own labels are
-    left out (the client declared them). At most `limit` entries, then a count."""
+    left out (the client declared them), and so is a kind that is only movable (a fork,
+    a tangram piece): it carries nothing, and nothing about it needs confirming. At most
+    `limit` entries, then a count."""
     entries: dict[str, None] = {}
     for written in (graph, *more):
         for node in written.nodes if written is not None else ():
@@ -823,6 +825,8 @@ def applied_properties(graph: SceneGraph | None, dictionary: Dictionary,
                     mine = props
                 changed = [k for k in KIND_KEYS if getattr(mine, k) != getattr(props, k)]
                 props = mine
+            if not changed and not (props.surface or props.container or not props.movable):
+                continue  # a plain movable thing: nothing about it for anyone to confirm
             where = dictionary.home(label)
             if changed:
                 where += f"; {', '.join(changed)} from {node.id}'s attrs"
