@@ -6,6 +6,8 @@ what it did not is named, clause by clause. Nothing is stored until then.
 
 from __future__ import annotations
 
+import re
+
 import pytest
 from mcp import Client
 from mcp_helpers import (  # noqa: F401 - in_process_client: the client fixture
@@ -68,3 +70,45 @@ async def test_the_description_promises_a_proposal_not_a_goal(client: Client) ->
     tools = {t.name: t for t in (await client.list_tools()).tools}
     description = tools["set_goal"].description or ""
     assert "Words alone: a proposal to confirm" in description and "or words" not in description
+
+
+@pytest.mark.parametrize(("words", "goal"), [
+    ("Put the milk in the fridge and turn on the stove; keep the fridge closed.",
+     "goal (partial): milk in fridge; fridge closed; stove on"),
+    ("No cup on any plate, and put the milk on the table.",
+     "goal: formula (and (on milk table) (forall (?x - cup) (not (exists (?y - plate) "
+     "(ontop ?x ?y)))))"),
+])
+async def test_household_words_are_proposed_with_the_call_that_sets_them(
+        client: Client, words: str, goal: str) -> None:
+    """States and "no cup on any plate" are proposed too, and the proposal's own
+    set_goal arguments, sent back as they are, set exactly the goal proposed."""
+    out = await client.call_tool("load_scene", {"scene_id": "kitchen_household"})
+    eid = structured(out)["episode_id"]
+    said = text(await client.call_tool("set_goal", {"episode_id": eid, "instruction": words}))
+    assert f"proposed {goal}" in said, said
+    accept = said.split("to accept it, call set_goal with ", 1)[1].split(" (corrected")[0]
+    formula = re.search(r"formula='(.*)'$", accept)
+    edges = re.search(r'edges="([^"]*)", partial=true$', accept)
+    assert (formula is None) != (edges is None), accept
+    args = {"formula": formula.group(1)} if formula is not None else \
+        {"edges": edges.group(1) if edges is not None else ""}
+    set_now = await client.call_tool("set_goal", {"episode_id": eid, **args})
+    assert structured(set_now)["accepted"] and goal in text(set_now), text(set_now)
+
+
+async def test_a_goal_without_the_state_asked_for_ends_partial(client: Client) -> None:
+    """The request in load_scene's words asks for the stove on: a goal that leaves it out
+    is said to narrow the request, and the end is PARTIAL, naming it."""
+    out = await client.call_tool("load_scene", {
+        "scene_id": "kitchen_household",
+        "instruction": "put the milk in the fridge and turn on the stove"})
+    eid = structured(out)["episode_id"]
+    narrowed = text(await client.call_tool("set_goal", {
+        "episode_id": eid, "edges": "milk in fridge"}))
+    assert "it leaves out stove on" in narrowed, narrowed
+    ran = await client.call_tool("execute_actions", {
+        "episode_id": eid, "actions": ["open(fridge)", "move(milk, in, fridge)", "done"]})
+    assert "goal reached" in text(ran), text(ran)
+    ended = text(await client.call_tool("end_episode", {"episode_id": eid}))
+    assert ended.startswith("PARTIAL:") and "not done: stove on" in ended, ended

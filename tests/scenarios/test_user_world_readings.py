@@ -52,8 +52,8 @@ async def test_solve_names_the_executor_of_an_episode() -> None:
             "episode_id"]
         out = await c.call_tool("solve", {"episode_id": eid})
         assert structured(out)["runs_on"] == "graph (verified only, nothing physical moved)"
-        assert text(out).endswith("; episode executor: graph (verified only, nothing "
-                                  "physical moved)")
+        assert "; episode executor: graph (verified only, nothing physical moved)\nto run " \
+               "it: execute_actions" in text(out)
 
 
 def run_cli(*args: str) -> subprocess.CompletedProcess[str]:

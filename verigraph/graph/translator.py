@@ -1,23 +1,35 @@
-"""A rule-based instruction-to-goal translator: words plus a scene graph -> goal edges.
+"""A rule-based instruction-to-goal translator: words plus a scene graph -> a goal.
 
 A pure function of the instruction and the graph it was given on, so the planners (the
 named baseline for the language group) and the set_goal tool (a goal proposal the
 client confirms) read words the same way. Its grammar, case-insensitive:
 
-    clause  := VERB? NP PLACE NP | NP ("should be" | "should end up" | "belongs") PLACE NP
+    clause  := VERB? NP PLACE NP | NP SHOULD PLACE NP
              | "build a tower of the C1, C2 and C3 blocks with the C1 one at the bottom ..."
+             | STATE                                  (an object state)
+             | "no" KIND ("may" "stay")? PLACE ("any" | "a" | "the")? NP   (a formula)
+    STATE   := ("turn" | "switch") ("on" | "off") NP | ("turn" | "switch") NP ("on" | "off")
+             | ("open" | "close" | "shut" | "cook" | "heat" | "freeze") NP
+             | ("keep" | "leave") NP WORD | NP ("should be" | "must be" | "stays" ...) WORD
+    WORD    := "open" | "closed" | "on" | "off" | "cooked" | "hot" | "frozen"
     NP      := "the table" | "the C block" | "the block (under|beneath|below) the C block"
              | "the block (that is)? on (top of)? the C block" | "(all the|every|each) C block(s)"
              | "every block that is not C" | "all blocks except the C ones"
-             | "(the)? NAME" (an object id or label, spaces for underscores) | NP "and" NP
+             | "(all the|every|each) KIND(s)" | "(the)? NAME" (an id or label, spaces for
+               underscores) | NP "and" NP
     PLACE   := "on" | "onto" | "on top of" | "to"   (relation on)
              | "in" | "into" | "inside"            (relation in)
+             | "under" | "underneath" | "beneath" | "below"   (relation under)
+             | "next to" | "beside"                (relation nextto)
 
-with clauses joined by ", then", "; ", ". " or ", ". Referents are resolved once, on
-the scene the instruction was given in, so "the block under the green one" keeps
-meaning that block after it moves. Anything outside the grammar is reported as not
-understood, clause by clause (`read_instruction`); `translate` refuses the whole
-instruction if any clause is outside it.
+with clauses joined by ", then", "; ", ". ", ", " or "and" before a verb. Referents are
+resolved once, on the scene the instruction was given in, so "the block under the green
+one" keeps meaning that block after it moves. A place word is read only as a relation the
+scene's world has (a tabletop has no `under`), a state only on an object with its role
+(a plate is not openable): anything else is reported as not understood, clause by clause
+(`read_instruction`); `translate` refuses the whole instruction if any clause is outside
+it. "No cup on any plate" has no goal graph (a graph cannot say "not"), so an
+instruction with such a clause reads as one formula (`Reading.goal`).
 """
 
 from __future__ import annotations
@@ -25,9 +37,11 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
+from verigraph.graph.dictionary import STATE_ROLES
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Edge, SceneGraph
 from verigraph.graph.state import WorldState
+from verigraph.reporting import STATE_WORDS
 
 _C = r"([a-z]+)"
 NP_PATTERNS: tuple[tuple[str, str], ...] = (
@@ -41,9 +55,40 @@ NP_PATTERNS: tuple[tuple[str, str], ...] = (
 )
 ON_WORDS = r"(?:on top of|onto|on|to)"
 IN_WORDS = r"(?:into|inside|in)"
-PLACE = rf"(?:{ON_WORDS}|{IN_WORDS})"
+UNDER_WORDS = r"(?:underneath|under|beneath|below)"
+NEXT_WORDS = r"(?:next to|beside)"
+PLACE = rf"(?:{ON_WORDS}|{IN_WORDS}|{UNDER_WORDS}|{NEXT_WORDS})"
 VERB = r"(?:put|move|place|set|stack)"
-SHOULD = r"(?:should be|should end up|should sit|belongs?)"
+SHOULD = (r"(?:should be|should end up|should sit|should go|must be|must go|has to be|"
+          r"have to be|needs? to be|goes|go|belongs?)")
+# Object states: the verbs that set one, and the words that name one (STATE_WORDS').
+STATE_VERBS = {"turn on": ("toggled_on", True), "switch on": ("toggled_on", True),
+               "turn off": ("toggled_on", False), "switch off": ("toggled_on", False),
+               "open": ("open", True), "close": ("open", False), "shut": ("open", False),
+               "cook": ("cooked", True), "heat up": ("hot", True), "heat": ("hot", True),
+               "warm up": ("hot", True), "freeze": ("frozen", True)}
+STATE_ADJECTIVES = {"open": ("open", True), "closed": ("open", False),
+                    "shut": ("open", False), "on": ("toggled_on", True),
+                    "off": ("toggled_on", False), "cooked": ("cooked", True),
+                    "hot": ("hot", True), "frozen": ("frozen", True)}
+_ADJ = "|".join(STATE_ADJECTIVES)
+_SET_VERB = "|".join(sorted((v for v in STATE_VERBS if not v.startswith(("turn", "switch"))),
+                            key=len, reverse=True))
+STATE_PATTERNS = (
+    re.compile(r"(?:turn|switch) (on|off) (.+)"),
+    re.compile(r"(?:turn|switch) (.+) (on|off)"),
+    re.compile(rf"({_SET_VERB}) (.+)"),
+    re.compile(rf"(?:keep|leave|have) (.+) ({_ADJ})"),
+    re.compile(rf"(.+?) (?:should|must|has to|have to|needs? to|will)? ?"
+               rf"(?:be|stay|remain|stays|remains|is|are) ({_ADJ})"),
+)
+# "no cup (may stay) on any plate": a kind kept off every object of a kind, or off one.
+NO_PATTERN = re.compile(
+    rf"no ([a-z_ ]+?) (?:(?:may|should|must|can|will) )?(?:(?:be|stay|stays|remain|remains|"
+    rf"sit|sits|stand|stands|lie|lies|is|are|left) )?({PLACE}) (?:(any|a|an|the|one) )?"
+    r"([a-z0-9_ ]+)")
+# A place word's relation, and the formula's word for it.
+FORMULA_WORD = {"on": "ontop", "in": "inside", "under": "under", "nextto": "nextto"}
 NAME = r"(?:the )?[a-z0-9_][a-z0-9_ ,]*?"  # commas: a list ("the pot, the pan and the kettle")
 # "the board on the counter with the knife on it": the second object's place is the first.
 WITH_IT = re.compile(rf"(.+?) ({PLACE}) (.+?) with (.+?) ({PLACE}) it")
@@ -59,11 +104,48 @@ class Reading:
     """What the translator made of an instruction, clause by clause."""
 
     edges: list[Edge] = field(default_factory=list)
+    # (object, state key, value): `stove on` is ("stove", "toggled_on", True).
+    states: list[tuple[str, str, bool]] = field(default_factory=list)
+    # Clauses no goal graph can say ("no cup on any plate"), as formulas.
+    formulas: list[str] = field(default_factory=list)
     understood: list[str] = field(default_factory=list)
     not_understood: list[tuple[str, str]] = field(default_factory=list)  # (clause, why)
     # Edges read but left out of `edges` because the scene cannot hold them all at once
     # (more objects on a place than its capacity): (edge sentence, why). Never silent.
     unplaced: list[tuple[str, str]] = field(default_factory=list)
+
+    def asks(self) -> bool:
+        """Whether anything checkable was read."""
+        return bool(self.edges or self.states or self.formulas)
+
+    def state_sentences(self) -> list[str]:
+        """`stove on`, `fridge closed`: the states as set_goal's edges text writes them."""
+        return [f"{obj} {STATE_WORDS[key][value]}" for obj, key, value in self.states]
+
+    def formula(self) -> str:
+        """Everything read, as one formula: the edges and states as atoms, then the
+        formula clauses (`(and (in milk fridge) (toggled_on stove) (forall ...))`)."""
+        parts = [f"({e.relation} {e.source} {e.target})" for e in self.edges]
+        parts += [f"({key} {obj})" if value else f"(not ({key} {obj}))"
+                  for obj, key, value in self.states]
+        parts += self.formulas
+        return parts[0] if len(parts) == 1 else f"(and {' '.join(parts)})"
+
+    def goal(self, graph: SceneGraph, instruction: str) -> Goal | None:
+        """The partial goal read on `graph` (None when nothing was): a goal graph with
+        the edges and node states, or, with a formula clause, one formula of it all."""
+        if not self.asks():
+            return None
+        if self.formulas:
+            return Goal(formula=self.formula(), partial=True, instruction=instruction)
+        states: dict[str, dict[str, bool]] = {}
+        for obj, key, value in self.states:
+            states.setdefault(obj, {})[key] = value
+        nodes = [n.model_copy(update={"state": states[n.id]}) if n.id in states else n
+                 for n in graph.stateless_nodes()]
+        return Goal(graph=SceneGraph(nodes=nodes, edges=self.edges,
+                                     dictionary=graph.dictionary),
+                    partial=True, instruction=instruction)
 
 
 def _np_regex() -> str:
@@ -123,19 +205,115 @@ def _resolve(phrase: str, state: WorldState) -> list[str]:
         if len(above) != 1:
             raise TranslationError(f"no single block is on the {colour} block")
         return above
+    every = re.fullmatch(r"(?:all (?:of )?(?:the )?|every |each )(.+)", phrase)
+    if every is not None:
+        kind = _kind(every.group(1), state)
+        return sorted(o for o, i in state.objects.items() if i.label == kind)
     by_name = _named(phrase, state)
     if by_name:
         return by_name
     raise TranslationError(f"'{phrase}' is not a noun phrase I know")
 
 
+def _kind(word: str, state: WorldState) -> str:
+    """The label a kind word names in the scene (`cups` -> `cup`, a synonym -> its
+    label); TranslationError when the scene has no object of that kind."""
+    word = word.strip().replace(" ", "_")
+    for form in (word, word.removesuffix("s"), word.removesuffix("es")):
+        label = state.dictionary.resolve(form) or form
+        if any(i.label == label for i in state.objects.values()):
+            return label
+    raise TranslationError(f"no {word.replace('_', ' ')} in the scene")
+
+
 Wanted = list[tuple[str, str, str]]  # (object, relation, target)
+States = list[tuple[str, str, bool]]  # (object, state key, value)
 
 
-def _clause(clause: str, state: WorldState) -> Wanted:
+@dataclass
+class _Read:
+    """One clause's reading: placements, states and formula clauses."""
+
+    edges: Wanted = field(default_factory=list)
+    states: States = field(default_factory=list)
+    formulas: list[str] = field(default_factory=list)
+
+
+def _relation(word: str, state: WorldState) -> str:
+    """The relation a place word asks for, if the scene's world has it."""
+    relation = ("in" if re.fullmatch(IN_WORDS, word) else
+                "under" if re.fullmatch(UNDER_WORDS, word) else
+                "nextto" if re.fullmatch(NEXT_WORDS, word) else "on")
+    if relation not in state.move_relations:
+        raise TranslationError(f"'{word}' asks for {relation}, which objects in this scene "
+                               f"cannot be placed by (they go {', '.join(state.move_relations)})")
+    return relation
+
+
+def _state_clause(clause: str, state: WorldState) -> States | None:
+    """`turn on the stove`, `keep the fridge closed`: the states asked for; None when the
+    clause is not a state clause."""
+    for pattern in STATE_PATTERNS:
+        m = pattern.fullmatch(clause)
+        if m is None:
+            continue
+        first, second = m.groups()
+        if first in ("on", "off") and pattern is STATE_PATTERNS[0]:
+            key, value = STATE_VERBS[f"turn {first}"]
+            phrase = second
+        elif pattern is STATE_PATTERNS[1]:
+            key, value = STATE_VERBS[f"turn {second}"]
+            phrase = first
+        elif pattern is STATE_PATTERNS[2]:
+            key, value = STATE_VERBS[first]
+            phrase = second
+        else:
+            key, value = STATE_ADJECTIVES[second]
+            phrase = first
+        try:
+            objs = _resolve(phrase, state)
+        except TranslationError:
+            continue  # "put the pot on the stove" is no state clause: read it as a placement
+        role = STATE_ROLES[key]
+        for obj in objs:
+            info = state.objects[obj]
+            if not getattr(info.props, role):
+                raise TranslationError(f"{obj} ({info.label}) is not {role}, so it cannot be "
+                                       f"{STATE_WORDS[key][value]}")
+        return [(obj, key, value) for obj in objs]
+    return None
+
+
+def _no_clause(clause: str, state: WorldState) -> str | None:
+    """`no cup on any plate` as `(forall (?c - cup) (not (exists (?p - plate) (ontop ?c
+    ?p))))` (`no cup on the tray`: `(forall (?c - cup) (not (ontop ?c tray)))`); None when
+    the clause does not start with "no"."""
+    m = NO_PATTERN.fullmatch(clause)
+    if m is None:
+        return None
+    kind = _kind(m.group(1), state)
+    word = FORMULA_WORD[_relation(m.group(2), state)]
+    if m.group(3) == "the":
+        places = _resolve(f"the {m.group(4)}", state)
+        if len(places) != 1:
+            raise TranslationError(f"'the {m.group(4)}' must name one place")
+        return f"(forall (?x - {kind}) (not ({word} ?x {places[0]})))"
+    other = _kind(m.group(4), state)
+    return f"(forall (?x - {kind}) (not (exists (?y - {other}) ({word} ?x ?y))))"
+
+
+def _clause(clause: str, state: WorldState) -> _Read:
     if len(clause) > MAX_CLAUSE:  # each place word is tried against the rest: quadratic
         raise TranslationError(f"a clause is at most {MAX_CLAUSE} characters; this one has "
                                f"{len(clause)}")
+    if (formula := _no_clause(clause, state)) is not None:
+        return _Read(formulas=[formula])
+    if (states := _state_clause(clause, state)) is not None:
+        return _Read(states=states)
+    return _Read(edges=_placement(clause, state))
+
+
+def _placement(clause: str, state: WorldState) -> Wanted:
     np = _np_regex()
     tower = re.fullmatch(rf"build a tower of the {_C}, {_C} and {_C} blocks with the \1 one at "
                          r"the bottom(?: and the \3 one on top)?", clause)
@@ -164,7 +342,7 @@ def _clause(clause: str, state: WorldState) -> Wanted:
             why = str(exc)
     if dest is None:
         raise TranslationError(why)
-    relation = "in" if re.fullmatch(IN_WORDS, dest.group(1)) else "on"
+    relation = _relation(dest.group(1), state)
     place = clause[dest.end():]
     head = clause[:dest.start()].strip()
     head = re.sub(rf"^{VERB} ", "", head)
@@ -175,8 +353,15 @@ def _clause(clause: str, state: WorldState) -> Wanted:
     return [(o, relation, targets[0]) for o in _resolve(subject, state) if o != targets[0]]
 
 
+# "and" starts a new clause before one of these verbs ("put the pot on the stove and turn
+# it on" is two clauses; "the pot and the pan" stays one noun phrase).
+CLAUSE_VERBS = r"(?:put|move|place|set|stack|turn|switch|open|close|shut|keep|leave|cook|" \
+               r"heat|warm|freeze)"
+
+
 def _clauses(text: str) -> list[str]:
-    return [c.strip() for c in re.split(r",? then |; |\. |: ", text) if c.strip()]
+    return [c.strip() for c in re.split(rf",? then |; |\. |: |,? and (?={CLAUSE_VERBS} )", text)
+            if c.strip()]
 
 
 def _comma_parts(clause: str) -> list[str]:
@@ -190,7 +375,9 @@ def _comma_parts(clause: str) -> list[str]:
         if not part:
             continue
         part = f"{waiting}, {part}" if waiting else part
-        if re.search(rf"\b{PLACE} ", part) is None:
+        if re.search(rf"\b{PLACE} ", part) is None and \
+                re.match(rf"(?:{CLAUSE_VERBS}|no) ", part) is None and \
+                re.search(rf" (?:{_ADJ})$", part) is None:  # no place, verb or state of its own
             waiting = part
             continue
         waiting = ""
@@ -210,15 +397,40 @@ def _with_it(part: str) -> list[str]:
     return [f"{m.group(1)} {m.group(2)} {m.group(3)}", f"{m.group(4)} {m.group(5)} {subject}"]
 
 
-def _read_clause(clause: str, state: WorldState) -> list[tuple[str, Wanted | str]]:
-    """(clause, wanted edges or why not); a clause that fails whole is tried at its commas."""
+def _and_parts(clause: str, state: WorldState) -> list[tuple[str, _Read]] | None:
+    """"put the bread next to the bowl and the cup under the table" as its two
+    placements (the verb carried over), at the first "and" where both sides read; None
+    when there is no such "and"."""
+    verb = re.match(rf"{VERB} ", clause)
+    for m in re.finditer(r" and ", clause):
+        left, right = clause[:m.start()], clause[m.end():]
+        if re.search(rf"\b{PLACE} ", left) is None or re.search(rf"\b{PLACE} ", right) is None:
+            continue
+        try:
+            return [(left, _clause(left, state)), (right, _clause(right, state))]
+        except TranslationError:
+            if verb is None:
+                continue
+        try:  # "the cup under the table" reads alone; with the verb, for "the cup to ..."
+            said = f"{verb.group(0)}{right}"
+            return [(left, _clause(left, state)), (right, _clause(said, state))]
+        except TranslationError:
+            continue
+    return None
+
+
+def _read_clause(clause: str, state: WorldState) -> list[tuple[str, _Read | str]]:
+    """(clause, its reading or why not); a clause that fails whole is tried at an "and"
+    between two placements, then at its commas."""
     try:
         return [(clause, _clause(clause, state))]
     except TranslationError as exc:
+        if len(clause) <= MAX_CLAUSE and (pair := _and_parts(clause, state)) is not None:
+            return list(pair)
         parts = _comma_parts(clause)
         if len(parts) < 2 and parts == [clause]:
             return [(clause, str(exc))]
-        read: list[tuple[str, Wanted | str]] = []
+        read: list[tuple[str, _Read | str]] = []
         for part in parts:
             try:
                 read.append((part, _clause(part, state)))
@@ -264,6 +476,7 @@ def read_instruction(instruction: str, graph: SceneGraph) -> Reading:
     text = re.sub(r"\s*\([^)]*\)", lambda m: ". " + m.group(0).strip()[1:-1] + ". ", text)
     text = re.sub(rf" (?:lying|sitting|standing|resting)(?= {PLACE} )", "", text)
     wanted: dict[str, tuple[str, str]] = {}
+    states: dict[tuple[str, str], bool] = {}
     reading = Reading()
     for clause in _clauses(text):
         for part, result in _read_clause(clause, state):
@@ -271,16 +484,21 @@ def read_instruction(instruction: str, graph: SceneGraph) -> Reading:
                 reading.not_understood.append((part, result))
                 continue
             reading.understood.append(part)
-            for obj, relation, target in result:
+            for obj, relation, target in result.edges:
                 wanted[obj] = (relation, target)
+            for obj, key, value in result.states:
+                states[obj, key] = value
+            reading.formulas.extend(f for f in result.formulas if f not in reading.formulas)
     reading.unplaced = _over_capacity(wanted, state)
     reading.edges = [Edge(source=o, relation=r, target=t)
                      for o, (r, t) in sorted(wanted.items())]
+    reading.states = [(obj, key, value) for (obj, key), value in sorted(states.items())]
     return reading
 
 
 def translate(instruction: str, graph: SceneGraph) -> Goal:
-    """The partial goal graph `instruction` asks for on `graph`; TranslationError if unread."""
+    """The partial goal `instruction` asks for on `graph` (`Reading.goal`); TranslationError
+    if any of it is unread."""
     reading = read_instruction(instruction, graph)
     if reading.not_understood:
         clause, why = reading.not_understood[0]
@@ -288,11 +506,10 @@ def translate(instruction: str, graph: SceneGraph) -> Goal:
     if reading.unplaced:
         edge, why = reading.unplaced[0]
         raise TranslationError(f"cannot place '{edge}': {why}")
-    if not reading.edges:
+    goal = reading.goal(graph, instruction)
+    if goal is None:
         raise TranslationError("the instruction asks for nothing I can check")
-    return Goal(graph=SceneGraph(nodes=graph.stateless_nodes(), edges=reading.edges,
-                                 dictionary=graph.dictionary),
-                partial=True, instruction=instruction)
+    return goal
 
 
 def same_goal(a: Goal, b: Goal) -> bool:

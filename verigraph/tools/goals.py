@@ -206,8 +206,7 @@ class GoalOutput(BaseModel):
     def _proposal_lines(self) -> list[str]:
         kept = (f"the episode keeps its goal: {goal_line(self.goal)}" if self.goal is not None
                 else "the episode has no goal yet")
-        if self.proposal is None or self.proposal.graph is None or \
-                not self.proposal.graph.edges:
+        if self.proposal is None:
             return ["goal PROPOSAL: nothing to propose (accepted: false, nothing set); "
                     f"{kept}; it is not checkable: give goal edges (edges='cup on table; "
                     "spoon in pot') or a predicate (" + ", ".join(PREDICATES) + ")"]
@@ -219,9 +218,12 @@ class GoalOutput(BaseModel):
 
 
 def accepting_arguments(episode_id: str, proposal: Goal) -> str:
-    """`episode_id="ep_1", edges="cup on table", partial=true`: the set_goal arguments
-    that store exactly `proposal` (partial spelled out: edges default to partial, and a
-    full proposal needs partial=false)."""
+    """`episode_id="ep_1", edges="cup on table; stove on", partial=true`: the set_goal
+    arguments that store exactly `proposal` (partial spelled out: edges default to
+    partial, and a full proposal needs partial=false); a formula proposal's
+    `formula='(forall ...)'`."""
+    if proposal.formula is not None:
+        return f"episode_id=\"{episode_id}\", formula='{proposal.formula_text()}'"
     return (f"episode_id=\"{episode_id}\", edges=\"{goal_edges_text(proposal)}\", "
             f"partial={'true' if proposal.partial else 'false'}")
 
@@ -526,13 +528,7 @@ def _from_words(instruction: str, state: WorldState | None) -> _Reading:
     notes += [f"not understood: '{c}' ({why})" for c, why in reading.not_understood]
     notes += [f"cannot place: '{e}' ({why}); the proposal leaves it out, so accepting it "
               "narrows the request: tell the user" for e, why in reading.unplaced]
-    if not reading.edges:
-        return _Reading(None, accepted=False, notes=notes)
-    graph = state.to_graph()
-    goal = Goal(graph=SceneGraph(nodes=graph.stateless_nodes(), edges=reading.edges,
-                                 dictionary=graph.dictionary),
-                partial=True, instruction=instruction)
-    return _Reading(goal, accepted=False, notes=notes)
+    return _Reading(reading.goal(state.to_graph(), instruction), accepted=False, notes=notes)
 
 
 def set_goal(ctx: ToolContext, params: SetGoalInput) -> GoalOutput:

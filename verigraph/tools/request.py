@@ -21,7 +21,9 @@ from __future__ import annotations
 from typing import Any
 
 from verigraph.graph.goal import Goal, check_goal
+from verigraph.graph.state import WorldState
 from verigraph.graph.translator import read_instruction
+from verigraph.reporting import STATE_WORDS
 from verigraph.tools.store import LiveEpisode
 
 # The episode's first instruction (load_scene's, or set_goal's words alone), kept in
@@ -64,7 +66,7 @@ def goal_items(goal: Goal) -> set[str] | None:
     if goal.graph is None or goal.predicate is not None or goal.formula is not None:
         return None
     items = {e.sentence() for e in goal.graph.edges}
-    items.update(f"{n.id} {key}={value}" for n in goal.graph.nodes
+    items.update(f"{n.id} {STATE_WORDS[key][value]}" for n in goal.graph.nodes
                  for key, value in (n.state or {}).items())
     return items
 
@@ -91,8 +93,11 @@ def left_out(episode: LiveEpisode, goal: Goal) -> tuple[str, list[str]]:
     if not isinstance(asked, str) or episode.initial_graph is None:
         return "", []
     reading = read_instruction(asked, episode.initial_graph)
-    wanted = [e.sentence() for e in reading.edges] + [s for s, _ in reading.unplaced]
-    return _words_source(episode), [s for s in wanted if s not in mine]
+    wanted = [e.sentence() for e in reading.edges] + [s for s, _ in reading.unplaced] + \
+        reading.state_sentences()
+    # a formula clause ("no cup on any plate") is more than any goal graph says
+    return _words_source(episode), [s for s in wanted if s not in mine] + \
+        [f"formula {f}" for f in reading.formulas]
 
 
 def _words_source(episode: LiveEpisode) -> str:
@@ -110,19 +115,25 @@ def asked_against(episode: LiveEpisode) -> tuple[str, list[str]]:
         return "", []
     asked_goal: Any = episode.extras.get(ASKED_GOAL)
     if isinstance(asked_goal, dict):
-        goal = Goal.model_validate(asked_goal["goal"])
-        diff = check_goal(state, goal)
-        missing = [] if diff.satisfied else [*diff.missing_edges, *diff.missing_states]
+        missing = _not_done(state, Goal.model_validate(asked_goal["goal"]))
         return f"the goal first asked for ({asked_goal['why']})", missing
     asked = episode.extras.get(ASKED)
     if not isinstance(asked, str) or episode.initial_graph is None:
         return "", []
     reading = read_instruction(asked, episode.initial_graph)
+    missing = _not_done(state, reading.goal(episode.initial_graph, asked))
     support = state.support
-    missing = [e.sentence() for e in reading.edges
-               if support.get(e.source) != (e.relation, e.target)]
     for sentence, why in reading.unplaced:
         obj, relation, target = sentence.split(" ", 2)
         if support.get(obj) != (relation, target):
             missing.append(f"{sentence} (asked, but {why})")
     return _words_source(episode), missing
+
+
+def _not_done(state: WorldState, goal: Goal | None) -> list[str]:
+    """What of `goal` does not hold on `state`: its edges and states, and a formula's
+    counterexamples."""
+    diff = check_goal(state, goal) if goal is not None else None
+    if diff is None or diff.satisfied:
+        return []
+    return [*diff.missing_edges, *diff.missing_states, *diff.formula_detail]

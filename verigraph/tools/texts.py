@@ -161,8 +161,13 @@ MAX_FORMULA_SHOWN = 600  # characters of a goal formula a text shows
 
 
 def goal_edges_text(goal: Goal) -> str:
-    """A goal graph's edges as set_goal's `edges` text takes them back."""
-    return "; ".join(goal.graph.sentences()) if goal.graph is not None else ""
+    """A goal graph's edges and node states as set_goal's `edges` text takes them back
+    (`milk in fridge; stove on`)."""
+    if goal.graph is None:
+        return ""
+    states = [f"{n.id} {STATE_WORDS[k][v]}" for n in goal.graph.nodes
+              for k, v in n.state.items()]
+    return "; ".join([*goal.graph.sentences(), *states])
 
 
 def goal_line(goal: Goal | None) -> str | None:
@@ -172,9 +177,7 @@ def goal_line(goal: Goal | None) -> str | None:
         return None
     parts = []
     if goal.graph is not None:
-        states = [f"{n.id} {STATE_WORDS[k][v]}" for n in goal.graph.nodes
-                  for k, v in n.state.items()]
-        parts.append("; ".join([*goal.graph.sentences(), *states]) or "no edges")
+        parts.append(goal_edges_text(goal) or "no edges")
     if goal.predicate:
         parts.append(goal.predicate)
     text = goal.formula_text()
