@@ -154,7 +154,9 @@ class SetGoalInput(BaseModel):
     image: ImageData | None = Field(default=None, description="goal picture (built-in "
                                                               "perception)")
     instruction: str | None = Field(default=None, max_length=4000,
-                                    description="the task in words")
+                                    description="words; alone: a proposal (placements, "
+                                                "states like 'stove on', 'no cup on any "
+                                                "plate')")
 
     @model_validator(mode="after")
     def _something(self) -> SetGoalInput:
