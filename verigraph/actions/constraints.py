@@ -58,7 +58,7 @@ def put_back(state: WorldState, objs: list[str], wanted: Wanted, after: str | No
     kept = [o for o in objs if pinned(state, o, wanted)]
     if not kept:
         return ""
-    goal_of = {o: (r, p) for o, r, p in sorted(wanted) if r in ("on", "in")}
+    goal_of = {o: (r, p) for o, r, p in sorted(wanted) if r in state.move_relations}
     now: list[str] = []
     waiting: dict[str, list[str]] = {}
     for obj in kept:
