@@ -62,8 +62,8 @@ def test_household_words_read_as_goal_items(words: str, items: list[str]) -> Non
 NEAR_MISSES = [
     ("turn on the fridge", house, "fridge (fridge) is not toggleable, so it cannot be on"),
     ("open the plate", house, "plate (plate) is not openable, so it cannot be open"),
-    ("put the cup under the plate", tabletop, "'under' asks for under, which objects in this "
-                                              "scene cannot be placed by"),
+    ("put the cup under the plate", tabletop, "'under' asks for under, which this scene's "
+                                              "world does not have (objects go on, in)"),
     ("put the cup next to the plate", tabletop, "'next to' asks for nextto"),
     ("no cup on any spoon", house, "no spoon in the scene"),
     ("every bowl must be on the table", tabletop, "no bowl in the scene"),

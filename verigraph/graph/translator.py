@@ -61,7 +61,8 @@ PLACE = rf"(?:{ON_WORDS}|{IN_WORDS}|{UNDER_WORDS}|{NEXT_WORDS})"
 VERB = r"(?:put|move|place|set|stack)"
 SHOULD = (r"(?:should be|should end up|should sit|should go|must be|must go|has to be|"
           r"have to be|needs? to be|goes|go|belongs?)")
-# Object states: the verbs that set one, and the words that name one (STATE_WORDS').
+# Object states: the verbs that set one, and the words that name one (as
+# `reporting.STATE_WORDS` writes them, and `shut`).
 STATE_VERBS = {"turn on": ("toggled_on", True), "switch on": ("toggled_on", True),
                "turn off": ("toggled_on", False), "switch off": ("toggled_on", False),
                "open": ("open", True), "close": ("open", False), "shut": ("open", False),
@@ -75,12 +76,12 @@ _ADJ = "|".join(STATE_ADJECTIVES)
 _SET_VERB = "|".join(sorted((v for v in STATE_VERBS if not v.startswith(("turn", "switch"))),
                             key=len, reverse=True))
 STATE_PATTERNS = (
-    re.compile(r"(?:turn|switch) (on|off) (.+)"),
-    re.compile(r"(?:turn|switch) (.+) (on|off)"),
-    re.compile(rf"({_SET_VERB}) (.+)"),
-    re.compile(rf"(?:keep|leave|have) (.+) ({_ADJ})"),
-    re.compile(rf"(.+?) (?:should|must|has to|have to|needs? to|will)? ?"
-               rf"(?:be|stay|remain|stays|remains|is|are) ({_ADJ})"),
+    re.compile(r"(?:turn|switch) (?P<turn>on|off) (?P<np>.+)"),
+    re.compile(r"(?:turn|switch) (?P<np>.+) (?P<turn>on|off)"),
+    re.compile(rf"(?P<verb>{_SET_VERB}) (?P<np>.+)"),
+    re.compile(rf"(?:keep|leave|have) (?P<np>.+) (?P<adj>{_ADJ})"),
+    re.compile(rf"(?P<np>.+?) (?:should|must|has to|have to|needs? to|will)? ?"
+               rf"(?:be|stay|remain|stays|remains|is|are) (?P<adj>{_ADJ})"),
 )
 # "no cup (may stay) on any plate": a kind kept off every object of a kind, or off one.
 NO_PATTERN = re.compile(
@@ -245,8 +246,8 @@ def _relation(word: str, state: WorldState) -> str:
                 "under" if re.fullmatch(UNDER_WORDS, word) else
                 "nextto" if re.fullmatch(NEXT_WORDS, word) else "on")
     if relation not in state.move_relations:
-        raise TranslationError(f"'{word}' asks for {relation}, which objects in this scene "
-                               f"cannot be placed by (they go {', '.join(state.move_relations)})")
+        raise TranslationError(f"'{word}' asks for {relation}, which this scene's world does "
+                               f"not have (objects go {', '.join(state.move_relations)})")
     return relation
 
 
@@ -257,19 +258,11 @@ def _state_clause(clause: str, state: WorldState) -> States | None:
         m = pattern.fullmatch(clause)
         if m is None:
             continue
-        first, second = m.groups()
-        if first in ("on", "off") and pattern is STATE_PATTERNS[0]:
-            key, value = STATE_VERBS[f"turn {first}"]
-            phrase = second
-        elif pattern is STATE_PATTERNS[1]:
-            key, value = STATE_VERBS[f"turn {second}"]
-            phrase = first
-        elif pattern is STATE_PATTERNS[2]:
-            key, value = STATE_VERBS[first]
-            phrase = second
-        else:
-            key, value = STATE_ADJECTIVES[second]
-            phrase = first
+        said = m.groupdict()
+        key, value = (STATE_VERBS[f"turn {said['turn']}"] if said.get("turn") else
+                      STATE_VERBS[said["verb"]] if said.get("verb") else
+                      STATE_ADJECTIVES[said["adj"]])
+        phrase = said["np"]
         try:
             objs = _resolve(phrase, state)
         except TranslationError:
@@ -426,7 +419,7 @@ def _read_clause(clause: str, state: WorldState) -> list[tuple[str, _Read | str]
         return [(clause, _clause(clause, state))]
     except TranslationError as exc:
         if len(clause) <= MAX_CLAUSE and (pair := _and_parts(clause, state)) is not None:
-            return list(pair)
+            return [*pair]
         parts = _comma_parts(clause)
         if len(parts) < 2 and parts == [clause]:
             return [(clause, str(exc))]
