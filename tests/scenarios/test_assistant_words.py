@@ -112,3 +112,35 @@ async def test_a_goal_without_the_state_asked_for_ends_partial(client: Client) -
     assert "goal reached" in text(ran), text(ran)
     ended = text(await client.call_tool("end_episode", {"episode_id": eid}))
     assert ended.startswith("PARTIAL:") and "not done: stove on" in ended, ended
+
+
+async def test_a_goal_graph_under_no_cup_on_any_plate_ends_on_what_holds(
+        client: Client) -> None:
+    """"No cup on any plate" asked in words, then a goal graph that moves the cup away:
+    the graph cannot say the formula, so set_goal says end_episode checks it (not that
+    the goal leaves it out), and it ends SUCCESS because the formula holds."""
+    out = await client.call_tool("load_scene", {
+        "scene_id": "kitchen_household", "instruction": "no cup on any plate"})
+    eid = structured(out)["episode_id"]
+    said = text(await client.call_tool("set_goal", {"episode_id": eid,
+                                                    "edges": "cup on counter"}))
+    assert "narrower" not in said
+    assert "the request also asks (forall (?x - cup) (not (exists (?y - plate) (ontop ?x " \
+           "?y)))), which a goal graph cannot say: end_episode checks it" in said, said
+    await client.call_tool("execute_actions", {"episode_id": eid,
+                                               "actions": ["move(cup, on, counter)", "done"]})
+    ended = text(await client.call_tool("end_episode", {"episode_id": eid}))
+    assert ended.startswith("SUCCESS: goal reached"), ended
+
+
+async def test_a_goal_graph_that_leaves_the_cup_on_its_plate_ends_partial(
+        client: Client) -> None:
+    out = await client.call_tool("load_scene", {
+        "scene_id": "kitchen_household",
+        "instruction": "no cup on any plate, and put the milk on the table"})
+    eid = structured(out)["episode_id"]
+    await client.call_tool("set_goal", {"episode_id": eid, "edges": "milk on table"})
+    await client.call_tool("execute_actions", {"episode_id": eid,
+                                               "actions": ["move(milk, on, table)", "done"]})
+    ended = text(await client.call_tool("end_episode", {"episode_id": eid}))
+    assert ended.startswith("PARTIAL:") and "cup is on plate" in ended, ended

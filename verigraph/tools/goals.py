@@ -59,6 +59,7 @@ from verigraph.tools.request import (
     keep_asked_goal,
     keep_asked_words,
     left_out,
+    unsaid_formulas,
 )
 from verigraph.tools.store import LiveEpisode
 from verigraph.tools.texts import goal_edges_text, goal_line
@@ -661,3 +662,8 @@ def _note_narrowing(episode: LiveEpisode, goal: Goal, notes: list[str]) -> None:
     if missing:
         notes.append(f"narrower than {asked}: it leaves out {'; '.join(missing[:10])}; "
                      "end_episode will say PARTIAL, not SUCCESS: tell the user")
+    unsaid = unsaid_formulas(episode, goal)
+    if unsaid:
+        notes.append(f"the request also asks {' and '.join(unsaid[:3])}, which a goal graph "
+                     "cannot say: end_episode checks it on the final scene (PARTIAL if it "
+                     "fails); set_goal with a formula makes it part of the goal")

@@ -95,9 +95,18 @@ def left_out(episode: LiveEpisode, goal: Goal) -> tuple[str, list[str]]:
     reading = read_instruction(asked, episode.initial_graph)
     wanted = [e.sentence() for e in reading.edges] + [s for s, _ in reading.unplaced] + \
         reading.state_sentences()
-    # a formula clause ("no cup on any plate") is more than any goal graph says
-    return _words_source(episode), [s for s in wanted if s not in mine] + \
-        [f"formula {f}" for f in reading.formulas]
+    return _words_source(episode), [s for s in wanted if s not in mine]
+
+
+def unsaid_formulas(episode: LiveEpisode, goal: Goal) -> list[str]:
+    """The formula clauses of the episode's request in words ("no cup on any plate")
+    that a goal graph leaves unsaid: it may still bring them about, so they are not
+    "left out"; end_episode checks them on the final scene (`asked_against`)."""
+    asked = episode.extras.get(ASKED)
+    if goal.formula is not None or not isinstance(asked, str) or \
+            episode.initial_graph is None:
+        return []
+    return read_instruction(asked, episode.initial_graph).formulas
 
 
 def _words_source(episode: LiveEpisode) -> str:
