@@ -13,6 +13,8 @@ import random
 import re
 from pathlib import Path
 
+import unified_planning as up
+from unified_planning.engines.plan_validator import SequentialPlanValidator
 from unified_planning.engines.sequential_simulator import UPSequentialSimulator
 from unified_planning.io import PDDLReader
 from unified_planning.shortcuts import get_environment
@@ -83,6 +85,27 @@ def depots_problem(rng: random.Random, places: int = 2, crates: int = 3
 def problem_text(name: str, domain: str, objects: str, init: list[str], goal: list[str]) -> str:
     return (f"(define (problem {name}) (:domain {domain})\n(:objects {objects})\n(:init\n  "
             + "\n  ".join(init) + f")\n(:goal (and {' '.join(goal)})))\n")
+
+
+def oracle(tmp: Path, domain: str, problem: str, plan: list[str]
+           ) -> tuple[bool | str, int | None]:
+    """(valid, first failing step) from unified-planning's SequentialPlanValidator, the
+    reference the agreement tests compare with, or ("refused", step) when it cannot build
+    the plan's step (wrong arity, unknown object)."""
+    (tmp / "d.pddl").write_text(domain)
+    (tmp / "p.pddl").write_text(problem)
+    parsed = PDDLReader().parse_problem(str(tmp / "d.pddl"), str(tmp / "p.pddl"))
+    actions = []
+    for step, line in enumerate(plan, start=1):
+        name, *args = line.strip("()").split()
+        try:
+            actions.append(up.plans.ActionInstance(parsed.action(name),
+                                                   [parsed.object(a) for a in args]))
+        except Exception:  # noqa: BLE001 - the oracle refuses to build this step
+            return "refused", step
+    result = SequentialPlanValidator().validate(parsed, up.plans.SequentialPlan(actions))
+    step = len(result.trace) if result.inapplicable_action is not None else None
+    return result.status.name == "VALID", step
 
 
 def _atom_text(fluent) -> str:  # type: ignore[no-untyped-def]

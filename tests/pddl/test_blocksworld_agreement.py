@@ -10,16 +10,12 @@ import random
 from collections import Counter
 
 import pytest
-import unified_planning as up
-from unified_planning.engines.plan_validator import SequentialPlanValidator
-from unified_planning.io import PDDLReader
-from unified_planning.shortcuts import get_environment
 
 from blocksworld_corpus import DATA, MUTATIONS, domain_text, generate
+from pddl_corpus import oracle
 from verigraph.actions.pddl import validate_pddl_plan
 from verigraph.errors import PlanParseError
 
-get_environment().credits_stream = None
 TYPED_NAMES = {"pick-up": "pickup", "put-down": "putdown"}
 
 
@@ -31,24 +27,6 @@ def spelled(plan: list[str], spelling: str) -> list[str]:
         op, rest = a[1:].split(" ", 1)
         out.append(f"({TYPED_NAMES.get(op, op)} {rest}")
     return out
-
-
-def oracle(tmp_path, domain: str, problem: str, plan: list[str]) -> tuple[bool, int | None]:
-    (tmp_path / "d.pddl").write_text(domain)
-    (tmp_path / "p.pddl").write_text(problem)
-    parsed = PDDLReader().parse_problem(str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl"))
-    actions = []
-    for line in plan:
-        name, *args = line.strip("()").split()
-        actions.append(up.plans.ActionInstance(parsed.action(name),
-                                               [parsed.object(a) for a in args]))
-    result = SequentialPlanValidator().validate(parsed, up.plans.SequentialPlan(actions))
-    valid = result.status.name == "VALID"
-    step = None
-    if result.inapplicable_action is not None:
-        assert result.trace is not None
-        step = len(result.trace)  # initial state + one state per applied action
-    return valid, step
 
 
 def ours(domain: str, problem: str, plan: list[str]) -> tuple[bool, int | None]:

@@ -5,14 +5,10 @@ from __future__ import annotations
 
 import random
 from collections import Counter
-from pathlib import Path
 
 import pytest
-import unified_planning as up
-from unified_planning.engines.plan_validator import SequentialPlanValidator
-from unified_planning.io import PDDLReader
 
-from pddl_corpus import PDDL_DATA, random_walk
+from pddl_corpus import PDDL_DATA, oracle, random_walk
 from verigraph.pddl import validate_pddl_dict
 from verigraph.reporting import report_text
 
@@ -37,19 +33,6 @@ def problem(rng: random.Random, locations: int, objects: int, goal_kind: int) ->
             f"{' '.join(objs)} - portable) (:init {' '.join(init)}) (:goal {goal}))")
 
 
-def oracle(tmp: Path, text: str, plan: list[str]) -> tuple[bool, int | None]:
-    (tmp / "p.pddl").write_text(text)
-    parsed = PDDLReader().parse_problem(str(DOMAIN_FILE), str(tmp / "p.pddl"))
-    actions = []
-    for line in plan:
-        name, *args = line.strip("()").split()
-        actions.append(up.plans.ActionInstance(parsed.action(name),
-                                               [parsed.object(a) for a in args]))
-    result = SequentialPlanValidator().validate(parsed, up.plans.SequentialPlan(actions))
-    step = len(result.trace) if result.inapplicable_action is not None else None
-    return result.status.name == "VALID", step
-
-
 def mutate(plan: list[str], rng: random.Random) -> list[str]:
     plan = list(plan)
     kind = rng.randrange(4)
@@ -71,7 +54,7 @@ def test_adl_verdicts_and_failing_steps_agree_with_unified_planning(tmp_path):
         text = problem(rng, locations, objects, case % 5)
         walk, _, _ = random_walk(DOMAIN_FILE, text, tmp_path, rng.randint(2, 8), rng)
         plan = mutate(walk, rng) if case % 2 else walk
-        expected = oracle(tmp_path, text, plan)
+        expected = oracle(tmp_path, DOMAIN, text, plan)
         report = validate_pddl_dict(DOMAIN, text, "\n".join(plan))
         v = report["violations"]
         assert (report["valid"], v[0]["step"] if v else None) == expected, (

@@ -12,9 +12,6 @@ import random
 from collections import Counter
 
 import pytest
-import unified_planning as up
-from unified_planning.engines.plan_validator import SequentialPlanValidator
-from unified_planning.io import PDDLReader
 
 from blocksworld_corpus import DATA, generate
 from pddl_corpus import (
@@ -24,6 +21,7 @@ from pddl_corpus import (
     depots_problem,
     logistics_problem,
     mutate,
+    oracle,
     problem_text,
     random_walk,
     rename,
@@ -34,25 +32,6 @@ from verigraph.pddl import validate_pddl_dict
 DOMAINS = {"logistics": ("logistics_domain.pddl", "logistics-strips"),
            "logistics_typed": ("logistics_typed_domain.pddl", "logistics-typed"),
            "depots": ("depots_domain.pddl", "depots")}
-
-
-def oracle(tmp_path, domain: str, problem: str, plan: list[str]):
-    """(valid, first failing step) from unified-planning, or ("refused", step) when it
-    cannot build the plan's step (wrong arity, unknown object)."""
-    (tmp_path / "d.pddl").write_text(domain)
-    (tmp_path / "p.pddl").write_text(problem)
-    parsed = PDDLReader().parse_problem(str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl"))
-    actions = []
-    for step, line in enumerate(plan, start=1):
-        name, *args = line.strip("()").split()
-        try:
-            actions.append(up.plans.ActionInstance(parsed.action(name),
-                                                   [parsed.object(a) for a in args]))
-        except Exception:  # noqa: BLE001 - the oracle refuses to build this step
-            return "refused", step
-    result = SequentialPlanValidator().validate(parsed, up.plans.SequentialPlan(actions))
-    step = len(result.trace) if result.inapplicable_action is not None else None
-    return result.status.name == "VALID", step
 
 
 def ours(domain: str, problem: str, plan: list[str], engine: str = "auto"):
