@@ -59,7 +59,6 @@ from verigraph.tools.request import (
     keep_asked_goal,
     keep_asked_words,
     left_out,
-    unsaid_formulas,
 )
 from verigraph.tools.store import LiveEpisode
 from verigraph.tools.texts import goal_edges_text, goal_line
@@ -658,11 +657,10 @@ def _note_narrowing(episode: LiveEpisode, goal: Goal, notes: list[str]) -> None:
     a goal leaving part of the request out says so (end_episode will say PARTIAL)."""
     if episode.goal is not None and is_narrower(goal, episode.goal):
         keep_asked_goal(episode, episode.goal, "narrowed by a later set_goal")
-    asked, missing = left_out(episode, goal)
+    asked, missing, unsaid = left_out(episode, goal)
     if missing:
         notes.append(f"narrower than {asked}: it leaves out {'; '.join(missing[:10])}; "
                      "end_episode will say PARTIAL, not SUCCESS: tell the user")
-    unsaid = unsaid_formulas(episode, goal)
     if unsaid:
         notes.append(f"the request also asks {' and '.join(unsaid[:3])}, which a goal graph "
                      "cannot say: end_episode checks it on the final scene (PARTIAL if it "

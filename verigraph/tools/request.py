@@ -78,35 +78,30 @@ def is_narrower(new: Goal, old: Goal) -> bool:
     return mine is not None and theirs is not None and mine < theirs
 
 
-def left_out(episode: LiveEpisode, goal: Goal) -> tuple[str, list[str]]:
-    """What of the episode's request `goal` does not ask for (its edges and states
-    compared with the request's), and the request in a few words; ("", []) when it asks
-    for all of it, or when either is not a list of edges (a formula, a predicate)."""
+def left_out(episode: LiveEpisode, goal: Goal) -> tuple[str, list[str], list[str]]:
+    """The request in a few words, what of it `goal` does not ask for (its edges and
+    states compared with the request's; none when either is not a list of edges: a
+    formula, a predicate), and the formula clauses of a request in words ("no cup on any
+    plate") that a goal without a formula leaves unsaid: it may still bring them about,
+    so they are not "left out"; end_episode checks them on the final scene
+    (`asked_against`). ("", [], []) when the goal asks for all of it."""
     mine = goal_items(goal)
-    if mine is None:
-        return "", []
     asked_goal: Any = episode.extras.get(ASKED_GOAL)
     if isinstance(asked_goal, dict):
+        if mine is None:
+            return "", [], []
         theirs = goal_items(Goal.model_validate(asked_goal["goal"])) or set()
-        return f"the goal first asked for ({asked_goal['why']})", sorted(theirs - mine)
-    asked = episode.extras.get(ASKED)
-    if not isinstance(asked, str) or episode.initial_graph is None:
-        return "", []
-    reading = read_instruction(asked, episode.initial_graph)
-    wanted = [e.sentence() for e in reading.edges] + [s for s, _ in reading.unplaced] + \
-        reading.state_sentences()
-    return _words_source(episode), [s for s in wanted if s not in mine]
-
-
-def unsaid_formulas(episode: LiveEpisode, goal: Goal) -> list[str]:
-    """The formula clauses of the episode's request in words ("no cup on any plate")
-    that a goal graph leaves unsaid: it may still bring them about, so they are not
-    "left out"; end_episode checks them on the final scene (`asked_against`)."""
+        return f"the goal first asked for ({asked_goal['why']})", sorted(theirs - mine), []
     asked = episode.extras.get(ASKED)
     if goal.formula is not None or not isinstance(asked, str) or \
             episode.initial_graph is None:
-        return []
-    return read_instruction(asked, episode.initial_graph).formulas
+        return "", [], []
+    reading = read_instruction(asked, episode.initial_graph)
+    if mine is None:
+        return "", [], reading.formulas
+    wanted = [e.sentence() for e in reading.edges] + [s for s, _ in reading.unplaced] + \
+        reading.state_sentences()
+    return _words_source(episode), [s for s in wanted if s not in mine], reading.formulas
 
 
 def _words_source(episode: LiveEpisode) -> str:
