@@ -13,6 +13,7 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSche
 from pydantic_core import PydanticCustomError
 
 from verigraph.graph.dictionary import STATE_ROLES, InlineDictionary, inline_or_name
+from verigraph.reporting import STATE_WORDS
 
 if TYPE_CHECKING:  # networkx loads only where a graph is converted (fast CLI start-up)
     import networkx as nx
@@ -118,6 +119,11 @@ class SceneGraph(BaseModel):
 
     def sentences(self) -> list[str]:
         return [e.sentence() for e in self.edges]
+
+    def state_sentences(self) -> list[str]:
+        """The states the nodes set, one sentence each: `fridge closed`, `stove on`."""
+        return [f"{n.id} {STATE_WORDS[key][value]}" for n in self.nodes
+                for key, value in n.state.items()]
 
     def canonical(self) -> SceneGraph:
         """Same graph with nodes and edges in a stable order: equal scenes dump equally."""

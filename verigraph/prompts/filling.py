@@ -16,7 +16,6 @@ from verigraph.actions.schemas import HOUSEHOLD_CONSTRAINTS, SCHEMAS
 from verigraph.graph.dictionary import (
     HOUSEHOLD_RELATIONS,
     PLACEMENT_RELATIONS,
-    STATE_WORDS,
     SUPPORT_RELATIONS,
     Dictionary,
     state_text,
@@ -115,8 +114,7 @@ def goal_section(goal: Goal | None, instruction: str | None = None) -> str:
             "the final graph must have exactly these edges"
         lines.append(f"Goal graph ({kind}):")
         lines.extend(f"- {s}" for s in goal.graph.sentences())
-        lines.extend(f"- {n.id} {STATE_WORDS[key][value]}" for n in goal.graph.nodes
-                     for key, value in n.state.items())
+        lines.extend(f"- {s}" for s in goal.graph.state_sentences())
     if goal is not None and goal.predicate == "single_stack":
         lines.append("All movable objects must end up in one single tower on a fixed object.")
     if goal is not None and goal.formula is not None:

@@ -19,7 +19,6 @@ from verigraph.actions.model import AnyAction, MoveAction, StateAction
 from verigraph.actions.schemas import valid_actions
 from verigraph.actions.validator import apply_action
 from verigraph.graph.builtin_scenes import kitchen_household
-from verigraph.graph.dictionary import STATE_WORDS
 from verigraph.graph.goal import Goal
 from verigraph.graph.model import Edge, Node, SceneGraph
 from verigraph.graph.state import WorldState
@@ -49,8 +48,7 @@ def _walk(state: WorldState, rng: random.Random, steps: int) -> list[AnyAction]:
 
 def instruction(goal: SceneGraph) -> str:
     """`Make these hold: milk in fridge; fridge closed; stove on.`"""
-    parts = [e.sentence() for e in goal.edges]
-    parts += [f"{n.id} {STATE_WORDS[k][v]}" for n in goal.nodes for k, v in n.state.items()]
+    parts = [*goal.sentences(), *goal.state_sentences()]
     return "Make these hold: " + "; ".join(parts) + "."
 
 

@@ -23,7 +23,6 @@ from typing import Any
 from verigraph.graph.goal import Goal, check_goal
 from verigraph.graph.state import WorldState
 from verigraph.graph.translator import read_instruction
-from verigraph.reporting import STATE_WORDS
 from verigraph.tools.store import LiveEpisode
 
 # The episode's first instruction (load_scene's, or set_goal's words alone), kept in
@@ -65,10 +64,7 @@ def goal_items(goal: Goal) -> set[str] | None:
     goal also has a predicate or a formula (no item-wise comparison)."""
     if goal.graph is None or goal.predicate is not None or goal.formula is not None:
         return None
-    items = {e.sentence() for e in goal.graph.edges}
-    items.update(f"{n.id} {STATE_WORDS[key][value]}" for n in goal.graph.nodes
-                 for key, value in (n.state or {}).items())
-    return items
+    return {*goal.graph.sentences(), *goal.graph.state_sentences()}
 
 
 def is_narrower(new: Goal, old: Goal) -> bool:

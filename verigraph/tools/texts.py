@@ -10,7 +10,6 @@ from __future__ import annotations
 from verigraph.errors import VeriGraphError
 from verigraph.graph.dictionary import (
     ROOM_RELATION,
-    STATE_WORDS,
     Dictionary,
     InlineDictionary,
     ObjectProperties,
@@ -81,7 +80,7 @@ def objects_line(graph: SceneGraph, dictionary: str | InlineDictionary | None = 
 def edges_line(graph: SceneGraph, prefix: str = "edges") -> str:
     """`edges: cup on table; ...`, then the states nodes have set (`; states: fridge
     closed, stove on`)."""
-    states = [f"{n.id} {STATE_WORDS[k][v]}" for n in graph.nodes for k, v in n.state.items()]
+    states = graph.state_sentences()
     return f"{prefix}: " + ("; ".join(graph.sentences()) or "none") + (
         f"; states: {', '.join(states)}" if states else "")
 
@@ -165,9 +164,7 @@ def goal_edges_text(goal: Goal) -> str:
     (`milk in fridge; stove on`)."""
     if goal.graph is None:
         return ""
-    states = [f"{n.id} {STATE_WORDS[k][v]}" for n in goal.graph.nodes
-              for k, v in n.state.items()]
-    return "; ".join([*goal.graph.sentences(), *states])
+    return "; ".join([*goal.graph.sentences(), *goal.graph.state_sentences()])
 
 
 def goal_line(goal: Goal | None) -> str | None:
