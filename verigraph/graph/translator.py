@@ -400,15 +400,15 @@ def _and_parts(clause: str, state: WorldState) -> list[tuple[str, _Read]] | None
         if re.search(rf"\b{PLACE} ", left) is None or re.search(rf"\b{PLACE} ", right) is None:
             continue
         try:
-            return [(left, _clause(left, state)), (right, _clause(right, state))]
-        except TranslationError:
-            if verb is None:
-                continue
-        try:  # "the cup under the table" reads alone; with the verb, for "the cup to ..."
-            said = f"{verb.group(0)}{right}"
-            return [(left, _clause(left, state)), (right, _clause(said, state))]
+            first = _clause(left, state)
         except TranslationError:
             continue
+        # "the cup under the table" reads alone; with the verb, for "the cup to ..."
+        for said in (right, *((f"{verb.group(0)}{right}",) if verb else ())):
+            try:
+                return [(left, first), (right, _clause(said, state))]
+            except TranslationError:
+                continue
     return None
 
 
