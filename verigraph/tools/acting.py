@@ -423,14 +423,22 @@ SHOWN_MAX_FAILURES = 50
 
 
 def pddl_report(pddl: dict[str, str], plan: str, *, all_errors: bool = False
-                   ) -> ValidationReport:
+                ) -> ValidationReport:
+    """The PDDL plan's report as the tools return it."""
+    return as_validation_report(pddl_data(pddl, plan, all_errors=all_errors))
+
+
+def pddl_data(pddl: dict[str, str], plan: str, *, all_errors: bool = False
+              ) -> dict[str, Any]:
+    """The PDDL plan's report in plain data (`reporting`'s form: `valid`, `total_cost`),
+    its errors named by the tool's fields (`pddl.domain`)."""
     try:
         data = validate_pddl_dict(pddl["domain"], pddl["problem"], plan, all_errors=all_errors)
         if len(data["steps"]) + data["not_checked"] > MAX_PLAN_ACTIONS:
             raise ToolArgumentError(f"the plan has more than {MAX_PLAN_ACTIONS} actions",
                                     field="plan", value=None,
                                     fix="use verigraph validate --batch for longer plans")
-        return as_validation_report(data)
+        return data
     except VeriGraphError as exc:
         field = exc.field if exc.field in ("domain", "problem") else exc.field or "plan"
         raise ToolArgumentError(exc.message, field=f"pddl.{field}" if field in (

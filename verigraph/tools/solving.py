@@ -14,7 +14,7 @@ from verigraph.actions.report import validate_plan
 from verigraph.graph.dictionary import applied_line
 from verigraph.solver import solve as search_plan
 from verigraph.solver.pddl_planner import plan_pddl
-from verigraph.tools.acting import MAX_ACTIONS_PER_CALL, MAX_PDDL_CHARS, PDDL_KEYS, pddl_report
+from verigraph.tools.acting import MAX_ACTIONS_PER_CALL, MAX_PDDL_CHARS, PDDL_KEYS, pddl_data
 from verigraph.tools.context import ToolContext
 from verigraph.tools.errors import FeatureUnavailableError, ToolArgumentError
 from verigraph.tools.executors import arm_mode_of, runs_on
@@ -192,10 +192,8 @@ def _solve_pddl(pddl: dict[str, str], time_limit: float) -> SolveOutput:
         return SolveOutput(reachable=False if found.unsolvable else None, plan=[], actions=[],
                            length=0, reason=found.reason, verified=False,
                            planner=found.planner)
-    report = pddl_report(pddl, "\n".join(found.plan) or "", all_errors=False)
-    detail = report.goal_diff.detail if report.goal_diff is not None else None
-    cost = float(detail.removeprefix("total cost ")) if detail and \
-        detail.startswith("total cost ") else None
+    report = pddl_data(pddl, "\n".join(found.plan))
+    cost = None if report.get("unmet_goals") else report.get("total_cost")  # a goal reached
     return SolveOutput(reachable=True, plan=found.plan, actions=[], length=len(found.plan),
-                       reason=found.reason, verified=report.valid, optimal=found.optimal,
-                       planner=found.planner, cost=cost)
+                       reason=found.reason, verified=report["valid"], optimal=found.optimal,
+                       planner=found.planner, cost=None if cost is None else float(cost))
